@@ -1,0 +1,79 @@
+"""Balancing of rotors and mechanisms (seed 002, chapter 3), and beyond.
+
+One scene API, :func:`solve` (scene-format.md section 2), and every method as a
+plain function for notebooks:
+
+- design-stage rotor balancing in one or two planes: :func:`balance_rotor`
+  (eqs 3.3-3.14);
+- the static balancing device: :func:`static_device` (eqs 3.18-3.21);
+- resonance amplitude methods: :func:`parallelogram` (three runs, eqs 3.22-3.31),
+  :func:`trial_runs` (any marks, least squares), :func:`four_run`;
+- with measured phase: :func:`influence_single_plane`, :func:`influence_two_plane`,
+  :func:`influence_balance` (influence coefficients, least squares);
+- ISO 21940-11 tolerances: :func:`iso_permissible_unbalance`, :func:`iso_allocate`,
+  :func:`iso_check`.
+
+Pictures are in :mod:`balance.plot` (imported on demand: matplotlib is not loaded
+by ``import balance``).
+"""
+
+from __future__ import annotations
+
+from .api import example_path, examples, solve, solve_results
+from .errors import BalanceError, BalanceWarning
+from .influence import (
+    InfluenceResult,
+    influence_balance,
+    influence_coefficients,
+    influence_single_plane,
+    influence_two_plane,
+)
+from .iso import (
+    GRADES,
+    IsoAllocation,
+    IsoCheck,
+    iso_allocate,
+    iso_check,
+    iso_permissible_unbalance,
+    kgm_to_gmm,
+)
+from .resonance import ResonanceResult, four_run, parallelogram, trial_runs
+from .rotor import Correction, CorrectionPlane, RotorResult, Unbalance, balance_rotor
+from .scene import BalanceScene, load_scene
+from .static_device import StaticDeviceResult, static_device
+from .uncertainty import Interval
+
+__all__ = [
+    "GRADES",
+    "BalanceError",
+    "BalanceScene",
+    "BalanceWarning",
+    "Correction",
+    "CorrectionPlane",
+    "InfluenceResult",
+    "Interval",
+    "IsoAllocation",
+    "IsoCheck",
+    "ResonanceResult",
+    "RotorResult",
+    "StaticDeviceResult",
+    "Unbalance",
+    "balance_rotor",
+    "example_path",
+    "examples",
+    "four_run",
+    "influence_balance",
+    "influence_coefficients",
+    "influence_single_plane",
+    "influence_two_plane",
+    "iso_allocate",
+    "iso_check",
+    "iso_permissible_unbalance",
+    "kgm_to_gmm",
+    "load_scene",
+    "parallelogram",
+    "solve",
+    "solve_results",
+    "static_device",
+    "trial_runs",
+]

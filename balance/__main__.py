@@ -1,0 +1,121 @@
+"""Command line: ``python -m balance solve SCENE [--json]`` and ``python -m balance examples``.
+
+Bad input prints ``error: <one line>`` on stderr and exits with code 2, never a
+traceback; warnings print as ``warning: <one line>``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import warnings
+from pathlib import Path
+from typing import Any, NoReturn
+
+from .api import example_path, examples, results_to_dict, solve_results
+from .errors import WorkbenchError
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> NoReturn:  # one line, exit 2, no usage dump
+        print(f"error: {message} (see python -m balance --help)", file=sys.stderr)
+        raise SystemExit(2)
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = _Parser(prog="python -m balance",
+                description="Rotor and resonance balancing (seed 002 ch. 3).")
+    sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    s = sub.add_parser("solve", help="solve a balancing scene")
+    s.add_argument("scene", help="a scene .toml file, or the name of a bundled example")
+    s.add_argument("--json", action="store_true", help="print the result dict as JSON")
+    sub.add_parser("examples", help="list the bundled example scenes")
+    return p
+
+
+def _fmt(x: Any, unit: str = "") -> str:
+    if x is None:
+        return "-"
+    return f"{x:.6g}{(' ' + unit) if unit else ''}"
+
+
+def _report(out: dict[str, Any], speed: bool) -> str:
+    lines: list[str] = []
+    if "rotor" in out:
+        r = out["rotor"]
+        fu, mu = ("N", "N m") if speed else ("kg m", "kg m^2")
+        kind = "static (one plane)" if len(r["corrections"]) == 1 else "dynamic (two planes)"
+        lines.append(f"rotor: {kind} balancing")
+        for c in r["corrections"]:
+            lines.append(f"  plane {c['plane']} (z = {c['z']:g} m): mass {_fmt(c['mass'], 'kg')}"
+                         f" at {_fmt(c['angle'], 'deg')}, radius {c['radius']:g} m, "
+                         f"U = {_fmt(c['U'], 'kg m')}")
+        lines.append(f"  force  before {_fmt(r['initial_force'], fu)}, "
+                     f"after {_fmt(r['residual_force'], fu)}")
+        lines.append(f"  moment before {_fmt(r['initial_moment'], mu)}, "
+                     f"after {_fmt(r['residual_moment'], mu)} (about z = 0)")
+    if "static_test" in out:
+        s = out["static_test"]
+        lines.append("static balancing device:")
+        lines.append(f"  eccentricity {_fmt(s['eccentricity'], 'm')}, correction mass "
+                     f"{_fmt(s['correction_mass'], 'kg')}")
+    for t in out.get("resonance_test", []):
+        lines.append(f"resonance test, plane {t['plane']}:")
+        lines.append(f"  A = {_fmt(t['A'])}, phi = {_fmt(t['phi'], 'deg')}, unbalance "
+                     f"{_fmt(t['unbalance'], 'kg m')}")
+        where = f"at {_fmt(t['angle'], 'deg')}"
+        if t["mirror_angle"] is not None:
+            where += f" (or at {_fmt(t['mirror_angle'], 'deg')}: the mirror position)"
+        lines.append(f"  correction mass {_fmt(t['correction_mass'], 'kg')} {where}")
+        if "uncertainty" in t:
+            u = t["uncertainty"]
+            ang = u["angle"]
+            lines.append(f"  with +-{u['dA']:g} on each amplitude: mass {_fmt(u['magnitude'][0])}"
+                         f" .. {_fmt(u['magnitude'][1], 'kg')}"
+                         + (f", angle {_fmt(ang[0])} .. {_fmt(ang[1], 'deg')}" if ang else ""))
+    if "balancing" in out:
+        lines.append("mechanism balancing:")
+        lines.append("  " + json.dumps(out["balancing"], default=str))
+    return "\n".join(lines)
+
+
+def _resolve(name: str) -> Path | str:
+    path = Path(name)
+    if path.suffix != ".toml" and not path.exists() and name in examples():
+        return example_path(name)
+    return path
+
+
+def _showwarning(message, category, filename, lineno, file=None, line=None) -> None:
+    print(f"warning: {message}", file=sys.stderr)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the command line; return the exit code."""
+    args = _parser().parse_args(argv)
+    if args.command == "examples":
+        for name in examples():
+            print(f"{name}\t{example_path(name)}")
+        return 0
+    warnings.showwarning = _showwarning
+    try:
+        results = solve_results(_resolve(args.scene))
+        out = results_to_dict(results)
+    except WorkbenchError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    except Exception as exc:  # a bug, still one line (the contract: never a traceback)
+        print(f"error: internal error, please report: {type(exc).__name__}: {exc}",
+              file=sys.stderr)
+        return 1
+    if args.json:
+        print(json.dumps(out, indent=2, allow_nan=False))
+    else:
+        speed = "rotor" in results and results["rotor"].speed_rpm is not None
+        print(_report(out, speed))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

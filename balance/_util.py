@@ -1,0 +1,53 @@
+"""Small numeric helpers shared by the balancing modules (angles, speeds, checks)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .errors import BalanceError
+
+RPM_TO_RAD_S = 2.0 * math.pi / 60.0
+"""omega [rad/s] = n [rpm] * 2 pi / 60."""
+
+
+def deg360(angle: float) -> float:
+    """Map an angle in degrees into [0, 360), never returning 360.0 or -0.0."""
+    a = float(angle) % 360.0
+    if a >= 360.0 or a == 0.0:  # -1e-17 % 360 rounds to 360.0; also turns -0.0 into 0.0
+        return 0.0
+    return a
+
+
+def deg360_array(angles: ArrayLike) -> np.ndarray:
+    """Vectorised :func:`deg360`."""
+    a = np.mod(np.asarray(angles, dtype=float), 360.0)
+    return np.where((a >= 360.0) | (a == 0.0), 0.0, a)
+
+
+def angle_of(z: complex) -> float:
+    """Angle of a complex number (a plane vector) in degrees, in [0, 360)."""
+    return deg360(math.degrees(math.atan2(z.imag, z.real)))
+
+
+def polar(magnitude: float, angle_deg: float) -> complex:
+    """The plane vector of given magnitude and angle (deg from +x, ccw) as a complex number."""
+    return complex(magnitude * math.cos(math.radians(angle_deg)),
+                   magnitude * math.sin(math.radians(angle_deg)))
+
+
+def check_number(value: object, name: str, *, positive: bool = False,
+                 nonnegative: bool = False) -> float:
+    """A finite float, else :class:`BalanceError` naming ``name``."""
+    if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+        raise BalanceError(f"{name} must be a number, not {type(value).__name__}")
+    x = float(value)
+    if not math.isfinite(x):
+        raise BalanceError(f"{name} must be a finite number, not {x!r}")
+    if positive and x <= 0.0:
+        raise BalanceError(f"{name} must be positive, got {x:g}")
+    if nonnegative and x < 0.0:
+        raise BalanceError(f"{name} must not be negative, got {x:g}")
+    return x

@@ -1,0 +1,132 @@
+"""The one entry point for scenes: :func:`solve` (a dict per the contract) and
+:func:`solve_results` (the result objects, for plots and further work)."""
+
+from __future__ import annotations
+
+import importlib
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from .errors import BalanceError
+from .resonance import ResonanceResult, parallelogram, trial_runs
+from .rotor import balance_rotor
+from .scene import BalanceScene, ResonanceSpec, load_scene
+from .static_device import static_device
+
+__all__ = ["example_path", "examples", "results_to_dict", "solve", "solve_results"]
+
+
+def _resonance(spec: ResonanceSpec) -> ResonanceResult:
+    if spec.runs is not None:
+        return trial_runs(spec.A1, spec.runs, spec.trial_mass, spec.trial_radius,
+                          spec.correction_radius, plane=spec.plane, dA=spec.dA)
+    return parallelogram(spec.A1, spec.A2, spec.A3, spec.trial_mass, spec.trial_radius,
+                         spec.correction_radius, plane=spec.plane, dA=spec.dA)
+
+
+def _mechanism_balancing(raw: dict) -> Any:
+    """Dispatch a mechanism's ``[balancing]`` (seed 002 s. 3.4) to ``balance.mechanism``."""
+    try:
+        mechanism = importlib.import_module("balance.mechanism")
+    except ModuleNotFoundError as exc:
+        if exc.name != "balance.mechanism":
+            raise
+        raise BalanceError("[balancing] (static balancing of a mechanism, seed 002 s. 3.4) is "
+                           "not available yet: the module balance.mechanism is missing") from None
+    return mechanism.solve_mechanism_balancing(raw)
+
+
+def solve_results(scene: Any) -> dict[str, Any]:
+    """Solve every balancing section of a scene and return the result objects.
+
+    Parameters
+    ----------
+    scene : pathlib.Path, str, dict or BalanceScene
+        See :func:`balance.scene.load_scene`.
+
+    Returns
+    -------
+    dict
+        ``rotor`` -> :class:`~balance.rotor.RotorResult`, ``static_test`` ->
+        :class:`~balance.static_device.StaticDeviceResult`, ``resonance_test`` -> list
+        of :class:`~balance.resonance.ResonanceResult`, ``balancing`` -> what
+        ``balance.mechanism.solve_mechanism_balancing`` returns; one key per section
+        present.
+
+    Raises
+    ------
+    BalanceError, SceneError
+        A scene with no balancing section, or bad data (one line).
+    """
+    sc: BalanceScene = load_scene(scene)
+    if not sc.sections:
+        raise BalanceError("the scene has no balancing section: balance.solve solves [rotor], "
+                           "[static_test], [[resonance_test]] and a mechanism's [balancing]; "
+                           "for a mechanism's reactions use kinetostatics.solve")
+    out: dict[str, Any] = {}
+    if sc.rotor is not None:
+        out["rotor"] = balance_rotor(sc.rotor.unbalances, sc.rotor.planes, sc.rotor.speed_rpm)
+    if sc.static_test is not None:
+        s = sc.static_test
+        out["static_test"] = static_device(s.disk_mass, s.comparison_mass, s.comparison_radius,
+                                           s.alpha, s.correction_radius)
+    if sc.resonance_tests:
+        out["resonance_test"] = [_resonance(spec) for spec in sc.resonance_tests]
+    if sc.balancing is not None:
+        out["balancing"] = _mechanism_balancing(sc.raw)
+    return out
+
+
+def solve(scene: Any) -> dict[str, Any]:
+    """Solve a balancing scene: a dict with one key per section present (the contract's keys).
+
+    Parameters
+    ----------
+    scene : pathlib.Path, str, dict or BalanceScene
+        A path, a string naming a ``.toml`` file, TOML text, or a parsed mapping.
+
+    Returns
+    -------
+    dict
+        ``rotor``: ``{corrections, initial_force, initial_moment, residual_force,
+        residual_moment}``; ``static_test``: ``{eccentricity, correction_mass}``;
+        ``resonance_test``: a list of ``{plane, A, phi, unbalance, correction_mass,
+        angle, mirror_angle}``; ``balancing``: the mechanism result. Angles in
+        [0, 360), None where undefined.
+
+    Examples
+    --------
+    >>> out = solve(example_path("static_device"))
+    >>> round(out["static_test"]["correction_mass"], 6)
+    0.134032
+    """
+    return results_to_dict(solve_results(scene))
+
+
+def results_to_dict(results: dict[str, Any]) -> dict[str, Any]:
+    """Turn :func:`solve_results` output into the contract's JSON-ready dict."""
+    out: dict[str, Any] = {}
+    for key, value in results.items():
+        if key == "resonance_test":
+            out[key] = [r.to_dict() for r in value]
+        elif hasattr(value, "to_dict"):
+            out[key] = value.to_dict()
+        else:
+            out[key] = value
+    return out
+
+
+def examples() -> list[str]:
+    """Names of the example scenes bundled with the package (``balance/scenes``)."""
+    folder = resources.files("balance") / "scenes"
+    return sorted(p.name[:-5] for p in folder.iterdir() if p.name.endswith(".toml"))
+
+
+def example_path(name: str) -> Path:
+    """Path of a bundled example scene, by name (with or without ``.toml``)."""
+    stem = name[:-5] if name.endswith(".toml") else name
+    path = Path(str(resources.files("balance") / "scenes" / f"{stem}.toml"))
+    if not path.is_file():
+        raise BalanceError(f"no bundled example scene {name!r}; known: {', '.join(examples())}")
+    return path

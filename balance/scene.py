@@ -1,0 +1,228 @@
+"""Balancing scenes: the TOML input of ``scene-format.md`` section 2, checked into dataclasses.
+
+:func:`load_scene` accepts a path, a string naming a ``.toml`` file, a string of TOML
+text or a dict. Sections: ``[rotor]`` (with ``[[rotor.unbalance]]`` and one or two
+``[[rotor.planes]]``), ``[static_test]``, ``[[resonance_test]]``; ``title`` and
+``format = 1`` may stand at the top. A mechanism scene's keys (section 1) are let
+through unchecked (``kinetostatics`` checks them), so that its ``[balancing]``
+section can be dispatched; every other unknown key is refused with the nearest
+known key suggested.
+
+Project additions to the contract (optional, absent from the contract's examples):
+``dA`` in a ``[[resonance_test]]``, the uncertainty of every amplitude, which adds an
+``uncertainty`` entry to that result.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from kinetostatics.errors import SceneError
+from kinetostatics.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source
+
+from .rotor import CorrectionPlane, Unbalance
+
+__all__ = [
+    "BALANCE_SECTIONS",
+    "BalanceScene",
+    "ResonanceSpec",
+    "RotorSpec",
+    "StaticTestSpec",
+    "load_scene",
+]
+
+MECHANISM_KEYS = ("gravity", "ground", "driver", "bodies", "joints", "loads", "near", "motion")
+BALANCE_SECTIONS = ("rotor", "static_test", "resonance_test", "balancing")
+TOP_KEYS = ("title", "format", *BALANCE_SECTIONS[:3], *MECHANISM_KEYS, "balancing")
+ROTOR_KEYS = ("speed_rpm", "unbalance", "planes")
+UNBALANCE_KEYS = ("mass", "radius", "angle", "z")
+PLANE_KEYS = ("z", "radius")
+STATIC_KEYS = ("disk_mass", "comparison_mass", "comparison_radius", "alpha",
+               "correction_radius")
+RESONANCE_KEYS = ("plane", "trial_mass", "trial_radius", "correction_radius", "A1", "A2", "A3",
+                  "runs", "dA")
+RUN_KEYS = ("angle", "A")
+
+
+@dataclass(frozen=True)
+class RotorSpec:
+    """``[rotor]``: eccentric masses, one or two correction planes, optional speed (rpm)."""
+
+    unbalances: tuple[Unbalance, ...]
+    planes: tuple[CorrectionPlane, ...]
+    speed_rpm: float | None = None
+
+
+@dataclass(frozen=True)
+class StaticTestSpec:
+    """``[static_test]``: the static balancing device of fig. 3.9 (kg, m, deg)."""
+
+    disk_mass: float
+    comparison_mass: float
+    comparison_radius: float
+    alpha: float
+    correction_radius: float
+
+
+@dataclass(frozen=True)
+class ResonanceSpec:
+    """One ``[[resonance_test]]``: A2 and A3 (three-run method) or ``runs`` (any marks)."""
+
+    plane: int
+    trial_mass: float
+    trial_radius: float
+    correction_radius: float
+    A1: float
+    A2: float | None = None
+    A3: float | None = None
+    runs: tuple[tuple[float, float], ...] | None = None
+    dA: float | None = None
+
+
+@dataclass(frozen=True)
+class BalanceScene:
+    """A checked balancing scene; ``raw`` keeps the mapping as read."""
+
+    title: str = ""
+    rotor: RotorSpec | None = None
+    static_test: StaticTestSpec | None = None
+    resonance_tests: tuple[ResonanceSpec, ...] = ()
+    balancing: dict | None = None
+    raw: dict = field(default_factory=dict, repr=False)
+
+    @property
+    def sections(self) -> tuple[str, ...]:
+        """The balancing sections present, in contract order."""
+        present = {"rotor": self.rotor is not None, "static_test": self.static_test is not None,
+                   "resonance_test": bool(self.resonance_tests),
+                   "balancing": self.balancing is not None}
+        return tuple(k for k in BALANCE_SECTIONS if present[k])
+
+
+def load_scene(source: Any) -> BalanceScene:
+    """Read and check a balancing scene (scene-format.md section 2).
+
+    Parameters
+    ----------
+    source : pathlib.Path, str, dict or BalanceScene
+        A path, a string naming a ``.toml`` file, TOML text, or a parsed mapping.
+
+    Returns
+    -------
+    BalanceScene
+
+    Raises
+    ------
+    kinetostatics.errors.SceneError
+        One line naming the broken rule, the field and the fix: an unknown key (with
+        the nearest known key), a missing field, a number out of range.
+    """
+    if isinstance(source, BalanceScene):
+        return source
+    raw = read_source(source, "balancing scene")
+    top = check_keys(raw, TOP_KEYS, "scene")
+    title = as_str(top["title"], "title") if "title" in top else ""
+    if "format" in top:
+        as_int(top["format"], "format", lo=1, hi=1)
+    rotor = _rotor(top["rotor"]) if "rotor" in top else None
+    static = _static(top["static_test"]) if "static_test" in top else None
+    tests: tuple[ResonanceSpec, ...] = ()
+    if "resonance_test" in top:
+        items = top["resonance_test"]
+        if isinstance(items, dict):
+            raise SceneError("resonance_test must be an array of tables: write "
+                             "[[resonance_test]], not [resonance_test]")
+        items = as_list(items, "resonance_test")
+        if not items:
+            raise SceneError("resonance_test is empty: give at least one [[resonance_test]]")
+        tests = tuple(_resonance(item, i) for i, item in enumerate(items))
+    balancing = top.get("balancing")
+    if balancing is not None and not isinstance(balancing, dict):
+        raise SceneError("[balancing] must be a table")
+    return BalanceScene(title=title, rotor=rotor, static_test=static, resonance_tests=tests,
+                        balancing=balancing, raw=raw)
+
+
+def _rotor(table: Any) -> RotorSpec:
+    t = check_keys(table, ROTOR_KEYS, "[rotor]", required=("unbalance", "planes"))
+    speed = as_float(t["speed_rpm"], "rotor.speed_rpm", positive=True) if "speed_rpm" in t \
+        else None
+    if isinstance(t["unbalance"], dict):
+        raise SceneError("rotor.unbalance must be an array of tables: write "
+                         "[[rotor.unbalance]], not [rotor.unbalance]")
+    items = as_list(t["unbalance"], "rotor.unbalance")
+    if not items:
+        raise SceneError("rotor.unbalance is empty: list the eccentric masses as "
+                         "[[rotor.unbalance]] tables")
+    unbalances = []
+    for i, item in enumerate(items):
+        w = f"rotor.unbalance[{i}]"
+        u = check_keys(item, UNBALANCE_KEYS, w, required=("mass", "radius", "angle"))
+        unbalances.append(Unbalance(
+            mass=as_float(u["mass"], f"{w}.mass", nonnegative=True),
+            radius=as_float(u["radius"], f"{w}.radius", nonnegative=True),
+            angle=as_float(u["angle"], f"{w}.angle"),
+            z=as_float(u.get("z", 0.0), f"{w}.z"),
+        ))
+    if isinstance(t["planes"], dict):
+        raise SceneError("rotor.planes must be an array of tables: write [[rotor.planes]], "
+                         "not [rotor.planes]")
+    items = as_list(t["planes"], "rotor.planes")
+    if len(items) not in (1, 2):
+        raise SceneError(f"rotor.planes: {len(items)} correction planes given; give one "
+                         "(static balancing) or two (dynamic balancing)")
+    planes = []
+    for i, item in enumerate(items):
+        w = f"rotor.planes[{i}]"
+        p = check_keys(item, PLANE_KEYS, w, required=("radius",))
+        planes.append(CorrectionPlane(z=as_float(p.get("z", 0.0), f"{w}.z"),
+                                      radius=as_float(p["radius"], f"{w}.radius", positive=True)))
+    return RotorSpec(unbalances=tuple(unbalances), planes=tuple(planes), speed_rpm=speed)
+
+
+def _static(table: Any) -> StaticTestSpec:
+    t = check_keys(table, STATIC_KEYS, "[static_test]", required=STATIC_KEYS)
+    return StaticTestSpec(
+        disk_mass=as_float(t["disk_mass"], "static_test.disk_mass", positive=True),
+        comparison_mass=as_float(t["comparison_mass"], "static_test.comparison_mass",
+                                 positive=True),
+        comparison_radius=as_float(t["comparison_radius"], "static_test.comparison_radius",
+                                   positive=True),
+        alpha=as_float(t["alpha"], "static_test.alpha"),
+        correction_radius=as_float(t["correction_radius"], "static_test.correction_radius",
+                                   positive=True),
+    )
+
+
+def _resonance(item: Any, i: int) -> ResonanceSpec:
+    w = f"resonance_test[{i}]"
+    t = check_keys(item, RESONANCE_KEYS, w,
+                   required=("trial_mass", "trial_radius", "correction_radius", "A1"))
+    plane = as_int(t.get("plane", 1), f"{w}.plane", lo=1, hi=2)
+    common = dict(
+        plane=plane,
+        trial_mass=as_float(t["trial_mass"], f"{w}.trial_mass", positive=True),
+        trial_radius=as_float(t["trial_radius"], f"{w}.trial_radius", positive=True),
+        correction_radius=as_float(t["correction_radius"], f"{w}.correction_radius",
+                                   positive=True),
+        A1=as_float(t["A1"], f"{w}.A1", nonnegative=True),
+        dA=as_float(t["dA"], f"{w}.dA", nonnegative=True) if "dA" in t else None,
+    )
+    has_pair = "A2" in t or "A3" in t
+    if "runs" in t:
+        if has_pair:
+            raise SceneError(f"{w}: give either A2 and A3 (three-run method) or runs, not both")
+        runs = []
+        for k, run in enumerate(as_list(t["runs"], f"{w}.runs")):
+            rw = f"{w}.runs[{k}]"
+            r = check_keys(run, RUN_KEYS, rw, required=RUN_KEYS)
+            runs.append((as_float(r["angle"], f"{rw}.angle"),
+                         as_float(r["A"], f"{rw}.A", positive=True)))
+        return ResonanceSpec(runs=tuple(runs), **common)
+    for key in ("A2", "A3"):
+        if key not in t:
+            raise SceneError(f"{w}: missing required key {key!r} (or give runs = "
+                             "[{angle = .., A = ..}, ...] instead of A2 and A3)")
+    return ResonanceSpec(A2=as_float(t["A2"], f"{w}.A2", positive=True),
+                         A3=as_float(t["A3"], f"{w}.A3", positive=True), **common)

@@ -1,0 +1,44 @@
+"""Kinetostatics of planar mechanisms: a driver plus dyads, over the whole cycle.
+
+The public API::
+
+    import kinetostatics as ks
+    scene = ks.load_scene("four_bar.toml")     # or TOML text, or a dict
+    sol = ks.solve(scene)                      # kinematics, reactions, Me
+    sol.driver, sol.reactions, sol.kinematics, sol.bodies, sol.summary()
+
+Bundled examples: ``ks.example("four_bar")`` (also ``slider_crank``, ``slotted_lever``,
+``scotch_yoke``, ``sliding_driver``, ``shaper``).
+"""
+
+from __future__ import annotations
+
+from importlib import resources
+from pathlib import Path
+
+from .errors import AssemblyError, SceneError, StructureError, WorkbenchError
+from .kinematics import Kinematics, solve_kinematics
+from .results import Solution
+from .scene import Scene, load_scene
+from .solver import solve
+from .structure import Dyad, Structure, analyse
+
+__all__ = [
+    "AssemblyError", "Dyad", "Kinematics", "Scene", "SceneError", "Solution", "Structure",
+    "StructureError", "WorkbenchError", "analyse", "example", "examples", "load_scene",
+    "solve", "solve_kinematics",
+]
+
+
+def examples() -> list[str]:
+    """Names of the bundled example scenes."""
+    return sorted(p.name[:-5] for p in resources.files(__package__).joinpath("scenes").iterdir()
+                  if p.name.endswith(".toml"))
+
+
+def example(name: str) -> Path:
+    """Path of a bundled example scene, e.g. ``example("four_bar")``."""
+    path = Path(str(resources.files(__package__).joinpath("scenes", f"{name}.toml")))
+    if not path.is_file():
+        raise SceneError(f"no bundled example {name!r}; known: {', '.join(examples())}")
+    return path

@@ -1,0 +1,112 @@
+"""The command line of the kinetostatics workbench.
+
+Every user mistake prints one line ``error: ...`` on stderr and exits with code 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from .errors import WorkbenchError
+
+
+def _cmd_solve(args) -> int:
+    from .solver import solve
+    sol = solve(Path(args.scene))
+    if args.out:
+        for p in sol.to_csv(args.out):
+            print(p)
+    if args.json or not args.out:
+        print(json.dumps(sol.summary(), indent=2))
+    return 0
+
+
+def _cmd_demo(args) -> int:
+    import matplotlib
+    matplotlib.use("Agg")
+    from . import example
+    from .plot import overview
+    from .solver import solve
+    scene = example(args.example)
+    sol = solve(scene)
+    out = Path(args.out)
+    written = sol.to_csv(out)
+    fig = overview(sol)
+    png = out / "overview.png"
+    fig.savefig(png, dpi=110)
+    written.append(png)
+    s = sol.summary()
+    q = sol.driver_quantity
+    unit = "N m" if q == "Me" else "N"
+    print(f"{s['title']}: {s['positions']} positions")
+    for line in s["structure"]:
+        print("  " + line)
+    print(f"  {q} mean {s[q + '_mean']:.4g} {unit}, min {s[q + '_min']:.4g}, "
+          f"max {s[q + '_max']:.4g}")
+    for j, r in s["reaction_max"].items():
+        print(f"  joint {j}: max |F| = {r['F']:.4g} N at {r['position']:g}")
+    print("wrote: " + ", ".join(str(p) for p in written))
+    return 0
+
+
+def _cmd_structure(args) -> int:
+    from .scene import load_scene
+    from .structure import analyse
+    for line in analyse(load_scene(Path(args.scene))).describe():
+        print(line)
+    return 0
+
+
+def _cmd_bench(args) -> int:
+    from .bench import run_bench
+    run_bench(quick=args.quick, reference=args.reference)
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="python -m kinetostatics",
+                                description="Kinetostatics of planar mechanisms.")
+    sub = p.add_subparsers(dest="command", required=True)
+    s = sub.add_parser("solve", help="solve a scene; write the tables as CSV")
+    s.add_argument("scene", help="scene file (.toml)")
+    s.add_argument("--out", help="folder for reactions.csv, driver.csv, ... and summary.json")
+    s.add_argument("--json", action="store_true", help="print the summary as JSON")
+    s.set_defaults(func=_cmd_solve)
+    d = sub.add_parser("demo", help="solve a bundled example; write tables and a picture")
+    d.add_argument("--example", default="four_bar", help="bundled scene (default four_bar)")
+    d.add_argument("--out", default="demo-out", help="output folder (default demo-out)")
+    d.set_defaults(func=_cmd_demo)
+    t = sub.add_parser("structure", help="print the driver and the dyads of a scene")
+    t.add_argument("scene")
+    t.set_defaults(func=_cmd_structure)
+    b = sub.add_parser("bench", help="positions per second and error against closed forms")
+    b.add_argument("--quick", action="store_true", help="small sizes only")
+    b.add_argument("--reference", help="path of reference_fourbar.py to time side by side")
+    b.set_defaults(func=_cmd_bench)
+    _extra_commands(sub)
+    return p
+
+
+def _extra_commands(sub) -> None:
+    """Commands of the optional modules (simulation cross-check, motion)."""
+    try:
+        from .sim_cli import add_commands
+    except ImportError:
+        return
+    add_commands(sub)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.func(args)
+    except WorkbenchError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2

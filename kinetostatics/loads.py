@@ -1,0 +1,151 @@
+"""Loads on the bodies: applied forces and moments, gravity, and the inertia forces.
+
+Seed 002 s. 2.1: the inertia torsor of a body in plane motion, F_i = -m a_G,
+M_i = -I_G eps (eq. 2.1), added to the applied loads (d'Alembert). Seed 002 s. 2.2:
+mass concentration, which replaces the torsor by point forces -m_k a_k (eq. 2.8):
+static in two points (eqs 2.9-2.11) and dynamic in two points (eqs 2.12-2.15).
+
+Every load is kept as a :class:`PointLoad` (a force at a moving point and/or a
+couple) so that the resultants, the virtual power and the pictures use one list.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .kinematics import BodyMotion, Kinematics
+from .scene import Body, Scene
+
+RESIST_STILL = 1e-9     # a resist point slower than this fraction of its top speed: undefined
+
+
+@dataclass
+class PointLoad:
+    """A force (fx, fy) acting at the global point (x, y) of ``body`` plus a couple ``m``.
+
+    ``kind`` is ``"applied"``, ``"gravity"`` or ``"inertia"``. ``vx, vy`` is the velocity
+    of the point (for the power); arrays over positions or scalars.
+    """
+
+    body: str
+    kind: str
+    x: np.ndarray
+    y: np.ndarray
+    vx: np.ndarray
+    vy: np.ndarray
+    fx: np.ndarray
+    fy: np.ndarray
+    m: np.ndarray | float = 0.0
+    label: str = ""
+
+    def power(self, omega: np.ndarray) -> np.ndarray:
+        """Power of the load: F . v + M omega."""
+        return self.fx * self.vx + self.fy * self.vy + self.m * omega
+
+
+def concentrated_masses(body: Body) -> list[tuple[tuple[float, float], float]]:
+    """Local positions and values of the concentrated masses of a body's mass model.
+
+    Static, two points B, C with the cog G = B + t (C - B) on their line (eq. 2.11):
+    m_B = m (1 - t), m_C = m t. Dynamic, point B and its conjugate K on the line BG
+    beyond G with |GK| = I_G / (m |GB|) (eqs 2.13-2.14): m_B = m |GK| / (|GB| + |GK|),
+    m_K = m |GB| / (|GB| + |GK|). Both keep the mass and the centre of mass; the dynamic
+    pair keeps I_G too, the static pair does not.
+    """
+    model = body.mass_model
+    m = body.mass
+    g = np.asarray(body.cog, dtype=float)
+    if model is None:
+        return [(tuple(g), m)]
+    if model.kind == "static":
+        b = np.asarray(body.points[model.points[0]], dtype=float)
+        c = np.asarray(body.points[model.points[1]], dtype=float)
+        t = float(np.dot(g - b, c - b) / np.dot(c - b, c - b))
+        return [(tuple(b), m * (1.0 - t)), (tuple(c), m * t)]
+    b = np.asarray(body.points[model.points[0]], dtype=float)
+    gb = float(np.hypot(*(g - b)))
+    gk = body.inertia / (m * gb)
+    k = g + (g - b) / gb * gk
+    return [(tuple(b), m * gk / (gb + gk)), (tuple(k), m * gb / (gb + gk))]
+
+
+def _at(motion: BodyMotion, local):
+    x, y = motion.point(local)
+    vx, vy = motion.vel_at(x, y)
+    return x, y, vx, vy
+
+
+def inertia_loads(scene: Scene, kin: Kinematics) -> list[PointLoad]:
+    """Inertia loads of every body with mass: the exact torsor (eq. 2.1) or the point
+    forces of its mass model (eq. 2.8 with 2.11 or 2.13-2.15)."""
+    out = []
+    for name, body in scene.bodies.items():
+        if body.mass == 0.0 and body.inertia == 0.0:
+            continue
+        m = kin.bodies[name]
+        if body.mass_model is None:
+            x, y, vx, vy = _at(m, body.cog or (0.0, 0.0))
+            ax, ay = m.acc_at(x, y)
+            out.append(PointLoad(name, "inertia", x, y, vx, vy, -body.mass * ax,
+                                 -body.mass * ay, -body.inertia * m.alpha, "inertia torsor"))
+            continue
+        for loc, mk in concentrated_masses(body):
+            x, y, vx, vy = _at(m, loc)
+            ax, ay = m.acc_at(x, y)
+            out.append(PointLoad(name, "inertia", x, y, vx, vy, -mk * ax, -mk * ay, 0.0,
+                                 f"concentrated mass {mk:.6g} kg"))
+    return out
+
+
+def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.ndarray]:
+    """Gravity (at every cog) and the scene's ``[[loads]]``.
+
+    Returns the loads and the ``undefined_load`` mask: rows where a ``resist`` point
+    stands still (its speed at most 1e-9 of its top speed), where that force is zero.
+    """
+    n = kin.n
+    undefined = np.zeros(n, dtype=bool)
+    out = []
+    gx, gy = scene.gravity
+    if gx or gy:
+        for name, body in scene.bodies.items():
+            if body.mass > 0.0:
+                x, y, vx, vy = _at(kin.bodies[name], body.cog)
+                out.append(PointLoad(name, "gravity", x, y, vx, vy, body.mass * gx,
+                                     body.mass * gy, 0.0, "weight"))
+    for i, load in enumerate(scene.loads):
+        m = kin.bodies[load.body]
+        body = scene.bodies[load.body]
+        if load.point is None:
+            z = np.float64(0.0)
+            out.append(PointLoad(load.body, "applied", z, z, z, z, z, z, load.moment,
+                                 f"load {i}"))
+            continue
+        x, y, vx, vy = _at(m, body.local(load.point))
+        if load.resist is not None:
+            vx, vy = np.broadcast_to(vx, (n,)), np.broadcast_to(vy, (n,))
+            speed = np.hypot(vx, vy)
+            top = speed.max() if n else 0.0
+            still = speed <= RESIST_STILL * top
+            undefined |= still
+            with np.errstate(divide="ignore", invalid="ignore"):
+                fx = np.where(still, 0.0, -load.resist * vx / speed)
+                fy = np.where(still, 0.0, -load.resist * vy / speed)
+        else:
+            fx, fy = np.float64(load.force[0]), np.float64(load.force[1])
+        out.append(PointLoad(load.body, "applied", x, y, vx, vy, fx, fy, load.moment,
+                             f"load {i} at {load.point}"))
+    return out, undefined
+
+
+def resultants(loads: list[PointLoad], names, n: int) -> dict[str, list[np.ndarray]]:
+    """Per body, [Fx, Fy, M_O]: the resultant force and its moment about the global origin."""
+    acc = {b: [np.zeros(n), np.zeros(n), np.zeros(n)] for b in names}
+    for ld in loads:
+        r = acc[ld.body]
+        r[0] += ld.fx
+        r[1] += ld.fy
+        r[2] += ld.x * ld.fy - ld.y * ld.fx + ld.m
+    return acc

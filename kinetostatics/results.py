@@ -1,0 +1,305 @@
+"""The result of a kinetostatic solve: arrays inside, tidy pandas tables built on demand.
+
+Tables of the contract (``scene-format.md``, "Results"): ``reactions``, ``driver``,
+``kinematics``, ``bodies``; and the project's own: ``dyads`` (transmission angle per
+dyad, eq. 2.60-2.61), ``sliders`` (relative motion in every prismatic joint),
+``frame`` (the force and moment the mechanism transmits to its frame), ``reduced``
+(reduced moment and moment of inertia, eqs 2.72-2.75). The solver works on arrays;
+at 1e6 positions the kinematics table alone has about 1e7 rows, so every table is
+built only when asked for and then kept.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from .kinematics import Kinematics
+from .loads import PointLoad
+from .reactions import DriverReaction, JointReaction
+from .scene import GROUND, Scene
+from .structure import Structure
+
+OFFSET_EMPTY = 1e-12     # offset = M / N is left empty where |N| <= 1e-12 max|N|
+
+
+def continuous_angle(theta: np.ndarray) -> np.ndarray:
+    """Degrees, continuous over the sweep, the first in (-180, 180]."""
+    a = np.rad2deg(np.unwrap(np.asarray(theta, dtype=float)))
+    if a.size:
+        first = 180.0 - np.mod(180.0 - a[0], 360.0)
+        a = a + (first - a[0])
+    return a
+
+
+@dataclass
+class Solution:
+    """Kinematics, loads, reactions and the driver's equilibrating moment over a sweep.
+
+    Attributes
+    ----------
+    scene, structure, kin
+        The checked scene, its structure (driver + dyads) and the motion arrays.
+    loads : list of PointLoad
+        Applied loads, gravity and inertia loads.
+    joint_reactions : dict
+        Per joint, the reaction arrays (:class:`~kinetostatics.reactions.JointReaction`).
+    drive : DriverReaction
+        ``Me`` (N m) on a crank or ``Fe`` (N) on a sliding driver.
+    undefined_load : ndarray of bool
+        Rows where a ``resist`` point stands still.
+    """
+
+    scene: Scene
+    structure: Structure
+    kin: Kinematics
+    loads: list[PointLoad]
+    joint_reactions: dict[str, JointReaction]
+    drive: DriverReaction
+    undefined_load: np.ndarray
+
+    # -- arrays -----------------------------------------------------------------
+    @property
+    def positions(self) -> np.ndarray:
+        return self.kin.positions
+
+    @property
+    def driver_quantity(self) -> str:
+        return "Me" if self.drive.kind == "R" else "Fe"
+
+    @property
+    def Me(self) -> np.ndarray:
+        """Equilibrating moment (crank) or force (sliding driver) over the sweep."""
+        return np.broadcast_to(self.drive.value, self.positions.shape)
+
+    @property
+    def singular(self) -> np.ndarray:
+        return self.kin.singular
+
+    def reaction(self, joint: str) -> tuple[np.ndarray, np.ndarray]:
+        """(Fx, Fy) of a joint's reaction on its ``on`` body, arrays over positions."""
+        r = self.joint_reactions[joint]
+        n = self.positions.shape
+        return np.broadcast_to(r.fx, n), np.broadcast_to(r.fy, n)
+
+    # -- contract tables --------------------------------------------------------
+    @cached_property
+    def driver(self) -> pd.DataFrame:
+        """``position, Me`` (or ``Fe``), ``singular``, ``undefined_load``."""
+        return pd.DataFrame({"position": self.positions, self.driver_quantity: self.Me,
+                             "singular": self.singular,
+                             "undefined_load": self.undefined_load})
+
+    @cached_property
+    def reactions(self) -> pd.DataFrame:
+        """``position, joint, on, by, Fx, Fy, F, N, M, offset``; on revolute rows N and M
+        are 0 (a pin carries no couple) and offset is empty."""
+        n = self.positions.size
+        parts = []
+        for name in self.scene.joints:
+            r = self.joint_reactions[name]
+            fx, fy = self.reaction(name)
+            if r.N is None:
+                nn = mm = np.zeros(n)
+                off = np.full(n, np.nan)
+            else:
+                nn = np.broadcast_to(r.N, (n,)).astype(float)
+                mm = np.broadcast_to(r.M, (n,)).astype(float)
+                big = np.abs(nn).max() if n else 0.0
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    off = np.where(np.abs(nn) > OFFSET_EMPTY * big, mm / nn, np.nan)
+            parts.append(pd.DataFrame({
+                "position": self.positions, "joint": name, "on": r.on, "by": r.by,
+                "Fx": fx, "Fy": fy, "F": np.hypot(fx, fy), "N": nn, "M": mm, "offset": off}))
+        return pd.concat(parts, ignore_index=True)
+
+    def _points(self):
+        for name, body in self.scene.bodies.items():
+            names = list(body.points) + (["cog"] if body.cog is not None else [])
+            for p in names:
+                yield name, p, body.local(p)
+
+    @cached_property
+    def kinematics(self) -> pd.DataFrame:
+        """``position, body, point, x, y, vx, vy, ax, ay`` for every named point and cog."""
+        n = self.positions.size
+        parts = []
+        for b, p, loc in self._points():
+            m = self.kin.bodies[b]
+            x, y = m.point(loc)
+            vx, vy = m.vel_at(x, y)
+            ax, ay = m.acc_at(x, y)
+            cols = {k: np.broadcast_to(v, (n,)) for k, v in
+                    (("x", x), ("y", y), ("vx", vx), ("vy", vy), ("ax", ax), ("ay", ay))}
+            parts.append(pd.DataFrame({"position": self.positions, "body": b, "point": p,
+                                       **cols}))
+        return pd.concat(parts, ignore_index=True)
+
+    @cached_property
+    def bodies(self) -> pd.DataFrame:
+        """``position, body, angle`` (deg, continuous), ``omega, alpha`` (rad/s, rad/s^2)."""
+        n = self.positions.size
+        parts = []
+        for name in self.scene.bodies:
+            m = self.kin.bodies[name]
+            if name == self.scene.driver.body and self.scene.driver.kind == "R":
+                angle = self.positions.astype(float)
+            else:
+                angle = continuous_angle(np.broadcast_to(m.theta, (n,)))
+            parts.append(pd.DataFrame({"position": self.positions, "body": name,
+                                       "angle": angle,
+                                       "omega": np.broadcast_to(m.omega, (n,)),
+                                       "alpha": np.broadcast_to(m.alpha, (n,))}))
+        return pd.concat(parts, ignore_index=True)
+
+    # -- project tables ---------------------------------------------------------
+    @cached_property
+    def dyads(self) -> pd.DataFrame:
+        """``position, dyad, kind, bodies, transmission_angle`` (deg, in [0, 180]),
+        ``sin_tau`` and ``singular`` per dyad (seed 002 eqs 2.60-2.61: the angle between
+        the force a dyad's link transmits and the velocity of the point it drives)."""
+        parts = []
+        for dm in self.kin.dyads:
+            tau = np.rad2deg(np.arctan2(np.abs(dm.sin_tau), dm.cos_tau))
+            parts.append(pd.DataFrame({
+                "position": self.positions, "dyad": dm.dyad.index + 1, "kind": dm.dyad.kind,
+                "bodies": f"{dm.dyad.bodies[0]}-{dm.dyad.bodies[1]}",
+                "transmission_angle": tau, "sin_tau": np.abs(dm.sin_tau),
+                "singular": np.abs(dm.sin_tau) <= 1e-3}))
+        if not parts:
+            return pd.DataFrame(columns=["position", "dyad", "kind", "bodies",
+                                         "transmission_angle", "sin_tau", "singular"])
+        return pd.concat(parts, ignore_index=True)
+
+    @cached_property
+    def sliders(self) -> pd.DataFrame:
+        """Relative motion in every prismatic joint: ``s`` (m, slider point from the line
+        point along the line), ``ds`` (m/s) and ``dds`` (m/s^2) seen from the guide (the
+        relative acceleration, without the Coriolis term 2 omega x v_rel)."""
+        n = self.positions.size
+        parts = []
+        for name, j in self.scene.joints.items():
+            if j.kind != "T":
+                continue
+            g, s = self.kin.bodies[j.guide], self.kin.bodies[j.slider]
+            gl = self.scene.ground[j.points[0]] if j.guide == GROUND else \
+                self.scene.bodies[j.guide].local(j.points[0])
+            sl = self.scene.ground[j.points[1]] if j.slider == GROUND else \
+                self.scene.bodies[j.slider].local(j.points[1])
+            lx, ly = g.point(gl) if j.guide != GROUND else gl
+            sx, sy = s.point(sl) if j.slider != GROUND else sl
+            beta = np.deg2rad(j.line_angle)
+            ux, uy = g.rotate(np.cos(beta), np.sin(beta))
+            vsx, vsy = s.vel_at(sx, sy)
+            vgx, vgy = g.vel_at(sx, sy)
+            asx, asy = s.acc_at(sx, sy)
+            agx, agy = g.acc_at(sx, sy)
+            rel = (ux * (sx - lx) + uy * (sy - ly))
+            ds = ux * (vsx - vgx) + uy * (vsy - vgy)
+            dds = ux * (asx - agx) + uy * (asy - agy)
+            parts.append(pd.DataFrame({"position": self.positions, "joint": name,
+                                       "s": np.broadcast_to(rel, (n,)),
+                                       "ds": np.broadcast_to(ds, (n,)),
+                                       "dds": np.broadcast_to(dds, (n,))}))
+        if not parts:
+            return pd.DataFrame(columns=["position", "joint", "s", "ds", "dds"])
+        return pd.concat(parts, ignore_index=True)
+
+    @cached_property
+    def frame(self) -> pd.DataFrame:
+        """Force and moment the mechanism transmits to its frame (shaking force and
+        moment): the ground joints' reactions on the ground, the driver's reaction
+        (-Me on the frame) included; moment about the global origin."""
+        n = self.positions.size
+        fx = np.zeros(n)
+        fy = np.zeros(n)
+        mz = np.zeros(n)
+        for name, j in self.scene.joints.items():
+            if GROUND not in j.bodies:
+                continue
+            r = self.joint_reactions[name]
+            gx, gy = -np.broadcast_to(r.fx, (n,)), -np.broadcast_to(r.fy, (n,))
+            fx += gx
+            fy += gy
+            mz += np.broadcast_to(r.x * gy - r.y * gx, (n,))
+            if r.M is not None:
+                sign = -1.0 if j.slider != GROUND else 1.0
+                mz += sign * np.broadcast_to(r.M, (n,))
+        if self.drive.kind == "R":
+            mz -= self.Me
+        else:
+            j = self.scene.joints[self.scene.driver.joint]
+            beta = np.deg2rad(j.line_angle) if j.guide == GROUND else 0.0
+            ux, uy = np.cos(beta), np.sin(beta)
+            r = self.joint_reactions[j.name]
+            fx -= self.Me * ux
+            fy -= self.Me * uy
+            mz -= np.broadcast_to(r.x * (self.Me * uy) - r.y * (self.Me * ux), (n,))
+        return pd.DataFrame({"position": self.positions, "Fx": fx, "Fy": fy,
+                             "F": np.hypot(fx, fy), "M": mz})
+
+    @cached_property
+    def reduced(self) -> pd.DataFrame:
+        """Reduced moment (force) of the loads and reduced moment of inertia (mass) to the
+        driver (seed 002 eqs 2.72, 2.75): ``M_red`` = sum of the power of the applied
+        loads and gravity / driver speed (= -Me less the inertia part, eq. 2.73 for
+        the whole load set), ``I_red`` = sum (m v_G^2 + I_G omega^2) / driver speed^2."""
+        from .reduction import reduced_table
+        return reduced_table(self)
+
+    # -- summary and files ------------------------------------------------------
+    def summary(self) -> dict:
+        """The contract's ``summary.json`` content."""
+        q = self.driver_quantity
+        me = np.asarray(self.Me, dtype=float)
+        pos = self.positions.astype(float)
+        if pos.size > 1 and pos[-1] != pos[0]:
+            mean = float(np.trapezoid(me, pos) / (pos[-1] - pos[0]))
+        else:
+            mean = float(me.mean())
+        out: dict = {"title": self.scene.title, "positions": int(pos.size),
+                     f"{q}_mean": mean, f"{q}_max": float(me.max()), f"{q}_min": float(me.min())}
+        rmax = {}
+        for name in self.scene.joints:
+            fx, fy = self.reaction(name)
+            f = np.hypot(fx, fy)
+            i = int(np.argmax(f))
+            rmax[name] = {"F": float(f[i]), "position": float(pos[i])}
+        out["reaction_max"] = rmax
+        if self.kin.dyads:
+            best = None
+            for dm in self.kin.dyads:
+                tau = np.rad2deg(np.arctan2(np.abs(dm.sin_tau), dm.cos_tau))
+                t = np.minimum(tau, 180.0 - tau)
+                i = int(np.argmin(t))
+                if best is None or t[i] < best[0]:
+                    best = (float(t[i]), float(pos[i]), dm.dyad.index + 1)
+            out["transmission_angle_min"] = best[0]
+            out["transmission_angle_min_position"] = best[1]
+            out["transmission_angle_min_dyad"] = best[2]
+        else:
+            out["transmission_angle_min"] = None
+        out["singular_rows"] = int(np.count_nonzero(self.singular))
+        out["undefined_load_rows"] = int(np.count_nonzero(self.undefined_load))
+        out["structure"] = self.structure.describe()
+        return out
+
+    def to_csv(self, directory: str | Path) -> list[Path]:
+        """Write every table as CSV (17 significant digits) and ``summary.json``."""
+        d = Path(directory)
+        d.mkdir(parents=True, exist_ok=True)
+        written = []
+        for name in ("reactions", "driver", "kinematics", "bodies", "dyads", "sliders",
+                     "frame"):
+            path = d / f"{name}.csv"
+            getattr(self, name).to_csv(path, index=False, float_format="%.17g")
+            written.append(path)
+        path = d / "summary.json"
+        path.write_text(json.dumps(self.summary(), indent=2) + "\n")
+        written.append(path)
+        return written

@@ -1,0 +1,487 @@
+"""Mechanism scenes: the TOML input of ``scene-format.md`` section 1, checked into dataclasses.
+
+``load_scene`` accepts a path, a string naming a ``.toml`` file, a string of TOML text
+or a dict, and returns a :class:`Scene`. Every rule of the contract is checked here;
+a broken rule raises :class:`~kinetostatics.errors.SceneError` with one line naming
+the field and the fix. Unknown keys are refused with the nearest known key suggested.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .errors import SceneError
+from .tomlio import (
+    as_float,
+    as_int,
+    as_list,
+    as_str,
+    as_vec2,
+    check_keys,
+    read_source,
+    suggest,
+)
+
+GROUND = "ground"
+MAX_COUNT = 10_000_000
+TOP_KEYS = ("title", "format", "gravity", "ground", "driver", "bodies", "joints", "loads",
+            "near", "motion", "balancing")
+DRIVER_KEYS = ("body", "joint", "speed", "speed_rpm", "acceleration", "start", "stop",
+               "count", "positions")
+BODY_KEYS = ("name", "mass", "inertia", "cog", "points", "mass_model")
+JOINT_KEYS_R = ("name", "kind", "bodies", "points", "friction")
+JOINT_KEYS_T = ("name", "kind", "guide", "slider", "line_point", "line_angle", "slider_point",
+                "friction")
+LOAD_KEYS = ("body", "point", "force", "moment", "resist")
+MOTION_KEYS = ("motor", "motor_table", "flywheel", "omega0", "cycles", "target_delta")
+
+
+@dataclass(frozen=True)
+class MassModel:
+    """How a body's inertia loads are modelled (seed 002 s. 2.2).
+
+    ``kind`` is ``"static"`` (two points, eqs 2.9-2.11) or ``"dynamic"`` (one given
+    point and its conjugate, eqs 2.12-2.15); ``points`` names the body points.
+    """
+
+    kind: str
+    points: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class Friction:
+    """Friction in a joint (seed 002 s. 2.4): coefficient ``mu`` and pin ``radius`` (m).
+
+    For a revolute joint the friction-circle radius is rho = radius * mu (eq. 2.62);
+    for a prismatic joint ``radius`` is unused.
+    """
+
+    mu: float
+    radius: float = 0.0
+
+
+@dataclass(frozen=True)
+class Body:
+    """A rigid moving body: mass (kg), moment of inertia about its cog (kg m^2), local points."""
+
+    name: str
+    mass: float = 0.0
+    inertia: float = 0.0
+    cog: tuple[float, float] | None = None
+    points: dict[str, tuple[float, float]] = field(default_factory=dict)
+    mass_model: MassModel | None = None
+
+    def local(self, point: str) -> tuple[float, float]:
+        """Local coordinates of a named point (``"cog"`` names the centre of mass)."""
+        if point == "cog":
+            return self.cog if self.cog is not None else (0.0, 0.0)
+        return self.points[point]
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A revolute (``R``) or prismatic (``T``) joint between two bodies.
+
+    For ``R``: ``bodies`` and the names of the coinciding ``points`` on each.
+    For ``T``: ``bodies = (guide, slider)``; the guide carries the line through
+    ``line_point`` at ``line_angle`` (deg, guide's local frame); ``slider_point`` of the
+    slider stays on it and the slider's angle is the guide's plus ``line_angle``.
+    """
+
+    name: str
+    kind: str
+    bodies: tuple[str, str]
+    points: tuple[str, str]
+    line_angle: float = 0.0
+    friction: Friction | None = None
+
+    @property
+    def guide(self) -> str:
+        return self.bodies[0]
+
+    @property
+    def slider(self) -> str:
+        return self.bodies[1]
+
+    def other(self, body: str) -> str:
+        """The body at the other side of the joint."""
+        return self.bodies[1] if self.bodies[0] == body else self.bodies[0]
+
+    def point_on(self, body: str) -> str:
+        """The name of the joint's point on ``body``."""
+        return self.points[0] if self.bodies[0] == body else self.points[1]
+
+    @property
+    def on_by(self) -> tuple[str, str]:
+        """(on, by) of the reactions table: the moving body for a ground joint, else the
+        second body listed (the slider for a prismatic joint)."""
+        a, b = self.bodies
+        if a == GROUND:
+            return b, a
+        if b == GROUND:
+            return a, b
+        return b, a
+
+
+@dataclass(frozen=True)
+class Driver:
+    """The driving element: a crank (``kind = "R"``) or a slider on a guide (``"T"``).
+
+    ``positions`` are in deg (R) or m (T); ``speed`` in rad/s or m/s; ``acceleration``
+    in rad/s^2 or m/s^2. Each row is a snapshot at the same speed and acceleration.
+    """
+
+    body: str
+    joint: str
+    kind: str
+    speed: float
+    acceleration: float
+    positions: np.ndarray
+
+
+@dataclass(frozen=True)
+class Load:
+    """A constant external load on a body: a force at a point and/or a moment.
+
+    ``resist`` (N) is a force of that magnitude opposite to the point's velocity.
+    """
+
+    body: str
+    point: str | None
+    force: tuple[float, float] | None = None
+    moment: float = 0.0
+    resist: float | None = None
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A checked mechanism scene (``scene-format.md`` section 1)."""
+
+    title: str
+    gravity: tuple[float, float]
+    ground: dict[str, tuple[float, float]]
+    driver: Driver
+    bodies: dict[str, Body]
+    joints: dict[str, Joint]
+    loads: tuple[Load, ...]
+    near: dict[str, tuple[float, float]]
+    motion: dict[str, Any] | None = None
+    balancing: dict[str, Any] | None = None
+    raw: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
+
+    def point_names(self, body: str) -> list[str]:
+        """Named points of a body (ground: the ``[ground]`` table)."""
+        if body == GROUND:
+            return list(self.ground)
+        return list(self.bodies[body].points)
+
+
+def load_scene(source: Any) -> Scene:
+    """Load and check a mechanism scene.
+
+    Parameters
+    ----------
+    source : pathlib.Path, str or dict
+        A path, a string naming an existing ``.toml`` file, TOML text, or a dict.
+
+    Returns
+    -------
+    Scene
+        The checked scene.
+
+    Raises
+    ------
+    SceneError
+        One line naming the broken rule, the field and the fix.
+    """
+    if isinstance(source, Scene):
+        return source
+    raw = read_source(source)
+    top = check_keys(raw, TOP_KEYS, "scene", required=("driver", "bodies", "joints"))
+    title = str(top.get("title", ""))
+    if "format" in top and top["format"] != 1:
+        raise SceneError(f"format = {top['format']!r} is not supported; use format = 1")
+    gravity = as_vec2(top.get("gravity", [0.0, 0.0]), "gravity")
+    ground = _ground(top.get("ground", {}))
+    bodies = _bodies(top["bodies"])
+    joints = _joints(top["joints"], bodies, ground)
+    driver = _driver(top["driver"], bodies, joints)
+    loads = _loads(top.get("loads", []), bodies)
+    near = _near(top.get("near", {}), bodies, joints)
+    motion = _motion(top.get("motion")) if "motion" in top else None
+    balancing = top.get("balancing")
+    if balancing is not None and not isinstance(balancing, dict):
+        raise SceneError("[balancing] must be a table")
+    return Scene(title=title, gravity=gravity, ground=ground, driver=driver, bodies=bodies,
+                 joints=joints, loads=loads, near=near, motion=motion, balancing=balancing,
+                 raw=raw)
+
+
+def _ground(table: Any) -> dict[str, tuple[float, float]]:
+    if not isinstance(table, dict):
+        raise SceneError("[ground] must be a table of point = [x, y]")
+    return {str(k): as_vec2(v, f"ground.{k}") for k, v in table.items()}
+
+
+def _bodies(items: Any) -> dict[str, Body]:
+    items = as_list(items, "[[bodies]]")
+    if not items:
+        raise SceneError("[[bodies]] is empty: a mechanism needs at least the driver body")
+    bodies: dict[str, Body] = {}
+    for i, item in enumerate(items):
+        where = f"bodies[{i}]"
+        item = check_keys(item, BODY_KEYS, where, required=("name",))
+        name = as_str(item["name"], f"{where}.name")
+        where = f"body {name!r}"
+        if name == GROUND:
+            raise SceneError(f"{where}: 'ground' is reserved for the fixed body; rename it")
+        if name in bodies:
+            raise SceneError(f"{where}: the name is used twice; body names must be unique")
+        mass = as_float(item.get("mass", 0.0), f"{where}.mass", nonnegative=True)
+        inertia = as_float(item.get("inertia", 0.0), f"{where}.inertia", nonnegative=True)
+        cog = as_vec2(item["cog"], f"{where}.cog") if "cog" in item else None
+        if mass > 0.0 and cog is None:
+            raise SceneError(f"{where}: mass > 0 needs 'cog' (centre of mass, local coordinates)")
+        pts = item.get("points", {})
+        if not isinstance(pts, dict):
+            raise SceneError(f"{where}.points must be a table of name = [x, y]")
+        points = {}
+        for pname, pval in pts.items():
+            if pname == "cog":
+                raise SceneError(f"{where}.points: 'cog' is reserved for the centre of mass")
+            points[str(pname)] = as_vec2(pval, f"{where}.points.{pname}")
+        model = None
+        if "mass_model" in item:
+            model = _mass_model(item["mass_model"], where, points, cog, mass)
+        bodies[name] = Body(name, mass, inertia, cog, points, model)
+    return bodies
+
+
+def _mass_model(table: Any, where: str, points: dict, cog: tuple | None,
+                mass: float) -> MassModel:
+    w = f"{where}.mass_model"
+    if not isinstance(table, dict):
+        raise SceneError(f"{w} must be a table like "
+                         "{ kind = \"static\", points = [\"B\", \"C\"] }")
+    kind = table.get("kind")
+    if kind == "static":
+        check_keys(table, ("kind", "points"), w, required=("points",))
+        names = as_list(table["points"], f"{w}.points")
+        if len(names) != 2:
+            raise SceneError(f"{w}.points must name exactly two points of the body")
+    elif kind == "dynamic":
+        check_keys(table, ("kind", "point"), w, required=("point",))
+        names = [table["point"]]
+    else:
+        raise SceneError(f"{w}.kind must be \"static\" or \"dynamic\", not {kind!r}")
+    for n in names:
+        if not isinstance(n, str) or n not in points:
+            raise SceneError(f"{w}: {n!r} is not a point of the body{suggest(str(n), points)}")
+    if mass <= 0.0 or cog is None:
+        raise SceneError(f"{w}: a mass model needs mass > 0 and a cog")
+    g = np.array(cog)
+    if kind == "static":
+        b, c = np.array(points[names[0]]), np.array(points[names[1]])
+        bc = float(np.hypot(*(c - b)))
+        if bc == 0.0:
+            raise SceneError(f"{w}: the two points coincide")
+        off = abs(float(np.cross(c - b, g - b))) / bc
+        if off > 1e-9 * bc:
+            raise SceneError(f"{w}: the cog is {off:.3g} m off the line through "
+                             f"{names[0]} and {names[1]}; static concentration needs it "
+                             "on the line")
+        t = float(np.dot(g - b, c - b)) / bc**2
+        if t < 0.0 or t > 1.0:
+            warnings.warn(f"{w}: the points do not bracket the cog; one concentrated mass is "
+                          "negative (seed 002 eq. 2.11)", stacklevel=3)
+    else:
+        gb = float(np.hypot(*(np.array(points[names[0]]) - g)))
+        if gb == 0.0:
+            raise SceneError(f"{w}: the point {names[0]!r} is the cog; dynamic concentration "
+                             "needs a point away from it (its conjugate point goes to infinity)")
+    return MassModel(kind, tuple(names))
+
+
+def _point_exists(body: str, point: str, bodies: dict, ground: dict, where: str) -> None:
+    names = ground if body == GROUND else bodies[body].points
+    if point not in names and not (point == "cog" and body != GROUND):
+        known = list(names)
+        raise SceneError(f"{where}: {point!r} is not a point of {body!r}{suggest(point, known)}; "
+                         f"its points: {', '.join(known) or 'none'}")
+
+
+def _body_exists(name: Any, bodies: dict, where: str) -> str:
+    name = as_str(name, where)
+    if name != GROUND and name not in bodies:
+        raise SceneError(f"{where}: unknown body {name!r}"
+                         f"{suggest(name, [GROUND, *bodies])}")
+    return name
+
+
+def _friction(table: Any, where: str) -> Friction:
+    t = check_keys(table, ("mu", "radius"), f"{where}.friction", required=("mu",))
+    return Friction(as_float(t["mu"], f"{where}.friction.mu", nonnegative=True),
+                    as_float(t.get("radius", 0.0), f"{where}.friction.radius", nonnegative=True))
+
+
+def _joints(items: Any, bodies: dict, ground: dict) -> dict[str, Joint]:
+    items = as_list(items, "[[joints]]")
+    joints: dict[str, Joint] = {}
+    for i, item in enumerate(items):
+        where = f"joints[{i}]"
+        if not isinstance(item, dict):
+            raise SceneError(f"{where} must be a table")
+        kind = item.get("kind")
+        if kind not in ("R", "T"):
+            raise SceneError(f"{where}.kind must be \"R\" (revolute) or \"T\" (prismatic), "
+                             f"not {kind!r}")
+        item = check_keys(item, JOINT_KEYS_R if kind == "R" else JOINT_KEYS_T, where,
+                          required=("name",))
+        name = as_str(item["name"], f"{where}.name")
+        where = f"joint {name!r}"
+        if name in joints:
+            raise SceneError(f"{where}: the name is used twice; joint names must be unique")
+        fr = _friction(item["friction"], where) if "friction" in item else None
+        if kind == "R":
+            if "bodies" not in item:
+                raise SceneError(f"{where}: missing required key 'bodies'")
+            bl = as_list(item["bodies"], f"{where}.bodies")
+            if len(bl) != 2:
+                raise SceneError(f"{where}.bodies must name two bodies")
+            b = tuple(_body_exists(x, bodies, f"{where}.bodies") for x in bl)
+            pts = item.get("points", [name, name])
+            pts = as_list(pts, f"{where}.points")
+            if len(pts) != 2:
+                raise SceneError(f"{where}.points must name one point on each body")
+            pts = tuple(as_str(p, f"{where}.points") for p in pts)
+            angle = 0.0
+        else:
+            for k in ("guide", "slider", "line_point", "slider_point"):
+                if k not in item:
+                    raise SceneError(f"{where}: missing required key {k!r}")
+            b = (_body_exists(item["guide"], bodies, f"{where}.guide"),
+                 _body_exists(item["slider"], bodies, f"{where}.slider"))
+            pts = (as_str(item["line_point"], f"{where}.line_point"),
+                   as_str(item["slider_point"], f"{where}.slider_point"))
+            angle = as_float(item.get("line_angle", 0.0), f"{where}.line_angle")
+        if b[0] == b[1]:
+            raise SceneError(f"{where} joins {b[0]!r} to itself; name two different bodies")
+        for body, p in zip(b, pts, strict=True):
+            _point_exists(body, p, bodies, ground, where)
+        joints[name] = Joint(name, kind, b, pts, angle, fr)
+    if not joints:
+        raise SceneError("[[joints]] is empty")
+    return joints
+
+
+def _driver(table: Any, bodies: dict, joints: dict) -> Driver:
+    t = check_keys(table, DRIVER_KEYS, "[driver]", required=("body", "joint"))
+    body = _body_exists(t["body"], bodies, "driver.body")
+    if body == GROUND:
+        raise SceneError("driver.body cannot be the ground")
+    jname = as_str(t["joint"], "driver.joint")
+    if jname not in joints:
+        raise SceneError(f"driver.joint: unknown joint {jname!r}{suggest(jname, joints)}")
+    joint = joints[jname]
+    if set(joint.bodies) != {body, GROUND}:
+        raise SceneError(f"driver.joint {jname!r} must join the driver {body!r} to the ground, "
+                         f"but it joins {joint.bodies[0]!r} and {joint.bodies[1]!r}")
+    kind = joint.kind
+    if "speed" in t and "speed_rpm" in t:
+        raise SceneError("[driver]: give 'speed' or 'speed_rpm', not both")
+    if "speed_rpm" in t:
+        if kind != "R":
+            raise SceneError("driver.speed_rpm is for a rotating driver; a sliding driver "
+                             "takes 'speed' in m/s")
+        speed = as_float(t["speed_rpm"], "driver.speed_rpm") * math.pi / 30.0
+    elif "speed" in t:
+        speed = as_float(t["speed"], "driver.speed")
+    else:
+        raise SceneError("[driver]: missing required key 'speed' (rad/s or m/s) or 'speed_rpm'")
+    acc = as_float(t.get("acceleration", 0.0), "driver.acceleration")
+    has_range = [k for k in ("start", "stop", "count") if k in t]
+    if "positions" in t:
+        if has_range:
+            raise SceneError("[driver]: give 'positions' or start/stop/count, not both")
+        pos = as_list(t["positions"], "driver.positions")
+        if not pos:
+            raise SceneError("driver.positions is empty; list at least one position")
+        if len(pos) > MAX_COUNT:
+            raise SceneError(f"driver.positions has {len(pos):_} entries; at most {MAX_COUNT:_}")
+        positions = np.array([as_float(p, f"driver.positions[{i}]") for i, p in enumerate(pos)])
+    else:
+        missing = [k for k in ("start", "stop", "count") if k not in t]
+        if missing:
+            raise SceneError(f"[driver]: missing required key {missing[0]!r} "
+                             "(or give 'positions = [...]')")
+        start = as_float(t["start"], "driver.start")
+        stop = as_float(t["stop"], "driver.stop")
+        count = as_int(t["count"], "driver.count", lo=1, hi=MAX_COUNT)
+        positions = np.linspace(start, stop, count)
+    return Driver(body, jname, kind, speed, acc, positions)
+
+
+def _loads(items: Any, bodies: dict) -> tuple[Load, ...]:
+    items = as_list(items, "[[loads]]")
+    loads = []
+    for i, item in enumerate(items):
+        where = f"loads[{i}]"
+        item = check_keys(item, LOAD_KEYS, where, required=("body",))
+        body = _body_exists(item["body"], bodies, f"{where}.body")
+        if body == GROUND:
+            raise SceneError(f"{where}.body: a load on the ground does nothing; "
+                             "put it on a moving body")
+        if "force" in item and "resist" in item:
+            raise SceneError(f"{where}: give 'force' or 'resist', not both")
+        force = as_vec2(item["force"], f"{where}.force") if "force" in item else None
+        resist = (as_float(item["resist"], f"{where}.resist", nonnegative=True)
+                  if "resist" in item else None)
+        moment = as_float(item.get("moment", 0.0), f"{where}.moment")
+        point = None
+        if force is not None or resist is not None:
+            if "point" not in item:
+                raise SceneError(f"{where}: a force needs 'point' (a point of {body!r} or \"cog\")")
+        if "point" in item:
+            point = as_str(item["point"], f"{where}.point")
+            b = bodies[body]
+            if point != "cog" and point not in b.points:
+                raise SceneError(f"{where}.point: {point!r} is not a point of {body!r}"
+                                 f"{suggest(point, [*b.points, 'cog'])}")
+            if point == "cog" and b.cog is None:
+                raise SceneError(f"{where}.point: body {body!r} has no 'cog'")
+        if force is None and resist is None and "moment" not in item:
+            raise SceneError(f"{where}: give a 'force', a 'resist' force or a 'moment'")
+        loads.append(Load(body, point, force, moment, resist))
+    return tuple(loads)
+
+
+def _near(table: Any, bodies: dict, joints: dict) -> dict[str, tuple[float, float]]:
+    if not isinstance(table, dict):
+        raise SceneError("[near] must be a table of hint = [x, y]")
+    near = {}
+    for key, val in table.items():
+        key = str(key)
+        if "." in key:
+            b, p = key.split(".", 1)
+            if b not in bodies:
+                raise SceneError(f"near.{key}: unknown body {b!r}{suggest(b, bodies)}")
+            if p != "cog" and p not in bodies[b].points:
+                raise SceneError(f"near.{key}: {p!r} is not a point of {b!r}"
+                                 f"{suggest(p, bodies[b].points)}")
+        else:
+            rev = [j for j, jt in joints.items() if jt.kind == "R"]
+            if key not in rev:
+                raise SceneError(f"near.{key}: not a revolute joint{suggest(key, rev)}; "
+                                 "hint keys are revolute joint names or \"body.point\"")
+        near[key] = as_vec2(val, f"near.{key}")
+    return near
+
+
+def _motion(table: Any) -> dict[str, Any]:
+    t = check_keys(table, MOTION_KEYS, "[motion]", required=("omega0", "cycles"))
+    return dict(t)

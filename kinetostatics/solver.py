@@ -1,0 +1,51 @@
+"""The kinetostatic solve: scene -> structure -> kinematics -> loads -> reactions."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from .kinematics import solve_kinematics
+from .loads import applied_loads, inertia_loads, resultants
+from .reactions import solve_reactions
+from .results import Solution
+from .scene import load_scene
+from .structure import analyse
+
+
+def solve(scene: Any) -> Solution:
+    """Kinematics, reactions in every joint and the equilibrating moment over the sweep.
+
+    Parameters
+    ----------
+    scene : Scene, pathlib.Path, str or dict
+        A loaded scene, a path to a ``.toml`` file, TOML text or a dict
+        (``scene-format.md`` section 1).
+
+    Returns
+    -------
+    Solution
+        Arrays and lazily built tables: ``kinematics``, ``bodies``, ``reactions``,
+        ``driver``, ``dyads``, ``sliders``, ``frame``, ``reduced`` and ``summary()``.
+
+    Raises
+    ------
+    SceneError, StructureError, AssemblyError
+        One-line messages for a bad scene, a chain that is not driver + dyads, a
+        mechanism that cannot be assembled or is exactly singular somewhere.
+
+    Examples
+    --------
+    >>> import kinetostatics as ks
+    >>> sol = ks.solve(ks.example("four_bar"))
+    >>> round(float(sol.driver["Me"].abs().max()), 1) > 0
+    True
+    """
+    sc = load_scene(scene)
+    structure = analyse(sc)
+    kin = solve_kinematics(sc, structure)
+    inertia = inertia_loads(sc, kin)
+    applied, undefined = applied_loads(sc, kin)
+    loads = applied + inertia
+    acc = resultants(loads, sc.bodies, kin.n)
+    reactions, drive = solve_reactions(kin, acc)
+    return Solution(sc, structure, kin, loads, reactions, drive, undefined)

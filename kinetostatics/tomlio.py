@@ -1,0 +1,139 @@
+"""Reading and checking TOML tables: shared by the mechanism and balancing scenes.
+
+The helpers turn a loosely typed mapping (from ``tomllib`` or a user's dict) into
+checked Python values, raising :class:`~kinetostatics.errors.SceneError` with one
+line that names the field (``where``) and the fix.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import tomllib
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+from typing import Any
+
+from .errors import SceneError
+
+
+def read_source(source: Any, kind: str = "scene") -> dict:
+    """Return the raw mapping of a scene given as a path, a path string, TOML text or a dict.
+
+    Parameters
+    ----------
+    source : pathlib.Path, str or Mapping
+        A path to a ``.toml`` file, a string naming an existing file, a string of
+        TOML text, or an already parsed mapping.
+    kind : str
+        Word used in error messages.
+    """
+    if isinstance(source, Mapping):
+        return dict(source)
+    if isinstance(source, Path):
+        return _read_file(source, kind)
+    if isinstance(source, str):
+        text = source.strip()
+        if "\n" not in text and (text.endswith(".toml") or Path(text).is_file()):
+            return _read_file(Path(text), kind)
+        try:
+            return tomllib.loads(source)
+        except tomllib.TOMLDecodeError as exc:
+            raise SceneError(f"{kind} is not valid TOML: {exc}") from None
+    raise SceneError(
+        f"{kind} must be a path, a TOML string or a dict, not {type(source).__name__}"
+    )
+
+
+def _read_file(path: Path, kind: str) -> dict:
+    if not path.is_file():
+        raise SceneError(f"{kind} file {str(path)!r} does not exist")
+    try:
+        with path.open("rb") as fh:
+            return tomllib.load(fh)
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(f"{path}: not valid TOML: {exc}") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SceneError(f"{path}: cannot be read: {exc}") from None
+
+
+def suggest(name: str, known: Iterable[str]) -> str:
+    """A ``" (did you mean 'x'?)"`` suffix naming the nearest known key, or ``""``."""
+    close = difflib.get_close_matches(str(name), list(known), n=1, cutoff=0.5)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def check_keys(table: Any, allowed: Iterable[str], where: str,
+               required: Iterable[str] = ()) -> dict:
+    """Check that ``table`` is a mapping with only ``allowed`` keys and all ``required`` ones."""
+    if not isinstance(table, Mapping):
+        raise SceneError(f"{where} must be a table, not {_typename(table)}")
+    allowed = list(allowed)
+    for key in table:
+        if key not in allowed:
+            raise SceneError(
+                f"{where}: unknown key {key!r}{suggest(key, allowed)}; "
+                f"known keys: {', '.join(allowed)}"
+            )
+    for key in required:
+        if key not in table:
+            raise SceneError(f"{where}: missing required key {key!r}")
+    return dict(table)
+
+
+def _typename(value: Any) -> str:
+    return {dict: "a table", list: "a list", str: "a string", bool: "a boolean",
+            int: "an integer", float: "a number"}.get(type(value), type(value).__name__)
+
+
+def as_float(value: Any, where: str, *, positive: bool = False, nonnegative: bool = False,
+             nonzero: bool = False) -> float:
+    """A finite float, optionally positive / non-negative / non-zero."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise SceneError(f"{where} must be a number, not {_typename(value)}")
+    x = float(value)
+    if not math.isfinite(x):
+        raise SceneError(f"{where} must be a finite number, not {value!r}")
+    if positive and x <= 0.0:
+        raise SceneError(f"{where} must be positive, got {x:g}")
+    if nonnegative and x < 0.0:
+        raise SceneError(f"{where} must not be negative, got {x:g}")
+    if nonzero and x == 0.0:
+        raise SceneError(f"{where} must not be zero")
+    return x
+
+
+def as_int(value: Any, where: str, *, lo: int | None = None, hi: int | None = None) -> int:
+    """An integer within [lo, hi] (a float with an integral value is accepted)."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise SceneError(f"{where} must be an integer, not {_typename(value)}")
+    if isinstance(value, float):
+        if not math.isfinite(value) or value != int(value):
+            raise SceneError(f"{where} must be an integer, got {value!r}")
+    n = int(value)
+    if lo is not None and n < lo:
+        raise SceneError(f"{where} must be at least {lo}, got {n}")
+    if hi is not None and n > hi:
+        raise SceneError(f"{where} must be at most {hi:_}, got {n:_}")
+    return n
+
+
+def as_str(value: Any, where: str) -> str:
+    """A non-empty string."""
+    if not isinstance(value, str) or not value.strip():
+        raise SceneError(f"{where} must be a non-empty string, not {_typename(value)}")
+    return value
+
+
+def as_vec2(value: Any, where: str) -> tuple[float, float]:
+    """A pair of finite numbers ``[x, y]``."""
+    if not isinstance(value, list | tuple) or len(value) != 2:
+        raise SceneError(f"{where} must be a pair [x, y] of numbers, not {value!r}")
+    return (as_float(value[0], f"{where}[0]"), as_float(value[1], f"{where}[1]"))
+
+
+def as_list(value: Any, where: str) -> list:
+    """A list (TOML array)."""
+    if not isinstance(value, list | tuple):
+        raise SceneError(f"{where} must be a list, not {_typename(value)}")
+    return list(value)
