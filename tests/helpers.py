@@ -1,0 +1,97 @@
+"""Shared test helpers: where the cases are, and the contract's comparison rule."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+ROOT = Path(__file__).resolve().parents[1]
+DATA = ROOT / "tests" / "data"
+OWN_CASES = DATA / "cases"
+SCENES = DATA / "scenes"
+
+
+def shared_cases() -> Path | None:
+    """``../shared/cases`` beside the checkout (or $WORKBENCH_SHARED/cases), if present."""
+    env = os.environ.get("WORKBENCH_SHARED")
+    for base in ([Path(env)] if env else []) + [ROOT.parent / "shared"]:
+        if (base / "cases").is_dir():
+            return base / "cases"
+    return None
+
+
+MECHANISM_CASES = ["four_bar", "slider_crank", "slotted_lever", "scotch_yoke", "sliding_driver"]
+
+
+def case_sources():
+    """(id, scene path, expected csv path) for our own copies and the shared ones."""
+    out = []
+    for name in MECHANISM_CASES:
+        out.append((f"own-{name}", OWN_CASES / f"{name}.toml", OWN_CASES / f"{name}.expected.csv"))
+    shared = shared_cases()
+    if shared is not None:
+        for name in MECHANISM_CASES:
+            if (shared / f"{name}.toml").is_file():
+                out.append((f"shared-{name}", shared / f"{name}.toml",
+                            shared / f"{name}.expected.csv"))
+    return out
+
+
+KIND = {"Me": "moment", "M": "moment", "Fe": "force", "F": "force", "N": "force",
+        "x": "length", "y": "length", "offset": "length", "vx": "velocity", "vy": "velocity",
+        "ax": "acceleration", "ay": "acceleration", "angle": "angle", "omega": "omega",
+        "alpha": "alpha"}
+
+
+def split_quantity(q: str) -> tuple[str, str, str]:
+    """'F[A]x' -> ('F', 'A', 'x'); 'x[crank.B]' -> ('x', 'crank.B', ''); 'Me' -> ('Me','','')."""
+    if "[" not in q:
+        return q, "", ""
+    head, rest = q.split("[", 1)
+    arg, tail = rest.split("]", 1)
+    return head, arg, tail
+
+
+def lookup(sol, quantity: str, positions: np.ndarray) -> np.ndarray:
+    """The solution's value of an expected-file quantity at the given positions."""
+    head, arg, tail = split_quantity(quantity)
+    pos = sol.positions
+    idx = np.array([int(np.argmin(np.abs(pos - p))) for p in positions])
+    assert np.allclose(pos[idx], positions, atol=1e-9), "expected positions not in the sweep"
+    if head in ("Me", "Fe"):
+        return sol.driver[head].to_numpy()[idx]
+    if head in ("F", "N", "M", "offset"):
+        r = sol.reactions
+        sub = r[r.joint == arg]
+        col = "F" + tail if head == "F" else head
+        return sub[col].to_numpy()[idx]
+    if head in ("angle", "omega", "alpha"):
+        b = sol.bodies
+        return b[b.body == arg][head].to_numpy()[idx]
+    body, point = arg.split(".", 1)
+    k = sol.kinematics
+    return k[(k.body == body) & (k.point == point)][head].to_numpy()[idx]
+
+
+def compare_case(sol, expected_csv: Path, rel: float = 1e-9) -> dict[str, float]:
+    """Errors per quantity by the cases/README rule; returns {quantity: error/scale}."""
+    exp = pd.read_csv(expected_csv)
+    kind_max: dict[str, float] = {}
+    for q, g in exp.groupby("quantity"):
+        k = KIND[split_quantity(q)[0]]
+        kind_max[k] = max(kind_max.get(k, 0.0), float(np.abs(g.value).max()))
+    errors = {}
+    for q, g in exp.groupby("quantity"):
+        head = split_quantity(q)[0]
+        got = lookup(sol, q, g.position.to_numpy())
+        want = g.value.to_numpy()
+        scale = max(float(np.abs(want).max()), 1e-3 * kind_max[KIND[head]])
+        if head == "angle":
+            diff = (got - want + 180.0) % 360.0 - 180.0
+        else:
+            diff = got - want
+        errors[q] = float(np.abs(diff).max() / scale)
+    return errors
