@@ -26,104 +26,154 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import _arith as A
 from .errors import AssemblyError
-from .scene import GROUND, Body, Scene
+from .scene import GROUND, Scene
 from .structure import Dyad, Structure
 
 SINGULAR_WARN = 1e-3    # sin(transmission angle) below this: the row is flagged singular
 SINGULAR_FAIL = 1e-12   # below this the velocity system cannot be solved: refused
 
 
-@dataclass
 class BodyMotion:
-    """Planar motion of a body: angle, angular velocity and acceleration, and the global
-    position, velocity and acceleration of its local origin (arrays over positions)."""
+    """Planar motion of a body over the sweep: cos and sin of its angle, angular velocity
+    and acceleration, and the global position, velocity and acceleration of its local
+    origin. Any of them may be a scalar (a fixed pivot, a constant speed); ``theta``
+    (rad) is computed when first asked for unless given."""
 
-    theta: np.ndarray
-    cos: np.ndarray
-    sin: np.ndarray
-    omega: np.ndarray
-    alpha: np.ndarray
-    ox: np.ndarray
-    oy: np.ndarray
-    vx: np.ndarray
-    vy: np.ndarray
-    ax: np.ndarray
-    ay: np.ndarray
+    __slots__ = ("cos", "sin", "omega", "alpha", "ox", "oy", "vx", "vy", "ax", "ay", "_theta")
 
-    def rotate(self, lx: float, ly: float) -> tuple[np.ndarray, np.ndarray]:
-        """A local vector turned into global axes: R(theta) l."""
-        return self.cos * lx - self.sin * ly, self.sin * lx + self.cos * ly
+    def __init__(self, theta, cos, sin, omega, alpha, ox, oy, vx, vy, ax, ay):
+        self._theta = theta
+        self.cos, self.sin = cos, sin
+        self.omega, self.alpha = omega, alpha
+        self.ox, self.oy, self.vx, self.vy, self.ax, self.ay = ox, oy, vx, vy, ax, ay
 
-    def point(self, local: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
+    @property
+    def theta(self):
+        if self._theta is None:
+            self._theta = np.arctan2(self.sin, self.cos)
+        return self._theta
+
+    def rotate(self, lx: float, ly: float):
+        """A local vector turned into global axes: R(theta) l (the lever arm from the
+        origin of a local point)."""
+        return A.rotate(self.cos, self.sin, lx, ly)
+
+    def point(self, local: tuple[float, float]):
         """Global position of a local point."""
         rx, ry = self.rotate(*local)
-        return self.ox + rx, self.oy + ry
+        return A.add(self.ox, rx), A.add(self.oy, ry)
+
+    def vel_arm(self, rx, ry):
+        """Velocity of the body point at the arm (rx, ry) from the origin: v_O + omega k x r."""
+        return A.sub(self.vx, A.mul(self.omega, ry)), A.add(self.vy, A.mul(self.omega, rx))
+
+    def acc_arm(self, rx, ry):
+        """Acceleration of the body point at the arm r: a_O + eps k x r - omega^2 r
+        (seed 001 eq. 9)."""
+        w2 = A.mul(self.omega, self.omega)
+        return (A.sub(A.sub(self.ax, A.mul(self.alpha, ry)), A.mul(w2, rx)),
+                A.sub(A.add(self.ay, A.mul(self.alpha, rx)), A.mul(w2, ry)))
 
     def vel_at(self, x, y):
         """Velocity of the body's point that is at the global position (x, y)."""
-        return self.vx - self.omega * (y - self.oy), self.vy + self.omega * (x - self.ox)
+        return self.vel_arm(A.sub(x, self.ox), A.sub(y, self.oy))
 
     def acc_at(self, x, y):
-        """Acceleration of the body's point at (x, y): a_O + alpha k x r - omega^2 r."""
-        rx, ry = x - self.ox, y - self.oy
-        w2 = self.omega * self.omega
-        return self.ax - self.alpha * ry - w2 * rx, self.ay + self.alpha * rx - w2 * ry
+        """Acceleration of the body's point at the global position (x, y)."""
+        return self.acc_arm(A.sub(x, self.ox), A.sub(y, self.oy))
 
     def take(self, index) -> BodyMotion:
-        """The motion at some rows only (scalars broadcast)."""
+        """The motion at some rows only (scalars stay scalars)."""
         def t(a):
             return a[index] if np.ndim(a) else a
-        return BodyMotion(*(t(getattr(self, f)) for f in self.__dataclass_fields__))
+        th = None if self._theta is None else t(self._theta)
+        return BodyMotion(th, *(t(getattr(self, f)) for f in self.__slots__[:-1]))
 
 
 def ground_motion() -> BodyMotion:
     """The fixed body: zero everything, unit rotation."""
-    z = np.float64(0.0)
-    return BodyMotion(z, np.float64(1.0), z, z, z, z, z, z, z, z, z)
+    return BodyMotion(0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 
 @dataclass
 class Param:
     """How a dyad body moves relative to the known body ``known`` through its outer joint.
 
-    ``kind == "rot"``: turns about P (``px, py``; velocity, acceleration of P as a
-    point of the known body) with ``local`` the joint point in the body frame.
-    ``kind == "trans"``: angle ``theta`` known; origin = ``base + s u`` with u fixed
-    in the known body.
+    ``kind == "rot"``: turns about the point P of the known body (position, velocity
+    and acceleration ``p*``, ``vp*``, ``ap*``); ``local`` is the joint point in the
+    body's frame. ``kind == "trans"``: its angle is known (``c, s``) and its origin is
+    ``base + s u``, u (``ux, uy``) fixed in the known body.
     """
 
     kind: str
     known: BodyMotion
     local: tuple[float, float] = (0.0, 0.0)
-    px: np.ndarray | None = None
-    py: np.ndarray | None = None
-    theta: np.ndarray | None = None
-    ux: np.ndarray | None = None
-    uy: np.ndarray | None = None
-    bx: np.ndarray | None = None
-    by: np.ndarray | None = None
+    px: object = 0.0
+    py: object = 0.0
+    vpx: object = 0.0
+    vpy: object = 0.0
+    apx: object = 0.0
+    apy: object = 0.0
+    c: object = 1.0
+    s: object = 0.0
+    ux: object = 1.0
+    uy: object = 0.0
+    bx: object = 0.0
+    by: object = 0.0
 
 
 @dataclass
 class DyadMotion:
     """What the reactions need from a solved dyad: its parameters, the closing point X
     (the inner joint's point; for a prismatic inner joint the slider point), the
-    columns of the velocity system at X and the transmission measure."""
+    columns c1, c2 of the velocity system at X and its determinant."""
 
     dyad: Dyad
     params: tuple[Param, Param]
     k: int
-    xx: np.ndarray
-    xy: np.ndarray
-    c1: tuple[np.ndarray, np.ndarray]
-    c2: tuple[np.ndarray, np.ndarray]
-    det: np.ndarray
-    sin_tau: np.ndarray
-    cos_tau: np.ndarray
-    slider_first: bool = False      # prismatic inner joint: body 1 is the slider
-    nx: np.ndarray | None = None    # prismatic inner joint: left normal of the line
-    ny: np.ndarray | None = None
+    xx: object
+    xy: object
+    c1: tuple
+    c2: tuple
+    det: object
+    n: int
+    singular: np.ndarray | None = None  # |sin tau| <= 1e-3: near a dead centre
+    inner_local: tuple | None = None    # revolute inner joint: its local point on each body
+    slider_first: bool = False          # prismatic inner joint: body 1 is the slider
+    nx: object = None                   # prismatic inner joint: left normal of the line
+    ny: object = None
+    _tau: tuple | None = None
+
+    def _compute_tau(self):
+        if self._tau is None:
+            n = self.n
+            if self.nx is None:
+                c1, c2 = self.c1, self.c2
+                norm = np.hypot(*c1) * np.hypot(*c2)
+                sin_t = self.det / norm
+                cos_t = -(A.add(A.mul(c1[0], c2[0]), A.mul(c1[1], c2[1]))) / norm
+            else:
+                sin_t, cos_t = _inner_t_tau(self.params, self.ny, -self.nx)
+            self._tau = (_full(np.asarray(sin_t, dtype=float), n),
+                         _full(np.asarray(cos_t, dtype=float), n))
+        return self._tau
+
+    @property
+    def sin_tau(self) -> np.ndarray:
+        """sin of the transmission angle: |det| / (|c1| |c2|) of the velocity system."""
+        return self._compute_tau()[0]
+
+    @property
+    def cos_tau(self) -> np.ndarray:
+        return self._compute_tau()[1]
+
+    @property
+    def transmission_angle(self) -> np.ndarray:
+        """Transmission angle in [0, 180] deg (seed 002 eqs 2.60-2.61)."""
+        s_, c_ = self._compute_tau()
+        return np.rad2deg(np.arctan2(np.abs(s_), c_))
 
 
 @dataclass
@@ -140,17 +190,13 @@ class Kinematics:
     def n(self) -> int:
         return self.positions.size
 
-    def sin_tau_min(self) -> np.ndarray:
-        """Per position, the smallest sin(transmission angle) over the dyads (1 if none)."""
-        out = np.ones(self.n)
-        for d in self.dyads:
-            out = np.minimum(out, np.abs(d.sin_tau))
-        return out
-
     @property
     def singular(self) -> np.ndarray:
         """Rows near a dead centre of some dyad (contract: |det| <= 1e-3 |c1||c2|)."""
-        return self.sin_tau_min() <= SINGULAR_WARN
+        out = np.zeros(self.n, dtype=bool)
+        for d in self.dyads:
+            out |= d.singular
+        return out
 
 
 def _fmt_positions(scene: Scene, rows: np.ndarray, values: np.ndarray | None = None,
@@ -174,41 +220,48 @@ def driver_motion(scene: Scene) -> BodyMotion:
     drv = scene.driver
     joint = scene.joints[drv.joint]
     body = scene.bodies[drv.body]
-    n = drv.positions.size
-    zero = np.zeros(n)
+    w, eps = float(drv.speed), float(drv.acceleration)
     if drv.kind == "R":
         th = np.deg2rad(drv.positions)
         c, s = np.cos(th), np.sin(th)
         px, py = scene.ground[joint.point_on(GROUND)]
-        lx, ly = body.local(joint.point_on(drv.body))
-        rx, ry = -(c * lx - s * ly), -(s * lx + c * ly)      # o - P
-        w, a = drv.speed, drv.acceleration
-        return BodyMotion(th, c, s, np.full(n, w), np.full(n, a), px + rx, py + ry,
-                          -w * ry, w * rx, -a * ry - w * w * rx, a * rx - w * w * ry)
+        rax, ray = A.rotate(c, s, *body.local(joint.point_on(drv.body)))   # o = P - R a
+        w2 = w * w
+        return BodyMotion(th, c, s, w, eps, A.sub(float(px), rax), A.sub(float(py), ray),
+                          A.mul(w, ray), A.mul(-w, rax),
+                          A.add(A.mul(eps, ray), A.mul(w2, rax)),
+                          A.add(A.mul(-eps, rax), A.mul(w2, ray)))
     beta = np.deg2rad(joint.line_angle)
     pos = drv.positions
     if joint.guide == GROUND:
-        th = beta
-        ux, uy = np.cos(beta), np.sin(beta)
+        th = float(beta)
+        ux, uy = float(np.cos(beta)), float(np.sin(beta))
         lx, ly = scene.ground[joint.points[0]]
-        sx, sy = body.local(joint.points[1])
-        c, s = np.cos(th), np.sin(th)
-        ox = lx + pos * ux - (c * sx - s * sy)
-        oy = ly + pos * uy - (s * sx + c * sy)
+        loc = body.local(joint.points[1])
         sign = 1.0
     else:   # the driver carries the guide and slides along a ground slider point
-        th = -beta
+        th = -float(beta)
         ux, uy = 1.0, 0.0
-        px, py = scene.ground[joint.points[1]]
-        lx, ly = body.local(joint.points[0])
-        c, s = np.cos(th), np.sin(th)
-        ox = px - pos * ux - (c * lx - s * ly)
-        oy = py - pos * uy - (s * lx + c * ly)
+        lx, ly = scene.ground[joint.points[1]]
+        loc = body.local(joint.points[0])
         sign = -1.0
-    v, a = sign * drv.speed, sign * drv.acceleration
-    return BodyMotion(np.full(n, th), np.full(n, c), np.full(n, s), zero, zero, ox, oy,
-                      np.full(n, v * ux), np.full(n, v * uy), np.full(n, a * ux),
-                      np.full(n, a * uy))
+    c, s = float(np.cos(th)), float(np.sin(th))
+    rx, ry = A.rotate(c, s, *loc)
+    ox = A.add(A.mul(sign * ux, pos), lx - rx)
+    oy = A.add(A.mul(sign * uy, pos), ly - ry)
+    v, a = sign * w, sign * eps
+    return BodyMotion(th, c, s, 0.0, 0.0, ox, oy, v * ux, v * uy, a * ux, a * uy)
+
+
+def _known_point(scene: Scene, bname: str, motion: BodyMotion, pname: str):
+    """Position, velocity and acceleration of a named point of a known body."""
+    if bname == GROUND:
+        x, y = scene.ground[pname]
+        return float(x), float(y), 0.0, 0.0, 0.0, 0.0
+    rx, ry = motion.rotate(*scene.bodies[bname].local(pname))
+    vx, vy = motion.vel_arm(rx, ry)
+    ax, ay = motion.acc_arm(rx, ry)
+    return A.add(motion.ox, rx), A.add(motion.oy, ry), vx, vy, ax, ay
 
 
 def _param(scene: Scene, dyad: Dyad, i: int, motions: dict[str, BodyMotion]) -> Param:
@@ -218,37 +271,34 @@ def _param(scene: Scene, dyad: Dyad, i: int, motions: dict[str, BodyMotion]) -> 
     kb = motions[kname]
     body = scene.bodies[name]
     if joint.kind == "R":
-        px, py = _point(scene, kname, kb, joint.point_on(kname))
-        return Param("rot", kb, body.local(joint.point_on(name)), px=px, py=py)
+        px, py, vx, vy, ax, ay = _known_point(scene, kname, kb, joint.point_on(kname))
+        return Param("rot", kb, body.local(joint.point_on(name)), px, py, vx, vy, ax, ay)
     beta = np.deg2rad(joint.line_angle)
+    cb, sb = float(np.cos(beta)), float(np.sin(beta))
     if joint.guide == kname:                         # known body carries the guide
-        th = kb.theta + beta
-        c, s = np.cos(th), np.sin(th)
-        lx, ly = _point(scene, kname, kb, joint.points[0])
-        sx, sy = body.local(joint.points[1])
-        bx, by = lx - (c * sx - s * sy), ly - (s * sx + c * sy)
+        c, s = A.rotate(kb.cos, kb.sin, cb, sb)      # theta_i = theta_K + beta
+        lx, ly = _known_point(scene, kname, kb, joint.points[0])[:2]
+        rx, ry = A.rotate(c, s, *body.local(joint.points[1]))
         ux, uy = c, s
     else:                                            # the dyad body carries the guide
-        th = kb.theta - beta
-        c, s = np.cos(th), np.sin(th)
-        px, py = _point(scene, kname, kb, joint.points[1])
-        lx, ly = body.local(joint.points[0])
-        bx, by = px - (c * lx - s * ly), py - (s * lx + c * ly)
+        c, s = A.rotate(kb.cos, kb.sin, cb, -sb)     # theta_i = theta_K - beta
+        lx, ly = _known_point(scene, kname, kb, joint.points[1])[:2]
+        rx, ry = A.rotate(c, s, *body.local(joint.points[0]))
         ux, uy = kb.cos, kb.sin
-    return Param("trans", kb, theta=th + 0.0 * kb.omega, ux=ux, uy=uy, bx=bx, by=by)
-
-
-def _point(scene: Scene, bname: str, motion: BodyMotion, pname: str):
-    if bname == GROUND:
-        x, y = scene.ground[pname]
-        return np.float64(x), np.float64(y)
-    return motion.point(scene.bodies[bname].local(pname))
+    return Param("trans", kb, c=c, s=s, ux=ux, uy=uy, bx=A.sub(lx, rx), by=A.sub(ly, ry))
 
 
 def _rot_angle(dx, dy, local_vec, r2):
     """cos, sin of the angle that turns the local vector onto (dx, dy) (|d|^2 = r2)."""
     lx, ly = local_vec
-    return (dx * lx + dy * ly) / r2, (dy * lx - dx * ly) / r2
+    return (A.add(A.mul(dx, lx / r2), A.mul(dy, ly / r2)),
+            A.sub(A.mul(dy, lx / r2), A.mul(dx, ly / r2)))
+
+
+def _trans_point(p: Param, local):
+    """Position of a local point of a translating body at s = 0."""
+    rx, ry = A.rotate(p.c, p.s, *local)
+    return A.add(p.bx, rx), A.add(p.by, ry)
 
 
 class _DyadSolver:
@@ -259,11 +309,12 @@ class _DyadSolver:
         self.dyad = dyad
         self.b = [scene.bodies[n] for n in dyad.bodies]
         inner = dyad.inner
+        self.slider_first = False
         if inner.kind == "R":
             self.q = [self.b[i].local(inner.point_on(dyad.bodies[i])) for i in range(2)]
         else:
             self.slider_first = inner.slider == dyad.bodies[0]
-            self.beta = np.deg2rad(inner.line_angle)
+            self.beta = float(np.deg2rad(inner.line_angle))
 
     @property
     def branches(self) -> int:
@@ -275,13 +326,14 @@ class _DyadSolver:
     def p_kind(self, i: int) -> str:
         return "rot" if self.dyad.outer[i].kind == "R" else "trans"
 
-    # -- positions ------------------------------------------------------------------
     def positions(self, pr: tuple[Param, Param], k: int):
-        """Return (cos, sin, theta-or-None, s-or-None) per body and the gap (>0 where the
-        dyad cannot close, in m) for assembly k."""
-        if self.dyad.inner.kind == "R":
-            return self._inner_r(pr, k)
-        return self._inner_t(pr, k)
+        """Per body (cos, sin) and the displacement s of a translating body, for assembly
+        k, and the gap (m, > 0 where the dyad cannot close) or None when it closes
+        everywhere."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            if self.dyad.inner.kind == "R":
+                return self._inner_r(pr, k)
+            return self._inner_t(pr, k)
 
     def _inner_r(self, pr, k):
         p1, p2 = pr
@@ -290,61 +342,54 @@ class _DyadSolver:
         a2 = (q2x - p2.local[0], q2y - p2.local[1])
         out = [None, None]
         if p1.kind == "rot" and p2.kind == "rot":
-            # circle-circle (RRR, seed 000 ch. 5): Q = P1 + x e + k h J e
+            # circle-circle (RRR, seed 000 ch. 5, eq. 5.1): Q = P1 + x e + k h J e
             r1s, r2s = a1[0] ** 2 + a1[1] ** 2, a2[0] ** 2 + a2[1] ** 2
-            ex, ey = p2.px - p1.px, p2.py - p1.py
+            ex, ey = A.sub(p2.px, p1.px), A.sub(p2.py, p1.py)
             d2 = ex * ex + ey * ey
-            d = np.sqrt(d2)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                x = (r1s - r2s + d2) / (2.0 * d)
-                h2 = r1s - x * x
-            r1, r2 = np.sqrt(r1s), np.sqrt(r2s)
-            gap = np.maximum(d - (r1 + r2), np.abs(r1 - r2) - d)
-            gap = np.where(np.isfinite(h2), gap, np.inf)
-            h = np.sqrt(np.maximum(h2, 0.0))
-            with np.errstate(divide="ignore", invalid="ignore"):
-                ex, ey = ex / d, ey / d
-            qx = p1.px + x * ex - k * h * ey
-            qy = p1.py + x * ey + k * h * ex
-            out[0] = _rot_angle(qx - p1.px, qy - p1.py, a1, r1s)
-            out[1] = _rot_angle(qx - p2.px, qy - p2.py, a2, r2s)
+            inv = 1.0 / np.sqrt(d2)
+            x = (d2 + (r1s - r2s)) * (0.5 * inv)
+            h2 = r1s - x * x
+            gap = None
+            if np.min(h2) < 0.0 or not np.all(np.isfinite(h2)):
+                d = np.sqrt(d2)
+                r1, r2 = np.sqrt(r1s), np.sqrt(r2s)
+                gap = np.where(np.isfinite(h2), np.maximum(d - (r1 + r2), abs(r1 - r2) - d),
+                               np.inf)
+            kh = (k * inv) * np.sqrt(np.maximum(h2, 0.0))
+            xi = x * inv
+            tx = xi * ex - kh * ey                    # X - P1
+            ty = xi * ey + kh * ex
+            out[0] = _rot_angle(tx, ty, a1, r1s)
+            out[1] = _rot_angle(A.sub(A.add(p1.px, tx), p2.px), A.sub(A.add(p1.py, ty), p2.py),
+                                a2, r2s)
             return out, (None, None), gap
         if p1.kind == "trans" and p2.kind == "trans":
             # line-line (TRT, seed 000 ch. 10): Q01 + s1 u1 = Q02 + s2 u2
-            q01 = self._trans_point(p1, self.q[0])
-            q02 = self._trans_point(p2, self.q[1])
-            rx, ry = q02[0] - q01[0], q02[1] - q01[1]
-            det = -p1.ux * p2.uy + p1.uy * p2.ux
-            with np.errstate(divide="ignore", invalid="ignore"):
-                s1 = (-rx * p2.uy + ry * p2.ux) / det
-                s2 = (p1.ux * ry - p1.uy * rx) / det
-            gap = np.where(np.isfinite(s1) & np.isfinite(s2), -1.0, np.inf)
-            return [(np.cos(p1.theta), np.sin(p1.theta)), (np.cos(p2.theta), np.sin(p2.theta))], \
-                (s1, s2), gap
+            q01 = _trans_point(p1, self.q[0])
+            q02 = _trans_point(p2, self.q[1])
+            rx, ry = A.sub(q02[0], q01[0]), A.sub(q02[1], q01[1])
+            det = A.sub(A.mul(p1.uy, p2.ux), A.mul(p1.ux, p2.uy))
+            s1 = A.sub(A.mul(ry, p2.ux), A.mul(rx, p2.uy)) / det
+            s2 = A.sub(A.mul(p1.ux, ry), A.mul(p1.uy, rx)) / det
+            return [(p1.c, p1.s), (p2.c, p2.s)], (s1, s2), None
         # circle-line (RRT / TRR, seed 000 ch. 9 and 8)
         ir, it = (0, 1) if p1.kind == "rot" else (1, 0)
-        pr_, pt = pr[ir], pr[it]
+        prr, pt = pr[ir], pr[it]
         ar = a1 if ir == 0 else a2
         rs = ar[0] ** 2 + ar[1] ** 2
-        q0 = self._trans_point(pt, self.q[it])
-        wx, wy = q0[0] - pr_.px, q0[1] - pr_.py
-        b = pt.ux * wx + pt.uy * wy
+        q0 = _trans_point(pt, self.q[it])
+        wx, wy = A.sub(q0[0], prr.px), A.sub(q0[1], prr.py)
+        b = A.add(A.mul(pt.ux, wx), A.mul(pt.uy, wy))
         disc = b * b - (wx * wx + wy * wy) + rs
-        dist = np.abs(pt.ux * wy - pt.uy * wx)
-        gap = dist - np.sqrt(rs)
-        s = -b + k * np.sqrt(np.maximum(disc, 0.0))
-        qx, qy = q0[0] + s * pt.ux, q0[1] + s * pt.uy
-        out[ir] = _rot_angle(qx - pr_.px, qy - pr_.py, ar, rs)
-        out[it] = (np.cos(pt.theta), np.sin(pt.theta))
+        gap = None
+        if np.min(disc) < 0.0:
+            gap = np.abs(A.sub(A.mul(pt.ux, wy), A.mul(pt.uy, wx))) - np.sqrt(rs)
+        s = k * np.sqrt(np.maximum(disc, 0.0)) - b
+        out[ir] = _rot_angle(A.add(wx, A.mul(s, pt.ux)), A.add(wy, A.mul(s, pt.uy)), ar, rs)
+        out[it] = (pt.c, pt.s)
         ss = [None, None]
         ss[it] = s
         return out, tuple(ss), gap
-
-    @staticmethod
-    def _trans_point(p: Param, local):
-        """Position of a local point of a translating body at s = 0."""
-        c, s = np.cos(p.theta), np.sin(p.theta)
-        return p.bx + c * local[0] - s * local[1], p.by + s * local[0] + c * local[1]
 
     def _inner_t(self, pr, k):
         inner = self.dyad.inner
@@ -352,85 +397,77 @@ class _DyadSolver:
         ps, pg = pr[i_s], pr[i_g]
         s_loc = self.b[i_s].local(inner.points[1])
         l_loc = self.b[i_g].local(inner.points[0])
-        beta = self.beta
-        ex, ey = np.cos(beta), np.sin(beta)
+        cb, sb = np.cos(self.beta), np.sin(self.beta)
         out = [None, None]
         ss = [None, None]
         if ps.kind == "rot" and pg.kind == "rot":
             # RTR (seed 000 ch. 6-7): sin(delta - theta_g - beta) = -c / |D|
-            cb, sb = np.cos(beta), np.sin(beta)
             asx, asy = s_loc[0] - ps.local[0], s_loc[1] - ps.local[1]
-            rax, ray = cb * asx - sb * asy, sb * asx + cb * asy
-            vx_, vy_ = rax - (l_loc[0] - pg.local[0]), ray - (l_loc[1] - pg.local[1])
-            c = ex * vy_ - ey * vx_
-            dx, dy = ps.px - pg.px, ps.py - pg.py
+            vx_ = cb * asx - sb * asy - (l_loc[0] - pg.local[0])
+            vy_ = sb * asx + cb * asy - (l_loc[1] - pg.local[1])
+            c = cb * vy_ - sb * vx_
+            dx, dy = A.sub(ps.px, pg.px), A.sub(ps.py, pg.py)
             dn = np.sqrt(dx * dx + dy * dy)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                y = -c / dn
-            gap = np.where(np.isfinite(y), np.abs(c) - dn, np.inf)
+            y = -c / dn
+            gap = None
+            if np.max(np.abs(y)) > 1.0 or not np.all(np.isfinite(y)):
+                gap = np.where(np.isfinite(y), abs(c) - dn, np.inf)
             x = np.arcsin(np.clip(y, -1.0, 1.0))
-            delta = np.arctan2(dy, dx)
-            th = delta - beta - x if k > 0 else delta - beta - np.pi + x
-            th = np.asarray(th, dtype=float)
-            out[i_g] = (np.cos(th), np.sin(th))
-            out[i_s] = (np.cos(th + beta), np.sin(th + beta))
+            th = np.arctan2(dy, dx) - self.beta + (-x if k > 0 else x - np.pi)
+            cg, sg = np.cos(th), np.sin(th)
+            out[i_g] = (cg, sg)
+            out[i_s] = A.rotate(cg, sg, cb, sb)
             return out, (None, None), gap
-        if ps.kind == "trans" and pg.kind == "trans":
-            raise AssemblyError("a TTT group is not a dyad")
         # RTT / TTR (seed 000 ch. 11-12): the rotating body's angle follows the other's
         if ps.kind == "rot":
-            th_s = pg.theta + beta
-            cs, sn = np.cos(th_s), np.sin(th_s)
-            asx, asy = s_loc[0] - ps.local[0], s_loc[1] - ps.local[1]
-            sx, sy = ps.px + cs * asx - sn * asy, ps.py + sn * asx + cs * asy
-            l0 = self._trans_point(pg, l_loc)
-            ux, uy = cs, sn                                   # line direction
-            den = ux * pg.uy - uy * pg.ux
-            with np.errstate(divide="ignore", invalid="ignore"):
-                s = (ux * (sy - l0[1]) - uy * (sx - l0[0])) / den
-            out[i_s] = (cs, sn)
-            out[i_g] = (np.cos(pg.theta), np.sin(pg.theta))
+            cs_, sn_ = A.rotate(pg.c, pg.s, cb, sb)          # slider angle = guide's + beta
+            sx, sy = A.rotate(cs_, sn_, s_loc[0] - ps.local[0], s_loc[1] - ps.local[1])
+            sx, sy = A.add(ps.px, sx), A.add(ps.py, sy)
+            l0 = _trans_point(pg, l_loc)
+            den = A.sub(A.mul(cs_, pg.uy), A.mul(sn_, pg.ux))
+            s = A.sub(A.mul(cs_, A.sub(sy, l0[1])), A.mul(sn_, A.sub(sx, l0[0]))) / den
+            out[i_s] = (cs_, sn_)
+            out[i_g] = (pg.c, pg.s)
             ss[i_g] = s
         else:
-            th_g = ps.theta - beta
-            cg, sg = np.cos(th_g), np.sin(th_g)
-            alx, aly = l_loc[0] - pg.local[0], l_loc[1] - pg.local[1]
-            lx, ly = pg.px + cg * alx - sg * aly, pg.py + sg * alx + cg * aly
-            ux, uy = np.cos(ps.theta), np.sin(ps.theta)
-            s0 = self._trans_point(ps, s_loc)
-            den = ux * ps.uy - uy * ps.ux
-            with np.errstate(divide="ignore", invalid="ignore"):
-                s = -(ux * (s0[1] - ly) - uy * (s0[0] - lx)) / den
+            cg, sg = A.rotate(ps.c, ps.s, cb, -sb)           # guide angle = slider's - beta
+            lx, ly = A.rotate(cg, sg, l_loc[0] - pg.local[0], l_loc[1] - pg.local[1])
+            lx, ly = A.add(pg.px, lx), A.add(pg.py, ly)
+            ux, uy = ps.c, ps.s
+            s0 = _trans_point(ps, s_loc)
+            den = A.sub(A.mul(ux, ps.uy), A.mul(uy, ps.ux))
+            s = -A.sub(A.mul(ux, A.sub(s0[1], ly)), A.mul(uy, A.sub(s0[0], lx))) / den
             out[i_g] = (cg, sg)
-            out[i_s] = (np.cos(ps.theta), np.sin(ps.theta))
+            out[i_s] = (ps.c, ps.s)
             ss[i_s] = s
-        gap = np.where(np.isfinite(s), -1.0, np.inf)
-        return out, tuple(ss), gap
+        return out, tuple(ss), None
 
 
-def _body_positions(pr: Param, cs, s) -> tuple[np.ndarray, np.ndarray]:
+def _origin(pr: Param, cs, s):
     """Origin of a dyad body from its parameter and solved unknown."""
-    c, sn = cs
     if pr.kind == "rot":
-        lx, ly = pr.local
-        return pr.px - (c * lx - sn * ly), pr.py - (sn * lx + c * ly)
-    return pr.bx + s * pr.ux, pr.by + s * pr.uy
+        rx, ry = A.rotate(cs[0], cs[1], *pr.local)
+        return A.sub(pr.px, rx), A.sub(pr.py, ry)
+    return A.add(pr.bx, A.mul(s, pr.ux)), A.add(pr.by, A.mul(s, pr.uy))
 
 
 def _columns(pr: Param, xx, xy):
     """Velocity of the body's point at X per unit of its unknown (the column c_i), the
     known part k_i of that velocity, and the weight of the unknown in the body's
     angular velocity (1 for rot, 0 for trans)."""
-    kb = pr.known
     if pr.kind == "rot":
-        kvx, kvy = kb.vel_at(pr.px, pr.py)
-        return (-(xy - pr.py), xx - pr.px), (kvx, kvy), 1.0
-    kvx, kvy = kb.vel_at(xx, xy)
-    return (pr.ux, pr.uy), (kvx, kvy), 0.0
+        return (A.sub(pr.py, xy), A.sub(xx, pr.px)), (pr.vpx, pr.vpy), 1.0
+    return (pr.ux, pr.uy), pr.known.vel_at(xx, xy), 0.0
 
 
 def _solve2(a11, a12, a21, a22, r1, r2, det):
-    return (r1 * a22 - a12 * r2) / det, (a11 * r2 - r1 * a21) / det
+    """Cramer's rule for [[a11, a12], [a21, a22]] x = [r1, r2]."""
+    return (A.sub(A.mul(r1, a22), A.mul(a12, r2)) / det,
+            A.sub(A.mul(a11, r2), A.mul(r1, a21)) / det)
+
+
+def _full(x, n):
+    return np.broadcast_to(x, (n,)) if np.ndim(x) == 0 else x
 
 
 def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion]) -> DyadMotion:
@@ -446,126 +483,123 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion]) -> Dyad
         assemblies exist and no ``[near]`` hint settles them, or at an exactly singular
         position.
     """
+    n = scene.driver.positions.size
     solver = _DyadSolver(scene, dyad)
     pr = (_param(scene, dyad, 0, motions), _param(scene, dyad, 1, motions))
-    k = 1
-    if solver.branches == 2:
-        k = _choose_branch(scene, dyad, solver, motions)
+    k = _choose_branch(scene, dyad, solver, motions) if solver.branches == 2 else 1
     cs, ss, gap = solver.positions(pr, k)
-    bad = np.flatnonzero(gap > 1e-9 * _scale(scene))
-    if bad.size:
-        raise AssemblyError(
-            f"dyad {dyad.label} cannot be assembled at driver position(s) "
-            f"{_fmt_positions(scene, bad, np.broadcast_to(gap, scene.driver.positions.shape)[bad])}"
-            ": the links do not reach; shorten the sweep or change the lengths")
-    # origins and the closing point X
-    org = [_body_positions(pr[i], cs[i], ss[i]) for i in range(2)]
+    if gap is not None:
+        gap = _full(gap, n)
+        bad = np.flatnonzero(gap > 1e-9 * _scale(scene))
+        if bad.size:
+            raise AssemblyError(
+                f"dyad {dyad.label} cannot be assembled at driver position(s) "
+                f"{_fmt_positions(scene, bad, gap[bad])}: the links do not reach; shorten "
+                "the sweep or change the lengths")
+    org = [_origin(pr[i], cs[i], ss[i]) for i in range(2)]
     inner = dyad.inner
-    if inner.kind == "R":
-        loc = solver.q[0]
-        ib = 0
-    else:
-        ib = 0 if solver.slider_first else 1
-        loc = solver.b[ib].local(inner.points[1])
-    c0, s0 = cs[ib]
-    xx = org[ib][0] + c0 * loc[0] - s0 * loc[1]
-    xy = org[ib][1] + s0 * loc[0] + c0 * loc[1]
+    ib = 0 if inner.kind == "R" or solver.slider_first else 1
+    loc = solver.q[0] if inner.kind == "R" else solver.b[ib].local(inner.points[1])
+    rx, ry = A.rotate(cs[ib][0], cs[ib][1], *loc)
+    xx, xy = A.add(org[ib][0], rx), A.add(org[ib][1], ry)
     (c1, k1, w1), (c2, k2, w2) = _columns(pr[0], xx, xy), _columns(pr[1], xx, xy)
-    n = scene.driver.positions.size
     if inner.kind == "R":
+        # c1 qd1 - c2 qd2 = k2 - k1
         a11, a12, a21, a22 = c1[0], -c2[0], c1[1], -c2[1]
-        r1, r2 = k2[0] - k1[0], k2[1] - k1[1]
-        det = a11 * a22 - a12 * a21
-        sin_tau = det / (np.hypot(*c1) * np.hypot(*c2))
-        cos_tau = (c1[0] * c2[0] + c1[1] * c2[1]) / (np.hypot(*c1) * np.hypot(*c2))
+        r1, r2 = A.sub(k2[0], k1[0]), A.sub(k2[1], k1[1])
         nx = ny = None
+        ux = uy = None
     else:
-        th_g = np.arctan2(cs[1 - ib][1], cs[1 - ib][0])
-        ux, uy = np.cos(th_g + solver.beta), np.sin(th_g + solver.beta)
+        # w1 qd1 - w2 qd2 = omega0_2 - omega0_1 ; n.(c1 qd1 - c2 qd2) = n.(k2 - k1)
+        ig = 1 - ib
+        ux, uy = A.rotate(cs[ig][0], cs[ig][1], np.cos(solver.beta), np.sin(solver.beta))
         nx, ny = -uy, ux
-        om0 = [0.0 if pr[i].kind == "rot" else pr[i].known.omega for i in range(2)]
-        a11, a12, r1 = w1, -w2, om0[1] - om0[0]
-        a21, a22 = nx * c1[0] + ny * c1[1], -(nx * c2[0] + ny * c2[1])
-        r2 = nx * (k2[0] - k1[0]) + ny * (k2[1] - k1[1])
-        det = a11 * a22 - a12 * a21
-        sin_tau, cos_tau = _inner_t_tau(pr, ux, uy)
-    sin_tau = np.broadcast_to(sin_tau, (n,))
-    cos_tau = np.broadcast_to(cos_tau, (n,))
-    exact = np.flatnonzero(np.abs(sin_tau) <= SINGULAR_FAIL)
-    if exact.size:
+        om0 = [0.0 if p.kind == "rot" else p.known.omega for p in pr]
+        a11, a12, r1 = w1, -w2, A.sub(om0[1], om0[0])
+        a21 = A.add(A.mul(nx, c1[0]), A.mul(ny, c1[1]))
+        a22 = -A.add(A.mul(nx, c2[0]), A.mul(ny, c2[1]))
+        r2 = A.add(A.mul(nx, A.sub(k2[0], k1[0])), A.mul(ny, A.sub(k2[1], k1[1])))
+    det = A.sub(A.mul(a11, a22), A.mul(a12, a21))
+    # |det| <= 1e-12 |c1| |c2|: exactly singular (for a prismatic inner joint the same
+    # test on the transmission measure of _inner_t_tau)
+    if inner.kind == "R":
+        norm2 = (c1[0] * c1[0] + c1[1] * c1[1]) * (c2[0] * c2[0] + c2[1] * c2[1])
+        sin2 = _full(det * det / norm2, n)
+    else:
+        sin2 = _full(_inner_t_tau(pr, ux, uy)[0], n) ** 2
+    sing = ~(sin2 > SINGULAR_WARN**2)
+    exact = np.flatnonzero(~(sin2 > SINGULAR_FAIL**2)) if sing.any() else ()
+    if len(exact):
         raise AssemblyError(
             f"dyad {dyad.label} is exactly singular (dead centre: transmission angle 0) at "
             f"driver position(s) {_fmt_positions(scene, exact)}; its velocities are undefined "
             "there: leave those positions out of the sweep")
-    qd1, qd2 = _solve2(a11, a12, a21, a22, r1, r2, det)
-    qd = (qd1, qd2)
+    qd = _solve2(a11, a12, a21, a22, r1, r2, det)
     # accelerations: the same matrix, centripetal and Coriolis terms on the right
     ka = []
     for i, p in enumerate(pr):
-        kb = p.known
         if p.kind == "rot":
-            ax_, ay_ = kb.acc_at(p.px, p.py)
             w2_ = qd[i] * qd[i]
-            ka.append((ax_ - w2_ * (xx - p.px), ay_ - w2_ * (xy - p.py)))
+            ka.append((A.sub(p.apx, w2_ * A.sub(xx, p.px)), A.sub(p.apy, w2_ * A.sub(xy, p.py))))
         else:
-            ax_, ay_ = kb.acc_at(xx, xy)
-            f = 2.0 * kb.omega * qd[i]
-            ka.append((ax_ - f * p.uy, ay_ + f * p.ux))
+            kax, kay = p.known.acc_at(xx, xy)
+            f = A.mul(2.0 * p.known.omega, qd[i])          # Coriolis 2 omega_K x v_rel
+            ka.append((A.sub(kax, A.mul(f, p.uy)), A.add(kay, A.mul(f, p.ux))))
     if inner.kind == "R":
-        r1, r2 = ka[1][0] - ka[0][0], ka[1][1] - ka[0][1]
+        r1, r2 = A.sub(ka[1][0], ka[0][0]), A.sub(ka[1][1], ka[0][1])
     else:
-        al0 = [0.0 if pr[i].kind == "rot" else pr[i].known.alpha for i in range(2)]
-        r1 = al0[1] - al0[0]
-        # relative velocity of the slider point along the line and the guide's omega
-        v1 = (k1[0] + c1[0] * qd1, k1[1] + c1[1] * qd1)
-        v2 = (k2[0] + c2[0] * qd2, k2[1] + c2[1] * qd2)
+        al0 = [0.0 if p.kind == "rot" else p.known.alpha for p in pr]
+        r1 = A.sub(al0[1], al0[0])
+        v1 = (A.add(k1[0], A.mul(c1[0], qd[0])), A.add(k1[1], A.mul(c1[1], qd[0])))
+        v2 = (A.add(k2[0], A.mul(c2[0], qd[1])), A.add(k2[1], A.mul(c2[1], qd[1])))
         sgn = 1.0 if solver.slider_first else -1.0
-        rdot = sgn * (ux * (v1[0] - v2[0]) + uy * (v1[1] - v2[1]))
-        ig = 1 if solver.slider_first else 0
+        rdot = A.mul(sgn, A.add(A.mul(ux, A.sub(v1[0], v2[0])), A.mul(uy, A.sub(v1[1], v2[1]))))
+        ig = 1 - ib
         om_g = qd[ig] if pr[ig].kind == "rot" else pr[ig].known.omega
-        r2 = sgn * 2.0 * om_g * rdot - (nx * (ka[0][0] - ka[1][0]) + ny * (ka[0][1] - ka[1][1]))
+        # n.(a_slider - a_guide) = 2 omega_g rdot (Coriolis, seed 001 eq. 8)
+        r2 = A.sub(A.mul(2.0 * sgn, A.mul(om_g, rdot)),
+                   A.add(A.mul(nx, A.sub(ka[0][0], ka[1][0])),
+                         A.mul(ny, A.sub(ka[0][1], ka[1][1]))))
     qdd = _solve2(a11, a12, a21, a22, r1, r2, det)
-    for i in range(2):
-        p = pr[i]
+    for i, p in enumerate(pr):
         c, sn = cs[i]
         ox, oy = org[i]
         kb = p.known
         if p.kind == "rot":
-            th = np.arctan2(sn, c)
             om, al = qd[i], qdd[i]
-            vpx, vpy = kb.vel_at(p.px, p.py)
-            apx, apy = kb.acc_at(p.px, p.py)
-            rx, ry = ox - p.px, oy - p.py
-            vx, vy = vpx - om * ry, vpy + om * rx
-            ax_, ay_ = apx - al * ry - om * om * rx, apy + al * rx - om * om * ry
+            rax, ray = A.rotate(c, sn, -p.local[0], -p.local[1])   # o - P = -R a
+            w2_ = om * om
+            vx = A.sub(p.vpx, A.mul(om, ray))
+            vy = A.add(p.vpy, A.mul(om, rax))
+            ax_ = A.sub(A.sub(p.apx, A.mul(al, ray)), A.mul(w2_, rax))
+            ay_ = A.sub(A.add(p.apy, A.mul(al, rax)), A.mul(w2_, ray))
         else:
-            th = p.theta
             om, al = kb.omega, kb.alpha
             vkx, vky = kb.vel_at(ox, oy)
             akx, aky = kb.acc_at(ox, oy)
-            f = 2.0 * kb.omega * qd[i]
-            vx, vy = vkx + qd[i] * p.ux, vky + qd[i] * p.uy
-            ax_ = akx + qdd[i] * p.ux - f * p.uy
-            ay_ = aky + qdd[i] * p.uy + f * p.ux
-        full = [np.broadcast_to(np.asarray(a, dtype=float), (n,))
-                for a in (th, c, sn, om, al, ox, oy, vx, vy, ax_, ay_)]
-        motions[dyad.bodies[i]] = BodyMotion(*full)
-    return DyadMotion(dyad, pr, k, np.broadcast_to(xx, (n,)), np.broadcast_to(xy, (n,)),
-                      c1, c2, det, sin_tau, cos_tau,
+            f = A.mul(2.0 * kb.omega, qd[i])
+            vx, vy = A.add(vkx, A.mul(qd[i], p.ux)), A.add(vky, A.mul(qd[i], p.uy))
+            ax_ = A.sub(A.add(akx, A.mul(qdd[i], p.ux)), A.mul(f, p.uy))
+            ay_ = A.add(A.add(aky, A.mul(qdd[i], p.uy)), A.mul(f, p.ux))
+        motions[dyad.bodies[i]] = BodyMotion(None, c, sn, om, al, ox, oy, vx, vy, ax_, ay_)
+    return DyadMotion(dyad, pr, k, xx, xy, c1, c2, det, n,
+                      singular=sing,
+                      inner_local=tuple(solver.q) if inner.kind == "R" else None,
                       slider_first=inner.kind == "T" and solver.slider_first, nx=nx, ny=ny)
 
 
 def _inner_t_tau(pr, ux, uy):
     """sin and cos of the transmission angle of a dyad with a prismatic inner joint:
-    between the line and P_s - P_g (RTR) or between the line and the other guide (RTT)."""
+    between the line and P_s - P_g (RTR: the velocity system's columns are J(P2 - P1)
+    and u, so sin = u . D / |D|) or between the line and the other guide (RTT)."""
     p1, p2 = pr
     if p1.kind == "rot" and p2.kind == "rot":
-        dx, dy = p1.px - p2.px, p1.py - p2.py
+        dx, dy = A.sub(p1.px, p2.px), A.sub(p1.py, p2.py)
         dn = np.sqrt(dx * dx + dy * dy)
-        # the velocity system's columns are J(P2 - P1) and u: sin = (u . D)/|D|
-        return (ux * dx + uy * dy) / dn, (ux * dy - uy * dx) / dn
+        return (A.add(A.mul(ux, dx), A.mul(uy, dy)) / dn,
+                A.sub(A.mul(ux, dy), A.mul(uy, dx)) / dn)
     pt = p2 if p1.kind == "rot" else p1
-    return ux * pt.uy - uy * pt.ux, ux * pt.ux + uy * pt.uy
+    return A.sub(A.mul(ux, pt.uy), A.mul(uy, pt.ux)), A.add(A.mul(ux, pt.ux), A.mul(uy, pt.uy))
 
 
 def _scale(scene: Scene) -> float:
@@ -597,10 +631,10 @@ def _choose_branch(scene: Scene, dyad: Dyad, solver: _DyadSolver,
     pr = (_param(scene, dyad, 0, first), _param(scene, dyad, 1, first))
     cands = {}
     for k in (1, -1):
-        cs, ss, gap = solver.positions(pr, k)
-        org = [_body_positions(pr[i], cs[i], ss[i]) for i in range(2)]
-        cands[k] = (cs, org, float(np.max(gap)))
+        cs, ss, _ = solver.positions(pr, k)
+        cands[k] = (cs, [_origin(pr[i], cs[i], ss[i]) for i in range(2)])
     hints = _hint_points(scene, dyad)
+
     def where(k, b, loc):
         i = dyad.bodies.index(b)
         (c, s), (ox, oy) = cands[k][0][i], cands[k][1][i]
@@ -639,6 +673,3 @@ def solve_kinematics(scene: Scene, structure: Structure) -> Kinematics:
     return kin
 
 
-def body_of(scene: Scene, name: str) -> Body:
-    """The scene body of that name."""
-    return scene.bodies[name]

@@ -15,7 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .kinematics import BodyMotion, Kinematics
+from . import _arith as A
+from .kinematics import Kinematics
 from .scene import Body, Scene
 
 RESIST_STILL = 1e-9     # a resist point slower than this fraction of its top speed: undefined
@@ -23,26 +24,35 @@ RESIST_STILL = 1e-9     # a resist point slower than this fraction of its top sp
 
 @dataclass
 class PointLoad:
-    """A force (fx, fy) acting at the global point (x, y) of ``body`` plus a couple ``m``.
+    """A force (fx, fy) on ``body`` at the arm (rx, ry) from the body's local origin
+    (global axes), plus a couple ``m``; arrays over positions or scalars.
 
-    ``kind`` is ``"applied"``, ``"gravity"`` or ``"inertia"``. ``vx, vy`` is the velocity
-    of the point (for the power); arrays over positions or scalars.
+    ``kind`` is ``"applied"``, ``"gravity"`` or ``"inertia"``.
     """
 
     body: str
     kind: str
-    x: np.ndarray
-    y: np.ndarray
-    vx: np.ndarray
-    vy: np.ndarray
-    fx: np.ndarray
-    fy: np.ndarray
-    m: np.ndarray | float = 0.0
+    rx: object
+    ry: object
+    fx: object
+    fy: object
+    m: object = 0.0
     label: str = ""
 
-    def power(self, omega: np.ndarray) -> np.ndarray:
+    def position(self, kin: Kinematics):
+        """Global position of the point of application."""
+        b = kin.bodies[self.body]
+        return A.add(b.ox, self.rx), A.add(b.oy, self.ry)
+
+    def velocity(self, kin: Kinematics):
+        """Velocity of the point of application."""
+        return kin.bodies[self.body].vel_arm(self.rx, self.ry)
+
+    def power(self, kin: Kinematics) -> np.ndarray:
         """Power of the load: F . v + M omega."""
-        return self.fx * self.vx + self.fy * self.vy + self.m * omega
+        vx, vy = self.velocity(kin)
+        om = kin.bodies[self.body].omega
+        return A.add(A.add(A.mul(self.fx, vx), A.mul(self.fy, vy)), A.mul(self.m, om))
 
 
 def concentrated_masses(body: Body) -> list[tuple[tuple[float, float], float]]:
@@ -71,12 +81,6 @@ def concentrated_masses(body: Body) -> list[tuple[tuple[float, float], float]]:
     return [(tuple(b), m * gk / (gb + gk)), (tuple(k), m * gb / (gb + gk))]
 
 
-def _at(motion: BodyMotion, local):
-    x, y = motion.point(local)
-    vx, vy = motion.vel_at(x, y)
-    return x, y, vx, vy
-
-
 def inertia_loads(scene: Scene, kin: Kinematics) -> list[PointLoad]:
     """Inertia loads of every body with mass: the exact torsor (eq. 2.1) or the point
     forces of its mass model (eq. 2.8 with 2.11 or 2.13-2.15)."""
@@ -86,15 +90,16 @@ def inertia_loads(scene: Scene, kin: Kinematics) -> list[PointLoad]:
             continue
         m = kin.bodies[name]
         if body.mass_model is None:
-            x, y, vx, vy = _at(m, body.cog or (0.0, 0.0))
-            ax, ay = m.acc_at(x, y)
-            out.append(PointLoad(name, "inertia", x, y, vx, vy, -body.mass * ax,
-                                 -body.mass * ay, -body.inertia * m.alpha, "inertia torsor"))
+            rx, ry = m.rotate(*(body.cog or (0.0, 0.0)))
+            ax, ay = m.acc_arm(rx, ry)
+            out.append(PointLoad(name, "inertia", rx, ry, A.mul(-body.mass, ax),
+                                 A.mul(-body.mass, ay), A.mul(-body.inertia, m.alpha),
+                                 "inertia torsor"))
             continue
         for loc, mk in concentrated_masses(body):
-            x, y, vx, vy = _at(m, loc)
-            ax, ay = m.acc_at(x, y)
-            out.append(PointLoad(name, "inertia", x, y, vx, vy, -mk * ax, -mk * ay, 0.0,
+            rx, ry = m.rotate(*loc)
+            ax, ay = m.acc_arm(rx, ry)
+            out.append(PointLoad(name, "inertia", rx, ry, A.mul(-mk, ax), A.mul(-mk, ay), 0.0,
                                  f"concentrated mass {mk:.6g} kg"))
     return out
 
@@ -112,19 +117,19 @@ def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.nd
     if gx or gy:
         for name, body in scene.bodies.items():
             if body.mass > 0.0:
-                x, y, vx, vy = _at(kin.bodies[name], body.cog)
-                out.append(PointLoad(name, "gravity", x, y, vx, vy, body.mass * gx,
-                                     body.mass * gy, 0.0, "weight"))
+                rx, ry = kin.bodies[name].rotate(*body.cog)
+                out.append(PointLoad(name, "gravity", rx, ry, body.mass * gx, body.mass * gy,
+                                     0.0, "weight"))
     for i, load in enumerate(scene.loads):
         m = kin.bodies[load.body]
         body = scene.bodies[load.body]
         if load.point is None:
-            z = np.float64(0.0)
-            out.append(PointLoad(load.body, "applied", z, z, z, z, z, z, load.moment,
+            out.append(PointLoad(load.body, "applied", 0.0, 0.0, 0.0, 0.0, load.moment,
                                  f"load {i}"))
             continue
-        x, y, vx, vy = _at(m, body.local(load.point))
+        rx, ry = m.rotate(*body.local(load.point))
         if load.resist is not None:
+            vx, vy = m.vel_arm(rx, ry)
             vx, vy = np.broadcast_to(vx, (n,)), np.broadcast_to(vy, (n,))
             speed = np.hypot(vx, vy)
             top = speed.max() if n else 0.0
@@ -134,18 +139,19 @@ def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.nd
                 fx = np.where(still, 0.0, -load.resist * vx / speed)
                 fy = np.where(still, 0.0, -load.resist * vy / speed)
         else:
-            fx, fy = np.float64(load.force[0]), np.float64(load.force[1])
-        out.append(PointLoad(load.body, "applied", x, y, vx, vy, fx, fy, load.moment,
+            fx, fy = float(load.force[0]), float(load.force[1])
+        out.append(PointLoad(load.body, "applied", rx, ry, fx, fy, load.moment,
                              f"load {i} at {load.point}"))
     return out, undefined
 
 
-def resultants(loads: list[PointLoad], names, n: int) -> dict[str, list[np.ndarray]]:
-    """Per body, [Fx, Fy, M_O]: the resultant force and its moment about the global origin."""
-    acc = {b: [np.zeros(n), np.zeros(n), np.zeros(n)] for b in names}
+def resultants(loads: list[PointLoad], names, n: int) -> dict[str, list]:
+    """Per body [Fx, Fy, M_O]: the resultant force and its moment about the body's local
+    origin O (arrays over positions, or scalars)."""
+    acc = {b: [0.0, 0.0, 0.0] for b in names}
     for ld in loads:
         r = acc[ld.body]
-        r[0] += ld.fx
-        r[1] += ld.fy
-        r[2] += ld.x * ld.fy - ld.y * ld.fx + ld.m
+        r[0] = A.add(r[0], ld.fx)
+        r[1] = A.add(r[1], ld.fy)
+        r[2] = A.add(r[2], A.add(A.cross(ld.rx, ld.ry, ld.fx, ld.fy), ld.m))
     return acc

@@ -27,6 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _arith as A
 from .kinematics import DyadMotion, Kinematics
 from .scene import GROUND, Joint, Scene
 
@@ -48,6 +49,12 @@ class JointReaction:
     M: np.ndarray | None = None
     x: np.ndarray | None = None     # where it acts (the joint point / the slider point)
     y: np.ndarray | None = None
+    sign: float = 1.0               # the force on ``on`` is sign * (fx, fy)
+
+    def force(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """(Fx, Fy) on ``on`` from ``by`` over n positions."""
+        fx, fy = np.broadcast_to(self.fx, (n,)), np.broadcast_to(self.fy, (n,))
+        return (fx, fy) if self.sign > 0 else (-fx, -fy)
 
 
 @dataclass
@@ -58,37 +65,51 @@ class DriverReaction:
     value: np.ndarray
 
 
-def _cross(ax, ay, bx, by):
-    return ax * by - ay * bx
-
-
 class _Store:
-    """Running load resultants per body, about the global origin."""
+    """Running load resultants per body: [Fx, Fy, M about the body's local origin]."""
 
     def __init__(self, acc, motions):
         self.acc = acc
         self.motions = motions
 
-    def add(self, body, fx, fy, x, y, m=0.0):
+    def add(self, body, fx, fy, rx, ry, m=0.0, sign: float = 1.0):
+        """Add ``sign`` times a force at the arm (rx, ry) from the body's origin, and a
+        couple."""
         if body == GROUND:
             return
         r = self.acc[body]
-        r[0] = r[0] + fx
-        r[1] = r[1] + fy
-        r[2] = r[2] + (x * fy - y * fx) + m
+        op = A.add if sign > 0 else A.sub
+        r[0] = op(r[0], fx)
+        r[1] = op(r[1], fy)
+        r[2] = A.add(op(r[2], A.cross(rx, ry, fx, fy)), m)
+
+    def arm(self, scene: Scene, body: str, point: str):
+        """Arm of a named point from the body's origin (0 on the ground)."""
+        if body == GROUND:
+            return 0.0, 0.0
+        return self.motions[body].rotate(*scene.bodies[body].local(point))
+
+    def arm_to(self, body: str, x, y):
+        """Arm of the global point (x, y) from the body's origin."""
+        if body == GROUND:
+            return 0.0, 0.0
+        m = self.motions[body]
+        return A.sub(x, m.ox), A.sub(y, m.oy)
 
 
-def _record(out: dict, joint: Joint, body: str, fx, fy, x, y, N=None, M=None):
-    """Store the reaction on ``body`` in the joint's on/by orientation."""
+def _record(out: dict, joint: Joint, body: str, fx, fy, x, y, N=None, M=None,
+            sign: float = 1.0):
+    """Store the reaction ``sign * (fx, fy)`` on ``body`` in the joint's on/by orientation
+    (the sign is applied when the reaction is read, not here: no pass over the arrays)."""
     on, by = joint.on_by
     if on != body:
-        fx, fy = -fx, -fy
+        sign = -sign
     if N is not None and joint.slider != body:
         N, M = -N, -M          # N, M are always those on the slider
-    out[joint.name] = JointReaction(joint, on, by, fx, fy, N, M, x, y)
+    out[joint.name] = JointReaction(joint, on, by, fx, fy, N, M, x, y, sign)
 
 
-def solve_reactions(kin: Kinematics, acc: dict[str, list[np.ndarray]]
+def solve_reactions(kin: Kinematics, acc: dict[str, list]
                     ) -> tuple[dict[str, JointReaction], DriverReaction]:
     """Reactions in every joint and the driver's equilibrating moment or force.
 
@@ -98,7 +119,7 @@ def solve_reactions(kin: Kinematics, acc: dict[str, list[np.ndarray]]
         The solved motion.
     acc : dict
         Per moving body [Fx, Fy, M_O]: resultant of its loads (applied, gravity,
-        inertia) and its moment about the global origin. Updated in place.
+        inertia) and its moment about the body's local origin. Updated in place.
     """
     scene = kin.scene
     store = _Store(acc, kin.bodies)
@@ -109,77 +130,81 @@ def solve_reactions(kin: Kinematics, acc: dict[str, list[np.ndarray]]
     return out, drv
 
 
-def _generalised(pr, r):
+def _generalised(store: _Store, name: str, pr, r):
     """Generalised force of the loads on a dyad body along its freedom: moment about the
     outer pivot P (rot) or force along the outer guide direction u (trans)."""
     if pr.kind == "rot":
-        return r[2] - _cross(pr.px, pr.py, r[0], r[1])
-    return r[0] * pr.ux + r[1] * pr.uy
+        px, py = store.motions[name].rotate(*pr.local)          # P - O
+        return A.sub(r[2], A.cross(px, py, r[0], r[1]))
+    return A.add(A.mul(r[0], pr.ux), A.mul(r[1], pr.uy))
 
 
 def _solve_dyad(scene: Scene, dm: DyadMotion, store: _Store, out: dict) -> None:
     dyad = dm.dyad
     b1, b2 = dyad.bodies
-    r1, r2 = store.acc[b1], store.acc[b2]
     p1, p2 = dm.params
-    q1, q2 = _generalised(p1, r1), _generalised(p2, r2)
+    q1 = _generalised(store, b1, p1, store.acc[b1])
+    q2 = _generalised(store, b2, p2, store.acc[b2])
     xx, xy = dm.xx, dm.xy
     c1, c2 = dm.c1, dm.c2
     inner = dyad.inner
     if inner.kind == "R":
-        # c1 . R = Q1, c2 . R = -Q2; R: force on body 2 from body 1 at X
-        det = c1[0] * c2[1] - c1[1] * c2[0]
-        rx = (q1 * c2[1] + q2 * c1[1]) / det
-        ry = (-c1[0] * q2 - c2[0] * q1) / det
-        store.add(b1, -rx, -ry, xx, xy)
-        store.add(b2, rx, ry, xx, xy)
+        # eqs 2.17, 2.22, 2.26 in vector form: c1 . R = Q1, c2 . R = -Q2,
+        # R: force on body 2 from body 1 at X
+        det = A.sub(A.mul(c1[0], c2[1]), A.mul(c1[1], c2[0]))
+        rx = A.add(A.mul(q1, c2[1]), A.mul(q2, c1[1])) / det
+        ry = -A.add(A.mul(c1[0], q2), A.mul(c2[0], q1)) / det
+        a1 = store.motions[b1].rotate(*dm.inner_local[0])
+        a2 = store.motions[b2].rotate(*dm.inner_local[1])
+        store.add(b1, rx, ry, *a1, sign=-1.0)
+        store.add(b2, rx, ry, *a2)
         _record(out, inner, b2, rx, ry, xx, xy)
     else:
         # [n.c_i, w_i] (N, M) = -sigma_i Q_i ; sigma = +1 on the slider, -1 on the guide
         nx, ny = dm.nx, dm.ny
-        a1 = nx * c1[0] + ny * c1[1]
-        a2 = nx * c2[0] + ny * c2[1]
+        a1 = A.add(A.mul(nx, c1[0]), A.mul(ny, c1[1]))
+        a2 = A.add(A.mul(nx, c2[0]), A.mul(ny, c2[1]))
         w1 = 1.0 if p1.kind == "rot" else 0.0
         w2 = 1.0 if p2.kind == "rot" else 0.0
         s1, s2 = (1.0, -1.0) if dm.slider_first else (-1.0, 1.0)
-        det = a1 * w2 - w1 * a2
-        y1, y2 = -s1 * q1, -s2 * q2
-        N = (y1 * w2 - w1 * y2) / det
-        M = (a1 * y2 - y1 * a2) / det
-        fx, fy = N * nx, N * ny
+        det = A.sub(A.mul(a1, w2), A.mul(w1, a2))
+        y1, y2 = A.mul(-s1, q1), A.mul(-s2, q2)
+        N = A.sub(A.mul(y1, w2), A.mul(w1, y2)) / det
+        M = A.sub(A.mul(a1, y2), A.mul(y1, a2)) / det
+        fx, fy = A.mul(N, nx), A.mul(N, ny)
         slider, guide = (b1, b2) if dm.slider_first else (b2, b1)
-        store.add(slider, fx, fy, xx, xy, M)
-        store.add(guide, -fx, -fy, xx, xy, -M)
+        store.add(slider, fx, fy, *store.arm(scene, slider, inner.points[1]), M)
+        store.add(guide, -fx, -fy, *store.arm_to(guide, xx, xy), -M)
         _record(out, inner, slider, fx, fy, xx, xy, N, M)
     for name, pr, joint in ((b1, p1, dyad.outer[0]), (b2, p2, dyad.outer[1])):
         r = store.acc[name]
         kname = joint.other(name)
         if joint.kind == "R":
-            fx, fy = -r[0], -r[1]
-            store.add(kname, r[0], r[1], pr.px, pr.py)
-            _record(out, joint, name, fx, fy, pr.px, pr.py)
+            # eqs 2.19, 2.21, 2.28: the force balance of the body gives the outer reaction
+            store.add(kname, r[0], r[1], *store.arm(scene, kname, joint.point_on(kname)))
+            _record(out, joint, name, r[0], r[1], pr.px, pr.py, sign=-1.0)
         else:
             _outer_prismatic(scene, store, out, joint, name, kname, pr.ux, pr.uy)
 
 
-def _slider_point(scene: Scene, store_motion, joint: Joint):
-    body = scene.bodies.get(joint.slider)
-    if body is None:
-        x, y = scene.ground[joint.points[1]]
-        return np.float64(x), np.float64(y)
-    return store_motion[joint.slider].point(body.local(joint.points[1]))
-
-
 def _outer_prismatic(scene, store, out, joint, name, kname, ux, uy):
     """Reaction of a prismatic joint on ``name`` that balances the body's loads: normal
-    force through the slider point and a couple about it (the point of application)."""
+    force through the slider point and a couple about it (the point of application,
+    eqs 2.24-2.25, 2.36-2.37, 2.42-2.43)."""
     r = store.acc[name]
-    sx, sy = _slider_point(scene, store.motions, joint)
+    if joint.slider == GROUND:
+        x, y = scene.ground[joint.points[1]]
+        sx, sy = float(x), float(y)
+    else:
+        m = store.motions[joint.slider]
+        ax, ay = store.arm(scene, joint.slider, joint.points[1])
+        sx, sy = A.add(m.ox, ax), A.add(m.oy, ay)
+    arm_i = store.arm_to(name, sx, sy)
     nx, ny = -uy, ux
-    fn = -(r[0] * nx + r[1] * ny)
-    fx, fy = fn * nx, fn * ny
-    c = -(r[2] - _cross(sx, sy, r[0], r[1]))
-    store.add(kname, -fx, -fy, sx, sy, -c)
+    fn = -A.add(A.mul(r[0], nx), A.mul(r[1], ny))
+    fx, fy = A.mul(fn, nx), A.mul(fn, ny)
+    c = -A.sub(r[2], A.cross(arm_i[0], arm_i[1], r[0], r[1]))
+    store.add(kname, -fx, -fy, *store.arm_to(kname, sx, sy), -c)
     _record(out, joint, name, fx, fy, sx, sy, fn, c)
 
 
@@ -187,25 +212,32 @@ def _solve_driver(scene: Scene, kin: Kinematics, store: _Store, out: dict) -> Dr
     drv = scene.driver
     joint = scene.joints[drv.joint]
     r = store.acc[drv.body]
-    m = kin.bodies[drv.body]
     if drv.kind == "R":
+        # eqs 2.47-2.48: Me from the moments about the ground joint, F01 from the forces
         px, py = scene.ground[joint.point_on(GROUND)]
-        fx, fy = -r[0], -r[1]
-        me = -(r[2] - _cross(px, py, r[0], r[1]))     # eqs 2.47-2.48
-        _record(out, joint, drv.body, fx, fy, np.float64(px), np.float64(py))
-        return DriverReaction("R", me)
+        ax, ay = store.arm(scene, drv.body, joint.point_on(drv.body))
+        me = -A.sub(r[2], A.cross(ax, ay, r[0], r[1]))
+        _record(out, joint, drv.body, r[0], r[1], float(px), float(py), sign=-1.0)
+        return DriverReaction("R", _full(me, kin.n))
     # sliding driver (eqs 2.49-2.51): Fe along the line through the slider point
     if joint.guide == GROUND:
         beta = np.deg2rad(joint.line_angle)
-        ux, uy = np.cos(beta), np.sin(beta)
-        sx, sy = m.point(scene.bodies[drv.body].local(joint.points[1]))
+        ux, uy = float(np.cos(beta)), float(np.sin(beta))
+        ax, ay = store.arm(scene, drv.body, joint.points[1])
+        m = kin.bodies[drv.body]
+        sx, sy = A.add(m.ox, ax), A.add(m.oy, ay)
     else:
         ux, uy = 1.0, 0.0
         x, y = scene.ground[joint.points[1]]
-        sx, sy = np.float64(x), np.float64(y)
-    fe = -(r[0] * ux + r[1] * uy)
+        sx, sy = float(x), float(y)
+        ax, ay = store.arm_to(drv.body, sx, sy)
+    fe = -A.add(A.mul(r[0], ux), A.mul(r[1], uy))
     nx, ny = -uy, ux
-    fn = -(r[0] * nx + r[1] * ny)
-    c = -(r[2] - _cross(sx, sy, r[0], r[1]))
-    _record(out, joint, drv.body, fn * nx, fn * ny, sx, sy, fn, c)
-    return DriverReaction("T", fe)
+    fn = -A.add(A.mul(r[0], nx), A.mul(r[1], ny))
+    c = -A.sub(r[2], A.cross(ax, ay, r[0], r[1]))
+    _record(out, joint, drv.body, A.mul(fn, nx), A.mul(fn, ny), sx, sy, fn, c)
+    return DriverReaction("T", _full(fe, kin.n))
+
+
+def _full(x, n):
+    return np.broadcast_to(np.asarray(x, dtype=float), (n,))

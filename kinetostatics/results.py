@@ -83,9 +83,7 @@ class Solution:
 
     def reaction(self, joint: str) -> tuple[np.ndarray, np.ndarray]:
         """(Fx, Fy) of a joint's reaction on its ``on`` body, arrays over positions."""
-        r = self.joint_reactions[joint]
-        n = self.positions.shape
-        return np.broadcast_to(r.fx, n), np.broadcast_to(r.fy, n)
+        return self.joint_reactions[joint].force(self.positions.size)
 
     # -- contract tables --------------------------------------------------------
     @cached_property
@@ -223,7 +221,7 @@ class Solution:
             if GROUND not in j.bodies:
                 continue
             r = self.joint_reactions[name]
-            gx, gy = -np.broadcast_to(r.fx, (n,)), -np.broadcast_to(r.fy, (n,))
+            gx, gy = (-f for f in r.force(n))
             fx += gx
             fy += gy
             mz += np.broadcast_to(r.x * gy - r.y * gx, (n,))

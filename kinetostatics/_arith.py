@@ -1,0 +1,59 @@
+"""Arithmetic that skips exact scalar zeros and ones.
+
+Coordinates are kept as separate x and y arrays over positions, but many of them are
+scalars: the ground's, a fixed pivot's, a constant speed's, a local coordinate that is
+0. Multiplying or adding a full array by such a scalar is a wasted pass over memory;
+these helpers return the other operand instead. Results are bit-identical to the plain
+expressions (x + 0.0 == x, x * 1.0 == x; x * 0.0 is taken as 0.0, which differs only
+for infinite x, never present here).
+"""
+
+from __future__ import annotations
+
+
+def zero(x) -> bool:
+    """True for a Python or numpy scalar equal to 0 (never for an array)."""
+    return isinstance(x, float | int) and x == 0
+
+
+def mul(a, b):
+    """a * b."""
+    if zero(a) or zero(b):
+        return 0.0
+    if isinstance(a, float | int) and a == 1:
+        return b
+    if isinstance(b, float | int) and b == 1:
+        return a
+    return a * b
+
+
+def add(a, b):
+    """a + b."""
+    if zero(b):
+        return a
+    if zero(a):
+        return b
+    return a + b
+
+
+def sub(a, b):
+    """a - b."""
+    if zero(b):
+        return a
+    if zero(a):
+        return -b
+    return a - b
+
+
+def cross(ax, ay, bx, by):
+    """z component of (ax, ay) x (bx, by)."""
+    return sub(mul(ax, by), mul(ay, bx))
+
+
+def rotate(c, s, lx: float, ly: float):
+    """R(theta) (lx, ly) with c = cos theta, s = sin theta; lx, ly are scalars."""
+    if ly == 0.0:
+        return mul(c, lx), mul(s, lx)
+    if lx == 0.0:
+        return mul(-ly, s), mul(c, ly)
+    return c * lx - s * ly, s * lx + c * ly
