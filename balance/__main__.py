@@ -88,7 +88,7 @@ def _resolve(name: str) -> Path | str:
 
 
 def _showwarning(message, category, filename, lineno, file=None, line=None) -> None:
-    print(f"warning: {message}", file=sys.stderr)
+    print(f"warning: {' '.join(str(message).split())}", file=sys.stderr)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -102,19 +102,35 @@ def main(argv: list[str] | None = None) -> int:
     try:
         results = solve_results(_resolve(args.scene))
         out = results_to_dict(results)
+        if args.json:
+            text = json.dumps(out, indent=2, allow_nan=False, default=_json_default)
+        else:
+            speed = "rotor" in results and results["rotor"].speed_rpm is not None
+            text = _report(out, speed)
     except WorkbenchError as exc:
-        print(f"error: {exc}", file=sys.stderr)
+        print(f"error: {_one_line(exc)}", file=sys.stderr)
         return 2
     except Exception as exc:  # a bug, still one line (the contract: never a traceback)
-        print(f"error: internal error, please report: {type(exc).__name__}: {exc}",
+        print(f"error: internal error, please report: {type(exc).__name__}: {_one_line(exc)}",
               file=sys.stderr)
         return 1
-    if args.json:
-        print(json.dumps(out, indent=2, allow_nan=False))
-    else:
-        speed = "rotor" in results and results["rotor"].speed_rpm is not None
-        print(_report(out, speed))
+    print(text)
     return 0
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split())
+
+
+def _json_default(x: Any) -> Any:
+    """numpy scalars and arrays (e.g. from balance.mechanism) as plain JSON values."""
+    import numpy as np
+
+    if isinstance(x, np.generic):
+        return x.item()
+    if isinstance(x, np.ndarray):
+        return x.tolist()
+    raise TypeError(f"{type(x).__name__} is not JSON serialisable")
 
 
 if __name__ == "__main__":

@@ -51,14 +51,14 @@ def _new_axes(ax: Axes | None) -> Axes:
 
 
 def _arrow(ax: Axes, tail: complex, tip: complex, label: str | None, color: str,
-           ls: str = "-", lw: float = 1.8, text_offset: float = 0.0) -> None:
-    """A vector from tail to tip, labelled at its middle."""
+           ls: str = "-", lw: float = 1.8, text_offset: float = 0.0, frac: float = 0.5) -> None:
+    """A vector from tail to tip, labelled at ``frac`` of its length."""
     ax.annotate("", xy=(tip.real, tip.imag), xytext=(tail.real, tail.imag),
                 arrowprops={"arrowstyle": "-|>", "color": color, "lw": lw, "ls": ls,
                             "shrinkA": 0, "shrinkB": 0, "mutation_scale": 14})
     ax.update_datalim([(tail.real, tail.imag), (tip.real, tip.imag)])
     if label:
-        mid = (tail + tip) / 2
+        mid = tail + frac * (tip - tail)
         d = tip - tail
         n = 1j * d / abs(d) if abs(d) > 0 else 0j
         pos = mid + n * text_offset
@@ -76,8 +76,9 @@ def _finish(ax: Axes, xlabel: str, ylabel: str, title: str) -> Axes:
     ax.axvline(0.0, color="0.85", lw=0.8, zorder=0)
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
-    ax.set_title(title, fontsize=10)
+    ax.set_title(title, fontsize=10, pad=14)
     ax.grid(True, color="0.93")
+    ax.ticklabel_format(style="sci", axis="both", scilimits=(-3, 4), useMathText=True)
     return ax
 
 
@@ -85,7 +86,7 @@ def _rotor_scale(result: RotorResult, force: bool | None) -> tuple[float, str, s
     use = result.speed_rpm is not None if force is None else force
     if use and result.speed_rpm is None:
         raise BalanceError("plot: forces need the rotor's speed_rpm; use force=False")
-    return (result.scale, "N", "N m") if use else (1.0, "kg m", "kg m^2")
+    return (result.scale, "N", "N m") if use else (1.0, "kg m", "kg m$^2$")
 
 
 def plot_unbalance_polygon(result: RotorResult, ax: Axes | None = None, *,
@@ -94,7 +95,8 @@ def plot_unbalance_polygon(result: RotorResult, ax: Axes | None = None, *,
 
     The vectors U_j = m_j r_j follow tip to tail from the origin; the correction
     vectors (one plane: U_e, eq. 3.6; two planes: U_e1 and U_e2, eq. 3.10) bring the
-    polygon back to the origin. The dashed vector is the resultant U_d (eq. 3.3).
+    polygon back to the origin. The dashed vector (two planes) is the resultant U_d
+    (eq. 3.3).
 
     Parameters
     ----------
@@ -118,9 +120,9 @@ def plot_unbalance_polygon(result: RotorResult, ax: Axes | None = None, *,
     for j, u in enumerate(vecs):
         _arrow(ax, p, p + u, f"U{j + 1}", _COLORS[j % len(_COLORS)], text_offset=0.04 * size)
         p += u
-    if abs(p) > 0:
-        _arrow(ax, 0j, p, "Ud", "0.45", ls="--", lw=1.2, text_offset=-0.04 * size)
     many = len(result.corrections) > 1
+    if abs(p) > 0 and many:  # with one plane U_d is -U_e, drawn below
+        _arrow(ax, 0j, p, "Ud", "0.45", ls="--", lw=1.2, text_offset=-0.04 * size)
     for c in result.corrections:
         u = c.vector * k
         if abs(u) > 0:
@@ -128,7 +130,7 @@ def plot_unbalance_polygon(result: RotorResult, ax: Axes | None = None, *,
                    text_offset=0.04 * size)
         p += u
     ax.plot([0.0], [0.0], "ko", ms=4)
-    what = "inertia forces U omega^2" if k != 1.0 else "unbalance vectors U = m r"
+    what = r"inertia forces $U\omega^2$" if k != 1.0 else "unbalance vectors $U = m r$"
     return _finish(ax, f"x component ({unit})", f"y component ({unit})",
                    f"Polygon of the {what}, closed by the correction")
 
@@ -174,7 +176,8 @@ def plot_moment_polygon(result: RotorResult, ax: Axes | None = None, *,
         _arrow(ax, p, 0j, "residual couple", "0.45", ls="--", lw=1.2, text_offset=0.04 * size)
     ax.plot([0.0], [0.0], "ko", ms=4)
     return _finish(ax, f"x component ({unit})", f"y component ({unit})",
-                   f"Moments about correction plane I (z = {z_ref:g} m), k x (z U)")
+                   f"Moments about correction plane I (z = {z_ref:g} m): "
+                   r"$k \times (z - z_I)\,U$")
 
 
 def plot_parallelogram(result: ResonanceResult, ax: Axes | None = None, *,
@@ -217,9 +220,9 @@ def plot_parallelogram(result: ResonanceResult, ax: Axes | None = None, *,
         _arrow(ax, U, U + Avec, None, "0.6", ls=ls, lw=1.0)
         _arrow(ax, Avec, U + Avec, None, "0.6", ls=ls, lw=1.0)
         _arrow(ax, 0j, U + Avec, f"A2{tag}", "tab:green" if n == 0 else "0.5", ls=ls,
-               lw=1.4, text_offset=-0.04 * scale)
+               lw=1.4, text_offset=-0.03 * scale, frac=0.72)
         _arrow(ax, Avec, U, f"A3{tag}", "tab:purple" if n == 0 else "0.5", ls=ls, lw=1.4,
-               text_offset=0.04 * scale)
+               text_offset=0.03 * scale, frac=0.3)
         ax.plot([U.real], [U.imag], "o", color=color, ms=5, alpha=alpha)
     _arrow(ax, 0j, Avec, "A (trial at 0 deg)", "tab:orange", text_offset=-0.05 * scale)
     R = 1.15 * max(A1, A)

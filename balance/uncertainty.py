@@ -57,14 +57,15 @@ class Interval:
         (low, high) of the correction angle, deg in [0, 360), counter-clockwise from
         low to high; None where the angle is undefined (no unbalance).
     magnitude_linear, angle_linear : float or None
-        First-order half widths sum_i |d/d a_i| dA.
+        First-order half widths sum_i |d/d a_i| dA; None where undefined (no angle,
+        or the nominal point lies on the edge of what a solution fits).
     """
 
     dA: float
     method: str
     magnitude: tuple[float, float]
     angle: tuple[float, float] | None
-    magnitude_linear: float
+    magnitude_linear: float | None
     angle_linear: float | None
 
     def to_dict(self) -> dict[str, Any]:
@@ -72,6 +73,10 @@ class Interval:
         return {"dA": self.dA, "method": self.method, "magnitude": list(self.magnitude),
                 "angle": list(self.angle) if self.angle is not None else None,
                 "magnitude_linear": self.magnitude_linear, "angle_linear": self.angle_linear}
+
+
+def _finite_or_none(x: float) -> float | None:
+    return float(x) if np.isfinite(x) else None
 
 
 def _wrap(d: np.ndarray) -> np.ndarray:
@@ -155,7 +160,7 @@ def propagate(func: BatchFunction, amplitudes: np.ndarray, dA: float,
             method=method,
             magnitude=(float(mag_lo[j]), float(mag_hi[j])),
             angle=None if undefined else (deg360(ang_lo[j]), deg360(ang_hi[j])),
-            magnitude_linear=float(mag_lin[j]),
-            angle_linear=None if undefined else float(ang_lin[j]),
+            magnitude_linear=_finite_or_none(mag_lin[j]),
+            angle_linear=None if undefined else _finite_or_none(ang_lin[j]),
         ))
     return out

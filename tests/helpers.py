@@ -88,7 +88,7 @@ def compare_case(sol, expected_csv: Path, rel: float = 1e-9) -> dict[str, float]
         head = split_quantity(q)[0]
         got = lookup(sol, q, g.position.to_numpy())
         want = g.value.to_numpy()
-        scale = max(float(np.abs(want).max()), 1e-3 * kind_max[KIND[head]])
+        scale = max(float(np.abs(want).max()), 1e-3 * kind_max[KIND[head]], 1e-12)
         if head == "angle":
             diff = (got - want + 180.0) % 360.0 - 180.0
         else:
