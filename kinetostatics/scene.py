@@ -290,7 +290,7 @@ def _mass_model(table: Any, where: str, points: dict, cog: tuple | None,
         bc = float(np.hypot(*(c - b)))
         if bc == 0.0:
             raise SceneError(f"{w}: the two points coincide")
-        off = abs(float(np.cross(c - b, g - b))) / bc
+        off = abs(float((c - b)[0] * (g - b)[1] - (c - b)[1] * (g - b)[0])) / bc
         if off > 1e-9 * bc:
             raise SceneError(f"{w}: the cog is {off:.3g} m off the line through "
                              f"{names[0]} and {names[1]}; static concentration needs it "

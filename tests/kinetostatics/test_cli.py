@@ -1,0 +1,83 @@
+"""The command line: demo, solve, structure, bench; errors are one line with exit code 2."""
+
+import json
+import os
+import subprocess
+import sys
+
+import pandas as pd
+import pytest
+
+from tests.helpers import OWN_CASES, ROOT
+
+
+def run(*args, cwd=None):
+    env = dict(os.environ, MPLBACKEND="Agg")
+    return subprocess.run([sys.executable, "-m", "kinetostatics", *args], capture_output=True,
+                          text=True, cwd=cwd or ROOT, env=env, timeout=300)
+
+
+def test_demo_writes_tables_and_picture(tmp_path):
+    r = run("demo", "--out", str(tmp_path))
+    assert r.returncode == 0, r.stderr
+    for name in ("reactions.csv", "driver.csv", "kinematics.csv", "bodies.csv",
+                 "summary.json", "overview.png"):
+        assert (tmp_path / name).is_file()
+    assert "Me mean" in r.stdout
+    s = json.loads((tmp_path / "summary.json").read_text())
+    for key in ("Me_mean", "Me_max", "Me_min", "reaction_max", "transmission_angle_min",
+                "singular_rows"):
+        assert key in s
+
+
+def test_solve_writes_contract_csv(tmp_path):
+    r = run("solve", str(OWN_CASES / "slider_crank.toml"), "--out", str(tmp_path))
+    assert r.returncode == 0, r.stderr
+    rx = pd.read_csv(tmp_path / "reactions.csv")
+    assert list(rx.columns[:7]) == ["position", "joint", "on", "by", "Fx", "Fy", "F"]
+    assert {"N", "M", "offset"} <= set(rx.columns)
+    drv = pd.read_csv(tmp_path / "driver.csv")
+    assert list(drv.columns) == ["position", "Me", "singular", "undefined_load"]
+    assert drv.undefined_load.sum() == 3      # 0, 180 and 360 deg: the piston stands still
+    s = json.loads((tmp_path / "summary.json").read_text())
+    assert s["singular_rows"] == 0
+    # full precision in the CSV
+    k = pd.read_csv(tmp_path / "kinematics.csv")
+    assert set(k.columns) == {"position", "body", "point", "x", "y", "vx", "vy", "ax", "ay"}
+
+
+def test_sliding_driver_table_has_fe(tmp_path):
+    r = run("solve", str(OWN_CASES / "sliding_driver.toml"), "--out", str(tmp_path))
+    assert r.returncode == 0, r.stderr
+    assert "Fe" in pd.read_csv(tmp_path / "driver.csv").columns
+    assert "Fe_mean" in json.loads((tmp_path / "summary.json").read_text())
+
+
+@pytest.mark.parametrize("text,word", [
+    ("[driver]\nbody = 'x'\n", "missing"),
+    ("this is not toml", "TOML"),
+])
+def test_bad_scene_exit_2_one_line(tmp_path, text, word):
+    p = tmp_path / "bad.toml"
+    p.write_text(text)
+    r = run("solve", str(p))
+    assert r.returncode == 2
+    assert r.stderr.startswith("error: ") and word in r.stderr
+    assert "Traceback" not in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1
+
+
+def test_missing_file_exit_2():
+    r = run("solve", "no/such/scene.toml")
+    assert r.returncode == 2 and r.stderr.startswith("error:")
+
+
+def test_structure_command():
+    r = run("structure", str(OWN_CASES / "slotted_lever.toml"))
+    assert r.returncode == 0 and "RTR" in r.stdout
+
+
+def test_bench_quick():
+    r = run("bench", "--quick")
+    assert r.returncode == 0, r.stderr
+    assert "positions_per_s" in r.stdout and "max_rel_error" in r.stdout

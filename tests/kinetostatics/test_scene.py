@@ -1,0 +1,296 @@
+"""Scene loading: the contract's rules, one-line errors, fuzzing."""
+
+import copy
+import math
+import tomllib
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import kinetostatics as ks
+from kinetostatics.errors import AssemblyError, SceneError, StructureError, WorkbenchError
+from tests.helpers import OWN_CASES
+
+
+def four_bar():
+    with open(OWN_CASES / "four_bar.toml", "rb") as fh:
+        d = tomllib.load(fh)
+    d["driver"]["count"] = 13
+    return d
+
+
+def slider_crank():
+    with open(OWN_CASES / "slider_crank.toml", "rb") as fh:
+        d = tomllib.load(fh)
+    d["driver"]["count"] = 13
+    return d
+
+
+def error_of(scene) -> str:
+    with pytest.raises(WorkbenchError) as exc:
+        ks.solve(scene)
+    msg = str(exc.value)
+    assert "\n" not in msg and msg, "errors are one line"
+    assert isinstance(exc.value, ValueError)
+    return msg
+
+
+def test_load_from_path_string_toml_and_dict():
+    path = OWN_CASES / "four_bar.toml"
+    a = ks.load_scene(path)
+    b = ks.load_scene(str(path))
+    c = ks.load_scene(path.read_text())
+    d = ks.load_scene(four_bar())
+    assert a.driver.positions.size == b.driver.positions.size == c.driver.positions.size == 361
+    assert d.driver.positions.size == 13
+    assert list(a.bodies) == ["crank", "coupler", "rocker"]
+
+
+def test_positions_and_speed_rpm():
+    d = four_bar()
+    for k in ("start", "stop", "count", "speed"):
+        d["driver"].pop(k)
+    d["driver"]["positions"] = [0.0, 30.0, 45.0]
+    d["driver"]["speed_rpm"] = 60.0
+    sc = ks.load_scene(d)
+    assert np.array_equal(sc.driver.positions, [0.0, 30.0, 45.0])
+    assert sc.driver.speed == pytest.approx(2 * math.pi)
+
+
+def test_backward_sweep_and_clockwise():
+    d = four_bar()
+    d["driver"].update(start=360.0, stop=0.0, speed=-30.0)
+    sol = ks.solve(d)
+    assert sol.positions[0] == 360.0 and sol.positions[-1] == 0.0
+    b = sol.bodies
+    assert (b[b.body == "crank"].omega == -30.0).all()
+
+
+@pytest.mark.parametrize("mutate,words", [
+    (lambda d: d["bodies"][0].update(mas=1.0), ["unknown key 'mas'", "'mass'"]),
+    (lambda d: d["driver"].pop("speed"), ["speed"]),
+    (lambda d: d["bodies"][1].update(mass=-2.0), ["mass", "negative"]),
+    (lambda d: d["joints"][1].update(bodies=["crank", "cuopler"]), ["unknown body", "coupler"]),
+    (lambda d: d["loads"][0].update(point="Q"), ["'Q'", "rocker"]),
+    (lambda d: d["joints"][2].update(points=["C", "X"]), ["'X'", "rocker"]),
+    (lambda d: d["driver"].update(count=0), ["count", "at least 1"]),
+    (lambda d: d["driver"].update(count=20_000_000), ["count", "10_000_000"]),
+    (lambda d: d["driver"].update(joint="B"), ["driver.joint", "ground"]),
+    (lambda d: d["bodies"][0].pop("cog"), ["cog"]),
+    (lambda d: d.update(gravity=[0.0, float("nan")]), ["gravity", "finite"]),
+    (lambda d: d["bodies"][1].update(inertia="big"), ["inertia", "number"]),
+    (lambda d: d["bodies"].append(dict(d["bodies"][0])), ["used twice"]),
+    (lambda d: d["joints"].append({"name": "E", "kind": "X"}), ["kind"]),
+    (lambda d: d.update(near={"Z": [0, 0]}), ["near", "Z"]),
+    (lambda d: d["loads"][0].update(resist=10.0), ["force", "resist"]),
+    (lambda d: d["bodies"][0].update(name="ground"), ["reserved"]),
+    (lambda d: d["driver"].update(positions=[1.0]), ["positions", "not both"]),
+])
+def test_bad_scene_one_line_error(mutate, words):
+    d = four_bar()
+    mutate(d)
+    msg = error_of(d)
+    for w in words:
+        assert w in msg, msg
+
+
+def test_not_assembling_names_positions():
+    d = four_bar()
+    d["bodies"][1]["points"]["C"] = [0.12, 0.0]        # coupler too short
+    d["bodies"][1]["cog"] = [0.06, 0.0]
+    d["bodies"][1]["points"].pop("P")
+    with pytest.raises(AssemblyError) as exc:
+        ks.solve(d)
+    msg = str(exc.value)
+    assert "cannot be assembled" in msg and "deg" in msg and "by" in msg
+
+
+def test_crank_that_cannot_turn_fully():
+    """A non-Grashof linkage: the crank reaches a dead centre: the sweep is refused at the
+    positions where the dyad cannot close."""
+    d = four_bar()
+    d["bodies"][0]["points"]["B"] = [0.2, 0.0]
+    with pytest.raises(AssemblyError, match="cannot be assembled at driver position"):
+        ks.solve(d)
+
+
+def test_ambiguity_without_hint_lists_candidates():
+    d = four_bar()
+    d.pop("near")
+    msg = error_of(d)
+    assert "two assemblies" in msg and "[near]" in msg and "(" in msg
+
+
+def test_hint_selects_branch():
+    up = four_bar()
+    down = four_bar()
+    down["near"] = {"C": [0.26, -0.19]}
+    yu = ks.solve(up).kinematics.query("body == 'rocker' and point == 'C'").y.to_numpy()
+    yd = ks.solve(down).kinematics.query("body == 'rocker' and point == 'C'").y.to_numpy()
+    assert yu[0] > 0 > yd[0]
+    hint = four_bar()
+    hint["near"] = {"rocker.E": [0.1, 0.15]}
+    ye = ks.solve(hint).kinematics.query("body == 'rocker' and point == 'C'").y.to_numpy()
+    assert ye[0] > 0
+
+
+def test_exactly_singular_position_is_refused():
+    """The slider-crank with the crank at 90 deg is fine; a crank as long as the rod
+    reaches a dead centre where the rod is perpendicular to the line."""
+    d = slider_crank()
+    d["bodies"][0]["points"]["B"] = [0.35, 0.0]
+    d["driver"].pop("start"), d["driver"].pop("stop"), d["driver"].pop("count")
+    d["driver"]["positions"] = [0.0, 45.0, 90.0]
+    d["loads"] = []
+    with pytest.raises(AssemblyError) as exc:
+        ks.solve(d)
+    assert "90 deg" in str(exc.value)
+
+
+def test_near_dead_centre_is_flagged_and_finite():
+    """Near (not at) a dead centre the rows are flagged; reactions grow like 1/sin(tau)."""
+    d = slider_crank()
+    d["bodies"][0]["points"]["B"] = [0.35, 0.0]
+    d["driver"].pop("start"), d["driver"].pop("stop"), d["driver"].pop("count")
+    eps = np.array([1e-2, 1e-3, 1e-4, 1e-5])
+    d["driver"]["positions"] = list(90.0 - np.rad2deg(eps))
+    d["loads"] = [{"body": "piston", "point": "C", "force": [-100.0, 0.0]}]
+    d["gravity"] = [0.0, 0.0]
+    for b in d["bodies"]:
+        b["mass"], b["inertia"] = 0.0, 0.0
+    d["driver"]["speed"] = 0.0
+    sol = ks.solve(d)
+    assert np.isfinite(sol.reactions.drop(columns="offset").select_dtypes("number")).all().all()
+    sing = sol.driver.singular.to_numpy()
+    sin_tau = sol.dyads.sin_tau.to_numpy()
+    assert (sing == (sin_tau <= 1e-3)).all() and sing[-1]
+    f = sol.reactions.query("joint == 'B'").F.to_numpy()
+    # static force along the rod: 100 / cos(rod angle) ~ 1 / sin(tau)
+    assert np.allclose(f * sin_tau, 100.0, rtol=1e-6)
+
+
+def test_chain_not_driver_plus_dyads():
+    d = four_bar()
+    d["bodies"].append({"name": "loose", "points": {"Q": [0.0, 0.0]}})
+    msg = error_of(d)
+    assert "loose" in msg and "left over" in msg
+    d = four_bar()
+    d["joints"].append({"name": "E", "kind": "R", "bodies": ["ground", "coupler"],
+                        "points": ["A", "P"]})
+    with pytest.raises(StructureError):
+        ks.solve(d)
+
+
+def test_mass_model_checks():
+    d = four_bar()
+    d["bodies"][1]["mass_model"] = {"kind": "static", "points": ["B", "C"]}
+    msg = error_of(d)                                   # cog (0.125, 0.02) is off BC
+    assert "off the line" in msg
+    d["bodies"][1]["cog"] = [0.125, 0.0]
+    ks.solve(d)
+    d["bodies"][1]["mass_model"] = {"kind": "dynamic", "point": "Q"}
+    assert "'Q'" in error_of(d)
+    d["bodies"][1]["mass_model"] = {"kind": "static", "points": ["B", "P"]}
+    with pytest.warns(UserWarning, match="negative"):
+        d["bodies"][1]["cog"] = [0.125, 0.075]          # on line BP, beyond P
+        ks.load_scene(d)
+
+
+def test_structure_reports_groups():
+    st_ = ks.analyse(ks.load_scene(ks.example("shaper")))
+    lines = st_.describe()
+    assert lines[0].startswith("driver: crank")
+    assert [d.kind for d in st_.dyads] == ["RTR", "RRT"]
+
+
+# --- fuzzing -------------------------------------------------------------------------
+
+def _mutations():
+    leaf = st.one_of(st.none(), st.booleans(), st.integers(-10**9, 10**9),
+                     st.floats(allow_nan=True, allow_infinity=True), st.text(max_size=4),
+                     st.lists(st.floats(allow_nan=True, allow_infinity=True), max_size=3),
+                     st.just({}), st.just([]))
+    return st.lists(st.tuples(st.integers(0, 10**6), st.sampled_from(["set", "del", "add"]),
+                              leaf), min_size=1, max_size=4)
+
+
+def _paths(obj, prefix=()):
+    yield prefix
+    if isinstance(obj, dict):
+        for k, v in obj.items():
+            yield from _paths(v, prefix + (k,))
+    elif isinstance(obj, list):
+        for i, v in enumerate(obj):
+            yield from _paths(v, prefix + (i,))
+
+
+def _apply(d, ops):
+    for idx, op, val in ops:
+        paths = [p for p in _paths(d) if p]
+        if not paths:
+            return d
+        path = paths[idx % len(paths)]
+        parent = d
+        for k in path[:-1]:
+            parent = parent[k]
+        key = path[-1]
+        if op == "set":
+            parent[key] = val
+        elif op == "del":
+            del parent[key]
+        elif isinstance(parent, dict):
+            parent[f"extra{idx % 7}"] = val
+        else:
+            parent.append(val)
+    return d
+
+
+@settings(max_examples=250, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(ops=_mutations(), base=st.sampled_from(["four_bar", "slider_crank"]))
+def test_fuzz_mutated_scenes(ops, base):
+    d = copy.deepcopy(four_bar() if base == "four_bar" else slider_crank())
+    d = _apply(d, ops)
+    try:
+        sol = ks.solve(d)
+    except WorkbenchError as exc:
+        assert "\n" not in str(exc)
+        return
+    if sol.positions.size > 2000:
+        return
+    for table in (sol.driver, sol.bodies, sol.kinematics):
+        assert np.isfinite(table.select_dtypes("number").to_numpy()).all()
+    r = sol.reactions.drop(columns="offset")
+    assert np.isfinite(r.select_dtypes("number").to_numpy()).all()
+
+
+@settings(max_examples=60, deadline=None)
+@given(text=st.text(max_size=200))
+def test_fuzz_toml_text(text):
+    try:
+        ks.load_scene(text + "\n")
+    except WorkbenchError:
+        pass
+
+
+def test_huge_count_is_refused_quickly():
+    d = four_bar()
+    d["driver"]["count"] = 10**12
+    assert "at most" in error_of(d)
+
+
+def test_empty_tables():
+    for key in ("bodies", "joints"):
+        d = four_bar()
+        d[key] = []
+        assert error_of(d)
+    d = four_bar()
+    d["driver"]["positions"] = []
+    for k in ("start", "stop", "count"):
+        d["driver"].pop(k)
+    assert "empty" in error_of(d)
+
+
+def test_scene_error_is_valueerror():
+    assert issubclass(SceneError, ValueError)
