@@ -330,25 +330,22 @@ def cycle_extreme(law: CamLaw, func: Callable[[np.ndarray, np.ndarray, np.ndarra
     """Supremum over the cycle of ``func(phi, s, ds, dds)`` and the cam angle (rad) where it is.
 
     Each segment is sampled on its closed interval (so one-sided limits at the joints
-    count), then the best sample is refined by golden-section search between its
-    neighbours.
+    count), then the bracket around the best sample is zoomed into (17 samples, eight-fold
+    shrink per round, to 1e-13 of the segment): a vectorised search for a locally unimodal
+    function, corners included.
     """
     best, best_phi = -math.inf, 0.0
     for k, (seg, c) in enumerate(zip(law.segments, law.starts, strict=True)):
         x = np.linspace(0.0, seg.angle, samples)
-        vals = func(c + x, *law.segment_values(k, x))
-        j = int(np.argmax(vals))
-        lo, hi = x[max(j - 1, 0)], x[min(j + 1, samples - 1)]
-
-        def f(t: float, k: int = k, c: float = c) -> float:
-            tt = np.array([t])
-            return float(func(c + tt, *law.segment_values(k, tt))[0])
-
-        xm, fm = golden_max(f, lo, hi)
-        if vals[j] > fm:
-            xm, fm = x[j], float(vals[j])
-        if fm > best:
-            best, best_phi = fm, c + xm
+        while True:
+            vals = func(c + x, *law.segment_values(k, x))
+            j = int(np.argmax(vals))
+            if vals[j] > best:
+                best, best_phi = float(vals[j]), c + float(x[j])
+            lo, hi = x[max(j - 1, 0)], x[min(j + 1, x.size - 1)]
+            if hi - lo <= 1e-13 * seg.angle:
+                break
+            x = np.linspace(lo, hi, 17)
     return best, best_phi
 
 
@@ -431,7 +428,7 @@ def _points(follower: Follower, s: np.ndarray, ds: np.ndarray, dds: np.ndarray,
         b = np.stack((np.full_like(s, follower.offset), follower.s0 + s))
         return b, np.stack((zero, ds)), np.stack((zero, dds)), np.stack((zero, one)), ds
     sig = 1.0 if follower.rise_sense == "same" else -1.0
-    b0 = follower.beta0 if beta0 is None else beta0
+    b0 = follower.beta0 if beta0 is None else beta0     # may be an array broadcasting with s
     L, d = follower.arm, follower.pivot_distance
     th = math.pi + sig * (b0 + s)
     c, sn = np.cos(th), np.sin(th)
@@ -550,17 +547,27 @@ def base_radius_oscillating(law: CamLaw, tau_adm: float, arm: float, pivot_dista
         def f(p: np.ndarray, s: np.ndarray, ds: np.ndarray, dds: np.ndarray) -> np.ndarray:
             b, d1, _, u, _ = _points(probe, s, ds, dds, beta0=beta0)
             return -_tau(b, d1, u)
-        return -cycle_extreme(law, f, samples=201)[0] - tau_adm
+        return -cycle_extreme(law, f)[0] - tau_adm
 
-    top = math.pi - law.stroke
-    grid = np.linspace(0.0, top, 182)[1:-1]
-    ok = [margin(b0) >= 0.0 for b0 in grid]
-    if not any(ok):
+    # scan beta0 over (0, pi - beta_max) on sampled cam angles (vectorised), then bisect
+    # with the refined minimum of tau
+    x = [np.linspace(0.0, seg.angle, _SAMPLES) for seg in law.segments]
+    vals = [np.concatenate(v) for v in zip(*(law.segment_values(k, xk)
+                                             for k, xk in enumerate(x)), strict=True)]
+    grid = np.linspace(0.0, math.pi - law.stroke, 362)[1:-1]
+    b, d1, _, u, _ = _points(probe, *vals, beta0=grid[:, None])
+    ok = np.min(_tau(b, d1, u), axis=1) >= tau_adm
+    if not np.any(ok):
         raise CamError(f"no base radius keeps tau >= {math.degrees(tau_adm):g} deg with arm "
                        f"{arm:g} m and pivot distance {pivot_distance:g} m; change them")
-    i = ok.index(True)
+    i = int(np.argmax(ok))
     lo, hi = (0.0 if i == 0 else grid[i - 1]), grid[i]
-    for _ in range(60):
+    while margin(hi) < 0.0:           # the sampled minimum may miss a sharp dip
+        lo, hi = hi, hi + 0.25 * (hi - lo)
+        if hi >= math.pi - law.stroke:
+            raise CamError(f"no base radius keeps tau >= {math.degrees(tau_adm):g} deg with "
+                           f"arm {arm:g} m and pivot distance {pivot_distance:g} m")
+    while hi - lo > 1e-12:
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if margin(mid) >= 0.0 else (mid, hi)
     d, L = pivot_distance, arm
@@ -1017,12 +1024,12 @@ def solve_cam(source: Any) -> CamResults:
         b_len = ld.guide_length if ld.friction > 0.0 else 1.0
         f12, n1, n2 = translating_follower_forces(load, tau, ld.friction, a, b_len, direction,
                                                   angles=phi)
-        friction = ld.friction * (n1 + n2)
+        friction = ld.friction * (n1 + n2) * np.abs(direction)   # none in a dwell
         loss = friction * np.abs(ds)                       # friction work per rad of cam
     else:
         f12 = oscillating_follower_force(load, tau, fol.arm, ld.friction, ld.pin_radius,
                                          direction, angles=phi)
-        friction = ld.friction * ld.pin_radius * f12     # pin friction moment Mf (eq. 1.46)
+        friction = ld.friction * ld.pin_radius * f12 * np.abs(direction)   # Mf (eq. 1.46)
         loss = friction * np.abs(ds)
     torque = f12 * np.sum(b * d1, axis=0) / tn          # M = B x F12 n = F12 (B . dB) / |T|
     separation = f12 < 0.0
@@ -1049,8 +1056,8 @@ def solve_cam(source: Any) -> CamResults:
         "transmission_angle_min": math.degrees(-tau_min),
         "transmission_angle_min_at": math.degrees(tau_at),
         "pressure_angle_max": 90.0 - math.degrees(-tau_min),
-        "velocity_max": w * vmax,
-        "acceleration_max": w * w * float(np.max(np.abs(dds))),
+        ("velocity_max" if translating else "omega2_max"): w * vmax,
+        ("acceleration_max" if translating else "eps2_max"): w * w * float(np.max(np.abs(dds))),
         "F12_max": float(np.max(f12)),
         "F12_max_at": float(table["angle"].iloc[int(np.argmax(f12))]),
         "torque_max": float(np.max(torque)),

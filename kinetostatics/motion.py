@@ -609,15 +609,23 @@ def _top_peaks(vals: np.ndarray, count: int) -> list[int]:
 
 
 def simulate(inertia: Inertia, moment: Moment, phi0: float, omega0: float, cycles: int = 1, *,
-             t0: float = 0.0, rtol: float = 1e-11, cycle: float = TWO_PI,
+             t0: float = 0.0, rtol: float = 1e-12, cycle: float = TWO_PI,
              span: float | None = None, stop_at_rest: bool = False,
-             max_steps: int = 2_000_000) -> MotionSolution:
+             periodic_inertia: bool = False, max_steps: int = 2_000_000) -> MotionSolution:
     """Integrate the equation of motion (eq. 4.9) for any M(phi, omega, t).
 
-    Dormand-Prince 5(4) with step control in phi on the state (u, t), u = I_r omega^2:
-    du/dphi = 2 M(phi, sqrt(u/I_r), t), dt/dphi = sqrt(I_r/u). The steps land on every
-    cycle boundary phi0 + k cycle. Each step evaluates I_r at its five new stage angles
-    in one vectorised call; M is evaluated stage by stage (it depends on the state).
+    Dormand-Prince 5(4) in phi on the state (u, t), u = I_r omega^2:
+    du/dphi = 2 M(phi, sqrt(u/I_r), t), dt/dphi = sqrt(I_r/u). Steps are at most cycle/32
+    long and land on every cycle boundary phi0 + k cycle. M is evaluated stage by stage (it
+    depends on the state); I_r, at stage angles known before the stage is taken:
+
+    - by default the step size is controlled and each step evaluates I_r at its five new
+      stage angles in one vectorised call;
+    - with ``periodic_inertia`` (I_r has the cycle as its period, e.g. a mechanism's reduced
+      inertia over a crank turn) the steps form a fixed grid of n per cycle, n doubled from
+      64 until every step's error estimate meets ``rtol``; I_r is evaluated once, in one call
+      at all 5n stage angles of the grid, and reused for every cycle. Use it when I_r is
+      costly (a kinematic solve).
 
     Parameters
     ----------
@@ -628,7 +636,7 @@ def simulate(inertia: Inertia, moment: Moment, phi0: float, omega0: float, cycle
     omega0 : float
         Speed at phi0, rad/s, > 0.
     cycles : int
-        Number of cycles to integrate (ignored if ``span`` is given).
+        Number of cycles to integrate.
     t0 : float
         Time at phi0, s.
     rtol : float
@@ -637,10 +645,14 @@ def simulate(inertia: Inertia, moment: Moment, phi0: float, omega0: float, cycle
     cycle : float
         Length of a cycle, rad (the period of I_r and M in phi).
     span : float, optional
-        Integrate from phi0 to phi0 + span instead of whole cycles.
+        Integrate from phi0 to phi0 + span instead of whole cycles (not with
+        ``periodic_inertia``).
     stop_at_rest : bool
         If omega falls to 0, end there (``rest`` holds where and when) instead of raising.
+    periodic_inertia : bool
+        Evaluate I_r once per cycle on a fixed grid (see above).
     max_steps : int
+        Limit of the adaptive integrator's steps.
 
     Returns
     -------
@@ -658,94 +670,131 @@ def simulate(inertia: Inertia, moment: Moment, phi0: float, omega0: float, cycle
         if int(cycles) != cycles or cycles < 1:
             raise MotionError(f"cycles must be an integer >= 1, got {cycles!r}")
         span = cycles * cycle
+    elif periodic_inertia:
+        raise MotionError("periodic_inertia integrates whole cycles: give cycles, not span")
     if not span > 0.0:
         raise MotionError("the span to integrate must be positive")
     phi0 = float(phi0)
-    end = phi0 + span
     i0 = float(_inertia_values(inertia, np.array([phi0]))[0][0])
     u0 = i0 * omega0 * omega0
-    return _dp5(inertia, moment, phi0, u0, float(t0), end, rtol, cycle, stop_at_rest,
+    if periodic_inertia:
+        return _dp5_grid(_CycleGrid(inertia, phi0, cycle), 0.0, inertia, moment, u0, float(t0),
+                         int(cycles), rtol, stop_at_rest)
+    return _dp5(inertia, moment, phi0, u0, float(t0), phi0 + span, rtol, cycle, stop_at_rest,
                 max_steps)
 
 
+def _step(moment: Moment, p: float, h: float, u: float, t: float, ku1: float, kt1: float,
+          stage_i: Sequence[float]) -> tuple | None:
+    """One Dormand-Prince 5(4) step of (u, t) from p to p + h; ``stage_i`` holds I_r at
+    p + c h for c = 1/5, 3/10, 4/5, 8/9, 1. None where a stage would have u <= 0."""
+    u2 = u + h * _A21 * ku1
+    if not u2 > 0.0:
+        return None
+    t2 = t + h * _A21 * kt1
+    w = math.sqrt(u2 / stage_i[0])
+    ku2, kt2 = 2.0 * _scalar(moment, p + _C[0] * h, w, t2), 1.0 / w
+    u3 = u + h * (_A31 * ku1 + _A32 * ku2)
+    if not u3 > 0.0:
+        return None
+    t3 = t + h * (_A31 * kt1 + _A32 * kt2)
+    w = math.sqrt(u3 / stage_i[1])
+    ku3, kt3 = 2.0 * _scalar(moment, p + _C[1] * h, w, t3), 1.0 / w
+    u4 = u + h * (_A41 * ku1 + _A42 * ku2 + _A43 * ku3)
+    if not u4 > 0.0:
+        return None
+    t4 = t + h * (_A41 * kt1 + _A42 * kt2 + _A43 * kt3)
+    w = math.sqrt(u4 / stage_i[2])
+    ku4, kt4 = 2.0 * _scalar(moment, p + _C[2] * h, w, t4), 1.0 / w
+    u5 = u + h * (_A51 * ku1 + _A52 * ku2 + _A53 * ku3 + _A54 * ku4)
+    if not u5 > 0.0:
+        return None
+    t5 = t + h * (_A51 * kt1 + _A52 * kt2 + _A53 * kt3 + _A54 * kt4)
+    w = math.sqrt(u5 / stage_i[3])
+    ku5, kt5 = 2.0 * _scalar(moment, p + _C[3] * h, w, t5), 1.0 / w
+    u6 = u + h * (_A61 * ku1 + _A62 * ku2 + _A63 * ku3 + _A64 * ku4 + _A65 * ku5)
+    if not u6 > 0.0:
+        return None
+    t6 = t + h * (_A61 * kt1 + _A62 * kt2 + _A63 * kt3 + _A64 * kt4 + _A65 * kt5)
+    w = math.sqrt(u6 / stage_i[4])
+    ku6, kt6 = 2.0 * _scalar(moment, p + h, w, t6), 1.0 / w
+    un = u + h * (_B1 * ku1 + _B3 * ku3 + _B4 * ku4 + _B5 * ku5 + _B6 * ku6)
+    if not un > 0.0:
+        return None
+    tn = t + h * (_B1 * kt1 + _B3 * kt3 + _B4 * kt4 + _B5 * kt5 + _B6 * kt6)
+    w = math.sqrt(un / stage_i[4])
+    ku7, kt7 = 2.0 * _scalar(moment, p + h, w, tn), 1.0 / w
+    eu = h * (_E1 * ku1 + _E3 * ku3 + _E4 * ku4 + _E5 * ku5 + _E6 * ku6 + _E7 * ku7)
+    et = h * (_E1 * kt1 + _E3 * kt3 + _E4 * kt4 + _E5 * kt5 + _E6 * kt6 + _E7 * kt7)
+    ks = ((ku1, kt1), (ku2, kt2), (ku3, kt3), (ku4, kt4), (ku5, kt5), (ku6, kt6), (ku7, kt7))
+    return un, tn, ks, eu, et
+
+
+class _Track:
+    """Accepted nodes and stage slopes, turned into a :class:`MotionSolution` at the end."""
+
+    def __init__(self, p: float, u: float, t: float) -> None:
+        self.ps, self.us, self.ts, self.ks = [p], [u], [t], []
+
+    def add(self, p: float, u: float, t: float, ks: tuple) -> None:
+        self.ps.append(p)
+        self.us.append(u)
+        self.ts.append(t)
+        self.ks.append(ks)
+
+    def solution(self, inertia: Inertia, moment: Moment, phi0: float, cycle: float,
+                 rest: tuple[float, float] | None) -> MotionSolution:
+        k = np.asarray(self.ks, dtype=float).reshape(-1, 7, 2)
+        q = np.einsum("nsc,sj->ncj", k, _P)
+        return MotionSolution(np.asarray(self.ps), np.asarray(self.us), np.asarray(self.ts), q,
+                              inertia, moment, phi0, cycle, rest)
+
+
+def _tolerances(rtol: float, cycle: float, u0: float, i0: float) -> tuple[float, float]:
+    """Absolute tolerances of u and t (J, s) that go with rtol."""
+    return 1e-9 * rtol * u0, rtol * cycle / math.sqrt(u0 / i0)
+
+
 def _dp5(inertia: Inertia, moment: Moment, phi0: float, u0: float, t0: float, end: float,
-         rtol: float, cycle: float, stop_at_rest: bool, max_steps: int) -> MotionSolution:
+         rtol: float, cycle: float, stop_at_rest: bool, max_steps: int,
+         track: _Track | None = None, origin: float | None = None) -> MotionSolution:
+    """Adaptive Dormand-Prince 5(4) from (phi0, u0, t0) to ``end``; ``origin`` is where
+    cycle 1 starts (for the cycle boundaries and the messages)."""
+    origin = phi0 if origin is None else origin
     h_max = cycle / 32.0
     h_min = 1e-13 * max(cycle, abs(end))
     i0 = float(_inertia_values(inertia, np.array([phi0]))[0][0])
-    atol_t = rtol * cycle / math.sqrt(u0 / i0)
-    atol_u = 1e-9 * rtol * u0
+    atol_u, atol_t = _tolerances(rtol, cycle, u0, i0)
     p, u, t = phi0, u0, t0
     w = math.sqrt(u / i0)
     ku1, kt1 = 2.0 * _scalar(moment, p, w, t), 1.0 / w
-    ps, us, ts, ks = [p], [u], [t], []
+    track = _Track(p, u, t) if track is None else track
     h = h_max / 4.0
     nb = 1
     rest = None
     steps = 0
     while p < end:
-        while phi0 + nb * cycle <= p + 1e-12 * cycle:
+        while origin + nb * cycle <= p + 1e-12 * cycle:
             nb += 1
-        target = min(end, phi0 + nb * cycle)
+        target = min(end, origin + nb * cycle)
         last = h >= target - p
         if last:
             h = target - p
         steps += 1
         if steps > max_steps:
             raise MotionError(f"no progress after {max_steps} steps near "
-                              f"{_where(p, phi0, cycle)}")
+                              f"{_where(p, origin, cycle)}")
         stage_i = _inertia_values(inertia, np.array([p + c * h for c in _C]))[0].tolist()
-        ok = True
-        u2 = u + h * _A21 * ku1
-        if u2 > 0.0:
-            t2 = t + h * _A21 * kt1
-            w2 = math.sqrt(u2 / stage_i[0])
-            ku2, kt2 = 2.0 * _scalar(moment, p + _C[0] * h, w2, t2), 1.0 / w2
-            u3 = u + h * (_A31 * ku1 + _A32 * ku2)
-            ok = u3 > 0.0
-        else:
-            ok = False
-        if ok:
-            t3 = t + h * (_A31 * kt1 + _A32 * kt2)
-            w3 = math.sqrt(u3 / stage_i[1])
-            ku3, kt3 = 2.0 * _scalar(moment, p + _C[1] * h, w3, t3), 1.0 / w3
-            u4 = u + h * (_A41 * ku1 + _A42 * ku2 + _A43 * ku3)
-            ok = u4 > 0.0
-        if ok:
-            t4 = t + h * (_A41 * kt1 + _A42 * kt2 + _A43 * kt3)
-            w4 = math.sqrt(u4 / stage_i[2])
-            ku4, kt4 = 2.0 * _scalar(moment, p + _C[2] * h, w4, t4), 1.0 / w4
-            u5 = u + h * (_A51 * ku1 + _A52 * ku2 + _A53 * ku3 + _A54 * ku4)
-            ok = u5 > 0.0
-        if ok:
-            t5 = t + h * (_A51 * kt1 + _A52 * kt2 + _A53 * kt3 + _A54 * kt4)
-            w5 = math.sqrt(u5 / stage_i[3])
-            ku5, kt5 = 2.0 * _scalar(moment, p + _C[3] * h, w5, t5), 1.0 / w5
-            u6 = u + h * (_A61 * ku1 + _A62 * ku2 + _A63 * ku3 + _A64 * ku4 + _A65 * ku5)
-            ok = u6 > 0.0
-        if ok:
-            t6 = t + h * (_A61 * kt1 + _A62 * kt2 + _A63 * kt3 + _A64 * kt4 + _A65 * kt5)
-            w6 = math.sqrt(u6 / stage_i[4])
-            ku6, kt6 = 2.0 * _scalar(moment, p + h, w6, t6), 1.0 / w6
-            un = u + h * (_B1 * ku1 + _B3 * ku3 + _B4 * ku4 + _B5 * ku5 + _B6 * ku6)
-            ok = un > 0.0
-        if ok:
-            tn = t + h * (_B1 * kt1 + _B3 * kt3 + _B4 * kt4 + _B5 * kt5 + _B6 * kt6)
-            wn = math.sqrt(un / stage_i[4])
-            ku7, kt7 = 2.0 * _scalar(moment, p + h, wn, tn), 1.0 / wn
-            eu = h * (_E1 * ku1 + _E3 * ku3 + _E4 * ku4 + _E5 * ku5 + _E6 * ku6 + _E7 * ku7)
-            et = h * (_E1 * kt1 + _E3 * kt3 + _E4 * kt4 + _E5 * kt5 + _E6 * kt6 + _E7 * kt7)
+        out = _step(moment, p, h, u, t, ku1, kt1, stage_i)
+        if out is not None:
+            un, tn, ks, eu, et = out
             err = max(abs(eu) / (atol_u + rtol * max(u, un)),
                       abs(et) / (atol_t + rtol * max(abs(t), abs(tn))))
             if err <= 1.0:
-                ks.append(((ku1, kt1), (ku2, kt2), (ku3, kt3), (ku4, kt4), (ku5, kt5),
-                           (ku6, kt6), (ku7, kt7)))
                 p = target if last else p + h
                 u, t = un, tn
-                ku1, kt1 = ku7, kt7
-                ps.append(p)
-                us.append(u)
-                ts.append(t)
+                ku1, kt1 = ks[6]
+                track.add(p, u, t, ks)
                 h = min(h_max, h * (5.0 if err == 0.0 else min(5.0, 0.9 * err ** -0.2)))
                 continue
             h *= max(0.2, 0.9 * err ** -0.2)
@@ -754,24 +803,103 @@ def _dp5(inertia: Inertia, moment: Moment, phi0: float, u0: float, t0: float, en
         if h < h_min:
             if ku1 >= 0.0:
                 raise MotionError(f"the integration cannot proceed near "
-                                  f"{_where(p, phi0, cycle)}: check the moment and inertia")
+                                  f"{_where(p, origin, cycle)}: check the moment and inertia")
             # omega ~ 0: u falls linearly (du/dphi = 2M), a uniform deceleration
             p_rest = p + u / -ku1
             t_rest = t + 2.0 * (p_rest - p) * kt1
             if not stop_at_rest:
-                raise _stall(p_rest, t_rest, phi0, cycle)
+                raise _stall(p_rest, t_rest, origin, cycle)
             rest = (p_rest, t_rest)
             break
-    k = np.asarray(ks, dtype=float).reshape(-1, 7, 2)
-    q = np.einsum("nsc,sj->ncj", k, _P)
-    return MotionSolution(np.asarray(ps), np.asarray(us), np.asarray(ts), q, inertia, moment,
-                          phi0, cycle, rest)
+    return track.solution(inertia, moment, origin, cycle, rest)
+
+
+class _CycleGrid:
+    """I_r at every stage angle of a grid of n equal steps per cycle, from one vectorised call;
+    valid for every cycle when I_r has the cycle as its period. ``extra`` is a flywheel."""
+
+    def __init__(self, inertia: Inertia, phi0: float, cycle: float) -> None:
+        self.inertia, self.phi0, self.cycle = inertia, phi0, cycle
+        self._cache: dict[int, list[list[float]]] = {}
+
+    def stages(self, n: int) -> list[list[float]]:
+        """Row j: I_r at phi0 + (j + c) h, c = 0, 1/5, 3/10, 4/5, 8/9, 1 (h = cycle / n)."""
+        if n not in self._cache:
+            c = np.array((0.0, *_C[:-1]))
+            pts = self.phi0 + (np.arange(n)[:, None] + c) * (self.cycle / n)
+            vals = _inertia_values(self.inertia, pts)[0]
+            self._cache[n] = np.column_stack((vals, np.roll(vals[:, 0], -1))).tolist()
+        return self._cache[n]
+
+
+def _dp5_grid(grid: _CycleGrid, extra: float, inertia: Inertia, moment: Moment, u0: float,
+              t0: float, cycles: int, rtol: float, stop_at_rest: bool) -> MotionSolution:
+    """Dormand-Prince 5(4) on fixed grids of n steps per cycle, I_r from the grid's cache.
+
+    Each cycle starts with the previous cycle's n (64 at first) and is redone with 2n while
+    some step's error estimate exceeds rtol; n is halved for the next cycle when the largest
+    estimate is below 1/64 of rtol. Beyond 4096 steps per cycle, or where a stage would
+    reach omega = 0, the adaptive integrator takes over from the cycle's start (it locates
+    a stall)."""
+    phi0, cycle = grid.phi0, grid.cycle
+    end = phi0 + cycles * cycle
+    n = 64
+    atol_u, atol_t = _tolerances(rtol, cycle, u0, grid.stages(n)[0][0] + extra)
+    p, u, t = phi0, u0, t0
+    w = math.sqrt(u / (grid.stages(n)[0][0] + extra))
+    k1 = (2.0 * _scalar(moment, p, w, t), 1.0 / w)
+    track = _Track(p, u, t)
+    for c in range(cycles):
+        start = phi0 + c * cycle
+        while True:
+            rows, h = grid.stages(n), cycle / n
+            nodes, worst = [], 0.0
+            uu, tt, (ku1, kt1) = u, t, k1
+            for j in range(n):
+                row = rows[j]
+                pj = start + j * h
+                out = _step(moment, pj, h, uu, tt, ku1, kt1,
+                            [row[1] + extra, row[2] + extra, row[3] + extra, row[4] + extra,
+                             row[5] + extra])
+                if out is None:
+                    worst = math.inf
+                    break
+                un, tn, ks, eu, et = out
+                worst = max(worst, abs(eu) / (atol_u + rtol * max(uu, un)),
+                            abs(et) / (atol_t + rtol * max(abs(tt), abs(tn))))
+                if worst > 1.0:
+                    break
+                uu, tt = un, tn
+                ku1, kt1 = ks[6]
+                nodes.append((start + (j + 1) * h if j < n - 1 else start + cycle, uu, tt, ks))
+            if worst <= 1.0:
+                break
+            if math.isinf(worst) or n >= 4096:
+                return _dp5(inertia, moment, start, u, t, end, rtol, cycle, stop_at_rest,
+                            2_000_000, track=track, origin=phi0)
+            n *= 2
+        for node in nodes:
+            track.add(*node)
+        u, t, k1 = uu, tt, (ku1, kt1)
+        if worst < 1.0 / 64.0 and n > 64:
+            n //= 2
+    return track.solution(inertia, moment, phi0, cycle, None)
+
+
+def _with_flywheel(inertia: Inertia, extra: float) -> Inertia:
+    if extra == 0.0:
+        return inertia
+
+    def inertia_j(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        i_r, di_r = inertia(phi)
+        return np.asarray(i_r, dtype=float) + extra, di_r
+    return inertia_j
 
 
 # --------------------------------------------------------------------------- phases
 
 def stopping(inertia: Inertia, moment: Moment, phi0: float, omega0: float, *,
-             max_cycles: int = 10_000, rtol: float = 1e-11,
+             max_cycles: int = 10_000, rtol: float = 1e-12,
              cycle: float = TWO_PI) -> MotionSolution:
     """The stopping phase (s. 4.2, eq. 4.18): integrate until omega falls to 0.
 
@@ -792,14 +920,15 @@ def stopping(inertia: Inertia, moment: Moment, phi0: float, omega0: float, *,
 
 
 def periodic_solution(inertia: Inertia, moment: Moment, phi0: float, omega_guess: float, *,
-                      rtol: float = 1e-11, cycle: float = TWO_PI, tol: float = 1e-10,
-                      maxiter: int = 60) -> MotionSolution:
+                      rtol: float = 1e-12, cycle: float = TWO_PI, tol: float = 1e-10,
+                      maxiter: int = 60, periodic_inertia: bool = False) -> MotionSolution:
     """The steady state (s. 4.2, eq. 4.19): the motion with omega(phi0) = omega(phi0 + cycle).
 
     The cycle map omega0 -> omega(phi0 + cycle) is solved for its fixed point by the secant
-    method on g(omega0) = map(omega0) - omega0, from ``omega_guess`` and its image. M must not
-    depend on t explicitly (t restarts at 0). A position-only moment with zero net work
-    per cycle leaves every speed periodic: the guess is returned.
+    method on g(omega0) = map(omega0) - omega0, from ``omega_guess`` and its image, to ``tol``
+    relative. M must not depend on t explicitly (t restarts at 0). A position-only moment
+    with zero net work per cycle leaves every speed periodic: the guess is returned.
+    ``periodic_inertia`` as in :func:`simulate`.
 
     Returns
     -------
@@ -809,14 +938,31 @@ def periodic_solution(inertia: Inertia, moment: Moment, phi0: float, omega_guess
     Raises
     ------
     MotionError
-        If no periodic speed is found (the net work per cycle does not vanish at any speed,
-        or the mechanism stalls).
+        If no periodic speed is found within a factor 1000 of the guess (the net work per
+        cycle does not vanish at any speed, or the mechanism stalls).
     """
+    grid = _CycleGrid(inertia, float(phi0), cycle) if periodic_inertia else None
+    return _periodic(inertia, moment, float(phi0), omega_guess, rtol, cycle, tol, maxiter,
+                     grid, 0.0)
+
+
+def _periodic(inertia: Inertia, moment: Moment, phi0: float, omega_guess: float, rtol: float,
+              cycle: float, tol: float, maxiter: int, grid: _CycleGrid | None,
+              extra: float) -> MotionSolution:
+    inertia_j = _with_flywheel(inertia, extra)
+    i0 = float(_inertia_values(inertia_j, np.array([phi0]))[0][0])
+
     def run(w: float) -> tuple[MotionSolution, float]:
-        sol = simulate(inertia, moment, phi0, w, 1, rtol=rtol, cycle=cycle)
+        if grid is None:
+            sol = _dp5(inertia_j, moment, phi0, i0 * w * w, 0.0, phi0 + cycle, rtol, cycle,
+                       False, 2_000_000)
+        else:
+            sol = _dp5_grid(grid, extra, inertia_j, moment, i0 * w * w, 0.0, 1, rtol, False)
         return sol, sol.omega_end - w
 
     w0 = float(omega_guess)
+    if not w0 > 0.0:
+        raise MotionError(f"omega_guess must be positive, got {omega_guess!r}")
     s0, g0 = run(w0)
     if abs(g0) <= tol * w0:
         return s0
@@ -838,8 +984,8 @@ def periodic_solution(inertia: Inertia, moment: Moment, phi0: float, omega_guess
         w2 = w1 - g1 * (w1 - w0) / (g1 - g0)
         if w2 <= 0.0:
             w2 = 0.5 * w1
-        if w2 > 1e6 * max(w0, w1):
-            break
+        if not 1e-3 * omega_guess < w2 < 1e3 * omega_guess:
+            break                       # running away: no steady state near the guess
         w0, g0, w1 = w1, g1, w2
     raise MotionError(f"no periodic steady state found from omega = {omega_guess:.6g} rad/s: "
                       f"the speed still changes by {g1:.3g} rad/s per cycle (the net work "
@@ -847,14 +993,16 @@ def periodic_solution(inertia: Inertia, moment: Moment, phi0: float, omega_guess
 
 
 def flywheel_for_delta(inertia: Inertia, moment: Moment, target_delta: float, phi0: float,
-                       omega_guess: float, *, rtol: float = 1e-11, cycle: float = TWO_PI,
-                       tol: float = 1e-9, maxiter: int = 60) -> float:
+                       omega_guess: float, *, rtol: float = 1e-12, cycle: float = TWO_PI,
+                       tol: float = 1e-9, maxiter: int = 60,
+                       periodic_inertia: bool = False) -> float:
     """Flywheel moment of inertia J whose periodic steady state has delta = target (eq. 4.20).
 
     J is added to I_r; 0 is returned when delta without a flywheel is already at most the
     target. delta falls roughly like 1/(I_r + J), so the root of 1/delta(J) - 1/target (a
     nearly linear function) is found by the secant method inside a bracket, to ``tol``
-    relative in J (1e-6 relative in J is what the workbench promises).
+    relative in J (the workbench promises 1e-6). ``periodic_inertia`` as in
+    :func:`simulate`: I_r is then evaluated once for all the trials.
 
     Returns
     -------
@@ -863,22 +1011,19 @@ def flywheel_for_delta(inertia: Inertia, moment: Moment, target_delta: float, ph
     """
     if not target_delta > 0.0:
         raise MotionError(f"target_delta must be positive, got {target_delta!r}")
+    phi0 = float(phi0)
+    grid = _CycleGrid(inertia, phi0, cycle) if periodic_inertia else None
     guess = [float(omega_guess)]
 
     def inv_delta(j: float) -> float:
-        def inertia_j(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            i_r, di_r = inertia(phi)
-            return np.asarray(i_r, dtype=float) + j, di_r
-
-        sol = periodic_solution(inertia_j, moment, phi0, guess[0], rtol=rtol, cycle=cycle)
+        sol = _periodic(inertia, moment, phi0, guess[0], rtol, cycle, 1e-10, 60, grid, j)
         guess[0] = sol.omega0
         return 1.0 / sol.cycle_stats()["delta"] - 1.0 / target_delta
 
     h0 = inv_delta(0.0)
     if h0 >= 0.0:
         return 0.0
-    grid = phi0 + cycle * np.arange(256) / 256.0
-    i_mean = float(np.mean(_inertia_values(inertia, grid)[0]))
+    i_mean = float(np.mean(_inertia_values(inertia, phi0 + cycle * np.arange(256) / 256)[0]))
     lo, h_lo = 0.0, h0
     hi = i_mean * max(1.0 / (target_delta * (h0 + 1.0 / target_delta)) - 1.0, 1e-3)
     h_hi = inv_delta(hi)
@@ -893,9 +1038,9 @@ def flywheel_for_delta(inertia: Inertia, moment: Moment, target_delta: float, ph
             x2 = 0.5 * (lo + hi)
         f2 = inv_delta(x2)
         if f2 < 0.0:
-            lo, h_lo = x2, f2
+            lo = x2
         else:
-            hi, h_hi = x2, f2
+            hi = x2
         if abs(x2 - x1) <= tol * abs(x2) or f2 == 0.0:
             return x2
         x0, f0, x1, f1 = x1, f1, x2, f2

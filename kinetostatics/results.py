@@ -53,6 +53,9 @@ class Solution:
         ``Me`` (N m) on a crank or ``Fe`` (N) on a sliding driver.
     undefined_load : ndarray of bool
         Rows where a ``resist`` point stands still.
+    self_locking : ndarray of bool or None
+        With joint friction: rows where the friction passes did not settle (the
+        mechanism locks there); None without friction.
     """
 
     scene: Scene
@@ -62,6 +65,7 @@ class Solution:
     joint_reactions: dict[str, JointReaction]
     drive: DriverReaction
     undefined_load: np.ndarray
+    self_locking: np.ndarray | None = None
 
     # -- arrays -----------------------------------------------------------------
     @property
@@ -88,10 +92,13 @@ class Solution:
     # -- contract tables --------------------------------------------------------
     @cached_property
     def driver(self) -> pd.DataFrame:
-        """``position, Me`` (or ``Fe``), ``singular``, ``undefined_load``."""
-        return pd.DataFrame({"position": self.positions, self.driver_quantity: self.Me,
-                             "singular": self.singular,
-                             "undefined_load": self.undefined_load})
+        """``position, Me`` (or ``Fe``), ``singular``, ``undefined_load`` (and, with joint
+        friction, ``self_locking``)."""
+        cols = {"position": self.positions, self.driver_quantity: self.Me,
+                "singular": self.singular, "undefined_load": self.undefined_load}
+        if self.self_locking is not None:
+            cols["self_locking"] = self.self_locking
+        return pd.DataFrame(cols)
 
     @cached_property
     def reactions(self) -> pd.DataFrame:

@@ -58,11 +58,13 @@ class Friction:
     """Friction in a joint (seed 002 s. 2.4): coefficient ``mu`` and pin ``radius`` (m).
 
     For a revolute joint the friction-circle radius is rho = radius * mu (eq. 2.62);
-    for a prismatic joint ``radius`` is unused.
+    for a prismatic joint ``length`` is the slider's bearing length (optional: the
+    normal reaction and its couple are then carried by its two ends, eqs 2.63-2.65).
     """
 
     mu: float
     radius: float = 0.0
+    length: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -323,10 +325,13 @@ def _body_exists(name: Any, bodies: dict, where: str) -> str:
     return name
 
 
-def _friction(table: Any, where: str) -> Friction:
-    t = check_keys(table, ("mu", "radius"), f"{where}.friction", required=("mu",))
+def _friction(table: Any, where: str, kind: str) -> Friction:
+    keys = ("mu", "radius") if kind == "R" else ("mu", "length")
+    t = check_keys(table, keys, f"{where}.friction", required=keys[:2] if kind == "R"
+                   else ("mu",))
     return Friction(as_float(t["mu"], f"{where}.friction.mu", nonnegative=True),
-                    as_float(t.get("radius", 0.0), f"{where}.friction.radius", nonnegative=True))
+                    as_float(t.get("radius", 0.0), f"{where}.friction.radius", nonnegative=True),
+                    as_float(t.get("length", 0.0), f"{where}.friction.length", nonnegative=True))
 
 
 def _joints(items: Any, bodies: dict, ground: dict) -> dict[str, Joint]:
@@ -346,7 +351,7 @@ def _joints(items: Any, bodies: dict, ground: dict) -> dict[str, Joint]:
         where = f"joint {name!r}"
         if name in joints:
             raise SceneError(f"{where}: the name is used twice; joint names must be unique")
-        fr = _friction(item["friction"], where) if "friction" in item else None
+        fr = _friction(item["friction"], where, kind) if "friction" in item else None
         if kind == "R":
             if "bodies" not in item:
                 raise SceneError(f"{where}: missing required key 'bodies'")

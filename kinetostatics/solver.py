@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from .friction import has_friction, solve_with_friction
 from .kinematics import solve_kinematics
 from .loads import applied_loads, inertia_loads, resultants
 from .reactions import solve_reactions
@@ -46,6 +47,10 @@ def solve(scene: Any) -> Solution:
     inertia = inertia_loads(sc, kin)
     applied, undefined = applied_loads(sc, kin)
     loads = applied + inertia
+    if has_friction(sc):
+        reactions, drive, fl, locking = solve_with_friction(sc, kin, loads)
+        return Solution(sc, structure, kin, loads + fl, reactions, drive, undefined,
+                        self_locking=locking)
     acc = resultants(loads, sc.bodies, kin.n)
     reactions, drive = solve_reactions(kin, acc)
     return Solution(sc, structure, kin, loads, reactions, drive, undefined)
