@@ -37,7 +37,7 @@ def reduced_table(sol: Solution) -> pd.DataFrame:
     p_loads = np.zeros(n)
     p_inertia = np.zeros(n)
     for ld in sol.loads:
-        p = np.broadcast_to(ld.power(kin.bodies[ld.body].omega), (n,))
+        p = np.broadcast_to(ld.power(kin), (n,))
         if ld.kind == "inertia":
             p_inertia = p_inertia + p
         else:

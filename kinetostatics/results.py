@@ -248,6 +248,43 @@ class Solution:
         return pd.DataFrame({"position": self.positions, "Fx": fx, "Fy": fy,
                              "F": np.hypot(fx, fy), "M": mz})
 
+    def low_transmission(self, admissible: float = 40.0) -> pd.DataFrame:
+        """Rows of the ``dyads`` table where the transmission angle leaves the admissible
+        band: min(tau, 180 - tau) < ``admissible`` (deg; seed 002 s. 2.3.4)."""
+        t = self.dyads
+        worst = np.minimum(t.transmission_angle, 180.0 - t.transmission_angle)
+        return t[worst < admissible].reset_index(drop=True)
+
+    @cached_property
+    def reaction_split(self) -> pd.DataFrame:
+        """The seed's split of each dyad's outer revolute reactions (eqs 2.17-2.18, 2.22,
+        2.26): ``Fn`` along the link from the outer joint to the inner joint, ``Ft``
+        perpendicular to it (the link direction turned +90 deg), on the dyad body."""
+        n = self.positions.size
+        parts = []
+        for dm in self.kin.dyads:
+            d = dm.dyad
+            for i, (body, joint) in enumerate(zip(d.bodies, d.outer, strict=True)):
+                if joint.kind != "R":
+                    continue
+                p = dm.params[i]
+                ex = np.broadcast_to(dm.xx - p.px, (n,))
+                ey = np.broadcast_to(dm.xy - p.py, (n,))
+                length = np.hypot(ex, ey)
+                if length.min() <= 1e-12 * max(length.max(), 1e-300):
+                    continue            # the outer joint is the inner one: no link line
+                with np.errstate(invalid="ignore", divide="ignore"):
+                    ex, ey = ex / length, ey / length
+                fx, fy = self.reaction(joint.name)
+                if self.joint_reactions[joint.name].on != body:
+                    fx, fy = -fx, -fy
+                parts.append(pd.DataFrame({
+                    "position": self.positions, "dyad": d.index + 1, "joint": joint.name,
+                    "body": body, "Fn": fx * ex + fy * ey, "Ft": -fx * ey + fy * ex}))
+        if not parts:
+            return pd.DataFrame(columns=["position", "dyad", "joint", "body", "Fn", "Ft"])
+        return pd.concat(parts, ignore_index=True)
+
     @cached_property
     def reduced(self) -> pd.DataFrame:
         """Reduced moment (force) of the loads and reduced moment of inertia (mass) to the
