@@ -58,7 +58,7 @@ def test_frame_force_balances_all_loads(sol):
 
 def test_reaction_split_recombines(sol):
     sp = sol.reaction_split
-    for (joint, body), g in sp.groupby(["joint", "body"]):
+    for (joint, _body), g in sp.groupby(["joint", "body"]):
         fx, fy = sol.reaction(joint)
         mag = np.hypot(fx, fy)
         assert np.allclose(np.hypot(g.Fn, g.Ft), mag, atol=1e-9 * mag.max())
