@@ -891,7 +891,10 @@ def load_cam_scene(source: Any) -> CamScene:
             raise CamError(f"{where}.law: {exc}") from None
         segments.append(Segment(skind, math.radians(as_float(seg["angle"], f"{where}.angle",
                                                              positive=True)), law))
-    law = CamLaw(stroke, tuple(segments))
+    try:
+        law = CamLaw(stroke, tuple(segments))
+    except CamError as exc:
+        raise CamError(f"cam.segments: {exc}") from None
 
     if ("speed" in cam) == ("speed_rpm" in cam):
         raise CamError("cam: give exactly one of speed (rad/s) and speed_rpm")

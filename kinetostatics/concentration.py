@@ -215,8 +215,9 @@ def concentrate(mass: float, cog: Sequence[float], points: Any, inertia: float =
     out = Concentration(kind=kind, mass=m, inertia=ig, cog=(float(g[0]), float(g[1])),
                         points=pts.copy(), masses=sol, free=free, seed_free=seed)
     if out.unique and out.negative:
-        warnings.warn(f"{kind} concentration: the points do not bracket the cog; a "
-                      "concentrated mass is negative (seed 002 eq. 2.11)", stacklevel=2)
+        warnings.warn(f"{kind} concentration: a concentrated mass is negative "
+                      f"({out.masses.min():.6g} kg): the points do not surround the cog "
+                      "(seed 002 eq. 2.11 for two points)", stacklevel=2)
     return out
 
 
@@ -227,7 +228,7 @@ def _why_impossible(m: float, g: np.ndarray, pts: np.ndarray, ig: float, kind: s
     sv = np.linalg.svd(spread, compute_uv=False) if len(pts) > 1 else np.zeros(1)
     size = float(np.abs(pts - g).max()) or 1.0
     affine = int(np.sum(sv > TOL * size))
-    if affine == 0:
+    if affine == 0 and float(np.hypot(*(c - g))) > TOL * size:
         return (f"{kind} concentration impossible: all the points are at {_fmt(c)}, "
                 f"not at the cog {_fmt(g)} (one point must be the cog, eq. 2.4)")
     if affine == 1:
@@ -267,8 +268,8 @@ def static_two_point(mass: Any, a: Any, b: Any) -> tuple[np.ndarray, np.ndarray]
 
     Examples
     --------
-    >>> static_two_point(2.0, 0.1, 0.3)
-    (1.5, 0.5)
+    >>> [round(v, 9) for v in static_two_point(2.0, 0.1, 0.3)]
+    [1.5, 0.5]
     """
     m, aa, bb = (np.asarray(v, dtype=float) for v in (mass, a, b))
     if np.any(aa + bb == 0.0):
@@ -371,7 +372,8 @@ def _models(sc: Scene) -> tuple[dict[str, dict], dict[str, dict]]:
         if len(pts) == 2:
             b, c = (np.asarray(body.points[p], dtype=float) for p in pts)
             bc = float(np.hypot(*(c - b)))
-            if bc > 0.0 and abs(float(np.cross(c - b, g - b))) <= TOL * bc:
+            off = (c[0] - b[0]) * (g[1] - b[1]) - (c[1] - b[1]) * (g[0] - b[0])
+            if bc > 0.0 and abs(float(off)) <= TOL * bc:
                 static[name] = {"kind": "static", "points": list(pts)}
         for p in pts:
             if float(np.hypot(*(np.asarray(body.points[p]) - g))) > 0.0:

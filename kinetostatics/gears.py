@@ -101,8 +101,8 @@ def gear_ratio(r_w1: Any, r_w2: Any, internal: bool = False) -> np.ndarray | flo
 
     Examples
     --------
-    >>> gear_ratio(0.05, 0.15), gear_ratio(0.05, 0.15, internal=True)
-    (-3.0, 3.0)
+    >>> gear_ratio(0.05, 0.2), gear_ratio(0.05, 0.2, internal=True)
+    (-4.0, 4.0)
     """
     r1, r2 = _radii(r_w1, r_w2, internal)
     i = (1.0 if internal else -1.0) * r2 / r1
@@ -177,8 +177,8 @@ def equilibrating_moment(M2: Any, r_w1: Any, r_w2: Any,
 
     Examples
     --------
-    >>> equilibrating_moment(120.0, 0.05, 0.15)       # external: gear 1 turns the other way
-    -40.0
+    >>> equilibrating_moment(120.0, 0.05, 0.2)       # external: gear 1 turns the other way
+    -30.0
     """
     m = _moment(M2, "M2")
     i12 = np.asarray(gear_ratio(r_w1, r_w2, internal))
@@ -303,7 +303,7 @@ def gear_pair(M2: Any, r_w1: float, r_w2: float, alpha_deg: float = 20.0,
     --------
     >>> g = gear_pair(120.0, 0.05, 0.15)
     >>> round(float(g.Me), 6), round(float(g.F), 3)
-    (-40.0, 851.334)
+    (-40.0, 851.342)
     """
     m2 = _moment(M2, "M2")
     r1a, r2a = _radii(r_w1, r_w2, internal)

@@ -22,6 +22,7 @@ Coordinates are kept as separate x and y arrays (one element per position).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -312,6 +313,15 @@ class _DyadSolver:
         self.slider_first = False
         if inner.kind == "R":
             self.q = [self.b[i].local(inner.point_on(dyad.bodies[i])) for i in range(2)]
+            for i, (qx, qy) in enumerate(self.q):
+                outer = dyad.outer[i]
+                if outer.kind != "R":
+                    continue
+                ax, ay = self.b[i].local(outer.point_on(dyad.bodies[i]))
+                if math.hypot(qx - ax, qy - ay) <= 1e-12 * _scale(scene):
+                    raise AssemblyError(
+                        f"body {dyad.bodies[i]!r}: its joint points for {outer.name!r} and "
+                        f"{inner.name!r} coincide; a dyad link needs a length")
         else:
             self.slider_first = inner.slider == dyad.bodies[0]
             self.beta = float(np.deg2rad(inner.line_angle))

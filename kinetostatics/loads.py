@@ -138,8 +138,10 @@ def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.nd
             with np.errstate(divide="ignore", invalid="ignore"):
                 fx = np.where(still, 0.0, -load.resist * vx / speed)
                 fy = np.where(still, 0.0, -load.resist * vy / speed)
-        else:
+        elif load.force is not None:
             fx, fy = float(load.force[0]), float(load.force[1])
+        else:                                   # a moment given with a point
+            fx = fy = 0.0
         out.append(PointLoad(load.body, "applied", rx, ry, fx, fy, load.moment,
                              f"load {i} at {load.point}"))
     return out, undefined

@@ -23,7 +23,10 @@ Solvers:
   (eq. 4.8) with Gauss-Legendre quadrature (the reference of SPEC's note on 4.14);
 - :func:`simulate`: any M(phi, omega, t), a Dormand-Prince 5(4) integrator in phi with step
   control for (u, t), u = I_r omega^2 (twice the kinetic energy: du/dphi = 2M is smooth
-  where omega is not), with the quartic dense output of Shampine (1986);
+  where omega is not), with the quartic dense output of Shampine (1986); optionally on a
+  fixed grid per cycle with I_r evaluated once (``periodic_inertia``); the result,
+  :class:`MotionSolution`, gives omega(phi), t(phi), alpha(phi), omega(t), eps(t), the
+  extremes over the continuous cycle, the ``motion`` table and summary of the contract;
 - :func:`periodic_solution`, :func:`flywheel_for_delta`, :func:`stopping`: the phases of
   s. 4.2, the degree of irregularity (eq. 4.20) and the dynamicity coefficient (eq. 4.21);
 - :func:`recurrence_convergence`: the recurrence's error against the accurate solution.
@@ -622,10 +625,11 @@ def simulate(inertia: Inertia, moment: Moment, phi0: float, omega0: float, cycle
     - by default the step size is controlled and each step evaluates I_r at its five new
       stage angles in one vectorised call;
     - with ``periodic_inertia`` (I_r has the cycle as its period, e.g. a mechanism's reduced
-      inertia over a crank turn) the steps form a fixed grid of n per cycle, n doubled from
-      64 until every step's error estimate meets ``rtol``; I_r is evaluated once, in one call
-      at all 5n stage angles of the grid, and reused for every cycle. Use it when I_r is
-      costly (a kinematic solve).
+      inertia over a crank turn) the steps form a fixed grid of n per cycle, n chosen cycle
+      by cycle (doubled from 64 while some step's error estimate exceeds ``rtol``, halved
+      when all are far below); I_r is evaluated in one call at all 5n stage angles of a
+      grid, once per grid size, and reused for every cycle. Use it when I_r is costly (a
+      kinematic solve). Near a stall the adaptive integrator takes over.
 
     Parameters
     ----------
@@ -998,11 +1002,12 @@ def flywheel_for_delta(inertia: Inertia, moment: Moment, target_delta: float, ph
                        periodic_inertia: bool = False) -> float:
     """Flywheel moment of inertia J whose periodic steady state has delta = target (eq. 4.20).
 
-    J is added to I_r; 0 is returned when delta without a flywheel is already at most the
-    target. delta falls roughly like 1/(I_r + J), so the root of 1/delta(J) - 1/target (a
-    nearly linear function) is found by the secant method inside a bracket, to ``tol``
-    relative in J (the workbench promises 1e-6). ``periodic_inertia`` as in
-    :func:`simulate`: I_r is then evaluated once for all the trials.
+    J is added to I_r (pass I_r without any flywheel: J replaces it); 0 is returned when
+    delta without a flywheel is already at most the target. delta falls roughly like
+    1/(I_r + J), so the root of 1/delta(J) - 1/target (a nearly linear function) is found by
+    the secant method inside a bracket, to ``tol`` relative in J (the workbench promises
+    1e-6). ``periodic_inertia`` as in :func:`simulate`: I_r is then evaluated once for all
+    the trials.
 
     Returns
     -------

@@ -4,6 +4,9 @@ from __future__ import annotations
 
 from typing import Any
 
+import numpy as np
+
+from .errors import AssemblyError
 from .friction import has_friction, solve_with_friction
 from .kinematics import solve_kinematics
 from .loads import applied_loads, inertia_loads, resultants
@@ -43,7 +46,17 @@ def solve(scene: Any) -> Solution:
     """
     sc = load_scene(scene)
     structure = analyse(sc)
-    kin = solve_kinematics(sc, structure)
+    try:
+        kin = solve_kinematics(sc, structure)
+        sol = _solve_loads(sc, structure, kin)
+    except (OverflowError, ZeroDivisionError) as exc:
+        raise AssemblyError(f"the scene's numbers overflow ({exc}); check its dimensions "
+                            "and masses") from None
+    _check_finite(sol)
+    return sol
+
+
+def _solve_loads(sc, structure, kin) -> Solution:
     inertia = inertia_loads(sc, kin)
     applied, undefined = applied_loads(sc, kin)
     loads = applied + inertia
@@ -54,3 +67,17 @@ def solve(scene: Any) -> Solution:
     acc = resultants(loads, sc.bodies, kin.n)
     reactions, drive = solve_reactions(kin, acc)
     return Solution(sc, structure, kin, loads, reactions, drive, undefined)
+
+
+def _check_finite(sol: Solution) -> None:
+    """Never a silent NaN: a scene whose numbers overflow is refused."""
+    arrays = [np.asarray(sol.Me)] + [np.asarray(v) for r in sol.joint_reactions.values()
+                                     for v in (r.fx, r.fy)]
+    for b in sol.kin.bodies.values():
+        arrays += [np.asarray(b.cos), np.asarray(b.ox), np.asarray(b.oy), np.asarray(b.ax)]
+    for a in arrays:
+        if not np.isfinite(np.sum(a)):
+            bad = np.flatnonzero(~np.isfinite(np.broadcast_to(a, sol.positions.shape)))
+            raise AssemblyError(
+                "the solution overflows (numbers too large or a degenerate geometry) at "
+                f"driver position {sol.positions[bad[0]]:g}; check the scene's dimensions")

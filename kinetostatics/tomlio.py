@@ -86,14 +86,22 @@ def _typename(value: Any) -> str:
             int: "an integer", float: "a number"}.get(type(value), type(value).__name__)
 
 
+MAX_MAGNITUDE = 1e12
+"""Numbers beyond this are refused: no mechanism or rotor needs them, and squares of them
+overflow in the formulas."""
+
+
 def as_float(value: Any, where: str, *, positive: bool = False, nonnegative: bool = False,
-             nonzero: bool = False) -> float:
-    """A finite float, optionally positive / non-negative / non-zero."""
+             nonzero: bool = False, limit: float = MAX_MAGNITUDE) -> float:
+    """A finite float of magnitude at most ``limit``, optionally positive / non-negative /
+    non-zero."""
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise SceneError(f"{where} must be a number, not {_typename(value)}")
     x = float(value)
     if not math.isfinite(x):
         raise SceneError(f"{where} must be a finite number, not {value!r}")
+    if abs(x) > limit:
+        raise SceneError(f"{where} = {x:g} is out of range (at most {limit:g} in magnitude)")
     if positive and x <= 0.0:
         raise SceneError(f"{where} must be positive, got {x:g}")
     if nonnegative and x < 0.0:
