@@ -18,6 +18,7 @@ from pathlib import Path
 
 from .errors import AssemblyError, SceneError, StructureError, WorkbenchError
 from .kinematics import Kinematics, solve_kinematics
+from .motion_scene import simulate_motion
 from .results import Solution
 from .scene import Scene, load_scene
 from .solver import solve
@@ -26,7 +27,7 @@ from .structure import Dyad, Structure, analyse
 __all__ = [
     "AssemblyError", "Dyad", "Kinematics", "Scene", "SceneError", "Solution", "Structure",
     "StructureError", "WorkbenchError", "analyse", "example", "examples", "load_scene",
-    "solve", "solve_kinematics",
+    "simulate_motion", "solve", "solve_kinematics",
 ]
 
 

@@ -60,6 +60,21 @@ def _cmd_structure(args) -> int:
     return 0
 
 
+def _cmd_motion(args) -> int:
+    from .motion_scene import simulate_motion
+    res = simulate_motion(Path(args.scene))
+    if args.json:
+        print(json.dumps(res.to_json()))
+    else:
+        for k, v in res.summary.items():
+            print(f"{k}: {v}")
+        if args.out:
+            Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+            res.motion.to_csv(args.out, index=False, float_format="%.17g")
+            print(f"wrote {args.out}")
+    return 0
+
+
 def _cmd_bench(args) -> int:
     from .bench import run_bench
     run_bench(quick=args.quick, reference=args.reference)
@@ -86,6 +101,11 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--quick", action="store_true", help="small sizes only")
     b.add_argument("--reference", help="path of reference_fourbar.py to time side by side")
     b.set_defaults(func=_cmd_bench)
+    m = sub.add_parser("motion", help="motion under forces of a scene with [motion]")
+    m.add_argument("scene")
+    m.add_argument("--json", action="store_true", help="print summary and motion table as JSON")
+    m.add_argument("--out", help="CSV file for the motion table")
+    m.set_defaults(func=_cmd_motion)
     _extra_commands(sub)
     return p
 

@@ -1,0 +1,238 @@
+"""Motion under forces of a mechanism scene: the ``[motion]`` section of the contract.
+
+The reduction element is the driver (a crank). From the kinematics at unit driver speed
+(velocity ratios) come the reduced moment of inertia I_r(phi) of every body's exact mass
+and I_G plus the flywheel (eq. 2.75) with its derivative, and the reduced moment
+M_r(phi) of the scene's loads and gravity (eq. 2.72; no inertia forces). The motion
+obeys d(I_r omega^2 / 2)/dphi = M_motor(phi, omega) + M_r(phi) (eq. 4.9), solved by the
+Dormand-Prince integrator of :mod:`kinetostatics.motion` to 1e-12 relative.
+
+The integrator works on a fixed grid of n steps per revolution (n = 64, 128, ...,
+4096, refined where needed); M_r and I_r are evaluated at all the stage angles of all
+these grids in one vectorised kinematic solve and looked up afterwards, so a 30-cycle
+motion costs a few kinematic solves, not one per step.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from . import _arith as A
+from .errors import SceneError
+from .kinematics import solve_kinematics
+from .loads import applied_loads
+from .motion import _C, flywheel_for_delta, simulate
+from .scene import Scene, load_scene
+from .structure import analyse
+from .tomlio import as_float, as_int, as_list, check_keys
+
+TWO_PI = 2.0 * math.pi
+KEY = 1e9          # cache key resolution: 1e-9 rad
+
+
+@dataclass(frozen=True)
+class MotionSpec:
+    """The checked ``[motion]`` section."""
+
+    stall_moment: float | None
+    no_load_speed: float | None
+    table: np.ndarray | None          # (k, 2): angle (deg), moment (N m)
+    flywheel: float
+    omega0: float
+    cycles: int
+    target_delta: float | None
+
+
+def motion_spec(scene: Scene) -> MotionSpec:
+    """Check the ``[motion]`` section (scene-format.md, "Motion under forces")."""
+    m = scene.motion
+    if m is None:
+        raise SceneError("the scene has no [motion] section")
+    if scene.driver.kind != "R":
+        raise SceneError("[motion]: the driver must be a crank (a sliding driver is refused)")
+    if ("motor" in m) == ("motor_table" in m):
+        raise SceneError("[motion]: give exactly one of 'motor' or 'motor_table'")
+    stall = no_load = table = None
+    if "motor" in m:
+        mt = check_keys(m["motor"], ("stall_moment", "no_load_speed"), "motion.motor",
+                        required=("stall_moment", "no_load_speed"))
+        stall = as_float(mt["stall_moment"], "motion.motor.stall_moment")
+        no_load = as_float(mt["no_load_speed"], "motion.motor.no_load_speed", positive=True)
+    else:
+        rows = as_list(m["motor_table"], "motion.motor_table")
+        if len(rows) < 2:
+            raise SceneError("motion.motor_table needs at least two [angle_deg, N m] points")
+        pts = []
+        for i, r in enumerate(rows):
+            if not isinstance(r, list | tuple) or len(r) != 2:
+                raise SceneError(f"motion.motor_table[{i}] must be [angle_deg, moment]")
+            pts.append((as_float(r[0], f"motion.motor_table[{i}][0]"),
+                        as_float(r[1], f"motion.motor_table[{i}][1]")))
+        table = np.array(pts)
+        if np.any(np.diff(table[:, 0]) <= 0):
+            raise SceneError("motion.motor_table: angles must be strictly increasing")
+        if table[-1, 0] - table[0, 0] > 360.0:
+            raise SceneError("motion.motor_table spans more than 360 deg")
+    flywheel = as_float(m.get("flywheel", 0.0), "motion.flywheel", nonnegative=True)
+    omega0 = as_float(m["omega0"], "motion.omega0", positive=True)
+    cycles = as_int(m["cycles"], "motion.cycles", lo=1, hi=100_000)
+    target = None
+    if "target_delta" in m:
+        target = as_float(m["target_delta"], "motion.target_delta", positive=True)
+        if table is not None:
+            raise SceneError("motion.target_delta needs a speed-dependent 'motor': with a "
+                             "motor_table there is no unique steady state")
+    pos = scene.driver.positions
+    start = float(pos[0])
+    if np.any(pos < start - 1e-9) or np.any(pos > start + 360.0 + 1e-9):
+        raise SceneError("[motion]: the sweep's positions must lie within [start, start + 360] "
+                         "deg")
+    return MotionSpec(stall, no_load, table, flywheel, omega0, cycles, target)
+
+
+class ReducedMechanism:
+    """I_r(phi), dI_r/dphi and M_r(phi) of a scene, exact at any driver angle (rad), with a
+    cache of the values at the integrator's grids."""
+
+    def __init__(self, scene: Scene, phi0: float):
+        self.scene = scene
+        self.structure = analyse(scene)
+        self.phi0 = phi0
+        self._cache: dict[int, tuple[float, float, float]] = {}
+
+    def evaluate(self, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(I_r, dI_r/dphi, M_r) at the driver angles ``phi`` (rad), one kinematic solve."""
+        phi = np.atleast_1d(np.asarray(phi, dtype=float))
+        drv = replace(self.scene.driver, positions=np.rad2deg(phi.ravel()), speed=1.0,
+                      acceleration=0.0)
+        sc = replace(self.scene, driver=drv)
+        kin = solve_kinematics(sc, self.structure)
+        n = kin.n
+        i_r = np.zeros(n)
+        di_r = np.zeros(n)
+        for name, body in sc.bodies.items():
+            m = kin.bodies[name]
+            if body.mass > 0.0:
+                rx, ry = m.rotate(*body.cog)
+                vx, vy = m.vel_arm(rx, ry)
+                ax, ay = m.acc_arm(rx, ry)
+                i_r = i_r + body.mass * (A.mul(vx, vx) + A.mul(vy, vy))         # eq. 2.75
+                di_r = di_r + 2.0 * body.mass * (A.mul(vx, ax) + A.mul(vy, ay))
+            if body.inertia > 0.0:
+                i_r = i_r + body.inertia * A.mul(m.omega, m.omega)
+                di_r = di_r + 2.0 * body.inertia * A.mul(m.omega, m.alpha)
+        loads, _ = applied_loads(sc, kin)
+        m_r = np.zeros(n)
+        for ld in loads:                                                      # eq. 2.72
+            m_r = m_r + np.broadcast_to(ld.power(kin), (n,))
+        shape = phi.shape
+        return i_r.reshape(shape), di_r.reshape(shape), m_r.reshape(shape)
+
+    def _key(self, phi: float) -> int:
+        return int(round(((phi - self.phi0) % TWO_PI) * KEY))
+
+    def prewarm(self, levels=(64, 128, 256, 512, 1024, 2048, 4096)) -> None:
+        """Evaluate at every stage angle of the grids the integrator uses."""
+        c = np.array((0.0, *_C))
+        pts = np.concatenate([(self.phi0 + (np.arange(n)[:, None] + c) * (TWO_PI / n)).ravel()
+                              for n in levels])
+        i_r, di_r, m_r = self.evaluate(pts)
+        for p, a, b, m in zip(pts.tolist(), i_r.tolist(), di_r.tolist(), m_r.tolist(),
+                              strict=True):
+            self._cache[self._key(p)] = (a, b, m)
+
+    def values(self, phi: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Cached where the angle (modulo a revolution) was evaluated before."""
+        arr = np.asarray(phi, dtype=float)
+        flat = arr.ravel().tolist()
+        keys = [self._key(p) for p in flat]
+        missing = [p for p, k in zip(flat, keys, strict=True) if k not in self._cache]
+        if missing:
+            vals = self.evaluate(np.array(missing))
+            for p, a, b, m in zip(missing, *(v.tolist() for v in vals), strict=True):
+                self._cache[self._key(p)] = (a, b, m)
+        out = np.array([self._cache[k] for k in keys]).reshape(arr.shape + (3,))
+        return out[..., 0], out[..., 1], out[..., 2]
+
+
+def _motor(spec: MotionSpec):
+    """M_motor(phi, omega): the linear characteristic M = Ms (1 - omega / w0), or the table
+    (absolute driver angle, linear between points, periodic)."""
+    if spec.table is None:
+        ms, w0 = spec.stall_moment, spec.no_load_speed
+        return lambda phi, w: ms * (1.0 - np.asarray(w) / w0)
+    ang, val = spec.table[:, 0], spec.table[:, 1]
+    period = 360.0
+    xp = np.concatenate((ang, [ang[0] + period]))
+    fp = np.concatenate((val, [val[0]]))
+
+    def table(phi, w):
+        x = np.mod(np.degrees(np.asarray(phi, dtype=float)) - ang[0], period) + ang[0]
+        return np.interp(x, xp, fp)
+    return table
+
+
+@dataclass
+class MotionResult:
+    """The ``motion`` table (cycle, position, time, omega, alpha) and the summary."""
+
+    motion: pd.DataFrame
+    summary: dict
+    solution: Any
+
+    def to_json(self) -> dict:
+        return {"summary": self.summary, "motion": self.motion.to_dict(orient="records")}
+
+
+def simulate_motion(scene: Any, rtol: float = 1e-12) -> MotionResult:
+    """Motion of a mechanism under its loads and a motor (seed 002 ch. 4).
+
+    Parameters
+    ----------
+    scene : Scene, path, TOML text or dict
+        A mechanism scene with a ``[motion]`` section.
+
+    Returns
+    -------
+    MotionResult
+        ``motion`` table (one row per cycle and sweep position) and ``summary``:
+        ``omega_mean, omega_max, omega_min, delta`` (eq. 4.20), ``chi`` (eq. 4.21),
+        ``period``, ``steady`` and, with ``target_delta``, ``flywheel_for_target``.
+
+    Raises
+    ------
+    SceneError, MotionError
+        A bad ``[motion]`` section; a stall (the cycle and driver position are named).
+    """
+    sc = load_scene(scene)
+    spec = motion_spec(sc)
+    start = float(sc.driver.positions[0])
+    phi0 = math.radians(start)
+    red = ReducedMechanism(sc, phi0)
+    red.prewarm()
+    motor = _motor(spec)
+
+    def inertia_with(j):
+        def inertia(phi):
+            i_r, di_r, _ = red.values(phi)
+            return i_r + j, di_r
+        return inertia
+
+    def moment(phi, w, t):
+        return motor(phi, w) + red.values(phi)[2]
+
+    sol = simulate(inertia_with(spec.flywheel), moment, phi0, spec.omega0, spec.cycles,
+                   rtol=rtol, periodic_inertia=True)
+    positions = sc.driver.positions
+    summary = sol.summary(positions)
+    if spec.target_delta is not None:
+        st = sol.cycle_stats()
+        summary["flywheel_for_target"] = flywheel_for_delta(
+            inertia_with(0.0), moment, spec.target_delta, phi0, st["omega_mean"], rtol=rtol,
+            periodic_inertia=True)
+    return MotionResult(sol.table(positions), summary, sol)
