@@ -75,6 +75,19 @@ def _cmd_motion(args) -> int:
     return 0
 
 
+def _cmd_cam(args) -> int:
+    from .cams import solve_cam
+    res = solve_cam(Path(args.scene))
+    if args.out:
+        out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        for name in ("motion", "geometry", "forces"):
+            getattr(res, name).to_csv(out / f"{name}.csv", index=False, float_format="%.17g")
+        (out / "summary.json").write_text(json.dumps(res.summary, indent=2) + "\n")
+    print(json.dumps(res.summary, indent=2))
+    return 0
+
+
 def _cmd_bench(args) -> int:
     from .bench import run_bench
     run_bench(quick=args.quick, reference=args.reference)
@@ -106,6 +119,10 @@ def build_parser() -> argparse.ArgumentParser:
     m.add_argument("--json", action="store_true", help="print summary and motion table as JSON")
     m.add_argument("--out", help="CSV file for the motion table")
     m.set_defaults(func=_cmd_motion)
+    c = sub.add_parser("cam", help="solve a [cam] scene (docs/cam-scenes.md)")
+    c.add_argument("scene")
+    c.add_argument("--out", help="folder for motion.csv, geometry.csv, forces.csv, summary.json")
+    c.set_defaults(func=_cmd_cam)
     _extra_commands(sub)
     return p
 

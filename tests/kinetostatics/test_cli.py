@@ -81,3 +81,20 @@ def test_bench_quick():
     r = run("bench", "--quick")
     assert r.returncode == 0, r.stderr
     assert "positions_per_s" in r.stdout and "max_rel_error" in r.stdout
+
+
+def test_cam_command(tmp_path):
+    """The [cam] scene of docs/cam-scenes.md through the command line."""
+    text = (ROOT / "docs" / "cam-scenes.md").read_text()
+    scene = text.split("```toml\n", 1)[1].split("```", 1)[0]
+    p = tmp_path / "cam.toml"
+    p.write_text(scene)
+    r = run("cam", str(p), "--out", str(tmp_path / "out"))
+    assert r.returncode == 0, r.stderr
+    s = json.loads(r.stdout)
+    assert s["transmission_angle_min"] >= 45.0 - 1e-9
+    assert (tmp_path / "out" / "geometry.csv").is_file()
+    bad = tmp_path / "bad.toml"
+    bad.write_text(scene.replace("stroke", "strok"))
+    r = run("cam", str(bad))
+    assert r.returncode == 2 and r.stderr.startswith("error:") and "stroke" in r.stderr
