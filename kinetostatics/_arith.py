@@ -10,6 +10,8 @@ for infinite x, never present here).
 
 from __future__ import annotations
 
+import numpy as np
+
 
 def zero(x) -> bool:
     """True for a Python or numpy scalar equal to 0 (never for an array)."""
@@ -57,3 +59,23 @@ def rotate(c, s, lx: float, ly: float):
     if lx == 0.0:
         return mul(-ly, s), mul(c, ly)
     return c * lx - s * ly, s * lx + c * ly
+
+
+def iadd(acc, x, sign: float = 1.0) -> None:
+    """acc += sign * x, in place (acc: an owned float array; x: array or scalar)."""
+    if zero(x):
+        return
+    if sign > 0:
+        np.add(acc, x, out=acc)
+    else:
+        np.subtract(acc, x, out=acc)
+
+
+def icross(acc, rx, ry, fx, fy, tmp, sign: float = 1.0) -> None:
+    """acc += sign * (rx fy - ry fx), in place, with ``tmp`` as scratch (no allocation)."""
+    if not (zero(rx) or zero(fy)):
+        np.multiply(rx, fy, out=tmp)
+        iadd(acc, tmp, sign)
+    if not (zero(ry) or zero(fx)):
+        np.multiply(ry, fx, out=tmp)
+        iadd(acc, tmp, -sign)

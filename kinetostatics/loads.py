@@ -149,11 +149,14 @@ def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.nd
 
 def resultants(loads: list[PointLoad], names, n: int) -> dict[str, list]:
     """Per body [Fx, Fy, M_O]: the resultant force and its moment about the body's local
-    origin O (arrays over positions, or scalars)."""
-    acc = {b: [0.0, 0.0, 0.0] for b in names}
+    origin O. The three are arrays of their own (accumulated in place: at large sizes a
+    fresh array per operation costs more than the arithmetic)."""
+    acc = {b: [np.zeros(n), np.zeros(n), np.zeros(n)] for b in names}
+    tmp = np.empty(n)
     for ld in loads:
         r = acc[ld.body]
-        r[0] = A.add(r[0], ld.fx)
-        r[1] = A.add(r[1], ld.fy)
-        r[2] = A.add(r[2], A.add(A.cross(ld.rx, ld.ry, ld.fx, ld.fy), ld.m))
+        A.iadd(r[0], ld.fx)
+        A.iadd(r[1], ld.fy)
+        A.icross(r[2], ld.rx, ld.ry, ld.fx, ld.fy, tmp)
+        A.iadd(r[2], ld.m)
     return acc

@@ -68,20 +68,21 @@ class DriverReaction:
 class _Store:
     """Running load resultants per body: [Fx, Fy, M about the body's local origin]."""
 
-    def __init__(self, acc, motions):
+    def __init__(self, acc, motions, n):
         self.acc = acc
         self.motions = motions
+        self.tmp = np.empty(n)
 
     def add(self, body, fx, fy, rx, ry, m=0.0, sign: float = 1.0):
         """Add ``sign`` times a force at the arm (rx, ry) from the body's origin, and a
-        couple."""
+        couple (in place: the accumulators are arrays of their own)."""
         if body == GROUND:
             return
         r = self.acc[body]
-        op = A.add if sign > 0 else A.sub
-        r[0] = op(r[0], fx)
-        r[1] = op(r[1], fy)
-        r[2] = A.add(op(r[2], A.cross(rx, ry, fx, fy)), m)
+        A.iadd(r[0], fx, sign)
+        A.iadd(r[1], fy, sign)
+        A.icross(r[2], rx, ry, fx, fy, self.tmp, sign)
+        A.iadd(r[2], m, sign)
 
     def arm(self, scene: Scene, body: str, point: str):
         """Arm of a named point from the body's origin (0 on the ground)."""
@@ -119,10 +120,11 @@ def solve_reactions(kin: Kinematics, acc: dict[str, list]
         The solved motion.
     acc : dict
         Per moving body [Fx, Fy, M_O]: resultant of its loads (applied, gravity,
-        inertia) and its moment about the body's local origin. Updated in place.
+        inertia) and its moment about the body's local origin, as arrays of their own
+        (from :func:`~kinetostatics.loads.resultants`). Updated in place.
     """
     scene = kin.scene
-    store = _Store(acc, kin.bodies)
+    store = _Store(acc, kin.bodies, kin.n)
     out: dict[str, JointReaction] = {}
     for dm in reversed(kin.dyads):
         _solve_dyad(scene, dm, store, out)
@@ -174,7 +176,7 @@ def _solve_dyad(scene: Scene, dm: DyadMotion, store: _Store, out: dict) -> None:
         fx, fy = A.mul(N, nx), A.mul(N, ny)
         slider, guide = (b1, b2) if dm.slider_first else (b2, b1)
         store.add(slider, fx, fy, *store.arm(scene, slider, inner.points[1]), M)
-        store.add(guide, -fx, -fy, *store.arm_to(guide, xx, xy), -M)
+        store.add(guide, fx, fy, *store.arm_to(guide, xx, xy), M, sign=-1.0)
         _record(out, inner, slider, fx, fy, xx, xy, N, M)
     for name, pr, joint in ((b1, p1, dyad.outer[0]), (b2, p2, dyad.outer[1])):
         r = store.acc[name]
@@ -204,7 +206,7 @@ def _outer_prismatic(scene, store, out, joint, name, kname, ux, uy):
     fn = -A.add(A.mul(r[0], nx), A.mul(r[1], ny))
     fx, fy = A.mul(fn, nx), A.mul(fn, ny)
     c = -A.sub(r[2], A.cross(arm_i[0], arm_i[1], r[0], r[1]))
-    store.add(kname, -fx, -fy, *store.arm_to(kname, sx, sy), -c)
+    store.add(kname, fx, fy, *store.arm_to(kname, sx, sy), c, sign=-1.0)
     _record(out, joint, name, fx, fy, sx, sy, fn, c)
 
 
