@@ -27,9 +27,11 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.animation import FuncAnimation
 from matplotlib.axes import Axes
+from matplotlib.colors import to_hex
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Polygon
+from matplotlib.ticker import MaxNLocator, MultipleLocator
 
 from .errors import WorkbenchError
 from .results import Solution
@@ -44,6 +46,14 @@ __all__ = [
 
 LOAD_COLORS = {"applied": "tab:blue", "gravity": "tab:brown", "inertia": "tab:purple"}
 REACTION_COLOR = "tab:red"
+PATH_COLORS = ("#1b9e77", "#7570b3", "#e7298a", "#66a61e", "#e6ab02", "#a6761d", "#666666")
+
+
+def _body_colors() -> list[str]:
+    """The colour cycle without its red, which marks the joint reactions."""
+    cycle = plt.rcParams["axes.prop_cycle"].by_key().get("color", ["C0"])
+    keep = [c for c in cycle if to_hex(c) not in ("#d62728", "#ff0000")]
+    return keep or list(cycle)
 
 
 def _ax(ax: Axes | None, figsize=(6, 4.5)) -> Axes:
@@ -59,6 +69,21 @@ def _pos_label(sol: Solution) -> str:
 def _pos_text(sol: Solution, i: int) -> str:
     p = float(sol.positions[i])
     return f"φ = {p:g}°" if sol.scene.driver.kind == "R" else f"s = {p:g} m"
+
+
+def _vector_axes(ax: Axes) -> None:
+    """Few ticks, large numbers as powers of ten: legible tick labels on vector diagrams."""
+    for a in (ax.xaxis, ax.yaxis):
+        a.set_major_locator(MaxNLocator(nbins=6, steps=[1, 2, 2.5, 5, 10]))
+    ax.ticklabel_format(style="sci", axis="both", scilimits=(-3, 4), useMathText=True)
+
+
+def _cycle_axis(ax: Axes, sol: Solution) -> None:
+    """Ticks every 45 deg (90 deg beyond a turn) on a crank-angle axis."""
+    if sol.scene.driver.kind == "R" and sol.positions.size > 1:
+        span = float(np.ptp(sol.positions))
+        if span >= 180.0:
+            ax.xaxis.set_major_locator(MultipleLocator(45.0 if span <= 360.0 else 90.0))
 
 
 def _row(sol: Solution, position: float | None, row: int | None) -> int:
@@ -83,6 +108,11 @@ def _global(sol: Solution, body: str, point: str, row: int) -> tuple[float, floa
     return _at(x, row, n), _at(y, row, n)
 
 
+def _num(x: float) -> str:
+    """A magnitude for a legend: 31770 rather than 3.177e+04."""
+    return f"{x:.0f}" if 1e3 <= abs(x) < 1e7 else f"{x:.4g}"
+
+
 def _mtext(name: str) -> str:
     """A name safe inside mathtext ``\\mathrm{}``."""
     return name.replace("_", r"\_").replace("$", "")
@@ -99,6 +129,24 @@ def _guide_angle(sol: Solution, j, i: int) -> float:
     if j.guide != GROUND:
         th += _at(sol.kin.bodies[j.guide].theta, i, sol.positions.size)
     return float(th)
+
+
+def _guide_extent(sol: Solution, j, i: int, size: float) -> tuple[float, float]:
+    """Where to draw a guide line, along it from its line point: over the slider
+    point's whole travel for a ground guide, around the line point and the slider point
+    now for a moving guide."""
+    n = sol.positions.size
+    th = _guide_angle(sol, j, i)
+    gx, gy = _global(sol, j.guide, j.points[0], i)
+    if j.guide == GROUND and j.slider != GROUND:
+        m = sol.kin.bodies[j.slider]
+        x, y = m.point(sol.scene.bodies[j.slider].local(j.points[1]))
+        s = (np.broadcast_to(x, (n,)) - gx) * np.cos(th) + \
+            (np.broadcast_to(y, (n,)) - gy) * np.sin(th)
+    else:
+        sx, sy = _global(sol, j.slider, j.points[1], i)
+        s = np.array([0.0, (sx - gx) * np.cos(th) + (sy - gy) * np.sin(th)])
+    return float(min(s.min(), 0.0) - 0.15 * size), float(max(s.max(), 0.0) + 0.15 * size)
 
 
 def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | None = None,
@@ -135,7 +183,7 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
     i = _row(sol, position, row)
     n = sol.positions.size
     scene = sol.scene
-    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    colors = _body_colors()
     allpts = [xy for xy in scene.ground.values()]
     for k, (name, body) in enumerate(scene.bodies.items()):
         pts = [_global(sol, name, p, i) for p in body.points]
@@ -166,10 +214,11 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
             if GROUND in j.bodies:
                 ax.plot(*xy, "^", color="k", ms=12, zorder=4, mfc="0.8")
         else:
+            lo, hi = _guide_extent(sol, j, i, size)
             gx, gy = _global(sol, j.guide, j.points[0], i)
             th = _guide_angle(sol, j, i)
             u = np.array([np.cos(th), np.sin(th)])
-            ends = np.array([gx, gy]) + np.outer([-0.6 * size, 0.6 * size], u)
+            ends = np.array([gx, gy]) + np.outer([lo, hi], u)
             ax.plot(ends[:, 0], ends[:, 1], "--", color="0.4", lw=1)
     arrows = []     # (label, x, y, fx, fy, color)
     if forces:
@@ -197,8 +246,12 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
                         arrowprops={"arrowstyle": "-|>", "color": col, "lw": 1.5,
                                     "shrinkA": 0, "shrinkB": 0})
             ax.update_datalim([(x, y), tip])
-            ax.annotate(lab, tip, xytext=(2, 2), textcoords="offset points", fontsize=8,
-                        color=col)
+            mag = float(np.hypot(fx, fy)) or 1.0
+            ax.annotate(lab, tip, xytext=(4 * fx / mag, 4 * fy / mag),
+                        textcoords="offset points", fontsize=9, color=col,
+                        ha="left" if fx >= 0 else "right", va="bottom" if fy >= 0 else "top",
+                        bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none",
+                              "alpha": 0.6})
         kinds = [("joint reactions", REACTION_COLOR)] if forces else []
         if loads:
             kinds += [(f"{k} forces", c) for k, c in LOAD_COLORS.items()
@@ -208,6 +261,7 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
         ax.text(0.99, 0.01, f"arrows: {ref:g} m ≙ {ref / sc:.3g} N", transform=ax.transAxes,
                 ha="right", va="bottom", fontsize=8, color="0.3")
     ax.set_aspect("equal", adjustable="datalim")
+    ax.margins(0.08)
     ax.autoscale_view()
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
@@ -260,7 +314,7 @@ def animate(sol: Solution, frames: int = 24, *, ax: Axes | None = None,
     scene = sol.scene
     n = sol.positions.size
     rows = np.unique(np.linspace(0, n - 1, min(frames, n)).round().astype(int))
-    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    colors = _body_colors()
     # coordinates of every body's points at every row: (rows, points, 2)
     geo = {}
     for name, body in scene.bodies.items():
@@ -303,7 +357,7 @@ def animate(sol: Solution, frames: int = 24, *, ax: Axes | None = None,
         for j, ln in guides:
             gx, gy = _global(sol, j.guide, j.points[0], i)
             th = _guide_angle(sol, j, i)
-            t = np.array([-0.6, 0.6]) * span
+            t = np.array(_guide_extent(sol, j, i, span))
             ln.set_data(gx + t * np.cos(th), gy + t * np.sin(th))
         title.set_text(f"{scene.title or 'mechanism'}: {_pos_text(sol, i)}")
         return [*artists.values(), *(g[1] for g in guides), title]
@@ -322,6 +376,7 @@ def animate(sol: Solution, frames: int = 24, *, ax: Axes | None = None,
 # ------------------------------------------------------------------ velocity plans
 @dataclass
 class _PlanPoint:
+    name: str           # the point's name in the scene
     label: str          # tip letter(s), lowercase as in the plans of the course
     text: str           # what it is, for the legend
     bodies: list
@@ -360,24 +415,22 @@ def _plan_points(sol: Solution, i: int, cog: bool) -> tuple[list[_PlanPoint], li
         if old is not None:
             key = f"{p}{bodies.index(b) + 1}"
         lab = f"g{bodies.index(b) + 1}" if p == "cog" else key.lower()
-        pts[key] = _PlanPoint(lab, f"{p} of {b}" if p != "cog" else f"G of {b}", [b], xy, v, a)
+        pname = p if p != "cog" else "G"
+        pts[key] = _PlanPoint(pname, lab, f"{pname} of {b}", [b], xy, v, a)
     slides = []
     for j in scene.joints.values():
-        if j.kind != "T" or GROUND in (j.slider,):
+        if j.kind != "T" or GROUND in j.bodies:
             continue
         sp = j.points[1]
-        tip_s = next((q for q in pts.values() if q.text.split(" of ")[0] == sp
-                      and j.slider in q.bodies), None)
+        tip_s = next((q for q in pts.values() if q.name == sp and j.slider in q.bodies), None)
         if tip_s is None:
-            continue
-        if j.guide == GROUND:
             continue
         g = motions[j.guide]
         x, y = tip_s.xy
         v = np.array(g.vel_at(x, y), dtype=float)
         a = np.array(g.acc_at(x, y), dtype=float)
         k = bodies.index(j.guide) + 1
-        tip_g = _PlanPoint(f"{sp.lower()}{k}", f"point of {j.guide} at {sp}", [j.guide],
+        tip_g = _PlanPoint(f"{sp}{k}", f"{sp.lower()}{k}", f"point of {j.guide} at {sp}", [j.guide],
                            tip_s.xy.copy(), v, a)
         pts[f"{sp}@{j.guide}"] = tip_g
         slides.append((j, tip_s, tip_g))
@@ -391,7 +444,7 @@ def _plan(sol: Solution, position, row, ax, kind: str, cog: bool,
     pts, slides = _plan_points(sol, i, cog)
     attr = "v" if kind == "v" else "a"
     unit = "m/s" if kind == "v" else "m/s²"
-    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    colors = _body_colors()
     bodies = list(sol.scene.bodies)
     vec = {id(q): getattr(q, attr) for q in pts}
     big = max((np.hypot(*v) for v in vec.values()), default=0.0) or 1.0
@@ -411,18 +464,25 @@ def _plan(sol: Solution, position, row, ax, kind: str, cog: bool,
     for q in pts:
         if q.label == pole:
             q.label = pole + "′"
+    tips: list[list] = []       # tips at one place share one label "y0 = k"
     for q in pts:
         if id(q) in at_pole:
             continue
         c = colors[bodies.index(q.bodies[0]) % len(colors)]
         v = vec[id(q)]
         arrow((0.0, 0.0), v, c)
-        off = 9.0 * v / np.hypot(*v)
-        ax.annotate(q.label, tuple(v), xytext=tuple(off), textcoords="offset points",
-                    fontsize=10, fontweight="bold", color=c, ha="center", va="center")
+        same = next((t for t in tips if np.hypot(*(t[0] - v)) <= 1e-6 * big), None)
+        if same is None:
+            tips.append([v, [q.label], c])
+        else:
+            same[1].append(q.label)
         handles.append(Line2D([], [], color=c, lw=1.6,
                               label=f"{pole}{q.label} = {sym}({q.text}): "
                                     f"{np.hypot(*v):.3g} {unit}"))
+    for v, labs, c in tips:
+        off = 10.0 * v / np.hypot(*v)
+        ax.annotate(" = ".join(labs), tuple(v), xytext=tuple(off), textcoords="offset points",
+                    fontsize=10, fontweight="bold", color=c, ha="center", va="center")
     # relative vectors between points of the same body
     rel_drawn = comp_drawn = False
     for b in bodies:
@@ -445,10 +505,11 @@ def _plan(sol: Solution, position, row, ax, kind: str, cog: bool,
             if k == 0:
                 ln = float(np.hypot(*(q1.xy - q0.xy)))
                 rel = float(np.hypot(*(t1 - t0)))
+                rn, ln_name = f"{q1.name}{q0.name}", f"{q0.name}{q1.name}"
                 if kind == "v":
-                    txt = f"ω({b}) = {sym}{q1.label}{q0.label}/l = {omega:.4g} rad/s"
+                    txt = f"ω({b}) = v{rn}/{ln_name} = {omega:.4g} rad/s"
                 else:
-                    txt = f"ε({b}) = a^t/l = {alpha:.4g} rad/s²"
+                    txt = f"ε({b}) = a{rn}ᵗ/{ln_name} = {alpha:.4g} rad/s²"
                 handles.append(Line2D([], [], color="0.35", lw=1.0,
                                       label=f"{q0.label}{q1.label}: {rel:.3g} {unit}, {txt}"
                                       if ln > 0 else f"{q0.label}{q1.label}: {rel:.3g} {unit}"))
@@ -469,11 +530,12 @@ def _plan(sol: Solution, position, row, ax, kind: str, cog: bool,
             g = sol.kin.bodies[j.guide].take(i)
             vrel = ts.v - tg.v
             cor = 2.0 * float(g.omega) * np.array([-vrel[1], vrel[0]])   # 2 omega x v_rel
-            arrow(t0, t0 + cor, "tab:pink", lw=1.2, ls="--")
+            if np.hypot(*cor) > 1e-9 * big:
+                arrow(t0, t0 + cor, "tab:pink", lw=1.2, ls="--")
+                handles.append(Line2D([], [], color="tab:pink", ls="--",
+                                      label=f"Coriolis 2ω×v_rel at {j.name} = "
+                                            f"{np.hypot(*cor):.3g} {unit}"))
             arrow(t0 + cor, t1, "tab:gray", lw=1.2, ls=":")
-            handles.append(Line2D([], [], color="tab:pink", ls="--",
-                                  label=f"Coriolis 2ω×v_rel at {j.name} = "
-                                        f"{np.hypot(*cor):.3g} {unit}"))
             handles.append(Line2D([], [], color="tab:gray", ls=":",
                                   label=f"relative along {j.name} = "
                                         f"{np.hypot(*(t1 - t0 - cor)):.3g} {unit}"))
@@ -494,6 +556,7 @@ def _plan(sol: Solution, position, row, ax, kind: str, cog: bool,
     ax.set_aspect("equal", adjustable="datalim")
     ax.autoscale_view()
     ax.margins(0.1)
+    _vector_axes(ax)
     ax.set_xlabel(f"{attr}x [{unit}]")
     ax.set_ylabel(f"{attr}y [{unit}]")
     what = "velocity plan (planul vitezelor)" if kind == "v" else \
@@ -546,6 +609,18 @@ def acceleration_plan(sol: Solution, position: float | None = None, *,
     001 eq. 9). At a prismatic joint on a moving guide, from the guide's coincident
     point: the Coriolis acceleration 2 omega x v_rel (dashed pink) and the relative
     acceleration along the guide (dotted).
+
+    Parameters
+    ----------
+    sol : Solution
+    position : float, optional
+        Driver position (nearest row); ``row`` picks a row by index instead.
+    ax : Axes, optional
+    cog : bool
+        Add the centres of mass.
+    components : bool
+        Draw the normal and tangential parts of each body's first relative
+        acceleration.
 
     Returns
     -------
@@ -667,6 +742,29 @@ def _polygon_forces(sol: Solution, dyad: Dyad | None, i: int, components: bool):
     return out, split
 
 
+def _place_labels(ax: Axes, labels: list, gap: float = 20.0) -> None:
+    """Write each label beside its vector's middle, on the side (and at the distance)
+    that keeps it at least ``gap`` pixels from the labels already placed."""
+    ax.apply_aspect()
+    placed: list[np.ndarray] = []
+    dpi = ax.figure.dpi / 72.0
+    for text, anchor, nrm, col in labels:
+        base = ax.transData.transform(anchor)
+        best, score = 9.0, -1.0
+        for off in (9.0, -9.0, 18.0, -18.0, 28.0, -28.0):
+            pos = base + off * dpi * np.array([nrm[0], nrm[1]])
+            d = min((float(np.hypot(*(pos - q))) for q in placed), default=np.inf)
+            if d >= gap * dpi:
+                best, score = off, d
+                break
+            if d > score:
+                best, score = off, d
+        placed.append(base + best * dpi * np.asarray(nrm))
+        ax.annotate(text, tuple(anchor), xytext=tuple(best * np.asarray(nrm)),
+                    textcoords="offset points", fontsize=10, color=col, ha="center",
+                    va="center")
+
+
 def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | None = None,
                   *, row: int | None = None, ax: Axes | None = None,
                   components: bool = True) -> Axes:
@@ -710,6 +808,7 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
     tail = np.zeros(2)
     corners = [tail.copy()]
     handles = []
+    labels = []         # (text, anchor, unit normal, colour): placed at the end
     for lab, f, col, _ in forces:
         tip = tail + f
         mag = float(np.hypot(*f))
@@ -718,11 +817,8 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
                         arrowprops={"arrowstyle": "-|>", "color": col, "lw": 1.8,
                                     "shrinkA": 0, "shrinkB": 0, "mutation_scale": 13})
             if mag > 0.04 * big:
-                mid = tail + 0.5 * f
-                nrm = np.array([-f[1], f[0]]) / mag
-                ax.annotate(lab, tuple(mid), xytext=tuple(9 * nrm), textcoords="offset points",
-                            fontsize=10, color=col, ha="center", va="center")
-        handles.append(Line2D([], [], color=col, lw=1.8, label=f"{lab} = {mag:.4g} N"))
+                labels.append((lab, tail + 0.5 * f, np.array([-f[1], f[0]]) / mag, col))
+        handles.append(Line2D([], [], color=col, lw=1.8, label=f"{lab} = {_num(mag)} N"))
         tail = tip
         corners.append(tail.copy())
     if d is not None and split is not None:
@@ -735,12 +831,10 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
         name = _mtext(d.inner.name)
         lab = f"$F_{{\\mathrm{{{name}}}}}$ on {d.bodies[0]}"
         if mag > 0.04 * big:
-            nrm = np.array([-fin[1], fin[0]]) / mag
-            ax.annotate(f"$F_{{\\mathrm{{{name}}}}}$", tuple(s + 0.5 * fin),
-                        xytext=tuple(9 * nrm), textcoords="offset points", fontsize=10,
-                        ha="center", va="center")
+            labels.append((f"$F_{{\\mathrm{{{name}}}}}$", s + 0.5 * fin,
+                           np.array([-fin[1], fin[0]]) / mag, "k"))
         handles.append(Line2D([], [], color="k", ls="--", lw=1.4,
-                              label=f"{lab} = {mag:.4g} N (inner joint)"))
+                              label=f"{lab} = {_num(mag)} N (inner joint)"))
     ax.update_datalim(np.array(corners))
     ax.plot(0, 0, "ko", ms=4)
     closure = float(np.hypot(*tail))
@@ -749,6 +843,8 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
     ax.set_aspect("equal", adjustable="datalim")
     ax.autoscale_view()
     ax.margins(0.12)
+    _vector_axes(ax)
+    _place_labels(ax, labels)
     ax.set_xlabel("Fx [N]")
     ax.set_ylabel("Fy [N]")
     what = f"dyad {d.index + 1} {d.kind} ({d.bodies[0]}, {d.bodies[1]})" if d is not None \
@@ -765,7 +861,21 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
 
 # --------------------------------------------------------------------------- curves
 def plot_driver(sol: Solution, ax: Axes | None = None) -> Axes:
-    """Me (or Fe) over the sweep, its mean, and the singular rows shaded."""
+    """Me (or Fe) over the sweep, its mean (trapezoid rule) and the rows near a dead
+    centre shaded (seed 002 eqs 2.44-2.51).
+
+    Parameters
+    ----------
+    sol : Solution
+        A solved scene (:func:`kinetostatics.solve`).
+    ax : Axes, optional
+        Where to draw; a new figure when None.
+
+    Returns
+    -------
+    Axes
+        Position against Me [N m] (Fe [N] for a sliding driver).
+    """
     ax = _ax(ax)
     q = sol.driver_quantity
     me = sol.Me
@@ -781,6 +891,7 @@ def plot_driver(sol: Solution, ax: Axes | None = None) -> Axes:
         ax.fill_between(sol.positions, 0, 1, where=sing, transform=ax.get_xaxis_transform(),
                         color="tab:red", alpha=0.15, label="near a dead centre")
     ax.set_xlabel(_pos_label(sol))
+    _cycle_axis(ax, sol)
     ax.set_ylabel("equilibrating moment Me [N m]" if q == "Me"
                   else "equilibrating force Fe [N]")
     ax.set_title(f"{q} over the cycle", fontsize=10)
@@ -792,7 +903,23 @@ def plot_driver(sol: Solution, ax: Axes | None = None) -> Axes:
 def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
                ax: Axes | None = None) -> Axes:
     """Polar diagram (hodograph) of joint reactions: the tip of the force vector over
-    the cycle, drawn from the origin (seed 002: the polar diagram of F_ij)."""
+    the cycle, drawn from the origin (seed 002: the polar diagram of F_ij).
+
+    Parameters
+    ----------
+    sol : Solution
+        A solved scene (:func:`kinetostatics.solve`).
+    joints : str or sequence of str, optional
+        Joint names (default: every joint); the force is the one on the joint's ``on``
+        body (the ``reactions`` table).
+    ax : Axes, optional
+        Where to draw; a new figure when None.
+
+    Returns
+    -------
+    Axes
+        Fx [N] against Fy [N], equal aspect; a dot marks the first position.
+    """
     ax = _ax(ax)
     if joints is None:
         joints = list(sol.scene.joints)
@@ -805,6 +932,7 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
         ax.plot(fx[:1], fy[:1], "o", color=ax.lines[-1].get_color(), ms=5)
     ax.plot(0, 0, "k+", ms=10)
     ax.set_aspect("equal", adjustable="datalim")
+    _vector_axes(ax)
     ax.set_xlabel("Fx [N]")
     ax.set_ylabel("Fy [N]")
     ax.set_title("polar diagram of joint reactions (dot: first position)", fontsize=10)
@@ -815,7 +943,21 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
 
 def plot_transmission(sol: Solution, ax: Axes | None = None, admissible: float = 40.0) -> Axes:
     """Transmission angle of every dyad over the cycle (eqs 2.60-2.61) with the
-    admissible band [admissible, 180 - admissible]."""
+    admissible band [admissible, 180 - admissible].
+
+    Parameters
+    ----------
+    sol : Solution
+        A solved scene (:func:`kinetostatics.solve`).
+    ax : Axes, optional
+        Where to draw; a new figure when None.
+    admissible : float
+        The smallest admissible transmission angle (deg); outside the band is shaded.
+
+    Returns
+    -------
+    Axes
+    """
     ax = _ax(ax)
     t = sol.dyads
     for d, g in t.groupby("dyad"):
@@ -825,6 +967,7 @@ def plot_transmission(sol: Solution, ax: Axes | None = None, admissible: float =
     ax.axhspan(180 - admissible, 180, color="tab:red", alpha=0.1, label="not admissible")
     ax.set_ylim(0, 180)
     ax.set_xlabel(_pos_label(sol))
+    _cycle_axis(ax, sol)
     ax.set_ylabel("transmission angle τ [deg]")
     ax.set_title("transmission angle", fontsize=10)
     ax.grid(True, alpha=0.3)
@@ -850,15 +993,31 @@ def _points_arg(sol: Solution, points) -> list[tuple[str, str]]:
 
 def plot_trajectories(sol: Solution, points: Sequence[str] | None = None,
                       ax: Axes | None = None) -> Axes:
-    """Paths of points ``"body.point"`` over the sweep (default: every named point)."""
+    """Paths (traiectorii) of points over the sweep, dashed.
+
+    Parameters
+    ----------
+    sol : Solution
+        A solved scene (:func:`kinetostatics.solve`).
+    points : sequence of str, optional
+        ``"body.point"`` names (default: every named point and centre of mass).
+    ax : Axes, optional
+        Where to draw; a new figure when None.
+
+    Returns
+    -------
+    Axes
+        x [m] against y [m], equal aspect.
+    """
     ax = _ax(ax)
     k = sol.kinematics
     if points is None:
         points = [f"{b}.{p}" for b, p in k[["body", "point"]].drop_duplicates().values]
-    for bp in points:
+    for c, bp in enumerate(points):
         b, p = bp.split(".", 1)
         g = k[(k.body == b) & (k.point == p)]
-        ax.plot(g.x, g.y, lw=1.5, label=bp)
+        ax.plot(g.x, g.y, lw=1.4, ls="--", color=PATH_COLORS[c % len(PATH_COLORS)],
+                label=f"path of {bp}")
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
@@ -884,6 +1043,7 @@ def _point_curves(sol: Solution, points, component: str, ax: Axes | None, kind: 
     unit = "m/s" if kind == "v" else "m/s²"
     comp = {"magnitude": f"|{sym}|", "x": f"{sym}x", "y": f"{sym}y"}[component]
     ax.set_xlabel(_pos_label(sol))
+    _cycle_axis(ax, sol)
     ax.set_ylabel(f"{'speed' if kind == 'v' else 'acceleration'} {comp} [{unit}]")
     ax.set_title(f"{'velocities' if kind == 'v' else 'accelerations'} of points over the "
                  "cycle", fontsize=10)
@@ -894,23 +1054,65 @@ def _point_curves(sol: Solution, points, component: str, ax: Axes | None, kind: 
 
 def plot_speeds(sol: Solution, points: Sequence[str] | str | None = None, *,
                 component: str = "magnitude", ax: Axes | None = None) -> Axes:
-    """Velocity of points ``"body.point"`` over the sweep (default: every named point).
+    """Velocity of points over the sweep.
 
-    ``component``: ``"magnitude"`` (the speed |v|), ``"x"`` or ``"y"`` (signed).
+    Parameters
+    ----------
+    sol : Solution
+        A solved scene (:func:`kinetostatics.solve`).
+    points : str or sequence of str, optional
+        ``"body.point"`` names (default: every named point, once per name).
+    component : str
+        ``"magnitude"`` (the speed |v|), ``"x"`` or ``"y"`` (signed components).
+    ax : Axes, optional
+        Where to draw; a new figure when None.
+
+    Returns
+    -------
+    Axes
+        Position against v [m/s].
     """
     return _point_curves(sol, points, component, ax, "v")
 
 
 def plot_accelerations(sol: Solution, points: Sequence[str] | str | None = None, *,
                        component: str = "magnitude", ax: Axes | None = None) -> Axes:
-    """Acceleration of points ``"body.point"`` over the sweep (default: every named
-    point); ``component`` as in :func:`plot_speeds`."""
+    """Acceleration of points over the sweep.
+
+    Parameters
+    ----------
+    sol : Solution
+        A solved scene (:func:`kinetostatics.solve`).
+    points : str or sequence of str, optional
+        ``"body.point"`` names (default: every named point, once per name).
+    component : str
+        ``"magnitude"``, ``"x"`` or ``"y"``.
+    ax : Axes, optional
+        Where to draw; a new figure when None.
+
+    Returns
+    -------
+    Axes
+        Position against a [m/s²].
+    """
     return _point_curves(sol, points, component, ax, "a")
 
 
 def plot_angular(sol: Solution, bodies: Sequence[str] | str | None = None) -> Figure:
     """Angle, angular velocity omega and angular acceleration eps of bodies over the
-    sweep, three panels sharing the position axis (default: every body that turns)."""
+    sweep, three panels sharing the position axis.
+
+    Parameters
+    ----------
+    sol : Solution
+        A solved scene (:func:`kinetostatics.solve`).
+    bodies : str or sequence of str, optional
+        Body names (default: every body that turns).
+
+    Returns
+    -------
+    Figure
+    """
     t = sol.bodies
     if bodies is None:
         bodies = [b for b, g in t.groupby("body", sort=False)
@@ -932,12 +1134,25 @@ def plot_angular(sol: Solution, bodies: Sequence[str] | str | None = None) -> Fi
     axs[0].legend(fontsize=8, ncol=3)
     axs[0].set_title("angular motion of the bodies", fontsize=10)
     axs[-1].set_xlabel(_pos_label(sol))
+    _cycle_axis(axs[-1], sol)
     return fig
 
 
 def overview(sol: Solution, position: float | None = None) -> Figure:
     """Four panels: the mechanism with its reactions, Me(φ), the polar diagram of the
-    reactions, the transmission angle."""
+    reactions, the transmission angle (the trajectories when there is no dyad).
+
+    Parameters
+    ----------
+    sol : Solution
+        A solved scene (:func:`kinetostatics.solve`).
+    position : float, optional
+        Driver position of the drawing (default: a twelfth into the sweep).
+
+    Returns
+    -------
+    Figure
+    """
     fig, axs = plt.subplots(2, 2, figsize=(12, 9), layout="constrained")
     if position is None:
         position = float(sol.positions[len(sol.positions) // 12])

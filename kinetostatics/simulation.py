@@ -8,15 +8,18 @@ the constraints while it moves.
 What is built (:func:`build_space`)
 -----------------------------------
 - one dynamic body per moving body: mass, moment of inertia about the centre of mass
-  and the centre of mass from the scene; no shapes (nothing collides), no sleeping;
-- a ``PivotJoint`` per revolute joint; a ``GrooveJoint`` per prismatic joint (the
-  groove along the guide's line, the pin at the slider point), plus a ``GearJoint``
-  of ratio 1 that locks the slider's rotation to the guide's where the scene needs it
-  (see :func:`needs_rotation_lock`);
+  and the centre of mass from the scene; no shapes (nothing collides), no sleeping.
+  A body that only translates (its angle is constant over the motion: a piston, a
+  yoke, a ram) gets an infinite moment of inertia, which is exact for it;
+- a ``PivotJoint`` per revolute joint;
+- a ``GrooveJoint`` per prismatic joint, laid out so that pymunk's solution of it is
+  exact (see :func:`build_space`), plus a ``GearJoint`` of ratio 1 that locks the
+  slider's rotation to the guide's where both turn (between bodies that cannot turn
+  no lock is needed);
 - a crank driver: a ``PivotJoint`` and a ``SimpleMotor`` that holds the speed (its
   impulse is the driving moment); a sliding driver: a kinematic body moving at the
-  constant speed along the line and a ``GrooveJoint`` across the line that pushes the
-  slider (its impulse is the driving force);
+  constant speed along the line and a ``GrooveJoint`` across the line, through the
+  slider point, that pushes the slider (its impulse is the driving force);
 - gravity as the space's gravity; the scene's loads set on the bodies before every
   step, evaluated at the pose the step will reach.
 
@@ -40,8 +43,13 @@ momentum balance of every body over the step: m (v' - v) / dt = m g + F + sum of
 constraint forces, I (w' - w) / dt = T + sum of their moments, with the constraint
 forces along the directions pymunk uses at the new pose (public state only: poses,
 velocities and the forces we set). For a driver + dyads chain these 3n equations have
-exactly 3n unknowns; the magnitudes of the solution are checked against the public
-impulses at run time (:attr:`SimRecord.vector_check`).
+exactly 3n unknowns (a prismatic joint between bodies that cannot turn contributes its
+couple as an unknown, with no pymunk constraint); the magnitudes of the solution are
+checked against the public impulses at run time (:attr:`SimRecord.vector_check`).
+
+The stepping loop can call Chipmunk's C functions directly (``fast``, pinned to
+pymunk 7.3.1 and checked against the public properties during the run): the same
+calls as pymunk's properties, without the Python wrappers, two to three times faster.
 
 The start is the exact kinematic state of the scene (from the kinematic solution),
 shifted half a step as the scheme carries it in its steady motion (positions
@@ -70,16 +78,18 @@ DEFAULT_ITERATIONS = 30
 (fewer make ``error_bias = 0`` diverge); more change nothing but cost."""
 
 DEFAULT_STEPS_PER_REVOLUTION = 3600
-"""Default time step: a tenth of a degree of the crank per step (about 1e-6 error)."""
+"""Default time step: a tenth of a degree of the crank per step (errors near 1e-5 on
+the bundled four-bar and slider-crank; they fall as dt^2)."""
 
 GROOVE_MARGIN = 10.0
 """A groove reaches this many times the slider's stroke (at least 1 m) beyond it."""
 
-WARMUP_STEPS = 5
+WARMUP_STEPS = 50
 WARMUP_ITERATIONS = 200
-"""The first steps of a fresh model run with this many iterations: the solver's cached
-impulses start at zero, and with the chosen count they would take a few hundred steps
-to settle (a start-up transient of about 1e-3 on the first readings)."""
+"""The first steps of a fresh model: the iterations fall geometrically from 200 to the
+chosen count over 50 steps. The solver's cached impulses start at zero; with, say, 10
+iterations from the start they take a few hundred steps to settle (errors near 1e-2
+on the first readings), and an abrupt change of the count leaves a transient too."""
 
 RESIST_UNSURE = 1e-4
 """Rows where a ``resist`` point is slower than this fraction of its top speed: the
@@ -99,15 +109,18 @@ class ConstraintInfo:
     ``"groove"`` (prismatic joint: the force on ``b``, the pin body, along the groove's
     left normal ``normal``, given in ``a``'s frame), ``"lock"`` (the couple on ``b``,
     the slider, from ``a``, the guide), ``"motor"`` (the moment on the crank ``b``) or
-    ``"actuator"`` (the force on the sliding driver ``b`` along its line). ``joint`` is
-    the scene's joint name (``None`` for the driver's motor or actuator).
+    ``"actuator"`` (the force on the sliding driver ``b`` along its line), or
+    ``"couple"``: no pymunk constraint (``constraint`` is None), the couple on the
+    slider ``b`` of a prismatic joint between bodies that cannot turn, found from
+    their momentum balance. ``joint`` is the scene's joint name (``None`` for the
+    driver's motor or actuator).
     ``anchor_a`` is the groove's start (grooves) or the joint point on ``a`` (pivots);
     ``anchor_b`` the joint point (pin) on ``b``. For a groove, ``slider`` names the
     joint's slider and ``slider_point`` its slider point (local), from which the couple
     M of the kinetostatic tables is measured.
     """
 
-    constraint: pymunk.Constraint
+    constraint: pymunk.Constraint | None
     role: str
     joint: str | None
     a: str
@@ -142,8 +155,9 @@ class SimModel:
         Driver position at t = 0 (deg for a crank, m for a sliding driver).
     speed : float
         Driver speed (rad/s or m/s).
-    free_rotation : set of str
-        Sliders whose rotation needs no lock (left free).
+    translating : set of str
+        Bodies that only translate (their angle is constant over the motion): built
+        with an infinite moment of inertia, so their prismatic joints need no lock.
     notes : list of str
         Modelling remarks (e.g. a prismatic joint whose groove cannot be laid out
         exactly; see :func:`build_space`).
@@ -157,14 +171,13 @@ class SimModel:
     iterations: int
     start: float
     speed: float
-    free_rotation: set[str] = field(default_factory=set)
+    translating: set[str] = field(default_factory=set)
     error_bias: float = 0.0
     stepped: int = 0
     notes: list[str] = field(default_factory=list)
     actuator: pymunk.Body | None = None
     line: tuple[tuple[float, float], tuple[float, float]] | None = None   # driver line
     _slider_local: tuple[float, float] = (0.0, 0.0)
-    _actuator_start: tuple = ((0.0, 0.0), (0.0, 0.0))
     _loads: list = field(default_factory=list, repr=False)
     _resist: list = field(default_factory=list, repr=False)
 
@@ -224,39 +237,15 @@ def sweep_positions(scene: Scene, count: int = 73) -> np.ndarray:
     return np.linspace(pos.min(), pos.max(), count)
 
 
-def slider_is_free(scene: Scene, joint: str, guide_turns: bool) -> bool:
-    """Whether a prismatic joint's slider keeps its angle with no lock.
-
-    A prismatic joint keeps the slider's angle equal to the guide's plus
-    ``line_angle``. The lock (a ``GearJoint``) is needed unless the slider's rotation
-    is free of any couple in the exact motion, so that it keeps its angle by itself:
-    the guide does not turn, the slider is a moving body whose centre of mass is the
-    slider point, it has no other prismatic joint, its revolute joints are at the
-    slider point, and its loads act at the slider point with no moment. Then the
-    joint's couple M is zero.
-    """
-    j = scene.joints[joint]
-    slider = j.slider
-    if guide_turns or slider == GROUND:
-        return False
-    body = scene.bodies[slider]
-    sp = body.local(j.points[1])
-
-    def same(p) -> bool:
-        return bool(np.allclose(p, sp, rtol=0.0, atol=1e-12))
-
-    if body.cog is None or not same(body.cog):
-        return False
-    for other in scene.joints.values():
-        if other.name == joint or slider not in other.bodies:
-            continue
-        if other.kind == "T" or not same(body.local(other.point_on(slider))):
-            return False
-    for ld in scene.loads:
-        if ld.body == slider and (ld.moment != 0.0 or (ld.point is not None
-                                                        and not same(body.local(ld.point)))):
-            return False
-    return True
+def translating_bodies(scene: Scene, sweep) -> set[str]:
+    """Moving bodies whose angle never changes over the motion (omega = alpha = 0 at
+    every position of the sweep): pistons, yokes, rams, blocks on fixed guides."""
+    out = set()
+    for name in scene.bodies:
+        m = sweep.kin.bodies[name]
+        if not np.any(np.asarray(m.omega) != 0.0) and not np.any(np.asarray(m.alpha) != 0.0):
+            out.add(name)
+    return out
 
 
 def _check_scene(scene: Scene) -> None:
@@ -325,12 +314,18 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
     Prismatic joints: a ``GrooveJoint`` solves its two directions together and then
     keeps the normal part of the impulse; that is exact only when the joint's
     effective-mass matrix is diagonal in the groove's frame (else the pin lags the
-    groove by a first-order amount, proportional to the sliding speed). So the
-    groove goes on the body that is the ground or whose centre of mass lies on the
-    line, and the pin on the other body at the foot of the normal from its centre of
-    mass: both arms are then along the line or normal to it. A slider left free (see
-    :func:`slider_is_free`) keeps the pin at its slider point (its centre of mass).
-    Where no body qualifies, the groove goes on the guide and a note says so.
+    groove by an amount proportional to the sliding speed times dt: first-order
+    errors). So the groove goes on a body that is the ground, cannot turn, or has
+    its centre of mass on the line, and the pin on the other body at the foot of the
+    normal from its centre of mass (on a body that cannot turn: at the joint's own
+    point): both arms are then along the line or normal to it. Where no body
+    qualifies, the groove goes on the guide and a note says so.
+
+    Bodies that only translate (:func:`translating_bodies`) get an infinite moment of
+    inertia: they cannot turn, which is exact for them, and a prismatic joint between
+    two such bodies (or one and the ground) needs no lock; its couple M is then an
+    unknown of the momentum balance (see the module docstring). Between bodies that
+    turn, a ``GearJoint`` of ratio 1 locks the relative rotation and carries M.
 
     Parameters
     ----------
@@ -376,10 +371,13 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
     space.sleep_time_threshold = math.inf
     space.damping = 1.0
     bodies: dict[str, pymunk.Body] = {GROUND: space.static_body}
+    frozen = translating_bodies(sc, sweep)
     half = 0.5 * dt
     for name, b in sc.bodies.items():
         m = kin0.bodies[name].take(slice(1, 2))
-        body = pymunk.Body(b.mass, b.inertia)
+        # a body that only translates cannot turn: an infinite moment of inertia keeps
+        # it so with no constraint (its couples follow from its momentum balance)
+        body = pymunk.Body(b.mass, math.inf if name in frozen else b.inertia)
         body.center_of_gravity = tuple(b.cog)
         gx, gy = (_first(v) for v in m.point(b.cog))
         vx, vy = (_first(v) for v in m.vel_at(gx, gy))
@@ -405,8 +403,8 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
         space.add(c)
         infos.append(info)
 
-    free: set[str] = set()
     notes: list[str] = []
+    fixed = {GROUND} | frozen
     for name, j in sc.joints.items():
         if j.kind == "R":
             on, by = j.on_by
@@ -416,19 +414,20 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
             add(c, ConstraintInfo(c, "pivot", name, by, on, pa, pb))
             continue
         g, s = j.guide, j.slider
-        turns = g != GROUND and bool(np.any(np.asarray(sweep.kin.bodies[g].omega) != 0.0))
-        if slider_is_free(sc, name, turns) and _on_line(sc, name, g):
-            q, p, pin = g, s, _local(sc, s, j.points[1])
-            free.add(s)
+        # the groove on a body whose arm to the pin's contact runs along the line
+        # (the ground, a body that cannot turn, or one whose cog is on the line), the
+        # pin on the other at the foot of the normal from its cog (see the docstring)
+        for q, p in ((g, s), (s, g)):  # noqa: B007 - both used after the loop
+            if q in fixed or _on_line(sc, name, q):
+                break
         else:
-            if _on_line(sc, name, g):
-                q, p = g, s
-            elif _on_line(sc, name, s):
-                q, p = s, g
-            else:
-                q, p = g, s
-                notes.append(f"prismatic joint {name!r}: neither body's centre of mass lies "
-                             "on the line; pymunk's groove then lags by a first-order amount")
+            q, p = g, s
+            notes.append(f"prismatic joint {name!r}: neither body's centre of mass lies on "
+                         "the line and both turn; pymunk's groove then lags by a first-order "
+                         "amount (expect errors proportional to dt)")
+        if p in fixed:
+            pin = _local(sc, p, j.points[1] if p == s else j.points[0])
+        else:
             pin = _foot(sc, name, p)
         lp, u = _line(sc, name, q)
         lo, hi = _pin_range(sc, sweep, q, p, pin, lp, u)
@@ -438,13 +437,17 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
         c = pymunk.GrooveJoint(bodies[q], bodies[p], ga, gb, pin)
         add(c, ConstraintInfo(c, "groove", name, q, p, ga, pin, (-u[1], u[0]), s,
                               _local(sc, s, j.points[1])))
-        if s not in free:
+        if g in fixed and s in fixed:
+            # neither turns: no lock; the couple follows from the angular momentum
+            # balance of the translating body (or bodies)
+            infos.append(ConstraintInfo(None, "couple", name, g, s))
+        else:
             phase = bodies[s].angle - bodies[g].angle
             c = pymunk.GearJoint(bodies[g], bodies[s], phase, 1.0)
             add(c, ConstraintInfo(c, "lock", name, g, s))
 
-    model = SimModel(sc, space, bodies, infos, float(dt), int(iterations), p0, d.speed, free,
-                     error_bias=float(error_bias), notes=notes)
+    model = SimModel(sc, space, bodies, infos, float(dt), int(iterations), p0, d.speed,
+                     frozen, error_bias=float(error_bias), notes=notes)
     drv = bodies[d.body]
     if d.kind == "R":
         # SimpleMotor(a, b, rate) holds b.w - a.w = -rate: here the crank turns at `speed`
@@ -468,7 +471,6 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
         act.position = (px, py)
         act.velocity = (d.speed * ux, d.speed * uy)
         space.add(act)
-        model._actuator_start = ((px, py), (d.speed * ux, d.speed * uy))
         ga, gb = (-uy, ux), (uy, -ux)          # its left normal is the line direction u
         c = pymunk.GrooveJoint(act, drv, ga, gb, sp)
         add(c, ConstraintInfo(c, "actuator", None, "actuator", d.body, ga, sp, (ux, uy)))
@@ -568,9 +570,6 @@ class SimRecord:
     velocity : ndarray
         (samples, bodies, 3): velocity of each moving body's centre of mass and its
         angular velocity.
-    residual : float
-        How far the solver was from converged at the sampled steps, as an estimate of
-        the relative reaction error it causes; see :func:`solver_residual`.
     drift : float
         Largest joint error over the samples: the separation of a pivot's two points,
         the pin's distance from its groove (m), or a lock's angle error times the
@@ -591,7 +590,6 @@ class SimRecord:
     pose: np.ndarray | None = None
     drift: float = 0.0
     velocity: np.ndarray | None = None
-    residual: float = 0.0
 
 
 def _label(info: ConstraintInfo) -> str:
@@ -610,11 +608,13 @@ class _Access:
     """Reading and setting body state in the stepping loop.
 
     The public path uses pymunk's properties. The fast path (pinned pymunk version
-    only) calls the same Chipmunk functions those properties call, without the Python
-    wrappers: ``cpBodyGetAngle``, ``cpBodyGetAngularVelocity``, ``cpBodyGetVelocity``,
-    ``cpBodySetForce``, ``cpBodySetTorque``, ``cpBodyGetForce``, ``cpBodyGetTorque``
-    and ``cpSpaceStep``. :meth:`verify` compares its reads with the public properties
-    at every sample and raises if they ever differ.
+    only) calls the Chipmunk functions those properties call, without the Python
+    wrappers: ``cpBodyGet/SetForce``, ``cpBodySetTorque``, ``cpBodyGetAngle``,
+    ``cpBodyGetAngularVelocity``, ``cpBodyGetVelocity``, ``cpBodyGetPosition``,
+    ``cpBodyGetTorque``, ``cpConstraintGetImpulse`` and ``cpSpaceStep`` (after one
+    public ``Space.step(0)``, which does pymunk's own checks). :meth:`verify` compares
+    the fast reads with the public properties during the run and raises if they ever
+    differ.
     """
 
     def __init__(self, model: SimModel, fast: bool):
@@ -626,21 +626,26 @@ class _Access:
             cstep = lib.cpSpaceStep
             self.step = lambda dt: cstep(csp, dt)
             self.handle = lambda body: body._body
+            self.chandle = lambda c: c._constraint
             self.angle = lib.cpBodyGetAngle
             self.omega = lib.cpBodyGetAngularVelocity
             self.velocity = lib.cpBodyGetVelocity
+            self.position = lib.cpBodyGetPosition
             self.force = lib.cpBodyGetForce
             self.torque = lib.cpBodyGetTorque
             self.set_force = lib.cpBodySetForce
             self.set_torque = lib.cpBodySetTorque
+            self.impulse = lib.cpConstraintGetImpulse
         else:
             self.step = space.step
-            self.handle = lambda body: body
+            self.handle = self.chandle = lambda x: x
             self.angle = lambda b: b.angle
             self.omega = lambda b: b.angular_velocity
             self.velocity = lambda b: b.velocity
+            self.position = lambda b: b.position
             self.force = lambda b: b.force
             self.torque = lambda b: b.torque
+            self.impulse = lambda c: c.impulse
 
             def set_force(b, f):
                 b.force = f
@@ -651,20 +656,45 @@ class _Access:
             self.set_force = set_force
             self.set_torque = set_torque
 
-    def verify(self, pairs) -> None:
+    def verify(self, body: pymunk.Body, constraint: pymunk.Constraint | None) -> None:
         """Raise if a fast read differs from the public property (pinned version check)."""
         if not self.fast:
             return
-        for body, h in pairs:
-            v, f = self.velocity(h), self.force(h)
-            ok = (self.angle(h) == body.angle and self.omega(h) == body.angular_velocity
-                  and (v.x, v.y) == tuple(body.velocity) and (f.x, f.y) == tuple(body.force)
-                  and self.torque(h) == body.torque)
-            if not ok:
-                raise SimulationError(
-                    f"pymunk {pymunk.version}: the direct Chipmunk reads differ from the "
-                    f"public properties (the fast path is pinned to pymunk {PYMUNK_VERSION}); "
-                    "run with fast=False")
+        h = self.handle(body)
+        v, f, p = self.velocity(h), self.force(h), self.position(h)
+        ok = (self.angle(h) == body.angle and self.omega(h) == body.angular_velocity
+              and (v.x, v.y) == tuple(body.velocity) and (f.x, f.y) == tuple(body.force)
+              and (p.x, p.y) == tuple(body.position) and self.torque(h) == body.torque)
+        if constraint is not None:
+            ok = ok and self.impulse(self.chandle(constraint)) == constraint.impulse
+        if not ok:
+            raise SimulationError(
+                f"pymunk {pymunk.version}: the direct Chipmunk reads differ from the public "
+                f"properties (the fast path is pinned to pymunk {PYMUNK_VERSION}); run with "
+                "fast=False")
+
+
+def make_stepper(space: pymunk.Space, fast: bool | None = None):
+    """A function ``step(dt)`` that advances ``space``: ``Space.step`` or, on the pinned
+    pymunk version (``fast`` None or True), Chipmunk's ``cpSpaceStep`` called directly
+    after one public ``Space.step(0)`` (pymunk's own checks; a zero step does nothing).
+    Only for spaces whose content does not change while it steps."""
+    if fast is None:
+        fast = fast_path_available()
+    elif fast and not fast_path_available():
+        raise SimulationError(f"fast=True needs pymunk {PYMUNK_VERSION} (installed: "
+                              f"{pymunk.version}); use fast=False")
+    space.step(0.0)
+    if not fast:
+        return space.step
+    from pymunk._chipmunk_cffi import lib
+    csp, cstep = space._space, lib.cpSpaceStep
+    return lambda dt: cstep(csp, dt)
+
+
+VERIFY_EVERY = 8
+"""The fast path's reads are checked against the public properties at every this many
+samples (one body and one constraint each time, in turn; all of them at the first)."""
 
 
 def run(model: SimModel, steps: int, sample_every: int = 1, *,
@@ -684,9 +714,9 @@ def run(model: SimModel, steps: int, sample_every: int = 1, *,
     sample_every : int
         Read the constraints and bodies after every this many steps.
     fast : bool, optional
-        Call Chipmunk's C functions directly in the stepping loop (about twice as
-        fast); default: when the installed pymunk is the pinned version. Its reads are
-        checked against the public properties at every sample.
+        Call Chipmunk's C functions directly in the loop (two to three times faster);
+        default: when the installed pymunk is the pinned version. Its reads are
+        checked against the public properties during the run.
 
     Returns
     -------
@@ -702,200 +732,227 @@ def run(model: SimModel, steps: int, sample_every: int = 1, *,
     dt = model.dt
     space = model.space
     space.step(0.0)                 # pymunk's own pre-step checks (a zero step is a no-op)
-    pstep = space.step
     fstep = acc.step
     bods = [model.bodies[n] for n in model.moving]
-    cons = [i.constraint for i in model.constraints]
+    real = [i for i in model.constraints if i.constraint is not None]
+    cons = [i.constraint for i in real]
     H = acc.handle
-    get_a, get_w, get_v = acc.angle, acc.omega, acc.velocity
-    set_f, set_t = acc.set_force, acc.set_torque
-    loads = [(H(b), (fx, fy), ca, cb, mm) for b, fx, fy, ca, cb, mm in model._loads]
-    resist = [(H(b), px, py, mag, top) for b, px, py, mag, top in model._resist]
-    loaded = {id(b): b for b, *_ in model._loads}
-    loaded.update({id(b): b for b, *_ in model._resist})
-    check_pairs = [(b, H(b)) for b in loaded.values()]
-    # resist loads: the previous step's velocity (cog, omega), for the extrapolation
-    prev = []
-    if resist:
-        # the start carries v(t0) + a dt / 2; one step earlier the scheme had a dt less
-        for (h, *_), (ax, ay, al) in zip(resist, _start_acc(model), strict=True):
-            v = get_v(h)
-            prev.append([v.x - ax * dt, v.y - ay * dt, get_w(h) - al * dt])
-    unsure = [False]
-    cos, sin, hypot = math.cos, math.sin, math.hypot
-    get_f, get_t = acc.force, acc.torque
-
-    def apply_loads() -> None:
-        for h, f, ca, cb, mm in loads:
-            a = get_a(h) + get_w(h) * dt
-            set_f(h, f)
-            set_t(h, cos(a) * ca + sin(a) * cb + mm)
-        flag = False
-        for k, (h, px, py, mag, top) in enumerate(resist):
-            v = get_v(h)
-            w = get_w(h)
-            pv = prev[k]
-            # velocity at the pose the step reaches: 1.5 v_n - 0.5 v_(n-1), second order
-            ex, ey, ew = 1.5 * v.x - 0.5 * pv[0], 1.5 * v.y - 0.5 * pv[1], 1.5 * w - 0.5 * pv[2]
-            pv[0], pv[1], pv[2] = v.x, v.y, w
-            if px or py:
-                a = get_a(h) + w * dt
-                c, s = cos(a), sin(a)
-                rx, ry = c * px - s * py, s * px + c * py
-                ex, ey = ex - ew * ry, ey + ew * rx
-            else:
-                rx = ry = 0.0
-            sp = hypot(ex, ey)
-            if sp <= RESIST_UNSURE * top:
-                flag = True
-            if sp == 0.0:
-                continue
-            fx, fy = -mag * ex / sp, -mag * ey / sp
-            f = get_f(h)
-            set_f(h, (f.x + fx, f.y + fy))
-            set_t(h, get_t(h) + rx * fy - ry * fx)
-        unsure[0] = flag
-
-    has_loads = bool(loads or resist)
+    hb = [H(b) for b in bods]
+    hc = [acc.chandle(c) for c in cons]
+    get_a, get_w, get_v, get_p = acc.angle, acc.omega, acc.velocity, acc.position
+    get_f, get_t, get_i = acc.force, acc.torque, acc.impulse
+    apply_loads, unsure = _loads_function(model, acc)
     n_samples = steps // every
-    warm = 0
-    if not model.stepped:
-        warm = -(-WARMUP_STEPS // every)
-        space.iterations = max(WARMUP_ITERATIONS, model.iterations)
-    before, after, imp, flags, pos = [], [], [], [], []
-    rng = range(every - 1)
-    t0 = time.perf_counter()
-    for k in range(n_samples):
-        if k == warm:
-            space.iterations = model.iterations
-        if has_loads:
-            for _ in rng:
+    schedule = [] if model.stepped else warmup_schedule(model.iterations)
+
+    def advance(n: int) -> None:
+        if apply_loads is None:
+            for _ in range(n):
+                fstep(dt)
+        else:
+            for _ in range(n):
                 apply_loads()
                 fstep(dt)
+
+    def warm(n: int) -> None:
+        for _ in range(n):
+            space.iterations = schedule.pop()
+            if apply_loads is not None:
+                apply_loads()
+            fstep(dt)
+        space.iterations = schedule[-1] if schedule else model.iterations
+
+    before, after, imp, flags = [], [], [], []
+    nb, nc = len(bods), len(cons)
+    t0 = time.perf_counter()
+    for k in range(n_samples):
+        inner = every - 1
+        if schedule:
+            m = min(len(schedule), inner)
+            warm(m)
+            inner -= m
+        advance(inner)
+        if schedule:
+            space.iterations = schedule.pop()
+        if apply_loads is not None:
             apply_loads()
-        else:
-            for _ in rng:
-                fstep(dt)
-        acc.verify(check_pairs)
         row = []
-        for b in bods:
-            v, f = b.velocity, b.force
-            row += (v.x, v.y, b.angular_velocity, f.x, f.y, b.torque)
+        for h in hb:
+            v, f = get_v(h), get_f(h)
+            row += (v.x, v.y, get_w(h), f.x, f.y, get_t(h))
         before.append(row)
-        pstep(dt)
-        row = []
-        for b in bods:
-            p, v = b.position, b.velocity
-            row += (p.x, p.y, b.angle, v.x, v.y, b.angular_velocity)
-        after.append(row)
-        imp.append([c.impulse for c in cons])
-        flags.append(unsure[0])
-        pos.append(model.driver_position())
-    space.iterations = model.iterations
-    for _ in range(steps - n_samples * every):
-        if has_loads:
-            apply_loads()
         fstep(dt)
+        space.iterations = schedule[-1] if schedule else model.iterations
+        row = []
+        for h in hb:
+            p, v = get_p(h), get_v(h)
+            row += (p.x, p.y, get_a(h), v.x, v.y, get_w(h))
+        after.append(row)
+        imp.append([get_i(c) for c in hc])
+        flags.append(unsure[0])
+        if k == 0:
+            for i, b in enumerate(bods):
+                acc.verify(b, cons[i] if i < nc else None)
+            for c in cons[nb:]:
+                acc.verify(bods[0], c)
+        elif k % VERIFY_EVERY == 0:
+            j = k // VERIFY_EVERY
+            acc.verify(bods[j % nb], cons[j % nc] if nc else None)
+    space.iterations = model.iterations
+    advance(steps - n_samples * every)
     wall = time.perf_counter() - t0
     model.stepped += steps
-    nb = len(bods)
     before = np.array(before, dtype=float).reshape(n_samples, nb, 6)
     after = np.array(after, dtype=float).reshape(n_samples, nb, 6)
-    imp = np.array(imp, dtype=float).reshape(n_samples, len(cons)) / dt
+    imp = np.array(imp, dtype=float).reshape(n_samples, nc) / dt
     times = (np.arange(n_samples) + 1) * every * dt
-    impulse = {_label(info): imp[:, i] for i, info in enumerate(model.constraints)}
+    impulse = {_label(info): imp[:, i] for i, info in enumerate(real)}
     signed, check = _signed(model, after[:, :, :3], before[:, :, :3], after[:, :, 3:],
                             before[:, :, 3:], imp)
     pose = after[:, :, :3].copy()
     vel = after[:, :, 3:].copy()
-    return SimRecord(times, np.array(pos, dtype=float), impulse, signed,
+    return SimRecord(times, _driver_positions(model, pose), impulse, signed,
                      np.array(flags, dtype=bool), check, wall, steps, dt, model.iterations,
-                     bool(fast), pose, joint_drift(model, pose), vel,
-                     solver_residual(model, pose, vel, times))
+                     bool(fast), pose, joint_drift(model, pose), vel)
 
 
-def solver_residual(model: SimModel, pose: np.ndarray, vel: np.ndarray,
-                    times: np.ndarray) -> float:
-    """How far each constraint's velocity equation is from satisfied after the step.
+def warmup_schedule(iterations: int) -> list[int]:
+    """Iteration counts of a fresh model's first steps, last step first (a stack): from
+    ``WARMUP_ITERATIONS`` down to ``iterations`` geometrically over ``WARMUP_STEPS``."""
+    if iterations >= WARMUP_ITERATIONS or WARMUP_STEPS < 1:
+        return []
+    r = (iterations / WARMUP_ITERATIONS) ** (1.0 / WARMUP_STEPS)
+    counts = [max(iterations, round(WARMUP_ITERATIONS * r ** k)) for k in range(WARMUP_STEPS)]
+    return counts[::-1]
 
-    After a converged step every constraint holds its velocity target: the relative
-    velocity of a pivot's two points (a groove's along its normal, a lock's relative
-    angular velocity) equals minus the joint's error times ``bias_coef / dt``, and
-    the motor's crank turns at the set speed. What is left, r, changes the next
-    step's momentum by about m r, i.e. the reactions by m r / dt; divided by a
-    typical inertia force m a (a = speed^2 x size for a crank, speed^2 / size for a
-    slider) this estimates the relative reaction error due to unfinished iterations.
-    Returned: max |r| / (a dt) over the samples and constraints.
+
+def _driver_positions(model: SimModel, pose: np.ndarray) -> np.ndarray:
+    """Driver positions of sampled poses: the crank's angle (deg, continuous) or the slider
+    point's distance from the line point along the line (m)."""
+    i = model.moving.index(model.scene.driver.body)
+    th = pose[:, i, 2]
+    if model.kind == "R":
+        return np.degrees(th)
+    (lx, ly), (ux, uy) = model.line
+    sx, sy = model._slider_local
+    px = pose[:, i, 0] + np.cos(th) * sx - np.sin(th) * sy
+    py = pose[:, i, 1] + np.sin(th) * sx + np.cos(th) * sy
+    return (px - lx) * ux + (py - ly) * uy
+
+
+def _loads_function(model: SimModel, acc: _Access):
+    """The function that sets the scene's loads before a step (None if only gravity),
+    and a one-element list that it sets True when a ``resist`` point is nearly still.
+
+    Constant loads on a body: F, and the moment cos(a) A + sin(a) B + M at the angle a
+    the body will have after the step (a + omega dt). ``resist`` loads: the point's
+    velocity at the pose the step reaches, extrapolated to second order from the last
+    two steps' velocities (1.5 v_n - 0.5 v_(n-1)); the force is opposite to it.
     """
-    sc = model.scene
-    names = model.moving
-    index = {n: i for i, n in enumerate(names)}
-    K = pose.shape[0]
-    if K == 0:
-        return 0.0
     dt = model.dt
-    coef = 1.0 - model.error_bias ** dt
-    cog = {n: sc.bodies[n].cog for n in names}
-    size = max([1e-3] + [math.hypot(*p) for p in sc.ground.values()]
+    H = acc.handle
+    get_a, get_w, get_v = acc.angle, acc.omega, acc.velocity
+    set_f, set_t = acc.set_force, acc.set_torque
+    unsure = [False]
+    per: dict[int, dict] = {}
+    for b, fx, fy, ca, cb, mm in model._loads:
+        per[id(b)] = {"body": b, "const": (fx, fy, ca, cb, mm), "resist": []}
+    for (b, px, py, mag, top), (ax, ay, al) in zip(model._resist, _start_acc(model),
+                                                    strict=True):
+        d = per.setdefault(id(b), {"body": b, "const": (0.0, 0.0, 0.0, 0.0, 0.0),
+                                   "resist": []})
+        d["resist"].append((px, py, mag, top, ax, ay, al))
+    if not per:
+        return None, unsure
+    cos, sin, hypot = math.cos, math.sin, math.hypot
+
+    def body_function(d: dict):
+        h = H(d["body"])
+        fx0, fy0, ca, cb, mm = d["const"]
+        turning = bool(ca or cb or any(px or py for px, py, *_ in d["resist"]))
+        if not d["resist"]:
+            f0 = (fx0, fy0)
+
+            def apply_const() -> None:
+                a = get_a(h) + get_w(h) * dt
+                set_f(h, f0)
+                set_t(h, cos(a) * ca + sin(a) * cb + mm)
+
+            return apply_const
+        # the start carries v(t0) + a dt / 2; one step earlier the scheme had a dt less
+        v = get_v(h)
+        w0 = get_w(h)
+        res = d["resist"]
+        first = res[0]
+        prev = [v.x - first[4] * dt, v.y - first[5] * dt, w0 - first[6] * dt]
+        arms = [(px, py, mag, top) for px, py, mag, top, *_ in res]
+        if not turning and not mm and len(arms) == 1:
+            # one resist force at the centre of mass of a body with no other moment
+            # (a piston): no angle, no angular velocity, no torque needed
+            _, _, mag, top = arms[0]
+            still = RESIST_UNSURE * top
+
+            def apply_point() -> None:
+                v = get_v(h)
+                vx, vy = v.x, v.y
+                ex, ey = 1.5 * vx - 0.5 * prev[0], 1.5 * vy - 0.5 * prev[1]
+                prev[0], prev[1] = vx, vy
+                sp = hypot(ex, ey)
+                unsure[0] = sp <= still
+                if sp > 0.0:
+                    set_f(h, (fx0 - mag * ex / sp, fy0 - mag * ey / sp))
+                else:
+                    set_f(h, (fx0, fy0))
+
+            return apply_point
+
+        def apply_resist() -> None:
+            v = get_v(h)
+            w = get_w(h)
+            vx, vy = v.x, v.y
+            ex, ey = 1.5 * vx - 0.5 * prev[0], 1.5 * vy - 0.5 * prev[1]
+            ew = 1.5 * w - 0.5 * prev[2]
+            prev[0], prev[1], prev[2] = vx, vy, w
+            fx, fy, t = fx0, fy0, mm
+            c = s = 0.0
+            if turning:
+                a = get_a(h) + w * dt
+                c, s = cos(a), sin(a)
+                t += c * ca + s * cb
+            flag = False
+            for px, py, mag, top in arms:
+                rx, ry = c * px - s * py, s * px + c * py
+                qx, qy = ex - ew * ry, ey + ew * rx
+                sp = hypot(qx, qy)
+                if sp <= RESIST_UNSURE * top:
+                    flag = True
+                if sp > 0.0:
+                    gx, gy = -mag * qx / sp, -mag * qy / sp
+                    fx += gx
+                    fy += gy
+                    t += rx * gy - ry * gx
+            set_f(h, (fx, fy))
+            if turning or mm:
+                set_t(h, t)
+            unsure[0] = flag
+
+        return apply_resist
+
+    funcs = [body_function(d) for d in per.values()]
+    if len(funcs) == 1:
+        return funcs[0], unsure
+
+    def apply_all() -> None:
+        for f in funcs:
+            f()
+
+    return apply_all, unsure
+
+
+def mechanism_size(sc: Scene) -> float:
+    """The mechanism's size: the largest distance of a named point from its frame's origin."""
+    return max([1e-3] + [math.hypot(*p) for p in sc.ground.values()]
                + [math.hypot(*p) for b in sc.bodies.values() for p in b.points.values()])
-    speed = abs(model.speed)
-    a_ref = speed * speed * size if model.kind == "R" else speed * speed / size
-    zero = np.zeros(K)
-
-    def state(body: str, local):
-        """World point, its velocity, the body's angle and angular velocity."""
-        if body == GROUND:
-            return local[0] + zero, local[1] + zero, zero, zero, zero, zero
-        if body == "actuator":
-            (x0, y0), (vx, vy) = model._actuator_start
-            return (x0 + vx * times + local[0], y0 + vy * times + local[1],
-                    vx + zero, vy + zero, zero, zero)
-        i = index[body]
-        th = pose[:, i, 2]
-        c, s = np.cos(th), np.sin(th)
-        lx, ly = local[0] - cog[body][0], local[1] - cog[body][1]
-        rx, ry = c * lx - s * ly, s * lx + c * ly
-        gx = pose[:, i, 0] + c * cog[body][0] - s * cog[body][1]
-        gy = pose[:, i, 1] + s * cog[body][0] + c * cog[body][1]
-        w = vel[:, i, 2]
-        return gx + rx, gy + ry, vel[:, i, 0] - w * ry, vel[:, i, 1] + w * rx, th, w
-
-    worst = 0.0
-    for info in model.constraints:
-        if info.role == "pivot":
-            ax_, ay_, avx, avy, _, _ = state(info.a, info.anchor_a)
-            bx_, by_, bvx, bvy, _, _ = state(info.b, info.anchor_b)
-            r = np.hypot(bvx - avx + coef * (bx_ - ax_) / dt, bvy - avy + coef * (by_ - ay_) / dt)
-        elif info.role in ("groove", "actuator"):
-            bx_, by_, bvx, bvy, _, _ = state(info.b, info.anchor_b)
-            ax_, ay_, _, _, th, w = state(info.a, info.anchor_a)
-            nx = np.cos(th) * info.normal[0] - np.sin(th) * info.normal[1]
-            ny = np.sin(th) * info.normal[0] + np.cos(th) * info.normal[1]
-            # the guide's point under the pin moves with the guide
-            if info.a == "actuator":
-                avx, avy = model._actuator_start[1]
-            elif info.a == GROUND:
-                avx = avy = 0.0
-            else:
-                i = index[info.a]
-                g = sc.bodies[info.a].cog
-                c, s = np.cos(th), np.sin(th)
-                gx = pose[:, i, 0] + c * g[0] - s * g[1]
-                gy = pose[:, i, 1] + s * g[0] + c * g[1]
-                avx = vel[:, i, 0] - w * (by_ - gy)
-                avy = vel[:, i, 1] + w * (bx_ - gx)
-            dn = (bx_ - ax_) * nx + (by_ - ay_) * ny
-            r = np.abs((bvx - avx) * nx + (bvy - avy) * ny + coef * dn / dt)
-        elif info.role == "lock":
-            _, _, _, _, tha, wa = state(info.a, (0.0, 0.0))
-            _, _, _, _, thb, wb = state(info.b, (0.0, 0.0))
-            err = (thb - tha) - info.constraint.phase
-            r = np.abs(wb - wa + coef * err / dt) * size
-        else:       # motor
-            r = np.abs(vel[:, index[info.b], 2] - model.speed) * size
-        m = float(np.max(r)) if np.all(np.isfinite(r)) else math.inf
-        worst = max(worst, m)
-    return worst / (a_ref * dt)
 
 
 def joint_drift(model: SimModel, pose: np.ndarray) -> float:
@@ -925,9 +982,7 @@ def joint_drift(model: SimModel, pose: np.ndarray) -> float:
     def angle(body: str):
         return np.zeros(K) if body == GROUND else pose[:, index[body], 2]
 
-    size = max([1e-3] + [math.hypot(*p) for p in model.scene.ground.values()]
-               + [math.hypot(*p) for b in model.scene.bodies.values()
-                  for p in b.points.values()])
+    size = mechanism_size(model.scene)
     worst = 0.0
     for info in model.constraints:
         if info.role == "pivot":
@@ -1041,7 +1096,7 @@ def _signed(model: SimModel, pose, vel0, vel1, frc, mag):
                 rx, ry = arm(a, px, py)
                 ent.append((index[a], -nx, -ny, -(rx * ny - ry * nx)))
             cols.append(ent)
-        else:    # lock, motor: a couple on b, the opposite on a
+        else:    # lock, motor, couple: a couple on b, the opposite on a
             ent = []
             if b in index:
                 ent.append((index[b], 0.0, 0.0, 1.0))
@@ -1056,11 +1111,8 @@ def _signed(model: SimModel, pose, vel0, vel1, frc, mag):
             A[:, i, 0, j] += fx
             A[:, i, 1, j] += fy
             A[:, i, 2, j] += m
-    keep = np.ones((nb, 3), dtype=bool)
-    for n in model.free_rotation:
-        keep[index[n], 2] = False       # a free slider's moment row reads 0 = 0
-    A = A[:, keep, :]
-    b = rhs[:, keep]
+    A = A.reshape(K, nb * 3, n_unk)
+    b = rhs.reshape(K, nb * 3)
     if A.shape[1] != n_unk:
         raise SimulationError(f"the momentum balance has {A.shape[1]} equations for {n_unk} "
                               "unknowns: the chain is not a driver plus dyads")
@@ -1069,7 +1121,14 @@ def _signed(model: SimModel, pose, vel0, vel1, frc, mag):
     signed: dict[str, Any] = {}
     check = 0.0
     j = 0
-    for ci, info in enumerate(model.constraints):
+    ci = -1
+    real = [i for i in model.constraints if i.constraint is not None]
+    forces = [k for k, i in enumerate(real) if i.role not in ("lock", "motor")]
+    fmax = float(np.max(mag[:, forces])) if K and forces else 0.0
+    size = mechanism_size(sc)
+    for info in model.constraints:
+        if info.constraint is not None:
+            ci += 1
         label = _label(info)
         if info.role == "pivot":
             fx, fy = lam[:, j], lam[:, j + 1]
@@ -1094,11 +1153,17 @@ def _signed(model: SimModel, pose, vel0, vel1, frc, mag):
                 sx, sy = world(info.slider, info.slider_point)
                 d = (px - sx) * ny - (py - sy) * nx          # (pin - S) . u, u = (ny, -nx)
                 signed[f"{label}:M"] = signed.get(f"{label}:M", 0.0) + d * N
-            elif info.role == "lock":
+            elif info.role in ("lock", "couple"):
                 signed[f"{info.joint}:M"] = signed.get(f"{info.joint}:M", 0.0) + val
             else:
                 signed["driver"] = val
-        scale = float(np.max(mag[:, ci])) if K else 0.0
+        if info.constraint is None:
+            continue            # a couple of a translating body: no pymunk constraint
+        # relative to the constraint's largest reading, but not below 1e-6 of the
+        # largest force (times the mechanism's size for a couple): a lock that carries
+        # next to nothing is checked on the scale of the mechanism's forces
+        floor = 1e-6 * fmax * (size if info.role in ("lock", "motor") else 1.0)
+        scale = max(float(np.max(mag[:, ci])) if K else 0.0, floor)
         if scale > 0.0:
             check = max(check, float(np.max(np.abs(got - mag[:, ci]))) / scale)
     for name in sc.joints:

@@ -1,0 +1,186 @@
+"""The ``crosscheck`` command: pymunk against kinetostatics (hooked into ``cli.py``).
+
+``python -m kinetostatics crosscheck SCENE`` simulates a scene with a constant-speed
+driver and prints, per joint and for the driving moment (force), the largest
+simulated and computed values and the relative error; ``--json`` prints one JSON
+object (``dt``, ``iterations``, ``seconds_per_revolution``, ``max_error``,
+``errors``...). ``--study`` sweeps the time step and the solver iterations and prints
+wall time per simulated revolution against error, with the observed order.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+from pathlib import Path
+
+from .errors import SceneError
+
+
+def _error(msg: str) -> Exception:
+    """A :class:`~kinetostatics.simulation.SimulationError` (pymunk is imported only
+    when a command runs, not when the parser is built)."""
+    from .simulation import SimulationError
+    return SimulationError(msg)
+
+
+def add_commands(sub) -> None:
+    """Add the ``crosscheck`` subcommand to an argparse subparsers object."""
+    c = sub.add_parser(
+        "crosscheck", help="simulate a scene in pymunk and compare with kinetostatics",
+        description="Simulate a mechanism scene in pymunk at its driver's constant speed "
+                    "and compare the joint reactions and the driving moment with "
+                    "kinetostatics at the simulated positions.")
+    c.add_argument("scene", help="scene file (.toml) or the name of a bundled example")
+    c.add_argument("--dt", type=float, help="time step in s (default: --steps)")
+    c.add_argument("--steps", type=int,
+                   help="steps per revolution (sliding driver: per sweep); default 3600")
+    c.add_argument("--iterations", type=int,
+                   help="solver iterations (default: 30, doubled until the readings settle)")
+    c.add_argument("--revolutions", type=float, default=2.0,
+                   help="driver turns simulated (default 2; the first is not compared)")
+    c.add_argument("--samples", type=int, default=360,
+                   help="readings per revolution (default 360)")
+    c.add_argument("--speed", type=float,
+                   help="run at this driver speed instead (rad/s or m/s)")
+    c.add_argument("--error-bias", type=float, default=0.0,
+                   help="joint error_bias (default 0; pymunk's own default is 0.9**60)")
+    c.add_argument("--public", action="store_true",
+                   help="only pymunk's public API in the stepping loop (slower)")
+    c.add_argument("--json", action="store_true", help="print one JSON object")
+    c.add_argument("--rows", metavar="CSV", help="write the per-position comparison as CSV")
+    c.add_argument("--plot", metavar="PNG", help="write the comparison (or study) picture")
+    c.add_argument("--study", action="store_true",
+                   help="sweep dt and iterations: wall time per revolution against error")
+    c.add_argument("--study-steps", metavar="LIST",
+                   help="steps per revolution to try, e.g. 500,1000,2000 (study)")
+    c.add_argument("--study-dts", metavar="LIST", help="time steps to try instead (study)")
+    c.add_argument("--study-iterations", metavar="LIST", default="10,30",
+                   help="iterations to try (study; default 10,30)")
+    c.add_argument("--repeats", type=int, default=1,
+                   help="runs per study setting; the fastest wall time is kept")
+    c.set_defaults(func=_cmd_crosscheck)
+
+
+def _scene_source(name: str, speed: float | None):
+    """A path or bundled example name; with ``speed``, a dict copy with that speed."""
+    from . import example, examples
+    from .scene import load_scene
+    path = Path(name)
+    if not path.is_file():
+        if name in examples():
+            path = example(name)
+        else:
+            raise SceneError(f"{name}: no such scene file, and not a bundled example "
+                             f"({', '.join(examples())})")
+    if speed is None:
+        return path
+    if not math.isfinite(speed) or speed == 0.0:
+        raise _error(f"--speed {speed!r}: give a non-zero speed (rad/s or m/s)")
+    raw = copy.deepcopy(load_scene(path).raw)
+    drv = dict(raw["driver"])
+    drv.pop("speed_rpm", None)
+    drv["speed"] = float(speed)
+    raw["driver"] = drv
+    if raw.get("title"):
+        raw["title"] = f"{raw['title']} at {speed:g}"
+    return raw
+
+
+def _numbers(text: str | None, kind, what: str):
+    if text is None:
+        return None
+    try:
+        vals = tuple(kind(x) for x in text.split(",") if x.strip())
+    except ValueError:
+        raise _error(f"{what}: {text!r} is not a comma-separated list of numbers; "
+                     "write e.g. 1000,2000,4000") from None
+    if not vals or any(not (v > 0) for v in vals):
+        raise _error(f"{what}: give positive numbers, e.g. 1000,2000,4000")
+    return vals
+
+
+def _cmd_crosscheck(args) -> int:
+    from .crosscheck import crosscheck, study
+    src = _scene_source(args.scene, args.speed)
+    fast = False if args.public else None
+    if args.samples < 1:
+        raise _error(f"--samples {args.samples}: give at least 1")
+    if args.study:
+        steps = _numbers(args.study_steps, int, "--study-steps")
+        dts = _numbers(args.study_dts, float, "--study-dts")
+        its = _numbers(args.study_iterations, int, "--study-iterations")
+        st = study(src, steps=steps, dts=dts, iterations=its, revolutions=args.revolutions,
+                   samples_per_revolution=args.samples, repeats=args.repeats, fast=fast)
+        if args.plot:
+            _save(_plot_study(st), args.plot)
+        if args.json:
+            print(json.dumps(_clean(st.summary()), indent=2))
+            return 0
+        t = st.table.copy()
+        print(t.to_string(index=False, float_format=lambda x: f"{x:.3g}"))
+        for it, o in st.order.items():
+            print(f"observed order ({it} iterations): "
+                  + ("n/a (fewer than two errors above 1e-6)" if o is None else f"{o:.2f}"))
+        for thr in (1e-5, 1e-6):
+            b = st.best(thr)
+            print(f"cheapest run with error <= {thr:g}: " + (
+                "none" if b is None else
+                f"dt = {b['dt']:.3g} s, {b['iterations']} iterations, "
+                f"{b['ms_per_revolution']:.1f} ms per revolution, error {b['max_error']:.2g}"))
+        return 0
+    cc = crosscheck(src, dt=args.dt, steps_per_revolution=args.steps,
+                    iterations=args.iterations, revolutions=args.revolutions,
+                    samples_per_revolution=args.samples, error_bias=args.error_bias,
+                    fast=fast)
+    if args.rows:
+        out = Path(args.rows)
+        out.parent.mkdir(parents=True, exist_ok=True)
+        cc.wide().to_csv(out, index=False, float_format="%.17g")
+    if args.plot:
+        from .crosscheck import plot_comparison
+        _save(plot_comparison(cc), args.plot)
+    if args.json:
+        print(json.dumps(_clean(cc.summary()), indent=2))
+        return 0
+    s = cc.settings
+    per = s["seconds_per_revolution"] if s["seconds_per_revolution"] is not None \
+        else s["seconds_per_sweep"]
+    unit = "revolution" if s["seconds_per_revolution"] is not None else "sweep"
+    print(f"{cc.scene.title}: pymunk {s['pymunk']}, dt = {s['dt']:.4g} s "
+          f"({s['steps_per_revolution']:.0f} steps per {unit}), {s['iterations']} iterations, "
+          f"error_bias = {s['error_bias']:g}")
+    print(f"  wall time {1e3 * per:.2f} ms per simulated {unit}; max error {cc.max_error:.3g}")
+    table = cc.error_table()
+    print(table.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
+    for n in cc.notes:
+        print("  note: " + n)
+    return 0
+
+
+def _plot_study(st):
+    from .crosscheck import plot_study
+    return plot_study(st)
+
+
+def _save(fig, path: str) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    out = Path(path)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=110)
+
+
+def _clean(obj):
+    """JSON-safe: numpy scalars to Python, non-finite floats to None."""
+    import numpy as np
+    if isinstance(obj, dict):
+        return {str(k): _clean(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_clean(v) for v in obj]
+    if isinstance(obj, np.generic):
+        obj = obj.item()
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None
+    return obj

@@ -1,0 +1,145 @@
+"""The pictures: they return Axes / Figures with labelled axes, and draw computed data."""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+from matplotlib.animation import FuncAnimation  # noqa: E402
+from matplotlib.axes import Axes  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
+
+import kinetostatics as ks  # noqa: E402
+from kinetostatics import plot as kp  # noqa: E402
+from kinetostatics.errors import WorkbenchError  # noqa: E402
+from tests.helpers import SCENES  # noqa: E402
+
+SCENE_PATHS = [ks.example(n) for n in ks.examples()] + sorted(SCENES.glob("*.toml"))
+
+
+@pytest.fixture(scope="module")
+def sols():
+    return {p.stem: ks.solve(p) for p in SCENE_PATHS}
+
+
+@pytest.fixture(autouse=True)
+def _close():
+    yield
+    plt.close("all")
+
+
+def _labelled(ax: Axes) -> None:
+    assert "[" in ax.get_xlabel() and "]" in ax.get_xlabel(), ax.get_xlabel()
+    assert "[" in ax.get_ylabel() and "]" in ax.get_ylabel(), ax.get_ylabel()
+
+
+def _mid(sol) -> float:
+    return float(sol.positions[len(sol.positions) // 7])
+
+
+@pytest.mark.parametrize("name", [p.stem for p in SCENE_PATHS])
+def test_force_polygons_close(name, sols):
+    """Every dyad's polygon (and the driver's) sums to zero at several positions."""
+    sol = sols[name]
+    n = sol.positions.size
+    for i in (0, n // 3, 2 * n // 3):
+        for d in [None, *(dm.dyad for dm in sol.kin.dyads)]:
+            forces, split = kp._polygon_forces(sol, d, i, True)
+            total = np.sum([f[1] for f in forces], axis=0)
+            scale = max(np.hypot(*f[1]) for f in forces)
+            assert np.hypot(*total) <= 1e-9 * scale, (name, d, i, total)
+
+
+@pytest.mark.parametrize("name", [p.stem for p in SCENE_PATHS])
+def test_every_picture_of_every_scene(name, sols):
+    sol = sols[name]
+    pos = _mid(sol)
+    for d in range(len(sol.kin.dyads) + 1):
+        ax = kp.force_polygon(sol, d, pos)
+        assert isinstance(ax, Axes)
+        _labelled(ax)
+        assert ax.get_xlabel() == "Fx [N]"
+        assert "closure" in " ".join(t.get_text() for t in ax.texts)
+        plt.close("all")
+    for f in (kp.velocity_plan, kp.acceleration_plan):
+        ax = f(sol, pos)
+        _labelled(ax)
+        assert ax.get_legend() is not None
+        plt.close("all")
+    ax = kp.draw_mechanism(sol, pos, forces=True, loads=True)
+    _labelled(ax)
+    assert ax.get_aspect() == 1.0
+
+
+def test_plans_show_the_computed_vectors(sols):
+    sol = sols["four_bar"]
+    i = 30
+    ax = kp.velocity_plan(sol, row=i)
+    k = sol.kinematics
+    b = k[(k.body == "crank") & (k.point == "B")].iloc[i]
+    tips = [a.xy for a in ax.texts if a.get_text() == "b"]
+    assert tips and np.allclose(tips[0], (b.vx, b.vy))
+    assert ax.get_xlabel() == "vx [m/s]"
+    legend = " ".join(t.get_text() for t in ax.get_legend().get_texts())
+    assert f"{np.hypot(b.vx, b.vy):.3g} m/s" in legend and "ω(coupler)" in legend
+    ax = kp.acceleration_plan(sol, row=i)
+    c = k[(k.body == "coupler") & (k.point == "C")].iloc[i]
+    tips = [a.xy for a in ax.texts if a.get_text() == "c"]
+    assert np.allclose(tips[0], (c.ax, c.ay))
+    assert ax.get_ylabel() == "ay [m/s²]"
+    # the slotted lever: the guide's coincident point and the Coriolis term
+    ax = kp.acceleration_plan(sols["slotted_lever"], 40)
+    legend = " ".join(t.get_text() for t in ax.get_legend().get_texts())
+    assert "Coriolis" in legend and "a3" in legend
+
+
+def test_force_polygon_arguments(sols):
+    sol = sols["shaper"]
+    a = kp.force_polygon(sol, "RRT", 30)
+    b = kp.force_polygon(sol, ("ram", "link"), 30)
+    assert a.get_title() == b.get_title() and "dyad 2 RRT" in a.get_title()
+    assert "Me =" in kp.force_polygon(sol, "driver", 30).get_title()
+    with pytest.raises(WorkbenchError, match="no dyad"):
+        kp.force_polygon(sol, 7)
+    # a sliding driver's polygon holds Fe
+    ax = kp.force_polygon(sols["sliding_driver"], 0, 0.25)
+    assert any("F_{e}" in t.get_text() for t in ax.get_legend().get_texts())
+
+
+def test_curves(sols):
+    sol = sols["four_bar"]
+    for f in (kp.plot_speeds, kp.plot_accelerations):
+        ax = f(sol, ["coupler.P", "rocker.C"])
+        _labelled(ax)
+        assert len(ax.lines) == 2
+        assert ax.get_xlabel() == "crank angle φ [deg]"
+    ax = kp.plot_speeds(sols["slider_crank"], "piston.C", component="x")
+    assert ax.get_ylabel() == "speed vx [m/s]"
+    with pytest.raises(WorkbenchError, match="body.point"):
+        kp.plot_speeds(sol, "P")
+    with pytest.raises(WorkbenchError, match="component"):
+        kp.plot_speeds(sol, component="z")
+    fig = kp.plot_angular(sol)
+    assert isinstance(fig, Figure) and len(fig.axes) == 3
+    assert [a.get_ylabel() for a in fig.axes] == ["angle θ [deg]", "ω [rad/s]", "ε [rad/s²]"]
+    for f in (kp.plot_driver, kp.plot_polar, kp.plot_transmission, kp.plot_trajectories):
+        _labelled(f(sol))
+    assert isinstance(kp.overview(sol), Figure)
+    assert kp.plot_driver(sols["sliding_driver"]).get_ylabel() == "equilibrating force Fe [N]"
+
+
+def test_animation(sols):
+    anim = kp.animate(sols["shaper"], frames=4)
+    assert isinstance(anim, FuncAnimation)
+    ax = anim._fig.axes[0]
+    _labelled(ax)
+    for f in range(4):
+        anim._func(f)
+    assert "shaper" in ax.get_title().lower() and "360" in ax.get_title()
+    assert "<img" in anim.to_jshtml()
+    with pytest.raises(WorkbenchError, match="frames"):
+        kp.animate(sols["shaper"], frames=0)
