@@ -11,10 +11,15 @@ plain function for notebooks:
 - with measured phase: :func:`influence_single_plane`, :func:`influence_two_plane`,
   :func:`influence_balance` (influence coefficients, least squares);
 - ISO 21940-11 tolerances: :func:`iso_permissible_unbalance`, :func:`iso_allocate`,
-  :func:`iso_check`.
+  :func:`iso_check`;
+- static balancing of mechanisms (s. 3.4): :func:`solve_mechanism_balancing`,
+  :func:`shaking_force`, :func:`centre_of_mass`, :func:`h_vectors`,
+  :func:`harmonic_amplitude`, :func:`balanced_scene`;
+- the virtual balancing machine in pymunk: :class:`BalancingMachine` (imported on first
+  use, with pymunk).
 
-Pictures are in :mod:`balance.plot` (imported on demand: matplotlib is not loaded
-by ``import balance``).
+Pictures are in :mod:`balance.plot` and :mod:`balance.mechanism_plot` (imported on
+demand: matplotlib is not loaded by ``import balance``).
 """
 
 from __future__ import annotations
@@ -37,6 +42,17 @@ from .iso import (
     iso_permissible_unbalance,
     kgm_to_gmm,
 )
+from .mechanism import (
+    CounterRotatingPair,
+    Counterweight,
+    MechanismBalancing,
+    balanced_scene,
+    centre_of_mass,
+    h_vectors,
+    harmonic_amplitude,
+    shaking_force,
+    solve_mechanism_balancing,
+)
 from .resonance import ResonanceResult, four_run, parallelogram, trial_runs
 from .rotor import Correction, CorrectionPlane, RotorResult, Unbalance, balance_rotor
 from .scene import BalanceScene, load_scene
@@ -45,6 +61,16 @@ from .uncertainty import Interval
 
 __all__ = [
     "GRADES",
+    "BalancingMachine",
+    "CounterRotatingPair",
+    "Counterweight",
+    "MechanismBalancing",
+    "balanced_scene",
+    "centre_of_mass",
+    "h_vectors",
+    "harmonic_amplitude",
+    "shaking_force",
+    "solve_mechanism_balancing",
     "BalanceError",
     "BalanceScene",
     "BalanceWarning",
@@ -77,3 +103,12 @@ __all__ = [
     "static_device",
     "trial_runs",
 ]
+
+
+def __getattr__(name: str):
+    """``balance.BalancingMachine`` without importing pymunk for ``import balance``."""
+    if name == "BalancingMachine":
+        from .machine import BalancingMachine
+
+        return BalancingMachine
+    raise AttributeError(f"module 'balance' has no attribute {name!r}")

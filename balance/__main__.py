@@ -75,8 +75,23 @@ def _report(out: dict[str, Any], speed: bool) -> str:
                          f" .. {_fmt(u['magnitude'][1], 'kg')}"
                          + (f", angle {_fmt(ang[0])} .. {_fmt(ang[1], 'deg')}" if ang else ""))
     if "balancing" in out:
-        lines.append("mechanism balancing:")
-        lines.append("  " + json.dumps(out["balancing"], default=str))
+        b = out["balancing"]
+        lines.append(f"mechanism balancing: {b['mechanism']}, method {b['method']}")
+        lines.append(f"  procedure: {b['procedure']}")
+        for c in b["counterweights"]:
+            lines.append(f"  counterweight on {c['body']} about {c['about']}: mass "
+                         f"{_fmt(c['mass'], 'kg')} at radius {c['radius']:g} m, angle "
+                         f"{_fmt(c['angle'], 'deg')} (body frame)")
+        if b.get("counter_rotating"):
+            p = b["counter_rotating"]
+            lines.append(f"  counter-rotating pair: two masses of {_fmt(p['mass'], 'kg')} at "
+                         f"{_fmt(p['radius'], 'm')}")
+        lines.append(f"  shaking force max: before {_fmt(b['shaking_force_before'], 'N')}, "
+                     f"after {_fmt(b['shaking_force_after'], 'N')}")
+        if "shaking_moment_before" in b:
+            lines.append(f"  shaking moment max (about the crank axis): before "
+                         f"{_fmt(b['shaking_moment_before'], 'N m')}, after "
+                         f"{_fmt(b['shaking_moment_after'], 'N m')}")
     return "\n".join(lines)
 
 

@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import importlib
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -26,15 +25,11 @@ def _resonance(spec: ResonanceSpec) -> ResonanceResult:
 
 
 def _mechanism_balancing(raw: dict) -> Any:
-    """Dispatch a mechanism's ``[balancing]`` (seed 002 s. 3.4) to ``balance.mechanism``."""
-    try:
-        mechanism = importlib.import_module("balance.mechanism")
-    except ModuleNotFoundError as exc:
-        if exc.name != "balance.mechanism":
-            raise
-        raise BalanceError("[balancing] (static balancing of a mechanism, seed 002 s. 3.4) is "
-                           "not available yet: the module balance.mechanism is missing") from None
-    return mechanism.solve_mechanism_balancing(raw)
+    """Dispatch a mechanism's ``[balancing]`` (seed 002 s. 3.4) to ``balance.mechanism``
+    (imported here: it needs the kinetostatics of the scene)."""
+    from .mechanism import solve_mechanism_balancing
+
+    return solve_mechanism_balancing(raw)
 
 
 def solve_results(scene: Any) -> dict[str, Any]:

@@ -9,6 +9,16 @@ The public API::
 
 Bundled examples: ``ks.example("four_bar")`` (also ``slider_crank``, ``slotted_lever``,
 ``scotch_yoke``, ``sliding_driver``, ``shaper``).
+
+More of the course, one module per topic: :mod:`~kinetostatics.concentration` (mass
+concentration, s. 2.2), :mod:`~kinetostatics.gears` (s. 2.3.3),
+:mod:`~kinetostatics.friction` (s. 2.4), :mod:`~kinetostatics.reduction` (s. 2.5),
+:mod:`~kinetostatics.motion` and :func:`simulate_motion` (motion under forces, ch. 4),
+:mod:`~kinetostatics.efficiency` (s. 4.3), :mod:`~kinetostatics.cams` (ch. 1),
+:mod:`~kinetostatics.exercises` (exercise variants and grading),
+:mod:`~kinetostatics.plot` (pictures). The pymunk cross-check is
+:mod:`kinetostatics.crosscheck` (``crosscheck``, ``study``; it imports pymunk, so
+``import kinetostatics`` does not load it).
 """
 
 from __future__ import annotations

@@ -55,6 +55,9 @@ def test_text_report_and_bundled_names() -> None:
     assert p.returncode == 0 and "mirror" in p.stdout
     p = run("examples")
     assert p.returncode == 0 and "four_run" in p.stdout
+    p = run("solve", "four_bar_balancing")
+    assert p.returncode == 0, p.stderr
+    assert "counterweight on crank about A" in p.stdout and "shaking force" in p.stdout
 
 
 @pytest.mark.parametrize("key", ["bad", "typo", "missing"])

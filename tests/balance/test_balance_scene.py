@@ -171,12 +171,17 @@ def test_balancing_is_dispatched_to_balance_mechanism(monkeypatch) -> None:
     assert out == {"balancing": fake({})}
 
 
-def test_balancing_without_the_module_is_a_clear_error(monkeypatch) -> None:
-    monkeypatch.setitem(sys.modules, "balance.mechanism", None)   # as if missing
-    msg = error_of(BALANCED)
-    assert "balance.mechanism" in msg
-    with pytest.raises(BalanceError):
-        balance.solve(BALANCED)
+def test_bundled_mechanism_balancing_examples() -> None:
+    """The bundled [balancing] scenes solve through balance.solve: the four-bar's full
+    balancing leaves no shaking force, the slider-crank's first-harmonic one lowers it."""
+    full = balance.solve(balance.example_path("four_bar_balancing"))["balancing"]
+    assert full["method"] == "full" and len(full["counterweights"]) == 2
+    assert full["shaking_force_after"] < 1e-12 * full["shaking_force_before"]
+    first = balance.solve(balance.example_path("slider_crank_balancing"))["balancing"]
+    assert first["method"] == "first-harmonic"
+    assert first["checks"]["first_harmonic_after"] < 1e-12 * first["checks"][
+        "first_harmonic_before"]
+    assert first["shaking_force_after"] < first["shaking_force_before"]
 
 
 def test_invalid_toml_and_missing_file() -> None:
