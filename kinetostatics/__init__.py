@@ -36,20 +36,40 @@ from .structure import Dyad, Structure, analyse
 
 __all__ = [
     "AssemblyError", "Dyad", "Kinematics", "Scene", "SceneError", "Solution", "Structure",
-    "StructureError", "WorkbenchError", "analyse", "example", "examples", "load_scene",
+    "StructureError", "WorkbenchError", "analyse", "cam_examples", "example", "examples",
+    "load_scene", "scene_path",
     "simulate_motion", "solve", "solve_kinematics",
 ]
 
 
 def examples() -> list[str]:
-    """Names of the bundled example scenes."""
+    """Names of the bundled mechanism scenes (``four_bar``, ``four_bar_motion``, ...)."""
     return sorted(p.name[:-5] for p in resources.files(__package__).joinpath("scenes").iterdir()
                   if p.name.endswith(".toml"))
 
 
+def cam_examples() -> list[str]:
+    """Names of the bundled ``[cam]`` scenes (docs/cam-scenes.md)."""
+    folder = resources.files(__package__).joinpath("scenes", "cams")
+    return sorted(p.name[:-5] for p in folder.iterdir() if p.name.endswith(".toml"))
+
+
 def example(name: str) -> Path:
-    """Path of a bundled example scene, e.g. ``example("four_bar")``."""
-    path = Path(str(resources.files(__package__).joinpath("scenes", f"{name}.toml")))
-    if not path.is_file():
-        raise SceneError(f"no bundled example {name!r}; known: {', '.join(examples())}")
-    return path
+    """Path of a bundled scene, e.g. ``example("four_bar")`` or ``example("translating_roller")``
+    (a cam scene)."""
+    root = resources.files(__package__).joinpath("scenes")
+    for folder in (root, root.joinpath("cams")):
+        path = Path(str(folder.joinpath(f"{name}.toml")))
+        if path.is_file():
+            return path
+    raise SceneError(f"no bundled example {name!r}; known: "
+                     f"{', '.join(examples() + cam_examples())}")
+
+
+def scene_path(name: str | Path) -> Path:
+    """A scene file's path: ``name`` itself when it exists or looks like a file, else the
+    bundled example of that name (so the CLI takes ``four_bar`` as well as a path)."""
+    path = Path(name)
+    if path.exists() or path.suffix == ".toml" or path.parent != Path("."):
+        return path
+    return example(str(name))

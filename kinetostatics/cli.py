@@ -10,12 +10,13 @@ import json
 import sys
 from pathlib import Path
 
+from . import scene_path
 from .errors import WorkbenchError
 
 
 def _cmd_solve(args) -> int:
     from .solver import solve
-    sol = solve(Path(args.scene))
+    sol = solve(scene_path(args.scene))
     if args.out:
         for p in sol.to_csv(args.out):
             print(p)
@@ -55,14 +56,14 @@ def _cmd_demo(args) -> int:
 def _cmd_structure(args) -> int:
     from .scene import load_scene
     from .structure import analyse
-    for line in analyse(load_scene(Path(args.scene))).describe():
+    for line in analyse(load_scene(scene_path(args.scene))).describe():
         print(line)
     return 0
 
 
 def _cmd_motion(args) -> int:
     from .motion_scene import simulate_motion
-    res = simulate_motion(Path(args.scene))
+    res = simulate_motion(scene_path(args.scene))
     if args.json:
         print(json.dumps(res.to_json()))
     else:
@@ -77,7 +78,7 @@ def _cmd_motion(args) -> int:
 
 def _cmd_cam(args) -> int:
     from .cams import solve_cam
-    res = solve_cam(Path(args.scene))
+    res = solve_cam(scene_path(args.scene))
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)

@@ -9,7 +9,7 @@ import types
 import pytest
 
 import balance
-from balance import BalanceError, load_scene
+from balance import load_scene
 from kinetostatics.errors import SceneError, WorkbenchError
 from tests.balance._balance_cases import SCENES
 

@@ -98,3 +98,24 @@ def test_cam_command(tmp_path):
     bad.write_text(scene.replace("stroke", "strok"))
     r = run("cam", str(bad))
     assert r.returncode == 2 and r.stderr.startswith("error:") and "stroke" in r.stderr
+
+
+def test_bundled_names_work_in_every_command():
+    """The CLI takes a bundled example's name as well as a path: the mechanism, motion
+    and cam examples all run; an unknown name lists the known ones."""
+    import kinetostatics as ks
+    assert {"four_bar_motion"} <= set(ks.examples())
+    assert {"translating_roller", "oscillating_roller"} <= set(ks.cam_examples())
+    p = run("structure", "shaper")
+    assert p.returncode == 0 and "RTR" in p.stdout and "RRT" in p.stdout
+    p = run("motion", "four_bar_motion", "--json")
+    assert p.returncode == 0, p.stderr
+    summary = json.loads(p.stdout)["summary"]
+    assert summary["steady"] and 0.0 < summary["delta"] < 1.0
+    assert summary["flywheel_for_target"] > 0.02          # delta 0.02 needs a bigger one
+    for name in ks.cam_examples():
+        p = run("cam", name)
+        assert p.returncode == 0, p.stderr
+        assert json.loads(p.stdout)["transmission_angle_min"] >= 45.0 - 1e-9
+    p = run("solve", "no_such_example")
+    assert p.returncode == 2 and p.stderr.count("\n") == 1 and "four_bar" in p.stderr
