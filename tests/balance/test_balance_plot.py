@@ -5,17 +5,13 @@ from __future__ import annotations
 import cmath
 import math
 
-import matplotlib
+import matplotlib.pyplot as plt
+import pytest
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import pytest  # noqa: E402
-from matplotlib.axes import Axes  # noqa: E402
-from matplotlib.figure import Figure  # noqa: E402
-
-import balance  # noqa: E402
-from balance import plot  # noqa: E402
+import balance
+from balance import plot
 
 
 @pytest.fixture(autouse=True)

@@ -6,23 +6,19 @@ import copy
 import json
 import math
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import pytest  # noqa: E402
-from hypothesis import HealthCheck, assume, given, settings  # noqa: E402
-from hypothesis import strategies as st  # noqa: E402
-from matplotlib.axes import Axes  # noqa: E402
-from matplotlib.figure import Figure  # noqa: E402
-
-import balance  # noqa: E402
-import kinetostatics as ks  # noqa: E402
-from balance import mechanism_plot as mp  # noqa: E402
-from balance.errors import BalanceError  # noqa: E402
-from balance.mechanism import (  # noqa: E402
+import balance
+import kinetostatics as ks
+from balance import mechanism_plot as mp
+from balance.errors import BalanceError
+from balance.mechanism import (
     balanced_scene,
     centre_of_mass,
     h_vectors,
@@ -31,7 +27,7 @@ from balance.mechanism import (  # noqa: E402
     shaking_tables,
     solve_mechanism_balancing,
 )
-from kinetostatics.errors import WorkbenchError  # noqa: E402
+from kinetostatics.errors import WorkbenchError
 
 FOUR_BAR_CW = [{"body": "crank", "about": "A", "radius": 0.06},
                {"body": "rocker", "about": "D", "radius": 0.08}]

@@ -2,21 +2,17 @@
 
 from __future__ import annotations
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+from matplotlib.animation import FuncAnimation
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import pytest  # noqa: E402
-from matplotlib.animation import FuncAnimation  # noqa: E402
-from matplotlib.axes import Axes  # noqa: E402
-from matplotlib.figure import Figure  # noqa: E402
-
-import kinetostatics as ks  # noqa: E402
-from kinetostatics import plot as kp  # noqa: E402
-from kinetostatics.errors import WorkbenchError  # noqa: E402
-from tests.helpers import SCENES  # noqa: E402
+import kinetostatics as ks
+from kinetostatics import plot as kp
+from kinetostatics.errors import WorkbenchError
+from tests.helpers import SCENES
 
 SCENE_PATHS = [ks.example(n) for n in ks.examples()] + sorted(SCENES.glob("*.toml"))
 
