@@ -5,7 +5,9 @@ driver and prints, per joint and for the driving moment (force), the largest
 simulated and computed values and the relative error; ``--json`` prints one JSON
 object (``dt``, ``iterations``, ``seconds_per_revolution``, ``max_error``,
 ``errors``...). ``--study`` sweeps the time step and the solver iterations and prints
-wall time per simulated revolution against error, with the observed order.
+wall time per simulated revolution against error, with the observed order; its runs
+go to one process per core (each times itself), or one after another with
+``--serial``.
 """
 
 from __future__ import annotations
@@ -60,6 +62,9 @@ def add_commands(sub) -> None:
                    help="iterations to try (study; default 10,30)")
     c.add_argument("--repeats", type=int, default=1,
                    help="runs per study setting; the fastest wall time is kept")
+    c.add_argument("--serial", action="store_true",
+                   help="run the study's settings one after another in this process "
+                        "(steadier wall times; default: one process per core)")
     c.set_defaults(func=_cmd_crosscheck)
 
 
@@ -112,7 +117,8 @@ def _cmd_crosscheck(args) -> int:
         dts = _numbers(args.study_dts, float, "--study-dts")
         its = _numbers(args.study_iterations, int, "--study-iterations")
         st = study(src, steps=steps, dts=dts, iterations=its, revolutions=args.revolutions,
-                   samples_per_revolution=args.samples, repeats=args.repeats, fast=fast)
+                   samples_per_revolution=args.samples, repeats=args.repeats, fast=fast,
+                   executor="serial" if args.serial else None)
         if args.plot:
             _save(_plot_study(st), args.plot)
         if args.json:

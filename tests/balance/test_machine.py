@@ -120,3 +120,20 @@ def test_public_stepping_gives_the_same_amplitude():
     fast = BalancingMachine(fast=True, periods=3).amplitude(u)
     public = BalancingMachine(fast=False, periods=3).amplitude(u)
     assert fast == public
+
+
+def test_machine_runs_through_a_process_pool_match_serial():
+    """The runs of a method are a batch: processes give the same numbers, in order."""
+    from concurrent.futures import ProcessPoolExecutor
+    u = [(0.015, 0.09, 120.0)]
+    bm = BalancingMachine(periods=3)
+    serial = bm.four_run(u, **TRIAL, executor="serial")
+    with ProcessPoolExecutor(max_workers=2) as pool:
+        pooled = bm.four_run(u, **TRIAL, executor=pool)
+    assert pooled.amplitudes == serial.amplitudes
+    assert pooled.result.unbalance == serial.result.unbalance
+    assert [r.wall > 0 for r in pooled.records] == [True] * 4
+    assert bm.three_run(u, **TRIAL).amplitudes["A1"] == serial.amplitudes["A1"]  # default pool
+    assert BalancingMachine.from_settings(bm.settings()) == bm
+    with pytest.raises(BalanceError):
+        bm.runs([[(0.01, 0.1, 0.0)], [(-0.01, 0.1, 0.0)]])

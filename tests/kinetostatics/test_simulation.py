@@ -21,11 +21,12 @@ from kinetostatics import simulation as sim
 from kinetostatics.cli import main
 from kinetostatics.crosscheck import (
     crosscheck,
+    crosscheck_many,
     plot_comparison,
     plot_study,
     study,
 )
-from kinetostatics.simulation import SimulationError, build_space, run
+from kinetostatics.simulation import SERIAL, SimulationError, build_space, run, run_batch
 from tests.helpers import OWN_CASES, SCENES
 
 STEPS = 2000          # steps per revolution (per sweep for the sliding driver)
@@ -297,7 +298,7 @@ def test_cli_errors(capsys, argv, msg):
 
 def test_cli_study(capsys):
     assert main(["crosscheck", "four_bar", "--study", "--study-steps", "500,1000",
-                 "--study-iterations", "10", "--samples", "45"]) == 0
+                 "--study-iterations", "10", "--samples", "45", "--serial"]) == 0
     out = capsys.readouterr().out
     assert "observed order (10 iterations)" in out
     assert "cheapest run with error <= 1e-05" in out
@@ -362,3 +363,60 @@ def test_cli_parser_does_not_import_pymunk():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout.strip()
     assert out == "False"
+
+
+# ----------------------------------------------------------------------------- batches
+STUDY = dict(steps=(500, 1000, 2000), iterations=(10,), samples_per_revolution=45)
+MANY = ["four_bar", "slider_crank", "scotch_yoke"]
+MANY_SETTINGS = dict(steps_per_revolution=1000, iterations=30, samples_per_revolution=45)
+
+
+def _same_study(a, b):
+    cols = ["case", "dt", "steps_per_revolution", "iterations", "max_error"]
+    assert a.table[cols].equals(b.table[cols])          # identical numbers, same order
+    assert a.order == b.order
+
+
+def test_study_and_many_through_a_process_pool_match_serial():
+    from concurrent.futures import ProcessPoolExecutor
+    serial = study(ks.example("four_bar"), **STUDY, executor=SERIAL)
+    scenes = [constant_speed(n) for n in MANY]
+    many = crosscheck_many(scenes, **MANY_SETTINGS, executor=SERIAL)
+    assert [m["title"] for m in many] == [ks.load_scene(scene_path(n)).title for n in MANY]
+    assert all(m["max_error"] < 2e-4 for m in many)
+    with ProcessPoolExecutor(max_workers=2) as pool:
+        _same_study(serial, study(ks.example("four_bar"), **STUDY, executor=pool))
+        again = crosscheck_many(scenes, **MANY_SETTINGS, executor=pool)
+    assert [m["errors"] for m in again] == [m["errors"] for m in many]
+    # the default: processes (one per core)
+    _same_study(serial, study(ks.example("four_bar"), **STUDY))
+    # every run timed itself in its worker
+    assert (serial.table.ms_per_revolution > 0).all()
+
+
+def test_run_batch_executors():
+    assert run_batch(abs, [-3, 2, -1], executor=SERIAL) == [3, 2, 1]
+    assert run_batch(abs, [-5]) == [5]                  # one item: no pool
+    assert run_batch(abs, []) == []
+    for bad in ("threads", object(), 4):
+        with pytest.raises(SimulationError):
+            run_batch(abs, [1, 2], executor=bad)
+    with pytest.raises(SimulationError):
+        crosscheck_many([ks.example("four_bar")], step=100, executor=SERIAL)
+
+
+def test_batches_through_a_dask_cluster():
+    """The work items are top-level functions of plain data: a dask.distributed
+    executor runs them unchanged (skipped where dask is not installed)."""
+    distributed = pytest.importorskip("distributed")
+    from balance.machine import BalancingMachine, CoastDown
+    bm = BalancingMachine(coast_down=CoastDown(duration=1.0))
+    sets = [[(0.02, 0.1, a)] for a in (0.0, 90.0, 200.0)]
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        ex = client.get_executor()
+        _same_study(study(ks.example("four_bar"), **STUDY, executor=SERIAL),
+                    study(ks.example("four_bar"), **STUDY, executor=ex))
+        recs = bm.runs(sets, executor=ex)
+    assert [r.amplitude for r in recs] == [r.amplitude for r in bm.runs(sets, executor=SERIAL)]
