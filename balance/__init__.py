@@ -15,8 +15,9 @@ plain function for notebooks:
 - static balancing of mechanisms (s. 3.4): :func:`solve_mechanism_balancing`,
   :func:`shaking_force`, :func:`centre_of_mass`, :func:`h_vectors`,
   :func:`harmonic_amplitude`, :func:`balanced_scene`;
-- the virtual balancing machine in pymunk: :class:`BalancingMachine` (imported on first
-  use, with pymunk).
+- the virtual balancing machine in pymunk: :class:`BalancingMachine` (at resonance, or
+  coasting down through it: :class:`CoastDown`), :func:`pivot_reaction` and
+  :func:`coast_down_study` (imported on first use, with pymunk).
 
 Pictures are in :mod:`balance.plot` and :mod:`balance.mechanism_plot` (imported on
 demand: matplotlib is not loaded by ``import balance``).
@@ -62,10 +63,13 @@ from .uncertainty import Interval
 __all__ = [
     "GRADES",
     "BalancingMachine",
+    "CoastDown",
     "CounterRotatingPair",
     "Counterweight",
     "MechanismBalancing",
     "balanced_scene",
+    "coast_down_study",
+    "pivot_reaction",
     "centre_of_mass",
     "h_vectors",
     "harmonic_amplitude",
@@ -105,10 +109,15 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str):
-    """``balance.BalancingMachine`` without importing pymunk for ``import balance``."""
-    if name == "BalancingMachine":
-        from .machine import BalancingMachine
+_MACHINE = ("BalancingMachine", "CoastDown", "pivot_reaction", "coast_down_study")
 
-        return BalancingMachine
+
+def __getattr__(name: str):
+    """The virtual balancing machine (``balance.BalancingMachine``, ``CoastDown``,
+    ``pivot_reaction``, ``coast_down_study``) without importing pymunk for
+    ``import balance``."""
+    if name in _MACHINE:
+        from . import machine
+
+        return getattr(machine, name)
     raise AttributeError(f"module 'balance' has no attribute {name!r}")

@@ -187,3 +187,14 @@ def test_bundled_mechanism_balancing_examples() -> None:
 def test_invalid_toml_and_missing_file() -> None:
     assert "TOML" in error_of("[rotor\nx = 1\n")
     assert "does not exist" in error_of("/no/such/scene.toml")
+
+
+def test_public_api_names_resolve() -> None:
+    """Every name in balance.__all__ resolves (the machine's names lazily), and an
+    unknown attribute is an AttributeError."""
+    for name in balance.__all__:
+        assert getattr(balance, name) is not None, name
+    from balance import machine
+    assert balance.BalancingMachine is machine.BalancingMachine
+    with pytest.raises(AttributeError):
+        balance.no_such_method  # noqa: B018
