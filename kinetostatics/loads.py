@@ -108,7 +108,9 @@ def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.nd
     """Gravity (at every cog) and the scene's ``[[loads]]``.
 
     Returns the loads and the ``undefined_load`` mask: rows where a ``resist`` point
-    stands still (its speed at most 1e-9 of its top speed), where that force is zero.
+    stands still (its speed at most 1e-9 of its top speed), where that force is zero,
+    and rows where a ``when = "resisting"`` force's power is at most 1e-9 of its top
+    (the force switches there; it is taken as zero).
     """
     n = kin.n
     undefined = np.zeros(n, dtype=bool)
@@ -138,6 +140,17 @@ def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.nd
             with np.errstate(divide="ignore", invalid="ignore"):
                 fx = np.where(still, 0.0, -load.resist * vx / speed)
                 fy = np.where(still, 0.0, -load.resist * vy / speed)
+        elif load.force is not None and load.when == "resisting":
+            # on the working stroke only: the force acts where its power is negative;
+            # where the point stands still (|power| <= 1e-9 of its top) it is undefined
+            fx, fy = float(load.force[0]), float(load.force[1])
+            vx, vy = m.vel_arm(rx, ry)
+            power = np.broadcast_to(fx * vx + fy * vy, (n,))
+            top = np.abs(power).max() if n else 0.0
+            still = np.abs(power) <= RESIST_STILL * top
+            undefined |= still
+            on = (power < 0.0) & ~still
+            fx, fy = np.where(on, fx, 0.0), np.where(on, fy, 0.0)
         elif load.force is not None:
             fx, fy = float(load.force[0]), float(load.force[1])
         else:                                   # a moment given with a point

@@ -37,7 +37,8 @@ BODY_KEYS = ("name", "mass", "inertia", "cog", "points", "mass_model")
 JOINT_KEYS_R = ("name", "kind", "bodies", "points", "friction")
 JOINT_KEYS_T = ("name", "kind", "guide", "slider", "line_point", "line_angle", "slider_point",
                 "friction")
-LOAD_KEYS = ("body", "point", "force", "moment", "resist")
+LOAD_KEYS = ("body", "point", "force", "moment", "resist", "when")
+LOAD_WHEN = ("always", "resisting")
 MOTION_KEYS = ("motor", "motor_table", "flywheel", "omega0", "cycles", "target_delta")
 
 
@@ -151,6 +152,10 @@ class Load:
     """A constant external load on a body: a force at a point and/or a moment.
 
     ``resist`` (N) is a force of that magnitude opposite to the point's velocity.
+    ``when = "resisting"`` (an extension, docs/scene-extensions.md) applies the constant
+    ``force`` only at positions where it opposes the point's motion (its power is
+    negative): a technological resistance that acts on the working stroke only, such as
+    a shaper's cutting force.
     """
 
     body: str
@@ -158,6 +163,7 @@ class Load:
     force: tuple[float, float] | None = None
     moment: float = 0.0
     resist: float | None = None
+    when: str = "always"
 
 
 @dataclass(frozen=True)
@@ -461,7 +467,14 @@ def _loads(items: Any, bodies: dict) -> tuple[Load, ...]:
                 raise SceneError(f"{where}.point: body {body!r} has no 'cog'")
         if force is None and resist is None and "moment" not in item:
             raise SceneError(f"{where}: give a 'force', a 'resist' force or a 'moment'")
-        loads.append(Load(body, point, force, moment, resist))
+        when = as_str(item.get("when", "always"), f"{where}.when")
+        if when not in LOAD_WHEN:
+            raise SceneError(f"{where}.when: {when!r} is not one of {', '.join(LOAD_WHEN)}"
+                             f"{suggest(when, LOAD_WHEN)}")
+        if when == "resisting" and (force is None or moment):
+            raise SceneError(f"{where}.when = \"resisting\" applies to a constant 'force' "
+                             "alone (a 'resist' force always resists; give no 'moment')")
+        loads.append(Load(body, point, force, moment, resist, when))
     return tuple(loads)
 
 

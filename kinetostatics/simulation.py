@@ -99,6 +99,11 @@ iterations from the start they take a few hundred steps to settle (errors near 1
 on the first readings), and an abrupt change of the count leaves a transient too."""
 
 RESIST_UNSURE = 1e-4
+SWITCH_SETTLE = 16
+"""Steps after a ``when = "resisting"`` force switches on or off whose readings are
+flagged: the step change of the load excites a transient of the scheme that falls by
+about 8x every two steps whatever dt is (3e-2 of the scale at the switch, 1e-6 after
+about 12 steps, measured on the bundled shaper)."""
 """Rows where a ``resist`` point is slower than this fraction of its top speed: the
 step's estimate of the velocity's direction may be wrong there; flagged."""
 
@@ -511,7 +516,8 @@ def _prepare_loads(model: SimModel, sweep) -> None:
     """Per body, the constant loads folded into F and a moment c A + s B + M (the
     moment of fixed global forces at body points turns with the body); ``resist``
     loads kept apart (their direction follows the point's velocity), with the top
-    speed of their point over the motion."""
+    speed of their point over the motion, and so are forces with ``when =
+    "resisting"`` (on only while their power is negative), with their top power."""
     sc = model.scene
     per: dict[str, list[float]] = {}
     resist = []
@@ -523,13 +529,17 @@ def _prepare_loads(model: SimModel, sweep) -> None:
         if ld.point is None:
             continue
         px, py = (np.asarray(b.local(ld.point)) - np.asarray(b.cog)).tolist()
-        if ld.resist is not None:
+        if ld.resist is not None or ld.when == "resisting":
             m = kin.bodies[ld.body]
             x, y = m.point(b.local(ld.point))
-            vx, vy = m.vel_at(x, y)
-            top = float(np.max(np.hypot(np.broadcast_to(vx, (kin.n,)),
-                                        np.broadcast_to(vy, (kin.n,)))))
-            resist.append((ld.body, px, py, float(ld.resist), top))
+            vx, vy = (np.broadcast_to(v, (kin.n,)) for v in m.vel_at(x, y))
+            if ld.resist is not None:
+                top = float(np.max(np.hypot(vx, vy)))
+                resist.append((ld.body, px, py, float(ld.resist), top))
+            else:           # a force on the working stroke only: kept with its top power
+                fx, fy = ld.force
+                top = float(np.max(np.abs(fx * vx + fy * vy)))
+                resist.append((ld.body, px, py, (float(fx), float(fy)), top))
             continue
         fx, fy = ld.force
         acc[0] += fx
@@ -893,7 +903,7 @@ def _loads_function(model: SimModel, acc: _Access):
         first = res[0]
         prev = [v.x - first[4] * dt, v.y - first[5] * dt, w0 - first[6] * dt]
         arms = [(px, py, mag, top) for px, py, mag, top, *_ in res]
-        if not turning and not mm and len(arms) == 1:
+        if not turning and not mm and len(arms) == 1 and not isinstance(arms[0][2], tuple):
             # one resist force at the centre of mass of a body with no other moment
             # (a piston): no angle, no angular velocity, no torque needed
             _, _, mag, top = arms[0]
@@ -913,6 +923,9 @@ def _loads_function(model: SimModel, acc: _Access):
 
             return apply_point
 
+        gated_on = [None] * len(arms)       # when = "resisting": on at the last step
+        settle = [0]                        # steps left in a switch's transient
+
         def apply_resist() -> None:
             v = get_v(h)
             w = get_w(h)
@@ -926,10 +939,27 @@ def _loads_function(model: SimModel, acc: _Access):
                 a = get_a(h) + w * dt
                 c, s = cos(a), sin(a)
                 t += c * ca + s * cb
-            flag = False
-            for px, py, mag, top in arms:
+            flag = settle[0] > 0
+            if flag:
+                settle[0] -= 1
+            for k, (px, py, mag, top) in enumerate(arms):
                 rx, ry = c * px - s * py, s * px + c * py
                 qx, qy = ex - ew * ry, ey + ew * rx
+                if isinstance(mag, tuple):          # when = "resisting": on while F.v < 0
+                    gx, gy = mag
+                    power = gx * qx + gy * qy
+                    if abs(power) <= RESIST_UNSURE * top:
+                        flag = True
+                    on = power < 0.0
+                    if gated_on[k] is not None and on != gated_on[k]:
+                        settle[0] = SWITCH_SETTLE
+                        flag = True
+                    gated_on[k] = on
+                    if on:
+                        fx += gx
+                        fy += gy
+                        t += rx * gy - ry * gx
+                    continue
                 sp = hypot(qx, qy)
                 if sp <= RESIST_UNSURE * top:
                     flag = True

@@ -105,6 +105,9 @@ def _loads(t: Tables):
                 fy = np.where(undefined, 0.0, -ld.resist * p["vy"] / sp)
         else:
             fx, fy = np.full(t.n, ld.force[0]), np.full(t.n, ld.force[1])
+            if ld.when == "resisting":          # on the working stroke only: F.v < 0
+                on = (fx * p["vx"] + fy * p["vy"] < 0.0) & ~undefined
+                fx, fy = np.where(on, fx, 0.0), np.where(on, fy, 0.0)
         out.append((ld.body, p["x"], p["y"], p["vx"], p["vy"], fx, fy, np.full(t.n, ld.moment)))
     return out
 
