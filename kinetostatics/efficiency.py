@@ -179,11 +179,15 @@ def efficiency_ratio(ideal_power: Any, real_power: Any, undefined: float = np.na
     """Instantaneous efficiency as the ratio of the driving power without friction to the
     driving power with friction, eta = P_ideal / P_real (same load and motion).
 
-    Where there are no other power flows than the useful load and friction, this equals
-    eq. 4.35: P_ideal = P_ru and P_real = P_m = P_ru + P_rp.
+    Only where no other power flows than the useful load and friction (no weights, no
+    inertia forces: slow motion) does this equal eq. 4.35, P_ideal = P_ru and
+    P_real = P_m = P_ru + P_rp; with inertia use :func:`instantaneous_efficiency`. The
+    ratio is an efficiency only where both powers are driving powers: rows where
+    ``real_power <= 0`` (the mechanism drives the motor) or ``ideal_power < 0`` get
+    ``undefined``.
     """
     pi, pr = np.broadcast_arrays(np.asarray(ideal_power, float), np.asarray(real_power, float))
-    ok = pr > 0.0
+    ok = (pr > 0.0) & (pi >= 0.0)
     return np.where(ok, pi / np.where(ok, pr, 1.0), undefined)
 
 

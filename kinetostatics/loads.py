@@ -27,7 +27,8 @@ class PointLoad:
     """A force (fx, fy) on ``body`` at the arm (rx, ry) from the body's local origin
     (global axes), plus a couple ``m``; arrays over positions or scalars.
 
-    ``kind`` is ``"applied"``, ``"gravity"`` or ``"inertia"``.
+    ``kind`` is ``"applied"``, ``"gravity"``, ``"inertia"`` or ``"friction"`` (added by
+    :mod:`kinetostatics.friction`).
     """
 
     body: str

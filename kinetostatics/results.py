@@ -286,11 +286,19 @@ class Solution:
         return pd.concat(parts, ignore_index=True)
 
     @cached_property
+    def powers(self) -> pd.DataFrame:
+        """The power balance per position: ``P_driver, P_applied, P_gravity, P_inertia,
+        P_friction`` (W), adding up to zero (see :func:`kinetostatics.reduction.power_table`)."""
+        from .reduction import power_table
+        return power_table(self)
+
+    @cached_property
     def reduced(self) -> pd.DataFrame:
         """Reduced moment (force) of the loads and reduced moment of inertia (mass) to the
         driver (seed 002 eqs 2.72, 2.75): ``M_red`` = sum of the power of the applied
-        loads and gravity / driver speed (= -Me less the inertia part, eq. 2.73 for
-        the whole load set), ``I_red`` = sum (m v_G^2 + I_G omega^2) / driver speed^2."""
+        loads and gravity / driver speed, ``M_red_friction`` and ``M_red_inertia`` the same
+        for friction and inertia forces (the three add up to -Me, eq. 2.73),
+        ``I_red`` = sum (m v_G^2 + I_G omega^2) / driver speed^2."""
         from .reduction import reduced_table
         return reduced_table(self)
 
@@ -300,6 +308,14 @@ class Solution:
         q = self.driver_quantity
         me = np.asarray(self.Me, dtype=float)
         pos = self.positions.astype(float)
+        locked = self.self_locking
+        if locked is not None and locked.any():
+            # with friction, rows where the mechanism locks have no settled Me or
+            # reactions: the statistics are over the other rows (counted below)
+            keep = ~locked
+            me, pos = me[keep], pos[keep]
+        else:
+            keep = slice(None)
         if pos.size > 1 and pos[-1] != pos[0]:
             mean = float(np.trapezoid(me, pos) / (pos[-1] - pos[0]))
         else:
@@ -309,7 +325,7 @@ class Solution:
         rmax = {}
         for name in self.scene.joints:
             fx, fy = self.reaction(name)
-            f = np.hypot(fx, fy)
+            f = np.broadcast_to(np.hypot(fx, fy), self.positions.shape)[keep]
             i = int(np.argmax(f))
             rmax[name] = {"F": float(f[i]), "position": float(pos[i])}
         out["reaction_max"] = rmax
@@ -317,7 +333,7 @@ class Solution:
             best = None
             for dm in self.kin.dyads:
                 tau = np.rad2deg(np.arctan2(np.abs(dm.sin_tau), dm.cos_tau))
-                t = np.minimum(tau, 180.0 - tau)
+                t = np.broadcast_to(np.minimum(tau, 180.0 - tau), self.positions.shape)[keep]
                 i = int(np.argmin(t))
                 if best is None or t[i] < best[0]:
                     best = (float(t[i]), float(pos[i]), dm.dyad.index + 1)
@@ -328,6 +344,8 @@ class Solution:
             out["transmission_angle_min"] = None
         out["singular_rows"] = int(np.count_nonzero(self.singular))
         out["undefined_load_rows"] = int(np.count_nonzero(self.undefined_load))
+        if locked is not None:
+            out["self_locking_rows"] = int(np.count_nonzero(locked))
         out["structure"] = self.structure.describe()
         return out
 

@@ -123,3 +123,10 @@ def test_instantaneous_efficiency_arrays_and_cam_ratio():
 def test_errors(call, message):
     with pytest.raises(WorkbenchError, match=message):
         call()
+
+
+def test_efficiency_ratio_is_undefined_where_not_both_driving():
+    """P_ideal / P_real is an efficiency only where both are driving powers."""
+    eta = ef.efficiency_ratio([30.0, -5.0, 10.0, 0.0], [40.0, 20.0, -1.0, 5.0])
+    assert eta[0] == 0.75 and eta[3] == 0.0
+    assert np.isnan(eta[1]) and np.isnan(eta[2])

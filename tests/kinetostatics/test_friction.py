@@ -73,3 +73,45 @@ def test_friction_table_checked():
     d["joints"][0]["friction"] = {"mu": 0.1, "radius": 0.01, "lenght": 1}
     with pytest.raises(SceneError, match="unknown key .lenght."):
         ks.load_scene(d)
+
+
+@pytest.mark.parametrize("name", ["four_bar", "slider_crank"])
+def test_power_table_and_reduced_moments_with_friction(name):
+    """``Solution.powers`` splits the balance by load kind; it adds up to zero, friction
+    never gives power, and the three reduced moments add up to -Me (eq. 2.73)."""
+    d = load(name)
+    for j in d["joints"]:
+        j["friction"] = {"mu": 0.1, "radius": 0.015} if j["kind"] == "R" else \
+            {"mu": 0.1, "length": 0.05}
+    sol = ks.solve(d)
+    p = sol.powers
+    assert list(p.columns) == ["position", "P_driver", "P_applied", "P_gravity", "P_inertia",
+                               "P_friction"]
+    scale = np.abs(p.P_driver).max()
+    assert np.abs(p.drop(columns="position").sum(axis=1)).max() <= 1e-9 * scale
+    assert (p.P_friction <= 1e-12 * scale).all() and p.P_friction.min() < 0.0
+    assert np.allclose(p.P_driver, sol.Me * sol.scene.driver.speed)
+    r = sol.reduced
+    total = r.M_red + r.M_red_friction + r.M_red_inertia
+    assert np.allclose(total, -sol.Me, rtol=0, atol=1e-9 * np.abs(sol.Me).max())
+    assert np.allclose(r.M_red_friction * sol.scene.driver.speed, p.P_friction)
+
+
+def test_summary_leaves_self_locking_rows_out():
+    """With friction enough to lock the slider-crank near its dead centres, the summary
+    counts the locked rows and takes Me and the reactions over the others."""
+    d = load("slider_crank")
+    for j in d["joints"]:
+        j["friction"] = {"mu": 1.3, "radius": 0.03} if j["kind"] == "R" else \
+            {"mu": 1.3, "length": 0.08}
+    sol = ks.solve(d)
+    locked = sol.driver.self_locking.to_numpy()
+    assert 0 < locked.sum() < locked.size
+    s = sol.summary()
+    assert s["self_locking_rows"] == int(locked.sum())
+    free = sol.driver.Me.to_numpy()[~locked]
+    assert s["Me_max"] == free.max() and s["Me_min"] == free.min()
+    pos = sol.positions[~locked]
+    for joint, r in s["reaction_max"].items():
+        assert r["position"] in pos, joint
+    assert "self_locking_rows" not in ks.solve(load("slider_crank")).summary()

@@ -139,3 +139,38 @@ def test_animation(sols):
     assert "<img" in anim.to_jshtml()
     with pytest.raises(WorkbenchError, match="frames"):
         kp.animate(sols["shaper"], frames=0)
+
+
+def test_draw_gear_pair(monkeypatch):
+    from kinetostatics.gears import gear_pair
+
+    monkeypatch.setattr(plt, "show", lambda *a, **k: pytest.fail("plt.show called"))
+    for internal in (False, True):
+        pair = gear_pair([120.0, 60.0], 0.05, 0.15, 20.0, internal, centre_angle_deg=30.0)
+        ax = kp.draw_gear_pair(pair)
+        assert isinstance(ax, Axes)
+        _labelled(ax)
+        assert ax.get_xlabel() == "x [m]" and ax.get_ylabel() == "y [m]"
+        assert ax.get_aspect() == 1.0
+        assert ("internal" if internal else "external") in ax.get_title()
+        assert f"i12 = {pair.i12:.4g}" in ax.get_title()
+        # two arrows from the pitch point: F12 along the computed force, F21 against it
+        arrows = [t for t in ax.texts if t.arrow_patch is not None]
+        assert len(arrows) == 2
+        f = np.array([pair.F12x[0], pair.F12y[0]])
+        for a, sign in zip(arrows, (1.0, -1.0), strict=True):
+            np.testing.assert_allclose(a.xyann, pair.P, atol=1e-12)
+            d = np.subtract(a.xy, a.xyann)
+            np.testing.assert_allclose(d / np.hypot(*d), sign * f / np.hypot(*f), atol=1e-12)
+        assert any(f"{pair.F[0]:.4g} N" in t.get_text() for t in ax.texts)
+        # pitch circles through P around each axis
+        pitch = [ln for ln in ax.lines if ln.get_label().startswith("gear ")]
+        for o, line in zip((pair.O1, pair.O2), pitch, strict=True):
+            r = np.hypot(line.get_xdata() - o[0], line.get_ydata() - o[1])
+            np.testing.assert_allclose(r, np.hypot(pair.P[0] - o[0], pair.P[1] - o[1]))
+    # no load: the circles without arrows, on a given Axes
+    _, ax0 = plt.subplots()
+    assert kp.draw_gear_pair(gear_pair(0.0, 0.05, 0.15), ax=ax0) is ax0
+    assert not [t for t in ax0.texts if t.arrow_patch is not None]
+    with pytest.raises(WorkbenchError, match="GearPair"):
+        kp.draw_gear_pair((0.05, 0.15))
