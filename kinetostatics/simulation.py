@@ -429,11 +429,10 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
         # the groove on a body whose arm to the pin's contact runs along the line
         # (the ground, a body that cannot turn, or one whose cog is on the line), the
         # pin on the other at the foot of the normal from its cog (see the docstring)
-        for q, p in ((g, s), (s, g)):  # noqa: B007 - both used after the loop
-            if q in fixed or _on_line(sc, name, q):
-                break
-        else:
-            q, p = g, s
+        found = next(((q, p) for q, p in ((g, s), (s, g))
+                      if q in fixed or _on_line(sc, name, q)), None)
+        q, p = found or (g, s)
+        if found is None:
             notes.append(f"prismatic joint {name!r}: neither body's centre of mass lies on "
                          "the line and both turn; pymunk's groove then lags by a first-order "
                          "amount (expect errors proportional to dt)")
