@@ -848,7 +848,11 @@ def load_cam_scene(source: Any) -> CamScene:
     (:class:`~kinetostatics.errors.SceneError` for the file's form, :class:`CamError` for a
     cam that cannot be built).
     """
-    raw = check_keys(read_source(source, "cam scene"), TOP_KEYS, "cam scene", required=("cam",))
+    raw = read_source(source, "cam scene")
+    if isinstance(raw, dict) and "cam" not in raw and "driver" in raw:
+        raise CamError("this is a mechanism scene (it has [driver]); the cam command takes a "
+                       "[cam] scene (docs/cam-scenes.md), e.g. the bundled translating_roller")
+    raw = check_keys(raw, TOP_KEYS, "cam scene", required=("cam",))
     if "format" in raw and raw["format"] != 1:
         raise CamError(f"cam scene: format must be 1, got {raw['format']!r}")
     title = as_str(raw["title"], "title") if "title" in raw else ""

@@ -52,7 +52,8 @@ def motion_spec(scene: Scene) -> MotionSpec:
     """Check the ``[motion]`` section (scene-format.md, "Motion under forces")."""
     m = scene.motion
     if m is None:
-        raise SceneError("the scene has no [motion] section")
+        raise SceneError("the scene has no [motion] section (motor, flywheel, omega0, "
+                         "cycles; see the bundled four_bar_motion)")
     if scene.driver.kind != "R":
         raise SceneError("[motion]: the driver must be a crank (a sliding driver is refused)")
     if ("motor" in m) == ("motor_table" in m):

@@ -119,3 +119,8 @@ def test_bundled_names_work_in_every_command():
         assert json.loads(p.stdout)["transmission_angle_min"] >= 45.0 - 1e-9
     p = run("solve", "no_such_example")
     assert p.returncode == 2 and p.stderr.count("\n") == 1 and "four_bar" in p.stderr
+    # the wrong kind of scene for a command says which kind it needs
+    p = run("cam", "four_bar")
+    assert p.returncode == 2 and "mechanism scene" in p.stderr and "[cam]" in p.stderr
+    p = run("motion", "four_bar")
+    assert p.returncode == 2 and "four_bar_motion" in p.stderr
