@@ -72,4 +72,8 @@ def scene_path(name: str | Path) -> Path:
     path = Path(name)
     if path.exists() or path.suffix == ".toml" or path.parent != Path("."):
         return path
-    return example(str(name))
+    try:
+        return example(str(name))
+    except SceneError:
+        raise SceneError(f"{name}: no such scene file, and not a bundled example "
+                         f"({', '.join(examples() + cam_examples())})") from None

@@ -17,8 +17,6 @@ import json
 import math
 from pathlib import Path
 
-from .errors import SceneError
-
 
 def _error(msg: str) -> Exception:
     """A :class:`~kinetostatics.simulation.SimulationError` (pymunk is imported only
@@ -70,15 +68,9 @@ def add_commands(sub) -> None:
 
 def _scene_source(name: str, speed: float | None):
     """A path or bundled example name; with ``speed``, a dict copy with that speed."""
-    from . import example, examples
+    from . import scene_path
     from .scene import load_scene
-    path = Path(name)
-    if not path.is_file():
-        if name in examples():
-            path = example(name)
-        else:
-            raise SceneError(f"{name}: no such scene file, and not a bundled example "
-                             f"({', '.join(examples())})")
+    path = scene_path(name)
     if speed is None:
         return path
     if not math.isfinite(speed) or speed == 0.0:
