@@ -10,7 +10,7 @@ smaller than the unbalance) emit a :class:`BalanceWarning`.
 
 from __future__ import annotations
 
-from kinetostatics.errors import SceneError, WorkbenchError
+from kinetostatics.model.errors import SceneError, WorkbenchError
 
 __all__ = ["BalanceError", "BalanceWarning", "SceneError", "WorkbenchError"]
 

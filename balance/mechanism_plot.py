@@ -24,7 +24,7 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from .mechanism import MechanismBalancing, _crank_axis, _motion_at, _pair_motion
+from .mechanism.core import MechanismBalancing, _crank_axis, _motion_at, _pair_motion
 
 __all__ = [
     "overview",

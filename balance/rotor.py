@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from kinetostatics.tomlio import suggest
+from kinetostatics.model.tomlio import suggest
 
 from ._util import RPM_TO_RAD_S, angle_of, check_number
 from .errors import BalanceError

@@ -18,8 +18,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from kinetostatics.errors import SceneError
-from kinetostatics.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source
+from kinetostatics.model.errors import SceneError
+from kinetostatics.model.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source
 
 from .rotor import CorrectionPlane, Unbalance
 

@@ -25,10 +25,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .kinematics import solve_kinematics
-from .scene import load_scene
-from .solver import solve
-from .structure import analyse
+from .model.scene import load_scene
+from .solver.kinematics import solve_kinematics
+from .solver.pipeline import solve
+from .solver.structure import analyse
 
 # the baseline's four-bar: a = 0.1, b = 0.25, c = 0.2, d = 0.3, cogs at mid-links,
 # 500 N down at C on the rocker, no gravity

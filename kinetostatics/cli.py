@@ -11,11 +11,11 @@ import sys
 from pathlib import Path
 
 from . import scene_path
-from .errors import WorkbenchError
+from .model.errors import WorkbenchError
 
 
 def _cmd_solve(args) -> int:
-    from .solver import solve
+    from .solver.pipeline import solve
     sol = solve(scene_path(args.scene))
     if args.out:
         for p in sol.to_csv(args.out):
@@ -30,7 +30,7 @@ def _cmd_demo(args) -> int:
     matplotlib.use("Agg")
     from . import example
     from .plot import overview
-    from .solver import solve
+    from .solver.pipeline import solve
     scene = example(args.example)
     sol = solve(scene)
     out = Path(args.out)
@@ -54,15 +54,15 @@ def _cmd_demo(args) -> int:
 
 
 def _cmd_structure(args) -> int:
-    from .scene import load_scene
-    from .structure import analyse
+    from .model.scene import load_scene
+    from .solver.structure import analyse
     for line in analyse(load_scene(scene_path(args.scene))).describe():
         print(line)
     return 0
 
 
 def _cmd_motion(args) -> int:
-    from .motion_scene import simulate_motion
+    from .motion.scene import simulate_motion
     res = simulate_motion(scene_path(args.scene))
     if args.json:
         print(json.dumps(res.to_json()))
@@ -131,7 +131,7 @@ def build_parser() -> argparse.ArgumentParser:
 def _extra_commands(sub) -> None:
     """Commands of the optional modules (simulation cross-check, motion)."""
     try:
-        from .sim_cli import add_commands
+        from .simulation.cli import add_commands
     except ImportError:
         return
     add_commands(sub)

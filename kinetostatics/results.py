@@ -19,11 +19,11 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .kinematics import Kinematics
-from .loads import PointLoad
-from .reactions import DriverReaction, JointReaction
-from .scene import GROUND, Scene
-from .structure import Structure
+from .model.scene import GROUND, Scene
+from .solver.kinematics import Kinematics
+from .solver.loads import PointLoad
+from .solver.reactions import DriverReaction, JointReaction
+from .solver.structure import Structure
 
 OFFSET_EMPTY = 1e-12     # offset = M / N is left empty where |N| <= 1e-12 max|N|
 
@@ -289,7 +289,7 @@ class Solution:
     def powers(self) -> pd.DataFrame:
         """The power balance per position: ``P_driver, P_applied, P_gravity, P_inertia,
         P_friction`` (W), adding up to zero (see :func:`kinetostatics.reduction.power_table`)."""
-        from .reduction import power_table
+        from .solver.reduction import power_table
         return power_table(self)
 
     @cached_property
@@ -299,7 +299,7 @@ class Solution:
         loads and gravity / driver speed, ``M_red_friction`` and ``M_red_inertia`` the same
         for friction and inertia forces (the three add up to -Me, eq. 2.73),
         ``I_red`` = sum (m v_G^2 + I_G omega^2) / driver speed^2."""
-        from .reduction import reduced_table
+        from .solver.reduction import reduced_table
         return reduced_table(self)
 
     # -- summary and files ------------------------------------------------------

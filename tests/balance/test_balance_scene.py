@@ -10,7 +10,7 @@ import pytest
 
 import balance
 from balance import load_scene
-from kinetostatics.errors import SceneError, WorkbenchError
+from kinetostatics.model.errors import SceneError, WorkbenchError
 from tests.balance._balance_cases import SCENES
 
 ALL_SECTIONS = SCENES["rotor_two_plane"] + SCENES["static_device"].split("\n", 2)[2] + \

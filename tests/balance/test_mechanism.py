@@ -27,7 +27,7 @@ from balance.mechanism import (
     shaking_tables,
     solve_mechanism_balancing,
 )
-from kinetostatics.errors import WorkbenchError
+from kinetostatics.model.errors import WorkbenchError
 
 FOUR_BAR_CW = [{"body": "crank", "about": "A", "radius": 0.06},
                {"body": "rocker", "about": "D", "radius": 0.08}]

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 
 from kinetostatics import cams
 from kinetostatics.cams import CamError, CamLaw, OscillatingFollower, TranslatingFollower
-from kinetostatics.errors import SceneError, WorkbenchError
+from kinetostatics.model.errors import SceneError, WorkbenchError
 
 LAWS = list(cams.LAWS)
 strokes = st.floats(1e-3, 0.5)

@@ -12,7 +12,10 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import kinetostatics as ks
-from kinetostatics.concentration import (
+from kinetostatics.model.errors import WorkbenchError
+from kinetostatics.model.scene import Body, MassModel
+from kinetostatics.solver.loads import concentrated_masses
+from kinetostatics.topics.concentration import (
     ConcentrationError,
     body_concentration,
     concentrate,
@@ -21,9 +24,6 @@ from kinetostatics.concentration import (
     seed_free_parameters,
     static_two_point,
 )
-from kinetostatics.errors import WorkbenchError
-from kinetostatics.loads import concentrated_masses
-from kinetostatics.scene import Body, MassModel
 
 coord = st.floats(-1.0, 1.0)
 mass = st.floats(0.1, 50.0)

@@ -9,9 +9,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from kinetostatics import efficiency as ef
-from kinetostatics.efficiency import EfficiencyError
-from kinetostatics.errors import WorkbenchError
+from kinetostatics.model.errors import WorkbenchError
+from kinetostatics.topics import efficiency as ef
+from kinetostatics.topics.efficiency import EfficiencyError
 
 etas = st.lists(st.floats(0.05, 1.0), min_size=1, max_size=6)
 

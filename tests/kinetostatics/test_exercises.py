@@ -10,8 +10,8 @@ import pandas as pd
 import pytest
 
 import kinetostatics as ks
-from kinetostatics import exercises as E
-from kinetostatics.errors import WorkbenchError
+from kinetostatics.model.errors import WorkbenchError
+from kinetostatics.teaching import exercises as E
 
 IDS = [f"s{k:03d}" for k in range(50)]
 

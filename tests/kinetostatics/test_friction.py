@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import kinetostatics as ks
-from kinetostatics.errors import SceneError
+from kinetostatics.model.errors import SceneError
 from tests.helpers import OWN_CASES
 
 

@@ -9,8 +9,8 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from kinetostatics.errors import WorkbenchError
-from kinetostatics.gears import (
+from kinetostatics.model.errors import WorkbenchError
+from kinetostatics.topics.gears import (
     GearError,
     GearStage,
     equilibrating_moment,

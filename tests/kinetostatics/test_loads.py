@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import kinetostatics as ks
-from kinetostatics.errors import WorkbenchError
+from kinetostatics.model.errors import WorkbenchError
 from tests.kinetostatics import checks
 
 with open(ks.example("shaper"), "rb") as fh:

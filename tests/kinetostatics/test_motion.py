@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from kinetostatics import motion as mo
-from kinetostatics.errors import WorkbenchError
+from kinetostatics.model.errors import WorkbenchError
 from kinetostatics.motion import MotionError
 
 TWO_PI = 2 * math.pi

@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 import kinetostatics as ks
-from kinetostatics.errors import SceneError, WorkbenchError
+from kinetostatics.model.errors import SceneError, WorkbenchError
 from tests.helpers import OWN_CASES, ROOT
 
 

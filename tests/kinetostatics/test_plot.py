@@ -11,7 +11,8 @@ from matplotlib.figure import Figure
 
 import kinetostatics as ks
 from kinetostatics import plot as kp
-from kinetostatics.errors import WorkbenchError
+from kinetostatics.model.errors import WorkbenchError
+from kinetostatics.plot.core import _polygon_forces as polygon_forces
 from tests.helpers import SCENES
 
 SCENE_PATHS = [ks.example(n) for n in ks.examples()] + sorted(SCENES.glob("*.toml"))
@@ -44,7 +45,7 @@ def test_force_polygons_close(name, sols):
     n = sol.positions.size
     for i in (0, n // 3, 2 * n // 3):
         for d in [None, *(dm.dyad for dm in sol.kin.dyads)]:
-            forces, split = kp._polygon_forces(sol, d, i, True)
+            forces, split = polygon_forces(sol, d, i, True)
             total = np.sum([f[1] for f in forces], axis=0)
             scale = max(np.hypot(*f[1]) for f in forces)
             assert np.hypot(*total) <= 1e-9 * scale, (name, d, i, total)
@@ -142,7 +143,7 @@ def test_animation(sols):
 
 
 def test_draw_gear_pair(monkeypatch):
-    from kinetostatics.gears import gear_pair
+    from kinetostatics.topics.gears import gear_pair
 
     monkeypatch.setattr(plt, "show", lambda *a, **k: pytest.fail("plt.show called"))
     for internal in (False, True):

@@ -10,7 +10,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import kinetostatics as ks
-from kinetostatics.errors import AssemblyError, SceneError, StructureError, WorkbenchError
+from kinetostatics.model.errors import AssemblyError, SceneError, StructureError, WorkbenchError
 from tests.helpers import OWN_CASES
 
 

@@ -19,14 +19,14 @@ from matplotlib.figure import Figure
 import kinetostatics as ks
 from kinetostatics import simulation as sim
 from kinetostatics.cli import main
-from kinetostatics.crosscheck import (
+from kinetostatics.simulation import SERIAL, SimulationError, build_space, run, run_batch
+from kinetostatics.simulation.comparison import (
     crosscheck,
     crosscheck_many,
     plot_comparison,
     plot_study,
     study,
 )
-from kinetostatics.simulation import SERIAL, SimulationError, build_space, run, run_batch
 from tests.helpers import OWN_CASES, SCENES
 
 STEPS = 2000          # steps per revolution (per sweep for the sliding driver)
@@ -351,7 +351,7 @@ def test_raw_scene_is_not_modified():
 def test_docstring_examples():
     import doctest
 
-    from kinetostatics import crosscheck as module
+    from kinetostatics.simulation import comparison as module
     assert doctest.testmod(module).failed == 0
 
 

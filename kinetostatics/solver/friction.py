@@ -22,11 +22,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..model.scene import GROUND, Scene
 from . import _arith as A
 from .kinematics import Kinematics
 from .loads import PointLoad, resultants
 from .reactions import DriverReaction, JointReaction, solve_reactions
-from .scene import GROUND, Scene
 
 MAX_PASSES = 200
 TOLERANCE = 1e-13

@@ -32,8 +32,8 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .scene import Scene, load_scene
-from .simulation import (
+from ..model.scene import Scene, load_scene
+from .engine import (
     DEFAULT_STEPS_PER_REVOLUTION,
     PYMUNK_VERSION,
     SimRecord,

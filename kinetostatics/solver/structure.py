@@ -12,8 +12,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .errors import StructureError
-from .scene import GROUND, Joint, Scene
+from ..model.errors import StructureError
+from ..model.scene import GROUND, Joint, Scene
 
 
 @dataclass(frozen=True)

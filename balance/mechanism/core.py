@@ -67,13 +67,13 @@ import numpy as np
 import pandas as pd
 
 import kinetostatics as ks
-from kinetostatics.errors import AssemblyError
-from kinetostatics.kinematics import BodyMotion, Kinematics
-from kinetostatics.scene import GROUND, Body, Scene
-from kinetostatics.tomlio import as_float, as_list, as_str, check_keys, read_source, suggest
+from kinetostatics.model.errors import AssemblyError
+from kinetostatics.model.scene import GROUND, Body, Scene
+from kinetostatics.model.tomlio import as_float, as_list, as_str, check_keys, read_source, suggest
+from kinetostatics.solver.kinematics import BodyMotion, Kinematics
 
-from ._util import deg360
-from .errors import BalanceError, BalanceWarning
+from .._util import deg360
+from ..errors import BalanceError, BalanceWarning
 
 __all__ = [
     "METHODS",

@@ -27,9 +27,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..model.errors import AssemblyError
+from ..model.scene import GROUND, Scene
 from . import _arith as A
-from .errors import AssemblyError
-from .scene import GROUND, Scene
 from .structure import Dyad, Structure
 
 SINGULAR_WARN = 1e-3    # sin(transmission angle) below this: the row is flagged singular

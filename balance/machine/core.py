@@ -65,9 +65,9 @@ from typing import Any
 
 import numpy as np
 
-from .errors import BalanceError
-from .resonance import ResonanceResult, parallelogram, trial_runs
-from .rotor import Unbalance
+from ..errors import BalanceError
+from ..resonance import ResonanceResult, parallelogram, trial_runs
+from ..rotor import Unbalance
 
 __all__ = [
     "BalancingMachine",

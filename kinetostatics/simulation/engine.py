@@ -74,8 +74,8 @@ from typing import Any
 import numpy as np
 import pymunk
 
-from .errors import WorkbenchError
-from .scene import GROUND, Scene, load_scene
+from ..model.errors import WorkbenchError
+from ..model.scene import GROUND, Scene, load_scene
 
 PYMUNK_VERSION = "7.3.1"
 """The pymunk version the settings were measured with (docs/simulation.md)."""
@@ -232,7 +232,7 @@ def reference_solution(scene: Any, positions):
     The scene's first position is solved first, as row 0, so that the assembly chosen
     by the ``[near]`` hints is the scene's own; the positions asked for are rows 1...
     """
-    from .solver import solve
+    from ..solver.pipeline import solve
     sc = load_scene(scene)
     pos = np.concatenate([[sc.driver.positions[0]], np.asarray(positions, dtype=float)])
     return solve(_raw_with_positions(sc, pos))

@@ -47,7 +47,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .errors import WorkbenchError
+from ..model.errors import WorkbenchError
 
 TWO_PI = 2.0 * math.pi
 

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from .errors import WorkbenchError
+from ..model.errors import WorkbenchError
 
 
 class EfficiencyError(WorkbenchError):

@@ -71,8 +71,8 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .errors import WorkbenchError
-from .tomlio import read_source
+from ..model.errors import WorkbenchError
+from ..model.tomlio import read_source
 
 __all__ = [
     "AnswerSheet", "Exercise", "ExerciseSet", "answer_key", "class_table", "four_bar_exercise",
@@ -282,7 +282,7 @@ def _with_positions(raw: dict, extra: Sequence[float]) -> dict | None:
 
 def _mechanism_values(raw: dict, questions: Sequence[_Question]) -> dict[str, tuple]:
     """question -> (value, unit, kind, atol)."""
-    from .solver import solve
+    from ..solver.pipeline import solve
 
     sol = solve(raw)
     at = [q.pos for q in questions if q.pos is not None]

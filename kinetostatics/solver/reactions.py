@@ -27,9 +27,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..model.scene import GROUND, Joint, Scene
 from . import _arith as A
 from .kinematics import DyadMotion, Kinematics
-from .scene import GROUND, Joint, Scene
 
 
 @dataclass

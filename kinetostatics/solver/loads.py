@@ -15,9 +15,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..model.scene import Body, Scene
 from . import _arith as A
 from .kinematics import Kinematics
-from .scene import Body, Scene
 
 RESIST_STILL = 1e-9     # a resist point slower than this fraction of its top speed: undefined
 

@@ -39,7 +39,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .errors import WorkbenchError
+from ..model.errors import WorkbenchError
 
 __all__ = [
     "GearError", "GearPair", "GearStage", "GearTrain", "equilibrating_moment", "gear_pair",

@@ -41,10 +41,10 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .efficiency import mean_efficiency
-from .errors import WorkbenchError
-from .motion import golden_max
-from .tomlio import as_float, as_int, as_list, as_str, check_keys, read_source, suggest
+from ..model.errors import WorkbenchError
+from ..model.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source, suggest
+from ..motion import golden_max
+from ..topics.efficiency import mean_efficiency
 
 TWO_PI = 2.0 * math.pi
 _SAMPLES = 801          # samples per segment when an extreme over the cycle is searched

@@ -22,14 +22,14 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from . import _arith as A
-from .errors import SceneError
-from .kinematics import solve_kinematics
-from .loads import applied_loads
-from .motion import _C, flywheel_for_delta, simulate
-from .scene import Scene, load_scene
-from .structure import analyse
-from .tomlio import as_float, as_int, as_list, check_keys
+from ..model.errors import SceneError
+from ..model.scene import Scene, load_scene
+from ..model.tomlio import as_float, as_int, as_list, check_keys
+from ..solver import _arith as A
+from ..solver.kinematics import solve_kinematics
+from ..solver.loads import applied_loads
+from ..solver.structure import analyse
+from .integrate import _C, flywheel_for_delta, simulate
 
 TWO_PI = 2.0 * math.pi
 KEY = 1e9          # cache key resolution: 1e-9 rad

@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 
 if TYPE_CHECKING:
-    from .results import Solution
+    from ..results import Solution
 
 
 LOAD_KINDS = ("applied", "gravity", "inertia", "friction")
@@ -60,7 +60,7 @@ def reduced_table(sol: Solution) -> pd.DataFrame:
     if speed == 0.0:
         from dataclasses import replace
 
-        from .solver import solve
+        from .pipeline import solve
         drv = replace(scene.driver, speed=1.0, acceleration=0.0)
         sol = solve(replace(scene, driver=drv))
         kin = sol.kin

@@ -33,10 +33,10 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Polygon
 from matplotlib.ticker import MaxNLocator, MultipleLocator
 
-from .errors import WorkbenchError
-from .results import Solution
-from .scene import GROUND
-from .structure import Dyad
+from ..model.errors import WorkbenchError
+from ..model.scene import GROUND
+from ..results import Solution
+from ..solver.structure import Dyad
 
 __all__ = [
     "acceleration_plan", "animate", "draw_mechanism", "force_polygon", "overview",
@@ -1191,7 +1191,7 @@ def draw_gear_pair(pair, ax: Axes | None = None) -> Axes:
     WorkbenchError
         ``pair`` is not a :class:`~kinetostatics.gears.GearPair`.
     """
-    from .gears import GearPair
+    from ..topics.gears import GearPair
 
     if not isinstance(pair, GearPair):
         raise WorkbenchError("draw_gear_pair: give a GearPair (kinetostatics.gears.gear_pair)")

@@ -6,13 +6,13 @@ from typing import Any
 
 import numpy as np
 
-from .errors import AssemblyError
+from ..model.errors import AssemblyError
+from ..model.scene import load_scene
+from ..results import Solution
 from .friction import has_friction, solve_with_friction
 from .kinematics import solve_kinematics
 from .loads import applied_loads, inertia_loads, resultants
 from .reactions import solve_reactions
-from .results import Solution
-from .scene import load_scene
 from .structure import analyse
 
 

@@ -21,7 +21,7 @@ from pathlib import Path
 def _error(msg: str) -> Exception:
     """A :class:`~kinetostatics.simulation.SimulationError` (pymunk is imported only
     when a command runs, not when the parser is built)."""
-    from .simulation import SimulationError
+    from .engine import SimulationError
     return SimulationError(msg)
 
 
@@ -68,8 +68,8 @@ def add_commands(sub) -> None:
 
 def _scene_source(name: str, speed: float | None):
     """A path or bundled example name; with ``speed``, a dict copy with that speed."""
-    from . import scene_path
-    from .scene import load_scene
+    from .. import scene_path
+    from ..model.scene import load_scene
     path = scene_path(name)
     if speed is None:
         return path
@@ -99,7 +99,7 @@ def _numbers(text: str | None, kind, what: str):
 
 
 def _cmd_crosscheck(args) -> int:
-    from .crosscheck import crosscheck, study
+    from .comparison import crosscheck, study
     src = _scene_source(args.scene, args.speed)
     fast = False if args.public else None
     if args.samples < 1:
@@ -137,7 +137,7 @@ def _cmd_crosscheck(args) -> int:
         out.parent.mkdir(parents=True, exist_ok=True)
         cc.wide().to_csv(out, index=False, float_format="%.17g")
     if args.plot:
-        from .crosscheck import plot_comparison
+        from .comparison import plot_comparison
         _save(plot_comparison(cc), args.plot)
     if args.json:
         print(json.dumps(_clean(cc.summary()), indent=2))
@@ -158,7 +158,7 @@ def _cmd_crosscheck(args) -> int:
 
 
 def _plot_study(st):
-    from .crosscheck import plot_study
+    from .comparison import plot_study
     return plot_study(st)
 
 
