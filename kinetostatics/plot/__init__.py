@@ -1,18 +1,23 @@
 """Pictures: the mechanism, plans, force polygons, curves. Every function takes data and
-returns matplotlib Figures/Axes.
+returns matplotlib Figures/Axes; none calls ``plt.show``. Units are in every axis label;
+geometry and vector diagrams use equal aspect.
+
+- the mechanism at a position, with the joint reactions and the loads as arrows:
+  :func:`draw_mechanism`; its motion over the cycle: :func:`animate` (``mechanism``);
+- the graphical method of the course (seed 001): the velocity and acceleration plans
+  :func:`velocity_plan`, :func:`acceleration_plan` (``plans``);
+- the force polygon of a dyad or of the driver (seed 002 figs 2.9-2.19, 2.38, 2.42):
+  :func:`force_polygon`, its forces :func:`polygon_forces` (``polygons``);
+- curves over the cycle: :func:`plot_driver` (Me), :func:`plot_polar`,
+  :func:`plot_transmission`, :func:`plot_trajectories`, :func:`plot_speeds`,
+  :func:`plot_accelerations`, :func:`plot_angular`, and :func:`overview` (``curves``);
+- a gear pair: :func:`draw_gear_pair` (``gears``).
 """
 
 from __future__ import annotations
 
-from .core import (
-    LOAD_COLORS,
-    PATH_COLORS,
-    REACTION_COLOR,
-    acceleration_plan,
-    animate,
-    draw_gear_pair,
-    draw_mechanism,
-    force_polygon,
+from .base import LOAD_COLORS, PATH_COLORS, REACTION_COLOR
+from .curves import (
     overview,
     plot_accelerations,
     plot_angular,
@@ -21,8 +26,11 @@ from .core import (
     plot_speeds,
     plot_trajectories,
     plot_transmission,
-    velocity_plan,
 )
+from .gears import draw_gear_pair
+from .mechanism import animate, draw_mechanism
+from .plans import acceleration_plan, velocity_plan
+from .polygons import find_dyad, force_polygon, polygon_forces
 
 __all__ = [
     "LOAD_COLORS",
@@ -32,6 +40,7 @@ __all__ = [
     "animate",
     "draw_gear_pair",
     "draw_mechanism",
+    "find_dyad",
     "force_polygon",
     "overview",
     "plot_accelerations",
@@ -41,5 +50,6 @@ __all__ = [
     "plot_speeds",
     "plot_trajectories",
     "plot_transmission",
+    "polygon_forces",
     "velocity_plan",
 ]

@@ -12,7 +12,7 @@ from matplotlib.figure import Figure
 import kinetostatics as ks
 from kinetostatics import plot as kp
 from kinetostatics.model.errors import WorkbenchError
-from kinetostatics.plot.core import _polygon_forces as polygon_forces
+from kinetostatics.plot import polygon_forces
 from tests.helpers import SCENES
 
 SCENE_PATHS = [ks.example(n) for n in ks.examples()] + sorted(SCENES.glob("*.toml"))
