@@ -19,7 +19,7 @@ MOVED = {
     "concentration": "topics.concentration", "gears": "topics.gears",
     "efficiency": "topics.efficiency", "motion_scene": "motion.scene",
     "crosscheck": "simulation.comparison", "sim_cli": "simulation.cli",
-    "exercises": "teaching.exercises",
+    "exercises": "teaching",
 }
 
 

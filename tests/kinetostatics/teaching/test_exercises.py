@@ -11,7 +11,7 @@ import pytest
 
 import kinetostatics as ks
 from kinetostatics.model.errors import WorkbenchError
-from kinetostatics.teaching import exercises as E
+from kinetostatics import teaching as E
 
 IDS = [f"s{k:03d}" for k in range(50)]
 
@@ -245,6 +245,6 @@ def test_tolerances_and_overrides():
     g, _ = E.grade({"F": 0.004}, {"F": 0.0}, student="a", atol=0.01)
     assert g["passed"].all()
     assert E.var_name("x[coupler.P]@30") == "x_coupler_P_30"
-    assert math.isnan(E._to_float(None)) and E._to_float("12,5") == 12.5
+    assert math.isnan(E.to_float(None)) and E.to_float("12,5") == 12.5
     with pytest.raises(WorkbenchError, match="one student"):
         E.grade({"a": {"F": 1.0}, "b": {"F": 1.0}}, key)

@@ -1,0 +1,293 @@
+"""Answer keys: the asked quantities of one scene, with unit, kind and tolerance.
+
+A mechanism scene is computed with :func:`kinetostatics.solve`, a balancing scene with
+:func:`balance.solve`; the question language is described in
+:mod:`kinetostatics.teaching.questions`.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from collections.abc import Iterable, Sequence
+from typing import Any
+
+import numpy as np
+
+from ..model.errors import WorkbenchError
+from ..model.tomlio import read_source
+from .questions import ANGLE_ATOL, ATOL_FRACTION, Question, is_mechanism, parse_question
+
+__all__ = ["answer_key", "key_rows"]
+
+# --------------------------------------------------------------- mechanism answers
+_MECH_UNITS = {"Me": "N m", "Fe": "N", "F": "N", "Fx": "N", "Fy": "N", "Fmax": "N",
+               "Fangle": "deg", "N": "N", "M": "N m", "tau": "deg", "tau_min": "deg",
+               "angle": "deg", "omega": "rad/s", "alpha": "rad/s^2", "x": "m", "y": "m",
+               "v": "m/s", "a": "m/s^2", "Me_mean": "N m", "Me_max": "N m", "Me_min": "N m",
+               "Fe_mean": "N", "Fe_max": "N", "Fe_min": "N"}
+_ANGLES = {"Fangle", "angle", "res_angle", "res_mirror"}
+
+
+def _needs_position(q: Question) -> None:
+    if q.pos is None:
+        raise WorkbenchError(f"question {q.text!r}: give the driver position, e.g. "
+                             f"'{q.text}@30'")
+
+
+def _row_of(sol, q: Question) -> int:
+    hits = np.flatnonzero(np.abs(sol.positions - q.pos) <= 1e-9 * max(1.0, abs(q.pos)))
+    if hits.size == 0:
+        raise WorkbenchError(f"question {q.text!r}: position {q.pos:g} is not in the sweep "
+                             f"[{sol.positions[0]:g}, {sol.positions[-1]:g}]")
+    return int(hits[0])
+
+
+def _with_positions(raw: dict, extra: Sequence[float]) -> dict | None:
+    """The scene with the asked positions added to the sweep (None if all are in it)."""
+    drv = raw.get("driver", {})
+    if "positions" in drv:
+        base = np.asarray(drv["positions"], dtype=float)
+        start, stop = base[0], base[-1]
+    else:
+        start, stop = float(drv["start"]), float(drv["stop"])
+        base = np.linspace(start, stop, int(drv["count"]))
+    missing = [p for p in extra
+               if not np.any(np.abs(base - p) <= 1e-9 * max(1.0, abs(p)))]
+    if not missing:
+        return None
+    lo, hi = min(start, stop), max(start, stop)
+    for p in missing:
+        if not lo - 1e-12 <= p <= hi + 1e-12:
+            raise WorkbenchError(f"asked position {p:g} lies outside the sweep "
+                                 f"[{start:g}, {stop:g}]")
+    allp = np.unique(np.concatenate([base, missing]))
+    if stop < start:
+        allp = allp[::-1]
+    out = copy.deepcopy(raw)
+    d = {k: v for k, v in out["driver"].items() if k not in ("start", "stop", "count")}
+    d["positions"] = [float(p) for p in allp]
+    out["driver"] = d
+    return out
+
+
+def _mechanism_values(raw: dict, questions: Sequence[Question]) -> dict[str, tuple]:
+    """question -> (value, unit, kind, atol)."""
+    from ..solver.pipeline import solve
+
+    sol = solve(raw)
+    at = [q.pos for q in questions if q.pos is not None]
+    aug = _with_positions(raw, at) if at else None
+    psol = solve(aug) if aug is not None else sol
+    summ = sol.summary()
+    dq = sol.driver_quantity
+    out: dict[str, tuple] = {}
+    n = psol.positions.size
+    for q in questions:
+        unit = _MECH_UNITS.get(q.q, "")
+        kind = "angle" if q.q in _ANGLES else "number"
+        if q.q in ("Me", "Fe"):
+            if q.q != dq:
+                raise WorkbenchError(f"question {q.text!r}: this driver has {dq}, not {q.q}")
+            _needs_position(q)
+            val = float(psol.Me[_row_of(psol, q)])
+            scale = float(np.abs(sol.Me).max())
+        elif q.q in ("Me_mean", "Me_max", "Me_min", "Fe_mean", "Fe_max", "Fe_min"):
+            if q.q[:2] != dq:
+                raise WorkbenchError(f"question {q.text!r}: this driver has {dq}, not "
+                                     f"{q.q[:2]}")
+            val = float(summ[q.q])
+            scale = float(np.abs(sol.Me).max())
+        elif q.q in ("F", "Fx", "Fy", "Fmax", "Fangle", "N", "M"):
+            if q.arg not in sol.scene.joints:
+                raise WorkbenchError(f"question {q.text!r}: no joint {q.arg!r}; joints: "
+                                     f"{', '.join(sol.scene.joints)}")
+            fx, fy = sol.reaction(q.arg)
+            scale = float(np.hypot(fx, fy).max())
+            if q.q == "Fmax":
+                val = float(summ["reaction_max"][q.arg]["F"])
+            else:
+                _needs_position(q)
+                i = _row_of(psol, q)
+                px, py = psol.reaction(q.arg)
+                if q.q in ("N", "M"):
+                    r = psol.joint_reactions[q.arg]
+                    if r.N is None:
+                        raise WorkbenchError(f"question {q.text!r}: joint {q.arg!r} is "
+                                             "revolute: it has no N or M")
+                    arr = r.N if q.q == "N" else r.M
+                    val = float(np.broadcast_to(arr, (n,))[i])
+                    s0 = sol.joint_reactions[q.arg]
+                    full = np.broadcast_to(s0.N if q.q == "N" else s0.M,
+                                           sol.positions.shape)
+                    scale = float(np.abs(full).max())
+                else:
+                    val = {"F": float(np.hypot(px[i], py[i])), "Fx": float(px[i]),
+                           "Fy": float(py[i]),
+                           "Fangle": float(np.degrees(np.arctan2(py[i], px[i])) % 360.0)
+                           }[q.q]
+        elif q.q == "tau_min":
+            val = summ["transmission_angle_min"]
+            if val is None:
+                raise WorkbenchError(f"question {q.text!r}: the mechanism has no dyad")
+            val, scale, unit = float(val), None, "deg"
+        elif q.q == "tau":
+            _needs_position(q)
+            t = psol.dyads
+            g = t[t.dyad == int(q.arg or 1)]
+            if g.empty:
+                raise WorkbenchError(f"question {q.text!r}: no dyad {q.arg}")
+            val = float(g.transmission_angle.to_numpy()[_row_of(psol, q)])
+            scale = None
+        elif q.q in ("angle", "omega", "alpha"):
+            _needs_position(q)
+            if q.arg not in sol.scene.bodies:
+                raise WorkbenchError(f"question {q.text!r}: no body {q.arg!r}; bodies: "
+                                     f"{', '.join(sol.scene.bodies)}")
+            t = psol.bodies
+            g = t[t.body == q.arg]
+            val = float(g[q.q].to_numpy()[_row_of(psol, q)])
+            if q.q == "angle":
+                val %= 360.0
+                scale = None
+            else:
+                full = sol.bodies[sol.bodies.body == q.arg][q.q].to_numpy()
+                scale = float(np.abs(full).max())
+        elif q.q in ("x", "y", "v", "a"):
+            _needs_position(q)
+            b, _, p = (q.arg or "").partition(".")
+            k = psol.kinematics
+            g = k[(k.body == b) & (k.point == p)]
+            if g.empty:
+                raise WorkbenchError(f"question {q.text!r}: no point {q.arg!r} (write "
+                                     "'body.point', e.g. 'coupler.P')")
+            i = _row_of(psol, q)
+            row = g.iloc[i]
+            val = {"x": row.x, "y": row.y, "v": math.hypot(row.vx, row.vy),
+                   "a": math.hypot(row.ax, row.ay)}[q.q]
+            val = float(val)
+            k0 = sol.kinematics
+            g0 = k0[(k0.body == b) & (k0.point == p)]
+            scale = float({"x": np.ptp(g0.x.to_numpy()) + np.abs(g0.x).max(),
+                           "y": np.ptp(g0.y.to_numpy()) + np.abs(g0.y).max(),
+                           "v": np.hypot(g0.vx, g0.vy).max(),
+                           "a": np.hypot(g0.ax, g0.ay).max()}[q.q])
+        else:
+            raise WorkbenchError(f"question {q.text!r}: unknown mechanism quantity {q.q!r}; "
+                                 f"known: {', '.join(sorted(_MECH_UNITS))}")
+        if kind == "angle" or unit == "deg":
+            atol = ANGLE_ATOL
+        else:
+            atol = ATOL_FRACTION * (scale or 0.0)
+        out[q.text] = (val, unit, kind, atol)
+    return out
+
+
+# ---------------------------------------------------------------- balance answers
+def _balance_values(raw: dict, questions: Sequence[Question]) -> dict[str, tuple]:
+    import balance
+
+    res = balance.solve(raw)
+    rot = res.get("rotor")
+    force_units = ("N", "N m") if rot is not None and \
+        raw.get("rotor", {}).get("speed_rpm") is not None else ("kg m", "kg m^2")
+    out: dict[str, tuple] = {}
+
+    def need(section: str, q: Question):
+        if section not in res:
+            raise WorkbenchError(f"question {q.text!r}: the scene has no [{section}] section")
+        return res[section]
+
+    for q in questions:
+        kind, unit = "number", ""
+        k = int(q.arg) if q.arg and q.arg.isdigit() else 1
+        if q.q in ("mass", "angle", "U"):
+            cor = need("rotor", q)["corrections"]
+            if not 1 <= k <= len(cor):
+                raise WorkbenchError(f"question {q.text!r}: the rotor has {len(cor)} "
+                                     "correction plane(s)")
+            val = cor[k - 1][q.q]
+            unit = {"mass": "kg", "angle": "deg", "U": "kg m"}[q.q]
+            kind = "angle" if q.q == "angle" else "number"
+            scale = max(c[q.q] for c in cor) if q.q != "angle" else None
+        elif q.q in ("initial_force", "initial_moment", "residual_force", "residual_moment"):
+            r = need("rotor", q)
+            val = r[q.q]
+            unit = force_units[0] if q.q.endswith("force") else force_units[1]
+            scale = r["initial_force" if q.q.endswith("force") else "initial_moment"]
+        elif q.q in ("eccentricity", "correction_mass"):
+            val = need("static_test", q)[q.q]
+            unit = "m" if q.q == "eccentricity" else "kg"
+            scale = abs(val)
+        elif q.q.startswith("res_"):
+            tests = need("resonance_test", q)
+            if not 1 <= k <= len(tests):
+                raise WorkbenchError(f"question {q.text!r}: the scene has {len(tests)} "
+                                     "resonance test(s)")
+            key = {"res_mass": "correction_mass", "res_angle": "angle",
+                   "res_mirror": "mirror_angle", "res_A": "A", "res_phi": "phi",
+                   "res_unbalance": "unbalance"}.get(q.q)
+            if key is None:
+                raise WorkbenchError(f"question {q.text!r}: unknown resonance quantity; "
+                                     "known: res_mass, res_angle, res_mirror, res_A, res_phi, "
+                                     "res_unbalance")
+            val = tests[k - 1][key]
+            unit = {"correction_mass": "kg", "angle": "deg", "mirror_angle": "deg", "A": "",
+                    "phi": "deg", "unbalance": "kg m"}[key]
+            kind = "angle" if q.q in _ANGLES else "number"
+            scale = abs(val) if isinstance(val, int | float) else None
+        elif q.q in ("shaking_before", "shaking_after"):
+            b = need("balancing", q)
+            val = b[f"shaking_force_{q.q.split('_')[1]}"]
+            unit, scale = "N", b["shaking_force_before"]
+        else:
+            node: Any = res
+            for part in q.text.split("."):
+                try:
+                    node = node[int(part)] if isinstance(node, list) else node[part]
+                except (KeyError, IndexError, ValueError, TypeError):
+                    raise WorkbenchError(f"question {q.text!r}: not a quantity of this "
+                                         "balancing scene") from None
+            val, scale = node, None
+        if val is None:
+            raise WorkbenchError(f"question {q.text!r}: undefined for this variant")
+        val = float(val)
+        atol = ANGLE_ATOL if kind == "angle" or unit == "deg" else \
+            ATOL_FRACTION * abs(scale or val)
+        out[q.text] = (val, unit, kind, atol)
+    return out
+
+
+def answer_key(scene: Any, questions: Iterable[str]) -> dict[str, float]:
+    """The values of the asked quantities for one scene.
+
+    Parameters
+    ----------
+    scene : dict, path or TOML text
+        A mechanism scene (computed with :func:`kinetostatics.solve`) or a balancing
+        scene (:func:`balance.solve`).
+    questions : iterable of str
+        See the module's table (``"Me@30"``, ``"Fmax[B]"``, ``"mass[1]"``, ...).
+
+    Returns
+    -------
+    dict
+        question -> value.
+
+    Examples
+    --------
+    >>> import kinetostatics as ks
+    >>> key = answer_key(ks.example("four_bar"), ["Me@30", "Fmax[B]"])
+    >>> sorted(key)
+    ['Fmax[B]', 'Me@30']
+    """
+    return {k: v[0] for k, v in key_rows(read_source(scene), list(questions)).items()}
+
+
+def key_rows(raw: dict, questions: Sequence[str]) -> dict[str, tuple]:
+    qs = [parse_question(q) for q in questions]
+    if is_mechanism(raw):
+        return _mechanism_values(raw, qs)
+    return _balance_values(raw, qs)
+
+
