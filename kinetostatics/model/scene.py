@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -181,6 +182,17 @@ class Scene:
     motion: dict[str, Any] | None = None
     balancing: dict[str, Any] | None = None
     raw: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
+
+    @cached_property
+    def size(self) -> float:
+        """The mechanism's size (m): the largest distance of a named point (ground points and
+        every body's local points) from its frame's origin, at least 1e-3 m.
+
+        Every length tolerance of the solver, the simulation and the balancing is measured
+        against it, so a scene scaled by any factor is judged alike.
+        """
+        return max([1e-3] + [math.hypot(*p) for p in self.ground.values()]
+                   + [math.hypot(*p) for b in self.bodies.values() for p in b.points.values()])
 
     def point_names(self, body: str) -> list[str]:
         """Named points of a body (ground: the ``[ground]`` table)."""

@@ -79,3 +79,8 @@ def icross(acc, rx, ry, fx, fy, tmp, sign: float = 1.0) -> None:
     if not (zero(ry) or zero(fx)):
         np.multiply(ry, fx, out=tmp)
         iadd(acc, tmp, -sign)
+
+
+def full(x, n: int) -> np.ndarray:
+    """x as a float array of n values over the positions (a scalar is broadcast, read-only)."""
+    return np.broadcast_to(np.asarray(x, dtype=float), (n,))

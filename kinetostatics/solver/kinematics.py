@@ -22,7 +22,6 @@ Coordinates are kept as separate x and y arrays (one element per position).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -30,99 +29,12 @@ import numpy as np
 from ..model.errors import AssemblyError
 from ..model.scene import GROUND, Scene
 from . import _arith as A
+from .closure import DyadSolver, Param, body_origin, dyad_param
+from .driver import BodyMotion, driver_motion, ground_motion
 from .structure import Dyad, Structure
 
 SINGULAR_WARN = 1e-3    # sin(transmission angle) below this: the row is flagged singular
 SINGULAR_FAIL = 1e-12   # below this the velocity system cannot be solved: refused
-
-
-class BodyMotion:
-    """Planar motion of a body over the sweep: cos and sin of its angle, angular velocity
-    and acceleration, and the global position, velocity and acceleration of its local
-    origin. Any of them may be a scalar (a fixed pivot, a constant speed); ``theta``
-    (rad) is computed when first asked for unless given."""
-
-    __slots__ = ("cos", "sin", "omega", "alpha", "ox", "oy", "vx", "vy", "ax", "ay", "_theta")
-
-    def __init__(self, theta, cos, sin, omega, alpha, ox, oy, vx, vy, ax, ay):
-        self._theta = theta
-        self.cos, self.sin = cos, sin
-        self.omega, self.alpha = omega, alpha
-        self.ox, self.oy, self.vx, self.vy, self.ax, self.ay = ox, oy, vx, vy, ax, ay
-
-    @property
-    def theta(self):
-        if self._theta is None:
-            self._theta = np.arctan2(self.sin, self.cos)
-        return self._theta
-
-    def rotate(self, lx: float, ly: float):
-        """A local vector turned into global axes: R(theta) l (the lever arm from the
-        origin of a local point)."""
-        return A.rotate(self.cos, self.sin, lx, ly)
-
-    def point(self, local: tuple[float, float]):
-        """Global position of a local point."""
-        rx, ry = self.rotate(*local)
-        return A.add(self.ox, rx), A.add(self.oy, ry)
-
-    def vel_arm(self, rx, ry):
-        """Velocity of the body point at the arm (rx, ry) from the origin: v_O + omega k x r."""
-        return A.sub(self.vx, A.mul(self.omega, ry)), A.add(self.vy, A.mul(self.omega, rx))
-
-    def acc_arm(self, rx, ry):
-        """Acceleration of the body point at the arm r: a_O + eps k x r - omega^2 r
-        (seed 001 eq. 9)."""
-        w2 = A.mul(self.omega, self.omega)
-        return (A.sub(A.sub(self.ax, A.mul(self.alpha, ry)), A.mul(w2, rx)),
-                A.sub(A.add(self.ay, A.mul(self.alpha, rx)), A.mul(w2, ry)))
-
-    def vel_at(self, x, y):
-        """Velocity of the body's point that is at the global position (x, y)."""
-        return self.vel_arm(A.sub(x, self.ox), A.sub(y, self.oy))
-
-    def acc_at(self, x, y):
-        """Acceleration of the body's point at the global position (x, y)."""
-        return self.acc_arm(A.sub(x, self.ox), A.sub(y, self.oy))
-
-    def take(self, index) -> BodyMotion:
-        """The motion at some rows only (scalars stay scalars)."""
-        def t(a):
-            return a[index] if np.ndim(a) else a
-        th = None if self._theta is None else t(self._theta)
-        return BodyMotion(th, *(t(getattr(self, f)) for f in self.__slots__[:-1]))
-
-
-def ground_motion() -> BodyMotion:
-    """The fixed body: zero everything, unit rotation."""
-    return BodyMotion(0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-
-
-@dataclass
-class Param:
-    """How a dyad body moves relative to the known body ``known`` through its outer joint.
-
-    ``kind == "rot"``: turns about the point P of the known body (position, velocity
-    and acceleration ``p*``, ``vp*``, ``ap*``); ``local`` is the joint point in the
-    body's frame. ``kind == "trans"``: its angle is known (``c, s``) and its origin is
-    ``base + s u``, u (``ux, uy``) fixed in the known body.
-    """
-
-    kind: str
-    known: BodyMotion
-    local: tuple[float, float] = (0.0, 0.0)
-    px: object = 0.0
-    py: object = 0.0
-    vpx: object = 0.0
-    vpy: object = 0.0
-    apx: object = 0.0
-    apy: object = 0.0
-    c: object = 1.0
-    s: object = 0.0
-    ux: object = 1.0
-    uy: object = 0.0
-    bx: object = 0.0
-    by: object = 0.0
 
 
 @dataclass
@@ -157,8 +69,8 @@ class DyadMotion:
                 cos_t = -(A.add(A.mul(c1[0], c2[0]), A.mul(c1[1], c2[1]))) / norm
             else:
                 sin_t, cos_t = _inner_t_tau(self.params, self.ny, -self.nx)
-            self._tau = (_full(np.asarray(sin_t, dtype=float), n),
-                         _full(np.asarray(cos_t, dtype=float), n))
+            self._tau = (A.full(np.asarray(sin_t, dtype=float), n),
+                         A.full(np.asarray(cos_t, dtype=float), n))
         return self._tau
 
     @property
@@ -214,253 +126,6 @@ def _fmt_positions(scene: Scene, rows: np.ndarray, values: np.ndarray | None = N
     return ", ".join(items) + more
 
 
-def driver_motion(scene: Scene) -> BodyMotion:
-    """Motion of the driving element (seed 000 ch. 4): a crank turning about its ground
-    joint (position = angle of its local x axis) or a slider on a ground guide (position
-    = distance of its slider point from the line point along the line)."""
-    drv = scene.driver
-    joint = scene.joints[drv.joint]
-    body = scene.bodies[drv.body]
-    w, eps = float(drv.speed), float(drv.acceleration)
-    if drv.kind == "R":
-        th = np.deg2rad(drv.positions)
-        c, s = np.cos(th), np.sin(th)
-        px, py = scene.ground[joint.point_on(GROUND)]
-        rax, ray = A.rotate(c, s, *body.local(joint.point_on(drv.body)))   # o = P - R a
-        w2 = w * w
-        return BodyMotion(th, c, s, w, eps, A.sub(float(px), rax), A.sub(float(py), ray),
-                          A.mul(w, ray), A.mul(-w, rax),
-                          A.add(A.mul(eps, ray), A.mul(w2, rax)),
-                          A.add(A.mul(-eps, rax), A.mul(w2, ray)))
-    beta = np.deg2rad(joint.line_angle)
-    pos = drv.positions
-    if joint.guide == GROUND:
-        th = float(beta)
-        ux, uy = float(np.cos(beta)), float(np.sin(beta))
-        lx, ly = scene.ground[joint.points[0]]
-        loc = body.local(joint.points[1])
-        sign = 1.0
-    else:   # the driver carries the guide and slides along a ground slider point
-        th = -float(beta)
-        ux, uy = 1.0, 0.0
-        lx, ly = scene.ground[joint.points[1]]
-        loc = body.local(joint.points[0])
-        sign = -1.0
-    c, s = float(np.cos(th)), float(np.sin(th))
-    rx, ry = A.rotate(c, s, *loc)
-    ox = A.add(A.mul(sign * ux, pos), lx - rx)
-    oy = A.add(A.mul(sign * uy, pos), ly - ry)
-    v, a = sign * w, sign * eps
-    return BodyMotion(th, c, s, 0.0, 0.0, ox, oy, v * ux, v * uy, a * ux, a * uy)
-
-
-def _known_point(scene: Scene, bname: str, motion: BodyMotion, pname: str):
-    """Position, velocity and acceleration of a named point of a known body."""
-    if bname == GROUND:
-        x, y = scene.ground[pname]
-        return float(x), float(y), 0.0, 0.0, 0.0, 0.0
-    rx, ry = motion.rotate(*scene.bodies[bname].local(pname))
-    vx, vy = motion.vel_arm(rx, ry)
-    ax, ay = motion.acc_arm(rx, ry)
-    return A.add(motion.ox, rx), A.add(motion.oy, ry), vx, vy, ax, ay
-
-
-def _param(scene: Scene, dyad: Dyad, i: int, motions: dict[str, BodyMotion]) -> Param:
-    name = dyad.bodies[i]
-    joint = dyad.outer[i]
-    kname = joint.other(name)
-    kb = motions[kname]
-    body = scene.bodies[name]
-    if joint.kind == "R":
-        px, py, vx, vy, ax, ay = _known_point(scene, kname, kb, joint.point_on(kname))
-        return Param("rot", kb, body.local(joint.point_on(name)), px, py, vx, vy, ax, ay)
-    beta = np.deg2rad(joint.line_angle)
-    cb, sb = float(np.cos(beta)), float(np.sin(beta))
-    if joint.guide == kname:                         # known body carries the guide
-        c, s = A.rotate(kb.cos, kb.sin, cb, sb)      # theta_i = theta_K + beta
-        lx, ly = _known_point(scene, kname, kb, joint.points[0])[:2]
-        rx, ry = A.rotate(c, s, *body.local(joint.points[1]))
-        ux, uy = c, s
-    else:                                            # the dyad body carries the guide
-        c, s = A.rotate(kb.cos, kb.sin, cb, -sb)     # theta_i = theta_K - beta
-        lx, ly = _known_point(scene, kname, kb, joint.points[1])[:2]
-        rx, ry = A.rotate(c, s, *body.local(joint.points[0]))
-        ux, uy = kb.cos, kb.sin
-    return Param("trans", kb, c=c, s=s, ux=ux, uy=uy, bx=A.sub(lx, rx), by=A.sub(ly, ry))
-
-
-def _rot_angle(dx, dy, local_vec, r2):
-    """cos, sin of the angle that turns the local vector onto (dx, dy) (|d|^2 = r2)."""
-    lx, ly = local_vec
-    return (A.add(A.mul(dx, lx / r2), A.mul(dy, ly / r2)),
-            A.sub(A.mul(dy, lx / r2), A.mul(dx, ly / r2)))
-
-
-def _trans_point(p: Param, local):
-    """Position of a local point of a translating body at s = 0."""
-    rx, ry = A.rotate(p.c, p.s, *local)
-    return A.add(p.bx, rx), A.add(p.by, ry)
-
-
-class _DyadSolver:
-    """Closed-form position analysis of one dyad for a given assembly k."""
-
-    def __init__(self, scene: Scene, dyad: Dyad):
-        self.scene = scene
-        self.dyad = dyad
-        self.b = [scene.bodies[n] for n in dyad.bodies]
-        inner = dyad.inner
-        self.slider_first = False
-        if inner.kind == "R":
-            self.q = [self.b[i].local(inner.point_on(dyad.bodies[i])) for i in range(2)]
-            for i, (qx, qy) in enumerate(self.q):
-                outer = dyad.outer[i]
-                if outer.kind != "R":
-                    continue
-                ax, ay = self.b[i].local(outer.point_on(dyad.bodies[i]))
-                if math.hypot(qx - ax, qy - ay) <= 1e-12 * _scale(scene):
-                    raise AssemblyError(
-                        f"body {dyad.bodies[i]!r}: its joint points for {outer.name!r} and "
-                        f"{inner.name!r} coincide; a dyad link needs a length")
-        else:
-            self.slider_first = inner.slider == dyad.bodies[0]
-            self.beta = float(np.deg2rad(inner.line_angle))
-
-    @property
-    def branches(self) -> int:
-        kinds = (self.p_kind(0), self.p_kind(1))
-        if self.dyad.inner.kind == "R":
-            return 1 if kinds == ("trans", "trans") else 2
-        return 2 if kinds == ("rot", "rot") else 1
-
-    def p_kind(self, i: int) -> str:
-        return "rot" if self.dyad.outer[i].kind == "R" else "trans"
-
-    def positions(self, pr: tuple[Param, Param], k: int):
-        """Per body (cos, sin) and the displacement s of a translating body, for assembly
-        k, and the gap (m, > 0 where the dyad cannot close) or None when it closes
-        everywhere."""
-        with np.errstate(divide="ignore", invalid="ignore"):
-            if self.dyad.inner.kind == "R":
-                return self._inner_r(pr, k)
-            return self._inner_t(pr, k)
-
-    def _inner_r(self, pr, k):
-        p1, p2 = pr
-        (q1x, q1y), (q2x, q2y) = self.q
-        a1 = (q1x - p1.local[0], q1y - p1.local[1])
-        a2 = (q2x - p2.local[0], q2y - p2.local[1])
-        out = [None, None]
-        if p1.kind == "rot" and p2.kind == "rot":
-            # circle-circle (RRR, seed 000 ch. 5, eq. 5.1): Q = P1 + x e + k h J e
-            r1s, r2s = a1[0] ** 2 + a1[1] ** 2, a2[0] ** 2 + a2[1] ** 2
-            ex, ey = A.sub(p2.px, p1.px), A.sub(p2.py, p1.py)
-            d2 = ex * ex + ey * ey
-            inv = 1.0 / np.sqrt(d2)
-            x = (d2 + (r1s - r2s)) * (0.5 * inv)
-            h2 = r1s - x * x
-            gap = None
-            if np.min(h2) < 0.0 or not np.all(np.isfinite(h2)):
-                d = np.sqrt(d2)
-                r1, r2 = np.sqrt(r1s), np.sqrt(r2s)
-                gap = np.where(np.isfinite(h2), np.maximum(d - (r1 + r2), abs(r1 - r2) - d),
-                               np.inf)
-            kh = (k * inv) * np.sqrt(np.maximum(h2, 0.0))
-            xi = x * inv
-            tx = xi * ex - kh * ey                    # X - P1
-            ty = xi * ey + kh * ex
-            out[0] = _rot_angle(tx, ty, a1, r1s)
-            out[1] = _rot_angle(A.sub(A.add(p1.px, tx), p2.px), A.sub(A.add(p1.py, ty), p2.py),
-                                a2, r2s)
-            return out, (None, None), gap
-        if p1.kind == "trans" and p2.kind == "trans":
-            # line-line (TRT, seed 000 ch. 10): Q01 + s1 u1 = Q02 + s2 u2
-            q01 = _trans_point(p1, self.q[0])
-            q02 = _trans_point(p2, self.q[1])
-            rx, ry = A.sub(q02[0], q01[0]), A.sub(q02[1], q01[1])
-            det = A.sub(A.mul(p1.uy, p2.ux), A.mul(p1.ux, p2.uy))
-            s1 = A.sub(A.mul(ry, p2.ux), A.mul(rx, p2.uy)) / det
-            s2 = A.sub(A.mul(p1.ux, ry), A.mul(p1.uy, rx)) / det
-            return [(p1.c, p1.s), (p2.c, p2.s)], (s1, s2), None
-        # circle-line (RRT / TRR, seed 000 ch. 9 and 8)
-        ir, it = (0, 1) if p1.kind == "rot" else (1, 0)
-        prr, pt = pr[ir], pr[it]
-        ar = a1 if ir == 0 else a2
-        rs = ar[0] ** 2 + ar[1] ** 2
-        q0 = _trans_point(pt, self.q[it])
-        wx, wy = A.sub(q0[0], prr.px), A.sub(q0[1], prr.py)
-        b = A.add(A.mul(pt.ux, wx), A.mul(pt.uy, wy))
-        disc = b * b - (wx * wx + wy * wy) + rs
-        gap = None
-        if np.min(disc) < 0.0:
-            gap = np.abs(A.sub(A.mul(pt.ux, wy), A.mul(pt.uy, wx))) - np.sqrt(rs)
-        s = k * np.sqrt(np.maximum(disc, 0.0)) - b
-        out[ir] = _rot_angle(A.add(wx, A.mul(s, pt.ux)), A.add(wy, A.mul(s, pt.uy)), ar, rs)
-        out[it] = (pt.c, pt.s)
-        ss = [None, None]
-        ss[it] = s
-        return out, tuple(ss), gap
-
-    def _inner_t(self, pr, k):
-        inner = self.dyad.inner
-        i_s, i_g = (0, 1) if self.slider_first else (1, 0)
-        ps, pg = pr[i_s], pr[i_g]
-        s_loc = self.b[i_s].local(inner.points[1])
-        l_loc = self.b[i_g].local(inner.points[0])
-        cb, sb = np.cos(self.beta), np.sin(self.beta)
-        out = [None, None]
-        ss = [None, None]
-        if ps.kind == "rot" and pg.kind == "rot":
-            # RTR (seed 000 ch. 6-7): sin(delta - theta_g - beta) = -c / |D|
-            asx, asy = s_loc[0] - ps.local[0], s_loc[1] - ps.local[1]
-            vx_ = cb * asx - sb * asy - (l_loc[0] - pg.local[0])
-            vy_ = sb * asx + cb * asy - (l_loc[1] - pg.local[1])
-            c = cb * vy_ - sb * vx_
-            dx, dy = A.sub(ps.px, pg.px), A.sub(ps.py, pg.py)
-            dn = np.sqrt(dx * dx + dy * dy)
-            y = -c / dn
-            gap = None
-            if np.max(np.abs(y)) > 1.0 or not np.all(np.isfinite(y)):
-                gap = np.where(np.isfinite(y), abs(c) - dn, np.inf)
-            x = np.arcsin(np.clip(y, -1.0, 1.0))
-            th = np.arctan2(dy, dx) - self.beta + (-x if k > 0 else x - np.pi)
-            cg, sg = np.cos(th), np.sin(th)
-            out[i_g] = (cg, sg)
-            out[i_s] = A.rotate(cg, sg, cb, sb)
-            return out, (None, None), gap
-        # RTT / TTR (seed 000 ch. 11-12): the rotating body's angle follows the other's
-        if ps.kind == "rot":
-            cs_, sn_ = A.rotate(pg.c, pg.s, cb, sb)          # slider angle = guide's + beta
-            sx, sy = A.rotate(cs_, sn_, s_loc[0] - ps.local[0], s_loc[1] - ps.local[1])
-            sx, sy = A.add(ps.px, sx), A.add(ps.py, sy)
-            l0 = _trans_point(pg, l_loc)
-            den = A.sub(A.mul(cs_, pg.uy), A.mul(sn_, pg.ux))
-            s = A.sub(A.mul(cs_, A.sub(sy, l0[1])), A.mul(sn_, A.sub(sx, l0[0]))) / den
-            out[i_s] = (cs_, sn_)
-            out[i_g] = (pg.c, pg.s)
-            ss[i_g] = s
-        else:
-            cg, sg = A.rotate(ps.c, ps.s, cb, -sb)           # guide angle = slider's - beta
-            lx, ly = A.rotate(cg, sg, l_loc[0] - pg.local[0], l_loc[1] - pg.local[1])
-            lx, ly = A.add(pg.px, lx), A.add(pg.py, ly)
-            ux, uy = ps.c, ps.s
-            s0 = _trans_point(ps, s_loc)
-            den = A.sub(A.mul(ux, ps.uy), A.mul(uy, ps.ux))
-            s = -A.sub(A.mul(ux, A.sub(s0[1], ly)), A.mul(uy, A.sub(s0[0], lx))) / den
-            out[i_g] = (cg, sg)
-            out[i_s] = (ps.c, ps.s)
-            ss[i_s] = s
-        return out, tuple(ss), None
-
-
-def _origin(pr: Param, cs, s):
-    """Origin of a dyad body from its parameter and solved unknown."""
-    if pr.kind == "rot":
-        rx, ry = A.rotate(cs[0], cs[1], *pr.local)
-        return A.sub(pr.px, rx), A.sub(pr.py, ry)
-    return A.add(pr.bx, A.mul(s, pr.ux)), A.add(pr.by, A.mul(s, pr.uy))
-
-
 def _columns(pr: Param, xx, xy):
     """Velocity of the body's point at X per unit of its unknown (the column c_i), the
     known part k_i of that velocity, and the weight of the unknown in the body's
@@ -475,9 +140,6 @@ def _solve2(a11, a12, a21, a22, r1, r2, det):
     return (A.sub(A.mul(r1, a22), A.mul(a12, r2)) / det,
             A.sub(A.mul(a11, r2), A.mul(r1, a21)) / det)
 
-
-def _full(x, n):
-    return np.broadcast_to(x, (n,)) if np.ndim(x) == 0 else x
 
 
 def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion]) -> DyadMotion:
@@ -494,19 +156,19 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion]) -> Dyad
         position.
     """
     n = scene.driver.positions.size
-    solver = _DyadSolver(scene, dyad)
-    pr = (_param(scene, dyad, 0, motions), _param(scene, dyad, 1, motions))
+    solver = DyadSolver(scene, dyad)
+    pr = (dyad_param(scene, dyad, 0, motions), dyad_param(scene, dyad, 1, motions))
     k = _choose_branch(scene, dyad, solver, motions) if solver.branches == 2 else 1
     cs, ss, gap = solver.positions(pr, k)
     if gap is not None:
-        gap = _full(gap, n)
-        bad = np.flatnonzero(gap > 1e-9 * _scale(scene))
+        gap = A.full(gap, n)
+        bad = np.flatnonzero(gap > 1e-9 * scene.size)
         if bad.size:
             raise AssemblyError(
                 f"dyad {dyad.label} cannot be assembled at driver position(s) "
                 f"{_fmt_positions(scene, bad, gap[bad])}: the links do not reach; shorten "
                 "the sweep or change the lengths")
-    org = [_origin(pr[i], cs[i], ss[i]) for i in range(2)]
+    org = [body_origin(pr[i], cs[i], ss[i]) for i in range(2)]
     inner = dyad.inner
     ib = 0 if inner.kind == "R" or solver.slider_first else 1
     loc = solver.q[0] if inner.kind == "R" else solver.b[ib].local(inner.points[1])
@@ -534,9 +196,9 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion]) -> Dyad
     # test on the transmission measure of _inner_t_tau)
     if inner.kind == "R":
         norm2 = (c1[0] * c1[0] + c1[1] * c1[1]) * (c2[0] * c2[0] + c2[1] * c2[1])
-        sin2 = _full(det * det / norm2, n)
+        sin2 = A.full(det * det / norm2, n)
     else:
-        sin2 = _full(_inner_t_tau(pr, ux, uy)[0], n) ** 2
+        sin2 = A.full(_inner_t_tau(pr, ux, uy)[0], n) ** 2
     sing = ~(sin2 > SINGULAR_WARN**2)
     exact = np.flatnonzero(~(sin2 > SINGULAR_FAIL**2)) if sing.any() else ()
     if len(exact):
@@ -612,12 +274,6 @@ def _inner_t_tau(pr, ux, uy):
     return A.sub(A.mul(ux, pt.uy), A.mul(uy, pt.ux)), A.add(A.mul(ux, pt.ux), A.mul(uy, pt.uy))
 
 
-def _scale(scene: Scene) -> float:
-    pts = [abs(v) for b in scene.bodies.values() for p in b.points.values() for v in p]
-    pts += [abs(v) for p in scene.ground.values() for v in p]
-    return max(pts + [1e-3])
-
-
 def _hint_points(scene: Scene, dyad: Dyad):
     """Hints that concern the dyad: (hint name, body, local point, target)."""
     out = []
@@ -635,14 +291,14 @@ def _hint_points(scene: Scene, dyad: Dyad):
     return out
 
 
-def _choose_branch(scene: Scene, dyad: Dyad, solver: _DyadSolver,
+def _choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver,
                    motions: dict[str, BodyMotion]) -> int:
     first = {name: m.take(slice(0, 1)) for name, m in motions.items()}
-    pr = (_param(scene, dyad, 0, first), _param(scene, dyad, 1, first))
+    pr = (dyad_param(scene, dyad, 0, first), dyad_param(scene, dyad, 1, first))
     cands = {}
     for k in (1, -1):
         cs, ss, _ = solver.positions(pr, k)
-        cands[k] = (cs, [_origin(pr[i], cs[i], ss[i]) for i in range(2)])
+        cands[k] = (cs, [body_origin(pr[i], cs[i], ss[i]) for i in range(2)])
     hints = _hint_points(scene, dyad)
 
     def where(k, b, loc):
@@ -653,7 +309,7 @@ def _choose_branch(scene: Scene, dyad: Dyad, solver: _DyadSolver,
     if hints:
         dist = {k: sum((where(k, b, loc)[0] - t[0]) ** 2 + (where(k, b, loc)[1] - t[1]) ** 2
                        for _, b, loc, t in hints) for k in (1, -1)}
-        if abs(dist[1] - dist[-1]) > 1e-12 * _scale(scene) ** 2:
+        if abs(dist[1] - dist[-1]) > 1e-12 * scene.size ** 2:
             return 1 if dist[1] < dist[-1] else -1
     # no hint settles it: list the candidates
     inner = dyad.inner

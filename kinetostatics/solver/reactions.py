@@ -220,7 +220,7 @@ def _solve_driver(scene: Scene, kin: Kinematics, store: _Store, out: dict) -> Dr
         ax, ay = store.arm(scene, drv.body, joint.point_on(drv.body))
         me = -A.sub(r[2], A.cross(ax, ay, r[0], r[1]))
         _record(out, joint, drv.body, r[0], r[1], float(px), float(py), sign=-1.0)
-        return DriverReaction("R", _full(me, kin.n))
+        return DriverReaction("R", A.full(me, kin.n))
     # sliding driver (eqs 2.49-2.51): Fe along the line through the slider point
     if joint.guide == GROUND:
         beta = np.deg2rad(joint.line_angle)
@@ -238,8 +238,5 @@ def _solve_driver(scene: Scene, kin: Kinematics, store: _Store, out: dict) -> Dr
     fn = -A.add(A.mul(r[0], nx), A.mul(r[1], ny))
     c = -A.sub(r[2], A.cross(ax, ay, r[0], r[1]))
     _record(out, joint, drv.body, A.mul(fn, nx), A.mul(fn, ny), sx, sy, fn, c)
-    return DriverReaction("T", _full(fe, kin.n))
+    return DriverReaction("T", A.full(fe, kin.n))
 
-
-def _full(x, n):
-    return np.broadcast_to(np.asarray(x, dtype=float), (n,))

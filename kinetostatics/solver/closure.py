@@ -1,0 +1,257 @@
+"""Position closure of a dyad, closed form per kind (seed 000 ch. 5-12).
+
+A dyad body joined to a known body K by a revolute joint rotates about that joint's point
+(its unknown is its angle, ``rot``); by a prismatic joint it keeps K's angle plus the line
+angle and translates along a direction fixed in K (its unknown is the displacement,
+``trans``). :class:`DyadSolver` closes the inner joint for the assembly k = +-1 (the
+seed's indicator, seed 000 eqs 6.1, 8.1): circle-circle, circle-line or line-line
+intersection for a revolute inner joint, the guide's line through the slider point for a
+prismatic one.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..model.errors import AssemblyError
+from ..model.scene import GROUND, Scene
+from . import _arith as A
+from .driver import BodyMotion
+from .structure import Dyad
+
+
+@dataclass
+class Param:
+    """How a dyad body moves relative to the known body ``known`` through its outer joint.
+
+    ``kind == "rot"``: turns about the point P of the known body (position, velocity
+    and acceleration ``p*``, ``vp*``, ``ap*``); ``local`` is the joint point in the
+    body's frame. ``kind == "trans"``: its angle is known (``c, s``) and its origin is
+    ``base + s u``, u (``ux, uy``) fixed in the known body.
+    """
+
+    kind: str
+    known: BodyMotion
+    local: tuple[float, float] = (0.0, 0.0)
+    px: object = 0.0
+    py: object = 0.0
+    vpx: object = 0.0
+    vpy: object = 0.0
+    apx: object = 0.0
+    apy: object = 0.0
+    c: object = 1.0
+    s: object = 0.0
+    ux: object = 1.0
+    uy: object = 0.0
+    bx: object = 0.0
+    by: object = 0.0
+
+
+def known_point(scene: Scene, bname: str, motion: BodyMotion, pname: str):
+    """Position, velocity and acceleration of a named point of a known body."""
+    if bname == GROUND:
+        x, y = scene.ground[pname]
+        return float(x), float(y), 0.0, 0.0, 0.0, 0.0
+    rx, ry = motion.rotate(*scene.bodies[bname].local(pname))
+    vx, vy = motion.vel_arm(rx, ry)
+    ax, ay = motion.acc_arm(rx, ry)
+    return A.add(motion.ox, rx), A.add(motion.oy, ry), vx, vy, ax, ay
+
+
+def dyad_param(scene: Scene, dyad: Dyad, i: int, motions: dict[str, BodyMotion]) -> Param:
+    name = dyad.bodies[i]
+    joint = dyad.outer[i]
+    kname = joint.other(name)
+    kb = motions[kname]
+    body = scene.bodies[name]
+    if joint.kind == "R":
+        px, py, vx, vy, ax, ay = known_point(scene, kname, kb, joint.point_on(kname))
+        return Param("rot", kb, body.local(joint.point_on(name)), px, py, vx, vy, ax, ay)
+    beta = np.deg2rad(joint.line_angle)
+    cb, sb = float(np.cos(beta)), float(np.sin(beta))
+    if joint.guide == kname:                         # known body carries the guide
+        c, s = A.rotate(kb.cos, kb.sin, cb, sb)      # theta_i = theta_K + beta
+        lx, ly = known_point(scene, kname, kb, joint.points[0])[:2]
+        rx, ry = A.rotate(c, s, *body.local(joint.points[1]))
+        ux, uy = c, s
+    else:                                            # the dyad body carries the guide
+        c, s = A.rotate(kb.cos, kb.sin, cb, -sb)     # theta_i = theta_K - beta
+        lx, ly = known_point(scene, kname, kb, joint.points[1])[:2]
+        rx, ry = A.rotate(c, s, *body.local(joint.points[0]))
+        ux, uy = kb.cos, kb.sin
+    return Param("trans", kb, c=c, s=s, ux=ux, uy=uy, bx=A.sub(lx, rx), by=A.sub(ly, ry))
+
+
+def _rot_angle(dx, dy, local_vec, r2):
+    """cos, sin of the angle that turns the local vector onto (dx, dy) (|d|^2 = r2)."""
+    lx, ly = local_vec
+    return (A.add(A.mul(dx, lx / r2), A.mul(dy, ly / r2)),
+            A.sub(A.mul(dy, lx / r2), A.mul(dx, ly / r2)))
+
+
+def _trans_point(p: Param, local):
+    """Position of a local point of a translating body at s = 0."""
+    rx, ry = A.rotate(p.c, p.s, *local)
+    return A.add(p.bx, rx), A.add(p.by, ry)
+
+
+class DyadSolver:
+    """Closed-form position analysis of one dyad for a given assembly k."""
+
+    def __init__(self, scene: Scene, dyad: Dyad):
+        self.scene = scene
+        self.dyad = dyad
+        self.b = [scene.bodies[n] for n in dyad.bodies]
+        inner = dyad.inner
+        self.slider_first = False
+        if inner.kind == "R":
+            self.q = [self.b[i].local(inner.point_on(dyad.bodies[i])) for i in range(2)]
+            for i, (qx, qy) in enumerate(self.q):
+                outer = dyad.outer[i]
+                if outer.kind != "R":
+                    continue
+                ax, ay = self.b[i].local(outer.point_on(dyad.bodies[i]))
+                if math.hypot(qx - ax, qy - ay) <= 1e-12 * scene.size:
+                    raise AssemblyError(
+                        f"body {dyad.bodies[i]!r}: its joint points for {outer.name!r} and "
+                        f"{inner.name!r} coincide; a dyad link needs a length")
+        else:
+            self.slider_first = inner.slider == dyad.bodies[0]
+            self.beta = float(np.deg2rad(inner.line_angle))
+
+    @property
+    def branches(self) -> int:
+        kinds = (self.p_kind(0), self.p_kind(1))
+        if self.dyad.inner.kind == "R":
+            return 1 if kinds == ("trans", "trans") else 2
+        return 2 if kinds == ("rot", "rot") else 1
+
+    def p_kind(self, i: int) -> str:
+        return "rot" if self.dyad.outer[i].kind == "R" else "trans"
+
+    def positions(self, pr: tuple[Param, Param], k: int):
+        """Per body (cos, sin) and the displacement s of a translating body, for assembly
+        k, and the gap (m, > 0 where the dyad cannot close) or None when it closes
+        everywhere."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            if self.dyad.inner.kind == "R":
+                return self._inner_r(pr, k)
+            return self._inner_t(pr, k)
+
+    def _inner_r(self, pr, k):
+        p1, p2 = pr
+        (q1x, q1y), (q2x, q2y) = self.q
+        a1 = (q1x - p1.local[0], q1y - p1.local[1])
+        a2 = (q2x - p2.local[0], q2y - p2.local[1])
+        out = [None, None]
+        if p1.kind == "rot" and p2.kind == "rot":
+            # circle-circle (RRR, seed 000 ch. 5, eq. 5.1): Q = P1 + x e + k h J e
+            r1s, r2s = a1[0] ** 2 + a1[1] ** 2, a2[0] ** 2 + a2[1] ** 2
+            ex, ey = A.sub(p2.px, p1.px), A.sub(p2.py, p1.py)
+            d2 = ex * ex + ey * ey
+            inv = 1.0 / np.sqrt(d2)
+            x = (d2 + (r1s - r2s)) * (0.5 * inv)
+            h2 = r1s - x * x
+            gap = None
+            if np.min(h2) < 0.0 or not np.all(np.isfinite(h2)):
+                d = np.sqrt(d2)
+                r1, r2 = np.sqrt(r1s), np.sqrt(r2s)
+                gap = np.where(np.isfinite(h2), np.maximum(d - (r1 + r2), abs(r1 - r2) - d),
+                               np.inf)
+            kh = (k * inv) * np.sqrt(np.maximum(h2, 0.0))
+            xi = x * inv
+            tx = xi * ex - kh * ey                    # X - P1
+            ty = xi * ey + kh * ex
+            out[0] = _rot_angle(tx, ty, a1, r1s)
+            out[1] = _rot_angle(A.sub(A.add(p1.px, tx), p2.px), A.sub(A.add(p1.py, ty), p2.py),
+                                a2, r2s)
+            return out, (None, None), gap
+        if p1.kind == "trans" and p2.kind == "trans":
+            # line-line (TRT, seed 000 ch. 10): Q01 + s1 u1 = Q02 + s2 u2
+            q01 = _trans_point(p1, self.q[0])
+            q02 = _trans_point(p2, self.q[1])
+            rx, ry = A.sub(q02[0], q01[0]), A.sub(q02[1], q01[1])
+            det = A.sub(A.mul(p1.uy, p2.ux), A.mul(p1.ux, p2.uy))
+            s1 = A.sub(A.mul(ry, p2.ux), A.mul(rx, p2.uy)) / det
+            s2 = A.sub(A.mul(p1.ux, ry), A.mul(p1.uy, rx)) / det
+            return [(p1.c, p1.s), (p2.c, p2.s)], (s1, s2), None
+        # circle-line (RRT / TRR, seed 000 ch. 9 and 8)
+        ir, it = (0, 1) if p1.kind == "rot" else (1, 0)
+        prr, pt = pr[ir], pr[it]
+        ar = a1 if ir == 0 else a2
+        rs = ar[0] ** 2 + ar[1] ** 2
+        q0 = _trans_point(pt, self.q[it])
+        wx, wy = A.sub(q0[0], prr.px), A.sub(q0[1], prr.py)
+        b = A.add(A.mul(pt.ux, wx), A.mul(pt.uy, wy))
+        disc = b * b - (wx * wx + wy * wy) + rs
+        gap = None
+        if np.min(disc) < 0.0:
+            gap = np.abs(A.sub(A.mul(pt.ux, wy), A.mul(pt.uy, wx))) - np.sqrt(rs)
+        s = k * np.sqrt(np.maximum(disc, 0.0)) - b
+        out[ir] = _rot_angle(A.add(wx, A.mul(s, pt.ux)), A.add(wy, A.mul(s, pt.uy)), ar, rs)
+        out[it] = (pt.c, pt.s)
+        ss = [None, None]
+        ss[it] = s
+        return out, tuple(ss), gap
+
+    def _inner_t(self, pr, k):
+        inner = self.dyad.inner
+        i_s, i_g = (0, 1) if self.slider_first else (1, 0)
+        ps, pg = pr[i_s], pr[i_g]
+        s_loc = self.b[i_s].local(inner.points[1])
+        l_loc = self.b[i_g].local(inner.points[0])
+        cb, sb = np.cos(self.beta), np.sin(self.beta)
+        out = [None, None]
+        ss = [None, None]
+        if ps.kind == "rot" and pg.kind == "rot":
+            # RTR (seed 000 ch. 6-7): sin(delta - theta_g - beta) = -c / |D|
+            asx, asy = s_loc[0] - ps.local[0], s_loc[1] - ps.local[1]
+            vx_ = cb * asx - sb * asy - (l_loc[0] - pg.local[0])
+            vy_ = sb * asx + cb * asy - (l_loc[1] - pg.local[1])
+            c = cb * vy_ - sb * vx_
+            dx, dy = A.sub(ps.px, pg.px), A.sub(ps.py, pg.py)
+            dn = np.sqrt(dx * dx + dy * dy)
+            y = -c / dn
+            gap = None
+            if np.max(np.abs(y)) > 1.0 or not np.all(np.isfinite(y)):
+                gap = np.where(np.isfinite(y), abs(c) - dn, np.inf)
+            x = np.arcsin(np.clip(y, -1.0, 1.0))
+            th = np.arctan2(dy, dx) - self.beta + (-x if k > 0 else x - np.pi)
+            cg, sg = np.cos(th), np.sin(th)
+            out[i_g] = (cg, sg)
+            out[i_s] = A.rotate(cg, sg, cb, sb)
+            return out, (None, None), gap
+        # RTT / TTR (seed 000 ch. 11-12): the rotating body's angle follows the other's
+        if ps.kind == "rot":
+            cs_, sn_ = A.rotate(pg.c, pg.s, cb, sb)          # slider angle = guide's + beta
+            sx, sy = A.rotate(cs_, sn_, s_loc[0] - ps.local[0], s_loc[1] - ps.local[1])
+            sx, sy = A.add(ps.px, sx), A.add(ps.py, sy)
+            l0 = _trans_point(pg, l_loc)
+            den = A.sub(A.mul(cs_, pg.uy), A.mul(sn_, pg.ux))
+            s = A.sub(A.mul(cs_, A.sub(sy, l0[1])), A.mul(sn_, A.sub(sx, l0[0]))) / den
+            out[i_s] = (cs_, sn_)
+            out[i_g] = (pg.c, pg.s)
+            ss[i_g] = s
+        else:
+            cg, sg = A.rotate(ps.c, ps.s, cb, -sb)           # guide angle = slider's - beta
+            lx, ly = A.rotate(cg, sg, l_loc[0] - pg.local[0], l_loc[1] - pg.local[1])
+            lx, ly = A.add(pg.px, lx), A.add(pg.py, ly)
+            ux, uy = ps.c, ps.s
+            s0 = _trans_point(ps, s_loc)
+            den = A.sub(A.mul(ux, ps.uy), A.mul(uy, ps.ux))
+            s = -A.sub(A.mul(ux, A.sub(s0[1], ly)), A.mul(uy, A.sub(s0[0], lx))) / den
+            out[i_g] = (cg, sg)
+            out[i_s] = (ps.c, ps.s)
+            ss[i_s] = s
+        return out, tuple(ss), None
+
+
+def body_origin(pr: Param, cs, s):
+    """Origin of a dyad body from its parameter and solved unknown."""
+    if pr.kind == "rot":
+        rx, ry = A.rotate(cs[0], cs[1], *pr.local)
+        return A.sub(pr.px, rx), A.sub(pr.py, ry)
+    return A.add(pr.bx, A.mul(s, pr.ux)), A.add(pr.by, A.mul(s, pr.uy))

@@ -1,0 +1,115 @@
+"""Motion of a body over the sweep, and of the driving element (seed 000 ch. 4).
+
+A :class:`BodyMotion` holds, per position, the cos and sin of a body's angle, its angular
+velocity and acceleration, and the global position, velocity and acceleration of its
+local origin; :func:`driver_motion` gives the crank's or the sliding driver's.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..model.scene import GROUND, Scene
+from . import _arith as A
+
+
+class BodyMotion:
+    """Planar motion of a body over the sweep: cos and sin of its angle, angular velocity
+    and acceleration, and the global position, velocity and acceleration of its local
+    origin. Any of them may be a scalar (a fixed pivot, a constant speed); ``theta``
+    (rad) is computed when first asked for unless given."""
+
+    __slots__ = ("cos", "sin", "omega", "alpha", "ox", "oy", "vx", "vy", "ax", "ay", "_theta")
+
+    def __init__(self, theta, cos, sin, omega, alpha, ox, oy, vx, vy, ax, ay):
+        self._theta = theta
+        self.cos, self.sin = cos, sin
+        self.omega, self.alpha = omega, alpha
+        self.ox, self.oy, self.vx, self.vy, self.ax, self.ay = ox, oy, vx, vy, ax, ay
+
+    @property
+    def theta(self):
+        if self._theta is None:
+            self._theta = np.arctan2(self.sin, self.cos)
+        return self._theta
+
+    def rotate(self, lx: float, ly: float):
+        """A local vector turned into global axes: R(theta) l (the lever arm from the
+        origin of a local point)."""
+        return A.rotate(self.cos, self.sin, lx, ly)
+
+    def point(self, local: tuple[float, float]):
+        """Global position of a local point."""
+        rx, ry = self.rotate(*local)
+        return A.add(self.ox, rx), A.add(self.oy, ry)
+
+    def vel_arm(self, rx, ry):
+        """Velocity of the body point at the arm (rx, ry) from the origin: v_O + omega k x r."""
+        return A.sub(self.vx, A.mul(self.omega, ry)), A.add(self.vy, A.mul(self.omega, rx))
+
+    def acc_arm(self, rx, ry):
+        """Acceleration of the body point at the arm r: a_O + eps k x r - omega^2 r
+        (seed 001 eq. 9)."""
+        w2 = A.mul(self.omega, self.omega)
+        return (A.sub(A.sub(self.ax, A.mul(self.alpha, ry)), A.mul(w2, rx)),
+                A.sub(A.add(self.ay, A.mul(self.alpha, rx)), A.mul(w2, ry)))
+
+    def vel_at(self, x, y):
+        """Velocity of the body's point that is at the global position (x, y)."""
+        return self.vel_arm(A.sub(x, self.ox), A.sub(y, self.oy))
+
+    def acc_at(self, x, y):
+        """Acceleration of the body's point at the global position (x, y)."""
+        return self.acc_arm(A.sub(x, self.ox), A.sub(y, self.oy))
+
+    def take(self, index) -> BodyMotion:
+        """The motion at some rows only (scalars stay scalars)."""
+        def t(a):
+            return a[index] if np.ndim(a) else a
+        th = None if self._theta is None else t(self._theta)
+        return BodyMotion(th, *(t(getattr(self, f)) for f in self.__slots__[:-1]))
+
+
+def ground_motion() -> BodyMotion:
+    """The fixed body: zero everything, unit rotation."""
+    return BodyMotion(0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
+
+def driver_motion(scene: Scene) -> BodyMotion:
+    """Motion of the driving element (seed 000 ch. 4): a crank turning about its ground
+    joint (position = angle of its local x axis) or a slider on a ground guide (position
+    = distance of its slider point from the line point along the line)."""
+    drv = scene.driver
+    joint = scene.joints[drv.joint]
+    body = scene.bodies[drv.body]
+    w, eps = float(drv.speed), float(drv.acceleration)
+    if drv.kind == "R":
+        th = np.deg2rad(drv.positions)
+        c, s = np.cos(th), np.sin(th)
+        px, py = scene.ground[joint.point_on(GROUND)]
+        rax, ray = A.rotate(c, s, *body.local(joint.point_on(drv.body)))   # o = P - R a
+        w2 = w * w
+        return BodyMotion(th, c, s, w, eps, A.sub(float(px), rax), A.sub(float(py), ray),
+                          A.mul(w, ray), A.mul(-w, rax),
+                          A.add(A.mul(eps, ray), A.mul(w2, rax)),
+                          A.add(A.mul(-eps, rax), A.mul(w2, ray)))
+    beta = np.deg2rad(joint.line_angle)
+    pos = drv.positions
+    if joint.guide == GROUND:
+        th = float(beta)
+        ux, uy = float(np.cos(beta)), float(np.sin(beta))
+        lx, ly = scene.ground[joint.points[0]]
+        loc = body.local(joint.points[1])
+        sign = 1.0
+    else:   # the driver carries the guide and slides along a ground slider point
+        th = -float(beta)
+        ux, uy = 1.0, 0.0
+        lx, ly = scene.ground[joint.points[1]]
+        loc = body.local(joint.points[0])
+        sign = -1.0
+    c, s = float(np.cos(th)), float(np.sin(th))
+    rx, ry = A.rotate(c, s, *loc)
+    ox = A.add(A.mul(sign * ux, pos), lx - rx)
+    oy = A.add(A.mul(sign * uy, pos), ly - ry)
+    v, a = sign * w, sign * eps
+    return BodyMotion(th, c, s, 0.0, 0.0, ox, oy, v * ux, v * uy, a * ux, a * uy)
