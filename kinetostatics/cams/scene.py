@@ -1,0 +1,395 @@
+"""The ``[cam]`` scene (docs/cam-scenes.md): loading and solving it.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from ..model.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source, suggest
+from ..topics.efficiency import mean_efficiency
+from .followers import (
+    Follower,
+    OscillatingFollower,
+    TranslatingFollower,
+    base_radius_oscillating,
+    base_radius_translating,
+    check_tau,
+    cross2,
+    follower_points,
+    optimal_offset,
+    perp,
+    polar_profile_oscillating,
+    polar_profile_translating,
+    profile,
+    tau_of,
+    transmission_angle,
+)
+from .forces import (
+    cam_table,
+    critical_transmission_angle,
+    critical_transmission_angle_oscillating,
+    oscillating_follower_force,
+    translating_follower_forces,
+)
+from .laws import (
+    ALIASES,
+    LAW_COEFFICIENTS,
+    LAWS,
+    TWO_PI,
+    CamError,
+    CamLaw,
+    Segment,
+    constant_acceleration,
+    cosine_acceleration,
+    cycle_extreme,
+    fall,
+    law_name,
+    law_peaks,
+    rise,
+    sine_acceleration,
+    zero_acceleration,
+)
+
+# --------------------------------------------------------------------------- scenes
+
+TOP_KEYS = ("title", "format", "cam")
+CAM_KEYS = ("speed", "speed_rpm", "rotation", "count", "base_radius", "transmission_angle",
+            "roller_radius", "follower", "segments", "loads")
+FOLLOWER_KEYS = {"translating": ("kind", "stroke", "offset"),
+                 "oscillating": ("kind", "stroke_angle", "arm", "pivot_distance",
+                                 "rise_sense")}
+SEGMENT_KEYS = ("kind", "law", "angle")
+LOAD_KEYS = {"translating": ("force", "mass", "gravity", "spring_rate", "spring_preload",
+                             "friction", "guide_length", "guide_gap"),
+             "oscillating": ("moment", "inertia", "spring_rate", "spring_preload", "friction",
+                             "pin_radius")}
+
+
+@dataclass(frozen=True)
+class CamLoads:
+    """Loads on the follower (``[cam.loads]``); names as in ``docs/cam-scenes.md``."""
+
+    force: float = 0.0            # N (translating) or N m (oscillating: the `moment` key)
+    mass: float = 0.0             # kg, or kg m^2 about C (oscillating: `inertia`)
+    gravity: float = 0.0          # m/s^2 along the axis towards the cam (translating)
+    spring_rate: float = 0.0      # N/m or N m/rad
+    spring_preload: float = 0.0   # N or N m at the lowest position
+    friction: float = 0.0         # guide (translating) or pin (oscillating) coefficient
+    guide_length: float = 0.0     # b, m
+    guide_gap: float = 0.0        # a at the lowest position, m
+    pin_radius: float = 0.0       # r, m
+
+
+@dataclass(frozen=True)
+class CamScene:
+    """A checked ``[cam]`` scene: the program, the follower, the speed and the loads."""
+
+    title: str
+    law: CamLaw
+    follower: Follower
+    speed: float
+    rotation: str
+    count: int
+    loads: CamLoads
+    transmission_angle: float | None = None     # admissible, rad, if the radius came from it
+
+
+def _opt_float(table: dict, key: str, where: str, default: float = 0.0, **kw: bool) -> float:
+    return as_float(table[key], f"{where}.{key}", **kw) if key in table else default
+
+
+def load_cam_scene(source: Any) -> CamScene:
+    """Read and check a ``[cam]`` scene (a path, TOML text or a dict; ``docs/cam-scenes.md``).
+
+    Unknown keys are refused with the nearest known key suggested; every error is one line
+    (:class:`~kinetostatics.errors.SceneError` for the file's form, :class:`CamError` for a
+    cam that cannot be built).
+    """
+    raw = read_source(source, "cam scene")
+    if isinstance(raw, dict) and "cam" not in raw and "driver" in raw:
+        raise CamError("this is a mechanism scene (it has [driver]); the cam command takes a "
+                       "[cam] scene (docs/cam-scenes.md), e.g. the bundled translating_roller")
+    raw = check_keys(raw, TOP_KEYS, "cam scene", required=("cam",))
+    if "format" in raw and raw["format"] != 1:
+        raise CamError(f"cam scene: format must be 1, got {raw['format']!r}")
+    title = as_str(raw["title"], "title") if "title" in raw else ""
+    cam = check_keys(raw["cam"], CAM_KEYS, "cam", required=("follower", "segments"))
+
+    fol = cam["follower"]
+    if not isinstance(fol, dict) or "kind" not in fol:
+        check_keys(fol, (*fol, "kind") if isinstance(fol, dict) else (), "cam.follower",
+                   required=("kind",))
+    kind = as_str(fol["kind"], "cam.follower.kind")
+    if kind not in FOLLOWER_KEYS:
+        raise CamError(f"cam.follower.kind must be 'translating' or 'oscillating', not "
+                       f"{kind!r}{suggest(kind, FOLLOWER_KEYS)}")
+    other = "oscillating" if kind == "translating" else "translating"
+    for key in fol:
+        if key in FOLLOWER_KEYS[other] and key not in FOLLOWER_KEYS[kind]:
+            raise CamError(f"cam.follower.{key} belongs to an {other} follower, not a {kind} one")
+    fol = check_keys(fol, FOLLOWER_KEYS[kind], "cam.follower",
+                     required=("stroke",) if kind == "translating"
+                     else ("stroke_angle", "arm", "pivot_distance"))
+    if kind == "translating":
+        stroke = as_float(fol["stroke"], "cam.follower.stroke", positive=True)
+    else:
+        stroke = math.radians(as_float(fol["stroke_angle"], "cam.follower.stroke_angle",
+                                       positive=True))
+
+    segments = []
+    for i, seg in enumerate(as_list(cam["segments"], "cam.segments"), 1):
+        where = f"cam.segments[{i}]"
+        seg = check_keys(seg, SEGMENT_KEYS, where, required=("kind", "angle"))
+        skind = as_str(seg["kind"], f"{where}.kind")
+        if skind == "dwell" and "law" in seg:
+            raise CamError(f"{where}: a dwell has no law")
+        law = as_str(seg["law"], f"{where}.law") if "law" in seg else None
+        if skind in ("rise", "return") and law is None:
+            raise CamError(f"{where}: a {skind} needs a law ({', '.join(LAWS)})")
+        try:
+            law = law_name(law) if law is not None else None
+        except CamError as exc:
+            raise CamError(f"{where}.law: {exc}") from None
+        segments.append(Segment(skind, math.radians(as_float(seg["angle"], f"{where}.angle",
+                                                             positive=True)), law))
+    try:
+        law = CamLaw(stroke, tuple(segments))
+    except CamError as exc:
+        raise CamError(f"cam.segments: {exc}") from None
+
+    if ("speed" in cam) == ("speed_rpm" in cam):
+        raise CamError("cam: give exactly one of speed (rad/s) and speed_rpm")
+    speed = (as_float(cam["speed"], "cam.speed", positive=True) if "speed" in cam
+             else as_float(cam["speed_rpm"], "cam.speed_rpm", positive=True) * TWO_PI / 60.0)
+    rotation = as_str(cam.get("rotation", "ccw"), "cam.rotation")
+    if rotation not in ("ccw", "cw"):
+        raise CamError(f"cam.rotation must be 'ccw' or 'cw', not {rotation!r}")
+    count = as_int(cam.get("count", 361), "cam.count", lo=2, hi=10_000_000)
+    roller = _opt_float(cam, "roller_radius", "cam", nonnegative=True)
+    if ("base_radius" in cam) == ("transmission_angle" in cam):
+        raise CamError("cam: give exactly one of base_radius (m) and transmission_angle "
+                       "(the admissible one, deg)")
+    tau_adm = None
+    if "transmission_angle" in cam:
+        tau_adm = math.radians(as_float(cam["transmission_angle"], "cam.transmission_angle",
+                                        positive=True))
+        check_tau(tau_adm)
+
+    loads = _load_loads(cam.get("loads", {}), kind, stroke)
+
+    if kind == "translating":
+        offset_raw = fol.get("offset", 0.0)
+        if offset_raw == "optimal":
+            if tau_adm is None:
+                raise CamError("cam.follower.offset = 'optimal' needs cam.transmission_angle")
+            offset, r0 = optimal_offset(law, tau_adm)
+        else:
+            offset = as_float(offset_raw, "cam.follower.offset")
+            r0 = (base_radius_translating(law, tau_adm, offset) if tau_adm is not None
+                  else as_float(cam["base_radius"], "cam.base_radius", positive=True))
+        follower: Follower = TranslatingFollower(r0, offset, roller)
+        if tau_adm is not None and loads.friction > 0.0:
+            cr = float(np.max(critical_transmission_angle(loads.friction,
+                                                          loads.guide_gap - np.array([0, stroke]),
+                                                          loads.guide_length)))
+            if tau_adm <= cr:
+                raise CamError(f"cam.transmission_angle {math.degrees(tau_adm):g} deg is not "
+                               f"above the critical angle {math.degrees(cr):.4g} deg (eqs "
+                               "1.44-1.45); raise it")
+    else:
+        arm = as_float(fol["arm"], "cam.follower.arm", positive=True)
+        dist = as_float(fol["pivot_distance"], "cam.follower.pivot_distance", positive=True)
+        sense = as_str(fol.get("rise_sense", "same"), "cam.follower.rise_sense")
+        if sense not in ("same", "opposite"):
+            raise CamError(f"cam.follower.rise_sense must be 'same' or 'opposite', not "
+                           f"{sense!r}")
+        r0 = (base_radius_oscillating(law, tau_adm, arm, dist, sense) if tau_adm is not None
+              else as_float(cam["base_radius"], "cam.base_radius", positive=True))
+        follower = OscillatingFollower(r0, arm, dist, roller, sense)
+    return CamScene(title, law, follower, speed, rotation, count, loads, tau_adm)
+
+
+def _load_loads(raw: Any, kind: str, stroke: float) -> CamLoads:
+    other = "oscillating" if kind == "translating" else "translating"
+    if isinstance(raw, dict):
+        for key in raw:
+            if key in LOAD_KEYS[other] and key not in LOAD_KEYS[kind]:
+                raise CamError(f"cam.loads.{key} applies to an {other} follower, not a {kind} "
+                               "one")
+    tab = check_keys(raw, LOAD_KEYS[kind], "cam.loads")
+    w = "cam.loads"
+    if kind == "translating":
+        loads = CamLoads(
+            force=_opt_float(tab, "force", w), mass=_opt_float(tab, "mass", w, nonnegative=True),
+            gravity=_opt_float(tab, "gravity", w),
+            spring_rate=_opt_float(tab, "spring_rate", w, nonnegative=True),
+            spring_preload=_opt_float(tab, "spring_preload", w),
+            friction=_opt_float(tab, "friction", w, nonnegative=True),
+            guide_length=_opt_float(tab, "guide_length", w, nonnegative=True),
+            guide_gap=_opt_float(tab, "guide_gap", w, nonnegative=True))
+        if loads.friction > 0.0:
+            if loads.guide_length <= 0.0:
+                raise CamError("cam.loads: guide friction needs guide_length (b, m) > 0")
+            if "guide_gap" not in tab:
+                raise CamError("cam.loads: guide friction needs guide_gap (a at the lowest "
+                               "position, m)")
+            if loads.guide_gap < stroke:
+                raise CamError(f"cam.loads.guide_gap {loads.guide_gap:g} m is less than the "
+                               f"stroke {stroke:g} m: the contact point would enter the guide")
+        return loads
+    loads = CamLoads(
+        force=_opt_float(tab, "moment", w), mass=_opt_float(tab, "inertia", w, nonnegative=True),
+        spring_rate=_opt_float(tab, "spring_rate", w, nonnegative=True),
+        spring_preload=_opt_float(tab, "spring_preload", w),
+        friction=_opt_float(tab, "friction", w, nonnegative=True),
+        pin_radius=_opt_float(tab, "pin_radius", w, nonnegative=True))
+    return loads
+
+
+@dataclass
+class CamResults:
+    """Tables and summary of a solved cam scene (see ``docs/cam-scenes.md``)."""
+
+    scene: CamScene
+    motion: pd.DataFrame
+    geometry: pd.DataFrame
+    forces: pd.DataFrame
+    summary: dict[str, Any]
+
+
+def solve_cam(source: Any) -> CamResults:
+    """Solve a ``[cam]`` scene: follower motion, transmission angle, profile, forces, torque.
+
+    Parameters
+    ----------
+    source : path, TOML text, dict or CamScene
+
+    Returns
+    -------
+    CamResults
+        ``motion``, ``geometry``, ``forces`` (pandas DataFrames, one row per cam angle) and
+        ``summary`` (a JSON-ready dict); columns and keys in ``docs/cam-scenes.md``.
+    """
+    sc = source if isinstance(source, CamScene) else load_cam_scene(source)
+    law, fol, w, ld = sc.law, sc.follower, sc.speed, sc.loads
+    table = cam_table(law, fol, sc.count, w, sc.rotation)
+    phi = np.radians(table["angle"].to_numpy())
+    s, ds, dds = law(phi)
+    b, d1, _, u, vel = follower_points(fol, s, ds, dds)
+    tau = tau_of(b, d1, u)
+    t = d1 - perp(b)
+    tn = np.hypot(t[0], t[1])
+    vmax = float(np.max(np.abs(ds)))
+    direction = np.where(np.abs(ds) > 1e-12 * vmax, np.sign(ds), 0.0)
+    load = ld.force + ld.spring_preload + ld.spring_rate * s + ld.mass * (w * w * dds + ld.gravity)
+    translating = isinstance(fol, TranslatingFollower)
+    if translating:
+        a = ld.guide_gap - s
+        b_len = ld.guide_length if ld.friction > 0.0 else 1.0
+        f12, n1, n2 = translating_follower_forces(load, tau, ld.friction, a, b_len, direction,
+                                                  angles=phi)
+        friction = ld.friction * (n1 + n2) * np.abs(direction)   # none in a dwell
+        loss = friction * np.abs(ds)                       # friction work per rad of cam
+    else:
+        f12 = oscillating_follower_force(load, tau, fol.arm, ld.friction, ld.pin_radius,
+                                         direction, angles=phi)
+        friction = ld.friction * ld.pin_radius * f12 * np.abs(direction)   # Mf (eq. 1.46)
+        loss = friction * np.abs(ds)
+    torque = f12 * np.sum(b * d1, axis=0) / tn          # M = B x F12 n = F12 (B . dB) / |T|
+    separation = f12 < 0.0
+
+    motion = table[["angle", *table.columns[1:6]]].copy()
+    geometry = table[["angle", "tau", "pressure_angle", "x_pitch", "y_pitch", "x_profile",
+                      "y_profile", "x_outer", "y_outer", "radius", "curvature"]].copy()
+    forces = pd.DataFrame({"angle": table["angle"], "load": load, "F12": f12})
+    if translating:
+        forces["N1"], forces["N2"] = n1, n2
+    else:
+        forces["F02"] = f12
+    forces["friction"] = friction
+    forces["torque"] = torque
+    forces["separation"] = separation
+
+    tau_min, tau_at = cycle_extreme(
+        law, lambda p, s_, ds_, dds_: -tau_of(*_sel(fol, s_, ds_, dds_)))
+    kmax, _ = cycle_extreme(law, lambda p, s_, ds_, dds_: _curv(fol, s_, ds_, dds_))
+    rise_rows = direction > 0
+    summary: dict[str, Any] = {
+        "follower": "translating" if translating else "oscillating",
+        "base_radius": fol.base_radius,
+        "working_base_radius": fol.base_radius - fol.roller_radius,
+        "transmission_angle_min": math.degrees(-tau_min),
+        "transmission_angle_min_at": math.degrees(tau_at),
+        "pressure_angle_max": 90.0 - math.degrees(-tau_min),
+        ("velocity_max" if translating else "omega2_max"): w * vmax,
+        ("acceleration_max" if translating else "eps2_max"): w * w * float(np.max(np.abs(dds))),
+        "F12_max": float(np.max(f12)),
+        "F12_max_at": float(table["angle"].iloc[int(np.argmax(f12))]),
+        "torque_max": float(np.max(torque)),
+        "torque_min": float(np.min(torque)),
+        "torque_mean": float(np.trapezoid(torque, phi) / (phi[-1] - phi[0])),
+        "friction_work": float(np.trapezoid(loss, phi)),
+        "efficiency_rise": _rise_efficiency(phi, torque, load * ds, rise_rows),
+        "curvature_max": kmax,
+        "undercut": bool(fol.roller_radius > 0.0 and kmax * fol.roller_radius >= 1.0),
+        "separation_rows": int(np.count_nonzero(separation)),
+        "preload_needed": float(max(0.0, -float(np.min(load)))),
+    }
+    if translating:
+        summary.update(offset=fol.offset, s0=fol.s0, stroke=law.stroke)
+        if ld.friction > 0.0:
+            cr = critical_transmission_angle(ld.friction, ld.guide_gap - s, ld.guide_length)
+            summary["critical_angle_max"] = math.degrees(float(np.max(cr)))
+    else:
+        summary.update(beta0=math.degrees(fol.beta0), stroke_angle=math.degrees(law.stroke))
+        if ld.friction > 0.0:
+            summary["critical_angle_max"] = math.degrees(critical_transmission_angle_oscillating(
+                ld.friction, ld.pin_radius, fol.arm))
+    if sc.transmission_angle is not None:
+        summary["transmission_angle_admissible"] = math.degrees(sc.transmission_angle)
+    return CamResults(sc, motion, geometry, forces, summary)
+
+
+def _sel(fol: Follower, s: np.ndarray, ds: np.ndarray,
+         dds: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    b, d1, _, u, _ = follower_points(fol, s, ds, dds)
+    return b, d1, u
+
+
+def _curv(fol: Follower, s: np.ndarray, ds: np.ndarray, dds: np.ndarray) -> np.ndarray:
+    b, d1, d2, _, _ = follower_points(fol, s, ds, dds)
+    t = d1 - perp(b)
+    return -cross2(t, d2 - 2.0 * perp(d1) - b) / np.hypot(t[0], t[1]) ** 3
+
+
+def _rise_efficiency(phi: np.ndarray, torque: np.ndarray, useful: np.ndarray,
+                     rows: np.ndarray) -> float | None:
+    """Mean efficiency of the rise rows (eq. 4.22): work against the load / work of the cam."""
+    if np.count_nonzero(rows) < 2:
+        return None
+    idx = np.flatnonzero(rows)
+    runs = np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1)
+    motor = sum(float(np.trapezoid(torque[r], phi[r])) for r in runs if r.size > 1)
+    work = sum(float(np.trapezoid(useful[r], phi[r])) for r in runs if r.size > 1)
+    if motor <= 0.0:
+        return None
+    return mean_efficiency(work, motor)
+
+
+__all__: Sequence[str] = (
+    "ALIASES", "LAWS", "LAW_COEFFICIENTS", "CamError", "CamLaw", "CamLoads", "CamResults",
+    "CamScene", "OscillatingFollower", "Segment", "TranslatingFollower",
+    "base_radius_oscillating", "base_radius_translating", "cam_table",
+    "constant_acceleration", "cosine_acceleration", "critical_transmission_angle",
+    "critical_transmission_angle_oscillating", "cycle_extreme", "fall", "law_name",
+    "law_peaks", "load_cam_scene", "optimal_offset", "oscillating_follower_force",
+    "polar_profile_oscillating", "polar_profile_translating", "profile", "rise",
+    "sine_acceleration", "solve_cam", "transmission_angle", "translating_follower_forces",
+    "zero_acceleration",
+)
