@@ -19,7 +19,7 @@ plain function for notebooks:
   coasting down through it: :class:`CoastDown`), :func:`pivot_reaction` and
   :func:`coast_down_study` (imported on first use, with pymunk).
 
-Pictures are in :mod:`balance.plot` and :mod:`balance.mechanism_plot` (imported on
+Pictures are in :mod:`balance.plot` and :mod:`balance.mechanism.plot` (imported on
 demand: matplotlib is not loaded by ``import balance``).
 """
 

@@ -16,7 +16,6 @@ from matplotlib.figure import Figure
 
 import balance
 import kinetostatics as ks
-from balance import mechanism_plot as mp
 from balance.errors import BalanceError
 from balance.mechanism import (
     balanced_scene,
@@ -27,6 +26,7 @@ from balance.mechanism import (
     shaking_tables,
     solve_mechanism_balancing,
 )
+from balance.mechanism import plot as mp
 from kinetostatics.model.errors import WorkbenchError
 
 FOUR_BAR_CW = [{"body": "crank", "about": "A", "radius": 0.06},
@@ -339,12 +339,14 @@ def test_massless_mechanism_refused():
         solve_mechanism_balancing(r)
 
 
-def test_doctests():
+@pytest.mark.parametrize("name", ["linkage", "counterweights", "methods", "shaking", "solve",
+                                  "plot"])
+def test_doctests(name):
     import doctest
+    import importlib
 
-    import balance.mechanism
-
-    assert doctest.testmod(balance.mechanism).failed == 0
+    result = doctest.testmod(importlib.import_module(f"balance.mechanism.{name}"))
+    assert result.failed == 0
 
 
 def test_no_balancing_table():

@@ -24,7 +24,8 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from .mechanism.core import MechanismBalancing, _crank_axis, _motion_at, _pair_motion
+from .shaking import crank_axis, motion_at, pair_motion
+from .solve import MechanismBalancing
 
 __all__ = [
     "overview",
@@ -154,7 +155,7 @@ def plot_centre_of_mass(result: MechanismBalancing, ax: Axes | None = None) -> A
 
 
 def _axis(result: MechanismBalancing) -> tuple[float, float]:
-    return _crank_axis(result.scene)
+    return crank_axis(result.scene)
 
 
 def plot_counterweights(result: MechanismBalancing, position: float | None = None,
@@ -187,8 +188,8 @@ def plot_counterweights(result: MechanismBalancing, position: float | None = Non
     top = max(masses, default=0.0) or 1.0
     for c in result.counterweights:
         bm = result.kin.bodies[c.body]
-        x, y, *_ = _motion_at(bm, c.position, result.kin.n)
-        px, py, *_ = _motion_at(bm, result.scene.bodies[c.body].points[c.about], result.kin.n)
+        x, y, *_ = motion_at(bm, c.position, result.kin.n)
+        px, py, *_ = motion_at(bm, result.scene.bodies[c.body].points[c.about], result.kin.n)
         ax.plot([float(px[i]), float(x[i])], [float(py[i]), float(y[i])], "-", color="0.25",
                 lw=2.0)
         ax.plot(float(x[i]), float(y[i]), "o", color="0.25", alpha=0.8,
@@ -196,7 +197,7 @@ def plot_counterweights(result: MechanismBalancing, position: float | None = Non
         ax.annotate(f"{c.mass:.3g} kg", (float(x[i]), float(y[i])), xytext=(8, -12),
                     textcoords="offset points", fontsize=8)
     if result.pair is not None:
-        (xc, yc, _, _), (xr, yr, _, _) = _pair_motion(result.kin, result.pair)
+        (xc, yc, _, _), (xr, yr, _, _) = pair_motion(result.kin, result.pair)
         ang = np.linspace(0.0, 2.0 * np.pi, 121)
         cx, cy = result.pair.axis
         ax.plot(cx + result.pair.radius * np.cos(ang), cy + result.pair.radius * np.sin(ang),
