@@ -29,7 +29,9 @@ from ..solver import _arith as A
 from ..solver.kinematics import solve_kinematics
 from ..solver.loads import applied_loads
 from ..solver.structure import analyse
-from .integrate import _C, flywheel_for_delta, simulate
+from .integrator import simulate
+from .phases import flywheel_for_delta
+from .solution import DP5_C
 
 TWO_PI = 2.0 * math.pi
 KEY = 1e9          # cache key resolution: 1e-9 rad
@@ -139,7 +141,7 @@ class ReducedMechanism:
 
     def prewarm(self, levels=(64, 128, 256, 512, 1024, 2048, 4096)) -> None:
         """Evaluate at every stage angle of the grids the integrator uses."""
-        c = np.array((0.0, *_C))
+        c = np.array((0.0, *DP5_C))
         pts = np.concatenate([(self.phi0 + (np.arange(n)[:, None] + c) * (TWO_PI / n)).ravel()
                               for n in levels])
         i_r, di_r, m_r = self.evaluate(pts)
