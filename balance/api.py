@@ -17,11 +17,13 @@ __all__ = ["example_path", "examples", "results_to_dict", "solve", "solve_result
 
 
 def _resonance(spec: ResonanceSpec) -> ResonanceResult:
+    model = dict(plane=spec.plane, dA=spec.dA,
+                 noise=(spec.noise_relative, spec.noise_absolute), confidence=spec.confidence)
     if spec.runs is not None:
         return trial_runs(spec.A1, spec.runs, spec.trial_mass, spec.trial_radius,
-                          spec.correction_radius, plane=spec.plane, dA=spec.dA)
+                          spec.correction_radius, **model)
     return parallelogram(spec.A1, spec.A2, spec.A3, spec.trial_mass, spec.trial_radius,
-                         spec.correction_radius, plane=spec.plane, dA=spec.dA)
+                         spec.correction_radius, **model)
 
 
 def _mechanism_balancing(raw: dict) -> Any:
@@ -87,7 +89,8 @@ def solve(scene: Any) -> dict[str, Any]:
         ``rotor``: ``{corrections, initial_force, initial_moment, residual_force,
         residual_moment}``; ``static_test``: ``{eccentricity, correction_mass}``;
         ``resonance_test``: a list of ``{plane, A, phi, unbalance, correction_mass,
-        angle, mirror_angle}``; ``balancing``: the mechanism result. Angles in
+        angle, mirror_angle, estimate, warnings}``; ``balancing``: the mechanism result.
+        ``rotor`` also holds ``warnings``. Angles in
         [0, 360), None where undefined.
 
     Examples

@@ -188,7 +188,8 @@ def _warn_small_trial(A: float, A1: float, where: str) -> None:
 # ------------------------------------------------------------------ three runs
 def parallelogram(A1: float, A2: float, A3: float, trial_mass: float, trial_radius: float,
                   correction_radius: float, *, plane: int = 1,
-                  dA: float | None = None) -> ResonanceResult:
+                  dA: float | None = None, noise: tuple[float, float] = (0.01, 0.0),
+                  confidence: float = 0.95) -> ResonanceResult:
     """The amplitude-parallelogram (three-run) method, eqs 3.22-3.31.
 
     A^2 = (A2^2 + A3^2 - 2 A1^2) / 2 (eq. 3.29); m_1 r_1 = m r A1 / A (eq. 3.30);
@@ -336,7 +337,8 @@ def _check_marks(marks: np.ndarray, where: str) -> np.ndarray:
 
 def trial_runs(A1: float, runs: Iterable[Any], trial_mass: float, trial_radius: float,
                correction_radius: float, *, plane: int = 1,
-               dA: float | None = None) -> ResonanceResult:
+               dA: float | None = None, noise: tuple[float, float] = (0.01, 0.0),
+               confidence: float = 0.95) -> ResonanceResult:
     """Unbalance from three or more trial runs at any marks (the runs method).
 
     Each run k (trial mass at mark theta_k) obeys the law of cosines of the

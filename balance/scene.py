@@ -11,6 +11,10 @@ known key suggested.
 Project additions to the contract (optional, absent from the contract's examples):
 ``dA`` in a ``[[resonance_test]]``, the uncertainty of every amplitude, which adds an
 ``uncertainty`` entry to that result.
+
+In a ``[[resonance_test]]``, ``noise = {relative, absolute}`` (the 1-sigma noise of each
+amplitude reading, default relative 0.01, absolute 0) and ``confidence`` (of the
+estimate's intervals and consistency test, default 0.95) set the best estimate's model.
 """
 
 from __future__ import annotations
@@ -41,8 +45,9 @@ PLANE_KEYS = ("z", "radius")
 STATIC_KEYS = ("disk_mass", "comparison_mass", "comparison_radius", "alpha",
                "correction_radius")
 RESONANCE_KEYS = ("plane", "trial_mass", "trial_radius", "correction_radius", "A1", "A2", "A3",
-                  "runs", "dA")
+                  "runs", "dA", "noise", "confidence")
 RUN_KEYS = ("angle", "A")
+NOISE_KEYS = ("relative", "absolute")
 
 
 @dataclass(frozen=True)
@@ -78,6 +83,9 @@ class ResonanceSpec:
     A3: float | None = None
     runs: tuple[tuple[float, float], ...] | None = None
     dA: float | None = None
+    noise_relative: float = 0.01
+    noise_absolute: float = 0.0
+    confidence: float = 0.95
 
 
 @dataclass(frozen=True)
@@ -208,6 +216,7 @@ def _resonance(item: Any, i: int) -> ResonanceSpec:
                                    positive=True),
         A1=as_float(t["A1"], f"{w}.A1", nonnegative=True),
         dA=as_float(t["dA"], f"{w}.dA", nonnegative=True) if "dA" in t else None,
+        **_noise(t, w),
     )
     has_pair = "A2" in t or "A3" in t
     if "runs" in t:
@@ -226,3 +235,25 @@ def _resonance(item: Any, i: int) -> ResonanceSpec:
                              "[{angle = .., A = ..}, ...] instead of A2 and A3)")
     return ResonanceSpec(A2=as_float(t["A2"], f"{w}.A2", positive=True),
                          A3=as_float(t["A3"], f"{w}.A3", positive=True), **common)
+
+
+def _noise(t: dict, w: str) -> dict[str, float]:
+    """``noise = {relative, absolute}`` and ``confidence`` of a ``[[resonance_test]]``."""
+    out: dict[str, float] = {}
+    if "noise" in t:
+        n = check_keys(t["noise"], NOISE_KEYS, f"{w}.noise")
+        if "relative" in n:
+            out["noise_relative"] = as_float(n["relative"], f"{w}.noise.relative",
+                                             nonnegative=True)
+        if "absolute" in n:
+            out["noise_absolute"] = as_float(n["absolute"], f"{w}.noise.absolute",
+                                             nonnegative=True)
+        if out.get("noise_relative", 0.01) == 0.0 and out.get("noise_absolute", 0.0) == 0.0:
+            raise SceneError(f"{w}.noise: relative and absolute are both 0; a reading "
+                             "without noise has no likelihood: give the instrument's noise")
+    if "confidence" in t:
+        c = as_float(t["confidence"], f"{w}.confidence", positive=True)
+        if not c < 1.0:
+            raise SceneError(f"{w}.confidence must lie in (0, 1), got {c:g} (e.g. 0.95)")
+        out["confidence"] = c
+    return out
