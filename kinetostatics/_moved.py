@@ -18,7 +18,7 @@ MOVED = {
     "reduction": "solver.reduction", "_arith": "solver._arith",
     "concentration": "topics.concentration", "gears": "topics.gears",
     "efficiency": "topics.efficiency", "motion_scene": "motion.scene",
-    "crosscheck": "simulation.comparison", "sim_cli": "simulation.cli",
+    "crosscheck": "simulation", "sim_cli": "simulation.cli",
     "exercises": "teaching",
 }
 

@@ -21,7 +21,7 @@ from pathlib import Path
 def _error(msg: str) -> Exception:
     """A :class:`~kinetostatics.simulation.SimulationError` (pymunk is imported only
     when a command runs, not when the parser is built)."""
-    from .engine import SimulationError
+    from .errors import SimulationError
     return SimulationError(msg)
 
 
@@ -99,7 +99,8 @@ def _numbers(text: str | None, kind, what: str):
 
 
 def _cmd_crosscheck(args) -> int:
-    from .comparison import crosscheck, study
+    from .runner import crosscheck
+    from .studies import study
     src = _scene_source(args.scene, args.speed)
     fast = False if args.public else None
     if args.samples < 1:
@@ -137,7 +138,7 @@ def _cmd_crosscheck(args) -> int:
         out.parent.mkdir(parents=True, exist_ok=True)
         cc.wide().to_csv(out, index=False, float_format="%.17g")
     if args.plot:
-        from .comparison import plot_comparison
+        from .plots import plot_comparison
         _save(plot_comparison(cc), args.plot)
     if args.json:
         print(json.dumps(_clean(cc.summary()), indent=2))
@@ -158,7 +159,7 @@ def _cmd_crosscheck(args) -> int:
 
 
 def _plot_study(st):
-    from .comparison import plot_study
+    from .plots import plot_study
     return plot_study(st)
 
 

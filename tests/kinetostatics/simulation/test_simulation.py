@@ -19,12 +19,16 @@ from matplotlib.figure import Figure
 import kinetostatics as ks
 from kinetostatics import simulation as sim
 from kinetostatics.cli import main
-from kinetostatics.simulation import SERIAL, SimulationError, build_space, run, run_batch
-from kinetostatics.simulation.comparison import (
+from kinetostatics.simulation import (
+    SERIAL,
+    SimulationError,
+    build_space,
     crosscheck,
     crosscheck_many,
     plot_comparison,
     plot_study,
+    run,
+    run_batch,
     study,
 )
 from tests.helpers import OWN_CASES, SCENES
@@ -348,11 +352,28 @@ def test_raw_scene_is_not_modified():
     assert raw == before
 
 
-def test_docstring_examples():
-    import doctest
+SIM_MODULES = ["batch", "comparison", "drift", "errors", "geometry", "loads", "model", "plots",
+               "reference", "runner", "signed", "stepper", "studies"]
 
-    from kinetostatics.simulation import comparison as module
+
+@pytest.mark.parametrize("name", SIM_MODULES)
+def test_docstring_examples(name):
+    import doctest
+    import importlib
+
+    module = importlib.import_module(f"kinetostatics.simulation.{name}")
     assert doctest.testmod(module).failed == 0
+
+
+def test_public_names_load_lazily():
+    import subprocess
+    import sys
+    code = ("import sys, kinetostatics.simulation as s, kinetostatics.simulation.cli; "
+            "print('pymunk' in sys.modules); [getattr(s, n) for n in s.__all__]; "
+            "print('pymunk' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out == ["False", "True"]
 
 
 def test_cli_parser_does_not_import_pymunk():

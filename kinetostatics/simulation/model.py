@@ -1,0 +1,353 @@
+"""A pymunk model of a mechanism scene (:func:`build_space`).
+
+The same scene that :func:`kinetostatics.solve` takes is turned into a pymunk ``Space``
+with only what the physics needs, driven at the scene's constant speed; the reactions
+are read from its constraints while it moves (:mod:`.stepper`).
+
+What is built
+-------------
+- one dynamic body per moving body: mass, moment of inertia about the centre of mass
+  and the centre of mass from the scene; no shapes (nothing collides), no sleeping.
+  A body that only translates (its angle is constant over the motion: a piston, a
+  yoke, a ram) gets an infinite moment of inertia, which is exact for it;
+- a ``PivotJoint`` per revolute joint;
+- a ``GrooveJoint`` per prismatic joint, laid out so that pymunk's solution of it is
+  exact (see :func:`build_space`), plus a ``GearJoint`` of ratio 1 that locks the
+  slider's rotation to the guide's where both turn (between bodies that cannot turn
+  no lock is needed);
+- a crank driver: a ``PivotJoint`` and a ``SimpleMotor`` that holds the speed (its
+  impulse is the driving moment); a sliding driver: a kinematic body moving at the
+  constant speed along the line and a ``GrooveJoint`` across the line, through the
+  slider point, that pushes the slider (its impulse is the driving force);
+- gravity as the space's gravity; the scene's loads set on the bodies before every
+  step, evaluated at the pose the step will reach (:mod:`.loads`).
+
+Every constraint has ``error_bias = 0`` (the whole drift corrected in the next step),
+``max_bias`` infinite, ``collide_bodies`` off. See ``docs/simulation.md`` for the
+measured effect of these settings and of the iteration count.
+
+The start is the exact kinematic state of the scene (from the kinematic solution),
+shifted half a step as the scheme carries it in its steady motion (positions
+x - a dt^2 / 2, velocities v + a dt / 2): no start-up transient.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import pymunk
+
+from ..model.scene import GROUND, Scene, load_scene
+from .errors import SimulationError
+from .geometry import _first, _foot, _line, _local, _on_line, _pin_range
+from .loads import _prepare_loads
+from .reference import reference_solution, sweep_positions, translating_bodies
+
+DEFAULT_ITERATIONS = 30
+"""Solver iterations: about 10 suffice for a four-bar, about 30 for a slider-crank
+(fewer make ``error_bias = 0`` diverge); more change nothing but cost."""
+
+GROOVE_MARGIN = 10.0
+"""A groove reaches this many times the slider's stroke (at least 1 m) beyond it."""
+
+
+@dataclass
+class ConstraintInfo:
+    """One pymunk constraint and what it measures.
+
+    ``role`` is ``"pivot"`` (revolute joint: the force on body ``b`` from ``a``),
+    ``"groove"`` (prismatic joint: the force on ``b``, the pin body, along the groove's
+    left normal ``normal``, given in ``a``'s frame), ``"lock"`` (the couple on ``b``,
+    the slider, from ``a``, the guide), ``"motor"`` (the moment on the crank ``b``) or
+    ``"actuator"`` (the force on the sliding driver ``b`` along its line), or
+    ``"couple"``: no pymunk constraint (``constraint`` is None), the couple on the
+    slider ``b`` of a prismatic joint between bodies that cannot turn, found from
+    their momentum balance. ``joint`` is the scene's joint name (``None`` for the
+    driver's motor or actuator).
+    ``anchor_a`` is the groove's start (grooves) or the joint point on ``a`` (pivots);
+    ``anchor_b`` the joint point (pin) on ``b``. For a groove, ``slider`` names the
+    joint's slider and ``slider_point`` its slider point (local), from which the couple
+    M of the kinetostatic tables is measured.
+    """
+
+    constraint: pymunk.Constraint | None
+    role: str
+    joint: str | None
+    a: str
+    b: str
+    anchor_a: tuple[float, float] = (0.0, 0.0)
+    anchor_b: tuple[float, float] = (0.0, 0.0)
+    normal: tuple[float, float] = (0.0, 0.0)
+    slider: str = ""
+    slider_point: tuple[float, float] = (0.0, 0.0)
+
+
+@dataclass
+class SimModel:
+    """A pymunk ``Space`` built from a scene and what is needed to run and read it.
+
+    Attributes
+    ----------
+    scene : Scene
+        The checked scene.
+    space : pymunk.Space
+        Bodies and constraints only (no shapes).
+    bodies : dict
+        Scene body name -> ``pymunk.Body`` (``"ground"`` -> the space's static body,
+        ``"actuator"`` -> the kinematic body of a sliding driver).
+    constraints : list of ConstraintInfo
+        Every constraint, with its role.
+    dt : float
+        Time step (s).
+    iterations : int
+        Solver iterations per step.
+    start : float
+        Driver position at t = 0 (deg for a crank, m for a sliding driver).
+    speed : float
+        Driver speed (rad/s or m/s).
+    translating : set of str
+        Bodies that only translate (their angle is constant over the motion): built
+        with an infinite moment of inertia, so their prismatic joints need no lock.
+    notes : list of str
+        Modelling remarks (e.g. a prismatic joint whose groove cannot be laid out
+        exactly; see :func:`build_space`).
+    """
+
+    scene: Scene
+    space: pymunk.Space
+    bodies: dict[str, pymunk.Body]
+    constraints: list[ConstraintInfo]
+    dt: float
+    iterations: int
+    start: float
+    speed: float
+    translating: set[str] = field(default_factory=set)
+    error_bias: float = 0.0
+    stepped: int = 0
+    notes: list[str] = field(default_factory=list)
+    actuator: pymunk.Body | None = None
+    line: tuple[tuple[float, float], tuple[float, float]] | None = None   # driver line
+    _slider_local: tuple[float, float] = (0.0, 0.0)
+    _loads: list = field(default_factory=list, repr=False)
+    _resist: list = field(default_factory=list, repr=False)
+
+    @property
+    def kind(self) -> str:
+        """``"R"`` (crank) or ``"T"`` (sliding driver)."""
+        return self.scene.driver.kind
+
+    @property
+    def moving(self) -> list[str]:
+        """Names of the moving bodies (scene order)."""
+        return list(self.scene.bodies)
+
+    def driver_position(self) -> float:
+        """Present driver position: the crank's angle (deg) or the slider point's distance
+        from the line point along the line (m)."""
+        d = self.scene.driver
+        body = self.bodies[d.body]
+        if d.kind == "R":
+            return math.degrees(body.angle)
+        (lx, ly), (ux, uy) = self.line
+        px, py = body.local_to_world(self._slider_local)
+        return (px - lx) * ux + (py - ly) * uy
+
+
+def _label(info: ConstraintInfo) -> str:
+    """The reading's label of a constraint: the joint's name, ``"<joint>:lock"`` or
+    ``"driver"``."""
+    if info.role in ("motor", "actuator"):
+        return "driver"
+    return f"{info.joint}:lock" if info.role == "lock" else str(info.joint)
+
+
+def _check_scene(scene: Scene) -> None:
+    d = scene.driver
+    if d.acceleration != 0.0:
+        raise SimulationError(
+            f"driver.acceleration = {d.acceleration:g}: the rows of such a scene are "
+            "snapshots at one speed and acceleration, not a motion; the simulation needs "
+            "a constant-speed driver (acceleration = 0)")
+    if d.speed == 0.0:
+        raise SimulationError("driver.speed = 0: nothing moves; give the driver a speed")
+    for name, b in scene.bodies.items():
+        if b.mass <= 0.0 or b.inertia <= 0.0:
+            raise SimulationError(
+                f"body {name!r} has mass {b.mass:g} kg and inertia {b.inertia:g} kg m^2: "
+                "pymunk needs mass > 0 and inertia > 0 for every moving body; give it both "
+                "(and a cog) for the simulation")
+
+
+def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
+                start: float | None = None, error_bias: float = 0.0) -> SimModel:
+    """Build the pymunk model of a scene, on its exact kinematic state at ``start``.
+
+    Prismatic joints: a ``GrooveJoint`` solves its two directions together and then
+    keeps the normal part of the impulse; that is exact only when the joint's
+    effective-mass matrix is diagonal in the groove's frame (else the pin lags the
+    groove by an amount proportional to the sliding speed times dt: first-order
+    errors). So the groove goes on a body that is the ground, cannot turn, or has
+    its centre of mass on the line, and the pin on the other body at the foot of the
+    normal from its centre of mass (on a body that cannot turn: at the joint's own
+    point): both arms are then along the line or normal to it. Where no body
+    qualifies, the groove goes on the guide and a note says so.
+
+    Bodies that only translate (:func:`translating_bodies`) get an infinite moment of
+    inertia: they cannot turn, which is exact for them, and a prismatic joint between
+    two such bodies (or one and the ground) needs no lock; its couple M is then an
+    unknown of the momentum balance (see the module docstring). Between bodies that
+    turn, a ``GearJoint`` of ratio 1 locks the relative rotation and carries M.
+
+    Parameters
+    ----------
+    scene : Scene, path, TOML text or dict
+        A mechanism scene with a constant-speed driver.
+    dt : float
+        Time step (s) the model will be stepped with (it sets the start's half-step
+        shift and the loads' prediction).
+    iterations : int
+        Solver iterations per step (``Space.iterations``).
+    start : float, optional
+        Driver position at t = 0 (deg or m); default the scene's first position.
+    error_bias : float
+        ``error_bias`` of every joint: the fraction of a joint's drift left after one
+        second. 0 (the default) corrects it in one step; pymunk's own default,
+        ``(1 - 0.1) ** 60``, is far too soft for force measurement.
+
+    Returns
+    -------
+    SimModel
+
+    Raises
+    ------
+    SimulationError
+        A driver with acceleration, a body without mass or inertia, bad settings.
+    """
+    sc = load_scene(scene)
+    _check_scene(sc)
+    if not (dt > 0.0 and math.isfinite(dt)):
+        raise SimulationError(f"dt = {dt!r}: the time step must be a positive number of s")
+    if int(iterations) != iterations or iterations < 1:
+        raise SimulationError(f"iterations = {iterations!r}: give a whole number >= 1")
+    if not 0.0 <= error_bias <= 1.0:
+        raise SimulationError(f"error_bias = {error_bias!r}: give a fraction in [0, 1]")
+    d = sc.driver
+    p0 = float(d.positions[0]) if start is None else float(start)
+    kin0 = reference_solution(sc, [p0]).kin
+    sweep = reference_solution(sc, sweep_positions(sc))
+
+    space = pymunk.Space()
+    space.iterations = int(iterations)
+    space.gravity = tuple(sc.gravity)
+    space.sleep_time_threshold = math.inf
+    space.damping = 1.0
+    bodies: dict[str, pymunk.Body] = {GROUND: space.static_body}
+    frozen = translating_bodies(sc, sweep)
+    half = 0.5 * dt
+    for name, b in sc.bodies.items():
+        m = kin0.bodies[name].take(slice(1, 2))
+        # a body that only translates cannot turn: an infinite moment of inertia keeps
+        # it so with no constraint (its couples follow from its momentum balance)
+        body = pymunk.Body(b.mass, math.inf if name in frozen else b.inertia)
+        body.center_of_gravity = tuple(b.cog)
+        gx, gy = (_first(v) for v in m.point(b.cog))
+        vx, vy = (_first(v) for v in m.vel_at(gx, gy))
+        ax, ay = (_first(v) for v in m.acc_at(gx, gy))
+        theta, omega, alpha = _first(m.theta), _first(m.omega), _first(m.alpha)
+        # the steady motion of the scheme: x - a dt^2/2, v + a dt/2 (module docstring)
+        angle = theta - alpha * half * dt
+        cx, cy = gx - ax * half * dt, gy - ay * half * dt
+        c, s = math.cos(angle), math.sin(angle)
+        body.angle = angle
+        body.position = (cx - (c * b.cog[0] - s * b.cog[1]), cy - (s * b.cog[0] + c * b.cog[1]))
+        body.velocity = (vx + ax * half, vy + ay * half)
+        body.angular_velocity = omega + alpha * half
+        bodies[name] = body
+        space.add(body)
+
+    infos: list[ConstraintInfo] = []
+
+    def add(c: pymunk.Constraint, info: ConstraintInfo) -> None:
+        c.error_bias = error_bias
+        c.max_bias = math.inf
+        c.collide_bodies = False
+        space.add(c)
+        infos.append(info)
+
+    notes: list[str] = []
+    fixed = {GROUND} | frozen
+    for name, j in sc.joints.items():
+        if j.kind == "R":
+            on, by = j.on_by
+            pa = _local(sc, by, j.point_on(by))
+            pb = _local(sc, on, j.point_on(on))
+            c = pymunk.PivotJoint(bodies[by], bodies[on], pa, pb)
+            add(c, ConstraintInfo(c, "pivot", name, by, on, pa, pb))
+            continue
+        g, s = j.guide, j.slider
+        # the groove on a body whose arm to the pin's contact runs along the line
+        # (the ground, a body that cannot turn, or one whose cog is on the line), the
+        # pin on the other at the foot of the normal from its cog (see the docstring)
+        found = next(((q, p) for q, p in ((g, s), (s, g))
+                      if q in fixed or _on_line(sc, name, q)), None)
+        q, p = found or (g, s)
+        if found is None:
+            notes.append(f"prismatic joint {name!r}: neither body's centre of mass lies on "
+                         "the line and both turn; pymunk's groove then lags by a first-order "
+                         "amount (expect errors proportional to dt)")
+        if p in fixed:
+            pin = _local(sc, p, j.points[1] if p == s else j.points[0])
+        else:
+            pin = _foot(sc, name, p)
+        lp, u = _line(sc, name, q)
+        lo, hi = _pin_range(sc, sweep, q, p, pin, lp, u)
+        reach = GROOVE_MARGIN * max(hi - lo, 0.1)
+        ga = tuple(lp + (lo - reach) * u)
+        gb = tuple(lp + (hi + reach) * u)
+        c = pymunk.GrooveJoint(bodies[q], bodies[p], ga, gb, pin)
+        add(c, ConstraintInfo(c, "groove", name, q, p, ga, pin, (-u[1], u[0]), s,
+                              _local(sc, s, j.points[1])))
+        if g in fixed and s in fixed:
+            # neither turns: no lock; the couple follows from the angular momentum
+            # balance of the translating body (or bodies)
+            infos.append(ConstraintInfo(None, "couple", name, g, s))
+        else:
+            phase = bodies[s].angle - bodies[g].angle
+            c = pymunk.GearJoint(bodies[g], bodies[s], phase, 1.0)
+            add(c, ConstraintInfo(c, "lock", name, g, s))
+
+    model = SimModel(sc, space, bodies, infos, float(dt), int(iterations), p0, d.speed,
+                     frozen, error_bias=float(error_bias), notes=notes)
+    drv = bodies[d.body]
+    if d.kind == "R":
+        # SimpleMotor(a, b, rate) holds b.w - a.w = -rate: here the crank turns at `speed`
+        c = pymunk.SimpleMotor(drv, space.static_body, d.speed)
+        add(c, ConstraintInfo(c, "motor", None, GROUND, d.body))
+    else:
+        j = sc.joints[d.joint]
+        if j.guide != GROUND:
+            raise SimulationError("a sliding driver whose guide is not the ground is not "
+                                  "supported by the simulation")
+        lp = sc.ground[j.points[0]]
+        beta = math.radians(j.line_angle)
+        ux, uy = math.cos(beta), math.sin(beta)
+        sp = sc.bodies[d.body].local(j.points[1])
+        model._slider_local = sp
+        model.line = (lp, (ux, uy))
+        px, py = drv.local_to_world(sp)
+        # a kinematic body moves at the constant speed along the line; a groove across
+        # the line, through the slider point, pushes the driver: its force is Fe
+        act = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+        act.position = (px, py)
+        act.velocity = (d.speed * ux, d.speed * uy)
+        space.add(act)
+        ga, gb = (-uy, ux), (uy, -ux)          # its left normal is the line direction u
+        c = pymunk.GrooveJoint(act, drv, ga, gb, sp)
+        add(c, ConstraintInfo(c, "actuator", None, "actuator", d.body, ga, sp, (ux, uy)))
+        model.actuator = act
+        bodies["actuator"] = act
+    _prepare_loads(model, sweep)
+    return model
+

@@ -1,0 +1,276 @@
+"""The pymunk cross-check: simulated reactions against kinetostatics (:func:`crosscheck`).
+
+:func:`crosscheck` runs a scene's mechanism in pymunk at the driver's constant speed
+and compares, at the simulated driver positions, the magnitude of the reaction in
+every joint, the couple of every locked prismatic joint and the driving moment
+(force) with :func:`kinetostatics.solve` evaluated exactly at those positions
+(:mod:`.comparison`). :func:`crosscheck_many` cross-checks many scenes (the bundled
+cases, an exercise's variants) as a batch of top-level work items on plain data
+(:func:`~kinetostatics.simulation.run_batch`): by default one process per core, or any
+``concurrent.futures.Executor`` (a dask.distributed ``Client.get_executor()``).
+"""
+
+from __future__ import annotations
+
+import inspect
+import math
+from collections.abc import Iterable
+from concurrent.futures import Executor
+from typing import Any
+
+import numpy as np
+
+from ..model.scene import Scene, load_scene
+from .batch import run_batch
+from .comparison import CrossCheck, compare
+from .errors import SimulationError
+from .model import build_space
+from .reference import reference_solution
+from .stepper import PYMUNK_VERSION, run
+
+DEFAULT_STEPS_PER_REVOLUTION = 3600
+"""Default time step: a tenth of a degree of the crank per step (errors near 1e-5 on
+the bundled four-bar and slider-crank; they fall as dt^2)."""
+
+MAX_STEPS = 50_000_000
+"""A run longer than this is refused (minutes of wall time)."""
+
+SETTLE_FRACTION = 0.01
+"""A sweep shorter than a turn: its first 1 % is left out of the errors."""
+
+
+def _dict_scene(scene: Any) -> Scene:
+    sc = load_scene(scene)
+    if not sc.raw:
+        raise SimulationError("the scene has no raw table to rebuild it from; pass a path, "
+                              "TOML text or a dict")
+    return sc
+
+
+def plan(scene: Scene, *, dt: float | None, steps_per_revolution: int | None,
+         revolutions: float, samples_per_revolution: int) -> dict[str, Any]:
+    """How a cross-check run is laid out: start, dt, steps, sampling, compared part."""
+    d = scene.driver
+    pos = np.asarray(d.positions, dtype=float)
+    speed = d.speed
+    if d.kind == "R":
+        span = float(np.ptp(pos)) if pos.size > 1 else 360.0
+        full = span >= 360.0 - 1e-9
+        period = 2.0 * math.pi / abs(speed)
+        if full:
+            start = float(pos[0])
+            duration = revolutions * period
+        else:
+            start = float(pos.min() if speed > 0 else pos.max())
+            duration = math.radians(span) / abs(speed)
+        unit = period
+    else:
+        span = float(np.ptp(pos))
+        if span <= 0.0:
+            raise SimulationError("a sliding driver's sweep has no length: give start < stop "
+                                  "(or several positions)")
+        full = False
+        start = float(pos.min() if speed > 0 else pos.max())
+        duration = span / abs(speed)
+        unit = duration           # a "revolution" of a sliding driver: its sweep
+    if revolutions < 1.0 + 1e-12 and full:
+        raise SimulationError(f"revolutions = {revolutions:g}: the first revolution is left "
+                              "out of the errors; give more than 1 (default 2)")
+    if dt is None:
+        n = DEFAULT_STEPS_PER_REVOLUTION if steps_per_revolution is None \
+            else int(steps_per_revolution)
+        if n < 10:
+            raise SimulationError(f"steps per revolution = {n}: give at least 10")
+        dt = unit / n
+    elif steps_per_revolution is not None:
+        raise SimulationError("give dt or steps per revolution, not both")
+    if not (dt > 0.0 and math.isfinite(dt)):
+        raise SimulationError(f"dt = {dt!r}: give a positive time step in s")
+    steps = int(round(duration / dt))
+    if steps < 2:
+        raise SimulationError(f"dt = {dt:g} s is longer than the run ({duration:g} s)")
+    if steps > MAX_STEPS:
+        raise SimulationError(f"dt = {dt:g} s makes {steps:_} steps (at most {MAX_STEPS:_}); "
+                              "give a larger dt or fewer revolutions")
+    per_unit = unit / dt
+    every = max(1, int(round(per_unit / max(1, samples_per_revolution))))
+    compare_from = unit if full else SETTLE_FRACTION * duration
+    return {"start": start, "dt": float(dt), "steps": steps, "every": every, "full": full,
+            "unit": unit, "duration": duration, "compare_from": compare_from,
+            "steps_per_revolution": per_unit}
+
+
+def crosscheck(scene: Any, *, dt: float | None = None, steps_per_revolution: int | None = None,
+               iterations: int | None = None, revolutions: float = 2.0,
+               samples_per_revolution: int = 360, error_bias: float = 0.0,
+               fast: bool | None = None) -> CrossCheck:
+    """Simulate a scene in pymunk and compare the reactions with kinetostatics.
+
+    Parameters
+    ----------
+    scene : path, TOML text, dict or Scene
+        A mechanism scene whose driver turns (or slides) at constant speed.
+    dt : float, optional
+        Time step (s). Default: a revolution (a sliding driver's sweep) in
+        ``steps_per_revolution`` steps.
+    steps_per_revolution : int, optional
+        Default 3600 (``simulation.DEFAULT_STEPS_PER_REVOLUTION``).
+    iterations : int, optional
+        Solver iterations. Default: chosen by :func:`converged_iterations` (30, or
+        doubled until doubling again changes no reading by more than a tenth of the
+        error).
+    revolutions : float
+        Driver turns simulated when the sweep is a full turn (default 2; the first is
+        left out of the errors). A shorter sweep is simulated once.
+    samples_per_revolution : int
+        Readings per revolution (default 360).
+    error_bias : float
+        Joint ``error_bias`` (default 0; pymunk's default gives errors near 1e-3).
+    fast : bool, optional
+        Let the stepping loop call Chipmunk directly (see :func:`simulation.run`).
+
+    Returns
+    -------
+    CrossCheck
+
+    Raises
+    ------
+    SimulationError
+        A driver with acceleration, a massless body, bad settings.
+
+    Examples
+    --------
+    >>> import kinetostatics as ks
+    >>> cc = crosscheck(ks.example("four_bar"), steps_per_revolution=4000, iterations=10)
+    >>> cc.max_error < 1e-5
+    True
+    """
+    sc = _dict_scene(scene)
+    if sc.driver.acceleration != 0.0:
+        raise SimulationError(
+            f"driver.acceleration = {sc.driver.acceleration:g}: this scene's rows are "
+            "snapshots, not a motion; the cross-check needs a constant-speed driver "
+            "(acceleration = 0)")
+    p = plan(sc, dt=dt, steps_per_revolution=steps_per_revolution, revolutions=revolutions,
+             samples_per_revolution=samples_per_revolution)
+    if iterations is None:
+        return converged_iterations(sc, p, error_bias=error_bias, fast=fast)
+    return _crosscheck(sc, p, int(iterations), error_bias, fast)
+
+
+AUTO_ITERATIONS = (30, 60, 120, 240, 480, 960)
+"""Iteration counts tried, in turn, when none is given."""
+
+
+def converged_iterations(sc: Scene, p: dict, *, error_bias: float = 0.0,
+                         fast: bool | None = None) -> CrossCheck:
+    """Run with 30, 60, 120... iterations until doubling them changes no reading by more
+    than a tenth of the error against kinetostatics; return the run before the last.
+
+    Gauss-Seidel iterations converge slowly where light bodies sit between heavy ones
+    (a sliding block between a crank and a slotted lever): such scenes need hundreds,
+    a four-bar about 10. The returned settings carry ``iterations_tried``.
+    """
+    prev = None
+    tried = []
+    for n in AUTO_ITERATIONS:
+        cc = _crosscheck(sc, p, n, error_bias, fast)
+        tried.append(n)
+        if prev is not None and _same_readings(prev, cc):
+            prev.settings["iterations_tried"] = tried
+            prev.settings["iterations_rule"] = "auto: doubling changes no reading by more " \
+                "than a tenth of the error"
+            return prev
+        prev = cc
+    prev.settings["iterations_tried"] = tried
+    prev.notes.append(f"the readings still changed between {tried[-2]} and {tried[-1]} "
+                      "iterations: the solver may not have converged; try a larger dt or "
+                      "more iterations")
+    return prev
+
+
+def _same_readings(a: CrossCheck, b: CrossCheck) -> bool:
+    if not (math.isfinite(a.max_error) and math.isfinite(b.max_error)):
+        return False
+    ra, rb = a.rows, b.rows
+    if len(ra) != len(rb):
+        return False
+    used = ra.used.to_numpy() & rb.used.to_numpy()
+    worst = 0.0
+    for q in a.errors:
+        m = (ra.quantity == q).to_numpy() & used
+        if not m.any():
+            continue
+        scale = float(np.max(np.abs(ra.computed.to_numpy()[m])))
+        if scale > 0.0:
+            d = np.abs(ra.simulated.to_numpy()[m] - rb.simulated.to_numpy()[m])
+            worst = max(worst, float(np.max(d)) / scale)
+    return worst <= max(0.1 * b.max_error, 1e-9)
+
+
+def _crosscheck(sc: Scene, p: dict, iterations: int, error_bias: float,
+                fast: bool | None) -> CrossCheck:
+    model = build_space(sc, dt=p["dt"], iterations=iterations, start=p["start"],
+                        error_bias=error_bias)
+    rec = run(model, p["steps"], p["every"], fast=fast)
+    ref = reference_solution(sc, rec.position)
+    cc = compare(sc, model, rec, ref, compare_from=p["compare_from"])
+    revs = p["duration"] / p["unit"]
+    cc.settings.update({
+        "dt": p["dt"], "iterations": int(iterations), "error_bias": float(error_bias),
+        "max_bias": "inf", "steps_per_revolution": p["steps_per_revolution"],
+        "steps": p["steps"], "sample_every": p["every"],
+        "revolutions": revs if sc.driver.kind == "R" else None,
+        "sweeps": revs if sc.driver.kind == "T" else None,
+        "seconds_per_revolution": rec.wall / revs if sc.driver.kind == "R" else None,
+        "seconds_per_sweep": rec.wall / revs if sc.driver.kind == "T" else None,
+        "wall": rec.wall, "full_turn": p["full"], "pymunk": PYMUNK_VERSION,
+        "fast_path": rec.fast, "drift": rec.drift,
+    })
+    return cc
+
+
+
+def _crosscheck_summary(item: tuple) -> dict[str, Any]:
+    """One cross-check of a batch, summarised (plain data in, plain data out)."""
+    raw, settings = item
+    return crosscheck(raw, **settings).summary()
+
+
+def crosscheck_many(scenes: Iterable[Any], *, executor: Executor | str | None = None,
+                    **settings: Any) -> list[dict[str, Any]]:
+    """Cross-check many scenes (bundled cases, an exercise's variants...) as a batch.
+
+    Parameters
+    ----------
+    scenes : iterable of path, TOML text, dict or Scene
+        The scenes; each is read here and sent to the workers as its TOML dict (a
+        worker on another machine needs no file).
+    executor : Executor, ``"serial"`` or None
+        As in :func:`study` (default: processes, one per core).
+    **settings
+        Keywords of :func:`crosscheck` (``steps_per_revolution``, ``iterations``...),
+        the same for every scene.
+
+    Returns
+    -------
+    list of dict
+        :meth:`CrossCheck.summary` of each scene, in the order given (``title``,
+        ``max_error``, ``errors``, ``seconds_per_revolution``...).
+
+    Examples
+    --------
+    >>> import kinetostatics as ks
+    >>> out = crosscheck_many([ks.example("four_bar"), ks.example("slider_crank")],
+    ...                       steps_per_revolution=2000, iterations=30,
+    ...                       samples_per_revolution=45, executor="serial")
+    >>> [s["max_error"] < 1e-4 for s in out]
+    [True, True]
+    """
+    bad = set(settings) - set(inspect.signature(crosscheck).parameters) - {"scene"}
+    if bad or "scene" in settings:
+        raise SimulationError(f"crosscheck_many: unknown setting(s) "
+                              f"{', '.join(sorted(bad | ({'scene'} & set(settings))))}; "
+                              "give keywords of crosscheck()")
+    items = [(_dict_scene(s).raw, dict(settings)) for s in scenes]
+    return run_batch(_crosscheck_summary, items, executor=executor)
