@@ -20,37 +20,18 @@ def _cmd_solve(args) -> int:
     if args.out:
         for p in sol.to_csv(args.out):
             print(p)
+    if args.plot:
+        from .plot.cli import write_pictures
+        for p in write_pictures(sol, args.plot, args.plot_at):
+            print(p)
     if args.json or not args.out:
         print(json.dumps(sol.summary(), indent=2))
     return 0
 
 
 def _cmd_demo(args) -> int:
-    import matplotlib
-    matplotlib.use("Agg")
-    from . import example
-    from .plot import overview
-    from .solver.pipeline import solve
-    scene = example(args.example)
-    sol = solve(scene)
-    out = Path(args.out)
-    written = sol.to_csv(out)
-    fig = overview(sol)
-    png = out / "overview.png"
-    fig.savefig(png, dpi=110)
-    written.append(png)
-    s = sol.summary()
-    q = sol.driver_quantity
-    unit = "N m" if q == "Me" else "N"
-    print(f"{s['title']}: {s['positions']} positions")
-    for line in s["structure"]:
-        print("  " + line)
-    print(f"  {q} mean {s[q + '_mean']:.4g} {unit}, min {s[q + '_min']:.4g}, "
-          f"max {s[q + '_max']:.4g}")
-    for j, r in s["reaction_max"].items():
-        print(f"  joint {j}: max |F| = {r['F']:.4g} N at {r['position']:g}")
-    print("wrote: " + ", ".join(str(p) for p in written))
-    return 0
+    from .plot.cli import run_demo
+    return run_demo(args)
 
 
 def _cmd_structure(args) -> int:
@@ -103,8 +84,13 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("scene", help="scene file (.toml)")
     s.add_argument("--out", help="folder for reactions.csv, driver.csv, ... and summary.json")
     s.add_argument("--json", action="store_true", help="print the summary as JSON")
+    s.add_argument("--plot", metavar="DIR", help="folder for the pictures (PNG): overview, "
+                   "Me, polar diagrams, mechanism with loads, plans, force polygons")
+    s.add_argument("--plot-at", metavar="POS", type=float, nargs="+",
+                   help="driver positions (deg, or m) of those pictures (default: max |Me|)")
     s.set_defaults(func=_cmd_solve)
-    d = sub.add_parser("demo", help="solve a bundled example; write tables and a picture")
+    d = sub.add_parser("demo", help="solve a scene; write its tables and pictures")
+    d.add_argument("scene", nargs="?", help="bundled scene name or scene file")
     d.add_argument("--example", default="four_bar", help="bundled scene (default four_bar)")
     d.add_argument("--out", default="demo-out", help="output folder (default demo-out)")
     d.set_defaults(func=_cmd_demo)

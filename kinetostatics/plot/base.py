@@ -113,11 +113,12 @@ def trace_points(sol: Solution) -> list[tuple[str, str]]:
     return out
 
 
-def place_labels(ax: Axes, labels: list, gap: float = 20.0) -> None:
+def place_labels(ax: Axes, labels: list, gap: float = 20.0) -> list:
     """Write each label beside its vector's middle, on the side (and at the distance)
     that keeps it at least ``gap`` pixels from the labels already placed."""
     ax.apply_aspect()
     placed: list[np.ndarray] = []
+    out = []
     dpi = ax.figure.dpi / 72.0
     for text, anchor, nrm, col in labels:
         base = ax.transData.transform(anchor)
@@ -131,7 +132,8 @@ def place_labels(ax: Axes, labels: list, gap: float = 20.0) -> None:
             if d > score:
                 best, score = off, d
         placed.append(base + best * dpi * np.asarray(nrm))
-        ax.annotate(text, tuple(anchor), xytext=tuple(best * np.asarray(nrm)),
-                    textcoords="offset points", fontsize=10, color=col, ha="center",
-                    va="center")
+        out.append(ax.annotate(text, tuple(anchor), xytext=tuple(best * np.asarray(nrm)),
+                               textcoords="offset points", fontsize=10, color=col,
+                               ha="center", va="center"))
+    return out
 

@@ -24,6 +24,7 @@ from .base import (
     row_index,
     trace_points,
 )
+from .style import declutter
 
 __all__ = ["animate", "draw_mechanism"]
 
@@ -89,6 +90,8 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
     scene = sol.scene
     colors = body_colors()
     allpts = [xy for xy in scene.ground.values()]
+    texts: list = []            # labels to keep clear of each other (declutter)
+    named: set = set()          # a point shared by two bodies is named once
     for k, (name, body) in enumerate(scene.bodies.items()):
         pts = [global_point(sol, name, p, i) for p in body.points]
         allpts += pts
@@ -106,7 +109,10 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
             ax.plot(*g, "o", mfc="white", mec=c, ms=6)
         if labels:
             for p, xy in zip(body.points, pts, strict=True):
-                ax.annotate(p, xy, xytext=(4, 4), textcoords="offset points", fontsize=9)
+                if (p, round(xy[0], 9), round(xy[1], 9)) not in named:
+                    named.add((p, round(xy[0], 9), round(xy[1], 9)))
+                    texts.append(ax.annotate(p, xy, xytext=(4, 4), textcoords="offset points",
+                                             fontsize=9))
     arr = np.array(allpts)
     size = float(np.ptp(arr, axis=0).max()) if len(arr) > 1 else 1.0
     size = size or 1.0
@@ -151,11 +157,11 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
                                     "shrinkA": 0, "shrinkB": 0})
             ax.update_datalim([(x, y), tip])
             mag = float(np.hypot(fx, fy)) or 1.0
-            ax.annotate(lab, tip, xytext=(4 * fx / mag, 4 * fy / mag),
+            texts.append(ax.annotate(lab, tip, xytext=(4 * fx / mag, 4 * fy / mag),
                         textcoords="offset points", fontsize=9, color=col,
                         ha="left" if fx >= 0 else "right", va="bottom" if fy >= 0 else "top",
                         bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none",
-                              "alpha": 0.6})
+                              "alpha": 0.6}))
         kinds = [("joint reactions", REACTION_COLOR)] if forces else []
         if loads:
             kinds += [(f"{k} forces", c) for k, c in LOAD_COLORS.items()
@@ -173,6 +179,7 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
     ax.grid(True, alpha=0.3)
     h, _ = ax.get_legend_handles_labels()
     ax.legend(handles=h + handles, fontsize=8, loc="best")
+    declutter(ax, texts)
     return ax
 
 

@@ -26,6 +26,7 @@ from .base import (
     row_index,
     vector_axes,
 )
+from .style import declutter
 
 __all__ = ["find_dyad", "force_polygon", "polygon_forces"]
 
@@ -246,7 +247,7 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
     ax.autoscale_view()
     ax.margins(0.12)
     vector_axes(ax)
-    place_labels(ax, labels)
+    texts = place_labels(ax, labels)
     ax.set_xlabel("Fx [N]")
     ax.set_ylabel("Fy [N]")
     what = f"dyad {d.index + 1} {d.kind} ({d.bodies[0]}, {d.bodies[1]})" if d is not None \
@@ -258,6 +259,7 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
                  fontsize=10)
     ax.grid(True, alpha=0.3)
     legend_outside(ax, handles=handles)
+    declutter(ax, texts)
     return ax
 
 

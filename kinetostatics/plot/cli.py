@@ -1,0 +1,133 @@
+"""The pictures on the command line: ``solve SCENE --plot DIR`` and ``demo SCENE``.
+
+The figures are made by :func:`cli_figures` (one place, so that a test can check every
+figure the command line writes) and saved as PNG by :func:`write_pictures`.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.figure import Figure
+
+from ..model.errors import WorkbenchError
+from ..results import Solution
+from .curves import overview, plot_driver, plot_polar
+from .mechanism import draw_mechanism
+from .plans import acceleration_plan, velocity_plan
+from .polygons import force_polygon
+
+__all__ = ["cli_figures", "position_unit", "run_demo", "write_pictures"]
+
+
+def position_unit(sol: Solution) -> str:
+    """``deg`` for a crank, ``m`` for a sliding driver: the unit of a driver position."""
+    return "deg" if sol.scene.driver.kind == "R" else "m"
+
+
+def _default_positions(sol: Solution) -> list[float]:
+    """Where the driver's |Me| (|Fe|) is largest."""
+    me = np.abs(np.asarray(sol.Me, dtype=float))
+    return [float(sol.positions[int(np.nanargmax(me))])] if me.size else []
+
+
+def _tag(sol: Solution, pos: float) -> str:
+    return f"{pos:g}{position_unit(sol)}".replace("-", "m").replace(".", "p")
+
+
+def cli_figures(sol: Solution, positions: list[float] | None = None) -> dict[str, Figure]:
+    """Every figure of ``solve --plot``, by file stem.
+
+    ``overview``, ``driver`` (Me or Fe over the cycle), ``polar`` (the polar diagrams of
+    the joint reactions), and at each position: ``mechanism_<pos>`` (with the loads and
+    the reactions), ``velocity_plan_<pos>``, ``acceleration_plan_<pos>``,
+    ``force_polygon_<pos>_dyad<k>`` (k = 0: the driver).
+
+    Parameters
+    ----------
+    sol : Solution
+    positions : list of float, optional
+        Driver positions (deg or m); default: where |Me| is largest.
+
+    Returns
+    -------
+    dict of str to Figure
+    """
+    lo, hi = float(np.min(sol.positions)), float(np.max(sol.positions))
+    positions = _default_positions(sol) if positions is None else list(positions)
+    for p in positions:
+        if not lo - 1e-9 <= p <= hi + 1e-9:
+            raise WorkbenchError(f"--plot-at {p:g}: outside the sweep [{lo:g}, {hi:g}] "
+                                 f"{position_unit(sol)}")
+    figs = {"overview": overview(sol), "driver": plot_driver(sol).figure,
+            "polar": plot_polar(sol).figure}
+    for p in positions:
+        t = _tag(sol, p)
+        figs[f"mechanism_{t}"] = draw_mechanism(sol, p, forces=True, loads=True).figure
+        figs[f"velocity_plan_{t}"] = velocity_plan(sol, p).figure
+        figs[f"acceleration_plan_{t}"] = acceleration_plan(sol, p).figure
+        for d in range(len(sol.kin.dyads) + 1):
+            figs[f"force_polygon_{t}_dyad{d}"] = force_polygon(sol, d, p).figure
+    return figs
+
+
+def write_pictures(sol: Solution, directory: str | Path,
+                   positions: list[float] | None = None, dpi: int = 110) -> list[Path]:
+    """Save :func:`cli_figures` as ``DIR/<stem>.png``; the paths written."""
+    out = Path(directory)
+    if out.exists() and not out.is_dir():
+        raise WorkbenchError(f"--plot {out}: is a file, not a folder")
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    for stem, fig in cli_figures(sol, positions).items():
+        path = out / f"{stem}.png"
+        fig.savefig(path, dpi=dpi)
+        plt.close(fig)
+        written.append(path)
+    return written
+
+
+def _refuse_cam_scene(path: Path) -> None:
+    """A [cam] scene is for the ``cam`` command: say so instead of a key error."""
+    from ..model.tomlio import read_source
+    try:
+        raw = read_source(path)
+    except WorkbenchError:
+        return          # the solver reports the problem
+    if isinstance(raw, dict) and "cam" in raw and "driver" not in raw:
+        raise WorkbenchError(f"{path.stem} is a cam scene: run "
+                             f"python -m kinetostatics cam {path.stem}")
+
+
+def run_demo(args) -> int:
+    """``demo SCENE``: solve a scene (a bundled name or a file), write its tables and
+    pictures to ``--out``, print the key numbers with their units."""
+    import matplotlib
+    matplotlib.use("Agg")
+    from ..model.examples import scene_path
+    from ..solver.pipeline import solve
+    path = scene_path(args.scene or args.example)
+    _refuse_cam_scene(path)
+    sol = solve(path)
+    out = Path(args.out)
+    written = sol.to_csv(out)
+    written += write_pictures(sol, out)
+    s = sol.summary()
+    q = sol.driver_quantity
+    unit = "N m" if q == "Me" else "N"
+    pu = position_unit(sol)
+    print(f"{s['title']}: {s['positions']} positions")
+    for line in s["structure"]:
+        print("  " + line)
+    print(f"  {q} mean {s[q + '_mean']:.4g} {unit}, min {s[q + '_min']:.4g} {unit}, "
+          f"max {s[q + '_max']:.4g} {unit}")
+    for j, r in s["reaction_max"].items():
+        print(f"  joint {j}: max |F| = {r['F']:.4g} N at {r['position']:g} {pu}")
+    if s.get("transmission_angle_min") is not None:
+        print(f"  transmission angle min(tau, 180 - tau) = {s['transmission_angle_min']:.4g} deg "
+              f"at {s['transmission_angle_min_position']:g} {pu} "
+              f"(dyad {s['transmission_angle_min_dyad']})")
+    print("wrote: " + ", ".join(str(p) for p in written))
+    return 0
