@@ -18,6 +18,18 @@ angles must be measured in the same sense with respect to the rotor; if an
 instrument reports phase lag in the opposite sense, negate its phases. Masses come
 out in the trial masses' unit (kg, g, ...) at the trial radius; give
 ``trial_radius`` and ``correction_radius`` to rescale. Angles in degrees, [0, 360).
+
+Trim runs: after a correction C has been fitted, the readings V' measured with it
+are one more equation, V' - V = alpha C (V the state it was fitted to). With
+measured trial runs the trim runs join them in the least squares for alpha; with
+influence coefficients given from an earlier session each trim run updates them by
+Broyden's rank-one update, alpha + (V' - V - alpha C) C^H / (C^H C), the smallest
+change (Frobenius norm) that makes alpha reproduce what the correction did. The
+next correction balances the latest readings: W = -alpha^+ V'.
+
+Every result carries intervals at a stated confidence from the readings' amplitude
+and phase noise, the condition number of alpha and a ``warnings`` list; see
+:mod:`balance.influence_stats`.
 """
 
 from __future__ import annotations
@@ -30,7 +42,15 @@ import numpy as np
 
 from ._util import angle_of, check_number, deg360_array, polar
 from .errors import BalanceError
+from .field import Split, split_correction
+from .influence_stats import (
+    NoiseModel,
+    bootstrap_intervals,
+    conditioning,
+    conditioning_warnings,
+)
 from .uncertainty import Interval, propagate
+from .units import Units
 
 __all__ = [
     "InfluenceResult",
@@ -38,6 +58,7 @@ __all__ = [
     "influence_coefficients",
     "influence_single_plane",
     "influence_two_plane",
+    "trim_balance",
 ]
 
 _COND_LIMIT = 1e-9
@@ -56,13 +77,33 @@ class InfluenceResult:
     corrections : numpy.ndarray of complex
         The correction vectors W (mass e^(i angle)).
     coefficients : numpy.ndarray of complex
-        alpha, shape (measurement points, planes): reading per unit trial mass.
+        alpha, shape (measurement points, planes): reading per unit trial mass (after
+        the trim runs, when there are any).
     initial : numpy.ndarray of complex
         The initial readings V0.
     residual : numpy.ndarray of complex
-        Predicted readings after correction, V0 + alpha W (zero for square systems).
+        Predicted readings after correction, V + alpha W (V the readings balanced:
+        V0, or the last trim run's); zero for square systems.
     uncertainty : list of Interval or None
-        Per plane, bounds of mass and angle for a given +-dA on every amplitude.
+        Per plane, worst-case bounds of mass and angle for +-dA on every amplitude.
+    intervals : list of dict
+        Per plane ``{"mass": [lo, hi], "angle": [lo, hi]}`` at ``noise.confidence``
+        (bootstrap; an angle interval runs counterclockwise from lo to hi; hi None
+        where unbounded).
+    noise : NoiseModel
+        The noise model the intervals and the conditioning check used.
+    condition_number : float
+        kappa(alpha), ratio of its extreme singular values.
+    amplification : float
+        kappa eps_V: first-order bound of ||dW|| / ||W|| from the readings' noise.
+    warnings : list of str
+        Why the correction may not be determined by the data (empty when all is well).
+    current : numpy.ndarray of complex
+        The readings the correction balances (V0 without trim runs).
+    trim_runs : int
+        How many trim runs updated the coefficients.
+    splits : list of Split or None
+        Each plane's correction split onto fixed positions, when asked.
     """
 
     masses: np.ndarray
@@ -72,18 +113,60 @@ class InfluenceResult:
     initial: np.ndarray = field(repr=False)
     residual: np.ndarray = field(repr=False)
     uncertainty: list[Interval] | None = None
+    intervals: list[dict] = field(default_factory=list)
+    noise: NoiseModel = field(default_factory=NoiseModel)
+    condition_number: float = 1.0
+    amplification: float = 0.0
+    warnings: list[str] = field(default_factory=list)
+    current: np.ndarray | None = field(default=None, repr=False)
+    trim_runs: int = 0
+    splits: list[Split] | None = None
 
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: corrections per plane and the predicted residual readings."""
+    def to_dict(self, units: Units | None = None) -> dict[str, Any]:
+        """JSON-ready: corrections per plane with their intervals, the coefficients, the
+        predicted residual readings, the conditioning and the warnings.
+
+        Parameters
+        ----------
+        units : Units, optional
+            Convert SI numbers (kg, m or m/s) back to the scene's units; None leaves
+            them in the units they were given in.
+        """
+        u = units or Units()
+        mass = u.from_si(1.0, "mass")
+        vib = u.from_si(1.0, "vibration")
+        corr = []
+        for j, (m, a) in enumerate(zip(self.masses, self.angles, strict=True)):
+            c: dict[str, Any] = {"plane": j + 1, "mass": float(m) * mass, "angle": float(a)}
+            if self.intervals:
+                iv = self.intervals[j]
+                c["interval"] = {"mass": [None if x is None else x * mass for x in iv["mass"]],
+                                 "angle": iv["angle"]}
+            if self.splits is not None:
+                s = self.splits[j].to_dict()
+                for p in s["placements"]:
+                    p["mass"] *= mass
+                s["mass"] *= mass
+                s["total_mass"] *= mass
+                c["split"] = s
+            corr.append(c)
         d: dict[str, Any] = {
-            "corrections": [{"plane": j + 1, "mass": float(m), "angle": float(a)}
-                            for j, (m, a) in enumerate(zip(self.masses, self.angles,
-                                                           strict=True))],
-            "residual_vibration": [{"amplitude": float(abs(v)), "phase": angle_of(complex(v))}
-                                   for v in self.residual],
+            "corrections": corr,
+            "residual_vibration": [{"amplitude": float(abs(v)) * vib,
+                                    "phase": angle_of(complex(v))} for v in self.residual],
+            "coefficients": [[{"amplitude": float(abs(a)) * vib / mass,
+                               "phase": angle_of(complex(a))} for a in row]
+                             for row in self.coefficients],
+            "condition_number": self.condition_number,
+            "noise_amplification": self.amplification,
+            "noise": self.noise.to_dict() | {"absolute": self.noise.absolute * vib},
+            "trim_runs": self.trim_runs,
+            "warnings": list(self.warnings),
         }
         if self.uncertainty is not None:
-            d["uncertainty"] = [u.to_dict() for u in self.uncertainty]
+            d["uncertainty"] = [iv.to_dict() for iv in self.uncertainty]
+        if not u.is_si:
+            d["units"] = u.to_dict()
         return d
 
 
@@ -138,17 +221,47 @@ def _to_complex(amp: np.ndarray, phase_deg: np.ndarray) -> np.ndarray:
 
 
 # -------------------------------------------------------------------- solving
-def _solve_batch(amps: np.ndarray, phases: np.ndarray, T_pinv: np.ndarray
-                 ) -> tuple[np.ndarray, np.ndarray]:
-    """Influence coefficients and corrections for many amplitude sets at once.
+@dataclass(frozen=True)
+class _Data:
+    """Every reading and what changed between them.
 
-    amps, phases: (k, runs + 1, points), row 0 the initial readings.
-    Returns alpha (k, points, planes) and W (k, planes).
+    amps, phases: (rows, points), row 0 the initial readings, then one row per run
+    (trial runs, then trim runs); T: (runs, planes) the masses each run added; base:
+    (runs,) the row each run is measured against; alpha0: given coefficients (then
+    the runs are trim runs only, applied by Broyden updates); current: the row the
+    correction balances.
+    """
+
+    amps: np.ndarray
+    phases: np.ndarray
+    T: np.ndarray
+    base: np.ndarray
+    alpha0: np.ndarray | None
+    current: int
+    trims: int
+
+
+def _solve_batch(amps: np.ndarray, phases: np.ndarray, d: _Data
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Influence coefficients and corrections for many reading sets at once.
+
+    amps, phases: (k, rows, points). Returns alpha (k, points, planes) and W (k, planes);
+    W is NaN for a set whose alpha cannot separate the planes.
     """
     V = _to_complex(amps, phases)
-    dV = V[:, 1:, :] - V[:, :1, :]                       # V_k - V0 = alpha T_k
-    alpha = np.swapaxes(T_pinv @ dV, 1, 2)               # least squares over the runs
-    W = -(np.linalg.pinv(alpha) @ V[:, 0, :, None])[..., 0]   # min |V0 + alpha W|
+    dV = V[:, 1:, :] - V[:, d.base, :]                   # V_k - V_base = alpha T_k
+    if d.alpha0 is None:
+        alpha = np.swapaxes(np.linalg.pinv(d.T) @ dV, 1, 2)   # least squares over runs
+    else:
+        alpha = np.repeat(d.alpha0[None], V.shape[0], axis=0).astype(complex)
+        for i, C in enumerate(d.T):                      # Broyden: meet each secant
+            miss = dV[:, i, :] - alpha @ C               # (k, points)
+            alpha = alpha + miss[:, :, None] * C.conj()[None, None, :] / np.vdot(C, C).real
+    Vc = V[:, d.current, :]
+    W = -(np.linalg.pinv(alpha) @ Vc[..., None])[..., 0]   # min |V + alpha W|
+    s = np.linalg.svd(alpha, compute_uv=False)
+    bad = (s[:, 0] == 0.0) | (s[:, -1] <= _COND_LIMIT * s[:, 0])
+    W[bad] = np.nan
     return alpha, W
 
 
@@ -168,57 +281,109 @@ def influence_coefficients(initial: Any, runs: Iterable[tuple[Any, Any]]) -> np.
     -------
     numpy.ndarray of complex
     """
-    _, _, T, amps, phases = _prepare(initial, runs)
-    alpha, _ = _solve_batch(amps[None], phases[None], np.linalg.pinv(T))
+    d = _prepare(initial, runs)
+    alpha, _ = _solve_batch(d.amps[None], d.phases[None], d)
     return alpha[0]
 
 
-def _prepare(initial: Any, runs: Iterable[tuple[Any, Any]]):
+def _masses(t: Any, where: str) -> list[complex]:
+    if isinstance(t, complex | np.complexfloating) or _is_pair_of_numbers(t):
+        t = [t]                                          # one plane: a single mass
+    if not isinstance(t, Sequence) or isinstance(t, str):
+        raise BalanceError(f"{where}: give the masses per plane as a list of "
+                           "(mass, angle_deg), complex numbers or None")
+    return [_mass(x, f"{where}, plane {j + 1}") for j, x in enumerate(t)]
+
+
+def _coefficients(coefficients: Any) -> np.ndarray:
+    """Given influence coefficients as a complex array (points, planes)."""
+    if isinstance(coefficients, np.ndarray) and np.iscomplexobj(coefficients):
+        alpha = np.atleast_2d(coefficients).astype(complex)
+    else:
+        rows = coefficients if isinstance(coefficients, Sequence) else None
+        if not rows:
+            raise BalanceError("coefficients must be a list of rows (one per measurement "
+                               "point) of (amplitude, phase_deg) per plane")
+        out = []
+        for i, row in enumerate(rows):
+            r = _readings(row, f"coefficients[{i}]")
+            out.append(_to_complex(r[:, 0], r[:, 1]))
+        if len({len(r) for r in out}) != 1:
+            raise BalanceError("coefficients: every row needs one entry per plane")
+        alpha = np.array(out)
+    if not np.all(np.isfinite(alpha)):
+        raise BalanceError("coefficients must be finite numbers")
+    return alpha
+
+
+def _prepare(initial: Any, runs: Iterable[tuple[Any, Any]] = (),
+             trims: Iterable[tuple[Any, Any]] = (), coefficients: Any = None) -> _Data:
     V0 = _readings(initial, "initial readings")
-    runs = list(runs)
-    if not runs:
-        raise BalanceError("influence method: no trial runs given")
-    trials, reads = [], []
-    for k, run in enumerate(runs):
-        if not (isinstance(run, Sequence) and len(run) == 2):
-            raise BalanceError(f"trial run {k + 1} must be a pair (trial masses, readings)")
-        t, v = run
-        if isinstance(t, complex | np.complexfloating) or _is_pair_of_numbers(t):
-            t = [t]                                      # one plane: a single trial mass
-        trials.append([_mass(x, f"trial run {k + 1}, plane {j + 1}") for j, x in enumerate(t)])
-        rk = _readings(v, f"trial run {k + 1} readings")
-        if rk.shape[0] != V0.shape[0]:
-            raise BalanceError(f"trial run {k + 1}: {rk.shape[0]} readings, but the initial "
-                               f"run has {V0.shape[0]}; give one per measurement point")
-        reads.append(rk)
-    n_planes = len(trials[0])
-    if any(len(t) != n_planes for t in trials):
-        raise BalanceError("trial runs give trial masses for different numbers of planes")
-    T = np.array(trials, dtype=complex)                  # (runs, planes)
-    if len(runs) < n_planes:
-        raise BalanceError(f"{len(runs)} trial run(s) for {n_planes} planes: give at least "
-                           "one trial run per plane")
-    s = np.linalg.svd(T, compute_uv=False)
-    if s[-1] <= _COND_LIMIT * s[0]:
-        raise BalanceError("the trial runs do not put trial masses in every plane "
-                           "independently (their trial vectors are dependent)")
+    runs, trims = list(runs), list(trims)
+    alpha0 = None if coefficients is None else _coefficients(coefficients)
+    if alpha0 is None and not runs:
+        raise BalanceError("influence method: no trial runs given (or give the influence "
+                           "coefficients of an earlier session)")
+    if alpha0 is not None and runs:
+        raise BalanceError("influence method: give trial runs or coefficients, not both")
+    masses, reads = [], []
+    for kind, items in (("trial run", runs), ("trim run", trims)):
+        for k, run in enumerate(items):
+            if not (isinstance(run, Sequence) and len(run) == 2):
+                raise BalanceError(f"{kind} {k + 1} must be a pair (masses, readings)")
+            t, v = run
+            masses.append(_masses(t, f"{kind} {k + 1}"))
+            rk = _readings(v, f"{kind} {k + 1} readings")
+            if rk.shape[0] != V0.shape[0]:
+                raise BalanceError(f"{kind} {k + 1}: {rk.shape[0]} readings, but the initial "
+                                   f"run has {V0.shape[0]}; give one per measurement point")
+            reads.append(rk)
+    n_planes = alpha0.shape[1] if alpha0 is not None else len(masses[0])
+    if any(len(t) != n_planes for t in masses):
+        raise BalanceError(f"the runs give masses for different numbers of planes (the "
+                           f"{'coefficients have' if alpha0 is not None else 'first run has'}"
+                           f" {n_planes})")
+    if alpha0 is not None and alpha0.shape[0] != V0.shape[0]:
+        raise BalanceError(f"coefficients: {alpha0.shape[0]} rows for {V0.shape[0]} "
+                           "measurement points; give one row per point")
+    T = np.array(masses, dtype=complex).reshape(len(masses), n_planes)
+    if alpha0 is None:
+        if len(runs) < n_planes:
+            raise BalanceError(f"{len(runs)} trial run(s) for {n_planes} planes: give at "
+                               "least one trial run per plane")
+        s = np.linalg.svd(T[:len(runs)], compute_uv=False)
+        if s[-1] <= _COND_LIMIT * s[0]:
+            raise BalanceError("the trial runs do not put trial masses in every plane "
+                               "independently (their trial vectors are dependent)")
+    if any(not np.any(t) for t in T[len(runs):]):
+        raise BalanceError("a trim run applied no mass: give the correction it applied")
     if V0.shape[0] < n_planes:
         raise BalanceError(f"{V0.shape[0]} measurement point(s) for {n_planes} planes: give "
                            "at least as many readings (sensors or speeds) as planes")
-    data = np.stack([V0] + reads)                        # (runs + 1, points, 2)
-    return V0, n_planes, T, data[..., 0], data[..., 1]
+    R = len(runs)                                        # rows: 0 initial, 1..R trial runs,
+    base = np.array([0] * R + [0 if k == 0 else R + k for k in range(len(trims))],
+                    dtype=int)                           # then trim k against the row before
+    data = np.stack([V0] + reads)                        # (rows, points, 2)
+    return _Data(amps=data[..., 0], phases=data[..., 1], T=T, base=base, alpha0=alpha0,
+                 current=R + len(trims) if trims else 0,
+                 trims=len(trims))
 
 
-def influence_balance(initial: Any, runs: Iterable[tuple[Any, Any]], *,
+def influence_balance(initial: Any, runs: Iterable[tuple[Any, Any]] = (), *,
+                      trims: Iterable[tuple[Any, Any]] = (),
+                      coefficients: Any = None,
                       trial_radius: float | None = None,
                       correction_radius: float | None = None,
-                      dA: float | None = None) -> InfluenceResult:
+                      dA: float | None = None,
+                      noise: NoiseModel | None = None,
+                      split: tuple[int, float] | int | None = None) -> InfluenceResult:
     """Correction masses by the influence-coefficient method, any number of planes.
 
     alpha from V_k - V0 = alpha T_k over the trial runs (least squares when there
     are more runs than planes), then W = -alpha^+ V0 (least squares over the
     measurement points: several sensors and/or several speeds stacked in the
-    readings). See the module docstring for conventions.
+    readings). Trim runs refine alpha and move the target to their readings. See
+    the module docstring for conventions.
 
     Parameters
     ----------
@@ -227,12 +392,23 @@ def influence_balance(initial: Any, runs: Iterable[tuple[Any, Any]], *,
         measurement point (sensor, or sensor at one speed).
     runs : iterable of (trials, readings)
         Trial masses per plane ((mass, angle_deg), complex or None) and the readings.
+    trims : iterable of (applied, readings)
+        Trim runs in order: the correction masses added per plane (as ``trials``) and
+        the readings with them on (each on top of the previous ones).
+    coefficients : array or list of rows, optional
+        Influence coefficients from an earlier session, (points, planes) complex or
+        rows of (amplitude, phase_deg) per unit mass; instead of ``runs``.
     trial_radius, correction_radius : float, optional
         Give both to convert masses at the trial radius to the correction radius.
     dA : float, optional
-        Uncertainty +-dA on every amplitude (phases taken as exact): adds per-plane
-        intervals of mass and angle (corner evaluation over all amplitudes, with
-        linearised half widths; see :mod:`balance.uncertainty`).
+        Worst-case bound +-dA on every amplitude (phases exact): adds per-plane bounds
+        (corners, see :mod:`balance.uncertainty`).
+    noise : NoiseModel, optional
+        1-sigma amplitude and phase noise and the confidence of the intervals
+        (default 1 %, 1 deg, 0.95); see :mod:`balance.influence_stats`.
+    split : int or (int, float), optional
+        Split each plane's correction onto N equally spaced positions (the first at
+        the given angle, default 0 deg).
 
     Returns
     -------
@@ -245,45 +421,96 @@ def influence_balance(initial: Any, runs: Iterable[tuple[Any, Any]], *,
         or influence coefficients that cannot separate the planes (the trial masses
         changed the readings too little or alike).
     """
-    V0, n_planes, T, amps, phases = _prepare(initial, runs)
+    d = _prepare(initial, runs, trims, coefficients)
+    model = noise if noise is not None else NoiseModel()
     if (trial_radius is None) != (correction_radius is None):
         raise BalanceError("give both trial_radius and correction_radius, or neither")
     ratio = 1.0
     if trial_radius is not None:
         ratio = (check_number(trial_radius, "trial_radius", positive=True)
                  / check_number(correction_radius, "correction_radius", positive=True))
-    T_pinv = np.linalg.pinv(T)
-    alpha, W = _solve_batch(amps[None], phases[None], T_pinv)
+    alpha, W = _solve_batch(d.amps[None], d.phases[None], d)
     alpha, W = alpha[0], W[0]
-    s = np.linalg.svd(alpha, compute_uv=False)
-    if s[0] == 0.0 or s[-1] <= _COND_LIMIT * s[0]:
+    if not np.all(np.isfinite(W)):
         raise BalanceError("the influence coefficients cannot separate the planes: the trial "
                            "masses changed the readings too little or in the same way; use "
                            "larger trial masses or other measurement points")
-    V0c = _to_complex(amps[0], phases[0])
-    residual = V0c + alpha @ W
+    V = _to_complex(d.amps, d.phases)
+    residual = V[d.current] + alpha @ W
     Wc = W * ratio
+
+    def solve(a: np.ndarray, p: np.ndarray) -> np.ndarray:
+        return _solve_batch(a, p, d)[1] * ratio
+
+    intervals, failed = bootstrap_intervals(solve, d.amps, d.phases, Wc, model)
+    sig = model.complex_sigma(d.amps)
+    dV, dV_sigma = V[1:] - V[d.base], np.hypot(sig[1:], sig[d.base])
+    n_runs = len(d.T) - d.trims
+    labels = [f"trial run {k + 1}" for k in range(n_runs)]
+    labels += [f"trim run {k + 1}" for k in range(d.trims)]
+    if d.alpha0 is not None:                             # given coefficients: not measured
+        dV, dV_sigma, labels = dV[:0], dV_sigma[:0], []
+    kappa, amp, run_noise = conditioning(alpha, d.amps[d.current], dV, dV_sigma, model)
+    warns = conditioning_warnings(kappa, amp, run_noise, labels)
+    if failed > 0.0:
+        warns.append(f"{100.0 * failed:.3g} % of the noise draws could not separate the "
+                     "planes: the trial masses barely changed the readings")
     unc = None
     if dA is not None:
-        d = check_number(dA, "dA", nonnegative=True)
-        shape = amps.shape
+        dd = check_number(dA, "dA", nonnegative=True)
+        shape = d.amps.shape
 
         def batch(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             a = pts.reshape((-1,) + shape)
-            p = np.broadcast_to(phases, a.shape)
-            _, Wb = _solve_batch(a, p, T_pinv)
-            Wb = Wb * ratio
+            Wb = solve(a, np.broadcast_to(d.phases, a.shape))
             return np.abs(Wb), np.degrees(np.angle(Wb))
 
-        unc = propagate(batch, amps.ravel(), d, "measured amplitudes")
+        unc = propagate(batch, d.amps.ravel(), dd, "measured amplitudes")
+    splits = None
+    if split is not None:
+        n, first = (split, 0.0) if isinstance(split, int | np.integer) else split
+        splits = [split_correction(abs(w), angle_of(complex(w)), n, first) for w in Wc]
     return InfluenceResult(masses=np.abs(Wc), angles=deg360_array(np.degrees(np.angle(Wc))),
-                           corrections=Wc, coefficients=alpha, initial=V0c, residual=residual,
-                           uncertainty=unc)
+                           corrections=Wc, coefficients=alpha, initial=V[0],
+                           residual=residual, uncertainty=unc, intervals=intervals,
+                           noise=model, condition_number=kappa, amplification=amp,
+                           warnings=warns, current=V[d.current], trim_runs=d.trims,
+                           splits=splits)
+
+
+def trim_balance(initial: Any, trims: Iterable[tuple[Any, Any]], *, coefficients: Any = None,
+                 runs: Iterable[tuple[Any, Any]] = (), **kwargs: Any) -> InfluenceResult:
+    """A trim correction: the coefficients updated by the corrections already applied.
+
+    Parameters
+    ----------
+    initial : sequence
+        The readings the first applied correction was fitted to.
+    trims : iterable of (applied, readings)
+        Each correction applied (masses per plane) and the readings with it on.
+    coefficients : optional
+        Influence coefficients of an earlier session (updated by Broyden's rule), or
+    runs : optional
+        the trial runs they came from (the trim runs join the least squares).
+    **kwargs
+        As :func:`influence_balance`.
+
+    Returns
+    -------
+    InfluenceResult
+        ``corrections``: what to add now; ``coefficients``: the updated alpha.
+    """
+    trims = list(trims)
+    if not trims:
+        raise BalanceError("trim: give at least one trim run (the correction applied and the "
+                           "readings with it)")
+    return influence_balance(initial, runs, trims=trims, coefficients=coefficients, **kwargs)
 
 
 def influence_single_plane(initial: Any, trial: Any, trial_mass: float,
                            trial_angle: float = 0.0, *,
-                           dA: float | None = None) -> InfluenceResult:
+                           dA: float | None = None,
+                           noise: NoiseModel | None = None) -> InfluenceResult:
     """Single-plane balancing with phase: W = -V0 / alpha, alpha = (V1 - V0) / T.
 
     Parameters
@@ -299,6 +526,8 @@ def influence_single_plane(initial: Any, trial: Any, trial_mass: float,
         Its angle (deg).
     dA : float, optional
         Uncertainty on every amplitude, see :func:`influence_balance`.
+    noise : NoiseModel, optional
+        See :func:`influence_balance`.
 
     Returns
     -------
@@ -306,13 +535,14 @@ def influence_single_plane(initial: Any, trial: Any, trial_mass: float,
     """
     m = check_number(trial_mass, "trial_mass", positive=True)
     t = check_number(trial_angle, "trial_angle")
-    return influence_balance(initial, [((m, t), trial)], dA=dA)
+    return influence_balance(initial, [((m, t), trial)], dA=dA, noise=noise)
 
 
 def influence_two_plane(initial: Any, trial_plane1: Any, trial_plane2: Any,
                         trial_mass: float, trial_angle: float = 0.0,
                         trial_mass2: float | None = None, trial_angle2: float | None = None,
-                        *, dA: float | None = None) -> InfluenceResult:
+                        *, dA: float | None = None,
+                        noise: NoiseModel | None = None) -> InfluenceResult:
     """Two-plane balancing with phase (two sensors, or more points in least squares).
 
     Runs: initial; trial mass in plane 1 only; trial mass in plane 2 only (the
@@ -331,6 +561,8 @@ def influence_two_plane(initial: Any, trial_plane1: Any, trial_plane2: Any,
         The plane-2 trial mass and angle; default: the same as in plane 1.
     dA : float, optional
         Uncertainty on every amplitude, see :func:`influence_balance`.
+    noise : NoiseModel, optional
+        See :func:`influence_balance`.
 
     Returns
     -------
@@ -348,4 +580,4 @@ def influence_two_plane(initial: Any, trial_plane1: Any, trial_plane2: Any,
     m2 = m1 if trial_mass2 is None else check_number(trial_mass2, "trial_mass2", positive=True)
     t2 = t1 if trial_angle2 is None else check_number(trial_angle2, "trial_angle2")
     runs = [([(m1, t1), None], trial_plane1), ([None, (m2, t2)], trial_plane2)]
-    return influence_balance(initial, runs, dA=dA)
+    return influence_balance(initial, runs, dA=dA, noise=noise)

@@ -1,0 +1,221 @@
+"""Noise, intervals and conditioning of the influence-coefficient method.
+
+Beyond the seed (its amplitude methods carry no phase). The noise model of a reading
+V = A e^(i theta) is Gaussian and 1-sigma: sigma_A = sqrt((relative A)^2 + absolute^2)
+on the amplitude (the same model as the resonance methods) and ``phase_noise``
+(deg) on the phase, independent from reading to reading.
+
+- **Intervals**: a parametric bootstrap. The readings are redrawn ``DRAWS`` times
+  from the noise model around the measured values (fixed seed: the same scene
+  gives the same interval), every draw is solved like the measurement, and the
+  interval at confidence c is the (1 - c)/2 and (1 + c)/2 percentiles of each
+  plane's correction mass and of its angle (angles as differences from the
+  estimate, wrapped to (-180, 180]). Percentile intervals follow any monotonic
+  transformation of the data (W = -V0 T / (V1 - V0) in one plane is one), so they
+  keep their coverage when the correction is a ratio of noisy readings.
+- **Conditioning**: the first-order perturbation bound of a least-squares solution,
+  ||dW|| / ||W|| <= kappa(alpha) eps_V, with kappa the condition number (ratio of
+  the extreme singular values) of the influence matrix and eps_V =
+  ||sigma_V|| / ||V|| the relative 1-sigma noise of the readings the correction
+  balances. Above ``AMPLIFICATION_LIMIT`` (10 % of the correction) the result gets
+  a warning: the data do not determine the correction. The coefficients' own noise
+  is checked run by run: a run whose reading change dV_k is less than 4 times its
+  noise (||sigma_dV_k|| / ||dV_k|| > ``RUN_NOISE_LIMIT``) gets a warning too (the
+  trial mass was too small for the noise).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ._util import check_number, deg360
+from .errors import BalanceError
+
+__all__ = [
+    "AMPLIFICATION_LIMIT",
+    "DRAWS",
+    "NoiseModel",
+    "bootstrap_intervals",
+    "conditioning",
+    "conditioning_warnings",
+    "parse_noise",
+]
+
+DRAWS = 4000
+"""Bootstrap draws per interval (the percentiles' own scatter is then ~0.3 % of
+coverage at 95 %)."""
+
+AMPLIFICATION_LIMIT = 0.10
+"""kappa * noise above this fraction of the correction gives a warning."""
+
+RUN_NOISE_LIMIT = 0.25
+"""A run whose reading change is less than 4 times its noise gives a warning."""
+
+SEED = 20240514
+"""Fixed seed of the bootstrap: repeated runs give the same interval."""
+
+
+@dataclass(frozen=True)
+class NoiseModel:
+    """1-sigma noise of every reading: amplitude (relative, absolute) and phase (deg)."""
+
+    relative: float = 0.01
+    absolute: float = 0.0
+    phase: float = 1.0
+    confidence: float = 0.95
+
+    def amplitude_sigma(self, amps: np.ndarray) -> np.ndarray:
+        """sigma_A = sqrt((relative A)^2 + absolute^2), element-wise."""
+        return np.hypot(self.relative * amps, self.absolute)
+
+    def complex_sigma(self, amps: np.ndarray) -> np.ndarray:
+        """Standard deviation of the complex reading, sqrt(sigma_A^2 + (A sigma_phase)^2)."""
+        return np.hypot(self.amplitude_sigma(amps), amps * np.radians(self.phase))
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: the noise model and confidence used."""
+        return {"relative": self.relative, "absolute": self.absolute,
+                "phase_noise": self.phase, "confidence": self.confidence}
+
+
+def parse_noise(noise: Mapping[str, Any] | None = None, phase_noise: float | None = None,
+                confidence: float | None = None) -> NoiseModel:
+    """A :class:`NoiseModel` from the scene's keys (defaults: 1 %, 0, 1 deg, 0.95)."""
+    d = NoiseModel()
+    rel, ab = d.relative, d.absolute
+    if noise is not None:
+        if not isinstance(noise, Mapping):
+            raise BalanceError("noise must be a table, e.g. { relative = 0.01, absolute = 0.0 }")
+        unknown = set(noise) - {"relative", "absolute"}
+        if unknown:
+            raise BalanceError(f"noise: unknown key {sorted(unknown)[0]!r}; known keys: "
+                               "relative, absolute")
+        rel = check_number(noise.get("relative", rel), "noise.relative", nonnegative=True)
+        ab = check_number(noise.get("absolute", ab), "noise.absolute", nonnegative=True)
+    ph = d.phase if phase_noise is None else check_number(phase_noise, "phase_noise",
+                                                           nonnegative=True)
+    c = d.confidence if confidence is None else check_number(confidence, "confidence")
+    if not 0.5 <= c < 1.0:
+        raise BalanceError(f"confidence must lie in [0.5, 1), got {c:g}")
+    if rel == 0.0 and ab == 0.0 and ph == 0.0:
+        raise BalanceError("noise: relative, absolute and phase_noise are all 0; a measurement "
+                           "always has noise (give at least one of them)")
+    return NoiseModel(relative=rel, absolute=ab, phase=ph, confidence=c)
+
+
+Solver = Callable[[np.ndarray, np.ndarray], np.ndarray]
+"""Maps amplitudes and phases (k, rows, points) to corrections W (k, planes); NaN
+rows where a draw cannot be solved."""
+
+
+def bootstrap_intervals(solve: Solver, amps: np.ndarray, phases: np.ndarray,
+                        W: np.ndarray, model: NoiseModel) -> tuple[list[dict], float]:
+    """Percentile intervals of each plane's correction mass and angle.
+
+    Parameters
+    ----------
+    solve : callable
+        See :data:`Solver`.
+    amps, phases : numpy.ndarray
+        The measured readings (rows, points): amplitudes and phases (deg).
+    W : numpy.ndarray of complex
+        The estimate (planes,).
+    model : NoiseModel
+
+    Returns
+    -------
+    intervals : list of dict
+        Per plane ``{"mass": [lo, hi], "angle": [lo, hi] or None}``; ``hi`` is None
+        (unbounded) when more than (1 - confidence) / 2 of the draws could not be
+        solved; the angle is [0, 360] when it is not bounded within a half turn.
+    failed : float
+        The fraction of draws that could not be solved.
+    """
+    rng = np.random.default_rng(SEED)
+    shape = (DRAWS,) + amps.shape
+    a = amps + model.amplitude_sigma(amps) * rng.standard_normal(shape)
+    p = phases + model.phase * rng.standard_normal(shape)
+    neg = a < 0.0                                  # a negative amplitude is the reading
+    a, p = np.abs(a), np.where(neg, p + 180.0, p)  # half a turn away
+    Wb = solve(a, p)
+    ok = np.all(np.isfinite(Wb), axis=1)
+    failed = 1.0 - float(ok.mean())
+    tail = (1.0 - model.confidence) / 2.0
+    q = (100.0 * tail, 100.0 * (1.0 - tail))
+    out = []
+    for j in range(W.size):
+        mags = np.abs(Wb[:, j])
+        mags = np.where(ok, mags, np.inf)          # an unsolvable draw: no bound
+        lo, hi = np.percentile(mags, q)
+        ang = None
+        if abs(W[j]) > 0.0:
+            d = np.degrees(np.angle(Wb[ok, j] / W[j]))      # difference from the estimate
+            dlo, dhi = np.percentile(d, q) if d.size else (-180.0, 180.0)
+            c0 = np.degrees(np.angle(W[j]))
+            if failed > tail or dhi - dlo >= 180.0:
+                ang = [0.0, 360.0]
+            else:
+                ang = [deg360(c0 + dlo), deg360(c0 + dhi)]
+        out.append({"mass": [float(lo), float(hi) if np.isfinite(hi) else None],
+                    "angle": ang})
+    return out, failed
+
+
+def conditioning(alpha: np.ndarray, V_amps: np.ndarray, dV: np.ndarray,
+                 dV_sigma: np.ndarray, model: NoiseModel) -> tuple[float, float, np.ndarray]:
+    """kappa(alpha), the amplification kappa eps_V and each run's relative noise.
+
+    Parameters
+    ----------
+    alpha : numpy.ndarray of complex
+        Influence coefficients (points, planes).
+    V_amps : numpy.ndarray
+        Amplitudes of the readings the correction balances (points,).
+    dV : numpy.ndarray of complex
+        The reading changes alpha was fitted to (runs, points); empty when the
+        coefficients were given, not measured.
+    dV_sigma : numpy.ndarray
+        Their 1-sigma noise (runs, points).
+    model : NoiseModel
+
+    Returns
+    -------
+    kappa : float
+        Ratio of the extreme singular values of alpha.
+    amplification : float
+        kappa eps_V, eps_V = ||sigma_V|| / ||V||: the first-order bound of the
+        correction's relative error from the readings it balances.
+    run_noise : numpy.ndarray
+        ||sigma_dV_k|| / ||dV_k|| per run: how noisy the coefficients from it are.
+    """
+    s = np.linalg.svd(alpha, compute_uv=False)
+    kappa = float(s[0] / s[-1]) if s[-1] > 0.0 else float("inf")
+    norm_v = float(np.linalg.norm(V_amps))
+    eps_v = float(np.linalg.norm(model.complex_sigma(V_amps))) / norm_v if norm_v else 0.0
+    run_noise = np.zeros(0)
+    if dV.size:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            run_noise = np.linalg.norm(dV_sigma, axis=-1) / np.linalg.norm(dV, axis=-1)
+    return kappa, kappa * eps_v, np.nan_to_num(run_noise, nan=np.inf)
+
+
+def conditioning_warnings(kappa: float, amplification: float, run_noise: np.ndarray,
+                          labels: list[str]) -> list[str]:
+    """The warnings of :func:`conditioning`'s numbers (empty when all is well)."""
+    out = []
+    if amplification > AMPLIFICATION_LIMIT:
+        out.append(f"the correction is not determined by the data: the influence matrix's "
+                   f"condition number {kappa:.3g} times the readings' noise amplifies it to "
+                   f"{100.0 * amplification:.3g} % of the correction (limit "
+                   f"{100.0 * AMPLIFICATION_LIMIT:g} %); use other measurement points or "
+                   "correction planes that act differently on them")
+    for label, eps in zip(labels, run_noise, strict=True):
+        if eps > RUN_NOISE_LIMIT:
+            out.append(f"{label} changed the readings by only {1.0 / eps:.3g} times their "
+                       f"noise (the influence coefficients from it are {100.0 * eps:.3g} % "
+                       f"noise, limit {100.0 * RUN_NOISE_LIMIT:g} %): use a larger trial mass")
+    return out
