@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -20,7 +21,9 @@ from ..model.errors import AssemblyError
 from ..model.scene import GROUND, Scene
 from . import _arith as A
 from .driver import BodyMotion
-from .structure import Dyad
+
+if TYPE_CHECKING:
+    from .structure import Dyad
 
 
 @dataclass

@@ -22,7 +22,9 @@ Coordinates are kept as separate x and y arrays (one element per position).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import math
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -31,7 +33,9 @@ from ..model.scene import GROUND, Scene
 from . import _arith as A
 from .closure import DyadSolver, Param, body_origin, dyad_param
 from .driver import BodyMotion, driver_motion, ground_motion
-from .structure import Dyad, Structure
+
+if TYPE_CHECKING:
+    from .structure import Dyad, Structure
 
 SINGULAR_WARN = 1e-3    # sin(transmission angle) below this: the row is flagged singular
 SINGULAR_FAIL = 1e-12   # below this the velocity system cannot be solved: refused
@@ -142,11 +146,13 @@ def _solve2(a11, a12, a21, a22, r1, r2, det):
 
 
 
-def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion]) -> DyadMotion:
+def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
+               k: int | None = None) -> DyadMotion:
     """Positions, velocities and accelerations of a dyad's two bodies over the sweep.
 
     Adds both bodies' :class:`BodyMotion` to ``motions`` and returns the dyad data the
-    reactions need.
+    reactions need. ``k`` is the dyad's assembly (seed 000 eqs 6.1, 8.1); ``None`` chooses
+    it from the ``[near]`` hints at the first row of ``scene``.
 
     Raises
     ------
@@ -158,7 +164,8 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion]) -> Dyad
     n = scene.driver.positions.size
     solver = DyadSolver(scene, dyad)
     pr = (dyad_param(scene, dyad, 0, motions), dyad_param(scene, dyad, 1, motions))
-    k = _choose_branch(scene, dyad, solver, motions) if solver.branches == 2 else 1
+    if k is None or solver.branches == 1:
+        k = _choose_branch(scene, dyad, solver, motions) if solver.branches == 2 else 1
     cs, ss, gap = solver.positions(pr, k)
     if gap is not None:
         gap = A.full(gap, n)
@@ -293,49 +300,100 @@ def _hint_points(scene: Scene, dyad: Dyad):
 
 def _choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver,
                    motions: dict[str, BodyMotion]) -> int:
+    """The assembly k = +-1 whose hinted points lie closest at the first row."""
     first = {name: m.take(slice(0, 1)) for name, m in motions.items()}
     pr = (dyad_param(scene, dyad, 0, first), dyad_param(scene, dyad, 1, first))
     cands = {}
     for k in (1, -1):
-        cs, ss, _ = solver.positions(pr, k)
+        cs, ss, gap = solver.positions(pr, k)
+        if gap is not None and float(np.ravel(gap)[0]) > 1e-9 * scene.size:
+            raise AssemblyError(
+                f"dyad {dyad.label} cannot be assembled at the first driver position "
+                f"{_fmt_positions(scene, np.array([0]))}: the links do not reach by "
+                f"{float(np.ravel(gap)[0]):.4g} m; change the lengths, the ground points or "
+                "the sweep's start")
         cands[k] = (cs, [body_origin(pr[i], cs[i], ss[i]) for i in range(2)])
-    hints = _hint_points(scene, dyad)
 
     def where(k, b, loc):
         i = dyad.bodies.index(b)
         (c, s), (ox, oy) = cands[k][0][i], cands[k][1][i]
         return (float(np.ravel(ox + c * loc[0] - s * loc[1])[0]),
                 float(np.ravel(oy + s * loc[0] + c * loc[1])[0]))
+    hints = _hint_points(scene, dyad)
     if hints:
         dist = {k: sum((where(k, b, loc)[0] - t[0]) ** 2 + (where(k, b, loc)[1] - t[1]) ** 2
                        for _, b, loc, t in hints) for k in (1, -1)}
         if abs(dist[1] - dist[-1]) > 1e-12 * scene.size ** 2:
             return 1 if dist[1] < dist[-1] else -1
-    # no hint settles it: list the candidates
+    # no hint settles it: name the point that tells the two assemblies apart best
+    best = None
+    for b in dyad.bodies:
+        for pname, loc in scene.bodies[b].points.items():
+            p1, p2 = where(1, b, loc), where(-1, b, loc)
+            sep = math.hypot(p1[0] - p2[0], p1[1] - p2[1])
+            if best is None or sep > best[0] * (1.0 + 1e-9):
+                best = (sep, b, pname, p1, p2)
+    sep, b, pname, p1, p2 = best
     inner = dyad.inner
-    b0 = dyad.bodies[0]
-    loc = (solver.q[0] if inner.kind == "R"
-           else solver.b[0].local(inner.point_on(b0)))
-    pts = []
-    for k in (1, -1):
-        x, y = where(k, b0, loc)
-        pts.append(f"({x:.4g}, {y:.4g})")
+    key = f'"{b}.{pname}"'
+    if inner.kind == "R" and pname == inner.point_on(b):
+        key = inner.name
+    hinted = (f" (the hints {', '.join(h[0] for h in hints)} do not tell them apart)"
+              if hints else "")
     raise AssemblyError(
-        f"dyad {dyad.label} has two assemblies at the first position: joint {inner.name!r} at "
-        f"{pts[0]} or {pts[1]}; add a hint, e.g. [near] {inner.name} = [x, y]"
-        if inner.kind == "R" else
-        f"dyad {dyad.label} has two assemblies at the first position: point "
-        f"{b0}.{inner.point_on(b0)} at {pts[0]} or {pts[1]}; add a hint, e.g. "
-        f"[near] \"{b0}.{inner.point_on(b0)}\" = [x, y]")
+        f"dyad {dyad.label} has two assemblies at the first driver position{hinted}: point "
+        f"{b}.{pname} at ({p1[0]:.4g}, {p1[1]:.4g}) or ({p2[0]:.4g}, {p2[1]:.4g}); add a hint "
+        f"for the one you mean, e.g. [near] {key} = [{p1[0]:.4g}, {p1[1]:.4g}]")
 
 
-def solve_kinematics(scene: Scene, structure: Structure) -> Kinematics:
-    """Motions of every body over the driver's sweep (vectorised, closed form)."""
+def with_positions(scene: Scene, positions) -> Scene:
+    """The same scene with the driver at other positions (deg for a crank, m for a slider)."""
+    pos = np.atleast_1d(np.asarray(positions, dtype=float))
+    return replace(scene, driver=replace(scene.driver, positions=pos))
+
+
+def choose_assembly(scene: Scene, structure: Structure) -> tuple[int, ...]:
+    """Each dyad's assembly k = +-1, chosen once at the scene's first row.
+
+    The ``[near]`` hints describe the scene's first row (scene-format section 1): there
+    each dyad takes the assembly whose hinted points lie closest; a dyad with one
+    assembly (or none to choose) gets k = 1.
+
+    Raises
+    ------
+    AssemblyError
+        A dyad that cannot close at the first row (by how much), or two assemblies that no
+        hint settles (with the hint to add).
+    """
+    if len(structure.assembly) == len(structure.dyads):
+        return structure.assembly
+    first = with_positions(scene, scene.driver.positions[:1])
+    motions: dict[str, BodyMotion] = {GROUND: ground_motion(),
+                                      scene.driver.body: driver_motion(first)}
+    return tuple(solve_dyad(first, dyad, motions).k for dyad in structure.dyads)
+
+
+def solve_kinematics(scene: Scene, structure: Structure, positions=None) -> Kinematics:
+    """Motions of every body over the driver's sweep (vectorised, closed form).
+
+    Parameters
+    ----------
+    scene : Scene
+        The mechanism.
+    structure : Structure
+        Its driver and dyads (:func:`~kinetostatics.analyse`); each dyad keeps the assembly
+        the structure carries (chosen at the scene's first row when it carries none).
+    positions : array_like, optional
+        Driver positions (deg or m) at which to evaluate the same mechanism, in any order;
+        default the scene's sweep.
+    """
+    assembly = choose_assembly(scene, structure)
+    structure = replace(structure, assembly=assembly)
+    if positions is not None:
+        scene = with_positions(scene, positions)
     motions: dict[str, BodyMotion] = {GROUND: ground_motion(),
                                       scene.driver.body: driver_motion(scene)}
     kin = Kinematics(scene, structure, scene.driver.positions, motions)
-    for dyad in structure.dyads:
-        kin.dyads.append(solve_dyad(scene, dyad, motions))
+    for dyad, k in zip(structure.dyads, assembly, strict=True):
+        kin.dyads.append(solve_dyad(scene, dyad, motions, k))
     return kin
-
-

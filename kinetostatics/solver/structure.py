@@ -10,10 +10,11 @@ joints). Solving order: the order found; reactions are solved in reverse order.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ..model.errors import StructureError
 from ..model.scene import GROUND, Joint, Scene
+from .kinematics import choose_assembly
 
 
 @dataclass(frozen=True)
@@ -39,11 +40,18 @@ class Dyad:
 
 @dataclass(frozen=True)
 class Structure:
-    """The driver and the dyads in solving order."""
+    """The driver and the dyads in solving order, and each dyad's assembly.
+
+    ``assembly`` holds, per dyad, the seed's indicator k = +-1 (seed 000 eqs 6.1, 8.1) of
+    the assembly chosen once, at the scene's first row, from the ``[near]`` hints; every
+    later evaluation of the mechanism (any batch of driver positions, in any order) solves
+    that same assembly. Empty until chosen (:func:`analyse` chooses it).
+    """
 
     driver: str
     driver_joint: Joint
     dyads: tuple[Dyad, ...]
+    assembly: tuple[int, ...] = ()
 
     def describe(self) -> list[str]:
         """One line per group, e.g. ``dyad 1: RRR bodies coupler, rocker; joints B, C, D``."""
@@ -52,17 +60,29 @@ class Structure:
         for d in self.dyads:
             lines.append(f"dyad {d.index + 1}: {d.kind}  bodies {d.bodies[0]}, {d.bodies[1]};"
                          f"  outer joints {d.outer[0].name}, {d.outer[1].name};"
-                         f"  inner joint {d.inner.name}")
+                         f"  inner joint {d.inner.name}"
+                         + (f";  assembly k = {self.assembly[d.index]:+d}"
+                            if len(self.assembly) == len(self.dyads) else ""))
         return lines
 
 
-def analyse(scene: Scene) -> Structure:
-    """Decompose the scene into the driver and dyads in solving order.
+def analyse(scene: Scene, assemble: bool = True) -> Structure:
+    """Decompose the scene into the driver and dyads in solving order, and choose each
+    dyad's assembly at the scene's first row.
+
+    Parameters
+    ----------
+    scene : Scene
+        The checked scene.
+    assemble : bool
+        Choose the assemblies (the default); ``False`` gives the decomposition alone.
 
     Raises
     ------
     StructureError
         When the chain is not a driver plus dyads, naming the bodies left over.
+    AssemblyError
+        When a dyad cannot close at the first row, or no hint settles its assembly.
     """
     joints = list(scene.joints.values())
     driver = scene.driver.body
@@ -105,4 +125,7 @@ def analyse(scene: Scene) -> Structure:
     if extra:
         raise StructureError(f"joints {', '.join(extra)} are left over: with them the mechanism "
                              "is over-constrained (a driver plus dyads uses every joint once)")
-    return Structure(driver, djoint, tuple(dyads))
+    structure = Structure(driver, djoint, tuple(dyads))
+    if not assemble:
+        return structure
+    return replace(structure, assembly=choose_assembly(scene, structure))
