@@ -12,24 +12,69 @@ optional). Without it a joint has no friction.
   the normal reaction and its couple are carried by the two ends, N_A + N_B = N and
   (N_B - N_A) l / 2 = M, and the friction is mu (|N_A| + |N_B|).
 
-The friction loads depend on the reactions, which depend on them: the solve is
-repeated with the friction of the previous pass until nothing changes (a contraction
-for the usual mu; rows that do not settle are reported as self-locking: the reactions
-grow without bound there, the motion cannot be driven, s. 2.4).
+How a row is solved. The relative motions fix the direction of every friction load,
+so the loads of joint j are s_j times a unit load (a couple of 1 N m, a force of 1 N)
+and only the magnitudes s_j are unknown. The reactions are linear in the loads: the
+quantities the friction reads (a pin's Fx, Fy; a guide's N, M) are q = q0 + G s, q0
+from the scene's loads and the columns of G from one solve per unit friction load.
+Each magnitude is a positively homogeneous convex function of them, s_j = h_j(q)
+(rho |F|, mu |N| or mu (|N_A| + |N_B|)), so a row is the small system
+
+    s = h(q0 + G s),    s >= 0,
+
+solved directly by Newton's method, row by row on each row's own scale (no global
+tolerance, no fixed-point passes that stall as the friction feedback nears 1).
+
+Self-locking (s. 2.4: the motion cannot be driven). The friction feedback G can make
+the system have no finite solution: the friction force needed grows without bound
+(the massless slider-crank locks where mu tan(psi) >= 1). To tell the rows apart the
+system is followed from no friction to the given one, every coefficient scaled by
+lambda in [0, 1], in projective form, which stays finite through the blow-up:
+
+    s = lambda h(sigma q0 + G s),    sigma + sum w_j s_j = 1,
+
+(w_j > 0 the row's scale of s_j). A finite solution is s / sigma with sigma > 0; the
+branch reaches sigma = 0 where the force grows without bound, at the critical scale
+lambda*: a row whose branch has sigma <= 0 at lambda = 1 is self-locking (no finite
+driving effort moves it), and with every coefficient below lambda* times the given
+one it would move. Where several finite solutions exist (a load that drives the
+motion can wedge a guide as well), the branch from no friction is the one kept.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
-from ..model.scene import GROUND, Scene
+from ..model.errors import WorkbenchError
+from ..model.scene import GROUND, Joint, Scene
 from . import _arith as A
 from .kinematics import Kinematics
 from .loads import PointLoad, resultants
 from .reactions import DriverReaction, JointReaction, solve_reactions
 
-MAX_PASSES = 200
-TOLERANCE = 1e-13
+NEWTON_ITERATIONS = 40      # per continuation step and for the final solve
+NEWTON_TOLERANCE = 1e-12    # on the row's own scale (normalised unknowns)
+FIRST_STEP = 0.25           # first continuation step in lambda
+MAX_PATH_STEP = 0.25        # largest change of the normalised unknowns in one step
+MIN_STEP = 1e-9             # a step in lambda below this: the row does not settle
+MAX_STEPS = 400
+
+
+class SelfLockingError(WorkbenchError):
+    """Joint friction locks the mechanism at every position of the sweep."""
+
+
+@dataclass
+class _Spec:
+    """One joint with friction: its unit loads and how its magnitude reads the reactions."""
+
+    joint: Joint
+    coeff: float                # rho = mu r (revolute, eq. 2.62) or mu (prismatic)
+    length: float               # bearing length of a prismatic joint (0: none)
+    width: int                  # reaction quantities read: 2 (Fx, Fy or N, M) or 1 (N)
+    unit: list[PointLoad]       # the friction loads for s_j = 1, signs from the motion
 
 
 def has_friction(scene: Scene) -> bool:
@@ -37,77 +82,344 @@ def has_friction(scene: Scene) -> bool:
     return any(j.friction is not None and j.friction.mu > 0 for j in scene.joints.values())
 
 
-def friction_loads(scene: Scene, kin: Kinematics, reactions: dict[str, JointReaction]
-                   ) -> list[PointLoad]:
-    """The friction couples (revolute) and forces (prismatic) for the given reactions."""
+def _unit_loads(scene: Scene, kin: Kinematics, j: Joint) -> list[PointLoad]:
+    """Friction loads of unit magnitude against the relative motion (zero where the
+    joint does not move)."""
     n = kin.n
     out: list[PointLoad] = []
-    for name, j in scene.joints.items():
+    if j.kind == "R":
+        b0, b1 = j.bodies
+        w0 = np.broadcast_to(kin.bodies[b0].omega, (n,))
+        w1 = np.broadcast_to(kin.bodies[b1].omega, (n,))
+        m1 = -np.sign(w1 - w0)                          # on b1, against omega_10
+        for body, m in ((b1, m1), (b0, -m1)):
+            if body != GROUND:
+                out.append(PointLoad(body, "friction", 0.0, 0.0, 0.0, 0.0, m,
+                                     f"friction couple in {j.name}"))
+        return out
+    g, s = kin.bodies[j.guide], kin.bodies[j.slider]
+    if j.slider == GROUND:
+        sx, sy = scene.ground[j.points[1]]
+    else:
+        sx, sy = s.point(scene.bodies[j.slider].local(j.points[1]))
+    ux, uy = g.rotate(np.cos(np.deg2rad(j.line_angle)), np.sin(np.deg2rad(j.line_angle)))
+    vsx, vsy = s.vel_at(sx, sy)
+    vgx, vgy = g.vel_at(sx, sy)
+    vrel = np.broadcast_to(A.add(A.mul(ux, A.sub(vsx, vgx)), A.mul(uy, A.sub(vsy, vgy))),
+                           (n,))
+    f = -np.sign(vrel)                                  # on the slider, along u
+    ffx, ffy = A.mul(f, ux), A.mul(f, uy)
+    for body, sign in ((j.slider, 1.0), (j.guide, -1.0)):
+        if body == GROUND:
+            continue
+        m = kin.bodies[body]
+        out.append(PointLoad(body, "friction", A.sub(sx, m.ox), A.sub(sy, m.oy),
+                             A.mul(sign, ffx), A.mul(sign, ffy), 0.0,
+                             f"friction force in {j.name}"))
+    return out
+
+
+def _specs(scene: Scene, kin: Kinematics) -> list[_Spec]:
+    out = []
+    for j in scene.joints.values():
         fr = j.friction
         if fr is None or fr.mu == 0.0:
             continue
-        r = reactions[name]
-        fx, fy = r.force(n)
         if j.kind == "R":
-            rho = fr.radius * fr.mu                                   # eq. 2.62
-            b0, b1 = j.bodies
-            w0 = np.broadcast_to(kin.bodies[b0].omega, (n,))
-            w1 = np.broadcast_to(kin.bodies[b1].omega, (n,))
-            m1 = -rho * np.hypot(fx, fy) * np.sign(w1 - w0)           # on b1, against w10
-            for body, m in ((b1, m1), (b0, -m1)):
-                if body != GROUND:
-                    out.append(PointLoad(body, "friction", 0.0, 0.0, 0.0, 0.0, m,
-                                         f"friction couple in {name}"))
-            continue
-        nn = np.broadcast_to(r.N, (n,))
-        if fr.length > 0.0:                                           # eqs 2.63-2.65
-            mm = np.broadcast_to(r.M, (n,))
-            normal = np.abs(0.5 * nn - mm / fr.length) + np.abs(0.5 * nn + mm / fr.length)
+            out.append(_Spec(j, fr.radius * fr.mu, 0.0, 2, _unit_loads(scene, kin, j)))
         else:
-            normal = np.abs(nn)
-        g, s = kin.bodies[j.guide], kin.bodies[j.slider]
-        if j.slider == GROUND:
-            sx, sy = scene.ground[j.points[1]]
-        else:
-            sx, sy = s.point(scene.bodies[j.slider].local(j.points[1]))
-        ux, uy = g.rotate(np.cos(np.deg2rad(j.line_angle)), np.sin(np.deg2rad(j.line_angle)))
-        vsx, vsy = s.vel_at(sx, sy)
-        vgx, vgy = g.vel_at(sx, sy)
-        vrel = np.broadcast_to(A.add(A.mul(ux, A.sub(vsx, vgx)), A.mul(uy, A.sub(vsy, vgy))),
-                               (n,))
-        f = -fr.mu * normal * np.sign(vrel)                           # on the slider, along u
-        ffx, ffy = A.mul(f, ux), A.mul(f, uy)
-        for body, sign in ((j.slider, 1.0), (j.guide, -1.0)):
-            if body == GROUND:
-                continue
-            m = kin.bodies[body]
-            out.append(PointLoad(body, "friction", A.sub(sx, m.ox), A.sub(sy, m.oy),
-                                 A.mul(sign, ffx), A.mul(sign, ffy), 0.0,
-                                 f"friction force in {name}"))
+            out.append(_Spec(j, fr.mu, fr.length, 2 if fr.length > 0.0 else 1,
+                             _unit_loads(scene, kin, j)))
     return out
+
+
+def _quantities(spec: _Spec, r: JointReaction, n: int) -> list[np.ndarray]:
+    """The reaction quantities the joint's friction reads: (Fx, Fy), (N, M) or (N,)."""
+    if spec.joint.kind == "R":
+        return list(r.force(n))
+    nn = np.broadcast_to(r.N, (n,))
+    return [nn, np.broadcast_to(r.M, (n,))] if spec.width == 2 else [nn]
+
+
+def _magnitude(spec: _Spec, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """s_j = h_j(q) and its gradient (a subgradient where h_j has a kink)."""
+    c = spec.coeff
+    if spec.joint.kind == "R":                          # rho |F| (eq. 2.62)
+        f = np.hypot(q[:, 0], q[:, 1])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            g = np.where(f[:, None] > 0.0, q / f[:, None], 0.0)
+        return c * f, c * g
+    if spec.width == 1:                                 # mu |N|
+        return c * np.abs(q[:, 0]), c * np.sign(q[:, :1])
+    half, arm = 0.5 * q[:, 0], q[:, 1] / spec.length    # eqs 2.63-2.65: mu (|N_A| + |N_B|)
+    na, nb = half - arm, half + arm
+    sa, sb = np.sign(na), np.sign(nb)
+    grad = np.stack([0.5 * (sa + sb), (sb - sa) / spec.length], axis=1)
+    return c * (np.abs(na) + np.abs(nb)), c * grad
+
+
+class _Rows:
+    """The rows' friction system in normalised form: unknowns w_j s_j, all O(1)."""
+
+    def __init__(self, specs: list[_Spec], q0: np.ndarray, g: np.ndarray, w: np.ndarray):
+        self.specs = specs
+        self.q0, self.g, self.w = q0, g, w
+        self.slices = []
+        start = 0
+        for sp in specs:
+            self.slices.append(slice(start, start + sp.width))
+            start += sp.width
+
+    def h(self, q: np.ndarray, idx) -> tuple[np.ndarray, np.ndarray]:
+        """Normalised magnitudes w h(q) and their Jacobian d(w h)/dq at rows idx."""
+        n, k = q.shape[0], len(self.specs)
+        hv = np.empty((n, k))
+        dh = np.zeros((n, k, q.shape[1]))
+        for j, (sp, sl) in enumerate(zip(self.specs, self.slices, strict=True)):
+            hv[:, j], dh[:, j, sl] = _magnitude(sp, q[:, sl])
+        w = self.w[idx]
+        return hv * w, dh * w[:, :, None]
+
+    def gt(self, idx) -> np.ndarray:
+        """G with its columns divided by w (the response to the normalised unknowns)."""
+        return self.g[idx] / self.w[idx][:, None, :]
+
+
+def _solve_batch(jac: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Batched linear solves; rows whose matrix is singular give a zero step and False."""
+    ok = np.isfinite(jac).all(axis=(1, 2)) & np.isfinite(rhs).all(axis=1)
+    ok &= np.abs(np.linalg.det(np.where(ok[:, None, None], jac, 1.0))) > 1e-300
+    eye = np.eye(jac.shape[1])
+    safe = np.where(ok[:, None, None], jac, eye)
+    step = np.linalg.solve(safe, np.where(ok[:, None], rhs, 0.0)[..., None])[..., 0]
+    return step, ok
+
+
+def _newton_path(rows: _Rows, idx: np.ndarray, lam: np.ndarray, x: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Newton's method on the projective system at scales ``lam`` for rows ``idx``,
+    from ``x`` = (w s, sigma). Returns the solutions and which rows converged."""
+    k = len(rows.specs)
+    x = x.copy()
+    done = np.zeros(idx.size, dtype=bool)
+    failed = np.zeros(idx.size, dtype=bool)
+    eye = np.eye(k)
+    for _ in range(NEWTON_ITERATIONS):
+        live = np.flatnonzero(~done & ~failed)
+        if live.size == 0:
+            break
+        rid = idx[live]
+        gt, q0, la = rows.gt(rid), rows.q0[rid], lam[live]
+        s, sig = x[live, :k], x[live, k]
+        q = sig[:, None] * q0 + np.einsum("nmk,nk->nm", gt, s)
+        hv, dh = rows.h(q, rid)
+        res = np.concatenate([s - la[:, None] * hv, (sig + s.sum(axis=1) - 1.0)[:, None]],
+                             axis=1)
+        jac = np.zeros((live.size, k + 1, k + 1))
+        jac[:, :k, :k] = eye - la[:, None, None] * (dh @ gt)
+        jac[:, :k, k] = -la[:, None] * np.einsum("nkm,nm->nk", dh, q0)
+        jac[:, k, :] = 1.0
+        step, ok = _solve_batch(jac, -res)
+        x[live] += step
+        failed[live[~ok]] = True
+        done[live[ok & (np.abs(step).max(axis=1) <= NEWTON_TOLERANCE)]] = True
+    return x, done & ~failed
+
+
+def _follow(rows: _Rows, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Follow every row's branch from no friction (lambda = 0) to the given one.
+
+    The branch of a row ends before lambda = 1 in two ways, and the row locks: sigma
+    reaches 0 (the friction forces grow without bound), or the branch turns back at a
+    fold (the Jacobian of the system is singular there: beyond it, friction this high
+    has no equilibrium near the branch). Neither is followed further.
+
+    Returns x = (w s, sigma) at lambda = 1 (where the branch ended, for locked rows),
+    the locked rows, the rows whose sigma reached 0, and the scale where the branch
+    ended (sigma = 0 interpolated in the last step, or the fold; 1 for free rows)."""
+    k = len(rows.specs)
+    x = np.zeros((n, k + 1))
+    x[:, k] = 1.0
+    lam = np.zeros(n)
+    step = np.full(n, FIRST_STEP)
+    ended = np.ones(n)
+    crossed = np.zeros(n, dtype=bool)
+    fold = np.zeros(n, dtype=bool)
+    for _ in range(MAX_STEPS):
+        idx = np.flatnonzero((lam < 1.0) & ~crossed & ~fold)
+        if idx.size == 0:
+            break
+        target = np.minimum(lam[idx] + step[idx], 1.0)
+        xn, ok = _newton_path(rows, idx, target, x[idx])
+        ok &= np.abs(xn - x[idx]).max(axis=1) <= MAX_PATH_STEP
+        good, bad = idx[ok], idx[~ok]
+        xg, tg = xn[ok], target[ok]
+        cross = xg[:, k] <= 0.0
+        if cross.any():
+            c = good[cross]
+            s0, s1 = x[c, k], xg[cross, k]
+            ended[c] = lam[c] + (tg[cross] - lam[c]) * s0 / np.maximum(s0 - s1, 1e-300)
+            crossed[c] = True
+        x[good], lam[good] = xg, tg
+        step[good] = np.minimum(2.0 * step[good], 1.0)
+        step[bad] *= 0.25
+        turned = bad[step[bad] < MIN_STEP]
+        fold[turned] = True
+        ended[turned] = lam[turned]
+    if ((lam < 1.0) & ~crossed & ~fold).any():
+        raise WorkbenchError("the friction equations could not be followed within "
+                             f"{MAX_STEPS} steps; lower the friction coefficients")
+    return x, crossed | fold, crossed, ended
+
+
+def _newton_direct(rows: _Rows, s: np.ndarray, idx: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Newton's method on s = h(q0 + G s) (normalised s) at the given friction, from the
+    branch's point; convergence on each row's own scale. Returns s and the converged."""
+    k = len(rows.specs)
+    s = s.copy()
+    done = np.zeros(idx.size, dtype=bool)
+    failed = np.zeros(idx.size, dtype=bool)
+    eye = np.eye(k)
+    for _ in range(NEWTON_ITERATIONS):
+        live = np.flatnonzero(~done & ~failed)
+        if live.size == 0:
+            break
+        rid = idx[live]
+        gt, q0 = rows.gt(rid), rows.q0[rid]
+        sl = s[live]
+        hv, dh = rows.h(q0 + np.einsum("nmk,nk->nm", gt, sl), rid)
+        res = sl - hv
+        step, ok = _solve_batch(eye - dh @ gt, -res)
+        s[live] += step
+        failed[live[~ok]] = True
+        # the row's own scale: its unknowns and the terms of its residual
+        scale = 1.0 + np.abs(sl).max(axis=1) + np.abs(hv).max(axis=1)
+        done[live[ok & (np.abs(step).max(axis=1) <= NEWTON_TOLERANCE * scale)]] = True
+    return s, done & ~failed
+
+
+def _critical_scale(rows: _Rows, idx: np.ndarray, x: np.ndarray, lam0: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """For locked rows: the scale lambda* where the unloaded system s = lambda h(G s)
+    first has a solution with sum(w s) = 1 (the force without bound), and that
+    direction. Newton on (w s, lambda) from the branch's point where sigma reached 0."""
+    k = len(rows.specs)
+    y = np.concatenate([np.clip(x[:, :k], 0.0, None), lam0[:, None]], axis=1)
+    y[:, :k] /= np.maximum(y[:, :k].sum(axis=1, keepdims=True), 1e-300)
+    eye = np.eye(k)
+    for _ in range(NEWTON_ITERATIONS):
+        gt = rows.gt(idx)
+        s, la = y[:, :k], y[:, k]
+        hv, dh = rows.h(np.einsum("nmk,nk->nm", gt, s), idx)
+        res = np.concatenate([s - la[:, None] * hv, (s.sum(axis=1) - 1.0)[:, None]], axis=1)
+        jac = np.zeros((idx.size, k + 1, k + 1))
+        jac[:, :k, :k] = eye - la[:, None, None] * (dh @ gt)
+        jac[:, :k, k] = -hv
+        jac[:, k, :k] = 1.0
+        step, ok = _solve_batch(jac, -res)
+        y += step
+        if np.abs(step).max() <= NEWTON_TOLERANCE:
+            break
+    return y[:, k], y[:, :k]
+
+
+def _row_scale(specs: list[_Spec], q0: np.ndarray, g: np.ndarray) -> np.ndarray:
+    """Weights w_j (n, k): 1 / (coefficient x the row's largest force), so that the
+    normalised unknowns w_j s_j are of order 1 on every row."""
+    force = np.abs(q0).max(axis=1)
+    top = float(force.max()) if force.size else 0.0
+    if top == 0.0:     # no load anywhere: the response to the friction sets the scale
+        top = 1.0 / max(float(np.abs(g).max()) if g.size else 0.0, 1e-300)
+    force = np.maximum(force, 1e-12 * top)
+    coeff = np.array([sp.coeff for sp in specs])
+    return 1.0 / (coeff[None, :] * force[:, None])
+
+
+def _scaled_loads(specs: list[_Spec], s: np.ndarray) -> list[PointLoad]:
+    """The friction loads of magnitudes s (n, k) (NaN where a row has no value)."""
+    out = []
+    for j, sp in enumerate(specs):
+        for u in sp.unit:
+            out.append(PointLoad(u.body, u.kind, u.rx, u.ry, A.mul(u.fx, s[:, j]),
+                                 A.mul(u.fy, s[:, j]), A.mul(u.m, s[:, j]), u.label))
+    return out
+
+
+def _lock_message(scene: Scene, specs: list[_Spec], lam: np.ndarray, dirn: np.ndarray
+                  ) -> str:
+    """One line for a sweep that locks at every position."""
+    drv = scene.driver
+    unit = "deg" if drv.kind == "R" else "m"
+    pos = drv.positions
+    best = int(np.argmax(lam))
+    sp = specs[int(np.argmax(dirn[best]))]
+    mu = sp.joint.friction.mu
+    where = (f"at every position ({pos[0]:g} to {pos[-1]:g} {unit})" if pos.size > 1 else
+             f"at position {pos[0]:g} {unit}")
+    others = "" if len(specs) == 1 else " (every friction coefficient scaled alike)"
+    return (f"the mechanism self-locks {where}: the friction in joint '{sp.joint.name}' "
+            f"(mu = {mu:g}) jams it; it would move at position {pos[best]:g} {unit} with "
+            f"mu below {lam[best] * mu:.6g}{others}, and at every position below "
+            f"{float(lam.min()) * mu:.6g}")
 
 
 def solve_with_friction(scene: Scene, kin: Kinematics, loads: list[PointLoad]
                         ) -> tuple[dict[str, JointReaction], DriverReaction, list[PointLoad],
                                    np.ndarray]:
-    """Reactions and Me with joint friction by repeated solves.
+    """Reactions and Me with joint friction, each row solved on its own scale.
 
-    Returns the reactions, the driver's Me/Fe, the friction loads of the last pass and
-    the ``self_locking`` mask (rows whose passes did not settle).
+    Returns the reactions, the driver's Me/Fe, the friction loads and the
+    ``self_locking`` mask (rows where no finite driving effort moves the mechanism;
+    their Me/Fe, reactions and friction loads are NaN).
+
+    Raises
+    ------
+    SelfLockingError
+        If every row locks: the message names the joint and the coefficient below
+        which the mechanism would move.
+    WorkbenchError
+        If some row's friction equations cannot be followed (never met in practice).
     """
     n = kin.n
-    reactions, drive = solve_reactions(kin, resultants(loads, scene.bodies, n))
-    prev = np.asarray(drive.value, dtype=float)
-    settled = np.zeros(n, dtype=bool)
-    fl: list[PointLoad] = []
-    for _ in range(MAX_PASSES):
-        fl = friction_loads(scene, kin, reactions)
-        reactions, drive = solve_reactions(kin, resultants(loads + fl, scene.bodies, n))
-        cur = np.asarray(drive.value, dtype=float)
-        scale = max(float(np.max(np.abs(cur))), 1e-300)
-        change = np.abs(cur - prev)
-        settled = change <= TOLERANCE * scale
-        prev = cur
-        if settled.all():
-            break
-    return reactions, drive, fl, ~settled
+    specs = _specs(scene, kin)
+    base, _ = solve_reactions(kin, resultants(loads, scene.bodies, n))
+    names = [sp.joint.name for sp in specs]
+    q0 = np.stack([q for sp in specs for q in _quantities(sp, base[sp.joint.name], n)], axis=1)
+    cols = []
+    for sp in specs:
+        unit, _ = solve_reactions(kin, resultants(sp.unit, scene.bodies, n))
+        cols.append(np.stack([q for sp2, name in zip(specs, names, strict=True)
+                              for q in _quantities(sp2, unit[name], n)], axis=1))
+    g = np.stack(cols, axis=2)                                  # (n, m, k)
+    w = _row_scale(specs, q0, g)
+    rows = _Rows(specs, q0, g, w)
+    x, locked, crossed, ended = _follow(rows, n)
+    k = len(specs)
+    free = np.flatnonzero(~locked)
+    sn, ok = _newton_direct(rows, x[free, :k] / x[free, k:], free)
+    if not ok.all():
+        p = scene.driver.positions[free[np.flatnonzero(~ok)[0]]]
+        raise WorkbenchError(f"the friction equations do not settle at driver position "
+                             f"{p:g}; lower the friction coefficients there")
+    s = np.full((n, k), np.nan)
+    s[free] = sn / w[free]
+    if locked.all():
+        lam, dirn = ended, x[:, :k]
+        c = np.flatnonzero(crossed)
+        lam[c], dirn[c] = _critical_scale(rows, c, x[c], ended[c])
+        raise SelfLockingError(_lock_message(scene, specs, lam, dirn))
+    fl = _scaled_loads(specs, s)
+    reactions, drive = solve_reactions(kin, resultants(loads + fl, scene.bodies, n))
+    if locked.any():
+        reactions = {name: _blank(r, locked, n) for name, r in reactions.items()}
+        drive = DriverReaction(drive.kind, np.where(locked, np.nan, drive.value))
+    return reactions, drive, fl, locked
+
+
+def _blank(r: JointReaction, rows: np.ndarray, n: int) -> JointReaction:
+    """The reaction with NaN at ``rows`` (they have no value there)."""
+    def nan(a):
+        return None if a is None else np.where(rows, np.nan, np.broadcast_to(a, (n,)))
+    return JointReaction(r.joint, r.on, r.by, nan(r.fx), nan(r.fy), nan(r.N), nan(r.M),
+                         r.x, r.y, r.sign)

@@ -75,7 +75,10 @@ def _check_finite(sol: Solution) -> None:
                                      for v in (r.fx, r.fy)]
     for b in sol.kin.bodies.values():
         arrays += [np.asarray(b.cos), np.asarray(b.ox), np.asarray(b.oy), np.asarray(b.ax)]
-    for a in arrays:
+    locked = sol.self_locking     # rows where friction locks: Me and reactions are NaN
+    for i, a in enumerate(arrays):
+        if locked is not None and locked.any() and i <= 2 * len(sol.joint_reactions):
+            a = np.where(locked, 0.0, np.broadcast_to(a, sol.positions.shape))
         if not np.isfinite(np.sum(a)):
             bad = np.flatnonzero(~np.isfinite(np.broadcast_to(a, sol.positions.shape)))
             raise AssemblyError(

@@ -5,14 +5,23 @@ replaces (eqs 2.71-2.72): M_r omega_1 = sum(F_k . v_k + M_k omega_k). The reduce
 moment of inertia I_r (mass m_r) stores the same kinetic energy (eqs 2.74-2.75):
 I_r omega_1^2 = sum(m_k v_Gk^2 + I_Gk omega_k^2). With the inertia forces included the
 reduced moment is -Me (eq. 2.73).
+
+Both depend on the mechanism's position only, through the velocity ratios
+v_k / omega_1 and omega_k / omega_1: they are read from the motion at unit driver speed
+and zero driver acceleration, where every velocity is its ratio k1 and every
+acceleration is k2 = d k1 / d phi. So the reduction holds at any speed, zero included.
 """
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 import numpy as np
 import pandas as pd
+
+from .kinematics import Kinematics, solve_kinematics
+from .loads import concentrated_masses
 
 if TYPE_CHECKING:
     from ..results import Solution
@@ -21,13 +30,25 @@ if TYPE_CHECKING:
 LOAD_KINDS = ("applied", "gravity", "inertia", "friction")
 
 
-def _powers_by_kind(sol: Solution) -> dict[str, np.ndarray]:
-    """Sum of F . v + M omega of the solution's loads, per kind (W, arrays over rows)."""
+def _powers_by_kind(sol: Solution, kin: Kinematics) -> dict[str, np.ndarray]:
+    """Sum of F . v + M omega of the solution's loads, per kind, with the velocities of
+    ``kin`` (W at the scene's speed; the reduced moments at unit speed)."""
     n = sol.kin.n
     out = {k: np.zeros(n) for k in LOAD_KINDS}
     for ld in sol.loads:
-        out[ld.kind] = out[ld.kind] + np.broadcast_to(ld.power(sol.kin), (n,))
+        out[ld.kind] = out[ld.kind] + np.broadcast_to(ld.power(kin), (n,))
     return out
+
+
+def unit_kinematics(sol: Solution) -> Kinematics:
+    """The solution's mechanism at unit driver speed (1 rad/s or 1 m/s) and zero driver
+    acceleration, at the same positions and in the same assembly: its velocities are the
+    velocity ratios k1 = v / omega_1 and its accelerations k2 = d k1 / d phi."""
+    drv = sol.scene.driver
+    if drv.speed == 1.0 and drv.acceleration == 0.0:
+        return sol.kin
+    scene = replace(sol.scene, driver=replace(drv, speed=1.0, acceleration=0.0))
+    return solve_kinematics(scene, sol.kin.structure)
 
 
 def power_table(sol: Solution) -> pd.DataFrame:
@@ -42,54 +63,65 @@ def power_table(sol: Solution) -> pd.DataFrame:
     minus the integral of ``P_applied`` where it resists, the motor work that of
     ``P_driver`` (eqs 4.22-4.25).
     """
-    powers = _powers_by_kind(sol)
+    powers = _powers_by_kind(sol, sol.kin)
     drive = np.asarray(sol.Me, dtype=float) * sol.scene.driver.speed    # Me w1 or Fe v
     return pd.DataFrame({"position": sol.positions, "P_driver": drive,
                          **{f"P_{k}": powers[k] for k in LOAD_KINDS}})
 
 
-def reduced_table(sol: Solution) -> pd.DataFrame:
-    """``position, M_red`` (or ``F_red``) of the applied loads and gravity (eq. 2.72),
-    ``M_red_friction`` of the friction forces (zero without friction), ``M_red_inertia``
-    of the inertia forces, ``I_red`` (or ``m_red``), and ``dI_red`` (d I_red / d position,
-    per rad or per m), from the velocity ratios of the solved kinematics. The three
-    reduced moments add up to -Me (eq. 2.73)."""
-    scene = sol.scene
-    kin = sol.kin
-    speed = scene.driver.speed
-    if speed == 0.0:
-        from dataclasses import replace
+def reduced_inertia(sol: Solution, kin1: Kinematics) -> tuple[np.ndarray, np.ndarray]:
+    """I_r (eq. 2.75) and d I_r / d phi from the unit-speed motion ``kin1``.
 
-        from .pipeline import solve
-        drv = replace(scene.driver, speed=1.0, acceleration=0.0)
-        sol = solve(replace(scene, driver=drv))
-        kin = sol.kin
-        speed = 1.0
-    n = kin.n
-    powers = _powers_by_kind(sol)
-    p_loads = powers["applied"] + powers["gravity"]
-    energy2 = np.zeros(n)      # sum m v_G^2 + I omega^2 (twice the kinetic energy)
-    denergy = np.zeros(n)      # its time derivative / 2: sum m v.a + I omega alpha
-    for name, body in scene.bodies.items():
-        m = kin.bodies[name]
-        if body.mass > 0.0:
-            x, y = m.point(body.cog)
-            vx, vy = m.vel_at(x, y)
-            ax, ay = m.acc_at(x, y)
-            energy2 = energy2 + body.mass * (vx * vx + vy * vy)
-            denergy = denergy + body.mass * (vx * ax + vy * ay)
-        energy2 = energy2 + body.inertia * m.omega * m.omega
-        denergy = denergy + body.inertia * m.omega * m.alpha
-    rot = scene.driver.kind == "R"
-    acc = scene.driver.acceleration if sol.scene.driver.speed != 0.0 else 0.0
-    i_red = energy2 / speed**2
-    # d I_r / d phi = 2 (sum m v.a + I w a - I_r w1 eps1) / w1^3    (from eq. 2.75)
-    di_red = 2.0 * (denergy - i_red * speed * acc) / speed**3
+    I_r = sum m_k |k1_k|^2 + I_G k1_omega^2 over the masses the kinetostatics uses (each
+    body's cog and I_G, or the concentrated masses of its ``mass_model``, seed 002 eqs
+    2.9-2.15, which carry no I_G), so that its inertia forces reduce to -(I_r eps +
+    1/2 dI_r omega^2); dI_r / d phi = 2 sum (m_k k1_k . k2_k + I_G k1_omega k2_omega).
+    """
+    n = sol.kin.n
+    i_red = np.zeros(n)
+    di_red = np.zeros(n)
+    for name, body in sol.scene.bodies.items():
+        if body.mass == 0.0 and body.inertia == 0.0:
+            continue
+        m = kin1.bodies[name]
+        if body.mass_model is None:
+            masses = [(body.cog or (0.0, 0.0), body.mass)]
+            inertia = body.inertia
+        else:
+            masses, inertia = concentrated_masses(body), 0.0
+        for loc, mk in masses:
+            rx, ry = m.rotate(*loc)
+            vx, vy = m.vel_arm(rx, ry)
+            ax, ay = m.acc_arm(rx, ry)
+            i_red = i_red + mk * (vx * vx + vy * vy)
+            di_red = di_red + 2.0 * mk * (vx * ax + vy * ay)
+        i_red = i_red + inertia * m.omega * m.omega
+        di_red = di_red + 2.0 * inertia * m.omega * m.alpha
+    return np.broadcast_to(i_red, (n,)), np.broadcast_to(di_red, (n,))
+
+
+def reduced_table(sol: Solution) -> pd.DataFrame:
+    """The loads and masses reduced to the driver, for the scene as given (any speed and
+    acceleration, zero included).
+
+    Columns ``position``; ``M_red`` (or ``F_red``) of the applied loads and gravity
+    (eq. 2.72: their power at unit driver speed); ``M_red_friction`` of the friction
+    loads (zero without friction, NaN at ``self_locking`` rows); ``M_red_inertia`` =
+    -(I_red eps + 1/2 dI_red omega^2) (eq. 2.73 with eq. 4.9's kinetic-energy
+    derivative; eps, omega the driver's); ``I_red`` (or ``m_red``, eq. 2.75) and
+    ``dI_red`` (d I_red / d position, per rad or per m). The three reduced moments add
+    up to -Me at every row (eq. 2.73)."""
+    drv = sol.scene.driver
+    kin1 = unit_kinematics(sol)
+    powers = _powers_by_kind(sol, kin1)
+    i_red, di_red = reduced_inertia(sol, kin1)
+    w, eps = drv.speed, drv.acceleration
+    rot = drv.kind == "R"
     return pd.DataFrame({
         "position": sol.positions,
-        "M_red" if rot else "F_red": p_loads / speed,
-        "M_red_friction" if rot else "F_red_friction": powers["friction"] / speed,
-        "M_red_inertia" if rot else "F_red_inertia": powers["inertia"] / speed,
+        "M_red" if rot else "F_red": powers["applied"] + powers["gravity"],
+        "M_red_friction" if rot else "F_red_friction": powers["friction"],
+        "M_red_inertia" if rot else "F_red_inertia": -(i_red * eps + 0.5 * di_red * w * w),
         "I_red" if rot else "m_red": i_red,
         "dI_red" if rot else "dm_red": di_red,
     })
