@@ -24,6 +24,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import pandas as pd
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 __all__ = ["Explorer", "Slider", "format_number"]
@@ -127,6 +128,7 @@ class Explorer:
         self.sliders = tuple(sliders)
         self._compute, self._draw, self._numbers = compute, draw, numbers
         self.figure = Figure(figsize=figsize, layout="constrained")
+        FigureCanvasAgg(self.figure)     # a canvas that renders (no pyplot, no window)
         self.values = {s.name: s.value for s in self.sliders}
         self.result: Any = None
         self.numbers: dict[str, Any] = {}
