@@ -11,7 +11,11 @@ geometry and vector diagrams use equal aspect.
 - curves over the cycle: :func:`plot_driver` (Me), :func:`plot_polar`,
   :func:`plot_transmission`, :func:`plot_trajectories`, :func:`plot_speeds`,
   :func:`plot_accelerations`, :func:`plot_angular`, and :func:`overview` (``curves``);
-- a gear pair: :func:`draw_gear_pair` (``gears``).
+- the free-body diagram of a dyad beside its force polygon: :func:`dyad_free_body`
+  (``freebody``);
+- a gear pair: :func:`draw_gear_pair` (``gears``);
+- the projector style :func:`projector` and the label check :func:`overlapping_texts`
+  (``style``).
 """
 
 from __future__ import annotations
@@ -27,21 +31,30 @@ from .curves import (
     plot_trajectories,
     plot_transmission,
 )
+from .freebody import dyad_free_body, free_body_forces
 from .gears import draw_gear_pair
-from .mechanism import animate, draw_mechanism
+from .mechanism import animate, draw_body, draw_mechanism
 from .plans import acceleration_plan, velocity_plan
-from .polygons import find_dyad, force_polygon, polygon_forces
+from .polygons import find_dyad, force_on, force_polygon, polygon_forces
+from .style import PROJECTOR, declutter, overlapping_texts, projector
 
 __all__ = [
     "LOAD_COLORS",
     "PATH_COLORS",
+    "PROJECTOR",
     "REACTION_COLOR",
     "acceleration_plan",
     "animate",
+    "declutter",
+    "draw_body",
     "draw_gear_pair",
     "draw_mechanism",
+    "dyad_free_body",
     "find_dyad",
+    "force_on",
     "force_polygon",
+    "free_body_forces",
+    "overlapping_texts",
     "overview",
     "plot_accelerations",
     "plot_angular",
@@ -51,5 +64,6 @@ __all__ = [
     "plot_trajectories",
     "plot_transmission",
     "polygon_forces",
+    "projector",
     "velocity_plan",
 ]

@@ -26,7 +26,7 @@ from .base import (
 )
 from .style import declutter
 
-__all__ = ["animate", "draw_mechanism"]
+__all__ = ["animate", "draw_body", "draw_mechanism"]
 
 
 def _guide_angle(sol: Solution, j, i: int) -> float:
@@ -52,6 +52,54 @@ def _guide_extent(sol: Solution, j, i: int, size: float) -> tuple[float, float]:
         sx, sy = global_point(sol, j.slider, j.points[1], i)
         s = np.array([0.0, (sx - gx) * np.cos(th) + (sy - gy) * np.sin(th)])
     return float(min(s.min(), 0.0) - 0.15 * size), float(max(s.max(), 0.0) + 0.15 * size)
+
+
+def draw_body(ax: Axes, sol: Solution, name: str, i: int, color: str,
+              texts: list | None = None, named: set | None = None) -> list:
+    """Draw one body at row ``i``: a bar between two points, a filled polygon through
+    three or more, a block for one; its centre of mass as a ring.
+
+    Parameters
+    ----------
+    ax : Axes
+    sol : Solution
+    name : str
+        The body.
+    i : int
+        Row index.
+    color : str
+    texts : list, optional
+        When given, the point names are written and their annotations appended here.
+    named : set, optional
+        (name, x, y) of the points already named (a shared point is named once).
+
+    Returns
+    -------
+    list of (float, float)
+        The body's points [m].
+    """
+    body = sol.scene.bodies[name]
+    pts = [global_point(sol, name, p, i) for p in body.points]
+    if len(pts) >= 3:
+        ax.add_patch(Polygon(pts, closed=True, alpha=0.25, color=color))
+        ax.plot(*zip(*(pts + pts[:1]), strict=True), color=color, lw=2.5, label=name)
+    elif len(pts) == 2:
+        ax.plot(*zip(*pts, strict=True), color=color, lw=3.5, solid_capstyle="round",
+                label=name)
+    else:
+        ax.plot(*zip(*pts, strict=True), "s", color=color, ms=14, alpha=0.6, label=name)
+    if body.cog is not None and body.mass > 0:
+        g = global_point(sol, name, "cog", i)
+        ax.plot(*g, "o", mfc="white", mec=color, ms=6)
+    if texts is not None:
+        named = set() if named is None else named
+        for p, xy in zip(body.points, pts, strict=True):
+            key = (p, round(xy[0], 9), round(xy[1], 9))
+            if key not in named:
+                named.add(key)
+                texts.append(ax.annotate(p, xy, xytext=(4, 4), textcoords="offset points",
+                                         fontsize=9))
+    return pts
 
 
 def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | None = None,
@@ -92,27 +140,9 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
     allpts = [xy for xy in scene.ground.values()]
     texts: list = []            # labels to keep clear of each other (declutter)
     named: set = set()          # a point shared by two bodies is named once
-    for k, (name, body) in enumerate(scene.bodies.items()):
-        pts = [global_point(sol, name, p, i) for p in body.points]
-        allpts += pts
-        c = colors[k % len(colors)]
-        if len(pts) >= 3:
-            ax.add_patch(Polygon(pts, closed=True, alpha=0.25, color=c))
-            ax.plot(*zip(*(pts + pts[:1]), strict=True), color=c, lw=2.5, label=name)
-        elif len(pts) == 2:
-            ax.plot(*zip(*pts, strict=True), color=c, lw=3.5, solid_capstyle="round",
-                    label=name)
-        else:
-            ax.plot(*zip(*pts, strict=True), "s", color=c, ms=14, alpha=0.6, label=name)
-        if body.cog is not None and body.mass > 0:
-            g = global_point(sol, name, "cog", i)
-            ax.plot(*g, "o", mfc="white", mec=c, ms=6)
-        if labels:
-            for p, xy in zip(body.points, pts, strict=True):
-                if (p, round(xy[0], 9), round(xy[1], 9)) not in named:
-                    named.add((p, round(xy[0], 9), round(xy[1], 9)))
-                    texts.append(ax.annotate(p, xy, xytext=(4, 4), textcoords="offset points",
-                                             fontsize=9))
+    for k, name in enumerate(scene.bodies):
+        allpts += draw_body(ax, sol, name, i, colors[k % len(colors)],
+                            texts if labels else None, named)
     arr = np.array(allpts)
     size = float(np.ptp(arr, axis=0).max()) if len(arr) > 1 else 1.0
     size = size or 1.0

@@ -28,7 +28,7 @@ from .base import (
 )
 from .style import declutter
 
-__all__ = ["find_dyad", "force_polygon", "polygon_forces"]
+__all__ = ["find_dyad", "force_on", "force_polygon", "polygon_forces"]
 
 
 def find_dyad(sol: Solution, dyad) -> Dyad | None:
@@ -61,7 +61,7 @@ def find_dyad(sol: Solution, dyad) -> Dyad | None:
                          "'driver' (0) for the driving element")
 
 
-def _force_on(sol: Solution, joint: str, body: str, i: int) -> np.ndarray:
+def force_on(sol: Solution, joint: str, body: str, i: int) -> np.ndarray:
     """The reaction of ``joint`` on ``body`` at row i."""
     r = sol.joint_reactions[joint]
     fx, fy = sol.reaction(joint)
@@ -111,7 +111,7 @@ def polygon_forces(sol: Solution, dyad: Dyad | None, i: int, components: bool):
             out.append((lab, f, LOAD_COLORS[ld.kind], "load"))
 
     def reaction(j, b, other_point, color=REACTION_COLOR):
-        f = _force_on(sol, j.name, b, i)
+        f = force_on(sol, j.name, b, i)
         name = math_name(j.name)
         if j.kind == "R" and components and other_point is not None:
             p = np.array(global_point(sol, b, j.point_on(b), i))
@@ -148,7 +148,7 @@ def polygon_forces(sol: Solution, dyad: Dyad | None, i: int, components: bool):
         """Reactions of the dyads solved before this one (further out in the chain)."""
         for j in scene.joints.values():
             if b in j.bodies and j.name not in own:
-                f = _force_on(sol, j.name, b, i)
+                f = force_on(sol, j.name, b, i)
                 out.append((f"$F_{{\\mathrm{{{math_name(j.name)}}}}}$ ({j.other(b)})", f,
                             "darkred", "load"))
 

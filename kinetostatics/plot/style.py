@@ -146,8 +146,13 @@ def declutter(ax: Axes, texts: Sequence[Text], rounds: int = 3) -> None:
         placed: list = []
         moved = False
 
-        def clash(bb, placed=placed, fixed=fixed):
-            return any(bb.overlaps(o) for o in placed) or any(bb.overlaps(o) for o in fixed)
+        frame = ax.get_window_extent(r)
+
+        def clash(bb, placed=placed, fixed=fixed, frame=frame):
+            inside = frame.x0 <= bb.x0 and bb.x1 <= frame.x1 and frame.y0 <= bb.y0 and \
+                bb.y1 <= frame.y1
+            return not inside or any(bb.overlaps(o) for o in placed) or \
+                any(bb.overlaps(o) for o in fixed)
 
         def on_arrow(bb, arrows=arrows):
             return any(p.intersects_bbox(bb, filled=False) for p in arrows)

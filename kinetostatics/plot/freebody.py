@@ -1,0 +1,210 @@
+"""The free-body diagram of a dyad (seed 002 figs 2.37, 2.41) beside its force polygon.
+
+The dyad is cut from the mechanism: its two bodies carry their loads (applied forces,
+weights, d'Alembert inertia forces and couples, seed 002 eq. 2.1), the reactions of the
+outer joints (from the bodies the dyad is cut from) and of the dyads solved before it;
+the inner joint's reaction acts on each body, equal and opposite (action and reaction,
+seed 002 eq. 2.19).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+from matplotlib.patches import Arc
+
+from ..model.scene import GROUND
+from ..results import Solution
+from .base import (
+    LOAD_COLORS,
+    REACTION_COLOR,
+    at_row,
+    body_colors,
+    global_point,
+    magnitude_text,
+    position_text,
+    row_index,
+)
+from .mechanism import draw_body
+from .polygons import find_dyad, force_on, force_polygon
+from .style import declutter
+
+__all__ = ["dyad_free_body", "free_body_forces"]
+
+_SHORT = {"applied": "F", "gravity": "G", "inertia": "Fi", "friction": "Ff"}
+
+
+def free_body_forces(sol: Solution, dyad, position: float | None = None, *,
+                     row: int | None = None) -> list[dict]:
+    """The forces and couples on a dyad's bodies at one position, with where they act.
+
+    Parameters
+    ----------
+    sol : Solution
+    dyad : int, str or tuple
+        As for :func:`~kinetostatics.plot.force_polygon` (``0``: the driving element).
+    position : float, optional
+        Driver position (nearest row); ``row`` picks a row by index instead.
+
+    Returns
+    -------
+    list of dict
+        One per force: ``label``, ``body`` (the body it acts on), ``kind`` (``applied``,
+        ``gravity``, ``inertia``, ``friction``, ``reaction`` for outer joints and the
+        dyads solved before, ``inner`` for the inner joint), ``x``, ``y`` [m] (point of
+        application), ``fx``, ``fy`` [N], ``m`` [N m] (a couple, ccw positive). On each
+        body the forces and couples balance (the ``m`` of a prismatic joint's reaction
+        included).
+    """
+    i = row_index(sol, position, row)
+    n = sol.positions.size
+    d = find_dyad(sol, dyad)
+    bodies = (sol.scene.driver.body,) if d is None else d.bodies
+    inner = None if d is None else d.inner.name
+    out = []
+    for ld in sol.loads:
+        if ld.body not in bodies:
+            continue
+        fx, fy, m = at_row(ld.fx, i, n), at_row(ld.fy, i, n), at_row(ld.m, i, n)
+        if fx == 0.0 and fy == 0.0 and m == 0.0:
+            continue
+        x, y = ld.position(sol.kin)
+        out.append({"label": f"{_SHORT.get(ld.kind, 'F')} {ld.body}", "body": ld.body,
+                    "kind": ld.kind, "x": at_row(x, i, n), "y": at_row(y, i, n),
+                    "fx": fx, "fy": fy, "m": m})
+    for j in sol.scene.joints.values():
+        for b in bodies:
+            if b not in j.bodies:
+                continue
+            r = sol.joint_reactions[j.name]
+            f = force_on(sol, j.name, b, i)
+            m = 0.0 if r.M is None else at_row(r.M, i, n) * (1.0 if r.on == b else -1.0)
+            other = j.other(b)
+            out.append({"label": f"F[{j.name}] {other}→{b}", "body": b,
+                        "kind": "inner" if j.name == inner else "reaction",
+                        "x": at_row(r.x, i, n), "y": at_row(r.y, i, n),
+                        "fx": float(f[0]), "fy": float(f[1]), "m": m})
+    if d is None:
+        dj = sol.scene.joints[sol.scene.driver.joint]
+        me = float(sol.Me[i])
+        if sol.drive.kind == "R":
+            x, y = global_point(sol, bodies[0], dj.point_on(bodies[0]), i)
+            out.append({"label": "Me", "body": bodies[0], "kind": "applied", "x": x, "y": y,
+                        "fx": 0.0, "fy": 0.0, "m": me})
+        else:       # Fe along the driving guide, at the slider point (as in the polygon)
+            beta = np.deg2rad(dj.line_angle) if dj.guide == GROUND else 0.0
+            r = sol.joint_reactions[dj.name]
+            out.append({"label": "Fe", "body": bodies[0], "kind": "applied",
+                        "x": at_row(r.x, i, n), "y": at_row(r.y, i, n),
+                        "fx": me * np.cos(beta), "fy": me * np.sin(beta), "m": 0.0})
+    return out
+
+
+def _couple(ax: Axes, x: float, y: float, m: float, radius: float, color: str) -> None:
+    """A curved arrow of a couple: counterclockwise for m > 0."""
+    ax.add_patch(Arc((x, y), 2 * radius, 2 * radius, theta1=20, theta2=300, color=color,
+                     lw=1.3))
+    end = np.deg2rad(300 if m > 0 else 20)
+    tip = np.array([x + radius * np.cos(end), y + radius * np.sin(end)])
+    tangent = np.array([-np.sin(end), np.cos(end)]) * (1 if m > 0 else -1)
+    ax.annotate("", tuple(tip + 0.25 * radius * tangent), tuple(tip),
+                arrowprops={"arrowstyle": "-|>", "color": color, "lw": 1.3,
+                            "shrinkA": 0, "shrinkB": 0})
+
+
+def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
+                   row: int | None = None) -> Figure:
+    """The free-body diagram of a dyad (or of the driver) beside its force polygon.
+
+    Left: the dyad's bodies as drawn in the mechanism, each force of
+    :func:`free_body_forces` as an arrow from its point of application (one scale for
+    all; loads in the load colours, outer reactions red, the inner joint's reaction
+    dashed black on the first body: on the second it acts reversed), couples as curved
+    arrows (inertia couples, a prismatic joint's couple, Me). Right: the force polygon of the same
+    forces (:func:`~kinetostatics.plot.force_polygon`), closing to zero.
+
+    Parameters
+    ----------
+    sol : Solution
+    dyad : int, str or tuple
+        1-based dyad index, label, kind, body name or bodies; ``0``: the driver.
+    position : float, optional
+        Driver position (nearest row); ``row`` picks a row by index instead.
+
+    Returns
+    -------
+    Figure
+        Two Axes: the free-body diagram (x, y [m]) and the force polygon (Fx, Fy [N]).
+    """
+    import matplotlib.pyplot as plt
+
+    i = row_index(sol, position, row)
+    d = find_dyad(sol, dyad)
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(13.5, 5.6), layout="constrained",
+                                  width_ratios=[1.0, 1.25])
+    bodies = (sol.scene.driver.body,) if d is None else d.bodies
+    colors = body_colors()
+    names = list(sol.scene.bodies)
+    texts: list = []
+    pts = []
+    for b in bodies:
+        pts += draw_body(ax, sol, b, i, colors[names.index(b) % len(colors)], texts, set())
+    forces = free_body_forces(sol, dyad, row=i)
+    pts = np.array(pts + [(f["x"], f["y"]) for f in forces])
+    size = float(np.ptp(pts, axis=0).max()) or 1.0
+    fmax = max((np.hypot(f["fx"], f["fy"]) for f in forces), default=0.0) or 1.0
+    mmax = max((abs(f["m"]) for f in forces), default=0.0) or 1.0
+    sc = 0.45 * size / fmax
+    first_inner = True
+    kinds = {}
+    for f in forces:
+        col = {"reaction": REACTION_COLOR, "inner": "k"}.get(f["kind"],
+                                                          LOAD_COLORS.get(f["kind"], "0.3"))
+        if f["kind"] == "inner" and not first_inner:
+            continue        # the same force, reversed, on the second body: drawn once
+        mag = float(np.hypot(f["fx"], f["fy"]))
+        x, y = f["x"], f["y"]
+        if mag > 1e-12 * fmax:
+            tip = (x + sc * f["fx"], y + sc * f["fy"])
+            ax.annotate("", tip, (x, y), arrowprops={
+                "arrowstyle": "-|>", "color": col, "lw": 1.6, "shrinkA": 0, "shrinkB": 0,
+                "ls": "--" if f["kind"] == "inner" else "-"})
+            ax.update_datalim([(x, y), tip])
+            lab = f["label"] + (" (reversed on the other)" if f["kind"] == "inner" else "")
+            texts.append(ax.annotate(f"{lab}\n{magnitude_text(mag)} N", tip,
+                                     xytext=(4 * f["fx"] / mag, 4 * f["fy"] / mag),
+                                     textcoords="offset points", fontsize=8, color=col,
+                                     ha="left" if f["fx"] >= 0 else "right",
+                                     va="bottom" if f["fy"] >= 0 else "top"))
+            kinds.setdefault(f["kind"], col)
+        if abs(f["m"]) > 1e-9 * mmax:
+            r = 0.04 * size
+            _couple(ax, x, y, f["m"], r, col)
+            name = "Mi" if f["kind"] == "inertia" else "M" if f["label"] != "Me" else "Me"
+            texts.append(ax.annotate(f"{name} = {f['m']:.4g} N m", (x, y),
+                                     xytext=(-6, -14), textcoords="offset points",
+                                     fontsize=8, color=col, ha="right", va="top"))
+        if f["kind"] == "inner":
+            first_inner = False
+    handles = [Line2D([], [], color=c, lw=1.6, ls="--" if k == "inner" else "-",
+                      label={"reaction": "outer joint reactions", "inner": "inner joint "
+                             "(on the first body)"}.get(k, f"{k} forces"))
+               for k, c in kinds.items()]
+    h, _ = ax.get_legend_handles_labels()
+    ax.legend(handles=h + handles, fontsize=8, loc="upper left", bbox_to_anchor=(0.0, -0.12),
+              ncol=3, borderaxespad=0.0)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.margins(0.15)
+    ax.autoscale_view()
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.grid(True, alpha=0.3)
+    what = f"dyad {d.index + 1} {d.kind} ({', '.join(d.bodies)})" if d is not None else \
+        f"driver {bodies[0]}"
+    ax.set_title(f"free-body diagram: {what} at {position_text(sol, i)}\n"
+                 f"arrows: {sc * fmax:.3g} m ≙ {magnitude_text(fmax)} N", fontsize=10)
+    force_polygon(sol, 0 if d is None else d.index + 1, row=i, ax=ax2)
+    declutter(ax, texts)
+    return fig
