@@ -137,7 +137,9 @@ def _plan(sol: Solution, position, row, ax, kind: str, cog: bool,
     # relative vectors between points of the same body
     rel_drawn = comp_drawn = False
     for b in bodies:
-        own = [q for q in pts if b in q.bodies and id(q) not in at_pole]
+        # a point at the pole first: the side of the plan from the fixed pivot (a_C =
+        # a_D + a_CD^n + a_CD^t from pi) is drawn as well as the side from b
+        own = sorted((q for q in pts if b in q.bodies), key=lambda q: id(q) not in at_pole)
         if len(own) < 2:
             continue
         pairs = list(zip(own[:-1], own[1:], strict=True))
@@ -151,8 +153,9 @@ def _plan(sol: Solution, position, row, ax, kind: str, cog: bool,
             t0, t1 = vec[id(q0)], vec[id(q1)]
             if np.hypot(*(t1 - t0)) <= 1e-9 * big:
                 continue
-            arrow(t0, t1, "0.35", lw=1.0)
-            rel_drawn = True
+            if id(q0) not in at_pole and id(q1) not in at_pole:
+                arrow(t0, t1, "0.35", lw=1.0)   # from the pole: the absolute vector
+                rel_drawn = True
             if k == 0:
                 ln = float(np.hypot(*(q1.xy - q0.xy)))
                 rel = float(np.hypot(*(t1 - t0)))
