@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from .errors import BalanceError
+from .field_scene import solve_field
 from .resonance import ResonanceResult, parallelogram, trial_runs
 from .rotor import balance_rotor
 from .scene import BalanceScene, ResonanceSpec, load_scene
@@ -59,7 +60,8 @@ def solve_results(scene: Any) -> dict[str, Any]:
     sc: BalanceScene = load_scene(scene)
     if not sc.sections:
         raise BalanceError("the scene has no balancing section: balance.solve solves [rotor], "
-                           "[static_test], [[resonance_test]] and a mechanism's [balancing]; "
+                           "[static_test], [[resonance_test]], [[influence]], [iso], "
+                           "[[split]], [[combine]] and a mechanism's [balancing]; "
                            "for a mechanism's reactions use kinetostatics.solve")
     out: dict[str, Any] = {}
     if sc.rotor is not None:
@@ -72,6 +74,7 @@ def solve_results(scene: Any) -> dict[str, Any]:
         out["resonance_test"] = [_resonance(spec) for spec in sc.resonance_tests]
     if sc.balancing is not None:
         out["balancing"] = _mechanism_balancing(sc.raw)
+    out.update(solve_field(sc.field_scene))
     return out
 
 
@@ -106,7 +109,7 @@ def results_to_dict(results: dict[str, Any]) -> dict[str, Any]:
     """Turn :func:`solve_results` output into the contract's JSON-ready dict."""
     out: dict[str, Any] = {}
     for key, value in results.items():
-        if key == "resonance_test":
+        if key in ("resonance_test", "influence", "split", "combine"):
             out[key] = [r.to_dict() for r in value]
         elif hasattr(value, "to_dict"):
             out[key] = value.to_dict()

@@ -50,7 +50,6 @@ from .influence_stats import (
     conditioning_warnings,
 )
 from .uncertainty import Interval, propagate
-from .units import Units
 
 __all__ = [
     "InfluenceResult",
@@ -104,6 +103,10 @@ class InfluenceResult:
         How many trim runs updated the coefficients.
     splits : list of Split or None
         Each plane's correction split onto fixed positions, when asked.
+    name : str
+        A label (the scene section's ``name``).
+    points : tuple of str or None
+        Names of the measurement points.
     """
 
     masses: np.ndarray
@@ -121,52 +124,39 @@ class InfluenceResult:
     current: np.ndarray | None = field(default=None, repr=False)
     trim_runs: int = 0
     splits: list[Split] | None = None
+    name: str = ""
+    points: tuple[str, ...] | None = None
 
-    def to_dict(self, units: Units | None = None) -> dict[str, Any]:
-        """JSON-ready: corrections per plane with their intervals, the coefficients, the
-        predicted residual readings, the conditioning and the warnings.
-
-        Parameters
-        ----------
-        units : Units, optional
-            Convert SI numbers (kg, m or m/s) back to the scene's units; None leaves
-            them in the units they were given in.
-        """
-        u = units or Units()
-        mass = u.from_si(1.0, "mass")
-        vib = u.from_si(1.0, "vibration")
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: corrections per plane with their intervals (and splits), the
+        coefficients, the predicted residual readings, the conditioning and the
+        warnings; masses in the trial masses' unit, vibration in the readings'."""
         corr = []
         for j, (m, a) in enumerate(zip(self.masses, self.angles, strict=True)):
-            c: dict[str, Any] = {"plane": j + 1, "mass": float(m) * mass, "angle": float(a)}
+            c: dict[str, Any] = {"plane": j + 1, "mass": float(m), "angle": float(a)}
             if self.intervals:
-                iv = self.intervals[j]
-                c["interval"] = {"mass": [None if x is None else x * mass for x in iv["mass"]],
-                                 "angle": iv["angle"]}
+                c["interval"] = self.intervals[j]
             if self.splits is not None:
-                s = self.splits[j].to_dict()
-                for p in s["placements"]:
-                    p["mass"] *= mass
-                s["mass"] *= mass
-                s["total_mass"] *= mass
-                c["split"] = s
+                c["split"] = self.splits[j].to_dict()
             corr.append(c)
+        res = [{"amplitude": float(abs(v)), "phase": angle_of(complex(v))}
+               for v in self.residual]
+        for r, p in zip(res, self.points or (), strict=False):
+            r["point"] = p
         d: dict[str, Any] = {
+            **({"name": self.name} if self.name else {}),
             "corrections": corr,
-            "residual_vibration": [{"amplitude": float(abs(v)) * vib,
-                                    "phase": angle_of(complex(v))} for v in self.residual],
-            "coefficients": [[{"amplitude": float(abs(a)) * vib / mass,
-                               "phase": angle_of(complex(a))} for a in row]
-                             for row in self.coefficients],
+            "residual_vibration": res,
+            "coefficients": [[{"amplitude": float(abs(a)), "phase": angle_of(complex(a))}
+                              for a in row] for row in self.coefficients],
             "condition_number": self.condition_number,
             "noise_amplification": self.amplification,
-            "noise": self.noise.to_dict() | {"absolute": self.noise.absolute * vib},
+            "noise": self.noise.to_dict(),
             "trim_runs": self.trim_runs,
             "warnings": list(self.warnings),
         }
         if self.uncertainty is not None:
             d["uncertainty"] = [iv.to_dict() for iv in self.uncertainty]
-        if not u.is_si:
-            d["units"] = u.to_dict()
         return d
 
 

@@ -3,7 +3,9 @@
 :func:`load_scene` accepts a path, a string naming a ``.toml`` file, a string of TOML
 text or a dict. Sections: ``[rotor]`` (with ``[[rotor.unbalance]]`` and one or two
 ``[[rotor.planes]]``), ``[static_test]``, ``[[resonance_test]]``; ``title`` and
-``format = 1`` may stand at the top. A mechanism scene's keys (section 1) are let
+``format = 1`` may stand at the top; the field-balancing sections ``[units]``,
+``[[influence]]``, ``[iso]``, ``[[split]]`` and ``[[combine]]`` are read by
+:mod:`balance.field_scene`. A mechanism scene's keys (section 1) are let
 through unchecked (``kinetostatics`` checks them), so that its ``[balancing]``
 section can be dispatched; every other unknown key is refused with the nearest
 known key suggested.
@@ -25,6 +27,7 @@ from typing import Any
 from kinetostatics.model.errors import SceneError
 from kinetostatics.model.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source
 
+from .field_scene import FIELD_SECTIONS, FieldScene, parse_field
 from .rotor import CorrectionPlane, Unbalance
 
 __all__ = [
@@ -38,7 +41,8 @@ __all__ = [
 
 MECHANISM_KEYS = ("gravity", "ground", "driver", "bodies", "joints", "loads", "near", "motion")
 BALANCE_SECTIONS = ("rotor", "static_test", "resonance_test", "balancing")
-TOP_KEYS = ("title", "format", *BALANCE_SECTIONS[:3], *MECHANISM_KEYS, "balancing")
+TOP_KEYS = ("title", "format", *BALANCE_SECTIONS[:3], *MECHANISM_KEYS, "balancing", "units",
+            *FIELD_SECTIONS)
 ROTOR_KEYS = ("speed_rpm", "unbalance", "planes")
 UNBALANCE_KEYS = ("mass", "radius", "angle", "z")
 PLANE_KEYS = ("z", "radius")
@@ -98,6 +102,7 @@ class BalanceScene:
     resonance_tests: tuple[ResonanceSpec, ...] = ()
     balancing: dict | None = None
     raw: dict = field(default_factory=dict, repr=False)
+    field_scene: FieldScene = field(default_factory=FieldScene)
 
     @property
     def sections(self) -> tuple[str, ...]:
@@ -105,7 +110,8 @@ class BalanceScene:
         present = {"rotor": self.rotor is not None, "static_test": self.static_test is not None,
                    "resonance_test": bool(self.resonance_tests),
                    "balancing": self.balancing is not None}
-        return tuple(k for k in BALANCE_SECTIONS if present[k])
+        return (tuple(k for k in BALANCE_SECTIONS if present[k])
+                + self.field_scene.sections)
 
 
 def load_scene(source: Any) -> BalanceScene:
@@ -149,7 +155,9 @@ def load_scene(source: Any) -> BalanceScene:
     if balancing is not None and not isinstance(balancing, dict):
         raise SceneError("[balancing] must be a table")
     return BalanceScene(title=title, rotor=rotor, static_test=static, resonance_tests=tests,
-                        balancing=balancing, raw=raw)
+                        balancing=balancing, raw=raw,
+                        field_scene=parse_field(top, tuple(k for k in BALANCE_SECTIONS[:3]
+                                                     if k in top)))
 
 
 def _rotor(table: Any) -> RotorSpec:
