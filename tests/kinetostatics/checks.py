@@ -332,3 +332,61 @@ def finite_differences(sol_fine) -> float:
             fd = _d4(p, h) * w
             worst = max(worst, float(np.abs(fd - v[inner]).max()) / float(np.abs(v).max()))
     return worst
+
+
+def friction_power(sol) -> np.ndarray:
+    """Power of the joint friction at every position (W, never positive), from the scene's
+    ``friction`` tables, the reactions table and the motion tables only (seed 002 s. 2.4):
+    a pin loses rho |F| |omega_rel| (rho = mu r, eq. 2.62), a guide mu N0 |v_rel| with
+    N0 = |N|, or |N_A| + |N_B| over a bearing of length l (eqs 2.63-2.65)."""
+    t = Tables(sol)
+    r = sol.reactions
+    total = np.zeros(t.n)
+    for name, j in t.scene.joints.items():
+        fr = j.friction
+        if fr is None or fr.mu == 0.0:
+            continue
+        sub = r[r.joint == name]
+        if j.kind == "R":
+            wrel = t.omega(j.bodies[1]) - t.omega(j.bodies[0])
+            total -= fr.mu * fr.radius * sub.F.to_numpy() * np.abs(wrel)
+            continue
+        nn, mm = sub.N.to_numpy(), sub.M.to_numpy()         # both on the slider
+        if fr.length > 0.0:
+            normal = np.abs(0.5 * nn - mm / fr.length) + np.abs(0.5 * nn + mm / fr.length)
+        else:
+            normal = np.abs(nn)
+        ang = t.angle(j.guide) + np.deg2rad(j.line_angle)
+        ux, uy = np.cos(ang), np.sin(ang)
+        sp = t.point(j.slider, j.points[1])
+        lp = t.point(j.guide, j.points[0])
+        wg = t.omega(j.guide)
+        vgx = lp["vx"] - wg * (sp["y"] - lp["y"])        # the guide's point under S
+        vgy = lp["vy"] + wg * (sp["x"] - lp["x"])
+        vrel = ux * (sp["vx"] - vgx) + uy * (sp["vy"] - vgy)
+        total -= fr.mu * normal * np.abs(vrel)
+    return total
+
+
+def virtual_power_with_friction(sol) -> float:
+    """max |Me w1 + power of loads and inertia + friction power| / scale over the rows
+    that are not ``self_locking`` (the scale: the largest term of those rows)."""
+    t = Tables(sol)
+    sc = t.scene
+    drv = sc.driver
+    if drv.kind == "R":
+        p = sol.Me * drv.speed
+    else:
+        j = sc.joints[drv.joint]
+        sp = t.point(j.slider if j.slider != GROUND else j.guide,
+                     j.points[1] if j.slider != GROUND else j.points[0])
+        beta = np.deg2rad(j.line_angle) if j.guide == GROUND else 0.0
+        p = sol.Me * (np.cos(beta) * sp["vx"] + np.sin(beta) * sp["vy"])
+    terms = [np.asarray(p, dtype=float), friction_power(sol)]
+    for body, _x, _y, vx, vy, fx, fy, m in _loads(t):
+        terms.append(fx * vx + fy * vy + m * t.omega(body))
+    free = ~sol.driver.self_locking.to_numpy() if "self_locking" in sol.driver else \
+        np.ones(t.n, dtype=bool)
+    total = np.sum(terms, axis=0)[free]
+    scale = max(max(float(np.abs(a[free]).max()) for a in terms), 1e-300)
+    return float(np.abs(total).max() / scale)

@@ -1,6 +1,7 @@
 """Joint friction (seed 002 s. 2.4): friction circle rho = r mu, prismatic friction."""
 
 import copy
+import re
 import tomllib
 
 import numpy as np
@@ -115,3 +116,179 @@ def test_summary_leaves_self_locking_rows_out():
     for joint, r in s["reaction_max"].items():
         assert r["position"] in pos, joint
     assert "self_locking_rows" not in ks.solve(load("slider_crank")).summary()
+
+
+# -- friction solved row by row: closed forms, self-locking, the power balance ---------
+
+R_CRANK, L_ROD, E_OFFSET, RESIST = 0.05, 0.12, 0.03, 100.0
+
+
+def offset_slider_crank(mu, positions=None, count=721):
+    """Massless offset slider-crank (crank 0.05, rod 0.12, guide 0.03 above the crank
+    pivot), friction in the guide only, a ``resist`` force on the slider."""
+    drv = {"body": "crank", "joint": "A", "speed": 10.0}
+    drv.update({"positions": list(positions)} if positions is not None else
+               {"start": 0.0, "stop": 360.0, "count": count})
+    return {
+        "ground": {"A": [0.0, 0.0], "O": [0.0, E_OFFSET]},
+        "driver": drv,
+        "bodies": [{"name": "crank", "points": {"A": [0.0, 0.0], "B": [R_CRANK, 0.0]}},
+                   {"name": "rod", "points": {"B": [0.0, 0.0], "C": [L_ROD, 0.0]}},
+                   {"name": "slider", "points": {"C": [0.0, 0.0]}}],
+        "joints": [{"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
+                   {"name": "B", "kind": "R", "bodies": ["crank", "rod"]},
+                   {"name": "C", "kind": "R", "bodies": ["rod", "slider"]},
+                   {"name": "slide", "kind": "T", "guide": "ground", "slider": "slider",
+                    "line_point": "O", "slider_point": "C", "friction": {"mu": mu}}],
+        "loads": [{"body": "slider", "point": "C", "resist": RESIST}],
+        "near": {"C": [0.16, E_OFFSET]},
+    }
+
+
+def slider_crank_closed_form(mu, positions_deg, speed_sign):
+    """Me and mu tan(psi) per row. The rod (massless) pushes the slider with T along
+    C - B; along the guide T cos(psi) = sgn(v) (R + mu |T sin(psi)|), so with v > 0
+    T = R / (cos(psi) - mu |sin(psi)|), which exists only while mu tan(psi) < 1; then
+    Me = (B x T (C - B) / l)."""
+    phi = np.deg2rad(np.asarray(positions_deg, dtype=float))
+    bx, by = R_CRANK * np.cos(phi), R_CRANK * np.sin(phi)
+    c = np.sqrt(L_ROD**2 - (E_OFFSET - by) ** 2) / L_ROD          # cos(psi)
+    s = (E_OFFSET - by) / L_ROD                                     # sin(psi)
+    with np.errstate(divide="ignore"):
+        t = speed_sign * RESIST / (c - mu * np.abs(s))
+    me = (bx * s - by * c) * t
+    return me, mu * np.abs(s) / c
+
+
+def slider_velocity_sign(sol):
+    k = sol.kinematics
+    return np.sign(k[(k.body == "slider") & (k.point == "C")].vx.to_numpy())
+
+
+@pytest.mark.parametrize("mu", [1.0, 1.2, 1.5])
+def test_offset_slider_crank_locks_exactly_where_mu_tan_psi_reaches_1(mu):
+    """Every row settles on its own scale: rows with mu tan(psi) up to 0.997 hold their
+    closed-form Me (a fixed-point iteration stalls there), and the flag falls exactly
+    where mu tan(psi) >= 1."""
+    sol = ks.solve(offset_slider_crank(mu))
+    me, mutan = slider_crank_closed_form(mu, sol.positions, slider_velocity_sign(sol))
+    locked = sol.driver.self_locking.to_numpy()
+    assert np.array_equal(locked, mutan >= 1.0)
+    free = ~locked & ~sol.driver.undefined_load.to_numpy()
+    assert ((mutan > 0.86) & free).sum() >= 20          # the rows that used not to settle
+    err = np.abs(sol.Me[free] - me[free]).max() / np.abs(me[free]).max()
+    assert err <= 2e-13                                 # measured 3.5e-14 (mu = 1.5)
+    assert np.isnan(sol.Me[locked]).all() and np.isfinite(sol.Me[~locked]).all()
+    r = sol.reactions
+    lk = np.tile(locked, len(sol.scene.joints))
+    assert r[lk][["Fx", "Fy", "F"]].isna().all().all()
+    assert r[lk & (r.joint == "slide")][["N", "M"]].isna().all().all()   # pins: N = M = 0
+    assert np.isfinite(r[~lk][["Fx", "Fy", "F", "N", "M"]].to_numpy()).all()
+    s = sol.summary()
+    assert s["self_locking_rows"] == int(locked.sum())
+    assert np.isfinite([s["Me_mean"], s["Me_max"], s["Me_min"]]).all()
+    assert s["Me_max"] == np.nanmax(sol.Me)
+
+
+def test_rows_next_to_the_locking_limit_hold_their_true_values():
+    """mu tan(psi) = 1 - delta: Me grows like 1 / delta and is given in full; past 1 the
+    row is flagged."""
+    mu = 1.2
+    deltas = np.array([1e-2, 1e-4, 1e-6, 1e-9, -1e-9, -1e-4])
+    t = (1.0 - deltas) / mu                                   # tan(psi)
+    s = t / np.sqrt(1.0 + t * t)
+    phi = np.rad2deg(np.arcsin((E_OFFSET - L_ROD * s) / R_CRANK))   # in (-90, 0) deg
+    sol = ks.solve(offset_slider_crank(mu, positions=phi))
+    me, mutan = slider_crank_closed_form(mu, sol.positions, slider_velocity_sign(sol))
+    locked = sol.driver.self_locking.to_numpy()
+    assert locked.tolist() == [False] * 4 + [True] * 2
+    rel = np.abs(sol.Me[:4] / me[:4] - 1.0)
+    # measured 1.6e-9 at delta = 1e-9 (the closed form's own rounding: about eps / delta)
+    assert (rel <= 20 * np.finfo(float).eps / deltas[:4]).all(), rel
+    assert abs(sol.Me[3]) > 1e9
+
+
+def test_virtual_power_with_friction_closes_at_every_free_row():
+    """The balance Me w + loads + inertia + friction power (from the reactions table and
+    the scene's coefficients only) closes to rounding at every row that is not locked,
+    also with friction strong enough to lock three quarters of the sweep."""
+    from tests.kinetostatics.checks import virtual_power_with_friction
+    for name, mu in [("four_bar", 0.1), ("slotted_lever", 0.1), ("slider_crank", 1.3),
+                     ("sliding_driver", 0.3)]:
+        d = load(name)
+        for j in d["joints"]:
+            j["friction"] = {"mu": mu, "radius": 0.03} if j["kind"] == "R" else \
+                {"mu": mu, "length": 0.08}
+        sol = ks.solve(d)
+        assert virtual_power_with_friction(sol) <= 1e-14, name     # measured <= 8e-16
+
+
+def _sliding_driver_with_pin_friction(moment):
+    d = load("sliding_driver")
+    for j in d["joints"]:
+        if j["name"] == "A":
+            j["friction"] = {"mu": 2.0, "radius": 0.05}       # rho = 0.1 > crank 0.09
+    d["loads"][0]["moment"] = moment
+    return d
+
+
+def test_every_row_locked_is_refused_with_the_critical_coefficient():
+    """The crank turns clockwise; with a moment that resists it (+12 N m) and a friction
+    circle (rho = 0.1 m) larger than the crank (0.09 m), the rod's force can never turn
+    it: the scene is refused. The critical coefficient is d / r (d: distance from A to
+    the rod's line), largest 0.09 / 0.05 = 1.8, smallest at the sweep's end row."""
+    from kinetostatics.solver.friction import SelfLockingError
+    d = _sliding_driver_with_pin_friction(12.0)
+    with pytest.raises(SelfLockingError) as exc:
+        ks.solve(d)
+    msg = str(exc.value)
+    assert "\n" not in msg and "self-locks at every position" in msg and "'A'" in msg
+    ref = ks.solve(load("sliding_driver")).kinematics
+    b = ref[(ref.body == "crank") & (ref.point == "B")][["x", "y"]].to_numpy()
+    c = ref[(ref.body == "slider") & (ref.point == "C")][["x", "y"]].to_numpy()
+    e = (b - c) / np.hypot(*(b - c).T)[:, None]
+    dist = np.abs(c[:, 0] * e[:, 1] - c[:, 1] * e[:, 0])      # A = origin to line CB
+    high, low = re.findall(r"below ([0-9.e+-]+)", msg)
+    assert float(high) == pytest.approx(dist.max() / 0.05, rel=1e-5)
+    assert float(low) == pytest.approx(dist.min() / 0.05, rel=1e-5)
+    # just below the reported coefficient that position moves, just above it locks
+    pos = float(re.search(r"at position ([0-9.e+-]+) m", msg).group(1))
+    d["driver"].update(positions=[pos])
+    for k in ("start", "stop", "count"):
+        d["driver"].pop(k, None)
+    d["joints"][-1]["friction"]["mu"] = 0.999 * float(high)
+    assert not ks.solve(d).driver.self_locking.any()
+    d["joints"][-1]["friction"]["mu"] = 1.001 * float(high)
+    with pytest.raises(SelfLockingError):
+        ks.solve(d)
+
+
+def test_cli_refuses_a_sweep_that_locks_everywhere(tmp_path):
+    import subprocess
+    import sys
+    text = (OWN_CASES / "sliding_driver.toml").read_text()
+    text = text.replace('bodies = ["ground", "crank"]', 'bodies = ["ground", "crank"]\n'
+                        'friction = { mu = 2.0, radius = 0.05 }')
+    path = tmp_path / "locked.toml"
+    path.write_text(text.replace("moment = -12.0", "moment = 12.0"))
+    out = subprocess.run([sys.executable, "-m", "kinetostatics", "solve", str(path)],
+                         capture_output=True, text=True, check=False)
+    assert out.returncode == 2
+    assert out.stderr.startswith("error: the mechanism self-locks") and "Traceback" not in \
+        out.stderr and out.stderr.count("\n") == 1
+
+
+def test_a_load_that_drives_the_crank_is_not_self_locking():
+    """The bundled sliding driver's crank turns clockwise and its -12 N m moment drives
+    it: with the same oversized friction circle at A the mechanism still moves (the
+    slider brakes it). Its branch from no friction is the finite one, |F_A| about
+    12 / (rho + d): no row locks, the power balance closes, and the pin's friction
+    couple is rho |F_A| at every row."""
+    from tests.kinetostatics.checks import virtual_power_with_friction
+    sol = ks.solve(_sliding_driver_with_pin_friction(-12.0))
+    assert not sol.driver.self_locking.any()
+    assert (sol.Me < 0.0).all()                               # the slider holds back
+    assert virtual_power_with_friction(sol) <= 1e-14          # measured 7.9e-16
+    fa = sol.reactions.query("joint == 'A'").F.to_numpy()
+    couple = [ld for ld in sol.loads if ld.kind == "friction"][0]
+    assert np.allclose(np.abs(couple.m), 0.1 * fa, rtol=1e-13, atol=0)
