@@ -13,6 +13,8 @@ geometry and vector diagrams use equal aspect.
   :func:`plot_accelerations`, :func:`plot_angular`, and :func:`overview` (``curves``);
 - the free-body diagram of a dyad beside its force polygon: :func:`dyad_free_body`
   (``freebody``);
+- instantaneous centres of velocity (Kennedy): :func:`instant_centres`,
+  :func:`plot_instant_centres` (``centres``);
 - a gear pair: :func:`draw_gear_pair` (``gears``);
 - the projector style :func:`projector` and the label check :func:`overlapping_texts`
   (``style``).
@@ -21,6 +23,7 @@ geometry and vector diagrams use equal aspect.
 from __future__ import annotations
 
 from .base import LOAD_COLORS, PATH_COLORS, REACTION_COLOR
+from .centres import instant_centres, plot_instant_centres
 from .curves import (
     overview,
     plot_accelerations,
@@ -53,12 +56,14 @@ __all__ = [
     "find_dyad",
     "force_on",
     "force_polygon",
+    "instant_centres",
     "free_body_forces",
     "overlapping_texts",
     "overview",
     "plot_accelerations",
     "plot_angular",
     "plot_driver",
+    "plot_instant_centres",
     "plot_polar",
     "plot_speeds",
     "plot_trajectories",

@@ -133,12 +133,11 @@ def plot_transmission(sol: Solution, ax: Axes | None = None, admissible: float =
     for d, g in t.groupby("dyad"):
         ax.plot(g.position, g.transmission_angle, lw=2,
                 label=f"dyad {d} {g.kind.iloc[0]} ({g.bodies.iloc[0]})")
-    ax.axhspan(0, admissible, color="tab:red", alpha=0.1)
-    ax.axhspan(180 - admissible, 180, color="tab:red", alpha=0.1, label="not admissible")
-    ax.set_ylim(0, 180)
+    ax.axhspan(0, admissible, color="tab:red", alpha=0.1, label="not admissible")
+    ax.set_ylim(0, 90)
     ax.set_xlabel(position_label(sol))
     cycle_axis(ax, sol)
-    ax.set_ylabel("transmission angle τ [deg]")
+    ax.set_ylabel("transmission angle min(τ, 180° − τ) [deg]")
     ax.set_title("transmission angle", fontsize=10)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
