@@ -23,6 +23,7 @@ Coordinates are kept as separate x and y arrays (one element per position).
 from __future__ import annotations
 
 import math
+from contextlib import nullcontext
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
@@ -57,6 +58,7 @@ class DyadMotion:
     det: object
     n: int
     singular: np.ndarray | None = None  # |sin tau| <= 1e-3: near a dead centre
+    closeness2: np.ndarray | None = None  # min(sin^2 tau, (pivot distance / size)^2)
     inner_local: tuple | None = None    # revolute inner joint: its local point on each body
     slider_first: bool = False          # prismatic inner joint: body 1 is the slider
     nx: object = None                   # prismatic inner joint: left normal of the line
@@ -88,9 +90,11 @@ class DyadMotion:
 
     @property
     def transmission_angle(self) -> np.ndarray:
-        """Transmission angle in [0, 180] deg (seed 002 eqs 2.60-2.61)."""
+        """The transmission angle min(tau, 180 - tau) in [0, 90] deg (seed 002 eqs
+        2.60-2.61): tau, the angle between the force the dyad transmits and the velocity
+        of the point it drives, and 180 - tau transmit alike; 0 is a dead centre."""
         s_, c_ = self._compute_tau()
-        return np.rad2deg(np.arctan2(np.abs(s_), c_))
+        return np.rad2deg(np.arctan2(np.abs(s_), np.abs(c_)))
 
 
 @dataclass
@@ -102,6 +106,7 @@ class Kinematics:
     positions: np.ndarray
     bodies: dict[str, BodyMotion]
     dyads: list[DyadMotion] = field(default_factory=list)
+    between: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
 
     @property
     def n(self) -> int:
@@ -113,6 +118,8 @@ class Kinematics:
         out = np.zeros(self.n, dtype=bool)
         for d in self.dyads:
             out |= d.singular
+        out[self.between] = True            # a dead point between rows i and i + 1
+        out[self.between + 1] = True
         return out
 
 
@@ -147,12 +154,14 @@ def _solve2(a11, a12, a21, a22, r1, r2, det):
 
 
 def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
-               k: int | None = None) -> DyadMotion:
+               k: int | None = None, strict: bool = True) -> DyadMotion:
     """Positions, velocities and accelerations of a dyad's two bodies over the sweep.
 
     Adds both bodies' :class:`BodyMotion` to ``motions`` and returns the dyad data the
     reactions need. ``k`` is the dyad's assembly (seed 000 eqs 6.1, 8.1); ``None`` chooses
-    it from the ``[near]`` hints at the first row of ``scene``.
+    it from the ``[near]`` hints at the first row of ``scene``. ``strict = False`` (used
+    to probe between rows) returns whatever the closed form gives where the dyad cannot
+    close or is singular, instead of refusing.
 
     Raises
     ------
@@ -167,9 +176,20 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
     if k is None or solver.branches == 1:
         k = _choose_branch(scene, dyad, solver, motions) if solver.branches == 2 else 1
     cs, ss, gap = solver.positions(pr, k)
-    if gap is not None:
+    reach = solver.pivot_distance(pr)
+    if reach is not None:
+        reach = A.full(reach / scene.size, n)
+        tiny = np.flatnonzero(~(reach > SINGULAR_FAIL))
+        if strict and tiny.size:
+            o1, o2 = dyad.outer
+            raise AssemblyError(
+                f"dyad {dyad.label}: the pivots of its joints {o1.name!r} and {o2.name!r} "
+                f"coincide at driver position(s) {_fmt_positions(scene, tiny)} (closer than "
+                f"1e-12 of the mechanism's size {scene.size:.4g} m); the dyad's angles are "
+                "undefined there: leave those positions out of the sweep")
+    if gap is not None and strict:
         gap = A.full(gap, n)
-        bad = np.flatnonzero(gap > 1e-9 * scene.size)
+        bad = np.flatnonzero(~(gap <= 1e-9 * scene.size))
         if bad.size:
             raise AssemblyError(
                 f"dyad {dyad.label} cannot be assembled at driver position(s) "
@@ -206,9 +226,11 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
         sin2 = A.full(det * det / norm2, n)
     else:
         sin2 = A.full(_inner_t_tau(pr, ux, uy)[0], n) ** 2
+    if reach is not None:
+        sin2 = np.minimum(sin2, reach * reach)
     sing = ~(sin2 > SINGULAR_WARN**2)
     exact = np.flatnonzero(~(sin2 > SINGULAR_FAIL**2)) if sing.any() else ()
-    if len(exact):
+    if strict and len(exact):
         raise AssemblyError(
             f"dyad {dyad.label} is exactly singular (dead centre: transmission angle 0) at "
             f"driver position(s) {_fmt_positions(scene, exact)}; its velocities are undefined "
@@ -262,7 +284,7 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
             ay_ = A.add(A.add(aky, A.mul(qdd[i], p.uy)), A.mul(f, p.ux))
         motions[dyad.bodies[i]] = BodyMotion(None, c, sn, om, al, ox, oy, vx, vy, ax_, ay_)
     return DyadMotion(dyad, pr, k, xx, xy, c1, c2, det, n,
-                      singular=sing,
+                      singular=sing, closeness2=sin2,
                       inner_local=tuple(solver.q) if inner.kind == "R" else None,
                       slider_first=inner.kind == "T" and solver.slider_first, nx=nx, ny=ny)
 
@@ -373,7 +395,8 @@ def choose_assembly(scene: Scene, structure: Structure) -> tuple[int, ...]:
     return tuple(solve_dyad(first, dyad, motions).k for dyad in structure.dyads)
 
 
-def solve_kinematics(scene: Scene, structure: Structure, positions=None) -> Kinematics:
+def solve_kinematics(scene: Scene, structure: Structure, positions=None,
+                     strict: bool = True) -> Kinematics:
     """Motions of every body over the driver's sweep (vectorised, closed form).
 
     Parameters
@@ -386,6 +409,9 @@ def solve_kinematics(scene: Scene, structure: Structure, positions=None) -> Kine
     positions : array_like, optional
         Driver positions (deg or m) at which to evaluate the same mechanism, in any order;
         default the scene's sweep.
+    strict : bool
+        Refuse positions where a dyad cannot close or is exactly singular (the default);
+        ``False`` probes such positions (between rows) without refusing.
     """
     assembly = choose_assembly(scene, structure)
     structure = replace(structure, assembly=assembly)
@@ -394,6 +420,7 @@ def solve_kinematics(scene: Scene, structure: Structure, positions=None) -> Kine
     motions: dict[str, BodyMotion] = {GROUND: ground_motion(),
                                       scene.driver.body: driver_motion(scene)}
     kin = Kinematics(scene, structure, scene.driver.positions, motions)
-    for dyad, k in zip(structure.dyads, assembly, strict=True):
-        kin.dyads.append(solve_dyad(scene, dyad, motions, k))
+    with np.errstate(all="ignore") if not strict else nullcontext():
+        for dyad, k in zip(structure.dyads, assembly, strict=True):
+            kin.dyads.append(solve_dyad(scene, dyad, motions, k, strict))
     return kin

@@ -9,6 +9,7 @@ import numpy as np
 from ..model.errors import AssemblyError
 from ..model.scene import load_scene
 from ..results import Solution
+from .deadpoints import dead_points_between_rows
 from .friction import has_friction, solve_with_friction
 from .kinematics import solve_kinematics
 from .loads import applied_loads, inertia_loads, resultants
@@ -16,7 +17,7 @@ from .reactions import solve_reactions
 from .structure import analyse
 
 
-def solve(scene: Any) -> Solution:
+def solve(scene: Any, positions: Any = None) -> Solution:
     """Kinematics, reactions in every joint and the equilibrating moment over the sweep.
 
     Parameters
@@ -24,6 +25,10 @@ def solve(scene: Any) -> Solution:
     scene : Scene, pathlib.Path, str or dict
         A loaded scene, a path to a ``.toml`` file, TOML text or a dict
         (``scene-format.md`` section 1).
+    positions : array_like, optional
+        Driver positions (deg or m) at which to solve the same mechanism, in any order:
+        each dyad keeps the assembly chosen at the scene's own first row. Default: the
+        scene's sweep.
 
     Returns
     -------
@@ -47,8 +52,9 @@ def solve(scene: Any) -> Solution:
     sc = load_scene(scene)
     structure = analyse(sc)
     try:
-        kin = solve_kinematics(sc, structure)
-        sol = _solve_loads(sc, structure, kin)
+        kin = solve_kinematics(sc, structure, positions)
+        kin.between = dead_points_between_rows(kin.scene, structure, kin)
+        sol = _solve_loads(kin.scene, structure, kin)
     except (OverflowError, ZeroDivisionError) as exc:
         raise AssemblyError(f"the scene's numbers overflow ({exc}); check its dimensions "
                             "and masses") from None
@@ -70,17 +76,30 @@ def _solve_loads(sc, structure, kin) -> Solution:
 
 
 def _check_finite(sol: Solution) -> None:
-    """Never a silent NaN: a scene whose numbers overflow is refused."""
-    arrays = [np.asarray(sol.Me)] + [np.asarray(v) for r in sol.joint_reactions.values()
-                                     for v in (r.fx, r.fy)]
-    for b in sol.kin.bodies.values():
-        arrays += [np.asarray(b.cos), np.asarray(b.ox), np.asarray(b.oy), np.asarray(b.ax)]
+    """Never a silent NaN: every number behind every table is finite, or the scene is
+    refused naming the first position where it is not.
+
+    Checked: each body's motion (cos, sin, omega, alpha, origin position, velocity and
+    acceleration: every point's x, y, vx, vy, ax, ay and the bodies table follow from
+    them), each dyad's transmission measure, every reaction (Fx, Fy, and N, M of a
+    prismatic joint) and Me/Fe. Rows flagged ``self_locking`` (joint friction locks the
+    mechanism) hold NaN in Me/Fe and the reactions by the contract: they are left out.
+    """
+    n = sol.positions.size
+    free = [np.asarray(getattr(b, f)) for b in sol.kin.bodies.values()
+            for f in ("cos", "sin", "omega", "alpha", "ox", "oy", "vx", "vy", "ax", "ay")]
+    free += [np.asarray(d.closeness2) for d in sol.kin.dyads]
+    loads = [np.asarray(sol.Me)]
+    for r in sol.joint_reactions.values():
+        loads += [np.asarray(v) for v in (r.fx, r.fy, r.N, r.M) if v is not None]
     locked = sol.self_locking     # rows where friction locks: Me and reactions are NaN
-    for i, a in enumerate(arrays):
-        if locked is not None and locked.any() and i <= 2 * len(sol.joint_reactions):
-            a = np.where(locked, 0.0, np.broadcast_to(a, sol.positions.shape))
+    if locked is not None and locked.any():
+        loads = [np.where(locked, 0.0, np.broadcast_to(a, (n,))) for a in loads]
+    for a in free + loads:
         if not np.isfinite(np.sum(a)):
-            bad = np.flatnonzero(~np.isfinite(np.broadcast_to(a, sol.positions.shape)))
+            bad = np.flatnonzero(~np.isfinite(np.broadcast_to(a, (n,))))
+            unit = "deg" if sol.scene.driver.kind == "R" else "m"
             raise AssemblyError(
                 "the solution overflows (numbers too large or a degenerate geometry) at "
-                f"driver position {sol.positions[bad[0]]:g}; check the scene's dimensions")
+                f"driver position {sol.positions[bad[0]]:g} {unit}; check the scene's "
+                "dimensions")
