@@ -1,7 +1,9 @@
-"""Command line: ``python -m balance solve SCENE [--json]`` and ``python -m balance examples``.
+"""Command line: ``python -m balance solve SCENE [--json] [--report FILE.html]`` and
+``python -m balance examples``.
 
 Bad input prints ``error: <one line>`` on stderr and exits with code 2, never a
-traceback; warnings print as ``warning: <one line>``.
+traceback; every entry of a result's ``warnings`` list (and every Python warning)
+prints as one ``warning: <section>: <text>`` line on stderr, the exit code unchanged.
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from typing import Any, NoReturn
 
 from .api import example_path, examples, results_to_dict, solve_results
 from .errors import WorkbenchError
+from .report_text import field_text, result_warnings
 
 
 class _Parser(argparse.ArgumentParser):
@@ -30,6 +33,8 @@ def _parser() -> argparse.ArgumentParser:
     s = sub.add_parser("solve", help="solve a balancing scene")
     s.add_argument("scene", help="a scene .toml file, or the name of a bundled example")
     s.add_argument("--json", action="store_true", help="print the result dict as JSON")
+    s.add_argument("--report", metavar="FILE",
+                   help="write a balancing report: FILE.html (pictures embedded) or FILE.pdf")
     sub.add_parser("examples", help="list the bundled example scenes")
     return p
 
@@ -74,6 +79,7 @@ def _report(out: dict[str, Any], speed: bool) -> str:
             lines.append(f"  with +-{u['dA']:g} on each amplitude: mass {_fmt(u['magnitude'][0])}"
                          f" .. {_fmt(u['magnitude'][1], 'kg')}"
                          + (f", angle {_fmt(ang[0])} .. {_fmt(ang[1], 'deg')}" if ang else ""))
+    lines.extend(field_text(out))
     if "balancing" in out:
         b = out["balancing"]
         lines.append(f"mechanism balancing: {b['mechanism']}, method {b['method']}")
@@ -102,10 +108,6 @@ def _resolve(name: str) -> Path | str:
     return path
 
 
-def _showwarning(message, category, filename, lineno, file=None, line=None) -> None:
-    print(f"warning: {' '.join(str(message).split())}", file=sys.stderr)
-
-
 def main(argv: list[str] | None = None) -> int:
     """Run the command line; return the exit code."""
     args = _parser().parse_args(argv)
@@ -113,15 +115,21 @@ def main(argv: list[str] | None = None) -> int:
         for name in examples():
             print(f"{name}\t{example_path(name)}")
         return 0
-    warnings.showwarning = _showwarning
     try:
-        results = solve_results(_resolve(args.scene))
-        out = results_to_dict(results)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            scene = _resolve(args.scene)
+            results = solve_results(scene)
+            out = results_to_dict(results)
         if args.json:
             text = json.dumps(out, indent=2, allow_nan=False, default=_json_default)
         else:
             speed = "rotor" in results and results["rotor"].speed_rpm is not None
             text = _report(out, speed)
+        if args.report:
+            from .report import write_report
+
+            write_report(args.report, results, out, scene)
     except WorkbenchError as exc:
         print(f"error: {_one_line(exc)}", file=sys.stderr)
         return 2
@@ -129,11 +137,19 @@ def main(argv: list[str] | None = None) -> int:
         print(f"error: internal error, please report: {type(exc).__name__}: {_one_line(exc)}",
               file=sys.stderr)
         return 1
+    shown = set()
+    for where, msg in result_warnings(out):
+        shown.add(_one_line(msg))
+        print(f"warning: {where}: {_one_line(msg)}", file=sys.stderr)
+    for w in caught:
+        if _one_line(w.message) not in shown:
+            shown.add(_one_line(w.message))
+            print(f"warning: {_one_line(w.message)}", file=sys.stderr)
     print(text)
     return 0
 
 
-def _one_line(exc: BaseException) -> str:
+def _one_line(exc: object) -> str:
     return " ".join(str(exc).split())
 
 
