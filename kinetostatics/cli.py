@@ -8,6 +8,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+import warnings
 from pathlib import Path
 
 from . import scene_path
@@ -111,6 +112,8 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--out", help="folder for motion.csv, geometry.csv, forces.csv, summary.json")
     c.set_defaults(func=_cmd_cam)
     _extra_commands(sub)
+    from .teaching.cli import add_commands as add_exercise_commands
+    add_exercise_commands(sub)
     return p
 
 
@@ -123,11 +126,19 @@ def _extra_commands(sub) -> None:
     add_commands(sub)
 
 
+def _showwarning(message, category, filename, lineno, file=None, line=None) -> None:
+    """Python warnings (unit slips, negative concentrated masses, ...) as one line each."""
+    print(f"warning: {' '.join(str(message).split())}", file=sys.stderr)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        return args.func(args)
+        with warnings.catch_warnings():
+            warnings.simplefilter("default")
+            warnings.showwarning = _showwarning
+            return args.func(args)
     except WorkbenchError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2

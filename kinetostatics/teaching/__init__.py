@@ -3,20 +3,41 @@
 ``questions`` (the question language, units, tolerances), ``keys`` (answer keys with
 :func:`kinetostatics.solve` or :func:`balance.solve`), ``variants`` (an exercise's
 draws per student and the class set), ``answers`` (reading dicts, tables and notebooks),
-``grading`` (answers against the key) and ``library`` (the ready exercises).
+``grading`` (answers against the key), ``library`` (the ready exercises), ``sheets``
+(what a student receives), ``execute`` (running a submitted notebook), ``classroom``
+(the teacher's class folder and its grading) and ``cli`` (the ``exercises`` command).
 """
 
 from __future__ import annotations
 
-from .answers import AnswerSheet, read_answers, record, write_answer_notebook
+from .answers import (
+    AnswerSheet,
+    fill_answer_cell,
+    notebook_answers,
+    read_answers,
+    record,
+    write_answer_notebook,
+)
+from .classroom import ClassReport, generate_class, grade_class, read_class_list
 from .grading import class_table, grade
 from .keys import answer_key
-from .library import four_bar_exercise, rotor_exercise
+from .library import (
+    EXERCISES,
+    exercise,
+    four_bar_exercise,
+    list_exercises,
+    resonance_exercise,
+    rotor_exercise,
+    slider_crank_exercise,
+    slotted_lever_exercise,
+)
 from .questions import (
     ANGLE_ATOL,
     ANSWER_TAG,
     ATOL_FRACTION,
     DEFAULT_RTOL,
+    TOLERANCE_RULE,
+    normalize_id,
     to_float,
     var_name,
     wrap_angle,
@@ -24,8 +45,11 @@ from .questions import (
 from .variants import Exercise, ExerciseSet, generate
 
 __all__ = [
-    "ANGLE_ATOL", "ANSWER_TAG", "ATOL_FRACTION", "DEFAULT_RTOL", "AnswerSheet", "Exercise",
-    "ExerciseSet", "answer_key", "class_table", "four_bar_exercise", "generate", "grade",
-    "read_answers", "record", "rotor_exercise", "to_float", "var_name", "wrap_angle",
-    "write_answer_notebook",
+    "ANGLE_ATOL", "ANSWER_TAG", "ATOL_FRACTION", "DEFAULT_RTOL", "EXERCISES", "ClassReport",
+    "generate_class", "grade_class", "read_class_list",
+    "TOLERANCE_RULE", "answer_key", "AnswerSheet", "class_table", "Exercise", "exercise",
+    "ExerciseSet", "fill_answer_cell", "four_bar_exercise", "generate", "grade",
+    "list_exercises", "normalize_id", "notebook_answers", "read_answers", "record",
+    "resonance_exercise", "rotor_exercise", "slider_crank_exercise",
+    "slotted_lever_exercise", "to_float", "var_name", "wrap_angle", "write_answer_notebook",
 ]

@@ -14,7 +14,8 @@ import pandas as pd
 from ..model.errors import WorkbenchError
 from .questions import ANSWER_TAG, to_float
 
-__all__ = ["AnswerSheet", "read_answers", "record", "write_answer_notebook"]
+__all__ = ["AnswerSheet", "fill_answer_cell", "notebook_answers", "read_answers", "record",
+           "write_answer_notebook"]
 
 
 # ------------------------------------------------------------------ reading answers
@@ -118,11 +119,33 @@ def _cell_answers(cell) -> tuple[str | None, dict] | None:
     return student, answers
 
 
-def _read_notebook(path: Path) -> pd.DataFrame:
-    import nbformat
+def notebook_answers(nb) -> tuple[str | None, str | None, dict]:
+    """The answers a notebook holds as saved, without running it.
 
-    nb = nbformat.read(str(path), as_version=4)
-    rows: list[dict] = []
+    Parameters
+    ----------
+    nb : nbformat.NotebookNode
+        The notebook.
+
+    Returns
+    -------
+    metadata_id : str or None
+        ``metadata.kinetostatics.student_id`` (written by the teacher's generator).
+    cell_id : str or None
+        ``student_id = ...`` in the answer cell (or in a cell tagged ``student_id``).
+    answers : dict
+        question -> value: the answer cell's :func:`record` output, else its literal
+        ``answers = {...}`` (or one variable per question).
+
+    Raises
+    ------
+    WorkbenchError
+        No answer cell, or an answer cell that is not valid Python or that computes
+        its values (run the notebook first).
+    """
+    meta = nb.get("metadata", {}).get("kinetostatics", {})
+    meta_id = meta.get("student_id") if isinstance(meta, Mapping) else None
+    answers: dict = {}
     student = None
     found = False
     for cell in nb.cells:
@@ -140,12 +163,25 @@ def _read_notebook(path: Path) -> pd.DataFrame:
             continue
         sid, ans = got
         student = sid or student
-        rows += [{"question": k, "answer": v} for k, v in ans.items()]
+        answers.update(ans)
     if not found:
-        raise WorkbenchError(f"{path}: no answer cell (a code cell tagged {ANSWER_TAG!r} or "
-                             f"with nbgrader grade_id {ANSWER_TAG!r})")
-    df = pd.DataFrame(rows, columns=["question", "answer"])
-    df.insert(0, "student", student if student is not None else path.stem)
+        raise WorkbenchError(f"no answer cell (a code cell tagged {ANSWER_TAG!r} or with "
+                             f"nbgrader grade_id {ANSWER_TAG!r})")
+    return (None if meta_id is None else str(meta_id)), student, answers
+
+
+def _read_notebook(path: Path) -> pd.DataFrame:
+    import nbformat
+
+    nb = nbformat.read(str(path), as_version=4)
+    try:
+        meta_id, cell_id, answers = notebook_answers(nb)
+    except WorkbenchError as exc:
+        raise WorkbenchError(f"{path}: {exc}") from None
+    df = pd.DataFrame([{"question": k, "answer": v} for k, v in answers.items()],
+                      columns=["question", "answer"])
+    sid = cell_id if cell_id is not None else meta_id
+    df.insert(0, "student", "" if sid is None else sid)
     return df
 
 
@@ -162,7 +198,9 @@ def read_answers(source: Any, student: Any = None) -> pd.DataFrame:
         - a filled notebook (``.ipynb``): the code cell tagged ``answers`` (or with
           nbgrader ``grade_id = "answers"``): its :func:`record` output, or the literal
           ``student_id = ...`` and ``answers = {...}`` (or one variable per question,
-          named by :func:`var_name`) in its source;
+          named by :func:`var_name`) in its source; the id is the cell's
+          ``student_id``, else the notebook's ``metadata.kinetostatics.student_id``
+          (never the file name);
         - a JSON file holding one of the dicts above;
         - a list of any of these (e.g. every submitted notebook).
     student : optional
@@ -256,3 +294,36 @@ def write_answer_notebook(path: str | Path, student_id: Any, answers: Mapping[st
     nbformat.write(nb, str(p))
     return p
 
+
+
+def fill_answer_cell(nb, answers: Mapping[str, Any]):
+    """Type values into a student notebook's ``answers`` cell, as a student does:
+    each line ``'question': None,`` becomes ``'question': value,``.
+
+    Parameters
+    ----------
+    nb : nbformat.NotebookNode
+        A notebook written by the teacher's generator (changed in place).
+    answers : dict
+        question -> value (numbers are written with ``repr``, text as it is).
+
+    Returns
+    -------
+    nbformat.NotebookNode
+        The same notebook.
+    """
+    cell = next((c for c in nb.cells if ANSWER_TAG in c.get("metadata", {}).get("tags", [])),
+                None)
+    if cell is None:
+        raise WorkbenchError(f"no cell tagged {ANSWER_TAG!r}")
+    lines = cell.source.split("\n")
+    for q, v in answers.items():
+        head = f"    {str(q)!r}: "
+        hits = [k for k, ln in enumerate(lines) if ln.startswith(head)]
+        if not hits:
+            raise WorkbenchError(f"the answers cell asks no {q!r}")
+        value = v if isinstance(v, str) else repr(float(v))
+        rest = lines[hits[0]][len(head):].split(",", 1)
+        lines[hits[0]] = head + value + "," + (rest[1] if len(rest) > 1 else "")
+    cell.source = "\n".join(lines)
+    return nb

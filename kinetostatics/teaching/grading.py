@@ -1,9 +1,9 @@
 """Grading: answers against a key, at stated tolerances, angles modulo 360.
 
-A number passes when |answer - key| <= atol + rtol |key| (rtol 1 % by default; the
-key's atol is 1e-3 of the quantity's scale over the cycle, so that a value near zero is
-not judged by its relative error); an angle passes when the difference, wrapped into
-(-180, 180], is at most 0.5 deg.
+A number passes when |answer - key| <= max(rtol |key|, atol) (rtol 1 % by default; the
+key's atol is 1e-3 of the quantity's largest magnitude over the cycle, so that a value
+near zero is not judged by its relative error alone); an angle passes when the
+difference, wrapped into (-180, 180], is at most 0.5 deg.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ import pandas as pd
 
 from ..model.errors import WorkbenchError
 from .answers import read_answers
-from .questions import ANGLE_ATOL, DEFAULT_RTOL, to_float, var_name, wrap_angle
+from .questions import ANGLE_ATOL, DEFAULT_RTOL, normalize_id, to_float, var_name, wrap_angle
 
 __all__ = ["class_table", "grade"]
 
@@ -62,8 +62,8 @@ def grade(answers: Any, key: Any, *, rtol: float | None = None, atol: float | No
         set or key table (``student, question, expected`` and optionally ``kind, rtol,
         atol``), or a dict ``{question: value}`` for one student.
     rtol, atol : float, optional
-        Override the key's tolerances for numbers: pass when |answer - key| <= atol +
-        rtol |key| (defaults: the key's, else rtol 1 %, atol 0).
+        Override the key's tolerances for numbers: pass when |answer - key| <=
+        max(rtol |key|, atol) (defaults: the key's, else rtol 1 %, atol 0).
     angle_keys : iterable of str
         Questions to compare as angles, besides those the key marks ``kind == "angle"``.
     angle_atol : float, optional
@@ -115,6 +115,10 @@ def grade(answers: Any, key: Any, *, rtol: float | None = None, atol: float | No
     ans = ans.copy()
     ans["question"] = [names.get(q, q) if q not in set(kt["question"]) else q
                        for q in ans["question"].astype(str)]
+    # ids match after trimming and case-folding: " S001" answers for "s001"
+    canon = {normalize_id(k): k for k in kt["student"]}
+    ans["student"] = [canon.get(normalize_id(a), a) for a in ans["student"].astype(str)]
+    students = list(dict.fromkeys(ans["student"]))
     ans = ans.drop_duplicates(["student", "question"], keep="last")
     key_students = list(dict.fromkeys(kt["student"]))
     graded_students = [s for s in key_students if s in set(ans["student"])]
@@ -137,7 +141,7 @@ def grade(answers: Any, key: Any, *, rtol: float | None = None, atol: float | No
     if angle_atol is not None:
         a_ang = np.full_like(a_ang, float(angle_atol))
     err = np.where(is_angle, wrap_angle(got - exp), got - exp)
-    tol = np.where(is_angle, a_ang, a + r * np.abs(exp))
+    tol = np.where(is_angle, a_ang, np.maximum(a, r * np.abs(exp)))
     with np.errstate(invalid="ignore"):
         passed = np.abs(err) <= tol
     passed &= ~np.isnan(got)

@@ -137,7 +137,8 @@ def _mechanism_values(raw: dict, questions: Sequence[Question]) -> dict[str, tup
             g = t[t.dyad == int(q.arg or 1)]
             if g.empty:
                 raise WorkbenchError(f"question {q.text!r}: no dyad {q.arg}")
-            val = float(g.transmission_angle.to_numpy()[_row_of(psol, q)])
+            t = float(g.transmission_angle.to_numpy()[_row_of(psol, q)]) % 180.0
+            val = min(t, 180.0 - t)             # the summary's definition, min(tau, 180 - tau)
             scale = None
         elif q.q in ("angle", "omega", "alpha"):
             _needs_position(q)
@@ -176,7 +177,7 @@ def _mechanism_values(raw: dict, questions: Sequence[Question]) -> dict[str, tup
             raise WorkbenchError(f"question {q.text!r}: unknown mechanism quantity {q.q!r}; "
                                  f"known: {', '.join(sorted(_MECH_UNITS))}")
         if kind == "angle" or unit == "deg":
-            atol = ANGLE_ATOL
+            kind, atol = "angle", ANGLE_ATOL
         else:
             atol = ATOL_FRACTION * (scale or 0.0)
         out[q.text] = (val, unit, kind, atol)
@@ -252,8 +253,9 @@ def _balance_values(raw: dict, questions: Sequence[Question]) -> dict[str, tuple
         if val is None:
             raise WorkbenchError(f"question {q.text!r}: undefined for this variant")
         val = float(val)
-        atol = ANGLE_ATOL if kind == "angle" or unit == "deg" else \
-            ATOL_FRACTION * abs(scale or val)
+        if unit == "deg":
+            kind = "angle"
+        atol = ANGLE_ATOL if kind == "angle" else ATOL_FRACTION * abs(scale or val)
         out[q.text] = (val, unit, kind, atol)
     return out
 

@@ -40,10 +40,12 @@ balancing                 meaning (unit)
 ``rotor.corrections.0.U`` any other number of ``balance.solve``'s result, by path
 ========================  =====================================================
 
-Tolerances: a number passes when |answer - key| <= atol + rtol |key| (rtol 1 % by
-default; atol 1e-3 of the quantity's scale over the cycle, so that a value near zero
-is not judged by its relative error); an angle passes when the difference, wrapped
-into (-180, 180], is at most 0.5 deg.
+Tolerances (:data:`TOLERANCE_RULE`, applied by :func:`kinetostatics.teaching.grade`):
+a number passes when |answer - key| <= max(rtol |key|, atol), rtol 1 % by default and
+atol 1e-3 of the quantity's largest magnitude over the cycle (so that a value near zero
+is not judged by its relative error alone); every answer in degrees is an angle: it
+passes when the difference, wrapped into (-180, 180], is at most 0.5 deg (so 330 and
+-30 are the same answer).
 """
 
 from __future__ import annotations
@@ -58,13 +60,18 @@ import numpy as np
 
 from ..model.errors import WorkbenchError
 
-__all__ = ["ANGLE_ATOL", "ANSWER_TAG", "ATOL_FRACTION", "DEFAULT_RTOL", "Question",
-           "is_mechanism", "parse_question", "to_float", "var_name", "wrap_angle"]
+__all__ = ["ANGLE_ATOL", "ANSWER_TAG", "ATOL_FRACTION", "DEFAULT_RTOL", "TOLERANCE_RULE",
+           "Question", "describe", "is_mechanism", "normalize_id", "parse_question",
+           "to_float", "tolerance_text", "var_name", "wrap_angle"]
 
 DEFAULT_RTOL = 0.01
 ATOL_FRACTION = 1e-3        # atol = this fraction of the quantity's scale over the sweep
 ANGLE_ATOL = 0.5            # deg
 ANSWER_TAG = "answers"      # cell tag (and nbgrader grade_id) of a notebook's answer cell
+TOLERANCE_RULE = (
+    "A number is right when |answer - key| <= max(1 % of |key|, 0.1 % of the quantity's "
+    "largest magnitude over the cycle); an answer in degrees is an angle: right when the "
+    "difference, taken modulo 360 deg into (-180, 180], is at most 0.5 deg.")
 
 _Q = re.compile(r"^(?P<q>[A-Za-z_][A-Za-z0-9_.]*)(?:\[(?P<arg>[^\]]+)\])?"
                 r"(?:@(?P<pos>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?))?$")
@@ -135,3 +142,122 @@ def parse_question(question: str) -> Question:
 def is_mechanism(raw: Mapping) -> bool:
     return "bodies" in raw or "driver" in raw
 
+
+
+def normalize_id(student: Any) -> str:
+    """A student id as it is matched: trimmed and case-folded (``" Ana "`` -> ``"ana"``)."""
+    return str(student).strip().casefold()
+
+
+# ------------------------------------------------------------ words for the sheets
+_WORDS = {
+    "Me": "equilibrating moment Me on the driver, counter-clockwise positive,{at}",
+    "Fe": "equilibrating force Fe on the driver along its line{at}",
+    "Me_mean": "mean equilibrating moment Me over the cycle",
+    "Me_max": "largest equilibrating moment Me over the cycle (signed)",
+    "Me_min": "smallest equilibrating moment Me over the cycle (signed)",
+    "Fe_mean": "mean equilibrating force Fe over the cycle",
+    "Fe_max": "largest equilibrating force Fe over the cycle (signed)",
+    "Fe_min": "smallest equilibrating force Fe over the cycle (signed)",
+    "F": "magnitude of the reaction in joint {arg}{at}",
+    "Fx": "x component of the reaction in joint {arg}{at}",
+    "Fy": "y component of the reaction in joint {arg}{at}",
+    "Fmax": "largest magnitude of the reaction in joint {arg} over the cycle",
+    "Fangle": "direction of the reaction in joint {arg}{at}, from the x axis, "
+              "counter-clockwise",
+    "N": "normal force on the slider of joint {arg}, positive along the line's left "
+         "normal{at}",
+    "M": "couple of the sliding joint {arg}{at}",
+    "tau_min": "smallest transmission angle over the cycle, min(tau, 180 deg - tau)",
+    "tau": "transmission angle of dyad {arg}, min(tau, 180 deg - tau){at}",
+    "angle": "angle of the {arg} from the x axis, counter-clockwise{at}",
+    "omega": "angular velocity of the {arg}, counter-clockwise positive{at}",
+    "alpha": "angular acceleration of the {arg}, counter-clockwise positive{at}",
+    "x": "x coordinate of point {arg}{at}", "y": "y coordinate of point {arg}{at}",
+    "v": "speed (magnitude of the velocity) of point {arg}{at}",
+    "a": "magnitude of the acceleration of point {arg}{at}",
+    "mass": "correction mass in plane {arg}", "U": "correction unbalance m r in plane {arg}",
+    "initial_force": "resultant inertia force of the unbalances before balancing",
+    "initial_moment": "resultant moment of the unbalances before balancing",
+    "residual_force": "resultant inertia force after balancing",
+    "residual_moment": "resultant moment after balancing",
+    "eccentricity": "eccentricity of the disk's centre of mass",
+    "correction_mass": "correction mass of the static test",
+    "res_mass": "correction mass of resonance test {arg}",
+    "res_angle": "correction angle 180 deg + phi of resonance test {arg}",
+    "res_mirror": "the mirror candidate 180 deg - phi of resonance test {arg}",
+    "res_A": "amplitude A the trial mass alone would give (test {arg})",
+    "res_phi": "angle phi between the unbalance and the 0 deg mark (test {arg})",
+    "res_unbalance": "unbalance m1 r1 found by resonance test {arg}",
+    "shaking_before": "largest shaking force before balancing",
+    "shaking_after": "largest shaking force after balancing",
+}
+_SCALES = {
+    "Me": "the largest |Me| over the cycle", "Fe": "the largest |Fe| over the cycle",
+    "F": "the largest reaction in joint {arg}", "Fx": "the largest reaction in joint {arg}",
+    "Fy": "the largest reaction in joint {arg}", "Fmax": "the largest reaction in {arg}",
+    "N": "the largest |N| in {arg}", "M": "the largest |M| in {arg}",
+    "omega": "the largest |omega| of the {arg}", "alpha": "the largest |alpha| of the {arg}",
+    "x": "the point's x range plus its largest |x|",
+    "y": "the point's y range plus its largest |y|",
+    "v": "the point's largest speed", "a": "the point's largest acceleration",
+    "mass": "the largest correction mass", "U": "the largest correction unbalance",
+    "initial_force": "the value", "initial_moment": "the value",
+    "residual_force": "the initial force", "residual_moment": "the initial moment",
+    "shaking_before": "the shaking force before balancing",
+    "shaking_after": "the shaking force before balancing",
+}
+
+
+def describe(question: str, position: str = "phi = {pos:g} deg") -> str:
+    """The question in words, for a sheet or a handout.
+
+    Parameters
+    ----------
+    question : str
+        E.g. ``"F[C]@30"``.
+    position : str
+        How a driver position reads (``{pos}`` is replaced); ``"s = {pos:g} m"`` for a
+        sliding driver.
+
+    Returns
+    -------
+    str
+        ``"magnitude of the reaction in joint C at phi = 30 deg"``.
+    """
+    q = parse_question(question)
+    if q.q == "Fe":
+        position = "s = {pos:g} m"
+    at = "" if q.pos is None else " at " + position.format(pos=q.pos)
+    words = _WORDS.get(q.q)
+    if words is None:
+        return f"the value {q.text} of the result"
+    return words.format(arg=q.arg or "1", at=at)
+
+
+def tolerance_text(question: str, unit: str, rtol: float) -> str:
+    """The tolerance of one question as applied, in words (no number of the key in it).
+
+    Parameters
+    ----------
+    question : str
+        The question.
+    unit : str
+        Its unit (``"deg"`` makes it an angle).
+    rtol : float
+        The relative tolerance.
+
+    Returns
+    -------
+    str
+        E.g. ``"+-1 % (at least 0.1 % of the largest |Me| over the cycle)"`` or
+        ``"+-0.5 deg, modulo 360 deg"``.
+    """
+    if unit == "deg":
+        return f"+-{ANGLE_ATOL:g} deg, modulo 360 deg"
+    q = parse_question(question)
+    scale = _SCALES.get(q.q, _SCALES.get(q.q[:2], "the value")).format(arg=q.arg or "1")
+    rel = f"+-{100 * rtol:g} %"
+    if scale == "the value":
+        return rel
+    return f"{rel} (at least {100 * ATOL_FRACTION:g} % of {scale})"

@@ -14,6 +14,7 @@ import copy
 import hashlib
 import math
 import re
+import secrets
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -26,7 +27,8 @@ from ..model.errors import WorkbenchError
 from ..model.tomlio import read_source
 from .grading import grade
 from .keys import key_rows
-from .questions import DEFAULT_RTOL, parse_question
+from .questions import DEFAULT_RTOL, normalize_id, parse_question, wrap_angle
+from .sheets import data_rows, key_values, leaked_values, visible_text
 
 __all__ = ["Exercise", "ExerciseSet", "generate"]
 
@@ -122,8 +124,9 @@ class Exercise:
         step), or a list of choices.
     questions : list of str
         What is asked (see the module's table).
-    seed : int
-        The exercise's seed: with the student id it fixes the variant.
+    seed : int, optional
+        The exercise's seed: with the student id it fixes the variant. None (the
+        default) draws a secret one (``secrets.randbits(63)``; keep ``.seed`` private).
     title, text : str
         Title and statement shown on the sheets.
     check : callable, optional
@@ -133,20 +136,55 @@ class Exercise:
         same student's generator (``max_tries`` times).
     rtol : float
         Relative tolerance of the numbers (angles: 0.5 deg absolute).
+    max_tries : int
+        Draws per student before giving up.
+    name : str
+        The exercise's name in the library (``"four_bar"``).
+    data : callable, optional
+        ``data(params, scene) -> [(symbol, value, unit, meaning), ...]``: what the
+        student's sheets show as data (default: the drawn parameters).
+    labels, units : dict, optional
+        question -> words, question -> unit, replacing the defaults on the sheets.
+    picture : str, optional
+        Code of a notebook cell that draws the student's ``scene`` (no answer in it).
+    give_scene : bool
+        Write the student's scene into the notebook (for ``ks.solve(scene)``).
+    position : str
+        How a driver position reads in a question (``{pos}`` is the number).
+    discriminate : float or None
+        Refuse a variant where an error of this fraction of an asked value would pass
+        (a value too near zero to be judged); default 5 %.
+
+    A variant is also refused when one of its key values, to 4 significant digits, can
+    be read in the student's notebook or handout (see
+    :func:`~kinetostatics.teaching.sheets.leaked_values`).
     """
 
     template: Any
     ranges: Mapping[str, Any]
     questions: Sequence[str]
-    seed: int = 0
+    seed: int | None = None
     title: str = "exercise"
     text: str = ""
     check: Callable[[dict, dict], bool] | None = None
     rtol: float = DEFAULT_RTOL
     max_tries: int = 200
+    name: str = ""
+    data: Callable[[dict, dict], list] | None = None
+    labels: Mapping[str, str] = field(default_factory=dict)
+    units: Mapping[str, str] = field(default_factory=dict)
+    picture: str | None = None
+    give_scene: bool = True
+    position: str = "phi = {pos:g} deg"
+    discriminate: float | None = 0.05
     _cache: dict = field(default_factory=dict, repr=False, compare=False)
 
     def __post_init__(self):
+        if self.seed is None:
+            self.seed = secrets.randbits(63)
+        if self.discriminate is not None and not 2 * self.rtol < self.discriminate:
+            raise WorkbenchError(f"rtol {self.rtol:g} must be below half of discriminate "
+                                 f"{self.discriminate:g} (or set discriminate=None)")
         self.questions = [str(q) for q in self.questions]
         for q in self.questions:
             parse_question(q)
@@ -180,17 +218,46 @@ class Exercise:
             except (ValueError, ArithmeticError) as exc:     # WorkbenchError is a ValueError
                 last = str(exc)
                 continue
+            rows = {q: (r[0], self.units.get(q, r[1]), r[2], r[3]) for q, r in rows.items()}
             if self.check is not None and \
                     not self.check(raw, {k: v[0] for k, v in rows.items()}):
                 last = "refused by the exercise's check"
                 continue
             v = {"student": sid, "attempt": attempt, "params": params, "scene": raw,
                  "rows": rows}
+            if (vague := self._not_judged(rows)) or (seen := self._leaks(sid, v)):
+                last = (f"a {100 * self.discriminate:g} % error in {vague[0]} would pass"
+                        if vague else f"the key of {seen[0]} can be read on the sheets")
+                continue
             self._cache[sid] = v
             return v
         raise WorkbenchError(f"exercise {self.title!r}: no valid variant for student {sid!r} "
                              f"in {self.max_tries} draws (last: {last}); widen the ranges or "
                              "relax the check")
+
+    def _not_judged(self, rows: Mapping[str, tuple]) -> list[str]:
+        """Questions whose value a ``discriminate`` error would not fail."""
+        if self.discriminate is None:
+            return []
+        out = []
+        for q, (val, _, kind, atol) in rows.items():
+            off = self.discriminate * val
+            if kind == "angle":
+                miss, tol = abs(float(wrap_angle(off))), atol
+            else:
+                miss, tol = abs(off), max(self.rtol * abs(val), atol)
+            if not miss >= 2.0 * tol:
+                out.append(q)
+        return out
+
+    def _leaks(self, student: str, variant: dict) -> list[str]:
+        values, angles = key_values(variant)
+        return leaked_values(visible_text(self, student, variant), values, angles)
+
+    def variant(self, student: Any) -> dict:
+        """A student's variant: ``params``, ``scene``, ``attempt`` and ``rows``
+        (question -> (value, unit, kind, atol))."""
+        return copy.deepcopy(self._variant(student))
 
     def params(self, student: Any) -> dict:
         """The drawn parameters of a student's variant."""
@@ -224,7 +291,11 @@ class Exercise:
         rows = []
         for s in students:
             v = self._variant(s)
-            rows.append({"student": v["student"], **v["params"], "attempt": v["attempt"]})
+            shown = {} if self.data is None else {
+                f"{d['symbol']} [{d['unit']}]" if d["unit"] else d["symbol"]: d["value"]
+                for d in data_rows(self, v)}
+            rows.append({"student": v["student"], **v["params"], **shown,
+                         "attempt": v["attempt"]})
         return pd.DataFrame(rows)
 
     def answer_form(self, students: Iterable[Any]) -> pd.DataFrame:
@@ -235,8 +306,9 @@ class Exercise:
     def generate(self, students: Iterable[Any]) -> ExerciseSet:
         """The variants and the key of a class list."""
         ids = [str(s).strip() for s in students]
-        if len(set(ids)) != len(ids):
-            dup = sorted({s for s in ids if ids.count(s) > 1})
+        norm = [normalize_id(s) for s in ids]
+        if len(set(norm)) != len(norm):
+            dup = sorted({s for s, n in zip(ids, norm, strict=True) if norm.count(n) > 1})
             raise WorkbenchError(f"duplicate student ids: {', '.join(dup)}")
         return ExerciseSet(self, ids, self.variants(ids), self.key(ids))
 
@@ -277,7 +349,7 @@ class ExerciseSet:
 
 
 def generate(template_scene: Any, ranges: Mapping[str, Any], student_ids: Iterable[Any],
-             seed: int = 0, *, questions: Sequence[str] = (), **kwargs) -> ExerciseSet:
+             seed: int | None = None, *, questions: Sequence[str] = (), **kwargs) -> ExerciseSet:
     """Variants of an exercise, one per student id, deterministic from (seed, id).
 
     Parameters
@@ -288,8 +360,8 @@ def generate(template_scene: Any, ranges: Mapping[str, Any], student_ids: Iterab
         name -> (low, high), (low, high, step) or a list of choices.
     student_ids : iterable
         The class list (any values; their ``str`` is the id).
-    seed : int
-        The exercise's seed.
+    seed : int, optional
+        The exercise's seed (None: a secret one is drawn).
     questions : sequence of str
         The quantities asked (the key's rows).
     **kwargs

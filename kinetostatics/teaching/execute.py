@@ -1,0 +1,147 @@
+"""Running a submitted notebook in a clean kernel, without network, to read its answers.
+
+A copy of the notebook runs top to bottom in a fresh ``python3`` kernel (nbclient),
+from an empty temporary folder, with a time limit per cell; the submitted file is
+never changed. Before the student's first cell a guard cell switches the network off
+(Python sockets may connect only to this machine: a guard against accidental
+downloads, not a sandbox against a hostile student). After the last cell the kernel's
+``student_id`` and ``answers`` are read, so computed answers count as computed.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from pathlib import Path
+from typing import Any
+
+from ..model.errors import WorkbenchError
+
+__all__ = ["SubmissionError", "run_notebook"]
+
+_MARK = "KS-ANSWERS "
+_GUARD = '''import socket as _ks_socket
+
+def _ks_no_network(*_a, **_k):
+    raise OSError("the network is switched off while the notebook is graded")
+
+def _ks_guard(orig):
+    def connect(self, address, *rest):
+        if self.family in (_ks_socket.AF_INET, _ks_socket.AF_INET6) and \\
+                str(address[0]) not in ("127.0.0.1", "::1", "localhost"):
+            _ks_no_network()
+        return orig(self, address, *rest)
+    return connect
+
+_ks_socket.socket.connect = _ks_guard(_ks_socket.socket.connect)
+_ks_socket.socket.connect_ex = _ks_guard(_ks_socket.socket.connect_ex)
+_ks_getaddrinfo = _ks_socket.getaddrinfo
+_ks_socket.getaddrinfo = lambda host, *a, **k: (
+    _ks_getaddrinfo(host, *a, **k) if host in (None, "localhost", "127.0.0.1", "::1")
+    else _ks_no_network())
+del _ks_guard'''
+_READER = '''import json as _ks_json
+
+def _ks_value(v):
+    if v is None or isinstance(v, (str, bool)):
+        return v
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        return repr(v)
+
+_ks_ans = globals().get("answers")
+print("KS-ANSWERS " + _ks_json.dumps({
+    "student_id": None if globals().get("student_id") is None else str(student_id),
+    "answers": ({str(k): _ks_value(v) for k, v in _ks_ans.items()}
+                if isinstance(_ks_ans, dict) else None)}))'''
+
+
+class SubmissionError(WorkbenchError):
+    """A submission that cannot be read or run (the reason says why)."""
+
+
+def _env() -> dict[str, str]:
+    root = str(Path(__file__).resolve().parents[2])
+    env = dict(os.environ)
+    env["MPLBACKEND"] = "Agg"
+    env["PYTHONPATH"] = os.pathsep.join([root, *filter(None, [env.get("PYTHONPATH")])])
+    for k in ("http_proxy", "https_proxy", "HTTP_PROXY", "HTTPS_PROXY"):
+        env[k] = "http://127.0.0.1:9"            # nothing listens there: pip fails fast
+    env["PIP_NO_INDEX"] = "1"
+    return env
+
+
+def _failed_cell(nb) -> str:
+    for k, cell in enumerate(nb.cells):
+        for out in cell.get("outputs", []):
+            if out.get("output_type") == "error":
+                return f"cell {k} (counting from 1) raised {out.get('ename')}: {out.get('evalue')}"
+    return "a cell raised an error"
+
+
+def run_notebook(nb, timeout: float = 60.0, kernel: str = "python3"
+                 ) -> tuple[str | None, dict[str, Any]]:
+    """Run a notebook in a clean kernel and read its ``student_id`` and ``answers``.
+
+    Parameters
+    ----------
+    nb : nbformat.NotebookNode
+        The submitted notebook (not changed).
+    timeout : float
+        Seconds allowed per cell.
+    kernel : str
+        Kernel name.
+
+    Returns
+    -------
+    student_id : str or None
+        The kernel's ``student_id`` after the run.
+    answers : dict
+        The kernel's ``answers`` after the run (numbers as floats, text kept).
+
+    Raises
+    ------
+    SubmissionError
+        A cell raised (which one and what), a cell ran longer than ``timeout``, the
+        kernel died, or the notebook leaves no ``answers`` dict.
+    """
+    import copy
+
+    import nbformat
+    from jupyter_client import KernelManager
+    from nbclient import NotebookClient
+    from nbclient.exceptions import CellExecutionError, CellTimeoutError, DeadKernelError
+
+    run = copy.deepcopy(nb)
+    for cell in run.cells:
+        cell.pop("id", None)
+    run.cells.insert(0, nbformat.v4.new_code_cell(_GUARD))
+    run.cells.append(nbformat.v4.new_code_cell(_READER))
+    run.metadata["kernelspec"] = {"name": kernel, "display_name": kernel,
+                                  "language": "python"}
+    with tempfile.TemporaryDirectory(prefix="ks-grade-") as tmp:
+        # the kernel talks over Unix sockets in the temporary folder, not over TCP
+        km = KernelManager(kernel_name=kernel, transport="ipc",
+                           connection_file=str(Path(tmp) / "kernel.json"))
+        km.ip = str(Path(tmp) / "ipc")
+        client = NotebookClient(run, km=km, timeout=timeout, kernel_name=kernel,
+                                allow_errors=False, resources={"metadata": {"path": tmp}})
+        try:
+            client.execute(env=_env())
+        except CellTimeoutError:
+            raise SubmissionError(f"a cell ran longer than {timeout:g} s") from None
+        except DeadKernelError:
+            raise SubmissionError("the kernel died while running the notebook") from None
+        except CellExecutionError:
+            raise SubmissionError(_failed_cell(run)) from None
+    text = "".join(o.get("text", "") for o in run.cells[-1].get("outputs", [])
+                   if o.get("output_type") == "stream")
+    line = next((ln for ln in text.splitlines() if ln.startswith(_MARK)), None)
+    if line is None:
+        raise SubmissionError("the notebook's answers could not be read after the run")
+    got = json.loads(line[len(_MARK):])
+    if got["answers"] is None:
+        raise SubmissionError("after the run there is no dict named 'answers'")
+    return got["student_id"], got["answers"]
