@@ -24,7 +24,13 @@ concentration, s. 2.2), :mod:`~kinetostatics.gears` (s. 2.3.3),
 from __future__ import annotations
 
 from . import _moved
-from .model.errors import AssemblyError, SceneError, StructureError, WorkbenchError
+from .model.errors import (
+    AssemblyError,
+    SceneError,
+    StructureError,
+    UnitWarning,
+    WorkbenchError,
+)
 from .model.examples import cam_examples, example, examples, scene_path
 from .model.scene import Scene, load_scene
 from .motion.scene import simulate_motion
@@ -35,8 +41,8 @@ from .solver.structure import Dyad, Structure, analyse
 
 __all__ = [
     "AssemblyError", "Dyad", "Kinematics", "Scene", "SceneError", "Solution", "Structure",
-    "StructureError", "WorkbenchError", "analyse", "cam_examples", "example", "examples",
-    "load_scene", "scene_path",
+    "StructureError", "UnitWarning", "WorkbenchError", "analyse", "cam_examples", "example",
+    "examples", "load_scene", "scene_path",
     "simulate_motion", "solve", "solve_kinematics",
 ]
 

@@ -23,3 +23,8 @@ class AssemblyError(WorkbenchError):
 
 class StructureError(WorkbenchError):
     """The chain is not a driver plus dyads (Assur groups of class II)."""
+
+
+class UnitWarning(UserWarning):
+    """A number that looks like a unit slip (radians for degrees, rpm for rad/s, mm for m).
+    The solve goes on; the command line prints it as a ``warning:`` line."""

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from .errors import SceneError
+from .errors import SceneError, UnitWarning
 from .tomlio import (
     as_float,
     as_int,
@@ -237,9 +237,57 @@ def load_scene(source: Any) -> Scene:
     balancing = top.get("balancing")
     if balancing is not None and not isinstance(balancing, dict):
         raise SceneError("[balancing] must be a table")
-    return Scene(title=title, gravity=gravity, ground=ground, driver=driver, bodies=bodies,
-                 joints=joints, loads=loads, near=near, motion=motion, balancing=balancing,
-                 raw=raw)
+    scene = Scene(title=title, gravity=gravity, ground=ground, driver=driver, bodies=bodies,
+                  joints=joints, loads=loads, near=near, motion=motion, balancing=balancing,
+                  raw=raw)
+    _check_units(scene)
+    return scene
+
+
+def _check_units(scene: Scene) -> None:
+    """Warn (:class:`UnitWarning`) where a number looks like a unit slip: a crank's sweep
+    of 2 pi degrees (radians typed in a degree field), a speed above 1e4 rad/s (rpm typed
+    in a rad/s field), a point or cog farther from its body's joints than 100 times the
+    mechanism's size (millimetres among metres: a length typed in mm is 1000 times too
+    long). A warning never stops the solve."""
+    drv = scene.driver
+    pos = drv.positions
+    if drv.kind == "R" and pos.size > 1:
+        extent = float(np.ptp(pos))
+        if abs(extent - 2.0 * math.pi) <= 0.01 * 2.0 * math.pi:
+            warnings.warn(f"driver: the sweep spans {extent:.4g} deg, about 2 pi: positions are "
+                          "in degrees (a full turn is 360), not radians", UnitWarning,
+                          stacklevel=3)
+    if drv.kind == "R" and abs(drv.speed) > 1e4:
+        warnings.warn(f"driver.speed = {drv.speed:.6g} rad/s ({abs(drv.speed) * 30 / math.pi:.4g} "
+                      "rpm) looks like rpm in a rad/s field; give speed_rpm instead",
+                      UnitWarning, stacklevel=3)
+    joint_pts: dict[str, list[tuple[float, float]]] = {b: [] for b in scene.bodies}
+    for j in scene.joints.values():
+        if j.kind != "R":
+            continue
+        for b, p in zip(j.bodies, j.points, strict=True):
+            if b in joint_pts:
+                joint_pts[b].append(scene.bodies[b].points[p])
+    pts = [p for b in joint_pts.values() for p in b] + list(scene.ground.values())
+    if len(pts) < 2:
+        return
+    arr = np.asarray(pts, dtype=float)
+    size = max(float(np.max(np.hypot(*(arr - arr.mean(axis=0)).T))), 1e-300)
+    for name, body in scene.bodies.items():
+        ref = joint_pts[name]
+        if not ref:
+            continue
+        named = dict(body.points)
+        if body.cog is not None:
+            named["cog"] = body.cog
+        for pname, p in named.items():
+            far = min(math.hypot(p[0] - q[0], p[1] - q[1]) for q in ref)
+            if far > 100.0 * size:
+                warnings.warn(f"body {name!r}: point {pname} = [{p[0]:g}, {p[1]:g}] is "
+                              f"{far:.3g} m from the body's joints, over 100 times the "
+                              f"mechanism's size ({size:.3g} m): millimetres among metres? "
+                              "Every length is in m", UnitWarning, stacklevel=3)
 
 
 def _ground(table: Any) -> dict[str, tuple[float, float]]:

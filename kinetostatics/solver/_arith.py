@@ -4,11 +4,13 @@ Coordinates are kept as separate x and y arrays over positions, but many of them
 scalars: the ground's, a fixed pivot's, a constant speed's, a local coordinate that is
 0. Multiplying or adding a full array by such a scalar is a wasted pass over memory;
 these helpers return the other operand instead. Results are bit-identical to the plain
-expressions (x + 0.0 == x, x * 1.0 == x; x * 0.0 is taken as 0.0, which differs only
-for infinite x, never present here).
+expressions (x + 0.0 == x, x * 1.0 == x, x * 0.0 == 0.0 for finite x); a NaN or an
+infinity multiplied by an exact zero stays NaN, so the solver's final check sees it.
 """
 
 from __future__ import annotations
+
+import weakref
 
 import numpy as np
 
@@ -18,10 +20,30 @@ def zero(x) -> bool:
     return isinstance(x, float | int) and x == 0
 
 
+_FINITE: weakref.WeakValueDictionary = weakref.WeakValueDictionary()
+
+
+def _finite(x) -> bool:
+    """True when x (a scalar or an array) holds no NaN or infinity; each array is summed
+    once (remembered by identity while it lives)."""
+    if not isinstance(x, np.ndarray):
+        return bool(np.isfinite(x))
+    if _FINITE.get(id(x)) is x:
+        return True
+    ok = bool(np.isfinite(np.sum(x)))
+    if ok:
+        _FINITE[id(x)] = x
+    return ok
+
+
 def mul(a, b):
-    """a * b."""
+    """a * b; an exact scalar zero gives 0.0 without a pass over the other operand, unless
+    that operand holds a NaN or an infinity (0 * NaN is NaN: never hidden)."""
     if zero(a) or zero(b):
-        return 0.0
+        if _finite(b if zero(a) else a):
+            return 0.0
+        with np.errstate(invalid="ignore"):
+            return a * b
     if isinstance(a, float | int) and a == 1:
         return b
     if isinstance(b, float | int) and b == 1:
