@@ -9,9 +9,15 @@ plain function for notebooks:
 - resonance amplitude methods: :func:`parallelogram` (three runs, eqs 3.22-3.31),
   :func:`trial_runs` (any marks, least squares), :func:`four_run`;
 - with measured phase: :func:`influence_single_plane`, :func:`influence_two_plane`,
-  :func:`influence_balance` (influence coefficients, least squares);
+  :func:`influence_balance` (influence coefficients, least squares over sensors and
+  speeds, intervals from amplitude and phase noise, conditioning warnings),
+  :func:`trim_balance` (trim runs);
+- the field balancer's weights: :func:`split_correction` (onto N fixed positions),
+  :func:`combine_weights`; units at the boundary: :class:`Units`;
 - ISO 21940-11 tolerances: :func:`iso_permissible_unbalance`, :func:`iso_allocate`,
-  :func:`iso_check`;
+  :func:`iso_tolerances` (bearing and correction planes, narrow rotors),
+  :func:`to_bearing_planes`, :func:`iso_check`;
+- a balancing report (HTML or PDF): :func:`balance.report.write_report`;
 - static balancing of mechanisms (s. 3.4): :func:`solve_mechanism_balancing`,
   :func:`shaking_force`, :func:`centre_of_mass`, :func:`h_vectors`,
   :func:`harmonic_amplitude`, :func:`balanced_scene`;
@@ -27,21 +33,27 @@ from __future__ import annotations
 
 from .api import example_path, examples, solve, solve_results
 from .errors import BalanceError, BalanceWarning
+from .field import Combined, Split, combine_weights, split_correction
 from .influence import (
     InfluenceResult,
     influence_balance,
     influence_coefficients,
     influence_single_plane,
     influence_two_plane,
+    trim_balance,
 )
+from .influence_stats import NoiseModel
 from .iso import (
     GRADES,
     IsoAllocation,
     IsoCheck,
+    IsoTolerances,
     iso_allocate,
     iso_check,
     iso_permissible_unbalance,
+    iso_tolerances,
     kgm_to_gmm,
+    to_bearing_planes,
 )
 from .mechanism import (
     CounterRotatingPair,
@@ -59,6 +71,7 @@ from .rotor import Correction, CorrectionPlane, RotorResult, Unbalance, balance_
 from .scene import BalanceScene, load_scene
 from .static_device import StaticDeviceResult, static_device
 from .uncertainty import Interval
+from .units import Units
 
 __all__ = [
     "GRADES",
@@ -78,6 +91,16 @@ __all__ = [
     "BalanceError",
     "BalanceScene",
     "BalanceWarning",
+    "Combined",
+    "IsoTolerances",
+    "NoiseModel",
+    "Split",
+    "Units",
+    "combine_weights",
+    "iso_tolerances",
+    "split_correction",
+    "to_bearing_planes",
+    "trim_balance",
     "Correction",
     "CorrectionPlane",
     "InfluenceResult",

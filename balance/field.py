@@ -111,7 +111,7 @@ def split_correction(mass: float, angle: float, positions: int, first: float = 0
     --------
     >>> s = split_correction(10.0, 100.0, 8)       # holes every 45 deg: 90 and 135
     >>> [(p.position, p.angle, round(p.mass, 4)) for p in s.placements]
-    [(3, 90.0, 7.8986), (4, 135.0, 2.8497)]
+    [(3, 90.0, 8.1116), (4, 135.0, 2.4558)]
     """
     m = check_number(mass, "split: mass", nonnegative=True)
     theta = deg360(check_number(angle, "split: angle"))
