@@ -14,9 +14,20 @@ rotor whose centre of mass lies between the planes): in inverse proportion to th
 distances, U_per,A = U_per L_B / L and U_per,B = U_per L_A / L (L_A, L_B the
 distances of the centre of mass from planes A and B, L = L_A + L_B), each share
 limited to [0.3, 0.7] U_per so that neither plane gets an unreasonably tight
-tolerance (the shares still add up to U_per). Overhung or narrow rotors, with the
-centre of mass outside the planes, need the standard's full procedure and are
-refused here.
+tolerance (the shares still add up to U_per); :func:`iso_allocate` applies it to
+a centre of mass between the planes and refuses others.
+
+The standard states its tolerances in the bearing planes (the tolerance planes)
+while the corrections go where material can be added. :func:`iso_tolerances`
+allocates U_per to the bearing planes (the lever rule above; for an overhung rotor,
+centre of mass outside the bearings, the bearing-plane unbalances that U_per at the
+centre of mass produces) and carries the tolerances to two correction planes,
+inboard or outboard, by statics: correction-plane residuals U_1, U_2 load the
+bearing planes like U_A = (U_1 (z_B - z_1) + U_2 (z_B - z_2)) / L, U_B = (U_1 (z_1 -
+z_A) + U_2 (z_2 - z_A)) / L, and with unknown angles the worst case adds their
+magnitudes. For narrow rotors (correction planes close together) it gives a static
+and a couple tolerance instead. :func:`to_bearing_planes` carries measured residuals
+to the bearing planes (exactly when their angles are known).
 """
 
 from __future__ import annotations
