@@ -56,7 +56,7 @@ from .reactions import DriverReaction, JointReaction, solve_reactions
 
 NEWTON_ITERATIONS = 40      # per continuation step and for the final solve
 NEWTON_TOLERANCE = 1e-12    # on the row's own scale (normalised unknowns)
-FIRST_STEP = 0.25           # first continuation step in lambda
+FIRST_STEP = 1.0            # first continuation step in lambda
 MAX_PATH_STEP = 0.25        # largest change of the normalised unknowns in one step
 MIN_STEP = 1e-9             # a step in lambda below this: the row does not settle
 MAX_STEPS = 400
@@ -163,31 +163,65 @@ class _Rows:
 
     def __init__(self, specs: list[_Spec], q0: np.ndarray, g: np.ndarray, w: np.ndarray):
         self.specs = specs
-        self.q0, self.g, self.w = q0, g, w
+        self.n = q0.shape[0]
+        self.q0, self.w = q0, w
+        self.gt = g / w[:, None, :]     # the response to the normalised unknowns
         self.slices = []
         start = 0
         for sp in specs:
             self.slices.append(slice(start, start + sp.width))
             start += sp.width
 
-    def h(self, q: np.ndarray, idx) -> tuple[np.ndarray, np.ndarray]:
-        """Normalised magnitudes w h(q) and their Jacobian d(w h)/dq at rows idx."""
+    def take(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """q0, G / w and w at rows idx (views when idx is every row)."""
+        if idx.size == self.n:
+            return self.q0, self.gt, self.w
+        return self.q0[idx], self.gt[idx], self.w[idx]
+
+    def lipschitz(self) -> np.ndarray:
+        """Per row, a bound L on how much the normalised magnitudes w h(q0 + G s) change
+        per unit change of the normalised s (max norm). Where L < 1 the map is a
+        contraction for every lambda in [0, 1]: one solution, and the branch from no
+        friction leads to it."""
+        out = np.zeros(self.n)
+        for j, (sp, sl) in enumerate(zip(self.specs, self.slices, strict=True)):
+            col = self.gt[:, sl, :]                         # (n, width, k)
+            if sp.joint.kind == "R":
+                per = np.hypot(col[:, 0, :], col[:, 1, :])
+            elif sp.width == 1:
+                per = np.abs(col[:, 0, :])
+            else:                               # |dN_A| + |dN_B| <= |dN| + 2 |dM| / l
+                per = np.abs(col[:, 0, :]) + 2.0 * np.abs(col[:, 1, :]) / sp.length
+            out = np.maximum(out, sp.coeff * self.w[:, j] * per.sum(axis=1))
+        return out
+
+    def linearise(self, q: np.ndarray, w: np.ndarray, gt: np.ndarray, q0: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """At the reaction quantities q: the normalised magnitudes w h(q), and the
+        products of their Jacobian d(w h)/dq with G / w and with q0 (each magnitude
+        reads only its own joint's quantities)."""
         n, k = q.shape[0], len(self.specs)
         hv = np.empty((n, k))
-        dh = np.zeros((n, k, q.shape[1]))
+        dhg = np.empty((n, k, k))
+        dhq = np.empty((n, k))
         for j, (sp, sl) in enumerate(zip(self.specs, self.slices, strict=True)):
-            hv[:, j], dh[:, j, sl] = _magnitude(sp, q[:, sl])
-        w = self.w[idx]
-        return hv * w, dh * w[:, :, None]
-
-    def gt(self, idx) -> np.ndarray:
-        """G with its columns divided by w (the response to the normalised unknowns)."""
-        return self.g[idx] / self.w[idx][:, None, :]
+            h, grad = _magnitude(sp, q[:, sl])
+            grad = grad * w[:, j:j + 1]
+            hv[:, j] = h * w[:, j]
+            dhg[:, j, :] = np.einsum("nw,nwk->nk", grad, gt[:, sl, :])
+            dhq[:, j] = np.einsum("nw,nw->n", grad, q0[:, sl])
+        return hv, dhg, dhq
 
 
 def _solve_batch(jac: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Batched linear solves; rows whose matrix is singular give a zero step and False."""
+    """Batched linear solves; rows whose matrix is singular (or not finite) give a zero
+    step and False."""
     ok = np.isfinite(jac).all(axis=(1, 2)) & np.isfinite(rhs).all(axis=1)
+    if ok.all():
+        try:
+            return np.linalg.solve(jac, rhs[..., None])[..., 0], ok
+        except np.linalg.LinAlgError:
+            pass
     ok &= np.abs(np.linalg.det(np.where(ok[:, None, None], jac, 1.0))) > 1e-300
     eye = np.eye(jac.shape[1])
     safe = np.where(ok[:, None, None], jac, eye)
@@ -204,29 +238,31 @@ def _newton_path(rows: _Rows, idx: np.ndarray, lam: np.ndarray, x: np.ndarray
     done = np.zeros(idx.size, dtype=bool)
     failed = np.zeros(idx.size, dtype=bool)
     eye = np.eye(k)
+    live = np.arange(idx.size)
     for _ in range(NEWTON_ITERATIONS):
-        live = np.flatnonzero(~done & ~failed)
-        if live.size == 0:
-            break
-        rid = idx[live]
-        gt, q0, la = rows.gt(rid), rows.q0[rid], lam[live]
+        q0, gt, w = rows.take(idx[live])
+        la = lam[live]
         s, sig = x[live, :k], x[live, k]
         q = sig[:, None] * q0 + np.einsum("nmk,nk->nm", gt, s)
-        hv, dh = rows.h(q, rid)
+        hv, dhg, dhq = rows.linearise(q, w, gt, q0)
         res = np.concatenate([s - la[:, None] * hv, (sig + s.sum(axis=1) - 1.0)[:, None]],
                              axis=1)
-        jac = np.zeros((live.size, k + 1, k + 1))
-        jac[:, :k, :k] = eye - la[:, None, None] * (dh @ gt)
-        jac[:, :k, k] = -la[:, None] * np.einsum("nkm,nm->nk", dh, q0)
+        jac = np.empty((live.size, k + 1, k + 1))
+        jac[:, :k, :k] = eye - la[:, None, None] * dhg
+        jac[:, :k, k] = -la[:, None] * dhq
         jac[:, k, :] = 1.0
         step, ok = _solve_batch(jac, -res)
         x[live] += step
         failed[live[~ok]] = True
         done[live[ok & (np.abs(step).max(axis=1) <= NEWTON_TOLERANCE)]] = True
+        live = np.flatnonzero(~done & ~failed)
+        if live.size == 0:
+            break
     return x, done & ~failed
 
 
-def _follow(rows: _Rows, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def _follow(rows: _Rows, subset: np.ndarray
+            ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Follow every row's branch from no friction (lambda = 0) to the given one.
 
     The branch of a row ends before lambda = 1 in two ways, and the row locks: sigma
@@ -234,13 +270,16 @@ def _follow(rows: _Rows, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np
     fold (the Jacobian of the system is singular there: beyond it, friction this high
     has no equilibrium near the branch). Neither is followed further.
 
-    Returns x = (w s, sigma) at lambda = 1 (where the branch ended, for locked rows),
-    the locked rows, the rows whose sigma reached 0, and the scale where the branch
-    ended (sigma = 0 interpolated in the last step, or the fold; 1 for free rows)."""
+    Only the rows in ``subset`` are followed. Returns, over every row, x = (w s, sigma)
+    at lambda = 1 (where the branch ended, for locked rows), the locked rows, the rows
+    whose sigma reached 0, and the scale where the branch ended (sigma = 0 interpolated
+    in the last step, or the fold; 1 for free rows)."""
     k = len(rows.specs)
+    n = rows.n
     x = np.zeros((n, k + 1))
     x[:, k] = 1.0
-    lam = np.zeros(n)
+    lam = np.ones(n)
+    lam[subset] = 0.0
     step = np.full(n, FIRST_STEP)
     ended = np.ones(n)
     crossed = np.zeros(n, dtype=bool)
@@ -278,46 +317,47 @@ def _newton_direct(rows: _Rows, s: np.ndarray, idx: np.ndarray
     branch's point; convergence on each row's own scale. Returns s and the converged."""
     k = len(rows.specs)
     s = s.copy()
+    if idx.size == 0:
+        return s, np.zeros(0, dtype=bool)
     done = np.zeros(idx.size, dtype=bool)
     failed = np.zeros(idx.size, dtype=bool)
     eye = np.eye(k)
+    live = np.arange(idx.size)
     for _ in range(NEWTON_ITERATIONS):
-        live = np.flatnonzero(~done & ~failed)
-        if live.size == 0:
-            break
-        rid = idx[live]
-        gt, q0 = rows.gt(rid), rows.q0[rid]
+        q0, gt, w = rows.take(idx[live])
         sl = s[live]
-        hv, dh = rows.h(q0 + np.einsum("nmk,nk->nm", gt, sl), rid)
-        res = sl - hv
-        step, ok = _solve_batch(eye - dh @ gt, -res)
+        hv, dhg, _ = rows.linearise(q0 + np.einsum("nmk,nk->nm", gt, sl), w, gt, q0)
+        step, ok = _solve_batch(eye - dhg, hv - sl)
         s[live] += step
         failed[live[~ok]] = True
         # the row's own scale: its unknowns and the terms of its residual
         scale = 1.0 + np.abs(sl).max(axis=1) + np.abs(hv).max(axis=1)
         done[live[ok & (np.abs(step).max(axis=1) <= NEWTON_TOLERANCE * scale)]] = True
+        live = np.flatnonzero(~done & ~failed)
+        if live.size == 0:
+            break
     return s, done & ~failed
 
 
 def _critical_scale(rows: _Rows, idx: np.ndarray, x: np.ndarray, lam0: np.ndarray
                     ) -> tuple[np.ndarray, np.ndarray]:
-    """For locked rows: the scale lambda* where the unloaded system s = lambda h(G s)
-    first has a solution with sum(w s) = 1 (the force without bound), and that
-    direction. Newton on (w s, lambda) from the branch's point where sigma reached 0."""
+    """For rows whose force grows without bound: the scale lambda* where the unloaded
+    system s = lambda h(G s) has a solution with sum(w s) = 1, and that direction.
+    Newton on (w s, lambda) from the branch's point where sigma reached 0."""
     k = len(rows.specs)
     y = np.concatenate([np.clip(x[:, :k], 0.0, None), lam0[:, None]], axis=1)
     y[:, :k] /= np.maximum(y[:, :k].sum(axis=1, keepdims=True), 1e-300)
     eye = np.eye(k)
+    q0, gt, w = rows.take(idx)
     for _ in range(NEWTON_ITERATIONS):
-        gt = rows.gt(idx)
         s, la = y[:, :k], y[:, k]
-        hv, dh = rows.h(np.einsum("nmk,nk->nm", gt, s), idx)
+        hv, dhg, _ = rows.linearise(np.einsum("nmk,nk->nm", gt, s), w, gt, q0)
         res = np.concatenate([s - la[:, None] * hv, (s.sum(axis=1) - 1.0)[:, None]], axis=1)
         jac = np.zeros((idx.size, k + 1, k + 1))
-        jac[:, :k, :k] = eye - la[:, None, None] * (dh @ gt)
+        jac[:, :k, :k] = eye - la[:, None, None] * dhg
         jac[:, :k, k] = -hv
         jac[:, k, :k] = 1.0
-        step, ok = _solve_batch(jac, -res)
+        step, _ok = _solve_batch(jac, -res)
         y += step
         if np.abs(step).max() <= NEWTON_TOLERANCE:
             break
@@ -394,15 +434,22 @@ def solve_with_friction(scene: Scene, kin: Kinematics, loads: list[PointLoad]
     g = np.stack(cols, axis=2)                                  # (n, m, k)
     w = _row_scale(specs, q0, g)
     rows = _Rows(specs, q0, g, w)
-    x, locked, crossed, ended = _follow(rows, n)
     k = len(specs)
-    free = np.flatnonzero(~locked)
+    s = np.full((n, k), np.nan)
+    # rows where the friction feedback is a contraction: one solution, Newton from zero
+    easy = np.flatnonzero(rows.lipschitz() < 1.0)
+    sn, ok = _newton_direct(rows, np.zeros((easy.size, k)), easy)
+    s[easy[ok]] = sn[ok] / w[easy[ok]]
+    hard = np.ones(n, dtype=bool)
+    hard[easy[ok]] = False
+    # the others: follow the branch from no friction, then settle at the given friction
+    x, locked, crossed, ended = _follow(rows, np.flatnonzero(hard))
+    free = np.flatnonzero(hard & ~locked)
     sn, ok = _newton_direct(rows, x[free, :k] / x[free, k:], free)
     if not ok.all():
         p = scene.driver.positions[free[np.flatnonzero(~ok)[0]]]
         raise WorkbenchError(f"the friction equations do not settle at driver position "
                              f"{p:g}; lower the friction coefficients there")
-    s = np.full((n, k), np.nan)
     s[free] = sn / w[free]
     if locked.all():
         lam, dirn = ended, x[:, :k]

@@ -6,6 +6,8 @@ import tomllib
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import kinetostatics as ks
 from kinetostatics.model.errors import SceneError
@@ -123,17 +125,17 @@ def test_summary_leaves_self_locking_rows_out():
 R_CRANK, L_ROD, E_OFFSET, RESIST = 0.05, 0.12, 0.03, 100.0
 
 
-def offset_slider_crank(mu, positions=None, count=721):
-    """Massless offset slider-crank (crank 0.05, rod 0.12, guide 0.03 above the crank
+def offset_slider_crank(mu, positions=None, count=721, r=R_CRANK, length=L_ROD, e=E_OFFSET):
+    """Massless offset slider-crank (crank r, rod ``length``, guide e above the crank
     pivot), friction in the guide only, a ``resist`` force on the slider."""
     drv = {"body": "crank", "joint": "A", "speed": 10.0}
     drv.update({"positions": list(positions)} if positions is not None else
                {"start": 0.0, "stop": 360.0, "count": count})
     return {
-        "ground": {"A": [0.0, 0.0], "O": [0.0, E_OFFSET]},
+        "ground": {"A": [0.0, 0.0], "O": [0.0, e]},
         "driver": drv,
-        "bodies": [{"name": "crank", "points": {"A": [0.0, 0.0], "B": [R_CRANK, 0.0]}},
-                   {"name": "rod", "points": {"B": [0.0, 0.0], "C": [L_ROD, 0.0]}},
+        "bodies": [{"name": "crank", "points": {"A": [0.0, 0.0], "B": [r, 0.0]}},
+                   {"name": "rod", "points": {"B": [0.0, 0.0], "C": [length, 0.0]}},
                    {"name": "slider", "points": {"C": [0.0, 0.0]}}],
         "joints": [{"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
                    {"name": "B", "kind": "R", "bodies": ["crank", "rod"]},
@@ -141,19 +143,20 @@ def offset_slider_crank(mu, positions=None, count=721):
                    {"name": "slide", "kind": "T", "guide": "ground", "slider": "slider",
                     "line_point": "O", "slider_point": "C", "friction": {"mu": mu}}],
         "loads": [{"body": "slider", "point": "C", "resist": RESIST}],
-        "near": {"C": [0.16, E_OFFSET]},
+        "near": {"C": [r + length, e]},
     }
 
 
-def slider_crank_closed_form(mu, positions_deg, speed_sign):
+def slider_crank_closed_form(mu, positions_deg, speed_sign, r=R_CRANK, length=L_ROD,
+                             e=E_OFFSET):
     """Me and mu tan(psi) per row. The rod (massless) pushes the slider with T along
     C - B; along the guide T cos(psi) = sgn(v) (R + mu |T sin(psi)|), so with v > 0
     T = R / (cos(psi) - mu |sin(psi)|), which exists only while mu tan(psi) < 1; then
     Me = (B x T (C - B) / l)."""
     phi = np.deg2rad(np.asarray(positions_deg, dtype=float))
-    bx, by = R_CRANK * np.cos(phi), R_CRANK * np.sin(phi)
-    c = np.sqrt(L_ROD**2 - (E_OFFSET - by) ** 2) / L_ROD          # cos(psi)
-    s = (E_OFFSET - by) / L_ROD                                     # sin(psi)
+    bx, by = r * np.cos(phi), r * np.sin(phi)
+    c = np.sqrt(length**2 - (e - by) ** 2) / length                 # cos(psi)
+    s = (e - by) / length                                           # sin(psi)
     with np.errstate(divide="ignore"):
         t = speed_sign * RESIST / (c - mu * np.abs(s))
     me = (bx * s - by * c) * t
@@ -292,3 +295,36 @@ def test_a_load_that_drives_the_crank_is_not_self_locking():
     fa = sol.reactions.query("joint == 'A'").F.to_numpy()
     couple = [ld for ld in sol.loads if ld.kind == "friction"][0]
     assert np.allclose(np.abs(couple.m), 0.1 * fa, rtol=1e-13, atol=0)
+
+
+@settings(max_examples=40, deadline=None)
+@given(r=st.floats(0.02, 0.2), ratio=st.floats(1.5, 5.0), offset=st.floats(-0.9, 0.9),
+       mu=st.floats(0.05, 3.0))
+def test_slider_crank_friction_property(r, ratio, offset, mu):
+    """Any offset slider-crank, any guide friction: locked exactly where mu tan(psi) >= 1
+    (up to rounding at the limit itself) and Me equal to the closed form elsewhere, to
+    the problem's own conditioning eps / (1 - mu tan(psi))."""
+    from kinetostatics.solver.friction import SelfLockingError
+    length = ratio * r
+    e = offset * (length - r)
+    try:
+        sol = ks.solve(offset_slider_crank(mu, count=181, r=r, length=length, e=e))
+    except SelfLockingError:                # every row locks: so says the closed form
+        _me, mutan = slider_crank_closed_form(mu, np.linspace(0.0, 360.0, 181), 1.0, r,
+                                              length, e)
+        assert (mutan >= 1.0 - 1e-9).all()
+        return
+    me, mutan = slider_crank_closed_form(mu, sol.positions, slider_velocity_sign(sol), r,
+                                         length, e)
+    locked = sol.driver.self_locking.to_numpy()
+    # rows at the limit itself (rounding) or where the slider stands still (no friction)
+    clear = (np.abs(mutan - 1.0) > 1e-9) & ~sol.driver.undefined_load.to_numpy()
+    assert np.array_equal(locked[clear], mutan[clear] >= 1.0)
+    free = ~locked & clear
+    # the row's own scale: the crank times the rod force |T| = R / |cos(psi) - mu |sin(psi)||,
+    # amplified by the conditioning 1 / (1 - mu tan(psi)); measured <= 2.9 of it
+    phi = np.deg2rad(sol.positions[free])
+    sn = (e - r * np.sin(phi)) / length
+    force = RESIST / np.abs(np.sqrt(1.0 - sn * sn) - mu * np.abs(sn))
+    bound = 20.0 * np.finfo(float).eps * r * force / (1.0 - mutan[free])
+    assert (np.abs(sol.Me[free] - me[free]) <= bound).all()
