@@ -1,0 +1,161 @@
+"""The assembly belongs to the mechanism: chosen once at the scene's first row, kept by
+every later evaluation (any batch of positions, in any order), and messages that help."""
+
+from __future__ import annotations
+
+import math
+import tomllib
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import kinetostatics as ks
+from kinetostatics.model.errors import AssemblyError
+from kinetostatics.motion.scene import ReducedMechanism
+from tests.kinetostatics.forward import ForwardMechanism
+
+
+def shaper(**motion) -> dict:
+    """The bundled shaper with a motor, a flywheel and a resisting force on the tool. Its
+    hint F = [0.12, 0.55] picks the ram left of the lever tip at the first row; at other
+    crank angles the same hint would pick the other assembly."""
+    with open(ks.example("shaper"), "rb") as fh:
+        d = tomllib.load(fh)
+    d["near"]["F"] = [0.12, 0.55]
+    d["loads"] = [{"body": "ram", "point": "T", "resist": 400.0}]
+    d["motion"] = {"motor": {"stall_moment": 400.0, "no_load_speed": 16.0}, "flywheel": 2.0,
+                   "omega0": 14.0, "cycles": 8, **motion}
+    return d
+
+
+def test_structure_carries_the_assembly() -> None:
+    sc = ks.load_scene(shaper())
+    st_ = ks.analyse(sc)
+    assert len(st_.assembly) == len(st_.dyads) == 2
+    assert all(k in (1, -1) for k in st_.assembly)
+    assert "assembly k =" in st_.describe()[-1]
+    # the bare decomposition has none; solve_kinematics chooses the same one
+    bare = ks.analyse(sc, assemble=False)
+    assert bare.assembly == ()
+    assert ks.solve_kinematics(sc, bare).structure.assembly == st_.assembly
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.lists(st.floats(0.0, 360.0, allow_nan=False), min_size=1, max_size=12),
+       st.randoms(use_true_random=False))
+def test_batch_order_never_changes_a_result(angles, rnd) -> None:
+    """Positions solved in any order and in any batch give the rows of one sweep."""
+    d = shaper()
+    d.pop("motion")
+    scene = ks.load_scene(d)
+    ordered = ks.solve(scene, positions=sorted(angles))
+    batch = list(angles)
+    rnd.shuffle(batch)
+    shuffled = ks.solve(scene, positions=batch)
+
+    def by_position(sol, table, cols):
+        df = getattr(sol, table)
+        keys = [c for c in ("position", "body", "point", "joint") if c in df.columns]
+        return df.astype({k: str for k in keys[1:]}).sort_values(keys)[cols].to_numpy(float)
+
+    kin_cols = ["position", "x", "y", "vx", "vy", "ax", "ay"]
+    np.testing.assert_array_equal(by_position(ordered, "kinematics", kin_cols),
+                                  by_position(shuffled, "kinematics", kin_cols))
+    np.testing.assert_array_equal(by_position(ordered, "reactions", ["position", "Fx", "Fy"]),
+                                  by_position(shuffled, "reactions", ["position", "Fx", "Fy"]))
+    np.testing.assert_array_equal(by_position(ordered, "driver", ["position", "Me"]),
+                                  by_position(shuffled, "driver", ["position", "Me"]))
+    a = by_position(ordered, "bodies", ["position", "angle", "omega", "alpha"])
+    b = by_position(shuffled, "bodies", ["position", "angle", "omega", "alpha"])
+    np.testing.assert_array_equal(a[:, [0, 2, 3]], b[:, [0, 2, 3]])
+    # the angle column is continuous along each sweep: equal modulo 360 deg
+    turns = (a[:, 1] - b[:, 1]) / 360.0
+    assert np.abs(turns - np.round(turns)).max() <= 1e-13
+    # and a single position alone is the same row as in the whole sweep
+    one = ks.solve(scene, positions=[batch[0]])
+    full = ks.solve(scene, positions=[scene.driver.positions[0], batch[0]])
+    assert float(np.asarray(one.Me)[0]) == float(np.asarray(full.Me)[1])
+
+
+def test_reduced_mechanism_is_the_same_at_any_batch() -> None:
+    """Motion under forces evaluates I_r and M_r at batches of angles: a batch that starts
+    where the hint would pick the other assembly gives the values of the ordered sweep."""
+    rm = ReducedMechanism(ks.load_scene(shaper()), 0.0)
+    phi = np.deg2rad(np.linspace(0.0, 360.0, 73))
+    whole = rm.evaluate(phi)
+    for start in (0, 20, 37, 55):
+        batch = np.roll(phi, -start)[:30]
+        part = rm.evaluate(batch)
+        ref = [np.roll(v, -start)[:30] for v in whole]
+        for got, want in zip(part, ref, strict=True):
+            np.testing.assert_allclose(got, want, rtol=0, atol=1e-12 * np.abs(want).max())
+
+
+def test_motion_does_not_depend_on_the_tolerance() -> None:
+    """The old bug: rtol 1e-8 / 1e-10 / 1e-12 settled at 13.917 / 13.938 / 13.938 rad/s."""
+    means = [ks.simulate_motion(shaper(), rtol=r).summary["omega_mean"]
+             for r in (1e-8, 1e-10, 1e-12)]
+    assert max(means) - min(means) <= 1e-7 * means[-1]    # measured 1e-7 rad/s apart
+
+
+def test_shaper_motion_agrees_with_forward_dynamics_of_all_bodies() -> None:
+    """Crank + RTR slotted lever + RRT ram with a resisting tool force, a motor and a
+    flywheel, against an all-body Newton-Euler forward dynamics (R and T joints)."""
+    d = shaper(cycles=1)
+    res = ks.simulate_motion(d)
+    fwd = ForwardMechanism(d, lambda w: 400.0 * (1.0 - w / 16.0), 2.0)
+    track = fwd.run(0.0, 14.0, 0.45, 1.5e-3)          # 0.45 s: past both ram reversals
+    w_ref = res.solution.omega(track[:, 1])
+    err = np.abs(track[:, 2] - w_ref).max() / np.abs(w_ref).max()
+    # measured 8.9e-10: the forward RK4's own error (1.4e-8 at dt = 3e-3, order 4)
+    assert err <= 3e-9, err
+
+
+def test_unreachable_first_row_says_by_how_much() -> None:
+    with open(ks.example("slider_crank"), "rb") as fh:
+        d = tomllib.load(fh)
+    d["ground"]["O"] = [0.15, 0.6]                  # the guide far out of the rod's reach
+    with pytest.raises(AssemblyError) as exc:
+        ks.solve(d)
+    msg = str(exc.value)
+    assert "cannot be assembled" in msg and "do not reach by" in msg
+    assert " or (" not in msg                       # no identical "two assemblies"
+    with open(ks.example("four_bar"), "rb") as fh:
+        d = tomllib.load(fh)
+    d["ground"]["D"] = [3.0, 0.0]
+    with pytest.raises(AssemblyError, match=r"do not reach by 2\.45 m"):
+        ks.solve(d)
+
+
+def test_rtr_hint_names_a_moving_point() -> None:
+    with open(ks.example("slotted_lever"), "rb") as fh:
+        d = tomllib.load(fh)
+    d.pop("near")
+    with pytest.raises(AssemblyError) as exc:
+        ks.solve(d)
+    msg = str(exc.value)
+    assert '[near] "lever.E"' in msg and "lever.O4" not in msg
+    # the suggested hint settles it
+    hint = msg.split("= [")[1].rstrip("]")
+    d["near"] = {"lever.E": [float(v) for v in hint.split(",")]}
+    assert ks.solve(d).summary()["positions"] == 361
+
+
+def test_hint_names_the_joint_for_a_revolute_inner_joint() -> None:
+    with open(ks.example("four_bar"), "rb") as fh:
+        d = tomllib.load(fh)
+    d.pop("near")
+    with pytest.raises(AssemblyError, match=r"\[near\] C = \["):
+        ks.solve(d)
+
+
+def test_assembly_chosen_at_the_first_row_even_for_one_position() -> None:
+    """positions= a single angle where the hint is ambiguous about the other assembly."""
+    scene = ks.load_scene({**shaper(), "motion": None} if False else
+                          {k: v for k, v in shaper().items() if k != "motion"})
+    k0 = ks.analyse(scene).assembly
+    for a in (90.0, 180.0, 270.0):
+        assert ks.solve(scene, positions=[a]).structure.assembly == k0
+    assert math.isfinite(float(np.asarray(ks.solve(scene, positions=[200.0]).Me)[0]))
