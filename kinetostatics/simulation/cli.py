@@ -117,11 +117,11 @@ def _cmd_crosscheck(args) -> int:
         if args.json:
             print(json.dumps(_clean(st.summary()), indent=2))
             return 0
-        t = st.table.copy()
-        print(t.to_string(index=False, float_format=lambda x: f"{x:.3g}"))
-        for it, o in st.order.items():
-            print(f"observed order ({it} iterations): "
-                  + ("n/a (fewer than two errors above 1e-6)" if o is None else f"{o:.2f}"))
+        print(_study_table(st).to_string(index=False))
+        print(f"wall time: the best of {st.repeats} run(s) per setting"
+              + ("" if args.serial else " (runs side by side: use --serial for steady times)"))
+        for it in st.order:
+            print(f"observed order ({it} iterations): {st.order_line(it)}")
         for thr in (1e-5, 1e-6):
             b = st.best(thr)
             print(f"cheapest run with error <= {thr:g}: " + (
@@ -156,6 +156,24 @@ def _cmd_crosscheck(args) -> int:
     for n in cc.notes:
         print("  note: " + n)
     return 0
+
+
+def _study_table(st):
+    """The study's table as the command prints it: integer step counts, a diverged
+    setting as "diverged" (with its drift) and no error, noisy timings marked."""
+    import pandas as pd
+    t = st.table
+    rows = []
+    for r in t.itertuples(index=False):
+        rows.append({
+            "case": r.case, "dt": f"{r.dt:.3g}", "steps/rev": f"{r.steps_per_revolution:d}",
+            "iterations": f"{r.iterations:d}",
+            "ms/rev": "-" if r.diverged else
+            f"{r.ms_per_revolution:.3g}" + (" (noise)" if r.timing_noise else ""),
+            "max_error": "diverged" if r.diverged else f"{r.max_error:.3g}",
+            "order": "" if r.diverged or r.order != r.order else f"{r.order:.2f}",
+            "drift (m)": f"{r.drift:.2g}"})
+    return pd.DataFrame(rows)
 
 
 def _plot_study(st):

@@ -1,5 +1,12 @@
 """A simulated run against kinetostatics: the comparison tables (:class:`CrossCheck`).
 
+Two kinds of simulated values are compared. pymunk's own readings, the magnitudes of
+the constraint impulses over dt (every joint's |F| and the driver's |Me| or |Fe|),
+make the headline ``errors`` and ``max_error``. The values derived from the momentum
+balance of the bodies (:mod:`.signed`: the reactions' components, the normal forces
+and couples of prismatic joints, the signed driving moment) go to ``derived_errors``:
+they rest on the balance's own arithmetic as well as on pymunk.
+
 Error of a quantity: the largest |simulated - computed| over the compared rows,
 divided by the largest |computed| there. Compared rows: after the first revolution
 (a full turn is simulated ``revolutions`` times), or, for a sweep shorter than a
@@ -17,6 +24,7 @@ import numpy as np
 import pandas as pd
 
 from ..model.scene import Scene
+from .errors import SimulationError
 from .stepper import SimRecord
 
 ZERO_COUPLE = 1e-9
@@ -37,15 +45,16 @@ class CrossCheck:
         Kinetostatics at the simulated driver positions (its first row, the scene's
         first position, is dropped from every comparison).
     rows : pandas.DataFrame
-        Long table ``position, time, quantity, simulated, computed, used``: one row per
-        sample and quantity (``F[joint]``: magnitudes from the public impulses;
-        ``M[joint]``: the signed couple of a prismatic joint, where kinetostatics does
-        not find it zero; ``Me`` or ``Fe``: signed).
+        Long table ``position, time, quantity, source, simulated, computed, used``: one
+        row per sample and quantity (``F[joint]`` and ``|Me|`` (``|Fe|``): pymunk's
+        readings, ``source = "pymunk"``; ``M[joint]``, the signed couple of a prismatic
+        joint where kinetostatics does not find it zero, and ``Me`` (``Fe``), signed:
+        ``source = "momentum balance"``).
     errors : dict
-        Quantity -> relative error over the compared rows.
-    vector_errors : dict
-        The same for the signed values derived from the momentum balance
-        (``Fx[j]``, ``Fy[j]``, ``N[j]``, ``M[j]``).
+        pymunk's readings: quantity -> relative error over the compared rows.
+    derived_errors : dict
+        The same for the values derived from the momentum balance (``Fx[j]``,
+        ``Fy[j]``, ``N[j]``, ``M[j]``, ``Me`` or ``Fe``).
     settings : dict
         dt, iterations, error_bias, steps per revolution, revolutions, samples.
     notes : list of str
@@ -58,14 +67,20 @@ class CrossCheck:
     reference: Any
     rows: pd.DataFrame
     errors: dict[str, float]
-    vector_errors: dict[str, float]
+    derived_errors: dict[str, float]
     settings: dict[str, Any]
     notes: list[str] = field(default_factory=list)
 
     @property
     def max_error(self) -> float:
-        """The largest error over all joints (|F|, M) and the driving moment (force)."""
+        """The largest error of pymunk's readings: every joint's |F| and the driver's |Me|
+        (|Fe|)."""
         return max(self.errors.values()) if self.errors else float("nan")
+
+    @property
+    def vector_errors(self) -> dict[str, float]:
+        """The earlier name of :attr:`derived_errors`."""
+        return self.derived_errors
 
     @property
     def seconds_per_revolution(self) -> float | None:
@@ -73,15 +88,18 @@ class CrossCheck:
         return self.settings["seconds_per_revolution"]
 
     def error_table(self) -> pd.DataFrame:
-        """Per quantity: ``quantity, unit, scale`` (largest |computed|), ``max_abs_error``,
-        ``error`` (relative) and ``position`` of the worst row."""
+        """Per quantity: ``quantity, source`` (``pymunk`` or ``momentum balance``),
+        ``unit, scale`` (largest |computed|), ``max_abs_error``, ``error`` (relative)
+        and ``position`` of the worst row."""
         out = []
         for q, g in self.rows[self.rows.used].groupby("quantity", sort=False):
             d = np.abs(g.simulated.to_numpy() - g.computed.to_numpy())
             i = int(np.argmax(d))
-            out.append({"quantity": q, "unit": _unit(q, self.scene),
+            out.append({"quantity": q, "source": g.source.iloc[0],
+                        "unit": _unit(q, self.scene),
                         "scale": float(np.abs(g.computed).max()),
-                        "max_abs_error": float(d[i]), "error": self.errors[q],
+                        "max_abs_error": float(d[i]),
+                        "error": self.errors.get(q, self.derived_errors.get(q)),
                         "position": float(g.position.to_numpy()[i])})
         return pd.DataFrame(out)
 
@@ -100,7 +118,8 @@ class CrossCheck:
 
     def summary(self) -> dict[str, Any]:
         """A JSON-ready dict: the settings, ``seconds_per_revolution``, ``max_error``,
-        ``errors`` per quantity, ``vector_errors``, ``vector_check``, notes."""
+        ``errors`` per quantity (pymunk's readings), ``derived_errors`` (the momentum
+        balance's values), ``vector_check``, notes."""
         worst = max(self.errors, key=self.errors.get) if self.errors else None
         s = dict(self.settings)
         s.update({
@@ -108,7 +127,7 @@ class CrossCheck:
             "max_error": self.max_error,
             "worst": worst,
             "errors": dict(self.errors),
-            "vector_errors": dict(self.vector_errors),
+            "derived_errors": dict(self.derived_errors),
             "vector_check": self.record.vector_check,
             "rows": int(self.rows.position.nunique()),
             "rows_compared": int(self.rows[self.rows.used].position.nunique()),
@@ -118,7 +137,7 @@ class CrossCheck:
 
 
 def _unit(q: str, scene: Scene) -> str:
-    if q.startswith("M[") or q == "Me":
+    if q.startswith("M[") or q in ("Me", "|Me|"):
         return "N m"
     return "N"
 
@@ -131,6 +150,11 @@ def compare(sc: Scene, model, rec: SimRecord, ref, *, compare_from: float) -> Cr
     flagged = np.asarray(ref.singular[1:], dtype=bool) | \
         np.asarray(ref.undefined_load[1:], dtype=bool) | rec.resist_unsure
     used &= ~flagged
+    if not used.any():
+        raise SimulationError(
+            f"none of the {n} simulated rows can be compared ({int(flagged.sum())} flagged "
+            "singular / undefined_load / resist point nearly still, the rest in the first "
+            "revolution); simulate more revolutions or another sweep")
     react = ref.reactions
     parts = []
     errors: dict[str, float] = {}
@@ -144,24 +168,26 @@ def compare(sc: Scene, model, rec: SimRecord, ref, *, compare_from: float) -> Cr
         d = float(np.max(np.abs(sim[used] - ks_[used])))
         return d / scale if scale > 0.0 else (0.0 if d == 0.0 else float("inf"))
 
-    def add(q, sim, ks_, into=errors, table=True):
+    def add(q, sim, ks_, into=verr, table=False):
         into[q] = err(sim, ks_)
         if table:
             parts.append(pd.DataFrame({"position": rec.position, "time": rec.time,
-                                       "quantity": q, "simulated": sim, "computed": ks_,
-                                       "used": used}))
+                                       "quantity": q,
+                                       "source": "pymunk" if into is errors
+                                       else "momentum balance",
+                                       "simulated": sim, "computed": ks_, "used": used}))
 
     zero: dict[str, float] = {}
     for name, j in sc.joints.items():
         r = react[react.joint == name]
         F = r.F.to_numpy()[1:]
-        add(f"F[{name}]", rec.impulse[name], F)
+        add(f"F[{name}]", rec.impulse[name], F, errors, True)
         fx, fy = rec.signed[name]
-        add(f"Fx[{name}]", fx, r.Fx.to_numpy()[1:], verr, False)
-        add(f"Fy[{name}]", fy, r.Fy.to_numpy()[1:], verr, False)
+        add(f"Fx[{name}]", fx, r.Fx.to_numpy()[1:])
+        add(f"Fy[{name}]", fy, r.Fy.to_numpy()[1:])
         if j.kind == "T":
             N, M = r.N.to_numpy()[1:], r.M.to_numpy()[1:]
-            add(f"N[{name}]", rec.signed[f"{name}:N"], N, verr, False)
+            add(f"N[{name}]", rec.signed[f"{name}:N"], N)
             Ms = rec.signed[f"{name}:M"]
             # a couple that kinetostatics finds zero (to rounding) has no scale of its
             # own: measure it against the joint's force times the mechanism's size
@@ -172,14 +198,14 @@ def compare(sc: Scene, model, rec: SimRecord, ref, *, compare_from: float) -> Cr
                                       if big > 0.0 else 0.0)
                 notes.append(f"prismatic joint {name!r}: kinetostatics gives M = 0; the "
                              f"simulated couple is at most {zero[f'M[{name}]']:.1e} of "
-                             "max|F| x the mechanism's size (in vector_errors)")
+                             "max|F| x the mechanism's size (in derived_errors)")
             else:
-                add(f"M[{name}]", Ms, M)
+                add(f"M[{name}]", Ms, M, table=True)
     verr.update(zero)
     q = "Me" if sc.driver.kind == "R" else "Fe"
     drive = np.asarray(ref.Me, dtype=float)[1:]
-    add(q, rec.signed["driver"], drive)
-    add(f"|{q}|", rec.impulse["driver"], np.abs(drive), verr, False)
+    add(f"|{q}|", rec.impulse["driver"], np.abs(drive), errors, True)
+    add(q, rec.signed["driver"], drive, table=True)
     notes.extend(model.notes)
     if model.translating:
         notes.append("bodies that only translate, built with an infinite moment of inertia: "
@@ -188,8 +214,6 @@ def compare(sc: Scene, model, rec: SimRecord, ref, *, compare_from: float) -> Cr
         if b.mass_model is not None:
             notes.append(f"body {name!r} has a {b.mass_model.kind} mass model: kinetostatics "
                          "uses it, the simulation uses the body's exact mass and inertia")
-    if any(j.friction is not None for j in sc.joints.values()):
-        notes.append("joint friction is ignored by kinetostatics.solve and by the simulation")
     skipped = int(np.count_nonzero(flagged))
     if skipped:
         notes.append(f"{skipped} of {n} rows flagged singular / undefined_load / resist point "

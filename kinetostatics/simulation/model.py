@@ -43,7 +43,12 @@ from ..model.scene import GROUND, Scene, load_scene
 from .errors import SimulationError
 from .geometry import _first, _foot, _line, _local, _on_line, _pin_range
 from .loads import _prepare_loads
-from .reference import reference_solution, sweep_positions, translating_bodies
+from .reference import (
+    point_acceleration,
+    reference_solution,
+    sweep_positions,
+    translating_bodies,
+)
 
 DEFAULT_ITERATIONS = 30
 """Solver iterations: about 10 suffice for a four-bar, about 30 for a slider-crank
@@ -110,6 +115,9 @@ class SimModel:
     translating : set of str
         Bodies that only translate (their angle is constant over the motion): built
         with an infinite moment of inertia, so their prismatic joints need no lock.
+    accel_scale : float
+        The largest acceleration of a named point over the motion (m/s^2): the scale
+        of a converged run's drift (:func:`~kinetostatics.simulation.drift_bound`).
     notes : list of str
         Modelling remarks (e.g. a prismatic joint whose groove cannot be laid out
         exactly; see :func:`build_space`).
@@ -125,6 +133,7 @@ class SimModel:
     speed: float
     translating: set[str] = field(default_factory=set)
     error_bias: float = 0.0
+    accel_scale: float = 0.0
     stepped: int = 0
     notes: list[str] = field(default_factory=list)
     actuator: pymunk.Body | None = None
@@ -163,7 +172,9 @@ def _label(info: ConstraintInfo) -> str:
     return f"{info.joint}:lock" if info.role == "lock" else str(info.joint)
 
 
-def _check_scene(scene: Scene) -> None:
+def check_scene(scene: Scene) -> None:
+    """Refuse what the simulation does not reproduce: a driver that accelerates or stands
+    still, and joint friction (the model has no friction at its joints)."""
     d = scene.driver
     if d.acceleration != 0.0:
         raise SimulationError(
@@ -172,12 +183,24 @@ def _check_scene(scene: Scene) -> None:
             "a constant-speed driver (acceleration = 0)")
     if d.speed == 0.0:
         raise SimulationError("driver.speed = 0: nothing moves; give the driver a speed")
+    rubbing = [n for n, j in scene.joints.items() if j.friction is not None and j.friction.mu > 0]
+    if rubbing:
+        raise SimulationError(
+            f"joint {rubbing[0]!r} has friction (mu = {scene.joints[rubbing[0]].friction.mu:g})"
+            f"{f' and {len(rubbing) - 1} more' if len(rubbing) > 1 else ''}: the cross-check "
+            "does not model joint friction; remove the friction tables to cross-check the "
+            "frictionless mechanism")
+
+
+def _check_bodies(scene: Scene, translating: set[str]) -> None:
+    """Every moving body needs a mass; one that turns needs a moment of inertia too (a
+    body that only translates is built with an infinite one)."""
     for name, b in scene.bodies.items():
-        if b.mass <= 0.0 or b.inertia <= 0.0:
+        if b.mass <= 0.0 or (b.inertia <= 0.0 and name not in translating):
             raise SimulationError(
                 f"body {name!r} has mass {b.mass:g} kg and inertia {b.inertia:g} kg m^2: "
-                "pymunk needs mass > 0 and inertia > 0 for every moving body; give it both "
-                "(and a cog) for the simulation")
+                "pymunk needs mass > 0 for every moving body and inertia > 0 for one that "
+                "turns; give it both (and a cog) for the simulation")
 
 
 def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
@@ -226,7 +249,7 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
         A driver with acceleration, a body without mass or inertia, bad settings.
     """
     sc = load_scene(scene)
-    _check_scene(sc)
+    check_scene(sc)
     if not (dt > 0.0 and math.isfinite(dt)):
         raise SimulationError(f"dt = {dt!r}: the time step must be a positive number of s")
     if int(iterations) != iterations or iterations < 1:
@@ -245,6 +268,7 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
     space.damping = 1.0
     bodies: dict[str, pymunk.Body] = {GROUND: space.static_body}
     frozen = translating_bodies(sc, sweep)
+    _check_bodies(sc, frozen)
     half = 0.5 * dt
     for name, b in sc.bodies.items():
         m = kin0.bodies[name].take(slice(1, 2))
@@ -319,7 +343,8 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
             add(c, ConstraintInfo(c, "lock", name, g, s))
 
     model = SimModel(sc, space, bodies, infos, float(dt), int(iterations), p0, d.speed,
-                     frozen, error_bias=float(error_bias), notes=notes)
+                     frozen, error_bias=float(error_bias),
+                     accel_scale=point_acceleration(sc, sweep), notes=notes)
     drv = bodies[d.body]
     if d.kind == "R":
         # SimpleMotor(a, b, rate) holds b.w - a.w = -rate: here the crank turns at `speed`

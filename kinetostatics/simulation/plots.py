@@ -6,6 +6,7 @@ import numpy as np
 import pandas as pd
 
 from .comparison import CrossCheck, _unit
+from .runner import BUDGET, TARGET_ERROR
 from .studies import Study
 
 
@@ -25,7 +26,9 @@ def plot_comparison(cc: CrossCheck, quantities: list[str] | None = None, *, ever
     matplotlib.figure.Figure
     """
     from matplotlib.figure import Figure
-    qs = quantities or list(dict.fromkeys(cc.rows.quantity))
+    # by default the driver's signed Me (Fe) stands for its magnitude |Me| as well
+    qs = quantities or [q for q in dict.fromkeys(cc.rows.quantity)
+                        if q not in ("|Me|", "|Fe|")]
     ncol = min(3, len(qs))
     nrow = -(-len(qs) // ncol)
     fig = Figure(figsize=(4.2 * ncol, 3.0 * nrow), layout="constrained")
@@ -36,8 +39,9 @@ def plot_comparison(cc: CrossCheck, quantities: list[str] | None = None, *, ever
         ax.plot(g.position, g.computed, "-", lw=1.2, color="C0", label="kinetostatics")
         s = g.iloc[::max(1, every)]
         ax.plot(s.position, s.simulated, ".", ms=3, color="C1", label="pymunk")
-        e = cc.errors.get(q, float("nan"))
-        ax.set_title(f"{q}: error {e:.1e}", fontsize=9)
+        e = cc.errors.get(q, cc.derived_errors.get(q, float("nan")))
+        src = "" if q in cc.errors else " (momentum balance)"
+        ax.set_title(f"{q}: error {e:.1e}{src}", fontsize=9)
         ax.set_xlabel(xlab)
         ax.set_ylabel(f"{q} ({_unit(q, cc.scene)})")
         ax.grid(alpha=0.3)
@@ -50,43 +54,83 @@ def plot_comparison(cc: CrossCheck, quantities: list[str] | None = None, *, ever
     return fig
 
 
-def plot_study(table: pd.DataFrame | Study):
+def plot_study(table: pd.DataFrame | Study, *, repeats: int | None = None):
     """Log-log pictures of a study: error against wall time per revolution, and error
     against dt with a dt^2 guide.
+
+    Converged settings are joined by lines; a setting whose cost fell although its
+    steps grew is drawn hollow and grey (timing noise, not a result) and kept off the
+    line; diverged settings have no error: they are marked along the top of the
+    convergence panel. Legends sit below the panels, off the data.
 
     Parameters
     ----------
     table : pandas.DataFrame or Study
         Rows as in :attr:`Study.table` (several cases may be concatenated).
+    repeats : int, optional
+        Runs per setting whose best wall time is shown (default the study's).
 
     Returns
     -------
     matplotlib.figure.Figure
     """
     from matplotlib.figure import Figure
+    from matplotlib.transforms import blended_transform_factory
     t = table.table if isinstance(table, Study) else table
-    fig = Figure(figsize=(10, 4), layout="constrained")
+    if repeats is None:
+        repeats = table.repeats if isinstance(table, Study) else 1
+    blown_col = t["diverged"] if "diverged" in t else pd.Series(False, index=t.index)
+    noise_col = t["timing_noise"] if "timing_noise" in t else pd.Series(False, index=t.index)
+    fig = Figure(figsize=(11, 5.5), layout="constrained")
     ax1, ax2 = fig.subplots(1, 2)
+    top = blended_transform_factory(ax2.transData, ax2.transAxes)
     for i, ((case, it), g) in enumerate(t.groupby(["case", "iterations"], sort=False)):
         g = g.sort_values("dt")
-        style = dict(marker="o", ms=4, color=f"C{i % 10}", label=f"{case}, {it} it.")
-        ax1.loglog(g.ms_per_revolution, g.max_error, **style)
-        ax2.loglog(g.dt, g.max_error, **style)
-    for thr, ms in ((1e-5, 20.0), (1e-6, 60.0)):
-        ax1.plot([ms], [thr], marker="*", ms=12, color="k", ls="none")
+        blown, noise = blown_col[g.index], noise_col[g.index]
+        ok = g[~blown]
+        color = f"C{i % 10}"
+        label = f"{case}, {it} it."
+        clean = ok[~noise[ok.index]]
+        ax1.loglog(clean.ms_per_revolution, clean.max_error, "o-", ms=4, color=color,
+                   label=label)
+        noisy = ok[noise[ok.index]]
+        if len(noisy):
+            ax1.loglog(noisy.ms_per_revolution, noisy.max_error, "o", ms=6, mfc="none",
+                       color="0.5", label="timing noise (cost fell as steps grew)")
+        ax2.loglog(ok.dt, ok.max_error, "o-", ms=4, color=color, label=label)
+        if blown.any():
+            ax2.plot(g.dt[blown], np.full(int(blown.sum()), 0.96), "x", ms=8, mew=2,
+                     color=color, transform=top, clip_on=False, label="diverged (no error)")
+    ax1.plot([1e3 * BUDGET], [TARGET_ERROR], marker="*", ms=12, color="k", ls="none",
+             label=f"target: {TARGET_ERROR:g} within {1e3 * BUDGET:g} ms")
     ax1.axhline(1e-5, color="0.6", lw=0.8, ls="--")
     ax1.axhline(1e-6, color="0.6", lw=0.8, ls="--")
     ax1.set_xlabel("wall time per simulated revolution (ms)")
     ax1.set_ylabel("max relative error")
-    ax1.set_title("cost against error (stars: the targets)", fontsize=10)
-    if len(t):
-        h = np.array([t.dt.min(), t.dt.max()])
-        e0 = float(t.max_error[t.dt == t.dt.max()].min())
+    ax1.set_title(f"cost against error (wall time: best of {repeats} run"
+                  f"{'s' if repeats != 1 else ''})", fontsize=10)
+    ok = t[~blown_col]
+    if len(ok):
+        h = np.array([ok.dt.min(), ok.dt.max()])
+        e0 = float(ok.max_error[ok.dt == ok.dt.max()].min())
         ax2.loglog(h, e0 * (h / h[1]) ** 2, "k--", lw=0.8, label="slope 2")
     ax2.set_xlabel("dt (s)")
     ax2.set_ylabel("max relative error")
-    ax2.set_title("convergence", fontsize=10)
+    ax2.set_title("convergence (x along the top: diverged)", fontsize=10)
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+    if blown_col.any():
+        # an empty band along the top for the diverged marks, clear of the data
+        lo, hi = ax2.get_ylim()
+        ax2.set_ylim(lo, hi * (hi / lo) ** 0.2)
+    handles: dict = {}
     for ax in (ax1, ax2):
         ax.grid(alpha=0.3, which="both")
-    ax2.legend(fontsize=7)
+        # ticks at 1, 2 and 5 of each decade, labelled as plain numbers: never crowded
+        ax.xaxis.set_major_locator(LogLocator(base=10.0, subs=(1.0, 2.0, 5.0)))
+        ax.xaxis.set_major_formatter(FuncFormatter(lambda x, _: f"{x:g}"))
+        ax.xaxis.set_minor_formatter(NullFormatter())
+        for h, lab in zip(*ax.get_legend_handles_labels(), strict=True):
+            handles.setdefault(lab, h)
+    fig.legend(handles.values(), handles.keys(), loc="outside lower center", ncol=3,
+               fontsize=8, frameon=False)
     return fig

@@ -56,3 +56,16 @@ def translating_bodies(scene: Scene, sweep) -> set[str]:
     return out
 
 
+
+
+def point_acceleration(scene: Scene, sweep) -> float:
+    """The largest acceleration (m/s^2) of a named point of a moving body over the
+    motion (``sweep``: the solution at :func:`sweep_positions`)."""
+    kin = sweep.kin
+    top = 0.0
+    for name, b in scene.bodies.items():
+        m = kin.bodies[name]
+        for p in b.points.values():
+            ax, ay = m.acc_at(*m.point(p))
+            top = max(top, float(np.max(np.hypot(ax, ay))))
+    return top

@@ -23,14 +23,19 @@ import numpy as np
 from ..model.scene import Scene, load_scene
 from .batch import run_batch
 from .comparison import CrossCheck, compare
-from .errors import SimulationError
-from .model import build_space
+from .drift import drift_bound
+from .errors import SimulationDiverged, SimulationError
+from .model import build_space, check_scene
 from .reference import reference_solution
 from .stepper import PYMUNK_VERSION, run
+from .stepsize import first_guess_steps
 
 DEFAULT_STEPS_PER_REVOLUTION = 3600
-"""Default time step: a tenth of a degree of the crank per step (errors near 1e-5 on
-the bundled four-bar and slider-crank; they fall as dt^2)."""
+"""Steps per revolution of a run given ``dt = None`` and no steps by a caller of
+:func:`plan` (the cross-check itself chooses them per scene, :func:`crosscheck`)."""
+
+MAX_AUTO_STEPS = 40_000
+"""The automatic choice of steps per revolution stays at or below this."""
 
 MAX_STEPS = 50_000_000
 """A run longer than this is refused (minutes of wall time)."""
@@ -114,11 +119,14 @@ def crosscheck(scene: Any, *, dt: float | None = None, steps_per_revolution: int
         Time step (s). Default: a revolution (a sliding driver's sweep) in
         ``steps_per_revolution`` steps.
     steps_per_revolution : int, optional
-        Default 3600 (``simulation.DEFAULT_STEPS_PER_REVOLUTION``).
+        Default: chosen for the scene (:func:`~kinetostatics.simulation.first_guess_steps`
+        from its fastest body and smallest link, then, if the run misses
+        ``TARGET_ERROR``, once more from the dt^2 law); the settings carry
+        ``steps_rule`` and ``steps_tried``.
     iterations : int, optional
         Solver iterations. Default: chosen by :func:`converged_iterations` (30, or
         doubled until doubling again changes no reading by more than a tenth of the
-        error).
+        error; a diverged count is never chosen).
     revolutions : float
         Driver turns simulated when the sweep is a full turn (default 2; the first is
         left out of the errors). A shorter sweep is simulated once.
@@ -135,8 +143,10 @@ def crosscheck(scene: Any, *, dt: float | None = None, steps_per_revolution: int
 
     Raises
     ------
+    SimulationDiverged
+        The run blew up (and, with automatic iterations, every count tried did).
     SimulationError
-        A driver with acceleration, a massless body, bad settings.
+        A driver with acceleration, joint friction, a massless body, bad settings.
 
     Examples
     --------
@@ -146,16 +156,66 @@ def crosscheck(scene: Any, *, dt: float | None = None, steps_per_revolution: int
     True
     """
     sc = _dict_scene(scene)
-    if sc.driver.acceleration != 0.0:
-        raise SimulationError(
-            f"driver.acceleration = {sc.driver.acceleration:g}: this scene's rows are "
-            "snapshots, not a motion; the cross-check needs a constant-speed driver "
-            "(acceleration = 0)")
-    p = plan(sc, dt=dt, steps_per_revolution=steps_per_revolution, revolutions=revolutions,
-             samples_per_revolution=samples_per_revolution)
-    if iterations is None:
-        return converged_iterations(sc, p, error_bias=error_bias, fast=fast)
-    return _crosscheck(sc, p, int(iterations), error_bias, fast)
+    check_scene(sc)
+    auto = dt is None and steps_per_revolution is None
+
+    def attempt(n: int | None) -> CrossCheck:
+        p = plan(sc, dt=dt, steps_per_revolution=n, revolutions=revolutions,
+                 samples_per_revolution=samples_per_revolution)
+        if iterations is None:
+            return converged_iterations(sc, p, error_bias=error_bias, fast=fast)
+        return _crosscheck(sc, p, int(iterations), error_bias, fast)
+
+    if not auto:
+        return attempt(steps_per_revolution)
+    n0 = first_guess_steps(sc, MAX_AUTO_STEPS)
+    cc = attempt(n0)
+    tried = [n0]
+    if cc.max_error > TARGET_ERROR:
+        # the dt^2 law: aim at half the target
+        n1 = int(min(MAX_AUTO_STEPS, 100 * math.ceil(
+            n0 * math.sqrt(cc.max_error / (0.5 * TARGET_ERROR)) / 100.0)))
+        if n1 > n0:
+            tried.append(n1)
+            try:
+                finer = attempt(n1)
+            except SimulationDiverged as exc:
+                cc.notes.append(f"{n1} steps per revolution diverged ({exc}); kept {n0}")
+            else:
+                if finer.max_error < cc.max_error:
+                    cc = finer
+    cc.settings["steps_tried"] = tried
+    cc.settings["steps_rule"] = ("auto: first guess from the fastest body and the smallest "
+                                 "link, then the dt^2 law towards the target error")
+    _budget_note(cc)
+    return cc
+
+
+TARGET_ERROR = 1e-5
+"""The default settings aim at this largest relative error."""
+
+BUDGET = 0.05
+"""... within this wall time per simulated revolution (s)."""
+
+
+def _budget_note(cc: CrossCheck) -> None:
+    """Say why the default settings missed the target error or the time budget."""
+    s = cc.settings
+    per = s["seconds_per_revolution"] or s["seconds_per_sweep"]
+    unit = "revolution" if s["seconds_per_revolution"] is not None else "sweep"
+    missed = []
+    if cc.max_error > TARGET_ERROR:
+        missed.append(f"error {cc.max_error:.2g} > {TARGET_ERROR:g}")
+    if per > BUDGET:
+        missed.append(f"{1e3 * per:.0f} ms > {1e3 * BUDGET:.0f} ms per simulated {unit}")
+    if not missed:
+        return
+    why = (f"the solver needed {s['iterations']} iterations per step to settle (Gauss-Seidel "
+           "converges slowly where bodies of very different inertia are joined, such as a "
+           "light sliding block between a crank and a heavy slotted lever), and finer steps "
+           "need still more" if s["iterations"] > 60 else
+           "the error falls as dt^2 and the wall time grows as 1 / dt; no step meets both")
+    cc.notes.append(f"the default settings missed the target ({'; '.join(missed)}): {why}")
 
 
 AUTO_ITERATIONS = (30, 60, 120, 240, 480, 960)
@@ -169,20 +229,38 @@ def converged_iterations(sc: Scene, p: dict, *, error_bias: float = 0.0,
 
     Gauss-Seidel iterations converge slowly where light bodies sit between heavy ones
     (a sliding block between a crank and a slotted lever): such scenes need hundreds,
-    a four-bar about 10. The returned settings carry ``iterations_tried``.
+    a four-bar about 10. With ``error_bias = 0`` too few iterations make the run
+    diverge (:class:`SimulationDiverged`): such a count is passed over, never chosen.
+    The returned settings carry ``iterations_tried`` and ``iterations_diverged``.
+
+    Raises
+    ------
+    SimulationDiverged
+        Every count tried diverged (the last one's error).
     """
     prev = None
-    tried = []
+    tried, blown = [], []
+    last_exc = None
     for n in AUTO_ITERATIONS:
-        cc = _crosscheck(sc, p, n, error_bias, fast)
         tried.append(n)
+        try:
+            cc = _crosscheck(sc, p, n, error_bias, fast)
+        except SimulationDiverged as exc:
+            blown.append(n)
+            last_exc = exc
+            prev = None              # two converged counts in a row are compared
+            continue
         if prev is not None and _same_readings(prev, cc):
             prev.settings["iterations_tried"] = tried
+            prev.settings["iterations_diverged"] = blown
             prev.settings["iterations_rule"] = "auto: doubling changes no reading by more " \
                 "than a tenth of the error"
             return prev
         prev = cc
+    if prev is None:
+        raise last_exc
     prev.settings["iterations_tried"] = tried
+    prev.settings["iterations_diverged"] = blown
     prev.notes.append(f"the readings still changed between {tried[-2]} and {tried[-1]} "
                       "iterations: the solver may not have converged; try a larger dt or "
                       "more iterations")
@@ -212,23 +290,24 @@ def _crosscheck(sc: Scene, p: dict, iterations: int, error_bias: float,
                 fast: bool | None) -> CrossCheck:
     model = build_space(sc, dt=p["dt"], iterations=iterations, start=p["start"],
                         error_bias=error_bias)
-    rec = run(model, p["steps"], p["every"], fast=fast)
+    rec = run(model, p["steps"], p["every"], fast=fast)          # or SimulationDiverged
     ref = reference_solution(sc, rec.position)
     cc = compare(sc, model, rec, ref, compare_from=p["compare_from"])
     revs = p["duration"] / p["unit"]
+    n = p["steps_per_revolution"]
     cc.settings.update({
         "dt": p["dt"], "iterations": int(iterations), "error_bias": float(error_bias),
-        "max_bias": "inf", "steps_per_revolution": p["steps_per_revolution"],
+        "max_bias": "inf",
+        "steps_per_revolution": int(round(n)) if abs(n - round(n)) < 1e-6 * n else n,
         "steps": p["steps"], "sample_every": p["every"],
         "revolutions": revs if sc.driver.kind == "R" else None,
         "sweeps": revs if sc.driver.kind == "T" else None,
         "seconds_per_revolution": rec.wall / revs if sc.driver.kind == "R" else None,
         "seconds_per_sweep": rec.wall / revs if sc.driver.kind == "T" else None,
         "wall": rec.wall, "full_turn": p["full"], "pymunk": PYMUNK_VERSION,
-        "fast_path": rec.fast, "drift": rec.drift,
+        "fast_path": rec.fast, "drift": rec.drift, "drift_bound": drift_bound(model),
     })
     return cc
-
 
 
 def _crosscheck_summary(item: tuple) -> dict[str, Any]:

@@ -27,6 +27,14 @@ if TYPE_CHECKING:
     from .model import SimModel
 
 
+class SingularBalance(ArithmeticError):
+    """The momentum balance has no unique solution at sample ``row``."""
+
+    def __init__(self, row: int):
+        super().__init__(f"singular momentum balance at sample {row}")
+        self.row = row
+
+
 def _signed(model: SimModel, pose, vel0, vel1, frc, mag):
     """Signed constraint forces from the momentum balance of every body over the step.
 
@@ -117,7 +125,18 @@ def _signed(model: SimModel, pose, vel0, vel1, frc, mag):
     if A.shape[1] != n_unk:
         raise SimulationError(f"the momentum balance has {A.shape[1]} equations for {n_unk} "
                               "unknowns: the chain is not a driver plus dyads")
-    lam = np.linalg.solve(A, b[..., None])[..., 0]
+    try:
+        lam = np.linalg.solve(A, b[..., None])[..., 0]
+    except np.linalg.LinAlgError:
+        lam = None
+    if lam is None or not np.all(np.isfinite(lam)):
+        # poses no mechanism takes (a run that blew up): name the first such row
+        with np.errstate(all="ignore"):
+            cond = np.linalg.cond(A)
+        bad = ~np.isfinite(cond) | (cond > 1e15)
+        if lam is not None:
+            bad |= ~np.all(np.isfinite(lam), axis=1)
+        raise SingularBalance(int(np.argmax(bad)) if bad.any() else 0)
 
     signed: dict[str, Any] = {}
     check = 0.0

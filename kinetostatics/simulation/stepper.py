@@ -23,11 +23,11 @@ from typing import Any
 import numpy as np
 import pymunk
 
-from .drift import joint_drift
+from .drift import check_run, diverged
 from .errors import SimulationError
 from .loads import _loads_function
 from .model import SimModel, _label
-from .signed import _signed
+from .signed import SingularBalance, _signed
 
 PYMUNK_VERSION = "7.3.1"
 """The pymunk version the settings were measured with (docs/simulation.md)."""
@@ -306,13 +306,20 @@ def run(model: SimModel, steps: int, sample_every: int = 1, *,
     imp = np.array(imp, dtype=float).reshape(n_samples, nc) / dt
     times = (np.arange(n_samples) + 1) * every * dt
     impulse = {_label(info): imp[:, i] for i, info in enumerate(real)}
-    signed, check = _signed(model, after[:, :, :3], before[:, :, :3], after[:, :, 3:],
-                            before[:, :, 3:], imp)
     pose = after[:, :, :3].copy()
     vel = after[:, :, 3:].copy()
-    return SimRecord(times, _driver_positions(model, pose), impulse, signed,
-                     np.array(flags, dtype=bool), check, wall, steps, dt, model.iterations,
-                     bool(fast), pose, joint_drift(model, pose), vel)
+    positions = _driver_positions(model, pose)
+    finite = (np.isfinite(before).all(axis=(1, 2)) & np.isfinite(after).all(axis=(1, 2))
+              & np.isfinite(imp).all(axis=1))
+    drift = check_run(model, times, positions, pose, finite)     # or SimulationDiverged
+    try:
+        signed, check = _signed(model, after[:, :, :3], before[:, :, :3], after[:, :, 3:],
+                                before[:, :, 3:], imp)
+    except SingularBalance as exc:
+        raise diverged(model, float(times[exc.row]), float(positions[exc.row]), drift,
+                       "singular momentum balance") from None
+    return SimRecord(times, positions, impulse, signed, np.array(flags, dtype=bool), check,
+                     wall, steps, dt, model.iterations, bool(fast), pose, drift, vel)
 
 
 def warmup_schedule(iterations: int) -> list[int]:

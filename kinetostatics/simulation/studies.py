@@ -7,14 +7,15 @@ from __future__ import annotations
 
 import math
 from concurrent.futures import Executor
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 import pandas as pd
 
 from .batch import run_batch
-from .errors import SimulationError
+from .errors import SimulationDiverged, SimulationError
+from .model import check_scene
 from .runner import _dict_scene, crosscheck
 
 STUDY_STEPS = (500, 1000, 2000, 4000, 8000, 16000, 32000)
@@ -33,29 +34,74 @@ class Study:
     Attributes
     ----------
     table : pandas.DataFrame
-        ``case, dt, steps_per_revolution, iterations, ms_per_revolution, max_error,
-        order`` (``order``: the local order log(e1 / e2) / log(dt1 / dt2) against the
-        previous, larger step with the same iterations).
+        ``case, dt, steps_per_revolution`` (an integer), ``iterations,
+        ms_per_revolution`` (the best of ``repeats`` runs), ``max_error, diverged``,
+        ``drift`` (m), ``order`` (the local order log(e1 / e2) / log(dt1 / dt2) against
+        the previous converged, larger step with the same iterations) and
+        ``timing_noise`` (the cost fell although the steps grew: the wall time was
+        disturbed, not a result). A diverged setting has no error, order or time
+        (NaN): its numbers are not a result.
     order : dict
-        Iterations -> the order fitted (least squares in log-log) on the errors above
-        1e-6, or None with fewer than two such points.
+        Iterations -> the order fitted (least squares in log-log) on the converged
+        errors above 1e-6, or None with fewer than two such points.
+    order_points : dict
+        Iterations -> ``(used, settings, diverged)``: how many settings the fit used,
+        of how many, and how many of them diverged.
+    repeats : int
+        Runs per setting (the fastest wall time is kept).
     """
 
     table: pd.DataFrame
     order: dict[int, float | None]
+    order_points: dict[int, tuple[int, int, int]] = field(default_factory=dict)
+    repeats: int = 1
+
+    def order_line(self, iterations: int) -> str:
+        """How the observed order reads for one iteration count, with what it rests on."""
+        o = self.order[iterations]
+        used, total, blown = self.order_points.get(iterations, (0, 0, 0))
+        tail = f"{blown} diverged" if blown else "none diverged"
+        if o is not None:
+            return f"{o:.2f} (fitted on {used} of {total} settings; {tail})"
+        if blown == total:
+            return f"n/a (all {total} settings diverged)"
+        return (f"n/a (fewer than two converged errors above {ORDER_FLOOR:g}: {used} of "
+                f"{total} settings; {tail})")
 
     def best(self, threshold: float) -> dict[str, Any] | None:
-        """The cheapest run (ms per revolution) whose error is at most ``threshold``."""
-        ok = self.table[self.table.max_error <= threshold]
+        """The cheapest converged run (ms per revolution) whose error is at most
+        ``threshold``; runs flagged as timing noise are passed over."""
+        t = self.table
+        ok = t[~t.diverged & ~t.timing_noise & (t.max_error <= threshold)]
         if ok.empty:
             return None
-        return ok.sort_values("ms_per_revolution").iloc[0].to_dict()
+        return _plain(ok.sort_values("ms_per_revolution").iloc[0].to_dict())
 
     def summary(self) -> dict[str, Any]:
-        """JSON-ready: the rows, the fitted orders and the cheapest runs at 1e-5 and 1e-6."""
-        return {"rows": self.table.to_dict(orient="records"),
+        """JSON-ready: the rows (a diverged one: ``"diverged": true`` and its drift, no
+        error), the fitted orders with the settings they used, the cheapest runs at
+        1e-5 and 1e-6."""
+        rows = []
+        for r in self.table.to_dict(orient="records"):
+            r = _plain(r)
+            if r["diverged"]:
+                for k in ("max_error", "order", "ms_per_revolution", "timing_noise"):
+                    r.pop(k, None)
+            rows.append(r)
+        return {"rows": rows, "repeats": self.repeats,
                 "order": {str(k): v for k, v in self.order.items()},
+                "order_settings": {str(k): {"used": u, "settings": n, "diverged": d}
+                                   for k, (u, n, d) in self.order_points.items()},
                 "best_1e-5": self.best(1e-5), "best_1e-6": self.best(1e-6)}
+
+
+def _plain(row: dict) -> dict:
+    """numpy scalars to Python; integer columns as int."""
+    out = {k: (v.item() if isinstance(v, np.generic) else v) for k, v in row.items()}
+    for k in ("steps_per_revolution", "iterations"):
+        if k in out:
+            out[k] = int(out[k])
+    return out
 
 
 def study(scene: Any, *, steps: tuple[int, ...] | None = None,
@@ -93,8 +139,11 @@ def study(scene: Any, *, steps: tuple[int, ...] | None = None,
     Returns
     -------
     Study
+        A setting that diverged (:class:`~kinetostatics.simulation.SimulationDiverged`)
+        is a row with ``diverged`` True and its drift, left out of the order's fit.
     """
     sc = _dict_scene(scene)
+    check_scene(sc)
     if steps is not None and dts is not None:
         raise SimulationError("give steps per revolution or dts, not both")
     grid = [("dt", float(x)) for x in dts] if dts is not None else \
@@ -108,25 +157,34 @@ def study(scene: Any, *, steps: tuple[int, ...] | None = None,
     done = run_batch(_study_run, items, executor=executor)
     rows = []
     for i, (it, _kind, _val) in enumerate(keys):
-        best = min(done[i * n_rep:(i + 1) * n_rep], key=lambda r: r["wall"])
-        err = best["max_error"]
+        runs = done[i * n_rep:(i + 1) * n_rep]
+        best = min(runs, key=lambda r: r["wall"])
+        blown = best["diverged"]
         rows.append({"case": case or sc.title, "dt": best["dt"],
-                     "steps_per_revolution": best["steps_per_revolution"],
-                     "iterations": it, "ms_per_revolution": 1e3 * best["wall"],
-                     "max_error": err if math.isfinite(err) else float("inf")})
+                     "steps_per_revolution": int(round(best["steps_per_revolution"])),
+                     "iterations": it,
+                     "ms_per_revolution": math.nan if blown else 1e3 * best["wall"],
+                     "max_error": math.nan if blown else best["max_error"],
+                     "diverged": blown, "drift": best["drift"]})
     table = pd.DataFrame(rows)
     table["order"] = np.nan
+    table["timing_noise"] = False
     order: dict[int, float | None] = {}
+    points: dict[int, tuple[int, int, int]] = {}
     for it, g in table.groupby("iterations"):
-        g = g.sort_values("dt", ascending=False)
-        e, h = g.max_error.to_numpy(), g.dt.to_numpy()
+        ok = g[~g.diverged].sort_values("dt", ascending=False)
+        e, h = ok.max_error.to_numpy(), ok.dt.to_numpy()
         with np.errstate(divide="ignore", invalid="ignore"):
             local = np.log(e[:-1] / e[1:]) / np.log(h[:-1] / h[1:])
-        table.loc[g.index[1:], "order"] = local
-        fit = (e > ORDER_FLOOR) & np.isfinite(e) & (e < 1.0)
+        table.loc[ok.index[1:], "order"] = local
+        # a finer step costs more: a cost below that of a coarser step is noise
+        ms = ok.ms_per_revolution.to_numpy()
+        table.loc[ok.index, "timing_noise"] = ms < np.maximum.accumulate(ms)
+        fit = (e > ORDER_FLOOR) & (e < 1.0)
         order[int(it)] = float(np.polyfit(np.log(h[fit]), np.log(e[fit]), 1)[0]) \
             if fit.sum() >= 2 else None
-    return Study(table, order)
+        points[int(it)] = (int(fit.sum()), len(g), int(g.diverged.sum()))
+    return Study(table, order, points, n_rep)
 
 
 def _study_run(item: tuple) -> dict[str, Any]:
@@ -136,9 +194,12 @@ def _study_run(item: tuple) -> dict[str, Any]:
         cc = crosscheck(raw, dt=val if kind == "dt" else None,
                         steps_per_revolution=val if kind == "steps" else None,
                         iterations=it, **settings)
-    except (FloatingPointError, np.linalg.LinAlgError) as exc:   # diverged
-        raise SimulationError(f"iterations {it}, {kind} {val}: {exc}") from exc
+    except SimulationDiverged as exc:
+        return {"dt": exc.dt, "steps_per_revolution": exc.steps_per_revolution,
+                "wall": math.inf, "max_error": math.nan, "diverged": True,
+                "drift": exc.drift}
     s = cc.settings
     wall = s["seconds_per_revolution"] or s["seconds_per_sweep"]
     return {"dt": s["dt"], "steps_per_revolution": s["steps_per_revolution"],
-            "wall": float(wall), "max_error": float(cc.max_error)}
+            "wall": float(wall), "max_error": float(cc.max_error), "diverged": False,
+            "drift": float(cc.record.drift)}

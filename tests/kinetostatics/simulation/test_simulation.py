@@ -1,9 +1,9 @@
-"""The pymunk cross-check (issue 5): what is built, what is measured, and how well it
-agrees with kinetostatics on every case and every dyad kind.
+"""The pymunk cross-check: what is built, what is measured, and how well it agrees with
+kinetostatics on every case and every dyad kind.
 
-Runs are short (2000 steps per revolution, 90 readings per revolution); the
-tolerances are those the dt^2 law of docs/simulation.md gives at that step, with a
-margin of about 1.5.
+Runs are short (2000 steps per revolution, 90 readings per revolution); each tolerance
+is about twice the error measured at that step (the measured value in the comment), so
+a tenfold regression fails.
 """
 
 import copy
@@ -20,15 +20,12 @@ import kinetostatics as ks
 from kinetostatics import simulation as sim
 from kinetostatics.cli import main
 from kinetostatics.simulation import (
-    SERIAL,
     SimulationError,
     build_space,
     crosscheck,
-    crosscheck_many,
     plot_comparison,
     plot_study,
     run,
-    run_batch,
     study,
 )
 from tests.helpers import OWN_CASES, SCENES
@@ -36,20 +33,21 @@ from tests.helpers import OWN_CASES, SCENES
 STEPS = 2000          # steps per revolution (per sweep for the sliding driver)
 SAMPLES = 90
 
-# scene file -> (solver iterations, tolerance on the largest relative error) at STEPS.
+# scene file -> (solver iterations, tolerance on max_error, pymunk's readings) at STEPS.
 # Iterations: 30 unless the scene's chain converges slowly (a light sliding block
-# between a crank and a slotted lever): the counts the automatic rule picks.
+# between a crank and a slotted lever): the counts the automatic rule picks. Measured
+# (pymunk 7.3.1): max_error, then the largest derived (momentum balance) error.
 CASES = {
-    "four_bar": (30, 5e-5),                 # RRR
-    "slider_crank": (30, 2e-5),             # RRT, resist load, piston without lock
-    "slotted_lever": (60, 6e-5),            # RTR, guide on the lever pivoted on the ground
-    "scotch_yoke": (30, 1e-5),              # TTR, two translating bodies
-    "sliding_driver": (30, 1e-5),           # sliding driver (Fe), RRR
-    "oscillating_cylinder": (30, 3e-5),     # RTR, guide on the rod
-    "rtt_scotch_yoke": (30, 1e-5),          # RTT
-    "trr_slider_crank": (30, 2e-5),         # TRR
-    "trt_slotted_crank": (120, 3e-4),       # TRT, partial sweep near a poor transmission
-    "shaper": (480, 5e-5),                  # RTR + RRT
+    "four_bar": (30, 6e-5),                 # RRR; 3.13e-5, derived 3.22e-5
+    "slider_crank": (30, 3e-5),             # RRT, resist load, no lock; 1.34e-5, 1.34e-5
+    "slotted_lever": (60, 5e-5),            # RTR, guide on the lever; 2.25e-5, 3.69e-5
+    "scotch_yoke": (30, 4e-6),              # TTR, two translating bodies; 1.95e-6, 4.42e-6
+    "sliding_driver": (30, 1e-5),           # sliding driver (Fe), RRR; 4.46e-6, 8.77e-6
+    "oscillating_cylinder": (30, 1.5e-5),   # RTR, guide on the rod; 7.19e-6, 1.52e-5
+    "rtt_scotch_yoke": (30, 4e-6),          # RTT; 1.95e-6, 4.92e-6
+    "trr_slider_crank": (30, 3e-5),         # TRR; 1.35e-5, 1.35e-5
+    "trt_slotted_crank": (120, 3e-4),       # TRT, poor transmission; 1.52e-4, 1.52e-4
+    "shaper": (480, 8e-5),                  # RTR + RRT; 3.70e-5, 3.70e-5
 }
 
 
@@ -91,14 +89,21 @@ def test_reactions_and_me_agree_with_kinetostatics(runs, name):
     assert s["dt"] == pytest.approx(cc.settings["dt"])
     assert s["steps_per_revolution"] == pytest.approx(STEPS)
     assert cc.max_error <= tol, (name, s["worst"], cc.max_error)
-    # every joint's force and the driving moment (force) are compared
+    # pymunk's own readings make the headline: every joint's |F| and the driver's |Me|
     sc = ks.load_scene(scene_path(name))
     q = "Me" if sc.driver.kind == "R" else "Fe"
-    assert {f"F[{j}]" for j in sc.joints} | {q} <= set(cc.errors)
-    # the signed values of the momentum balance agree too, and their magnitudes are
-    # the public impulses to rounding
-    assert max(cc.vector_errors.values()) <= 2 * tol
+    assert set(cc.errors) == {f"F[{j}]" for j in sc.joints} | {f"|{q}|"}
+    assert s["max_error"] == max(s["errors"].values())
+    # the signed values of the momentum balance are reported apart and agree too (at
+    # most 2.5 times the readings' error, measured), their magnitudes the public
+    # impulses to rounding (measured 5e-14 to 8e-11)
+    assert q in cc.derived_errors and f"Fx[{next(iter(sc.joints))}]" in cc.derived_errors
+    assert not set(cc.derived_errors) & set(cc.errors)
+    assert max(cc.derived_errors.values()) <= 3 * tol
     assert cc.record.vector_check <= 1e-9
+    # the joints stay together as a converged run's do: measured 0.11 to 0.31 a dt^2,
+    # 1/16 of the bound at most
+    assert cc.record.drift <= 0.1 * cc.settings["drift_bound"]
     assert s["rows_compared"] > 0.4 * s["rows"]
 
 
@@ -266,7 +271,8 @@ def test_cli_json(capsys):
     assert d["iterations"] == 10
     assert d["dt"] == pytest.approx(2 * math.pi / 30 / 1000)
     assert d["max_error"] == max(d["errors"].values())
-    assert {"F[A]", "F[B]", "F[C]", "F[D]", "Me"} == set(d["errors"])
+    assert {"F[A]", "F[B]", "F[C]", "F[D]", "|Me|"} == set(d["errors"])
+    assert "Me" in d["derived_errors"] and "Fx[A]" in d["derived_errors"]
     assert 0 < d["seconds_per_revolution"] < 1
 
 
@@ -314,8 +320,11 @@ def test_study_table_order_and_plots():
                samples_per_revolution=45)
     t = st.table
     assert list(t.columns) == ["case", "dt", "steps_per_revolution", "iterations",
-                               "ms_per_revolution", "max_error", "order"]
-    assert len(t) == 3
+                               "ms_per_revolution", "max_error", "diverged", "drift",
+                               "order", "timing_noise"]
+    assert len(t) == 3 and not t.diverged.any()
+    assert t.steps_per_revolution.tolist() == [500, 1000, 2000]
+    assert st.order_points[10] == (3, 3, 0)
     assert st.order[10] == pytest.approx(2.0, abs=0.1)
     assert t.max_error.is_monotonic_decreasing
     fig = plot_study(st)
@@ -331,7 +340,10 @@ def test_plot_comparison_has_a_panel_per_quantity(runs):
     fig = plot_comparison(cc)
     assert isinstance(fig, Figure)
     visible = [ax for ax in fig.axes if ax.get_visible()]
-    assert len(visible) == len(cc.errors)
+    # every joint's |F|, the couple of the prismatic joint kinetostatics finds non-zero
+    # (yoke-guide) and the signed Me, which stands for |Me| too
+    assert len(visible) == len(cc.errors) + 1
+    assert "Me: error" in visible[-1].get_title()
     for ax in visible:
         assert "(" in ax.get_ylabel() and ax.get_xlabel()
 
@@ -339,7 +351,8 @@ def test_plot_comparison_has_a_panel_per_quantity(runs):
 def test_error_table_and_wide(runs):
     cc = runs["slider_crank"]
     t = cc.error_table()
-    assert set(t.quantity) == set(cc.errors)
+    assert set(t[t.source == "pymunk"].quantity) == set(cc.errors)
+    assert set(t[t.source == "momentum balance"].quantity) <= set(cc.derived_errors)
     assert (t.error <= t.max_abs_error / t.scale * (1 + 1e-12)).all()
     w = cc.wide()
     assert {"F[A] sim", "F[A] ks", "Me sim", "Me ks", "used"} <= set(w.columns)
@@ -384,60 +397,3 @@ def test_cli_parser_does_not_import_pymunk():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout.strip()
     assert out == "False"
-
-
-# ----------------------------------------------------------------------------- batches
-STUDY = dict(steps=(500, 1000, 2000), iterations=(10,), samples_per_revolution=45)
-MANY = ["four_bar", "slider_crank", "scotch_yoke"]
-MANY_SETTINGS = dict(steps_per_revolution=1000, iterations=30, samples_per_revolution=45)
-
-
-def _same_study(a, b):
-    cols = ["case", "dt", "steps_per_revolution", "iterations", "max_error"]
-    assert a.table[cols].equals(b.table[cols])          # identical numbers, same order
-    assert a.order == b.order
-
-
-def test_study_and_many_through_a_process_pool_match_serial():
-    from concurrent.futures import ProcessPoolExecutor
-    serial = study(ks.example("four_bar"), **STUDY, executor=SERIAL)
-    scenes = [constant_speed(n) for n in MANY]
-    many = crosscheck_many(scenes, **MANY_SETTINGS, executor=SERIAL)
-    assert [m["title"] for m in many] == [ks.load_scene(scene_path(n)).title for n in MANY]
-    assert all(m["max_error"] < 2e-4 for m in many)
-    with ProcessPoolExecutor(max_workers=2) as pool:
-        _same_study(serial, study(ks.example("four_bar"), **STUDY, executor=pool))
-        again = crosscheck_many(scenes, **MANY_SETTINGS, executor=pool)
-    assert [m["errors"] for m in again] == [m["errors"] for m in many]
-    # the default: processes (one per core)
-    _same_study(serial, study(ks.example("four_bar"), **STUDY))
-    # every run timed itself in its worker
-    assert (serial.table.ms_per_revolution > 0).all()
-
-
-def test_run_batch_executors():
-    assert run_batch(abs, [-3, 2, -1], executor=SERIAL) == [3, 2, 1]
-    assert run_batch(abs, [-5]) == [5]                  # one item: no pool
-    assert run_batch(abs, []) == []
-    for bad in ("threads", object(), 4):
-        with pytest.raises(SimulationError):
-            run_batch(abs, [1, 2], executor=bad)
-    with pytest.raises(SimulationError):
-        crosscheck_many([ks.example("four_bar")], step=100, executor=SERIAL)
-
-
-def test_batches_through_a_dask_cluster():
-    """The work items are top-level functions of plain data: a dask.distributed
-    executor runs them unchanged (skipped where dask is not installed)."""
-    distributed = pytest.importorskip("distributed")
-    from balance.machine import BalancingMachine, CoastDown
-    bm = BalancingMachine(coast_down=CoastDown(duration=1.0))
-    sets = [[(0.02, 0.1, a)] for a in (0.0, 90.0, 200.0)]
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster, \
-            distributed.Client(cluster) as client:
-        ex = client.get_executor()
-        _same_study(study(ks.example("four_bar"), **STUDY, executor=SERIAL),
-                    study(ks.example("four_bar"), **STUDY, executor=ex))
-        recs = bm.runs(sets, executor=ex)
-    assert [r.amplitude for r in recs] == [r.amplitude for r in bm.runs(sets, executor=SERIAL)]
