@@ -33,12 +33,15 @@ lambda in [0, 1], in projective form, which stays finite through the blow-up:
 
     s = lambda h(sigma q0 + G s),    sigma + sum w_j s_j = 1,
 
-(w_j > 0 the row's scale of s_j). A finite solution is s / sigma with sigma > 0; the
-branch reaches sigma = 0 where the force grows without bound, at the critical scale
-lambda*: a row whose branch has sigma <= 0 at lambda = 1 is self-locking (no finite
-driving effort moves it), and with every coefficient below lambda* times the given
-one it would move. Where several finite solutions exist (a load that drives the
-motion can wedge a guide as well), the branch from no friction is the one kept.
+(w_j > 0 the row's scale of s_j). A finite solution is s / sigma with sigma > 0. The
+branch ends before lambda = 1 where sigma reaches 0 (the force grows without bound)
+or where it turns back at a fold (no equilibrium nearby for higher friction): such a
+row is self-locking (no finite driving effort moves it), and with every coefficient
+below lambda* (where the branch ended) times the given one it would move. Where several
+finite solutions exist (a load that drives the motion can wedge a guide as well), the
+branch from no friction is the one kept. Rows whose friction feedback is a
+contraction (a Lipschitz bound below 1) have exactly one solution for every lambda:
+they go straight to Newton's method from s = 0.
 """
 
 from __future__ import annotations
