@@ -257,7 +257,10 @@ def grade_class(directory: str | Path, submissions: Iterable[Any], *, execute: b
             known = [canon[normalize_id(i)] for i in ids if normalize_id(i) in canon]
             sid = known[0] if known else None
             rep.broken.append({"file": str(p), "student": sid, "reason": str(exc.args[0])})
-            if sid is not None:
+            if sid in got:
+                rep.duplicates.append({"student": sid, "files": [got[sid][1], str(p)],
+                                       "kept": got[sid][1]})
+            elif sid is not None:
                 failed[sid] = (str(exc.args[0]), str(p))
             continue
         for part in parts:
@@ -273,8 +276,9 @@ def grade_class(directory: str | Path, submissions: Iterable[Any], *, execute: b
                                     "student": ids[0] if ids else "(no id)"})
                 continue
             sid = known[0]
-            if sid in got:
-                rep.duplicates.append({"student": sid, "files": [got[sid][1], str(p)],
+            if sid in got or sid in failed:
+                before = got[sid][1] if sid in got else failed[sid][1]
+                rep.duplicates.append({"student": sid, "files": [before, str(p)],
                                        "kept": str(p)})
             got[sid] = (part["answers"], str(p))
             failed.pop(sid, None)

@@ -8,7 +8,6 @@ came back and prints broken submissions, unknown ids and missing students loudly
 
 from __future__ import annotations
 
-import sys
 import time
 from pathlib import Path
 
@@ -107,13 +106,14 @@ def _cmd_grade(args) -> int:
                     f"{', '.join(rep.missing)}")
     for line in loud:
         print("!! " + line)
-        print("!! " + line, file=sys.stderr)
     sc = rep.scores
     print(f"{'student':16s} {'score':>7s} {'right':>7s}  failed")
     for row in sc.itertuples():
         print(f"{row.student:16s} {row._4:6.1f}% {row.passed:3d}/{row.total:<3d}  "
               f"{row.failed}")
     print(f"class: {len(sc)} students, mean {sc['score %'].mean():.1f} %")
+    if loud:
+        print(f"!! {len(loud)} problem(s) listed above (lines starting with !!)")
     if args.out:
         Path(args.out).parent.mkdir(parents=True, exist_ok=True)
         rep.graded.to_csv(args.out, index=False)

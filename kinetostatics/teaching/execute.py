@@ -11,7 +11,9 @@ downloads, not a sandbox against a hostile student). After the last cell the ker
 from __future__ import annotations
 
 import json
+import math
 import os
+import subprocess
 import tempfile
 from pathlib import Path
 from typing import Any
@@ -90,7 +92,7 @@ def run_notebook(nb, timeout: float = 60.0, kernel: str = "python3"
     nb : nbformat.NotebookNode
         The submitted notebook (not changed).
     timeout : float
-        Seconds allowed per cell.
+        Seconds allowed per cell (rounded up to whole seconds).
     kernel : str
         Kernel name.
 
@@ -110,7 +112,6 @@ def run_notebook(nb, timeout: float = 60.0, kernel: str = "python3"
     import copy
 
     import nbformat
-    from jupyter_client import KernelManager
     from nbclient import NotebookClient
     from nbclient.exceptions import CellExecutionError, CellTimeoutError, DeadKernelError
 
@@ -122,14 +123,12 @@ def run_notebook(nb, timeout: float = 60.0, kernel: str = "python3"
     run.metadata["kernelspec"] = {"name": kernel, "display_name": kernel,
                                   "language": "python"}
     with tempfile.TemporaryDirectory(prefix="ks-grade-") as tmp:
-        # the kernel talks over Unix sockets in the temporary folder, not over TCP
-        km = KernelManager(kernel_name=kernel, transport="ipc",
-                           connection_file=str(Path(tmp) / "kernel.json"))
-        km.ip = str(Path(tmp) / "ipc")
-        client = NotebookClient(run, km=km, timeout=timeout, kernel_name=kernel,
+        client = NotebookClient(run, timeout=max(1, math.ceil(timeout)), kernel_name=kernel,
                                 allow_errors=False, resources={"metadata": {"path": tmp}})
         try:
-            client.execute(env=_env())
+            # the kernel's own stderr (its start-up chatter) is not the teacher's business;
+            # what the cells print comes back through the notebook's outputs
+            client.execute(env=_env(), stderr=subprocess.DEVNULL)
         except CellTimeoutError:
             raise SubmissionError(f"a cell ran longer than {timeout:g} s") from None
         except DeadKernelError:

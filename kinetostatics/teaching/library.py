@@ -114,11 +114,12 @@ def four_bar_exercise(seed: int | None = None) -> Exercise:
     """
     text = ("A crank-rocker four-bar ABCD (crank AB = a, coupler BC = b, rocker CD = c, frame "
             "AD = d; bars of 7.8 kg/m with their centres of mass at mid-length) turns at n "
-            "rpm, counter-clockwise. A force P resists the motion of the rocker's point E (DE = "
-            "0.6 c); gravity acts. Find, by kinetostatics (seed 002 s. 2.3): the equilibrating "
-            "moment Me at φ = 30°, its mean and largest values over the cycle, the largest "
-            "reaction in B, the reaction in C at φ = 30°, the rocker's angle and angular "
-            "velocity at φ = 30°, and the smallest transmission angle min(τ, 180° − τ).")
+            "rpm, counter-clockwise. A force P resists the motion of the rocker's point E "
+            "(DE = 0.6 c); gravity acts. Find, by kinetostatics (course text 002, s. 2.3): "
+            "the equilibrating moment Me at φ = 30°, its mean and largest values over the "
+            "cycle, the largest reaction in B, the reaction in C at φ = 30°, the rocker's "
+            "angle and angular velocity at φ = 30°, and the smallest transmission angle "
+            "min(τ, 180° − τ).")
     return Exercise(
         template=_four_bar_scene,
         ranges={"a": (0.08, 0.12, 0.005), "b": (0.26, 0.34, 0.01), "c": (0.20, 0.28, 0.01),
@@ -165,8 +166,8 @@ def rotor_exercise(seed: int | None = None) -> Exercise:
         ranges[f"rotor.unbalance.{k}.angle"] = (0.0, 355.0, 5.0)
     text = ("A rigid rotor turning at 1500 rpm carries three eccentric masses m_k at radii "
             "r_k, angles θ_k, in planes z_k. Balance it in the planes z = 0 and z = 0.30 m "
-            "with masses fixed at 0.12 m (seed 002 eqs 3.9-3.14): give both correction masses "
-            "and their angles, and the resultant inertia force before balancing.")
+            "with masses fixed at 0.12 m (course text 002, eqs 3.9-3.14): give both "
+            "correction masses and their angles, and the resultant inertia force before balancing.")
 
     def big_enough(scene: dict, key: dict) -> bool:      # angles of tiny masses mean little
         return min(key["mass[1]"], key["mass[2]"]) >= 1e-3
@@ -374,7 +375,7 @@ def resonance_exercise(seed: int | None = None) -> Exercise:
     text = ("A rotor swings on a balancing machine about an axis in correction plane II; "
             "its amplitude at resonance is read three times: A1 without trial mass, A2 "
             "with the trial mass m at radius r at the 0° mark, A3 with it at the 180° "
-            "mark. By the amplitude parallelogram (seed 002 eqs 3.22-3.31) find: the "
+            "mark. By the amplitude parallelogram (course text 002, eqs 3.22-3.31) find: the "
             "amplitude A the trial mass alone would give, the angle φ between the "
             "unbalance and the 0° mark, the unbalance m1 r1 of plane I, the correction "
             "mass at radius r_c, and the two candidate angles of the correction mass, "

@@ -60,8 +60,8 @@ def leaked_values(text: str, values: Mapping[str, float],
     -------
     list of str
         A question leaks when a number written in the text equals its value to 4
-        significant digits, or when the value's 4-digit form (``f"{v:.4g}"``, at least
-        3 digits long) appears anywhere in the text.
+        significant digits, or when the value's 4-digit form (``f"{abs(v):.4g}"``)
+        appears anywhere in the text, even inside a longer number.
     """
     shown = set()
     for tok in _NUM.findall(text):
@@ -75,8 +75,7 @@ def leaked_values(text: str, values: Mapping[str, float],
         if q in angles:
             forms.add(_sig4(float(wrap_angle(v))))
         for s in forms:
-            digits = s.split("e")[0].replace(".", "").lstrip("0")
-            if s in shown or (len(digits) >= 3 and s in text):
+            if s in shown or s in text:
                 out.append(q)
                 break
     return out

@@ -10,8 +10,8 @@ import pandas as pd
 import pytest
 
 import kinetostatics as ks
-from kinetostatics.model.errors import WorkbenchError
 from kinetostatics import teaching as E
+from kinetostatics.model.errors import WorkbenchError
 
 IDS = [f"s{k:03d}" for k in range(50)]
 
