@@ -14,10 +14,11 @@ from matplotlib.figure import Figure
 
 from ..model.errors import WorkbenchError
 from ..results import Solution
+from .centres import plot_instant_centres
 from .curves import overview, plot_driver, plot_polar
+from .freebody import dyad_free_body
 from .mechanism import draw_mechanism
 from .plans import acceleration_plan, velocity_plan
-from .polygons import force_polygon
 
 __all__ = ["cli_figures", "position_unit", "run_demo", "write_pictures"]
 
@@ -40,10 +41,12 @@ def _tag(sol: Solution, pos: float) -> str:
 def cli_figures(sol: Solution, positions: list[float] | None = None) -> dict[str, Figure]:
     """Every figure of ``solve --plot``, by file stem.
 
-    ``overview``, ``driver`` (Me or Fe over the cycle), ``polar`` (the polar diagrams of
-    the joint reactions), and at each position: ``mechanism_<pos>`` (with the loads and
-    the reactions), ``velocity_plan_<pos>``, ``acceleration_plan_<pos>``,
-    ``force_polygon_<pos>_dyad<k>`` (k = 0: the driver).
+    ``overview``, ``driver`` (Me or Fe over the cycle), ``polar_<joint>`` (the polar
+    diagram of each joint's reaction, numbered positions along it), and at each
+    position: ``mechanism_<pos>`` (with the loads and the reactions),
+    ``velocity_plan_<pos>``, ``acceleration_plan_<pos>``,
+    ``instant_centres_<pos>``, ``free_body_<pos>_dyad<k>`` (the free-body diagram beside
+    the force polygon; k = 0: the driver).
 
     Parameters
     ----------
@@ -61,15 +64,17 @@ def cli_figures(sol: Solution, positions: list[float] | None = None) -> dict[str
         if not lo - 1e-9 <= p <= hi + 1e-9:
             raise WorkbenchError(f"--plot-at {p:g}: outside the sweep [{lo:g}, {hi:g}] "
                                  f"{position_unit(sol)}")
-    figs = {"overview": overview(sol), "driver": plot_driver(sol).figure,
-            "polar": plot_polar(sol).figure}
+    figs = {"overview": overview(sol), "driver": plot_driver(sol).figure}
+    for j in sol.scene.joints:
+        figs[f"polar_{j}"] = plot_polar(sol, j).figure
     for p in positions:
         t = _tag(sol, p)
         figs[f"mechanism_{t}"] = draw_mechanism(sol, p, forces=True, loads=True).figure
         figs[f"velocity_plan_{t}"] = velocity_plan(sol, p).figure
         figs[f"acceleration_plan_{t}"] = acceleration_plan(sol, p).figure
+        figs[f"instant_centres_{t}"] = plot_instant_centres(sol, p).figure
         for d in range(len(sol.kin.dyads) + 1):
-            figs[f"force_polygon_{t}_dyad{d}"] = force_polygon(sol, d, p).figure
+            figs[f"free_body_{t}_dyad{d}"] = dyad_free_body(sol, d, p)
     return figs
 
 

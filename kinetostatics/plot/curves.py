@@ -18,11 +18,13 @@ from .base import (
     PATH_COLORS,
     axes_or_new,
     cycle_axis,
+    legend_outside,
     position_label,
     trace_points,
     vector_axes,
 )
 from .mechanism import draw_mechanism
+from .style import declutter
 
 __all__ = [
     "overview", "plot_accelerations", "plot_angular", "plot_driver", "plot_polar",
@@ -71,9 +73,10 @@ def plot_driver(sol: Solution, ax: Axes | None = None) -> Axes:
 
 
 def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
-               ax: Axes | None = None) -> Axes:
+               ax: Axes | None = None, numbers: int | None = None) -> Axes:
     """Polar diagram (hodograph) of joint reactions: the tip of the force vector over
-    the cycle, drawn from the origin (seed 002: the polar diagram of F_ij).
+    the cycle, drawn from the origin (seed 002: the polar diagram of F_ij), with the
+    position numbers along each curve as in the course's drawings.
 
     Parameters
     ----------
@@ -84,6 +87,10 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
         body (the ``reactions`` table).
     ax : Axes, optional
         Where to draw; a new figure when None.
+    numbers : int, optional
+        How many numbered positions along each curve (0, 1, ... at evenly spaced rows
+        of the sweep; the legend says where they are); 0 for none. Default: 12 for up
+        to two joints, none for more (the numbers of many curves crowd each other).
 
     Returns
     -------
@@ -95,20 +102,47 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
         joints = list(sol.scene.joints)
     elif isinstance(joints, str):
         joints = [joints]
+    if numbers is None:
+        numbers = 12 if len(joints) <= 2 else 0
+    rows = numbered_rows(sol, numbers)
+    texts = []
     for j in joints:
         fx, fy = sol.reaction(j)
         r = sol.joint_reactions[j]
         ax.plot(fx, fy, lw=1.8, label=f"F[{j}] on {r.on}")
-        ax.plot(fx[:1], fy[:1], "o", color=ax.lines[-1].get_color(), ms=5)
+        c = ax.lines[-1].get_color()
+        ax.plot(fx[:1], fy[:1], "o", color=c, ms=5)
+        ax.plot(fx[rows], fy[rows], ".", color=c, ms=4)
+        for k, i in enumerate(rows):
+            texts.append(ax.annotate(str(k), (float(fx[i]), float(fy[i])), xytext=(3, 3),
+                                     textcoords="offset points", fontsize=7, color=c))
     ax.plot(0, 0, "k+", ms=10)
+    if len(rows):
+        step = float(sol.positions[rows[1]] - sol.positions[rows[0]]) if len(rows) > 1 else 0.0
+        unit = "°" if sol.scene.driver.kind == "R" else " m"
+        ax.plot([], [], ".", color="0.3",
+                label=f"k: position {float(sol.positions[0]):g}{unit} + k·{step:.4g}{unit}")
     ax.set_aspect("equal", adjustable="datalim")
     vector_axes(ax)
     ax.set_xlabel("Fx [N]")
     ax.set_ylabel("Fy [N]")
     ax.set_title("polar diagram of joint reactions (dot: first position)", fontsize=10)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    legend_outside(ax)
+    declutter(ax, texts)
     return ax
+
+
+def numbered_rows(sol: Solution, numbers: int) -> np.ndarray:
+    """``numbers`` rows evenly spaced over the sweep (a closed turn does not repeat its
+    first position at the end)."""
+    n = sol.positions.size
+    if numbers <= 0 or n == 0:
+        return np.array([], dtype=int)
+    p = sol.positions
+    closed = sol.scene.driver.kind == "R" and n > 1 and \
+        abs(float(p[-1] - p[0]) - 360.0) < 1e-9 * 360.0
+    return np.unique(np.linspace(0, n - 1, numbers, endpoint=not closed).round().astype(int))
 
 
 def plot_transmission(sol: Solution, ax: Axes | None = None, admissible: float = 40.0) -> Axes:
@@ -308,7 +342,7 @@ def plot_angular(sol: Solution, bodies: Sequence[str] | str | None = None) -> Fi
 
 
 def overview(sol: Solution, position: float | None = None) -> Figure:
-    """Four panels: the mechanism with its reactions, Me(φ), the polar diagram of the
+    """Four panels: the mechanism with its loads and reactions, Me(φ), the polar diagram of the
     reactions, the transmission angle (the trajectories when there is no dyad).
 
     Parameters
@@ -325,7 +359,7 @@ def overview(sol: Solution, position: float | None = None) -> Figure:
     fig, axs = plt.subplots(2, 2, figsize=(12, 9), layout="constrained")
     if position is None:
         position = float(sol.positions[len(sol.positions) // 12])
-    draw_mechanism(sol, position, ax=axs[0, 0], forces=True)
+    draw_mechanism(sol, position, ax=axs[0, 0], forces=True, loads=True)
     plot_driver(sol, ax=axs[0, 1])
     plot_polar(sol, ax=axs[1, 0])
     if len(sol.kin.dyads):
