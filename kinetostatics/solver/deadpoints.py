@@ -13,7 +13,9 @@ at a dead point, so every interval next to a local minimum of m over the rows is
 at 31 interior positions, three times zooming on the smallest value (resolution 1/29791
 of the interval, one vectorised solve of the same mechanism per round). An interval whose
 interior minimum is at most 1e-3 and below both its rows' values holds a dead point: both
-rows are flagged ``singular`` and the interval is reported.
+rows are flagged ``singular`` and the interval is reported. The same probe one row's
+spacing beyond each end of the sweep flags an end row near a dead point just outside it
+(for a whole turn that is the same state as the other end row).
 """
 
 from __future__ import annotations
@@ -53,8 +55,26 @@ def _candidates(m2: np.ndarray) -> np.ndarray:
     return out[(out >= 0) & (out < n - 1)]
 
 
-def dead_points_between_rows(scene: Scene, structure: Structure, kin: Kinematics) -> np.ndarray:
-    """Intervals i (between rows i and i + 1) that hold a dead point of some dyad.
+def _probe(scene: Scene, structure: Structure, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """The smallest m^2 found inside each interval (lo, hi), zooming ROUNDS times."""
+    t = np.linspace(0.0, 1.0, PROBES + 2)
+    rows = np.arange(lo.size)
+    best = np.full(lo.size, np.inf)
+    for _ in range(ROUNDS):
+        grid = lo[:, None] + (hi - lo)[:, None] * t[None, :]
+        probe = solve_kinematics(scene, structure, positions=grid[:, 1:-1].ravel(),
+                                 strict=False)
+        pm2 = _measure2(probe).reshape(lo.size, PROBES)
+        pm2 = np.where(np.isnan(pm2), 0.0, pm2)        # no closed form there: a dead point
+        j = np.argmin(pm2, axis=1)
+        best = np.minimum(best, pm2[rows, j])
+        lo, hi = grid[rows, j], grid[rows, j + 2]
+    return best
+
+
+def dead_points_between_rows(scene: Scene, structure: Structure,
+                             kin: Kinematics) -> tuple[np.ndarray, np.ndarray]:
+    """Dead points between rows, and just beyond the sweep's ends.
 
     Parameters
     ----------
@@ -63,26 +83,31 @@ def dead_points_between_rows(scene: Scene, structure: Structure, kin: Kinematics
 
     Returns
     -------
-    numpy.ndarray
-        The indices i, ascending.
+    between : numpy.ndarray
+        The intervals i (between rows i and i + 1) that hold a dead point, ascending.
+    ends : numpy.ndarray
+        The end rows (0 and/or n - 1) with a dead point within one row's spacing beyond
+        them (outside the sweep: for a whole turn, the same state as the other end).
     """
+    none = np.zeros(0, dtype=int)
     m2 = _measure2(kin)
-    cand = _candidates(m2)
-    if cand.size == 0:
-        return cand
+    n = m2.size
+    if n < 2:
+        return none, none
     pos = np.asarray(kin.positions, dtype=float)
-    lo, hi = pos[cand], pos[cand + 1]
-    t = np.linspace(0.0, 1.0, PROBES + 2)
-    best = np.full(cand.size, np.inf)
-    for _ in range(ROUNDS):
-        grid = lo[:, None] + (hi - lo)[:, None] * t[None, :]
-        probe = solve_kinematics(scene, structure, positions=grid[:, 1:-1].ravel(),
-                                 strict=False)
-        pm2 = _measure2(probe).reshape(cand.size, PROBES)
-        pm2 = np.where(np.isnan(pm2), 0.0, pm2)        # no closed form there: a dead point
-        j = np.argmin(pm2, axis=1)
-        best = np.minimum(best, pm2[np.arange(cand.size), j])
-        lo, hi = grid[np.arange(cand.size), j], grid[np.arange(cand.size), j + 2]
-    ends = np.minimum(m2[cand], m2[cand + 1])
-    found = (best <= SINGULAR_WARN**2) & (best < ends)
-    return cand[found]
+    cand = _candidates(m2)
+    # beyond the ends: an end row that is a dip of m, probed over one spacing outside
+    outer = [(0, 2.0 * pos[0] - pos[1], pos[0]), (n - 1, pos[-1], 2.0 * pos[-1] - pos[-2])]
+    outer = [o for o in outer
+             if m2[o[0]] < SCREEN**2 and m2[o[0]] <= m2[1 if o[0] == 0 else n - 2]]
+    lo = np.concatenate([pos[cand], [o[1] for o in outer]])
+    hi = np.concatenate([pos[cand + 1], [o[2] for o in outer]])
+    if lo.size == 0:
+        return none, none
+    best = _probe(scene, structure, lo, hi)
+    k = cand.size
+    ends_m2 = np.minimum(m2[cand], m2[cand + 1])
+    between = cand[(best[:k] <= SINGULAR_WARN**2) & (best[:k] < ends_m2)]
+    edge = np.array([o[0] for o, b in zip(outer, best[k:], strict=True)
+                     if b <= SINGULAR_WARN**2 and b < m2[o[0]]], dtype=int)
+    return between, edge

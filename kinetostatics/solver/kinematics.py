@@ -107,6 +107,7 @@ class Kinematics:
     bodies: dict[str, BodyMotion]
     dyads: list[DyadMotion] = field(default_factory=list)
     between: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+    ends: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
 
     @property
     def n(self) -> int:
@@ -120,6 +121,7 @@ class Kinematics:
             out |= d.singular
         out[self.between] = True            # a dead point between rows i and i + 1
         out[self.between + 1] = True
+        out[self.ends] = True               # a dead point just beyond an end of the sweep
         return out
 
 

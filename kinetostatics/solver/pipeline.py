@@ -53,7 +53,7 @@ def solve(scene: Any, positions: Any = None) -> Solution:
     structure = analyse(sc)
     try:
         kin = solve_kinematics(sc, structure, positions)
-        kin.between = dead_points_between_rows(kin.scene, structure, kin)
+        kin.between, kin.ends = dead_points_between_rows(kin.scene, structure, kin)
         sol = _solve_loads(kin.scene, structure, kin)
     except (OverflowError, ZeroDivisionError) as exc:
         raise AssemblyError(f"the scene's numbers overflow ({exc}); check its dimensions "

@@ -1,0 +1,141 @@
+"""Dead points at a row and between rows, degenerate pivots, one transmission angle, and
+no NaN left unchecked."""
+
+from __future__ import annotations
+
+import tomllib
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import kinetostatics as ks
+from kinetostatics.model.errors import AssemblyError
+from kinetostatics.solver import _arith as A
+from kinetostatics.solver.pipeline import _check_finite
+
+
+def slotted_lever(crank: float, start: float = 0.0, count: int = 361) -> dict:
+    """The bundled slotted lever; with crank = 0.30 (= O2 O4) the block passes through
+    the lever's pivot O4 at 270 deg."""
+    with open(ks.example("slotted_lever"), "rb") as fh:
+        d = tomllib.load(fh)
+    d["bodies"][0]["points"]["A"] = [crank, 0.0]
+    d["driver"].update(start=start, stop=start + 360.0, count=count)
+    return d
+
+
+def change_point_four_bar(a: float, b: float, c: float, start: float, count: int) -> dict:
+    """A four-bar with a + b = c + d (crank a < rocker c < coupler b, ground d = a + b - c):
+    its change point (all four pivots on a line) is at crank angle 0 deg."""
+    d = a + b - c
+    return {
+        "driver": {"body": "crank", "joint": "A", "speed": 10.0, "start": start,
+                   "stop": start + 360.0, "count": count},
+        "ground": {"A": [0.0, 0.0], "D": [d, 0.0]},
+        "bodies": [
+            {"name": "crank", "mass": 1.0, "inertia": 1e-3, "cog": [a / 2, 0.0],
+             "points": {"A": [0.0, 0.0], "B": [a, 0.0]}},
+            {"name": "coupler", "mass": 2.0, "inertia": 1e-2, "cog": [b / 2, 0.01],
+             "points": {"B": [0.0, 0.0], "C": [b, 0.0]}},
+            {"name": "rocker", "mass": 1.5, "inertia": 5e-3, "cog": [c / 2, 0.0],
+             "points": {"D": [0.0, 0.0], "C": [c, 0.0]}},
+        ],
+        "joints": [{"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
+                   {"name": "B", "kind": "R", "bodies": ["crank", "coupler"]},
+                   {"name": "C", "kind": "R", "bodies": ["coupler", "rocker"]},
+                   {"name": "D", "kind": "R", "bodies": ["ground", "rocker"]}],
+        "loads": [{"body": "rocker", "moment": -5.0}],
+        "near": {"C": [d, 10.0 * (a + b + c)]},
+    }
+
+
+def test_block_through_the_pivot_at_a_row_is_refused_naming_it() -> None:
+    """Was: Me = -2e16 N m, reactions 4e33 N, singular false."""
+    with pytest.raises(AssemblyError, match=r"O4.*coincide at driver position\(s\) 270 deg"):
+        ks.solve(slotted_lever(0.30))
+
+
+def test_block_through_the_pivot_between_rows_is_flagged() -> None:
+    sol = ks.solve(slotted_lever(0.30, start=0.5))
+    s = sol.summary()
+    assert s["dead_points_between_rows"] == [[269.5, 270.5]]
+    drv = sol.driver.set_index("position")
+    assert drv.loc[269.5, "singular"] and drv.loc[270.5, "singular"]
+    assert s["singular_rows"] == 2
+    # the lever turns by 180 deg between those rows: that is the dead point
+    lever = sol.bodies[sol.bodies.body == "lever"].set_index("position").angle
+    assert abs(abs(lever[270.5] - lever[269.5]) - 180.0) < 5.0
+
+
+def test_change_point_between_rows_is_flagged() -> None:
+    """Was: omega of the rocker -53.5 -> +13.5 rad/s between adjacent rows, nothing
+    flagged (sin tau = 4e-3 at both rows)."""
+    sol = ks.solve(change_point_four_bar(0.1, 0.3, 0.2, 100.3, 361))
+    s = sol.summary()
+    assert s["dead_points_between_rows"] == [[359.3, 360.3]]
+    rows = sol.driver.set_index("position").singular
+    assert rows[359.3] and rows[360.3] and s["singular_rows"] == 2
+
+
+def test_regular_mechanisms_have_no_dead_point() -> None:
+    for name in ks.examples():
+        s = ks.solve(ks.example(name)).summary()
+        assert s["dead_points_between_rows"] == [] and s["singular_rows"] == 0, name
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.floats(0.05, 0.2), st.floats(1.2, 3.0), st.floats(1.1, 2.0),
+       st.floats(5.0, 355.0), st.integers(19, 721))
+def test_rows_within_a_spacing_of_a_change_point_are_flagged(a, kb, kc, start, count):
+    """Hypothesis: any change-point four-bar, any sweep: every row within one row's spacing
+    of the change point (crank angle 0 mod 360) is flagged singular; rows far from it,
+    where the dyad transmits well, are not."""
+    c = a * kc
+    b = c * kb
+    try:
+        sol = ks.solve(change_point_four_bar(a, b, c, start, count))
+    except AssemblyError as exc:                        # a row on the change point itself
+        pos = np.linspace(start, start + 360.0, count)
+        assert np.min(np.abs((pos + 180.0) % 360.0 - 180.0)) < 1e-6, str(exc)
+        return
+    pos = np.asarray(sol.positions, dtype=float)
+    spacing = 360.0 / (count - 1)
+    dist = np.abs((pos + 180.0) % 360.0 - 180.0)
+    flagged = sol.driver.singular.to_numpy()
+    assert flagged[dist <= spacing * (1 - 1e-9)].all()
+    tau = sol.dyads.transmission_angle.to_numpy()
+    assert not flagged[(dist > 3 * spacing) & (tau > 5.0)].any()
+
+
+def test_transmission_angle_has_one_definition() -> None:
+    sol = ks.solve(ks.example("four_bar"))
+    t = sol.dyads
+    assert t.transmission_angle.between(0.0, 90.0).all()
+    np.testing.assert_allclose(t.transmission_angle, np.minimum(t.tau, 180.0 - t.tau),
+                               rtol=0, atol=1e-12)
+    s = sol.summary()
+    i = int(t.transmission_angle.to_numpy().argmin())
+    assert s["transmission_angle_min"] == float(t.transmission_angle.iloc[i])
+    assert s["transmission_angle_min_position"] == float(t.position.iloc[i])
+    assert round(s["transmission_angle_min"], 1) == 51.3     # the bundled four-bar
+
+
+def test_zero_times_nan_stays_nan() -> None:
+    bad = np.array([1.0, np.nan, 2.0])
+    assert np.isnan(A.mul(0.0, bad)[1]) and np.isnan(A.mul(bad, 0.0)[1])
+    assert A.mul(0.0, np.array([1.0, 2.0])) == 0.0      # finite: the pass is skipped
+
+
+@pytest.mark.parametrize("field", ["sin", "omega", "alpha", "vx", "ay"])
+def test_every_table_number_is_checked_finite(field) -> None:
+    """A NaN anywhere behind a table (here planted in one body's motion) is refused,
+    naming the driver position."""
+    sol = ks.solve(ks.example("four_bar"))
+    m = sol.kin.bodies["rocker"]
+    value = np.array(np.broadcast_to(getattr(m, field), sol.positions.shape), dtype=float)
+    value[7] = np.nan
+    setattr(m, field, value)
+    with pytest.raises(AssemblyError, match=r"at driver position 7 deg"):
+        _check_finite(sol)
