@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pandas as pd
 
+from ..model.scene import GROUND
 from .kinematics import Kinematics, solve_kinematics
 from .loads import concentrated_masses
 
@@ -51,6 +52,15 @@ def unit_kinematics(sol: Solution) -> Kinematics:
     return solve_kinematics(scene, sol.kin.structure)
 
 
+def driver_direction(sol: Solution) -> float:
+    """+1, or -1 for a sliding driver that carries the guide: its position grows as it
+    moves against the line direction, along which Fe acts (so its power is -Fe v)."""
+    drv = sol.scene.driver
+    if drv.kind == "R":
+        return 1.0
+    return 1.0 if sol.scene.joints[drv.joint].guide == GROUND else -1.0
+
+
 def power_table(sol: Solution) -> pd.DataFrame:
     """The power balance at every position (bilanțul puterilor), W.
 
@@ -64,7 +74,8 @@ def power_table(sol: Solution) -> pd.DataFrame:
     ``P_driver`` (eqs 4.22-4.25).
     """
     powers = _powers_by_kind(sol, sol.kin)
-    drive = np.asarray(sol.Me, dtype=float) * sol.scene.driver.speed    # Me w1 or Fe v
+    speed = sol.scene.driver.speed * driver_direction(sol)
+    drive = np.asarray(sol.Me, dtype=float) * speed                     # Me w1 or Fe v
     return pd.DataFrame({"position": sol.positions, "P_driver": drive,
                          **{f"P_{k}": powers[k] for k in LOAD_KINDS}})
 
@@ -110,18 +121,22 @@ def reduced_table(sol: Solution) -> pd.DataFrame:
     -(I_red eps + 1/2 dI_red omega^2) (eq. 2.73 with eq. 4.9's kinetic-energy
     derivative; eps, omega the driver's); ``I_red`` (or ``m_red``, eq. 2.75) and
     ``dI_red`` (d I_red / d position, per rad or per m). The three reduced moments add
-    up to -Me at every row (eq. 2.73)."""
+    up to -Me at every row (eq. 2.73). A sliding driver's reduced forces act along the
+    line, like Fe (for a driver that carries the guide, whose position grows as it moves
+    against the line, they change sign with its velocity)."""
     drv = sol.scene.driver
     kin1 = unit_kinematics(sol)
     powers = _powers_by_kind(sol, kin1)
     i_red, di_red = reduced_inertia(sol, kin1)
     w, eps = drv.speed, drv.acceleration
     rot = drv.kind == "R"
+    k = driver_direction(sol)       # reduced forces act along Fe, like Fe
     return pd.DataFrame({
         "position": sol.positions,
-        "M_red" if rot else "F_red": powers["applied"] + powers["gravity"],
-        "M_red_friction" if rot else "F_red_friction": powers["friction"],
-        "M_red_inertia" if rot else "F_red_inertia": -(i_red * eps + 0.5 * di_red * w * w),
+        "M_red" if rot else "F_red": k * (powers["applied"] + powers["gravity"]),
+        "M_red_friction" if rot else "F_red_friction": k * powers["friction"],
+        "M_red_inertia" if rot else "F_red_inertia":
+            -k * (i_red * eps + 0.5 * di_red * w * w),
         "I_red" if rot else "m_red": i_red,
         "dI_red" if rot else "dm_red": di_red,
     })

@@ -148,3 +148,21 @@ def test_friction_reduces_with_the_self_locking_rows_left_empty():
     me = np.asarray(sol.Me)[~locked]
     total = (m_red + m_fric + m_inertia)[~locked]
     assert np.abs(total + me).max() <= 1e-13 * np.abs(me).max()
+
+
+@pytest.mark.parametrize("speed, acc", [(1.5, 0.0), (0.0, 5.0), (-2.0, 3.0)])
+def test_sliding_driver_that_carries_the_guide(speed, acc):
+    """A sliding driver whose body carries the guide moves against the line direction as
+    its position grows: its reduced forces still add up to -Fe (along the line, like Fe),
+    and the power table (P_driver = Fe v) still closes, with friction in the guide."""
+    d = load("sliding_driver", speed, acc)
+    d["joints"][0].update(guide="slider", slider="ground", line_point="C", slider_point="S0",
+                          friction={"mu": 0.2})
+    sol = ks.solve(d)
+    f_red, f_fric, f_inertia, m_red, dm_red = columns(sol)
+    fe = np.asarray(sol.Me)                     # Fe of the sliding driver
+    assert np.abs(f_red + f_fric + f_inertia + fe).max() <= 4e-15 * np.abs(fe).max()
+    p = sol.powers
+    total = p.drop(columns="position").sum(axis=1).to_numpy()
+    assert np.abs(total).max() <= 4e-15 * max(np.abs(p.P_driver).max(), 1e-300)
+    assert (p.P_friction <= 0.0).all()          # measured: both sums <= 3e-16
