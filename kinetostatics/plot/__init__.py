@@ -15,6 +15,9 @@ geometry and vector diagrams use equal aspect.
   (``freebody``);
 - instantaneous centres of velocity (Kennedy): :func:`instant_centres`,
   :func:`plot_instant_centres` (``centres``);
+- the flywheel (seed 002 ch. 4): :func:`reduced_cycle` (I_r, M_r, Delta E over a turn),
+  :func:`plot_flywheel_curves`, :func:`plot_wittenbauer`, :func:`wittenbauer_flywheel`
+  (``flywheel``);
 - a gear pair: :func:`draw_gear_pair` (``gears``);
 - the projector style :func:`projector` and the label check :func:`overlapping_texts`
   (``style``).
@@ -33,6 +36,12 @@ from .curves import (
     plot_speeds,
     plot_trajectories,
     plot_transmission,
+)
+from .flywheel import (
+    plot_flywheel_curves,
+    plot_wittenbauer,
+    reduced_cycle,
+    wittenbauer_flywheel,
 )
 from .freebody import dyad_free_body, free_body_forces
 from .gears import draw_gear_pair
@@ -63,12 +72,16 @@ __all__ = [
     "plot_accelerations",
     "plot_angular",
     "plot_driver",
+    "plot_flywheel_curves",
     "plot_instant_centres",
     "plot_polar",
     "plot_speeds",
     "plot_trajectories",
     "plot_transmission",
+    "plot_wittenbauer",
     "polygon_forces",
     "projector",
+    "reduced_cycle",
     "velocity_plan",
+    "wittenbauer_flywheel",
 ]

@@ -43,7 +43,7 @@ def projector(**overrides) -> Iterator[None]:
 def _undrawn_ticks(fig: Figure) -> set[int]:
     """Tick labels matplotlib keeps but does not draw (ticks outside the view)."""
     out = set()
-    for ax in fig.axes:
+    for ax in fig.findobj(Axes):       # insets included
         for axis in (ax.xaxis, ax.yaxis):
             lo, hi = sorted(axis.get_view_interval())
             tol = 1e-9 * (hi - lo)
@@ -109,7 +109,7 @@ _DISTANCES = (6.0, 12.0, 20.0, 30.0, 42.0, 56.0)
 def _arrow_paths(fig: Figure) -> list:
     """The drawn arrows of the annotations of a figure, as paths in pixels."""
     out = []
-    for ax in fig.axes:
+    for ax in fig.findobj(Axes):       # insets included
         for t in ax.texts:
             patch = getattr(t, "arrow_patch", None)
             if patch is not None and patch.get_visible():
