@@ -366,8 +366,9 @@ class BalancingMachine:
         Returns
         -------
         MachineResult
-            With the recovered unbalance, its error against the one put in and the
-            angle error (the nearer of the two mirror candidates).
+            With the recovered unbalance, its error against the one put in, the
+            angle error of ``result.angle`` and that of ``result.mirror_angle`` (the
+            method cannot tell which of the two is right).
         """
         us = _unbalances(unbalances, "unbalances")
         recs = self.runs([us, [*us, Unbalance(trial_mass, trial_radius, 0.0)],
@@ -378,7 +379,6 @@ class BalancingMachine:
         A2, A3 = (r.amplitude * f[k] for r, k in zip(recs[1:], ("0", "180"), strict=True))
         res = parallelogram(A1, A2, A3, trial_mass, trial_radius, correction_radius)
         return method_result(res, {"A1": A1, "0": A2, "180": A3}, us, recs,
-                             candidates=(res.angle, res.mirror_angle),
                              factors=f if mass_correction else None)
 
     def four_run(self, unbalances: Iterable[Any], trial_mass: float, trial_radius: float,
@@ -398,8 +398,7 @@ class BalancingMachine:
         runs = [(a, r.amplitude * f[n]) for a, n, r in zip(marks, names, recs[1:], strict=True)]
         res = trial_runs(A1, runs, trial_mass, trial_radius, correction_radius)
         amps = {"A1": A1, **{n: A for n, (_, A) in zip(names, runs, strict=True)}}
-        return method_result(res, amps, us, recs, candidates=(res.angle,),
-                             factors=f if mass_correction else None)
+        return method_result(res, amps, us, recs, factors=f if mass_correction else None)
 
     def _factors(self, us: list[Unbalance], trial_mass: float, names: tuple[str, ...],
                  on: bool) -> dict[str, float]:

@@ -63,9 +63,11 @@ class MachineResult:
     unbalance_error : float
         |recovered m r - put-in m r| / put-in m r.
     angle_error : float
-        Angle (deg) between the recovered correction ``angle`` and the true one (put-in
-        angle + 180); for the three-run method the nearer of ``angle`` and
-        ``mirror_angle`` (the method cannot tell them apart).
+        Angle (deg) between the recovered correction ``result.angle`` and the true one
+        (the put-in angle + 180).
+    mirror_angle_error : float or None
+        The same for ``result.mirror_angle``, the other candidate of the three-run
+        method (which cannot tell the two apart); None for the four-run method.
     records : list of MachineRecord
         The runs (their ``amplitude`` as measured).
     mass_factors : dict or None
@@ -80,19 +82,26 @@ class MachineResult:
     angle_error: float
     records: list[MachineRecord] = field(default_factory=list, repr=False)
     mass_factors: dict[str, float] | None = None
+    mirror_angle_error: float | None = None
 
 
 def method_result(res: ResonanceResult, amps: dict, us: list[Unbalance], recs: list,
-                  candidates: tuple, factors: dict | None = None) -> MachineResult:
-    """A method's :class:`MachineResult`: the recovered unbalance against the one put in."""
+                  factors: dict | None = None) -> MachineResult:
+    """A method's :class:`MachineResult`: the recovered unbalance and correction angle
+    (and its mirror candidate, if the method gives one) against the ones put in."""
     U = sum((u.U for u in us), 0j)
+    mirror = None
     if abs(U) == 0.0:
         err = abs(res.unbalance)
         ang = float("nan")
     else:
         err = abs(res.unbalance - abs(U)) / abs(U)
         true = math.degrees(math.atan2(U.imag, U.real)) + 180.0
-        ang = min(abs((c - true + 180.0) % 360.0 - 180.0) for c in candidates
-                  if c is not None)
-    return MachineResult(res, amps, U, float(err), float(ang), recs, factors)
 
+        def off(c: float) -> float:
+            return float(abs((c - true + 180.0) % 360.0 - 180.0))
+
+        ang = off(res.angle)
+        if res.mirror_angle is not None:
+            mirror = off(res.mirror_angle)
+    return MachineResult(res, amps, U, float(err), float(ang), recs, factors, mirror)

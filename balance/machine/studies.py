@@ -126,16 +126,18 @@ def coast_down_study(durations: Iterable[float | None] = (None, 10.0, 3.0, 1.0, 
                         try:
                             res = parallelogram(r1.amplitude, A[0.0], A[180.0], tm,
                                                 trial_radius, correction_radius)
-                            mr = method_result(res, {}, us, [], (res.angle, res.mirror_angle))
+                            mr = method_result(res, {}, us, [])
                             out["three"].append(mr.unbalance_error)
-                            out["three_angle"].append(mr.angle_error)
+                            # the method cannot tell its two candidates apart
+                            out["three_angle"].append(min(mr.angle_error,
+                                                          mr.mirror_angle_error))
                         except BalanceError:
                             failed["three"] += 1
                         try:
                             res = trial_runs(r1.amplitude, [(a, A[a]) for a in (0.0, 120.0,
                                                                                 240.0)],
                                              tm, trial_radius, correction_radius)
-                            mr = method_result(res, {}, us, [], (res.angle,))
+                            mr = method_result(res, {}, us, [])
                             out["four"].append(mr.unbalance_error)
                             out["four_angle"].append(mr.angle_error)
                         except BalanceError:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pandas as pd
 
@@ -117,7 +119,7 @@ def plot_study(table: pd.DataFrame | Study, *, repeats: int | None = None):
     ax2.set_xlabel("dt (s)")
     ax2.set_ylabel("max relative error")
     ax2.set_title("convergence (x along the top: diverged)", fontsize=10)
-    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
     if blown_col.any():
         # an empty band along the top for the diverged marks, clear of the data
         lo, hi = ax2.get_ylim()
@@ -126,7 +128,7 @@ def plot_study(table: pd.DataFrame | Study, *, repeats: int | None = None):
     for ax in (ax1, ax2):
         ax.grid(alpha=0.3, which="both")
         # ticks at 1, 2 and 5 of each decade, labelled as plain numbers: never crowded
-        ax.xaxis.set_major_locator(LogLocator(base=10.0, subs=(1.0, 2.0, 5.0)))
+        ax.xaxis.set_major_locator(FixedLocator(_log_ticks(*ax.get_xlim())))
         ax.xaxis.set_major_formatter(FuncFormatter(lambda x, _: f"{x:g}"))
         ax.xaxis.set_minor_formatter(NullFormatter())
         for h, lab in zip(*ax.get_legend_handles_labels(), strict=True):
@@ -134,3 +136,14 @@ def plot_study(table: pd.DataFrame | Study, *, repeats: int | None = None):
     fig.legend(handles.values(), handles.keys(), loc="outside lower center", ncol=3,
                fontsize=8, frameon=False)
     return fig
+
+
+def _log_ticks(lo: float, hi: float) -> list[float]:
+    """Tick values 1, 2 and 5 times a power of ten within [lo, hi]; where fewer than two
+    fall inside (a range under a factor of 5), the ends rounded to two figures."""
+    k0, k1 = math.floor(math.log10(lo)), math.ceil(math.log10(hi))
+    ticks = [m * 10.0 ** k for k in range(k0, k1 + 1) for m in (1.0, 2.0, 5.0)
+             if lo <= m * 10.0 ** k <= hi]
+    if len(ticks) < 2:
+        ticks = sorted({*ticks, float(f"{lo * 1.05:.2g}"), float(f"{hi / 1.05:.2g}")})
+    return ticks

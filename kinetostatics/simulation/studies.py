@@ -177,14 +177,19 @@ def study(scene: Any, *, steps: tuple[int, ...] | None = None,
         with np.errstate(divide="ignore", invalid="ignore"):
             local = np.log(e[:-1] / e[1:]) / np.log(h[:-1] / h[1:])
         table.loc[ok.index[1:], "order"] = local
-        # a finer step costs more: a cost below that of a coarser step is noise
-        ms = ok.ms_per_revolution.to_numpy()
-        table.loc[ok.index, "timing_noise"] = ms < np.maximum.accumulate(ms)
+        table.loc[ok.index, "timing_noise"] = timing_noise(ok.ms_per_revolution.to_numpy())
         fit = (e > ORDER_FLOOR) & (e < 1.0)
         order[int(it)] = float(np.polyfit(np.log(h[fit]), np.log(e[fit]), 1)[0]) \
             if fit.sum() >= 2 else None
         points[int(it)] = (int(fit.sum()), len(g), int(g.diverged.sum()))
     return Study(table, order, points, n_rep)
+
+
+def timing_noise(ms: np.ndarray) -> np.ndarray:
+    """Which of the wall times of settings with ever more steps fell below that of a
+    setting with fewer steps (a finer step cannot cost less: the time was disturbed)."""
+    ms = np.asarray(ms, dtype=float)
+    return ms < np.maximum.accumulate(ms) if ms.size else np.zeros(0, dtype=bool)
 
 
 def _study_run(item: tuple) -> dict[str, Any]:

@@ -182,13 +182,15 @@ def test_coast_down_methods_recover_random_unbalances(seed):
     three = SLOW.three_run(us, **trial)
     four = SLOW.four_run(us, **trial)
     for r in (three, four):
-        assert r.unbalance_error <= 5e-3                   # measured <= 1.5e-3
-        assert r.angle_error <= 1.0                        # measured <= 0.01 deg
+        assert r.unbalance_error <= 3e-3                   # measured 2.5e-4 to 1.08e-3
         assert r.records[0].peak_time is not None
+    assert four.angle_error <= 4e-3                        # measured 5.4e-4 to 1.8e-3 deg
+    # one of the three-run candidates is right (measured 9.2e-4 to 1.1e-3 deg)
+    assert min(three.angle_error, three.mirror_angle_error) <= 4e-3
     assert four.result.mirror_angle is None
     # the trial mass's own mass is most of the error: corrected, it falls below 1e-3
     corrected = SLOW.four_run(us, **trial, mass_correction=True)
-    assert corrected.unbalance_error <= 1e-3              # measured <= 3e-4
+    assert corrected.unbalance_error <= 6e-4              # measured 5.5e-5 to 2.0e-4
     assert corrected.unbalance_error < four.unbalance_error
     assert set(corrected.mass_factors) == {"A1", "0", "120", "240"}
 
