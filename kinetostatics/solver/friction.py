@@ -145,30 +145,34 @@ def _quantities(spec: _Spec, r: JointReaction, n: int) -> list[np.ndarray]:
 
 
 def _magnitude(spec: _Spec, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """s_j = h_j(q) and its gradient (a subgradient where h_j has a kink)."""
+    """s_j = h_j(q) and its gradient (a subgradient where h_j has a kink); q is
+    (width, rows), the gradient too."""
     c = spec.coeff
     if spec.joint.kind == "R":                          # rho |F| (eq. 2.62)
-        f = np.hypot(q[:, 0], q[:, 1])
+        f = np.hypot(q[0], q[1])
         with np.errstate(invalid="ignore", divide="ignore"):
-            g = np.where(f[:, None] > 0.0, q / f[:, None], 0.0)
+            g = np.where(f > 0.0, q / f, 0.0)
         return c * f, c * g
     if spec.width == 1:                                 # mu |N|
-        return c * np.abs(q[:, 0]), c * np.sign(q[:, :1])
-    half, arm = 0.5 * q[:, 0], q[:, 1] / spec.length    # eqs 2.63-2.65: mu (|N_A| + |N_B|)
+        return c * np.abs(q[0]), c * np.sign(q)
+    half, arm = 0.5 * q[0], q[1] / spec.length          # eqs 2.63-2.65: mu (|N_A| + |N_B|)
     na, nb = half - arm, half + arm
     sa, sb = np.sign(na), np.sign(nb)
-    grad = np.stack([0.5 * (sa + sb), (sb - sa) / spec.length], axis=1)
+    grad = np.stack([0.5 * (sa + sb), (sb - sa) / spec.length])
     return c * (np.abs(na) + np.abs(nb)), c * grad
 
 
 class _Rows:
-    """The rows' friction system in normalised form: unknowns w_j s_j, all O(1)."""
+    """The rows' friction system in normalised form: unknowns w_j s_j, all O(1).
+
+    Arrays keep the rows last (contiguous along the sweep): q0 (m, n), G / w
+    (m, k, n), w (k, n), unknowns (k, n)."""
 
     def __init__(self, specs: list[_Spec], q0: np.ndarray, g: np.ndarray, w: np.ndarray):
         self.specs = specs
-        self.n = q0.shape[0]
+        self.n = q0.shape[1]
         self.q0, self.w = q0, w
-        self.gt = g / w[:, None, :]     # the response to the normalised unknowns
+        self.gt = g / w[None, :, :]     # the response to the normalised unknowns
         self.slices = []
         start = 0
         for sp in specs:
@@ -176,10 +180,10 @@ class _Rows:
             start += sp.width
 
     def take(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """q0, G / w and w at rows idx (views when idx is every row)."""
+        """q0, G / w and w at rows idx (the arrays themselves when idx is every row)."""
         if idx.size == self.n:
             return self.q0, self.gt, self.w
-        return self.q0[idx], self.gt[idx], self.w[idx]
+        return self.q0[:, idx], self.gt[:, :, idx], self.w[:, idx]
 
     def lipschitz(self) -> np.ndarray:
         """Per row, a bound L on how much the normalised magnitudes w h(q0 + G s) change
@@ -188,76 +192,91 @@ class _Rows:
         friction leads to it."""
         out = np.zeros(self.n)
         for j, (sp, sl) in enumerate(zip(self.specs, self.slices, strict=True)):
-            col = self.gt[:, sl, :]                         # (n, width, k)
+            col = self.gt[sl]                               # (width, k, n)
             if sp.joint.kind == "R":
-                per = np.hypot(col[:, 0, :], col[:, 1, :])
+                per = np.hypot(col[0], col[1])
             elif sp.width == 1:
-                per = np.abs(col[:, 0, :])
+                per = np.abs(col[0])
             else:                               # |dN_A| + |dN_B| <= |dN| + 2 |dM| / l
-                per = np.abs(col[:, 0, :]) + 2.0 * np.abs(col[:, 1, :]) / sp.length
-            out = np.maximum(out, sp.coeff * self.w[:, j] * per.sum(axis=1))
+                per = np.abs(col[0]) + 2.0 * np.abs(col[1]) / sp.length
+            out = np.maximum(out, sp.coeff * self.w[j] * per.sum(axis=0))
         return out
 
     def linearise(self, q: np.ndarray, w: np.ndarray, gt: np.ndarray, q0: np.ndarray
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """At the reaction quantities q: the normalised magnitudes w h(q), and the
-        products of their Jacobian d(w h)/dq with G / w and with q0 (each magnitude
-        reads only its own joint's quantities)."""
-        n, k = q.shape[0], len(self.specs)
-        hv = np.empty((n, k))
-        dhg = np.empty((n, k, k))
-        dhq = np.empty((n, k))
+        """At the reaction quantities q: the normalised magnitudes w h(q) (k, n), and the
+        products of their Jacobian d(w h)/dq with G / w (k, k, n) and with q0 (k, n)
+        (each magnitude reads only its own joint's quantities)."""
+        k, n = len(self.specs), q.shape[1]
+        hv = np.empty((k, n))
+        dhg = np.empty((k, k, n))
+        dhq = np.empty((k, n))
         for j, (sp, sl) in enumerate(zip(self.specs, self.slices, strict=True)):
-            h, grad = _magnitude(sp, q[:, sl])
-            grad = grad * w[:, j:j + 1]
-            hv[:, j] = h * w[:, j]
-            dhg[:, j, :] = np.einsum("nw,nwk->nk", grad, gt[:, sl, :])
-            dhq[:, j] = np.einsum("nw,nw->n", grad, q0[:, sl])
+            h, grad = _magnitude(sp, q[sl])
+            grad = grad * w[j]
+            hv[j] = h * w[j]
+            a = sl.start
+            np.multiply(grad[0], gt[a], out=dhg[j])
+            dhq[j] = grad[0] * q0[a]
+            if sp.width == 2:
+                dhg[j] += grad[1] * gt[a + 1]
+                dhq[j] += grad[1] * q0[a + 1]
         return hv, dhg, dhq
 
 
+def _apply(gt: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """G s per row: (m, k, n) times (k, n)."""
+    out = gt[:, 0, :] * s[0]
+    for j in range(1, s.shape[0]):
+        out += gt[:, j, :] * s[j]
+    return out
+
+
 def _solve_batch(jac: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Batched linear solves; rows whose matrix is singular (or not finite) give a zero
-    step and False."""
-    ok = np.isfinite(jac).all(axis=(1, 2)) & np.isfinite(rhs).all(axis=1)
+    """Per row, solve jac x = rhs (jac (K, K, n), rhs (K, n)); rows whose matrix is
+    singular (or not finite) give a zero step and False."""
+    a = np.moveaxis(jac, 2, 0)
+    b = rhs.T[..., None]
+    ok = np.isfinite(a).all(axis=(1, 2)) & np.isfinite(b[..., 0]).all(axis=1)
     if ok.all():
         try:
-            return np.linalg.solve(jac, rhs[..., None])[..., 0], ok
+            return np.linalg.solve(a, b)[..., 0].T, ok
         except np.linalg.LinAlgError:
             pass
-    ok &= np.abs(np.linalg.det(np.where(ok[:, None, None], jac, 1.0))) > 1e-300
-    eye = np.eye(jac.shape[1])
-    safe = np.where(ok[:, None, None], jac, eye)
-    step = np.linalg.solve(safe, np.where(ok[:, None], rhs, 0.0)[..., None])[..., 0]
-    return step, ok
+    ok &= np.abs(np.linalg.det(np.where(ok[:, None, None], a, 1.0))) > 1e-300
+    safe = np.where(ok[:, None, None], a, np.eye(a.shape[1]))
+    step = np.linalg.solve(safe, np.where(ok[:, None, None], b, 0.0))[..., 0]
+    return step.T, ok
+
+
+def _eye(k: int) -> np.ndarray:
+    return np.eye(k)[:, :, None]
 
 
 def _newton_path(rows: _Rows, idx: np.ndarray, lam: np.ndarray, x: np.ndarray
                  ) -> tuple[np.ndarray, np.ndarray]:
     """Newton's method on the projective system at scales ``lam`` for rows ``idx``,
-    from ``x`` = (w s, sigma). Returns the solutions and which rows converged."""
+    from ``x`` = (w s, sigma) (k + 1, rows). Returns the solutions and which rows
+    converged."""
     k = len(rows.specs)
     x = x.copy()
     done = np.zeros(idx.size, dtype=bool)
     failed = np.zeros(idx.size, dtype=bool)
-    eye = np.eye(k)
     live = np.arange(idx.size)
     for _ in range(NEWTON_ITERATIONS):
         q0, gt, w = rows.take(idx[live])
         la = lam[live]
-        s, sig = x[live, :k], x[live, k]
-        q = sig[:, None] * q0 + np.einsum("nmk,nk->nm", gt, s)
-        hv, dhg, dhq = rows.linearise(q, w, gt, q0)
-        res = np.concatenate([s - la[:, None] * hv, (sig + s.sum(axis=1) - 1.0)[:, None]],
-                             axis=1)
-        jac = np.empty((live.size, k + 1, k + 1))
-        jac[:, :k, :k] = eye - la[:, None, None] * dhg
-        jac[:, :k, k] = -la[:, None] * dhq
-        jac[:, k, :] = 1.0
+        s, sig = x[:k, live], x[k, live]
+        hv, dhg, dhq = rows.linearise(sig * q0 + _apply(gt, s), w, gt, q0)
+        res = np.concatenate([s - la * hv, (sig + s.sum(axis=0) - 1.0)[None]])
+        jac = np.empty((k + 1, k + 1, live.size))
+        jac[:k, :k] = _eye(k) - la * dhg
+        jac[:k, k] = -la * dhq
+        jac[k, :] = 1.0
         step, ok = _solve_batch(jac, -res)
-        x[live] += step
+        x[:, live] += step
         failed[live[~ok]] = True
-        done[live[ok & (np.abs(step).max(axis=1) <= NEWTON_TOLERANCE)]] = True
+        done[live[ok & (np.abs(step).max(axis=0) <= NEWTON_TOLERANCE)]] = True
         live = np.flatnonzero(~done & ~failed)
         if live.size == 0:
             break
@@ -274,13 +293,13 @@ def _follow(rows: _Rows, subset: np.ndarray
     has no equilibrium near the branch). Neither is followed further.
 
     Only the rows in ``subset`` are followed. Returns, over every row, x = (w s, sigma)
-    at lambda = 1 (where the branch ended, for locked rows), the locked rows, the rows
-    whose sigma reached 0, and the scale where the branch ended (sigma = 0 interpolated
-    in the last step, or the fold; 1 for free rows)."""
+    (k + 1, n) at lambda = 1 (where the branch ended, for locked rows), the locked
+    rows, the rows whose sigma reached 0, and the scale where the branch ended (sigma =
+    0 interpolated in the last step, or the fold; 1 for free rows)."""
     k = len(rows.specs)
     n = rows.n
-    x = np.zeros((n, k + 1))
-    x[:, k] = 1.0
+    x = np.zeros((k + 1, n))
+    x[k] = 1.0
     lam = np.ones(n)
     lam[subset] = 0.0
     step = np.full(n, FIRST_STEP)
@@ -292,17 +311,17 @@ def _follow(rows: _Rows, subset: np.ndarray
         if idx.size == 0:
             break
         target = np.minimum(lam[idx] + step[idx], 1.0)
-        xn, ok = _newton_path(rows, idx, target, x[idx])
-        ok &= np.abs(xn - x[idx]).max(axis=1) <= MAX_PATH_STEP
+        xn, ok = _newton_path(rows, idx, target, x[:, idx])
+        ok &= np.abs(xn - x[:, idx]).max(axis=0) <= MAX_PATH_STEP
         good, bad = idx[ok], idx[~ok]
-        xg, tg = xn[ok], target[ok]
-        cross = xg[:, k] <= 0.0
+        xg, tg = xn[:, ok], target[ok]
+        cross = xg[k] <= 0.0
         if cross.any():
             c = good[cross]
-            s0, s1 = x[c, k], xg[cross, k]
+            s0, s1 = x[k, c], xg[k, cross]
             ended[c] = lam[c] + (tg[cross] - lam[c]) * s0 / np.maximum(s0 - s1, 1e-300)
             crossed[c] = True
-        x[good], lam[good] = xg, tg
+        x[:, good], lam[good] = xg, tg
         step[good] = np.minimum(2.0 * step[good], 1.0)
         step[bad] *= 0.25
         turned = bad[step[bad] < MIN_STEP]
@@ -316,26 +335,25 @@ def _follow(rows: _Rows, subset: np.ndarray
 
 def _newton_direct(rows: _Rows, s: np.ndarray, idx: np.ndarray
                    ) -> tuple[np.ndarray, np.ndarray]:
-    """Newton's method on s = h(q0 + G s) (normalised s) at the given friction, from the
-    branch's point; convergence on each row's own scale. Returns s and the converged."""
+    """Newton's method on s = h(q0 + G s) (normalised s, (k, rows)) at the given
+    friction; convergence on each row's own scale. Returns s and the converged rows."""
     k = len(rows.specs)
     s = s.copy()
     if idx.size == 0:
         return s, np.zeros(0, dtype=bool)
     done = np.zeros(idx.size, dtype=bool)
     failed = np.zeros(idx.size, dtype=bool)
-    eye = np.eye(k)
     live = np.arange(idx.size)
     for _ in range(NEWTON_ITERATIONS):
         q0, gt, w = rows.take(idx[live])
-        sl = s[live]
-        hv, dhg, _ = rows.linearise(q0 + np.einsum("nmk,nk->nm", gt, sl), w, gt, q0)
-        step, ok = _solve_batch(eye - dhg, hv - sl)
-        s[live] += step
+        sl = s[:, live]
+        hv, dhg, _ = rows.linearise(q0 + _apply(gt, sl), w, gt, q0)
+        step, ok = _solve_batch(_eye(k) - dhg, hv - sl)
+        s[:, live] += step
         failed[live[~ok]] = True
         # the row's own scale: its unknowns and the terms of its residual
-        scale = 1.0 + np.abs(sl).max(axis=1) + np.abs(hv).max(axis=1)
-        done[live[ok & (np.abs(step).max(axis=1) <= NEWTON_TOLERANCE * scale)]] = True
+        scale = 1.0 + np.abs(sl).max(axis=0) + np.abs(hv).max(axis=0)
+        done[live[ok & (np.abs(step).max(axis=0) <= NEWTON_TOLERANCE * scale)]] = True
         live = np.flatnonzero(~done & ~failed)
         if live.size == 0:
             break
@@ -348,44 +366,43 @@ def _critical_scale(rows: _Rows, idx: np.ndarray, x: np.ndarray, lam0: np.ndarra
     system s = lambda h(G s) has a solution with sum(w s) = 1, and that direction.
     Newton on (w s, lambda) from the branch's point where sigma reached 0."""
     k = len(rows.specs)
-    y = np.concatenate([np.clip(x[:, :k], 0.0, None), lam0[:, None]], axis=1)
-    y[:, :k] /= np.maximum(y[:, :k].sum(axis=1, keepdims=True), 1e-300)
-    eye = np.eye(k)
+    y = np.concatenate([np.clip(x[:k], 0.0, None), lam0[None]])
+    y[:k] /= np.maximum(y[:k].sum(axis=0), 1e-300)
     q0, gt, w = rows.take(idx)
     for _ in range(NEWTON_ITERATIONS):
-        s, la = y[:, :k], y[:, k]
-        hv, dhg, _ = rows.linearise(np.einsum("nmk,nk->nm", gt, s), w, gt, q0)
-        res = np.concatenate([s - la[:, None] * hv, (s.sum(axis=1) - 1.0)[:, None]], axis=1)
-        jac = np.zeros((idx.size, k + 1, k + 1))
-        jac[:, :k, :k] = eye - la[:, None, None] * dhg
-        jac[:, :k, k] = -hv
-        jac[:, k, :k] = 1.0
+        s, la = y[:k], y[k]
+        hv, dhg, _ = rows.linearise(_apply(gt, s), w, gt, q0)
+        res = np.concatenate([s - la * hv, (s.sum(axis=0) - 1.0)[None]])
+        jac = np.zeros((k + 1, k + 1, idx.size))
+        jac[:k, :k] = _eye(k) - la * dhg
+        jac[:k, k] = -hv
+        jac[k, :k] = 1.0
         step, _ok = _solve_batch(jac, -res)
         y += step
         if np.abs(step).max() <= NEWTON_TOLERANCE:
             break
-    return y[:, k], y[:, :k]
+    return y[k], y[:k]
 
 
 def _row_scale(specs: list[_Spec], q0: np.ndarray, g: np.ndarray) -> np.ndarray:
-    """Weights w_j (n, k): 1 / (coefficient x the row's largest force), so that the
+    """Weights w_j (k, n): 1 / (coefficient x the row's largest force), so that the
     normalised unknowns w_j s_j are of order 1 on every row."""
-    force = np.abs(q0).max(axis=1)
+    force = np.abs(q0).max(axis=0)
     top = float(force.max()) if force.size else 0.0
     if top == 0.0:     # no load anywhere: the response to the friction sets the scale
         top = 1.0 / max(float(np.abs(g).max()) if g.size else 0.0, 1e-300)
     force = np.maximum(force, 1e-12 * top)
     coeff = np.array([sp.coeff for sp in specs])
-    return 1.0 / (coeff[None, :] * force[:, None])
+    return 1.0 / (coeff[:, None] * force[None, :])
 
 
 def _scaled_loads(specs: list[_Spec], s: np.ndarray) -> list[PointLoad]:
-    """The friction loads of magnitudes s (n, k) (NaN where a row has no value)."""
+    """The friction loads of magnitudes s (k, n) (NaN where a row has no value)."""
     out = []
     for j, sp in enumerate(specs):
         for u in sp.unit:
-            out.append(PointLoad(u.body, u.kind, u.rx, u.ry, A.mul(u.fx, s[:, j]),
-                                 A.mul(u.fy, s[:, j]), A.mul(u.m, s[:, j]), u.label))
+            out.append(PointLoad(u.body, u.kind, u.rx, u.ry, A.mul(u.fx, s[j]),
+                                 A.mul(u.fy, s[j]), A.mul(u.m, s[j]), u.label))
     return out
 
 
@@ -396,7 +413,7 @@ def _lock_message(scene: Scene, specs: list[_Spec], lam: np.ndarray, dirn: np.nd
     unit = "deg" if drv.kind == "R" else "m"
     pos = drv.positions
     best = int(np.argmax(lam))
-    sp = specs[int(np.argmax(dirn[best]))]
+    sp = specs[int(np.argmax(dirn[:, best]))]
     mu = sp.joint.friction.mu
     where = (f"at every position ({pos[0]:g} to {pos[-1]:g} {unit})" if pos.size > 1 else
              f"at position {pos[0]:g} {unit}")
@@ -428,36 +445,36 @@ def solve_with_friction(scene: Scene, kin: Kinematics, loads: list[PointLoad]
     specs = _specs(scene, kin)
     base, _ = solve_reactions(kin, resultants(loads, scene.bodies, n))
     names = [sp.joint.name for sp in specs]
-    q0 = np.stack([q for sp in specs for q in _quantities(sp, base[sp.joint.name], n)], axis=1)
+    q0 = np.stack([q for sp in specs for q in _quantities(sp, base[sp.joint.name], n)])
     cols = []
     for sp in specs:
         unit, _ = solve_reactions(kin, resultants(sp.unit, scene.bodies, n))
         cols.append(np.stack([q for sp2, name in zip(specs, names, strict=True)
-                              for q in _quantities(sp2, unit[name], n)], axis=1))
-    g = np.stack(cols, axis=2)                                  # (n, m, k)
+                              for q in _quantities(sp2, unit[name], n)]))
+    g = np.stack(cols, axis=1)                                  # (m, k, n)
     w = _row_scale(specs, q0, g)
     rows = _Rows(specs, q0, g, w)
     k = len(specs)
-    s = np.full((n, k), np.nan)
+    s = np.full((k, n), np.nan)
     # rows where the friction feedback is a contraction: one solution, Newton from zero
     easy = np.flatnonzero(rows.lipschitz() < 1.0)
-    sn, ok = _newton_direct(rows, np.zeros((easy.size, k)), easy)
-    s[easy[ok]] = sn[ok] / w[easy[ok]]
+    sn, ok = _newton_direct(rows, np.zeros((k, easy.size)), easy)
+    s[:, easy[ok]] = sn[:, ok] / w[:, easy[ok]]
     hard = np.ones(n, dtype=bool)
     hard[easy[ok]] = False
     # the others: follow the branch from no friction, then settle at the given friction
     x, locked, crossed, ended = _follow(rows, np.flatnonzero(hard))
     free = np.flatnonzero(hard & ~locked)
-    sn, ok = _newton_direct(rows, x[free, :k] / x[free, k:], free)
+    sn, ok = _newton_direct(rows, x[:k, free] / x[k, free], free)
     if not ok.all():
         p = scene.driver.positions[free[np.flatnonzero(~ok)[0]]]
         raise WorkbenchError(f"the friction equations do not settle at driver position "
                              f"{p:g}; lower the friction coefficients there")
-    s[free] = sn / w[free]
+    s[:, free] = sn / w[:, free]
     if locked.all():
-        lam, dirn = ended, x[:, :k]
+        lam, dirn = ended, x[:k]
         c = np.flatnonzero(crossed)
-        lam[c], dirn[c] = _critical_scale(rows, c, x[c], ended[c])
+        lam[c], dirn[:, c] = _critical_scale(rows, c, x[:, c], ended[c])
         raise SelfLockingError(_lock_message(scene, specs, lam, dirn))
     fl = _scaled_loads(specs, s)
     reactions, drive = solve_reactions(kin, resultants(loads + fl, scene.bodies, n))
