@@ -126,8 +126,8 @@ def _specs(scene: Scene, kin: Kinematics) -> list[_Spec]:
     out = []
     for j in scene.joints.values():
         fr = j.friction
-        if fr is None or fr.mu == 0.0:
-            continue
+        if fr is None or fr.mu == 0.0 or (j.kind == "R" and fr.radius == 0.0):
+            continue                    # no friction (a pin of radius 0 has none)
         if j.kind == "R":
             out.append(_Spec(j, fr.radius * fr.mu, 0.0, 2, _unit_loads(scene, kin, j)))
         else:
@@ -443,7 +443,9 @@ def solve_with_friction(scene: Scene, kin: Kinematics, loads: list[PointLoad]
     """
     n = kin.n
     specs = _specs(scene, kin)
-    base, _ = solve_reactions(kin, resultants(loads, scene.bodies, n))
+    base, drive = solve_reactions(kin, resultants(loads, scene.bodies, n))
+    if not specs:                       # only pins of radius 0: no friction at all
+        return base, drive, [], np.zeros(n, dtype=bool)
     names = [sp.joint.name for sp in specs]
     q0 = np.stack([q for sp in specs for q in _quantities(sp, base[sp.joint.name], n)])
     cols = []
