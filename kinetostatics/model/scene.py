@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from .errors import SceneError, UnitWarning
+from .examples import SCENES
 from .tomlio import (
     as_float,
     as_int,
@@ -221,7 +222,7 @@ def load_scene(source: Any) -> Scene:
     """
     if isinstance(source, Scene):
         return source
-    raw = read_source(source)
+    raw = read_source(source, bundled=SCENES)
     top = check_keys(raw, TOP_KEYS, "scene", required=("driver", "bodies", "joints"))
     title = str(top.get("title", ""))
     if "format" in top and top["format"] != 1:

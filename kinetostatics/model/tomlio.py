@@ -17,16 +17,25 @@ from typing import Any
 from .errors import SceneError
 
 
-def read_source(source: Any, kind: str = "scene") -> dict:
-    """Return the raw mapping of a scene given as a path, a path string, TOML text or a dict.
+def read_source(source: Any, kind: str = "scene", bundled: Any = None) -> dict:
+    """Return the raw mapping of a scene given as a path, a name, TOML text or a dict.
 
     Parameters
     ----------
     source : pathlib.Path, str or Mapping
-        A path to a ``.toml`` file, a string naming an existing file, a string of
-        TOML text, or an already parsed mapping.
+        A path to a ``.toml`` file, a string naming an existing file or a bundled example,
+        a string of TOML text, or an already parsed mapping.
     kind : str
         Word used in error messages.
+    bundled : BundledScenes, optional
+        The package's bundled scenes, so that a bare name (``"four_bar"``) is one.
+
+    Raises
+    ------
+    SceneError
+        "no such file" for a path (or a one-line string without ``=``) that is not a file
+        nor a bundled example; "is a directory"; "save it as UTF-8 (line N)"; invalid TOML
+        with its line.
     """
     if isinstance(source, Mapping):
         return dict(source)
@@ -34,8 +43,17 @@ def read_source(source: Any, kind: str = "scene") -> dict:
         return _read_file(source, kind)
     if isinstance(source, str):
         text = source.strip()
-        if "\n" not in text and (text.endswith(".toml") or Path(text).is_file()):
-            return _read_file(Path(text), kind)
+        if "\n" not in text and "=" not in text and not text.startswith("["):
+            path = Path(text)
+            if not path.exists() and bundled is not None:
+                found = bundled.find(text)
+                if found is not None:
+                    return _read_file(found, kind)
+            if not path.exists():
+                known = (f", and not a bundled example ({', '.join(bundled.names())})"
+                         if bundled is not None else "")
+                raise SceneError(f"{text}: no such {kind} file{known}")
+            return _read_file(path, kind)
         try:
             return tomllib.loads(source)
         except tomllib.TOMLDecodeError as exc:
@@ -46,15 +64,24 @@ def read_source(source: Any, kind: str = "scene") -> dict:
 
 
 def _read_file(path: Path, kind: str) -> dict:
+    if path.is_dir():
+        raise SceneError(f"{path} is a directory, not a {kind} file")
     if not path.is_file():
-        raise SceneError(f"{kind} file {str(path)!r} does not exist")
+        raise SceneError(f"{path}: no such {kind} file")
     try:
-        with path.open("rb") as fh:
-            return tomllib.load(fh)
+        data = path.read_bytes()
+    except OSError as exc:
+        raise SceneError(f"{path}: cannot be read: {exc.strerror or exc}") from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data[:exc.start].count(b"\n") + 1
+        raise SceneError(f"{path}: not UTF-8 text (byte {data[exc.start]:#04x} on line "
+                         f"{line}); save it as UTF-8 (line {line})") from None
+    try:
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"{path}: not valid TOML: {exc}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise SceneError(f"{path}: cannot be read: {exc}") from None
 
 
 def suggest(name: str, known: Iterable[str]) -> str:

@@ -89,3 +89,18 @@ def _toml(d: dict, prefix: str = "") -> str:
 @pytest.mark.parametrize("name", ["four_bar", "shaper", "slider_crank", "sliding_driver"])
 def test_bundled_scenes_do_not_warn(name) -> None:
     assert _warnings(ks.load_scene(ks.example(name))) == []
+
+
+def test_scene_sources_say_what_is_wrong(tmp_path) -> None:
+    """A path that is not a file, a directory, a non-UTF-8 file, a bundled name."""
+    assert ks.solve("four_bar").summary()["positions"] == 361          # a bundled name
+    with pytest.raises(ks.SceneError, match=r"nope\.toml: no such scene file"):
+        ks.solve(str(tmp_path / "nope.toml"))
+    with pytest.raises(ks.SceneError, match=r"nope: no such scene file, and not a bundled"):
+        ks.solve("nope")
+    with pytest.raises(ks.SceneError, match="is a directory"):
+        ks.solve(str(tmp_path))
+    bad = tmp_path / "latin1.toml"
+    bad.write_bytes('title = "ok"\n\n# r\u00e9glage\n'.encode("latin-1"))
+    with pytest.raises(ks.SceneError, match=r"save it as UTF-8 \(line 3\)"):
+        ks.load_scene(bad)
