@@ -295,6 +295,28 @@ def test_a_load_that_drives_the_crank_is_not_self_locking():
     fa = sol.reactions.query("joint == 'A'").F.to_numpy()
     couple = [ld for ld in sol.loads if ld.kind == "friction"][0]
     assert np.allclose(np.abs(couple.m), 0.1 * fa, rtol=1e-13, atol=0)
+    # independent: the global matrix solve gives F_A = F0 + b s and Fe = Fe0 + f s for a
+    # couple s on the crank (against omega < 0: counter-clockwise); s = rho |F_A| is a
+    # quadratic with two roots >= 0 at every row (rho |b| > 1): the slider braking, or
+    # the crank wedged and pushed by it. The kept one is the first.
+    from tests.kinetostatics.checks import matrix_solution
+    plain = load("sliding_driver")
+    unit = copy.deepcopy(plain)
+    unit["loads"].append({"body": "crank", "moment": 1.0})
+    (ra, fe0), (rb, fe1) = (matrix_solution(ks.solve(x)) for x in (plain, unit))
+    f0 = np.stack(ra["A"][:2], axis=1)
+    b, f = np.stack(rb["A"][:2], axis=1) - f0, fe1 - fe0
+    rho = 0.1
+    qa = 1.0 - rho**2 * (b * b).sum(axis=1)
+    qb = -2.0 * rho**2 * (f0 * b).sum(axis=1)
+    qc = -(rho**2) * (f0 * f0).sum(axis=1)
+    roots = (-qb[:, None] + np.array([1.0, -1.0]) * np.sqrt(qb * qb - 4 * qa * qc)[:, None]) \
+        / (2.0 * qa[:, None])
+    assert (roots >= 0.0).all()
+    fe = fe0[:, None] + roots * f[:, None]
+    braking = fe[np.arange(fe.shape[0]), np.argmin(fe, axis=1)]
+    assert (fe.max(axis=1) > 0.0).all()                       # the wedged root pushes
+    assert np.allclose(sol.Me, braking, rtol=1e-13, atol=0)   # measured 1.3e-15
 
 
 @settings(max_examples=40, deadline=None)
