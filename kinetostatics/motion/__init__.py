@@ -21,7 +21,8 @@ Solvers:
 
 - :func:`solve_recurrence`: the seed's explicit recurrence (eqs 4.13-4.16), first order;
 - :func:`solve_energy`: position-only moments, omega^2 = (I_1 omega_1^2 + 2 int M dphi)/I
-  (eq. 4.8) with Gauss-Legendre quadrature (the reference of SPEC's note on 4.14);
+  (eq. 4.8) with Gauss-Legendre quadrature (the exact reference the first-order
+  recurrence 4.14 is measured against);
 - :func:`simulate`: any M(phi, omega, t), a Dormand-Prince 5(4) integrator in phi with step
   control for (u, t), u = I_r omega^2 (twice the kinetic energy: du/dphi = 2M is smooth
   where omega is not), with the quartic dense output of Shampine (1986); optionally on a

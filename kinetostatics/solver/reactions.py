@@ -6,7 +6,7 @@ the ground reaction F01, eqs 2.44-2.51). Dyads are solved in reverse order of th
 structure (the last dyad first); each dyad's outer reactions then load, with opposite
 sign, the bodies it hangs on.
 
-One procedure serves every kind, in vector form (SPEC: cross products, not the
+One procedure serves every kind, in vector form (cross products, not the
 figures' lever arms):
 
 1. For each dyad body the equation of equilibrium along its own freedom relative to
