@@ -230,8 +230,9 @@ def slider_crank_only(sc: Scene, lk: Linkage, roles: dict[str, CounterweightSpec
             proc += (f", plus {f:g} of the piston's first harmonic: "
                      f"me re = (m_B + {f:g} m_C A1) l1")
     elif method == "first-harmonic":
-        proc = ("eq. 3.51 corrected (the printed one repeats eq. 3.46): m'e re = (m_B + m_C A1) l1, A1 = 1; the first "
-                "harmonic along the slider's line vanishes and reappears across it")
+        proc = ("eq. 3.51 corrected (the printed one repeats eq. 3.46): m'e re = "
+                "(m_B + m_C A1) l1, A1 = 1; the first harmonic along the slider's line "
+                "vanishes and reappears across it")
     else:
         r_pair = pair_radius if pair_radius is not None else roles["crank"].radius
         amp = m_C * A1 * l1                                    # m_C l1 A1 (3.52)
