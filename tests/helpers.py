@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import os
 from pathlib import Path
 
@@ -95,3 +96,31 @@ def compare_case(sol, expected_csv: Path, rel: float = 1e-9) -> dict[str, float]
             diff = got - want
         errors[q] = float(np.abs(diff).max() / scale)
     return errors
+
+
+def to_toml(d: dict) -> str:
+    """A minimal TOML writer for the test scenes (tables, arrays of tables, inline)."""
+    def val(v):
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, str):
+            return json.dumps(v)
+        if isinstance(v, dict):
+            return "{ " + ", ".join(f"{json.dumps(k)} = {val(x)}" for k, x in v.items()) + " }"
+        if isinstance(v, list):
+            return "[" + ", ".join(val(x) for x in v) + "]"
+        return repr(float(v)) if isinstance(v, float) else str(v)
+    lines = []
+    for k, v in d.items():
+        if not isinstance(v, dict | list) or (isinstance(v, list) and not
+                                              (v and isinstance(v[0], dict))):
+            lines.append(f"{k} = {val(v)}")
+    for k, v in d.items():
+        if isinstance(v, dict):
+            lines.append(f"[{k}]")
+            lines += [f"{json.dumps(a)} = {val(b)}" for a, b in v.items()]
+        elif isinstance(v, list) and v and isinstance(v[0], dict):
+            for item in v:
+                lines.append(f"[[{k}]]")
+                lines += [f"{a} = {val(b)}" for a, b in item.items()]
+    return "\n".join(lines) + "\n"

@@ -11,6 +11,7 @@ import warnings
 import pytest
 
 import kinetostatics as ks
+from tests.helpers import to_toml
 
 
 def four_bar(**driver) -> dict:
@@ -51,39 +52,13 @@ def test_millimetres_among_metres_warn() -> None:
 def test_the_cli_prints_a_warning_line_and_keeps_exit_code_0(tmp_path) -> None:
     d = four_bar(start=0.0, stop=6.2832, count=20)
     path = tmp_path / "slip.toml"
-    path.write_text(_toml(d))
+    path.write_text(to_toml(d))
     out = subprocess.run([sys.executable, "-m", "kinetostatics", "solve", str(path), "--out",
                           str(tmp_path / "out")], capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
     warn = [ln for ln in out.stderr.splitlines() if ln.startswith("warning:")]
     assert len(warn) == 1 and "degrees" in warn[0]
     assert "Traceback" not in out.stderr and "UnitWarning" not in out.stderr
-
-
-def _toml(d: dict, prefix: str = "") -> str:
-    """A small TOML writer for the scene dicts of these tests."""
-    def val(v):
-        if isinstance(v, bool):
-            return "true" if v else "false"
-        if isinstance(v, str):
-            return f'"{v}"'
-        if isinstance(v, dict):
-            return "{ " + ", ".join(f'"{k}" = {val(x)}' for k, x in v.items()) + " }"
-        if isinstance(v, list):
-            return "[" + ", ".join(val(x) for x in v) + "]"
-        return repr(float(v)) if isinstance(v, float) else str(v)
-    def table(v):
-        return isinstance(v, dict) or (isinstance(v, list) and v and isinstance(v[0], dict))
-    out = [f"{k} = {val(v)}" for k, v in d.items() if not table(v)]
-    for k, v in d.items():
-        if isinstance(v, dict):
-            out.append(f"[{k}]")
-            out += [f'"{kk}" = {val(x)}' for kk, x in v.items()]
-        elif isinstance(v, list) and v and isinstance(v[0], dict):
-            for item in v:
-                out.append(f"[[{k}]]")
-                out += [f"{kk} = {val(x)}" for kk, x in item.items()]
-    return "\n".join(out) + "\n"
 
 
 @pytest.mark.parametrize("name", ["four_bar", "shaper", "slider_crank", "sliding_driver"])

@@ -19,7 +19,7 @@ import pytest
 
 import kinetostatics as ks
 from kinetostatics.model.errors import SceneError, WorkbenchError
-from tests.helpers import OWN_CASES, ROOT
+from tests.helpers import OWN_CASES, ROOT, to_toml
 
 
 def four_bar_motion(**motion):
@@ -225,7 +225,7 @@ def test_motor_table_and_refusals():
 def test_cli_motion_json(tmp_path):
     d = four_bar_motion(cycles=2)
     path = tmp_path / "m.toml"
-    path.write_text(_to_toml(d))
+    path.write_text(to_toml(d))
     r = subprocess.run([sys.executable, "-m", "kinetostatics", "motion", str(path), "--json"],
                        capture_output=True, text=True, cwd=ROOT, timeout=300,
                        env=dict(os.environ))
@@ -233,31 +233,3 @@ def test_cli_motion_json(tmp_path):
     out = json.loads(r.stdout)
     assert set(out) == {"summary", "motion"}
     assert set(out["motion"][0]) == {"cycle", "position", "time", "omega", "alpha"}
-
-
-def _to_toml(d, prefix=""):
-    """A minimal TOML writer for the test scenes (tables, arrays of tables, inline)."""
-    def val(v):
-        if isinstance(v, bool):
-            return "true" if v else "false"
-        if isinstance(v, str):
-            return json.dumps(v)
-        if isinstance(v, dict):
-            return "{ " + ", ".join(f"{json.dumps(k)} = {val(x)}" for k, x in v.items()) + " }"
-        if isinstance(v, list):
-            return "[" + ", ".join(val(x) for x in v) + "]"
-        return repr(float(v)) if isinstance(v, float) else str(v)
-    lines = []
-    for k, v in d.items():
-        if not isinstance(v, dict | list) or (isinstance(v, list) and not
-                                              (v and isinstance(v[0], dict))):
-            lines.append(f"{k} = {val(v)}")
-    for k, v in d.items():
-        if isinstance(v, dict):
-            lines.append(f"[{k}]")
-            lines += [f"{json.dumps(a)} = {val(b)}" for a, b in v.items()]
-        elif isinstance(v, list) and v and isinstance(v[0], dict):
-            for item in v:
-                lines.append(f"[[{k}]]")
-                lines += [f"{a} = {val(b)}" for a, b in item.items()]
-    return "\n".join(lines) + "\n"
