@@ -26,9 +26,10 @@ __all__ = ["EXERCISES", "exercise", "four_bar_exercise", "list_exercises",
            "slotted_lever_exercise"]
 
 STEEL_BAR = 7.8            # kg/m: the bars' mass per length
-MECHANISM_PICTURE = ("from kinetostatics.plot import draw_mechanism\n\n"
+MECHANISM_PICTURE = ("%matplotlib inline\nfrom kinetostatics.plot import draw_mechanism\n\n"
                      "draw_mechanism(ks.solve(scene), {pos});   # your mechanism")
-ROTOR_PICTURE = """import matplotlib.pyplot as plt
+ROTOR_PICTURE = """%matplotlib inline
+import matplotlib.pyplot as plt
 import numpy as np
 
 fig, ax = plt.subplots(figsize=(4, 4))      # your rotor seen along its axis

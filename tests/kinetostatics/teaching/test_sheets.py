@@ -1,0 +1,49 @@
+"""Sheets 10 and 11 are sealed student sheets, exactly as the generator writes them.
+
+Each is the notebook ``exercises generate`` writes for the student ``demo-student``
+with the seed below (the seed lives here, in the tests, never in a sheet). Run
+unchanged, a sheet scores 0 against that student's key.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import nbformat
+import pytest
+
+from kinetostatics import teaching as T
+
+ROOT = Path(__file__).resolve().parents[3]
+SHEETS = {"10_exercise_four_bar": ("four_bar", 20261125),
+          "11_exercise_rotor": ("rotor_two_plane", 20261126)}
+STUDENT = "demo-student"
+
+
+def _cells(nb) -> list[tuple]:
+    return [(c.cell_type, c.source, c.get("id"), dict(c.metadata)) for c in nb.cells]
+
+
+@pytest.mark.parametrize("stem", SHEETS)
+def test_sheet_is_the_generated_student_notebook(stem, tmp_path):
+    kind, seed = SHEETS[stem]
+    T.generate_class(kind, [STUDENT], tmp_path / "class", seed=seed)
+    made = nbformat.read(tmp_path / "class" / "students" / f"{STUDENT}.ipynb", as_version=4)
+    sheet = nbformat.read(ROOT / "notebooks" / f"{stem}.ipynb", as_version=4)
+    assert _cells(sheet) == _cells(made), \
+        f"regenerate notebooks/{stem}.ipynb with generate_class({kind!r}, seed={seed})"
+    assert sheet.metadata["kinetostatics"] == {"student_id": STUDENT, "exercise": kind}
+    text = (ROOT / "notebooks" / f"{stem}.ipynb").read_text(encoding="utf-8")
+    assert str(seed) not in text and "BEGIN SOLUTION" not in text
+
+
+@pytest.mark.parametrize("stem, execute", [("10_exercise_four_bar", True),
+                                           ("11_exercise_rotor", False)])
+def test_sheet_run_unchanged_scores_zero(stem, execute, tmp_path):
+    kind, seed = SHEETS[stem]
+    T.generate_class(kind, [STUDENT], tmp_path / "class", seed=seed)
+    rep = T.grade_class(tmp_path / "class", [ROOT / "notebooks" / f"{stem}.ipynb"],
+                        execute=execute)
+    assert not rep.broken and not rep.unknown and not rep.missing
+    assert rep.scores.set_index("student").loc[STUDENT, "score %"] == 0.0
+    assert (rep.graded.status == "missing").all()
