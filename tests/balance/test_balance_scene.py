@@ -186,7 +186,7 @@ def test_bundled_mechanism_balancing_examples() -> None:
 
 def test_invalid_toml_and_missing_file() -> None:
     assert "TOML" in error_of("[rotor\nx = 1\n")
-    assert "does not exist" in error_of("/no/such/scene.toml")
+    assert "no such balancing scene file" in error_of("/no/such/scene.toml")
 
 
 def test_public_api_names_resolve() -> None:
