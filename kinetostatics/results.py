@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from .model.errors import WorkbenchError
 from .model.scene import GROUND, Scene
 from .solver.kinematics import Kinematics
 from .solver.loads import PointLoad
@@ -35,6 +36,49 @@ def continuous_angle(theta: np.ndarray) -> np.ndarray:
         first = 180.0 - np.mod(180.0 - a[0], 360.0)
         a = a + (first - a[0])
     return a
+
+
+def _column(value, n: int, dtype=float) -> np.ndarray:
+    """A table column of its own (a copy: the table never shares the solver's arrays)."""
+    return np.array(np.broadcast_to(value, (n,)), dtype=dtype)
+
+
+def _frame(cols: dict) -> pd.DataFrame:
+    """A DataFrame that takes the given arrays as they are (no consolidating copy)."""
+    return pd.DataFrame(cols, copy=False)
+
+
+class _LongTable:
+    """The columns of a long table: ``blocks`` blocks of rows (one block per joint, point
+    or body), each with one row per position. Columns are filled block by block in
+    place; labels are categorical (one code per row, the names stored once)."""
+
+    def __init__(self, positions: np.ndarray, blocks: int):
+        self.positions = np.asarray(positions, dtype=float)
+        self.n = self.positions.size
+        self.blocks = blocks
+
+    def block(self, i: int) -> slice:
+        """The rows of block ``i``."""
+        return slice(i * self.n, (i + 1) * self.n)
+
+    def floats(self) -> np.ndarray:
+        """An empty float column, to fill block by block."""
+        return np.empty(self.n * self.blocks)
+
+    def position(self) -> np.ndarray:
+        """The position column: the sweep repeated once per block."""
+        return np.tile(self.positions, self.blocks)
+
+    def label(self, names: list[str]) -> pd.Categorical:
+        """A categorical column with ``names[i]`` on the rows of block ``i``."""
+        cats = list(dict.fromkeys(names))
+        codes = np.array([cats.index(x) for x in names], dtype=_code_type(len(cats)))
+        return pd.Categorical.from_codes(np.repeat(codes, self.n), categories=cats)
+
+
+def _code_type(k: int) -> type:
+    return np.int8 if k < 127 else np.int16 if k < 32767 else np.int32
 
 
 @dataclass
@@ -94,34 +138,43 @@ class Solution:
     def driver(self) -> pd.DataFrame:
         """``position, Me`` (or ``Fe``), ``singular``, ``undefined_load`` (and, with joint
         friction, ``self_locking``)."""
-        cols = {"position": self.positions, self.driver_quantity: self.Me,
-                "singular": self.singular, "undefined_load": self.undefined_load}
+        n = self.positions.size
+        cols = {"position": self.positions.astype(float),
+                self.driver_quantity: _column(self.Me, n),
+                "singular": _column(self.singular, n, bool),
+                "undefined_load": _column(self.undefined_load, n, bool)}
         if self.self_locking is not None:
-            cols["self_locking"] = self.self_locking
-        return pd.DataFrame(cols)
+            cols["self_locking"] = _column(self.self_locking, n, bool)
+        return _frame(cols)
 
     @cached_property
     def reactions(self) -> pd.DataFrame:
         """``position, joint, on, by, Fx, Fy, F, N, M, offset``; on revolute rows N and M
-        are 0 (a pin carries no couple) and offset is empty."""
+        are 0 (a pin carries no couple) and offset is empty. ``joint``, ``on`` and ``by``
+        are categorical; the table is built column-wise, one block of rows per joint."""
         n = self.positions.size
-        parts = []
-        for name in self.scene.joints:
+        joints = list(self.scene.joints)
+        cols = _LongTable(self.positions, len(joints))
+        fx, fy, f, nn, mm, off = (cols.floats() for _ in range(6))
+        for i, name in enumerate(joints):
             r = self.joint_reactions[name]
-            fx, fy = self.reaction(name)
+            rows = cols.block(i)
+            fx[rows], fy[rows] = self.reaction(name)
+            np.hypot(fx[rows], fy[rows], out=f[rows])
             if r.N is None:
-                nn = mm = np.zeros(n)
-                off = np.full(n, np.nan)
+                nn[rows] = mm[rows] = 0.0
+                off[rows] = np.nan
             else:
-                nn = np.broadcast_to(r.N, (n,)).astype(float)
-                mm = np.broadcast_to(r.M, (n,)).astype(float)
-                big = np.abs(nn).max() if n else 0.0
+                nn[rows], mm[rows] = r.N, r.M
+                big = np.abs(nn[rows]).max() if n else 0.0
                 with np.errstate(divide="ignore", invalid="ignore"):
-                    off = np.where(np.abs(nn) > OFFSET_EMPTY * big, mm / nn, np.nan)
-            parts.append(pd.DataFrame({
-                "position": self.positions, "joint": name, "on": r.on, "by": r.by,
-                "Fx": fx, "Fy": fy, "F": np.hypot(fx, fy), "N": nn, "M": mm, "offset": off}))
-        return pd.concat(parts, ignore_index=True)
+                    off[rows] = np.where(np.abs(nn[rows]) > OFFSET_EMPTY * big,
+                                         mm[rows] / nn[rows], np.nan)
+        ons = [self.joint_reactions[j].on for j in joints]
+        bys = [self.joint_reactions[j].by for j in joints]
+        return _frame({"position": cols.position(), "joint": cols.label(joints),
+                       "on": cols.label(ons), "by": cols.label(bys), "Fx": fx, "Fy": fy,
+                       "F": f, "N": nn, "M": mm, "offset": off})
 
     def _points(self):
         for name, body in self.scene.bodies.items():
@@ -131,36 +184,40 @@ class Solution:
 
     @cached_property
     def kinematics(self) -> pd.DataFrame:
-        """``position, body, point, x, y, vx, vy, ax, ay`` for every named point and cog."""
-        n = self.positions.size
-        parts = []
-        for b, p, loc in self._points():
+        """``position, body, point, x, y, vx, vy, ax, ay`` for every named point and cog
+        (``body`` and ``point`` categorical), one block of rows per point."""
+        points = list(self._points())
+        cols = _LongTable(self.positions, len(points))
+        out = {k: cols.floats() for k in ("x", "y", "vx", "vy", "ax", "ay")}
+        for i, (b, _, loc) in enumerate(points):
             m = self.kin.bodies[b]
+            rows = cols.block(i)
             x, y = m.point(loc)
-            vx, vy = m.vel_at(x, y)
-            ax, ay = m.acc_at(x, y)
-            cols = {k: np.broadcast_to(v, (n,)) for k, v in
-                    (("x", x), ("y", y), ("vx", vx), ("vy", vy), ("ax", ax), ("ay", ay))}
-            parts.append(pd.DataFrame({"position": self.positions, "body": b, "point": p,
-                                       **cols}))
-        return pd.concat(parts, ignore_index=True)
+            out["x"][rows], out["y"][rows] = x, y
+            out["vx"][rows], out["vy"][rows] = m.vel_at(x, y)
+            out["ax"][rows], out["ay"][rows] = m.acc_at(x, y)
+        return _frame({"position": cols.position(),
+                       "body": cols.label([b for b, _, _ in points]),
+                       "point": cols.label([p for _, p, _ in points]), **out})
 
     @cached_property
     def bodies(self) -> pd.DataFrame:
-        """``position, body, angle`` (deg, continuous), ``omega, alpha`` (rad/s, rad/s^2)."""
+        """``position, body, angle`` (deg, continuous), ``omega, alpha`` (rad/s, rad/s^2);
+        ``body`` categorical, one block of rows per body."""
         n = self.positions.size
-        parts = []
-        for name in self.scene.bodies:
+        names = list(self.scene.bodies)
+        cols = _LongTable(self.positions, len(names))
+        angle, omega, alpha = cols.floats(), cols.floats(), cols.floats()
+        for i, name in enumerate(names):
             m = self.kin.bodies[name]
+            rows = cols.block(i)
             if name == self.scene.driver.body and self.scene.driver.kind == "R":
-                angle = self.positions.astype(float)
+                angle[rows] = self.positions
             else:
-                angle = continuous_angle(np.broadcast_to(m.theta, (n,)))
-            parts.append(pd.DataFrame({"position": self.positions, "body": name,
-                                       "angle": angle,
-                                       "omega": np.broadcast_to(m.omega, (n,)),
-                                       "alpha": np.broadcast_to(m.alpha, (n,))}))
-        return pd.concat(parts, ignore_index=True)
+                angle[rows] = continuous_angle(np.broadcast_to(m.theta, (n,)))
+            omega[rows], alpha[rows] = m.omega, m.alpha
+        return _frame({"position": cols.position(), "body": cols.label(names),
+                       "angle": angle, "omega": omega, "alpha": alpha})
 
     # -- project tables ---------------------------------------------------------
     @cached_property
@@ -349,16 +406,35 @@ class Solution:
         out["structure"] = self.structure.describe()
         return out
 
+    FILES = ("reactions", "driver", "kinematics", "bodies", "dyads", "sliders", "frame")
+
     def to_csv(self, directory: str | Path) -> list[Path]:
         """Write every table as CSV (17 significant digits) and ``summary.json``."""
+        return self.write(directory, "csv")
+
+    def write(self, directory: str | Path, fmt: str = "csv", announce=None) -> list[Path]:
+        """Write every table (``fmt``: ``"csv"``, 17 significant digits, or
+        ``"parquet"``) and ``summary.json``. A table built only for writing is
+        dropped once written, so that one long table at a time is held. ``announce``
+        (a callable taking one line) hears of every CSV table over 1e6 rows, with its
+        size and time estimate (:func:`kinetostatics.output.write_csv`)."""
+        from .output import write_csv, write_parquet
+        if fmt not in ("csv", "parquet"):
+            raise WorkbenchError(f"format {fmt!r}: use csv or parquet")
         d = Path(directory)
         d.mkdir(parents=True, exist_ok=True)
         written = []
-        for name in ("reactions", "driver", "kinematics", "bodies", "dyads", "sliders",
-                     "frame"):
-            path = d / f"{name}.csv"
-            getattr(self, name).to_csv(path, index=False, float_format="%.17g")
-            written.append(path)
+        for name in self.FILES:
+            kept = name in self.__dict__
+            table = getattr(self, name)
+            if fmt == "csv":
+                written.append(write_csv(table, d / f"{name}.csv", self.positions.size,
+                                         announce))
+            else:
+                written.append(write_parquet(table, d / f"{name}.parquet"))
+            del table
+            if not kept:
+                del self.__dict__[name]
         path = d / "summary.json"
         path.write_text(json.dumps(self.summary(), indent=2) + "\n")
         written.append(path)

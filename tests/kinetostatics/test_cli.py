@@ -124,3 +124,48 @@ def test_bundled_names_work_in_every_command():
     assert p.returncode == 2 and "mechanism scene" in p.stderr and "[cam]" in p.stderr
     p = run("motion", "four_bar")
     assert p.returncode == 2 and "four_bar_motion" in p.stderr
+
+
+def test_solve_parquet_and_help(tmp_path):
+    """--format parquet writes the tables as Parquet; --help says what count costs."""
+    pytest.importorskip("pyarrow")
+    r = run("solve", str(OWN_CASES / "slider_crank.toml"), "--out", str(tmp_path),
+            "--format", "parquet")
+    assert r.returncode == 0, r.stderr
+    k = pd.read_parquet(tmp_path / "kinematics.parquet")
+    assert list(k.columns) == ["position", "body", "point", "x", "y", "vx", "vy", "ax", "ay"]
+    assert str(k.body.dtype) == "category" and (tmp_path / "summary.json").is_file()
+    h = run("solve", "--help")
+    assert "What count costs" in h.stdout and "--format" in h.stdout
+
+
+def test_solve_warns_on_long_tables(tmp_path, monkeypatch, capsys):
+    """A table over the warning's row count is announced on stderr with its size and
+    time (the threshold lowered here to keep the run small)."""
+    from kinetostatics import cli, output
+    monkeypatch.setattr(output, "WARN_ROWS", 1000)
+    rc = cli.main(["solve", str(OWN_CASES / "four_bar.toml"), "--out", str(tmp_path)])
+    err = capsys.readouterr().err
+    assert rc == 0
+    lines = [x for x in err.splitlines() if x.startswith("warning: kinematics.csv")]
+    assert len(lines) == 1 and " MB of CSV and " in lines[0] and " rows" in lines[0]
+    assert "driver.csv" not in err                       # 361 rows: no warning
+
+
+def test_parquet_without_pyarrow_is_one_error_line(tmp_path, monkeypatch, capsys):
+    from kinetostatics import cli
+    monkeypatch.setitem(sys.modules, "pyarrow.parquet", None)
+    rc = cli.main(["solve", str(OWN_CASES / "four_bar.toml"), "--out", str(tmp_path),
+                   "--format", "parquet"])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.startswith("error: ") and "pyarrow" in err
+    assert len(err.strip().splitlines()) == 1
+
+
+def test_bench_tables_quick():
+    """bench --tables reports solve, table and CSV times with peak memory (small sizes)."""
+    r = run("bench", "--tables", "--quick", "--repeat", "1")
+    assert r.returncode == 0, r.stderr
+    for word in ("solve_s", "kinematics_s", "long_tables_over_solve", "csv_MB_per_s",
+                 "peak_MB", "cli_out_s", "best", "median"):
+        assert word in r.stdout, word

@@ -1,0 +1,126 @@
+"""What the result tables cost: ``python -m kinetostatics bench --tables``.
+
+For the benchmark four-bar (:func:`kinetostatics.bench.fourbar_scene`: 4 joints,
+9 points and cogs, 3 bodies) at 1e4, 1e5 and 1e6 positions, each run in a fresh
+process (so that its peak memory is its own):
+
+* ``solve_s``: ``kinetostatics.solve`` (kinematics, loads, reactions, Me);
+* ``driver_s, reactions_s, kinematics_s, bodies_s``: building each table from the
+  solver's arrays, and ``long_tables_s`` the three long ones together
+  (``long_tables_over_solve`` their ratio to the solve);
+* ``peak_MB``: the process's peak resident memory with the solution and all four
+  tables held;
+* ``csv_MB, csv_s, csv_MB_per_s``: writing the four tables as CSV (17 significant
+  digits), and ``parquet_s`` as Parquet when pyarrow is installed;
+* ``cli_out_s, cli_peak_MB``: ``python -m kinetostatics solve SCENE --out DIR`` on the
+  bundled ``four_bar`` with that many positions (every table and summary.json).
+
+The machine may be shared: every size runs ``repeat`` times and the best and the
+median of each column are printed.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import pandas as pd
+
+TABLES = ("driver", "reactions", "kinematics", "bodies")
+LONG = ("reactions", "kinematics", "bodies")
+
+
+def measure_tables(n: int, out: str) -> dict:
+    """One run in this process: solve, build the four contract tables, write them."""
+    from .bench import fourbar_scene
+    from .output import write_csv, write_parquet
+    from .solver.pipeline import solve
+    row: dict = {"positions": n}
+    t = time.perf_counter()
+    sol = solve(fourbar_scene(n))
+    row["solve_s"] = time.perf_counter() - t
+    for name in TABLES:
+        t = time.perf_counter()
+        getattr(sol, name)
+        row[f"{name}_s"] = time.perf_counter() - t
+    row["long_tables_s"] = sum(row[f"{name}_s"] for name in LONG)
+    row["long_tables_over_solve"] = row["long_tables_s"] / row["solve_s"]
+    row["peak_MB"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    size = 0
+    t = time.perf_counter()
+    for name in TABLES:
+        path = write_csv(getattr(sol, name), Path(out) / f"{name}.csv", n)
+        size += path.stat().st_size
+    row["csv_s"] = time.perf_counter() - t
+    row["csv_MB"] = size / 1e6
+    row["csv_MB_per_s"] = row["csv_MB"] / row["csv_s"]
+    try:
+        t = time.perf_counter()
+        for name in TABLES:
+            write_parquet(getattr(sol, name), Path(out) / f"{name}.parquet")
+        row["parquet_s"] = time.perf_counter() - t
+    except ValueError:
+        row["parquet_s"] = float("nan")
+    return row
+
+
+def _fresh(n: int, out: str) -> dict:
+    code = ("import json, sys; from kinetostatics.bench_tables import measure_tables; "
+            f"print(json.dumps(measure_tables({n}, {out!r})))")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                       check=True)
+    return json.loads(r.stdout.strip().splitlines()[-1])
+
+
+def measure_cli(n: int, folder: str) -> dict:
+    """``solve --out`` on the bundled four_bar with ``n`` positions, in a fresh process."""
+    from .model.examples import example
+    text = Path(example("four_bar")).read_text()
+    text, k = re.subn(r"(?m)^count\s*=\s*\d+", f"count = {n}", text)
+    if k != 1:
+        raise RuntimeError("the bundled four_bar has no 'count = ...' line to change")
+    scene = Path(folder) / "four_bar.toml"
+    scene.write_text(text)
+    code = ("import resource, sys; from kinetostatics.cli import main; "
+            "rc = main(sys.argv[1:]); "
+            "print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, file=sys.stderr); "
+            "sys.exit(rc)")
+    t = time.perf_counter()
+    r = subprocess.run([sys.executable, "-c", code, "solve", str(scene), "--out",
+                        str(Path(folder) / "out")], capture_output=True, text=True, check=True)
+    seconds = time.perf_counter() - t
+    return {"cli_out_s": seconds,
+            "cli_peak_MB": int(r.stderr.strip().splitlines()[-1]) / 1024}
+
+
+def run_table_bench(quick: bool = False, repeat: int = 3,
+                    sizes: tuple[int, ...] | None = None) -> pd.DataFrame:
+    """Run every size ``repeat`` times; print and return the best and median rows."""
+    sizes = sizes or ((1_000, 10_000) if quick else (10_000, 100_000, 1_000_000))
+    runs = []
+    for n in sizes:
+        for _ in range(repeat):
+            with tempfile.TemporaryDirectory() as tmp:
+                row = _fresh(n, tmp)
+            with tempfile.TemporaryDirectory() as tmp:
+                row.update(measure_cli(n, tmp))
+            runs.append(row)
+    df = pd.DataFrame(runs)
+    lower_better = [c for c in df.columns if c not in ("positions", "csv_MB_per_s")]
+    best = df.groupby("positions").agg({**dict.fromkeys(lower_better, "min"),
+                                        "csv_MB_per_s": "max"})
+    median = df.groupby("positions").median()
+    out = pd.concat({"best": best, "median": median}, names=["stat"]).reset_index()
+    out = out.sort_values(["positions", "stat"]).reset_index(drop=True)
+    pd.set_option("display.width", 200)
+    print(f"== result tables (four-bar; {repeat} runs per size, "
+          f"{os.cpu_count()} cores) ==")
+    print(out.T.to_string(header=False, float_format=lambda x: f"{x:.4g}"))
+    return out
