@@ -12,6 +12,7 @@ import importlib
 _HOME = {
     "SERIAL": "batch",
     "run_batch": "batch",
+    "ACCEPTABLE_ERROR": "runner",
     "BUDGET": "runner",
     "TARGET_ERROR": "runner",
     "MAX_AUTO_STEPS": "runner",

@@ -117,7 +117,7 @@ def _cmd_crosscheck(args) -> int:
         if args.json:
             print(json.dumps(_clean(st.summary()), indent=2))
             return 0
-        print(_study_table(st).to_string(index=False))
+        print(st.formatted().to_string(index=False))
         print(f"wall time: the best of {st.repeats} run(s) per setting"
               + ("" if args.serial else " (runs side by side: use --serial for steady times)"))
         for it in st.order:
@@ -156,24 +156,6 @@ def _cmd_crosscheck(args) -> int:
     for n in cc.notes:
         print("  note: " + n)
     return 0
-
-
-def _study_table(st):
-    """The study's table as the command prints it: integer step counts, a diverged
-    setting as "diverged" (with its drift) and no error, noisy timings marked."""
-    import pandas as pd
-    t = st.table
-    rows = []
-    for r in t.itertuples(index=False):
-        rows.append({
-            "case": r.case, "dt": f"{r.dt:.3g}", "steps/rev": f"{r.steps_per_revolution:d}",
-            "iterations": f"{r.iterations:d}",
-            "ms/rev": "-" if r.diverged else
-            f"{r.ms_per_revolution:.3g}" + (" (noise)" if r.timing_noise else ""),
-            "max_error": "diverged" if r.diverged else f"{r.max_error:.3g}",
-            "order": "" if r.diverged or r.order != r.order else f"{r.order:.2f}",
-            "drift (m)": f"{r.drift:.2g}"})
-    return pd.DataFrame(rows)
 
 
 def _plot_study(st):

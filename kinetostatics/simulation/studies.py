@@ -68,6 +68,22 @@ class Study:
         return (f"n/a (fewer than two converged errors above {ORDER_FLOOR:g}: {used} of "
                 f"{total} settings; {tail})")
 
+    def formatted(self) -> pd.DataFrame:
+        """The table as text for reading: integer step counts, a diverged setting as
+        "diverged" with no error, time or order, a noisy wall time marked "(noise)", a
+        dash where no value applies."""
+        rows = []
+        for r in self.table.itertuples(index=False):
+            rows.append({
+                "case": r.case, "dt (s)": f"{r.dt:.3g}",
+                "steps/rev": f"{r.steps_per_revolution:d}", "iterations": f"{r.iterations:d}",
+                "ms/rev": "-" if r.diverged else
+                f"{r.ms_per_revolution:.3g}" + (" (noise)" if r.timing_noise else ""),
+                "max error": "diverged" if r.diverged else f"{r.max_error:.3g}",
+                "order": "-" if r.diverged or r.order != r.order else f"{r.order:.2f}",
+                "drift (m)": f"{r.drift:.2g}"})
+        return pd.DataFrame(rows)
+
     def best(self, threshold: float) -> dict[str, Any] | None:
         """The cheapest converged run (ms per revolution) whose error is at most
         ``threshold``; runs flagged as timing noise are passed over."""
