@@ -18,6 +18,9 @@ geometry and vector diagrams use equal aspect.
 - the flywheel (seed 002 ch. 4): :func:`reduced_cycle` (I_r, M_r, Delta E over a turn),
   :func:`plot_flywheel_curves`, :func:`plot_wittenbauer`, :func:`wittenbauer_flywheel`
   (``flywheel``);
+- cams (seed 002 ch. 1): :func:`plot_cam_motion` (s, v, a with the shocks,
+  :func:`cam_shocks`), :func:`draw_cam` (the follower on the cam), :func:`plot_cam_diagram`
+  (the (ds/dphi, s) diagram of the smallest base circle) (``cams``);
 - a gear pair: :func:`draw_gear_pair` (``gears``);
 - the projector style :func:`projector` and the label check :func:`overlapping_texts`
   (``style``).
@@ -26,6 +29,7 @@ geometry and vector diagrams use equal aspect.
 from __future__ import annotations
 
 from .base import LOAD_COLORS, PATH_COLORS, REACTION_COLOR
+from .cams import cam_shocks, draw_cam, plot_cam_diagram, plot_cam_motion
 from .centres import instant_centres, plot_instant_centres
 from .curves import (
     overview,
@@ -57,8 +61,10 @@ __all__ = [
     "REACTION_COLOR",
     "acceleration_plan",
     "animate",
+    "cam_shocks",
     "declutter",
     "draw_body",
+    "draw_cam",
     "draw_gear_pair",
     "draw_mechanism",
     "dyad_free_body",
@@ -71,6 +77,8 @@ __all__ = [
     "overview",
     "plot_accelerations",
     "plot_angular",
+    "plot_cam_diagram",
+    "plot_cam_motion",
     "plot_driver",
     "plot_flywheel_curves",
     "plot_instant_centres",

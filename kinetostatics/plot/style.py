@@ -77,7 +77,8 @@ def overlapping_texts(fig: Figure, tolerance: float = 1.0) -> list[tuple[str, st
     """The pairs of labels of a figure whose boxes overlap on the drawn figure.
 
     Every visible text is taken (titles, axis and tick labels, annotations, legends as
-    whole boxes), after ``fig.canvas.draw()`` so that the layout is final.
+    whole boxes), after ``fig.canvas.draw()`` so that the layout is final. A label cut
+    by the edge of the figure is reported too, paired with ``"outside the figure"``.
 
     Parameters
     ----------
@@ -88,11 +89,18 @@ def overlapping_texts(fig: Figure, tolerance: float = 1.0) -> list[tuple[str, st
     Returns
     -------
     list of (str, str)
-        The texts of each overlapping pair; empty when every label stands clear.
+        The texts of each overlapping pair (or a text and ``"outside the figure"``);
+        empty when every label stands clear.
     """
     fig.canvas.draw()
     boxes = _boxes(fig, fig.canvas.get_renderer())
     hits = []
+    page = fig.bbox.padded(tolerance)
+    for t, bb in boxes:
+        if not (page.x0 <= bb.x0 and bb.x1 <= page.x1 and page.y0 <= bb.y0 and
+                bb.y1 <= page.y1):
+            hits.append((t.get_text() if isinstance(t, Text) else "legend",
+                         "outside the figure"))
     name = {Legend: lambda a: "legend"}
     for k, (ta, a) in enumerate(boxes):
         a = a.padded(-tolerance)
