@@ -4,7 +4,8 @@ FILE.html`` (or ``FILE.pdf``).
 The HTML report is one self-contained file: the scene's data, the pictures (PNG,
 embedded as base64 ``data:`` URIs: the unbalance and moment polygons of
 ``[rotor]``, the amplitude parallelogram or circles of each ``[[resonance_test]]``,
-the reading and correction vectors of each ``[[influence]]``), the corrections with
+the reading and correction vectors of each ``[[influence]]``, the tolerances and
+residuals of ``[iso]``), the corrections with
 their intervals, the ISO 21940-11 check and every warning. The PDF holds the same
 pictures, one per page, after a page with the text report.
 """
@@ -25,7 +26,7 @@ import numpy as np
 from .errors import BalanceError
 from .report_text import result_warnings
 
-__all__ = ["influence_figure", "report_figures", "write_report"]
+__all__ = ["influence_figure", "iso_figure", "report_figures", "write_report"]
 
 
 def influence_figure(result: Any, *, mass_unit: str = "", vib_unit: str = ""):
@@ -96,6 +97,48 @@ def influence_figure(result: Any, *, mass_unit: str = "", vib_unit: str = ""):
     return fig
 
 
+def iso_figure(iso: dict[str, Any]):
+    """ISO 21940-11 tolerances per plane as bars, with the residuals as dots (the
+    ``iso`` result dict, in its units).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7.0, 4.0), layout="constrained")
+    names, per, res = [], [], []
+    check = iso.get("check") or {}
+    bear = check.get("bearing_residual")
+    for k, b in enumerate(iso.get("bearing_planes", [])):
+        names.append(f"bearing {b['name']}")
+        per.append(b["permissible"])
+        res.append(None if bear is None else bear[k])
+    for k, c in enumerate(iso.get("correction_planes", [])):
+        if c["permissible"] is not None:
+            names.append(f"plane {c['plane']}")
+            per.append(c["permissible"])
+            res.append(check["residual"][k] if check.get("bearing_residual") else None)
+    if not names:
+        names, per = ["rotor"], [iso["U_per"]]
+        res = [check["residual"][0]] if check else [None]
+    x = np.arange(len(names))
+    ax.bar(x, per, color="tab:green", alpha=0.35, label="permissible")
+    pts = [(i, r) for i, r in zip(x, res, strict=True) if r is not None]
+    if pts:
+        ok = [r <= p for (i, r), p in zip(pts, [per[i] for i, _ in pts], strict=True)]
+        ax.scatter([i for i, _ in pts], [r for _, r in pts], zorder=3,
+                   c=["tab:green" if o else "tab:red" for o in ok], label="residual")
+    ax.set_xticks(x, names)
+    ax.set_ylabel(f"unbalance ({iso['unbalance_unit']})")
+    ax.set_title(f"ISO 21940-11, G {iso['grade']:g}: U_per = {iso['U_per']:.4g} "
+                 f"{iso['unbalance_unit']}", fontsize=10)
+    ax.legend(fontsize=8)
+    ax.grid(True, axis="y", color="0.9")
+    return fig
+
+
 def report_figures(results: dict[str, Any], out: dict[str, Any]) -> list[tuple[str, Any]]:
     """(caption, Figure) for every picture the report shows."""
     import matplotlib.pyplot as plt
@@ -125,6 +168,9 @@ def report_figures(results: dict[str, Any], out: dict[str, Any]) -> list[tuple[s
         figs.append((f"{r.name or 'influence coefficients'}: readings and corrections",
                      influence_figure(r, mass_unit=units.get("mass", ""),
                                       vib_unit=units.get("vibration", ""))))
+    if "iso" in out:
+        figs.append(("ISO 21940-11: tolerances (bars) and residuals (dots)",
+                     iso_figure(out["iso"])))
     return figs
 
 

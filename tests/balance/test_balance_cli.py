@@ -170,7 +170,7 @@ def _html_check(text: str) -> list[bytes]:
 
 
 @pytest.mark.parametrize("name, n_pictures", [("influence_two_plane", 1), ("four_run", 2),
-                                              ("rotor_two_plane", 1), ("iso_tolerance", 0)])
+                                              ("rotor_two_plane", 1), ("iso_tolerance", 1)])
 def test_html_report(tmp_path, name: str, n_pictures: int) -> None:
     import io
 
