@@ -15,8 +15,8 @@ the sum of their vectors.
   m_k+1 = m sin(theta - phi_k) / sin(delta); both are >= 0 because theta lies in
   [phi_k, phi_k+1) and delta < 180 deg (N >= 3). When the positions sit at another
   radius than the correction, each mass is scaled by r_correction / r_positions.
-- **Combine**: the single weight equivalent to weights (m_i, r_i, theta_i) at radius r
-  is sum m_i r_i e^(i theta_i) / r.
+- **Combine**: the weights' resultant unbalance is U = sum m_i r_i e^(i theta_i)
+  (seed 002 eq. 3.3); the single weight equivalent to them at radius r is U / r.
 """
 
 from __future__ import annotations

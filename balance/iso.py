@@ -22,8 +22,9 @@ while the corrections go where material can be added. :func:`iso_tolerances`
 allocates U_per to the bearing planes (the lever rule above; for an overhung rotor,
 centre of mass outside the bearings, the bearing-plane unbalances that U_per at the
 centre of mass produces) and carries the tolerances to two correction planes,
-inboard or outboard, by statics: correction-plane residuals U_1, U_2 load the
-bearing planes like U_A = (U_1 (z_B - z_1) + U_2 (z_B - z_2)) / L, U_B = (U_1 (z_1 -
+inboard or outboard, by statics (the force and moment balances of the seed's
+two-plane balancing, seed 002 eqs 3.9 and 3.11): correction-plane residuals U_1, U_2
+load the bearing planes like U_A = (U_1 (z_B - z_1) + U_2 (z_B - z_2)) / L, U_B = (U_1 (z_1 -
 z_A) + U_2 (z_2 - z_A)) / L, and with unknown angles the worst case adds their
 magnitudes. For narrow rotors (correction planes close together) it gives a static
 and a couple tolerance instead. :func:`to_bearing_planes` carries measured residuals
@@ -276,7 +277,8 @@ def _levers(z: float, z_a: float, z_b: float) -> tuple[float, float]:
 
 def _translation(planes: tuple[float, float], z_a: float, z_b: float) -> np.ndarray:
     """Matrix M with (U_A, U_B) = M (U_1, U_2): correction-plane unbalances (vectors)
-    carried to the bearing planes by statics (forces and moments kept)."""
+    carried to the bearing planes by statics (the force and moment balances of seed
+    002 eqs 3.9 and 3.11, with the bearing planes as the two planes)."""
     return np.array([_levers(z, z_a, z_b) for z in planes]).T
 
 
