@@ -327,12 +327,13 @@ def slotted_lever_exercise(seed: int | None = None) -> Exercise:
 
 # ------------------------------------------------------------- resonance, 3 runs
 def _resonance_scene(p: Mapping[str, float]) -> dict:
-    """Three amplitudes (um, read to 0.1 um) of a rotor whose unbalance U at angle
-    theta from the 0 deg mark is excited at resonance (amplitude k |U + Q|, eqs
-    3.22-3.28): alone, with the trial unbalance Q = m r at 0 deg, and at 180 deg."""
-    u = float(p["U"]) * complex(math.cos(math.radians(p["theta"])),
-                                math.sin(math.radians(p["theta"])))
+    """Three amplitudes (um, read to 0.1 um) of a rotor whose unbalance U = ratio m r at
+    angle theta from the 0 deg mark is excited at resonance (amplitude k |U + Q|, eqs
+    3.22-3.28): alone, with the trial unbalance Q = m r at 0 deg, and at 180 deg (a
+    ratio near 1 lets three readings fix the correction)."""
     q = float(p["trial_mass"]) * float(p["trial_radius"])
+    u = float(p["ratio"]) * q * complex(math.cos(math.radians(p["theta"])),
+                                        math.sin(math.radians(p["theta"])))
     k = float(p["k"])
     return {"title": "Resonance-speed balancing, three runs (exercise)",
             "resonance_test": [{
@@ -383,7 +384,7 @@ def resonance_exercise(seed: int | None = None) -> Exercise:
             "180° + φ and its mirror 180° − φ (three runs cannot tell them apart).")
     return Exercise(
         template=_resonance_scene,
-        ranges={"U": (0.6e-4, 2.4e-4, 0.1e-4), "theta": (0.0, 355.0, 5.0),
+        ranges={"ratio": (0.7, 1.5, 0.05), "theta": (0.0, 355.0, 5.0),
                 "k": (3.0e6, 6.0e6, 0.5e6), "trial_mass": (0.001, 0.003, 0.0005),
                 "trial_radius": (0.05, 0.08, 0.01),
                 "correction_radius": (0.04, 0.07, 0.01)},
