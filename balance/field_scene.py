@@ -341,9 +341,10 @@ def _iso_check(spec: dict, U_per: float, tol: IsoTolerances | None, u: Units) ->
     mags = [abs(x) for x in res]
     planes = spec.get("planes", ())
     if tol is None or tol.planes is None:
-        if tol is None:
+        if tol is None or len(planes) == 1:          # one plane: the whole U_per there
             if len(res) != 1:
-                raise SceneError(f"iso.residual: {len(res)} values for one correction plane")
+                raise SceneError(f"iso.residual: {len(res)} values for one correction plane; "
+                                 "give one")
             per = [U_per]
         else:
             if len(res) != 2:

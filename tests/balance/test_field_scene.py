@@ -165,3 +165,21 @@ def test_units_beside_seed_sections_are_refused() -> None:
 ])
 def test_iso_scene_errors(body, expected) -> None:
     assert expected in error_of("[iso]\n" + body + "\n")
+
+
+def test_iso_single_correction_plane_takes_the_whole_u_per() -> None:
+    text = """
+[iso]
+grade = 2.5
+rotor_mass = 30.0
+speed_rpm = 1800.0
+bearings = [0.0, 0.8]
+cog = 0.4
+planes = [0.35]
+residual = [300e-6]
+"""
+    s = balance.solve(text)["iso"]
+    U = 1000.0 * 2.5 * 30.0 / (1800.0 * math.pi / 30.0) * 1e-6
+    assert s["check"]["permissible"] == pytest.approx([U], rel=1e-12)
+    assert s["check"]["ratio"] == pytest.approx([300e-6 / U], rel=1e-12)
+    assert s["check"]["ok"] is True
