@@ -28,7 +28,7 @@ from .base import (
 )
 from .style import declutter
 
-__all__ = ["find_dyad", "force_on", "force_polygon", "polygon_forces"]
+__all__ = ["find_dyad", "force_on", "force_polygon", "polygon_forces", "stretched_inset"]
 
 
 def find_dyad(sol: Solution, dyad) -> Dyad | None:
@@ -201,7 +201,9 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
     -------
     Axes
         In newtons; the legend gives every vector's magnitude, the lower corner the
-        closure error |sum F|.
+        closure error |sum F|. A polygon whose forces are nearly collinear (as in an RTR
+        dyad) gets an inset with the polygon stretched across its direction
+        (:func:`stretched_inset`) and the legend gives each force's direction.
     """
     d = find_dyad(sol, dyad)
     ax = axes_or_new(ax, figsize=(7.5, 5.0))
@@ -212,16 +214,20 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
     corners = [tail.copy()]
     handles = []
     labels = []         # (text, anchor, unit normal, colour): placed at the end
+    segs = []           # (tail, tip, colour, dashed) for a stretched inset
     for lab, f, col, _ in forces:
         tip = tail + f
         mag = float(np.hypot(*f))
         if mag > 1e-12 * big:
+            segs.append((tail.copy(), tip.copy(), col, False))
             ax.annotate("", tuple(tip), tuple(tail),
                         arrowprops={"arrowstyle": "-|>", "color": col, "lw": 1.8,
                                     "shrinkA": 0, "shrinkB": 0, "mutation_scale": 13})
             if mag > 0.04 * big:
                 labels.append((lab, tail + 0.5 * f, np.array([-f[1], f[0]]) / mag, col))
-        handles.append(Line2D([], [], color=col, lw=1.8, label=f"{lab} = {magnitude_text(mag)} N"))
+        handles.append(Line2D([], [], color=col, lw=1.8,
+                              label=f"{lab} = {magnitude_text(mag)} N"
+                                    f" at {np.degrees(np.arctan2(f[1], f[0])):.1f}°"))
         tail = tip
         corners.append(tail.copy())
     if d is not None and split is not None:
@@ -231,6 +237,7 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
         ax.annotate("", (0.0, 0.0), tuple(s),
                     arrowprops={"arrowstyle": "-|>", "color": "k", "lw": 1.4, "ls": "--",
                                 "shrinkA": 0, "shrinkB": 0, "mutation_scale": 13})
+        segs.append((s.copy(), np.zeros(2), "k", True))
         name = math_name(d.inner.name)
         lab = f"$F_{{\\mathrm{{{name}}}}}$ on {d.bodies[0]}"
         if mag > 0.04 * big:
@@ -247,6 +254,7 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
     ax.autoscale_view()
     ax.margins(0.12)
     vector_axes(ax)
+    stretch = stretched_inset(ax, segs)
     texts = place_labels(ax, labels)
     ax.set_xlabel("Fx [N]")
     ax.set_ylabel("Fy [N]")
@@ -255,6 +263,8 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
     extra = ""
     if d is None and sol.drive.kind == "R":
         extra = f", Me = {float(sol.Me[i]):.4g} N m"
+    if stretch == 0.0:
+        extra += " (forces collinear)"
     ax.set_title(f"force polygon (poligonul forțelor): {what}\nat {position_text(sol, i)}{extra}",
                  fontsize=10)
     ax.grid(True, alpha=0.3)
@@ -263,3 +273,67 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
     return ax
 
 
+
+
+def stretched_inset(ax: Axes, segs: list, flat: float = 0.08, exact: float = 1e-9) -> float | None:
+    """An inset with a thin polygon stretched across its principal direction.
+
+    When the polygon's width across its longest direction is under ``flat`` of its
+    length, its arrows are drawn again in an inset (in a free corner of ``ax``) with the
+    across coordinate multiplied by k, so that the closing of a polygon of nearly
+    collinear forces can be seen.
+
+    Parameters
+    ----------
+    ax : Axes
+        The polygon's Axes.
+    segs : list of (tail, tip, colour, dashed)
+        The arrows [N].
+    flat : float
+        The width/length ratio under which the inset is drawn.
+    exact : float
+        Under this ratio the forces are collinear to rounding: no inset.
+
+    Returns
+    -------
+    float or None
+        k; 0.0 when the forces are collinear to rounding; None for a polygon wide enough.
+    """
+    if not segs:
+        return None
+    pts = np.array([p for t, h, _, _ in segs for p in (t, h)])
+    centred = pts - pts.mean(axis=0)
+    u = np.linalg.svd(centred, full_matrices=False)[2][0]
+    nrm = np.array([-u[1], u[0]])
+    length, width = float(np.ptp(pts @ u)), float(np.ptp(pts @ nrm))
+    if length == 0.0 or width >= flat * length:
+        return None
+    if width <= exact * length:
+        return 0.0
+    k = 0.35 * length / width
+    ax.apply_aspect()
+    samples = np.array([t + f * (h - t) for t, h, _, _ in segs for f in np.linspace(0, 1, 15)])
+    frac = ax.transAxes.inverted().transform(ax.transData.transform(samples))
+    boxes = [(0.03, 0.1), (0.55, 0.1), (0.03, 0.56), (0.55, 0.56)]
+    w, h = 0.42, 0.32
+
+    def crowd(b):
+        return int(np.sum((frac[:, 0] >= b[0]) & (frac[:, 0] <= b[0] + w) &
+                          (frac[:, 1] >= b[1]) & (frac[:, 1] <= b[1] + h)))
+
+    x0, y0 = min(boxes, key=crowd)
+    ins = ax.inset_axes([x0, y0, w, h])
+    for t, hd, col, dashed in segs:
+        a, b = (np.array([p @ u, k * (p @ nrm)]) for p in (t, hd))
+        ins.annotate("", tuple(b), tuple(a),
+                     arrowprops={"arrowstyle": "-|>", "color": col, "lw": 1.4,
+                                 "ls": "--" if dashed else "-", "shrinkA": 0, "shrinkB": 0,
+                                 "mutation_scale": 10})
+        ins.update_datalim([tuple(a), tuple(b)])
+    ins.plot(0, 0, "ko", ms=3)
+    ins.autoscale_view()
+    ins.margins(0.08)
+    ins.set_xticks([])
+    ins.set_yticks([])
+    ins.set_title(f"stretched ×{k:.3g} across", fontsize=7, pad=2)
+    return k

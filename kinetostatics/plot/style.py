@@ -150,6 +150,7 @@ def declutter(ax: Axes, texts: Sequence[Text], rounds: int = 3) -> None:
         fig.canvas.draw()
         r = fig.canvas.get_renderer()
         fixed = [bb for t, bb in _boxes(fig, r) if id(t) not in ids]
+        fixed += [child.get_window_extent(r) for child in ax.child_axes]    # insets
         arrows = _arrow_paths(fig)
         placed: list = []
         moved = False
