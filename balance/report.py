@@ -59,7 +59,8 @@ def influence_figure(result: Any, *, mass_unit: str = "", vib_unit: str = ""):
                          arrowprops={"arrowstyle": "-|>", "color": c, "lw": 1.2, "ls": "--"})
         ax1.plot([vr.real], [vr.imag], "o", color=c, ms=4)
         lim = max(lim, abs(v0), abs(vc))
-    ax1.set_title("readings (arrows) and predicted residual (dots)", fontsize=10)
+    ax1.set_title("initial readings (arrows), " + ("after the trim runs (dashed), "
+                  if result.trim_runs else "") + "predicted residual (dots)", fontsize=10)
     ax1.set_xlabel(f"Re ({vib_unit or 'reading unit'})")
     ax1.set_ylabel(f"Im ({vib_unit or 'reading unit'})")
     ax1.legend(fontsize=8, loc="best")
