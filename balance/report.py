@@ -26,7 +26,7 @@ import numpy as np
 from .errors import BalanceError
 from .report_text import result_warnings
 
-__all__ = ["influence_figure", "iso_figure", "report_figures", "write_report"]
+__all__ = ["influence_figure", "iso_figure", "report_figures", "report_scene", "write_report"]
 
 
 def influence_figure(result: Any, *, mass_unit: str = "", vib_unit: str = ""):
@@ -234,6 +234,27 @@ def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
     except OSError as exc:
         raise BalanceError(f"--report {path}: cannot write the file ({exc.strerror})") from exc
     return path
+
+
+def report_scene(scene: Any, path: str | Path) -> Path:
+    """Solve a balancing scene and write its report (HTML or PDF): the Python side of
+    ``python -m balance solve SCENE --report FILE``.
+
+    Parameters
+    ----------
+    scene : path, str or dict
+        As :func:`balance.solve`.
+    path : str or Path
+        ``.html`` or ``.pdf``.
+
+    Returns
+    -------
+    Path
+    """
+    from .api import results_to_dict, solve_results
+
+    results = solve_results(scene)
+    return write_report(path, results, results_to_dict(results), scene)
 
 
 def _html(lines: list[str], warns: list[str], figs: list, source: str,

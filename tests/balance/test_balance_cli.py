@@ -201,3 +201,12 @@ def test_html_report_lists_the_warnings_and_pdf(tmp_path) -> None:
     p = run("solve", "influence_two_plane", "--report", str(tmp_path / "r.pdf"))
     assert p.returncode == 0, p.stderr
     assert (tmp_path / "r.pdf").read_bytes()[:5] == b"%PDF-"
+
+
+def test_report_from_python(tmp_path) -> None:
+    from balance import example_path
+    from balance.report import report_scene
+
+    f = report_scene(example_path("trim_run"), tmp_path / "sub" / "trim.html")
+    pngs = _html_check(f.read_text(encoding="utf-8"))
+    assert len(pngs) == 1 and pngs[0][:8] == b"\x89PNG\r\n\x1a\n"
