@@ -29,6 +29,7 @@ from .resonance import ResonanceResult
 from .rotor import RotorResult
 
 __all__ = [
+    "candidate_marks",
     "plot_amplitude_circles",
     "plot_moment_polygon",
     "plot_parallelogram",
@@ -181,14 +182,17 @@ def plot_moment_polygon(result: RotorResult, ax: Axes | None = None, *,
 
 
 def plot_parallelogram(result: ResonanceResult, ax: Axes | None = None, *,
-                       unit: str = "amplitude unit") -> Axes:
-    """The amplitude parallelogram (fig. 3.14) with both candidate positions.
+                       unit: str = "amplitude unit", selected: float | None = None) -> Axes:
+    """The amplitude parallelogram (fig. 3.14) with the candidate correction positions.
 
     The trial amplitude A lies along the 0 deg mark, the unbalance's amplitude A1 at
     phi from it; A2 = |A1 + A| and A3 = |A1 - A| are the diagonals. The mirror
-    parallelogram (A1 at -phi, dashed) fits the same three amplitudes: both
-    candidate correction positions (``angle`` and ``mirror_angle``, opposite the two
-    candidate unbalances) are marked. For a runs result only the unique one is drawn.
+    parallelogram (A1 at -phi, dashed) fits the same three amplitudes, so the
+    three-run method leaves two candidates (``angle``, the seed's eq. 3.31 reading, and
+    ``mirror_angle``): both are marked as candidates, neither as "the" correction,
+    unless ``selected`` names the one a further test chose (a run at a third mark, or
+    a known unbalance), which is then marked as selected. A runs result has one
+    position, marked as the correction.
 
     Parameters
     ----------
@@ -198,6 +202,8 @@ def plot_parallelogram(result: ResonanceResult, ax: Axes | None = None, *,
         Where to draw.
     unit : str
         The amplitudes' unit, for the axis labels (e.g. ``"um"``).
+    selected : float, optional
+        The candidate angle (deg) a further test selected; it must be one of the two.
 
     Returns
     -------
@@ -208,9 +214,13 @@ def plot_parallelogram(result: ResonanceResult, ax: Axes | None = None, *,
     ax = _new_axes(ax)
     A, A1 = result.A, result.A1
     Avec = complex(A, 0.0)
-    candidates = [(result.phi, "-", 1.0)]
+    corr = candidate_marks(result, selected)
+    # the parallelogram of the selected candidate solid, the other dashed
+    mirror_chosen = len(corr) == 2 and corr[1][2]
+    phi = -result.phi if mirror_chosen else result.phi
+    candidates = [(phi, "-", 1.0)]
     if result.mirror_angle is not None:
-        candidates.append((-result.phi, "--", 0.55))
+        candidates.append((-phi, "--", 0.55))
     scale = A + A1
     for n, (phi, ls, alpha) in enumerate(candidates):
         U = polar(A1, phi)
@@ -226,16 +236,16 @@ def plot_parallelogram(result: ResonanceResult, ax: Axes | None = None, *,
         ax.plot([U.real], [U.imag], "o", color=color, ms=5, alpha=alpha)
     _arrow(ax, 0j, Avec, "A (trial at 0 deg)", "tab:orange", text_offset=-0.05 * scale)
     R = 1.15 * max(A1, A)
-    corr = [(result.angle, f"correction {result.angle:.1f} deg")]
-    if result.mirror_angle is not None:
-        corr.append((result.mirror_angle, f"or {result.mirror_angle:.1f} deg (mirror)"))
-    for n, (ang, text) in enumerate(corr):
+    for ang, text, filled in corr:
         q = polar(R, ang)
         ax.plot([0.0, q.real], [0.0, q.imag], ":", color=_CORRECTION, lw=1.0)
         ax.plot([q.real], [q.imag], marker="s", color=_CORRECTION, ms=8,
-                mfc=_CORRECTION if n == 0 else "white")
-        ax.annotate(text, (q.real, q.imag), xytext=(6, -12 if q.imag < 0 else 6),
-                    textcoords="offset points", color=_CORRECTION, fontsize=9)
+                mfc=_CORRECTION if filled else "white")
+        right = q.real > 0.0        # the label runs towards the inside of the picture
+        ax.annotate(text, (q.real, q.imag), xytext=(-6 if right else 6,
+                                                    -12 if q.imag < 0 else 6),
+                    textcoords="offset points", color=_CORRECTION, fontsize=9,
+                    ha="right" if right else "left")
         ax.update_datalim([(q.real, q.imag)])
     t = np.linspace(0.0, 2.0 * math.pi, 181)
     ax.plot(R * np.cos(t), R * np.sin(t), color="0.9", lw=0.8, zorder=0)
@@ -243,7 +253,37 @@ def plot_parallelogram(result: ResonanceResult, ax: Axes | None = None, *,
                 fontsize=8, color="0.4")
     return _finish(ax, f"amplitude, along the 0 deg mark ({unit})",
                    f"amplitude, normal to it ({unit})",
-                   f"Amplitude parallelogram, plane {result.plane}: phi = {result.phi:.2f} deg")
+                   f"Amplitude parallelogram, plane {result.plane}: phi = {result.phi:.2f} deg"
+                   + ("\nthree runs fit both: a run at a third mark decides"
+                      if result.mirror_angle is not None and selected is None else ""))
+
+
+def candidate_marks(result: ResonanceResult, selected: float | None = None
+                    ) -> list[tuple[float, str, bool]]:
+    """The correction positions a parallelogram picture marks: (angle in deg, label,
+    filled). Three runs: both candidates, hollow and labelled as candidates, unless
+    ``selected`` (one of them, to 1e-6 deg modulo 360) was chosen by a further test:
+    that one filled and labelled "selected". Runs: the unique correction, filled.
+
+    Raises
+    ------
+    BalanceError
+        ``selected`` is not one of the candidates.
+    """
+    if result.mirror_angle is None:
+        return [(result.angle, f"correction {result.angle:.1f} deg", True)]
+    both = [result.angle, result.mirror_angle]
+    if selected is None:
+        return [(a, f"candidate {a:.1f} deg", False) for a in both]
+
+    def gap(a):
+        return abs((a - selected + 180.0) % 360.0 - 180.0)
+
+    if min(gap(a) for a in both) > 1e-6:
+        raise BalanceError(f"plot_parallelogram: selected = {selected:g} deg is neither "
+                           f"candidate ({both[0]:.6g} or {both[1]:.6g} deg)")
+    return [(a, f"correction {a:.1f} deg (selected)" if gap(a) <= 1e-6 else
+             f"mirror {a:.1f} deg (rejected)", gap(a) <= 1e-6) for a in both]
 
 
 def plot_amplitude_circles(result: ResonanceResult, ax: Axes | None = None, *,
