@@ -15,6 +15,13 @@ both candidate correction angles. Trial runs at three or more marks that are not
 all equal or opposite (e.g. 0, 120, 240 deg: the four-run method) fix the angle
 uniquely by linear least squares in the squared amplitudes.
 
+Beside the seed's result, every test carries ``estimate``, the maximum-likelihood fit
+of the amplitudes themselves under a stated noise model, with intervals at a stated
+confidence (:mod:`balance.resonance_estimate`), and ``warnings``: the conditioning
+checks (trial mass too small or too large, marks too close for the noise, readings
+inconsistent with the model, the seed's result outside the estimate's intervals). Each
+warning is also issued as a :class:`~balance.errors.BalanceWarning`.
+
 The second plane is balanced by the same computation after the rotor is turned end
 for end in the frame (``plane = 2``). Angles are in degrees from the 0 deg mark in
 the direction of the angle scale, in [0, 360).
@@ -32,6 +39,7 @@ import numpy as np
 
 from ._util import check_number, deg360
 from .errors import BalanceError, BalanceWarning
+from .resonance_estimate import DEFAULT_NOISE, Estimate, check_model, estimate, warnings_for
 from .uncertainty import Interval, propagate
 
 __all__ = [
@@ -60,15 +68,16 @@ class ResonanceResult:
     ----------
     plane : int
         The correction plane (1 or 2).
-    A : float
-        The amplitude the trial mass alone would give (eq. 3.29, or the runs' fit).
+    A : float or None
+        The amplitude the trial mass alone would give (eq. 3.29, or the runs' fit; None
+        where the runs' linear fit has no solution, A^2 <= 0).
     phi : float or None
         Three-run method: the angle (deg, [0, 180]) between the unbalance and the 0 deg
         mark (eq. 3.31). With runs: the unbalance's angle theta_u in [0, 360). None
         when A1 = 0.
-    unbalance : float
+    unbalance : float or None
         m_1 r_1 = m r A1 / A (kg m), eq. 3.30.
-    correction_mass : float
+    correction_mass : float or None
         unbalance / correction_radius (kg).
     angle : float or None
         Where the correction mass goes: (180 + phi) mod 360 (deg).
@@ -87,14 +96,18 @@ class ResonanceResult:
     fit_ratio : float or None
         Runs: |(A1 A cos, A1 A sin)| / (A1 A) from the fit; 1 for consistent data.
     uncertainty : Interval or None
-        Bounds of the correction mass and ``angle`` for a given +-dA.
+        Worst-case bounds of the correction mass and ``angle`` for a given +-dA.
+    estimate : Estimate or None
+        The maximum-likelihood estimate with its intervals.
+    warnings : tuple of str
+        The conditioning warnings (empty when all is well).
     """
 
     plane: int
-    A: float
+    A: float | None
     phi: float | None
-    unbalance: float
-    correction_mass: float
+    unbalance: float | None
+    correction_mass: float | None
     angle: float | None
     mirror_angle: float | None
     method: str
@@ -107,13 +120,18 @@ class ResonanceResult:
     cos_phi: float | None = None
     fit_ratio: float | None = None
     uncertainty: Interval | None = None
+    estimate: Estimate | None = None
+    warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
-        """The contract's keys; ``uncertainty`` is added only when it was asked for."""
+        """The contract's keys, ``estimate`` and ``warnings``; ``uncertainty`` is added
+        only when it was asked for."""
         d: dict[str, Any] = {
             "plane": self.plane, "A": self.A, "phi": self.phi, "unbalance": self.unbalance,
             "correction_mass": self.correction_mass, "angle": self.angle,
             "mirror_angle": self.mirror_angle,
+            "estimate": None if self.estimate is None else self.estimate.to_dict(),
+            "warnings": list(self.warnings),
         }
         if self.uncertainty is not None:
             d["uncertainty"] = self.uncertainty.to_dict()
@@ -178,23 +196,37 @@ def _check_trial_amplitude(value: float, name: str) -> float:
     return a
 
 
-def _warn_small_trial(A: float, A1: float, where: str) -> None:
+def _small_trial(A: float, A1: float, where: str) -> list[str]:
     if A1 > 0.0 and A < SMALL_TRIAL * A1:
-        warnings.warn(f"{where}: the trial mass gives A = {A:.4g}, under {SMALL_TRIAL:g} of "
-                      f"A1 = {A1:.4g}; the result is very sensitive to amplitude errors, use a "
-                      "larger trial mass", BalanceWarning, stacklevel=3)
+        return [f"{where}: the trial mass gives A = {A:.4g}, under {SMALL_TRIAL:g} of "
+                f"A1 = {A1:.4g}; the result is very sensitive to amplitude errors, use a "
+                "larger trial mass"]
+    return []
+
+
+def _finish(notes: list[str], est: Estimate | None, method: str, a1: float,
+            unbalance: float | None, angles: tuple[float | None, ...], fit_ratio: float | None,
+            where: str) -> tuple[str, ...]:
+    """The result's warnings (the seed method's own, then the conditioning checks against
+    the estimate), each also issued as a BalanceWarning."""
+    if est is not None:
+        notes = notes + warnings_for(est, method=method, A1=a1, seed_unbalance=unbalance,
+                                     seed_angles=angles, fit_ratio=fit_ratio, where=where)
+    for note in notes:
+        warnings.warn(note, BalanceWarning, stacklevel=3)
+    return tuple(notes)
 
 
 # ------------------------------------------------------------------ three runs
 def parallelogram(A1: float, A2: float, A3: float, trial_mass: float, trial_radius: float,
                   correction_radius: float, *, plane: int = 1,
-                  dA: float | None = None, noise: tuple[float, float] = (0.01, 0.0),
+                  dA: float | None = None, noise: tuple[float, float] | None = DEFAULT_NOISE,
                   confidence: float = 0.95) -> ResonanceResult:
     """The amplitude-parallelogram (three-run) method, eqs 3.22-3.31.
 
     A^2 = (A2^2 + A3^2 - 2 A1^2) / 2 (eq. 3.29); m_1 r_1 = m r A1 / A (eq. 3.30);
-    cos phi = (A1^2 + A^2 - A3^2) / (2 A1 A) = (A2^2 - A3^2) / (4 A1 A) (eq. 3.31 as
-    corrected in SPEC: the seed prints A2 for A^2). The correction goes at
+    cos phi = (A1^2 + A^2 - A3^2) / (2 A1 A) = (A2^2 - A3^2) / (4 A1 A) (eq. 3.31 with
+    its misprint corrected: the seed prints A2 for A^2). The correction goes at
     ``angle`` = 180 + phi when the unbalance lies 0..180 deg from the mark, else at
     ``mirror_angle`` = 180 - phi: the three amplitudes cannot tell which.
 
@@ -213,7 +245,14 @@ def parallelogram(A1: float, A2: float, A3: float, trial_mass: float, trial_radi
     dA : float, optional
         Uncertainty +-dA on each of A1, A2, A3: adds ``uncertainty`` (corner
         evaluation of the 8 combinations, with linearised half widths; see
-        :mod:`balance.uncertainty`) bounding the correction mass and ``angle``.
+        :mod:`balance.uncertainty`) bounding the correction mass and ``angle``; a corner
+        where no parallelogram closes (|cos phi| > 1) refuses the bounds.
+    noise : (float, float) or None
+        (relative, absolute) 1-sigma noise of each reading, sigma_k = sqrt((relative
+        A_k)^2 + absolute^2), for ``estimate``; None: the seed's result alone (no
+        estimate, no conditioning checks).
+    confidence : float
+        Of the estimate's intervals and of its consistency test, in (0, 1).
 
     Returns
     -------
@@ -229,8 +268,9 @@ def parallelogram(A1: float, A2: float, A3: float, trial_mass: float, trial_radi
     Warns
     -----
     BalanceWarning
-        |cos phi| exceeded 1 by at most 1e-9 and was clipped; or the trial mass is
-        much smaller than the unbalance (A < 0.1 A1).
+        Each entry of ``warnings``: |cos phi| exceeded 1 by at most 1e-9 and was
+        clipped; the trial mass is much smaller than the unbalance (A < 0.1 A1); the
+        conditioning checks of :func:`balance.resonance_estimate.warnings_for`.
 
     Examples
     --------
@@ -240,6 +280,7 @@ def parallelogram(A1: float, A2: float, A3: float, trial_mass: float, trial_radi
     """
     where = f"resonance_test (plane {plane})"
     m, r, rc, plane = _check_common(trial_mass, trial_radius, correction_radius, plane, where)
+    model = None if noise is None else check_model(noise, confidence, where)
     a1 = _check_A1(A1, where)
     a2 = _check_trial_amplitude(A2, f"{where}: A2 (trial mass at 0 deg)")
     a3 = _check_trial_amplitude(A3, f"{where}: A3 (trial mass at 180 deg)")
@@ -250,7 +291,7 @@ def parallelogram(A1: float, A2: float, A3: float, trial_mass: float, trial_radi
             f"{where}: A2^2 + A3^2 - 2 A1^2 = {2 * A_sq:.6g} <= 0 (A1 = {a1:g}, A2 = {a2:g}, "
             f"A3 = {a3:g}): no amplitude parallelogram has these sides and diagonals; "
             "check the readings or use a larger trial mass")
-    _warn_small_trial(A, a1, where)
+    notes = _small_trial(A, a1, where)
     unbalance = m * r * a1 / A                                   # eq. 3.30
     if a1 == 0.0:
         phi = angle = mirror = None
@@ -262,8 +303,8 @@ def parallelogram(A1: float, A2: float, A3: float, trial_mass: float, trial_radi
                 f"{a1:g}, A2 = {a2:g}, A3 = {a3:g}): no parallelogram joins these amplitudes; "
                 "repeat the runs")
         if abs(cos_phi) > 1.0:
-            warnings.warn(f"{where}: cos phi = {cos_phi:.15g} exceeds 1 by at most "
-                          f"{COS_TOLERANCE:g}; clipped", BalanceWarning, stacklevel=2)
+            notes.insert(0, f"{where}: cos phi = {cos_phi:.15g} exceeds 1 by at most "
+                            f"{COS_TOLERANCE:g}; clipped")
         cos_out = cos_phi
         phi = math.degrees(math.acos(min(1.0, max(-1.0, cos_phi))))   # eq. 3.31, [0, 180]
         angle, mirror = deg360(180.0 + phi), deg360(180.0 - phi)      # fig. 3.15
@@ -274,17 +315,24 @@ def parallelogram(A1: float, A2: float, A3: float, trial_mass: float, trial_radi
         def batch(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             _, Ab, cb = _three_run_core(pts[:, 0], pts[:, 1], pts[:, 2])
             mass = m * r * pts[:, 0] / Ab / rc
+            # a corner where no parallelogram closes has no solution: never clipped
+            mass = np.where((pts[:, 0] > 0.0) & (np.abs(cb) > 1.0 + COS_TOLERANCE), np.nan, mass)
             with np.errstate(invalid="ignore"):
                 ang = np.where(pts[:, 0] > 0.0,
                                180.0 + np.degrees(np.arccos(np.clip(cb, -1.0, 1.0))), np.nan)
             return mass[:, None], ang[:, None]
 
         unc = propagate(batch, np.array([a1, a2, a3]), d, "amplitudes A1, A2, A3")[0]
+    marks = np.array([0.0, 180.0])
+    est = None if model is None else estimate(a1, marks, np.array([a2, a3]), m * r, rc,
+                                              *model, symmetric=True)
+    notes = _finish(notes, est, "three-run", a1, unbalance, (angle, mirror), None, where)
     return ResonanceResult(
         plane=plane, A=A, phi=phi, unbalance=unbalance, correction_mass=unbalance / rc,
         angle=angle, mirror_angle=mirror, method="three-run", A1=a1,
-        marks=np.array([0.0, 180.0]), amplitudes=np.array([a2, a3]), trial_mass=m,
-        trial_radius=r, correction_radius=rc, cos_phi=cos_out, uncertainty=unc)
+        marks=marks, amplitudes=np.array([a2, a3]), trial_mass=m,
+        trial_radius=r, correction_radius=rc, cos_phi=cos_out, uncertainty=unc,
+        estimate=est, warnings=notes)
 
 
 # ----------------------------------------------------------------- any marks
@@ -337,7 +385,7 @@ def _check_marks(marks: np.ndarray, where: str) -> np.ndarray:
 
 def trial_runs(A1: float, runs: Iterable[Any], trial_mass: float, trial_radius: float,
                correction_radius: float, *, plane: int = 1,
-               dA: float | None = None, noise: tuple[float, float] = (0.01, 0.0),
+               dA: float | None = None, noise: tuple[float, float] | None = DEFAULT_NOISE,
                confidence: float = 0.95) -> ResonanceResult:
     """Unbalance from three or more trial runs at any marks (the runs method).
 
@@ -363,43 +411,50 @@ def trial_runs(A1: float, runs: Iterable[Any], trial_mass: float, trial_radius: 
         1 or 2.
     dA : float, optional
         Uncertainty on every amplitude (A1 and the runs'): adds ``uncertainty``.
+    noise, confidence
+        As in :func:`parallelogram`.
 
     Returns
     -------
     ResonanceResult
         ``phi`` = theta_u in [0, 360), ``angle`` = theta_u + 180, ``mirror_angle`` None.
+        Where the linear fit has no solution (A^2 <= 0, or no angular part) its keys
+        are None, a warning says why, and ``estimate`` is still given.
 
     Raises
     ------
     BalanceError
         Fewer than three runs; marks all equal or opposite, or at only two
-        positions; A^2 <= 0 from the fit; non-positive amplitudes or trial data.
+        positions, or too close together to fix the angle at all; non-positive
+        amplitudes or trial data.
     """
     where = f"resonance_test (plane {plane})"
     m, r, rc, plane = _check_common(trial_mass, trial_radius, correction_radius, plane, where)
+    model = None if noise is None else check_model(noise, confidence, where)
     a1 = _check_A1(A1, where)
     marks, amps = _parse_runs(runs, where)
     pinv = _check_marks(marks, where)
     A_sq, c, A = (x[0] for x in _runs_core(np.array([a1]), amps[None, :], pinv))
     A_sq, A = float(A_sq), float(A)
+    notes: list[str] = []
+    phi = angle = fit = unbalance = None
     if not A_sq > 0.0:
-        raise BalanceError(f"{where}: the runs' least-squares fit gives A^2 = {A_sq:.6g} <= 0: "
-                           "the amplitudes are inconsistent with any trial-mass effect; check "
-                           "the readings or use a larger trial mass")
-    _warn_small_trial(A, a1, where)
-    unbalance = m * r * a1 / A                                       # eq. 3.30
-    if a1 == 0.0:
-        phi = angle = None
-        fit = None
+        A = None
+        notes.append(f"{where}: the runs' linear fit in squared amplitudes gives A^2 = "
+                     f"{A_sq:.6g} <= 0, so its unbalance and angle are null: the amplitudes "
+                     "are inconsistent with a trial-mass effect that large; see the estimate")
     else:
-        if abs(c) <= 1e-12 * a1 * A:
-            raise BalanceError(f"{where}: the runs do not fix the unbalance's angle (the fit's "
-                               "angular part vanishes); check the readings")
-        phi = deg360(math.degrees(math.atan2(c.imag, c.real)))      # theta_u
-        angle = deg360(phi + 180.0)
-        fit = float(abs(c) / (a1 * A))
+        notes += _small_trial(A, a1, where)
+        unbalance = m * r * a1 / A                                   # eq. 3.30
+        if a1 > 0.0 and abs(c) <= 1e-12 * a1 * A:
+            notes.append(f"{where}: the runs' linear fit does not fix the unbalance's angle "
+                         "(its angular part vanishes); see the estimate")
+        elif a1 > 0.0:
+            phi = deg360(math.degrees(math.atan2(c.imag, c.real)))  # theta_u
+            angle = deg360(phi + 180.0)
+            fit = float(abs(c) / (a1 * A))
     unc = None
-    if dA is not None:
+    if dA is not None and A is not None:
         d = check_number(dA, f"{where}: dA", nonnegative=True)
 
         def batch(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -409,15 +464,20 @@ def trial_runs(A1: float, runs: Iterable[Any], trial_mass: float, trial_radius: 
             return mass[:, None], ang[:, None]
 
         unc = propagate(batch, np.concatenate([[a1], amps]), d, "amplitudes A1 and runs")[0]
+    est = None if model is None else estimate(a1, marks, amps, m * r, rc, *model)
+    notes = _finish(notes, est, "runs", a1, unbalance, (angle,), fit, where)
     return ResonanceResult(
-        plane=plane, A=A, phi=phi, unbalance=unbalance, correction_mass=unbalance / rc,
+        plane=plane, A=A, phi=phi, unbalance=unbalance,
+        correction_mass=None if unbalance is None else unbalance / rc,
         angle=angle, mirror_angle=None, method="runs", A1=a1, marks=marks, amplitudes=amps,
-        trial_mass=m, trial_radius=r, correction_radius=rc, fit_ratio=fit, uncertainty=unc)
+        trial_mass=m, trial_radius=r, correction_radius=rc, fit_ratio=fit, uncertainty=unc,
+        estimate=est, warnings=notes)
 
 
 def four_run(A1: float, A2: float, A3: float, A4: float, trial_mass: float,
              trial_radius: float, correction_radius: float, *, plane: int = 1,
-             dA: float | None = None) -> ResonanceResult:
+             dA: float | None = None, noise: tuple[float, float] | None = DEFAULT_NOISE,
+             confidence: float = 0.95) -> ResonanceResult:
     """The four-run method: trial mass at the 0, 120 and 240 deg marks.
 
     The same as :func:`trial_runs` with runs ``[(0, A2), (120, A3), (240, A4)]``:
@@ -429,7 +489,7 @@ def four_run(A1: float, A2: float, A3: float, A4: float, trial_mass: float,
         Amplitude without trial mass.
     A2, A3, A4 : float
         Amplitudes with the trial mass at 0, 120 and 240 deg.
-    trial_mass, trial_radius, correction_radius, plane, dA
+    trial_mass, trial_radius, correction_radius, plane, dA, noise, confidence
         As in :func:`trial_runs`.
 
     Returns
@@ -437,4 +497,5 @@ def four_run(A1: float, A2: float, A3: float, A4: float, trial_mass: float,
     ResonanceResult
     """
     return trial_runs(A1, [(0.0, A2), (120.0, A3), (240.0, A4)], trial_mass, trial_radius,
-                      correction_radius, plane=plane, dA=dA)
+                      correction_radius, plane=plane, dA=dA, noise=noise,
+                      confidence=confidence)

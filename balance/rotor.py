@@ -13,6 +13,7 @@ Plane vectors are complex numbers x + i y; angles are in degrees from the rotor'
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -22,7 +23,7 @@ import numpy as np
 from kinetostatics.model.tomlio import suggest
 
 from ._util import RPM_TO_RAD_S, angle_of, check_number
-from .errors import BalanceError
+from .errors import BalanceError, BalanceWarning
 
 __all__ = [
     "CorrectionPlane",
@@ -37,6 +38,15 @@ _ZERO_TOL = 1e-12
 
 _COINCIDENT_TOL = 1e-9
 """Planes closer than this fraction of the rotor's axial extent coincide."""
+
+CLOSE_PLANES = 0.05
+"""Two correction planes closer than this fraction of the rotor's axial extent are
+flagged: the couple is corrected by a lever that short, so the corrections grow as
+extent / distance."""
+
+LARGE_CORRECTION = 10.0
+"""Corrections whose total |U_e| exceeds this many times the total |U_j| they balance
+are flagged as absurd."""
 
 
 @dataclass(frozen=True)
@@ -118,6 +128,9 @@ class RotorResult:
         The vectors U_j = m_j r_j (kg m), input order (for plotting).
     z : numpy.ndarray
         Their axial positions (m).
+    warnings : tuple of str
+        Conditioning warnings (correction planes too close for the rotor's length,
+        corrections far larger than the unbalance); empty when all is well.
     """
 
     corrections: tuple[Correction, ...]
@@ -128,6 +141,7 @@ class RotorResult:
     speed_rpm: float | None
     unbalances: np.ndarray = field(repr=False)
     z: np.ndarray = field(repr=False)
+    warnings: tuple[str, ...] = ()
 
     @property
     def scale(self) -> float:
@@ -147,6 +161,7 @@ class RotorResult:
             "initial_moment": self.initial_moment,
             "residual_force": self.residual_force,
             "residual_moment": self.residual_moment,
+            "warnings": list(self.warnings),
         }
 
 
@@ -242,6 +257,13 @@ def balance_rotor(unbalances: Iterable[Any], planes: Iterable[Any],
         No unbalance, a number of planes other than one or two, coincident
         correction planes, a negative mass or radius.
 
+    Warns
+    -----
+    BalanceWarning
+        Each entry of the result's ``warnings``: two correction planes closer than
+        :data:`CLOSE_PLANES` of the rotor's axial extent; corrections whose total
+        exceeds :data:`LARGE_CORRECTION` times the total unbalance.
+
     Examples
     --------
     >>> r = balance_rotor([(0.02, 0.1, 30.0, 0.05), (0.015, 0.12, 150.0, 0.15)],
@@ -276,8 +298,8 @@ def balance_rotor(unbalances: Iterable[Any], planes: Iterable[Any],
         dz = z2 - z1
         extent = max(abs(z1), abs(z2), float(np.abs(z - z1).max()), float(np.abs(z - z2).max()))
         if dz == 0.0 or abs(dz) <= _COINCIDENT_TOL * extent:
-            raise BalanceError(f"rotor: correction planes 1 and 2 coincide (z = {z1:g} and "
-                               f"{z2:g} m); two-plane balancing needs planes at different z")
+            raise BalanceError(f"rotor: correction planes 1 and 2 coincide (z = {z1!r} and "
+                               f"{z2!r} m); two-plane balancing needs planes at different z")
         Ue2 = -complex(((z - z1) * U).sum()) / dz  # eqs 3.12-3.13: moments about plane I
         Ue1 = -Ud - Ue2                            # eqs 3.10, 3.14: force balance
         Ue = [Ue1, Ue2]
@@ -286,6 +308,7 @@ def balance_rotor(unbalances: Iterable[Any], planes: Iterable[Any],
 
     corrections = tuple(_correction(k, p, ue, tol) for k, (p, ue) in enumerate(zip(pl, Ue,
                                                                                    strict=True)))
+    notes = _conditioning(pl, z, corrections, size)
     Ue_applied = np.array([c.vector for c in corrections])
     ze = np.array([p.z for p in pl])
     res_F = Ud + complex(Ue_applied.sum())                  # eq. 3.9 / 3.4 left-hand side
@@ -300,4 +323,29 @@ def balance_rotor(unbalances: Iterable[Any], planes: Iterable[Any],
         speed_rpm=speed_rpm,
         unbalances=U,
         z=z,
+        warnings=notes,
     )
+
+
+def _conditioning(pl: list[CorrectionPlane], z: np.ndarray, corrections: tuple[Correction, ...],
+                  size: float) -> tuple[str, ...]:
+    """Warnings, with their numbers, where the corrections are not to be trusted; each is
+    also issued as a BalanceWarning."""
+    notes = []
+    if len(pl) == 2:
+        z1, z2 = pl[0].z, pl[1].z
+        extent = max(z.max(), z1, z2) - min(z.min(), z1, z2)
+        if abs(z2 - z1) < CLOSE_PLANES * extent:
+            notes.append(f"rotor: the correction planes are {abs(z2 - z1):.3g} m apart, "
+                         f"{abs(z2 - z1) / extent:.2g} of the rotor's axial extent "
+                         f"{extent:.3g} m (under {CLOSE_PLANES:g}): the couple is corrected "
+                         "by a short lever and the corrections grow as extent / distance; "
+                         "place the planes further apart")
+    total = sum(c.U for c in corrections)
+    if size > 0.0 and total > LARGE_CORRECTION * size:
+        notes.append(f"rotor: the corrections total {total:.4g} kg m, {total / size:.3g} "
+                     f"times the unbalance they balance ({size:.4g} kg m): check the "
+                     "planes' positions and radii")
+    for note in notes:
+        warnings.warn(note, BalanceWarning, stacklevel=3)
+    return tuple(notes)

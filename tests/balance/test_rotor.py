@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from balance import BalanceError, CorrectionPlane, Unbalance, balance_rotor
+from balance import BalanceError, BalanceWarning, CorrectionPlane, Unbalance, balance_rotor
 
 masses = st.floats(0.0, 0.5)
 radii = st.floats(0.0, 0.3)
@@ -117,7 +118,8 @@ def test_units_follow_the_speed() -> None:
 def test_to_dict_has_exactly_the_contract_keys() -> None:
     d = balance_rotor([(0.02, 0.1, 30.0, 0.05)], [(0.0, 0.1), (0.3, 0.1)]).to_dict()
     assert set(d) == {"corrections", "initial_force", "initial_moment", "residual_force",
-                      "residual_moment"}
+                      "residual_moment", "warnings"}
+    assert d["warnings"] == []
     assert all(set(c) == {"plane", "z", "radius", "mass", "angle", "U"}
                for c in d["corrections"])
     assert [c["plane"] for c in d["corrections"]] == [1, 2]
@@ -144,6 +146,27 @@ def test_coincident_planes_refused() -> None:
     assert "coincide" in one_line(exc)
     with pytest.raises(BalanceError):
         balance_rotor([(0.02, 0.1, 30.0, 0.05)], [(0.1, 0.1), (0.1 + 1e-14, 0.12)])
+    # planes that differ below the printed precision of %g are told apart in the message
+    with pytest.raises(BalanceError) as exc:
+        balance_rotor([(0.02, 0.1, 30.0, 0.05)], [(0.2, 0.1), (0.2 + 1e-11, 0.12)])
+    assert "z = 0.2 and 0.20000000001 m" in one_line(exc)
+
+
+def test_planes_too_close_for_the_rotor_warn() -> None:
+    """Planes 10 um apart on a 0.3 m rotor give corrections of kilograms: flagged, with
+    the numbers, in the result and as a BalanceWarning."""
+    ub = [(0.02, 0.1, 30.0, 0.05), (0.015, 0.12, 150.0, 0.15), (0.01, 0.08, 260.0, 0.3)]
+    with pytest.warns(BalanceWarning, match="planes are 1e-05 m apart"):
+        r = balance_rotor(ub, [(0.1, 0.1), (0.10001, 0.1)])
+    assert max(c.mass for c in r.corrections) > 100.0        # the absurd correction
+    assert len(r.warnings) == 2 and "times the unbalance" in r.warnings[1]
+    assert r.to_dict()["warnings"] == list(r.warnings)
+    # planes 5 % of the extent apart warn; a 0.3 m span on a 0.3 m rotor does not
+    with pytest.warns(BalanceWarning, match="apart"):
+        balance_rotor(ub, [(0.1, 0.1), (0.11, 0.1)])   # 0.04 of 0.25 m
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert balance_rotor(ub, [(0.0, 0.1), (0.3, 0.1)]).warnings == ()
 
 
 @pytest.mark.parametrize("n", [0, 3])
