@@ -15,8 +15,10 @@ from __future__ import annotations
 
 import datetime
 import json
+import os
 import re
 from collections.abc import Iterable, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -215,7 +217,7 @@ def _read_submission(p: Path, execute: bool, timeout: float) -> list[dict]:
 
 
 def grade_class(directory: str | Path, submissions: Iterable[Any], *, execute: bool = True,
-                timeout: float = 60.0) -> ClassReport:
+                timeout: float = 60.0, jobs: int | None = None) -> ClassReport:
     """Grade every submission of a class folder written by :func:`generate_class`.
 
     Parameters
@@ -230,6 +232,8 @@ def grade_class(directory: str | Path, submissions: Iterable[Any], *, execute: b
         False the answers are read from the saved cell (its literal values).
     timeout : float
         Seconds allowed per notebook cell.
+    jobs : int, optional
+        Notebooks run at the same time (default: the number of cores, at most 4).
 
     Returns
     -------
@@ -240,6 +244,8 @@ def grade_class(directory: str | Path, submissions: Iterable[Any], *, execute: b
         conflicts`` (id in the metadata and in the answer cell disagree).
     """
     d = Path(directory)
+    if jobs is None:
+        jobs = min(4, os.cpu_count() or 1)
     if not (d / "key.csv").is_file():
         raise WorkbenchError(f"{d}: no key.csv; give the folder written by "
                              "'exercises generate'")
@@ -249,19 +255,31 @@ def grade_class(directory: str | Path, submissions: Iterable[Any], *, execute: b
     rep = ClassReport(graded=pd.DataFrame(), scores=pd.DataFrame())
     got: dict[str, tuple[dict, str]] = {}
     failed: dict[str, tuple[str, str]] = {}
-    for p in _expand(submissions):
+    files = _expand(submissions)
+
+    def read(p: Path) -> tuple[list | None, str, list]:
         try:
-            parts = _read_submission(p, execute, timeout)
-        except (SubmissionError, WorkbenchError, OSError, ValueError) as exc:
-            ids = exc.args[1] if len(exc.args) > 1 else []
+            return _read_submission(p, execute, timeout), "", []
+        except SubmissionError as exc:
+            return None, str(exc.args[0]), list(exc.args[1]) if len(exc.args) > 1 else []
+        except WorkbenchError as exc:
+            return None, str(exc), []
+        except Exception as exc:     # whatever one submission does, the class goes on
+            return None, f"{type(exc).__name__}: {exc}", []
+
+    # each notebook runs in its own kernel process: a few at a time, results in order
+    with ThreadPoolExecutor(max(1, int(jobs))) as pool:
+        results = list(pool.map(read, files))
+    for p, (parts, reason, ids) in zip(files, results, strict=True):
+        if parts is None:
             known = [canon[normalize_id(i)] for i in ids if normalize_id(i) in canon]
             sid = known[0] if known else None
-            rep.broken.append({"file": str(p), "student": sid, "reason": str(exc.args[0])})
+            rep.broken.append({"file": str(p), "student": sid, "reason": reason})
             if sid in got:
                 rep.duplicates.append({"student": sid, "files": [got[sid][1], str(p)],
                                        "kept": got[sid][1]})
             elif sid is not None:
-                failed[sid] = (str(exc.args[0]), str(p))
+                failed[sid] = (reason, str(p))
             continue
         for part in parts:
             ids = [i for i in part["ids"] if i is not None and str(i).strip()]

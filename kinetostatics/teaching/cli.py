@@ -47,6 +47,8 @@ def add_commands(sub) -> None:
                    help="read the saved answer cells without running the notebooks")
     r.add_argument("--timeout", type=float, default=60.0,
                    help="seconds allowed per notebook cell (default 60)")
+    r.add_argument("--jobs", type=int,
+                   help="notebooks run at the same time (default: cores, at most 4)")
     r.set_defaults(func=_cmd_grade)
 
 
@@ -82,7 +84,7 @@ def _cmd_grade(args) -> int:
 
     t = time.perf_counter()
     rep = grade_class(args.dir, args.submissions, execute=not args.no_execute,
-                      timeout=args.timeout)
+                      timeout=args.timeout, jobs=args.jobs)
     dt = time.perf_counter() - t
     print(f"tolerance: {TOLERANCE_RULE}")
     how = "read as saved" if args.no_execute else "run in a clean kernel"
