@@ -232,9 +232,9 @@ def format_column(col, sep: str = ",") -> tuple[np.ndarray, np.ndarray]:
         return format_floats(arr, sep)
     if arr.dtype.kind == "b":
         return _labels(["False", "True"], arr.astype(np.intp), sep)
-    text = pd.Series(col, dtype=object).map(lambda v: "" if pd.isna(v) else str(v))
-    values, codes = np.unique(text.to_numpy(dtype=str), return_inverse=True)
-    return _labels([str(v) for v in values], codes, sep)
+    codes, uniques = pd.factorize(col)            # missing values: code -1, an empty field
+    texts = [str(u) for u in uniques] + [""]
+    return _labels(texts, np.where(codes < 0, len(texts) - 1, codes), sep)
 
 
 _COLUMNS = np.arange(256, dtype=np.uint8)

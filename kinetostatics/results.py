@@ -62,6 +62,12 @@ class _LongTable:
         """The rows of block ``i``."""
         return slice(i * self.n, (i + 1) * self.n)
 
+    def chunks(self, i: int, size: int = 32_768):
+        """(rows of the table, positions) of block ``i``, ``size`` positions at a time."""
+        for s in range(0, self.n, size):
+            e = min(s + size, self.n)
+            yield slice(i * self.n + s, i * self.n + e), slice(s, e)
+
     def floats(self) -> np.ndarray:
         """An empty float column, to fill block by block."""
         return np.empty(self.n * self.blocks)
@@ -190,12 +196,13 @@ class Solution:
         cols = _LongTable(self.positions, len(points))
         out = {k: cols.floats() for k in ("x", "y", "vx", "vy", "ax", "ay")}
         for i, (b, _, loc) in enumerate(points):
-            m = self.kin.bodies[b]
-            rows = cols.block(i)
-            x, y = m.point(loc)
-            out["x"][rows], out["y"][rows] = x, y
-            out["vx"][rows], out["vy"][rows] = m.vel_at(x, y)
-            out["ax"][rows], out["ay"][rows] = m.acc_at(x, y)
+            motion = self.kin.bodies[b]
+            for rows, part in cols.chunks(i):
+                m = motion.take(part)     # a chunk of positions: temporaries stay in cache
+                x, y = m.point(loc)
+                out["x"][rows], out["y"][rows] = x, y
+                out["vx"][rows], out["vy"][rows] = m.vel_at(x, y)
+                out["ax"][rows], out["ay"][rows] = m.acc_at(x, y)
         return _frame({"position": cols.position(),
                        "body": cols.label([b for b, _, _ in points]),
                        "point": cols.label([p for _, p, _ in points]), **out})
