@@ -318,12 +318,12 @@ def fill_answer_cell(nb, answers: Mapping[str, Any]):
         raise WorkbenchError(f"no cell tagged {ANSWER_TAG!r}")
     lines = cell.source.split("\n")
     for q, v in answers.items():
-        head = f"    {str(q)!r}: "
-        hits = [k for k, ln in enumerate(lines) if ln.startswith(head)]
+        heads = [f"    {json.dumps(str(q), ensure_ascii=False)}: ", f"    {str(q)!r}: "]
+        hits = [(k, h) for k, ln in enumerate(lines) for h in heads if ln.startswith(h)]
         if not hits:
             raise WorkbenchError(f"the answers cell asks no {q!r}")
-        value = v if isinstance(v, str) else repr(float(v))
-        rest = lines[hits[0]][len(head):].split(",", 1)
-        lines[hits[0]] = head + value + "," + (rest[1] if len(rest) > 1 else "")
+        (k, head), value = hits[0], v if isinstance(v, str) else repr(float(v))
+        rest = lines[k][len(head):].split(",", 1)
+        lines[k] = head + value + "," + (rest[1] if len(rest) > 1 else "")
     cell.source = "\n".join(lines)
     return nb

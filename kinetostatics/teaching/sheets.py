@@ -12,6 +12,7 @@ show one is drawn again (see :class:`~kinetostatics.teaching.Exercise`).
 from __future__ import annotations
 
 import html
+import json
 import math
 import re
 from collections.abc import Mapping
@@ -161,10 +162,12 @@ def _statement(exercise, student: str, variant: Mapping) -> str:
 
 
 def _answers_source(exercise, student: str, variant: Mapping) -> str:
-    lines = [f"student_id = {student!r}      # do not change", "answers = {"]
+    lines = [f"student_id = {json.dumps(student, ensure_ascii=False)}      # do not change",
+             "answers = {"]
     for q in question_rows(exercise, variant):
         unit = f"{q['unit']}: " if q["unit"] else ""
-        lines.append(f"    {q['question']!r}: None,    # {unit}{q['asked']}")
+        key = json.dumps(q["question"], ensure_ascii=False)
+        lines.append(f"    {key}: None,    # {unit}{q['asked']}")
     lines.append("}")
     return "\n".join(lines)
 

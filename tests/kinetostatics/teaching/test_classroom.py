@@ -229,7 +229,7 @@ def test_forms_dicts_and_ids(classes, tmp_path):
     nb.metadata["kinetostatics"]["student_id"] = "nobody"
     T.fill_answer_cell(nb, _key_of(key, IDS[13]))
     cell = next(c for c in nb.cells if "answers" in c.metadata.get("tags", []))
-    cell.source = cell.source.replace(repr(IDS[13]), "'nobody'")
+    cell.source = cell.source.replace(f'"{IDS[13]}"', '"nobody"')
     nbformat.write(nb, str(tmp_path / "stranger.ipynb"))
     rep = T.grade_class(d, [tmp_path / "form.csv", tmp_path / "dict.json",
                             tmp_path / "stranger.ipynb"], execute=False)
