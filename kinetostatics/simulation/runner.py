@@ -125,7 +125,7 @@ def crosscheck(scene: Any, *, dt: float | None = None, steps_per_revolution: int
         ``steps_rule`` and ``steps_tried``.
     iterations : int, optional
         Solver iterations. Default: chosen by :func:`converged_iterations` (30, or
-        doubled until doubling again changes no reading by more than a tenth of the
+        doubled until doubling again changes no reading by more than a quarter of the
         error; a diverged count is never chosen).
     revolutions : float
         Driver turns simulated when the sweep is a full turn (default 2; the first is
@@ -235,11 +235,19 @@ def _budget_note(cc: CrossCheck) -> None:
 AUTO_ITERATIONS = (30, 60, 120, 240, 480, 960)
 """Iteration counts tried, in turn, when none is given."""
 
+SETTLED = 0.25
+"""Doubling the iterations changes no reading by more than this fraction of the error:
+the count is settled."""
+
 
 def converged_iterations(sc: Scene, p: dict, *, error_bias: float = 0.0,
                          fast: bool | None = None) -> CrossCheck:
     """Run with 30, 60, 120... iterations until doubling them changes no reading by more
-    than a tenth of the error against kinetostatics; return the run before the last.
+    than ``SETTLED`` (a quarter) of the error against kinetostatics; return the run
+    before the last: the iterations then add little to the error it reports (measured
+    on the slotted crank at 3600 steps: 60, 120, 240 and 480 iterations give 5.3e-5,
+    5.0e-5, 4.9e-5 and 4.8e-5, each doubling changing the readings by 0.41, 0.21 and
+    0.01 of the error).
 
     Gauss-Seidel iterations converge slowly where light bodies sit between heavy ones
     (a sliding block between a crank and a slotted lever): such scenes need hundreds,
@@ -268,7 +276,7 @@ def converged_iterations(sc: Scene, p: dict, *, error_bias: float = 0.0,
             prev.settings["iterations_tried"] = tried
             prev.settings["iterations_diverged"] = blown
             prev.settings["iterations_rule"] = "auto: doubling changes no reading by more " \
-                "than a tenth of the error"
+                "than a quarter of the error"
             return prev
         prev = cc
     if prev is None:
@@ -297,7 +305,7 @@ def _same_readings(a: CrossCheck, b: CrossCheck) -> bool:
         if scale > 0.0:
             d = np.abs(ra.simulated.to_numpy()[m] - rb.simulated.to_numpy()[m])
             worst = max(worst, float(np.max(d)) / scale)
-    return worst <= max(0.1 * b.max_error, 1e-9)
+    return worst <= max(SETTLED * b.max_error, 1e-9)
 
 
 def _crosscheck(sc: Scene, p: dict, iterations: int, error_bias: float,
