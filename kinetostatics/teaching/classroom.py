@@ -255,7 +255,8 @@ def grade_class(directory: str | Path, submissions: Iterable[Any], *, execute: b
     rep = ClassReport(graded=pd.DataFrame(), scores=pd.DataFrame())
     got: dict[str, tuple[dict, str]] = {}
     failed: dict[str, tuple[str, str]] = {}
-    files = _expand(submissions)
+    own = {(d / n).resolve() for n in ("key.csv", "variants.csv", "teacher.json")}
+    files = [p for p in _expand(submissions) if p.resolve() not in own]   # never the key
 
     def read(p: Path) -> tuple[list | None, str, list]:
         try:

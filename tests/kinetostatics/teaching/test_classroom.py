@@ -238,6 +238,10 @@ def test_forms_dicts_and_ids(classes, tmp_path):
     assert sc.loc[sid, "score %"] == 100.0
     assert rep.unknown == [{"file": str(tmp_path / "stranger.ipynb"), "student": "nobody"}]
     assert rep.missing == IDS[10:12] + IDS[13:]
+    # the class folder itself handed in: the key is never read as answers
+    rep = T.grade_class(d, [d], execute=False)
+    assert not rep.graded.passed.any() and not rep.broken
+    assert all("key.csv" not in x["file"] for x in rep.submissions + rep.unknown)
     # the file name is not the id: a notebook renamed to another student's id
     shutil.copy(tmp_path / "stranger.ipynb", tmp_path / f"{IDS[20]}.ipynb")
     rep = T.grade_class(d, [tmp_path / f"{IDS[20]}.ipynb"], execute=False)
