@@ -223,9 +223,9 @@ def _budget_note(cc: CrossCheck) -> None:
     if not missed:
         return
     why = (f"the solver needed {s['iterations']} iterations per step to settle (Gauss-Seidel "
-           "converges slowly where bodies of very different inertia are joined, such as a "
-           "light sliding block between a crank and a heavy slotted lever), and finer steps "
-           "need still more" if s["iterations"] > 60 else
+           "converges slowly along a chain whose bodies differ much in mass or inertia, "
+           "such as a heavy ram driven through a slotted lever), and finer steps need as "
+           "many or more" if s["iterations"] > 60 else
            "the error falls as dt^2 and the wall time grows as 1 / dt: the steps that reach "
            "the error cost more than the budget on this machine (its load counts too), so "
            f"the steps stopped at {s['steps_per_revolution']} per {unit}")
@@ -249,10 +249,11 @@ def converged_iterations(sc: Scene, p: dict, *, error_bias: float = 0.0,
     5.0e-5, 4.9e-5 and 4.8e-5, each doubling changing the readings by 0.41, 0.21 and
     0.01 of the error).
 
-    Gauss-Seidel iterations converge slowly where light bodies sit between heavy ones
-    (a sliding block between a crank and a slotted lever): such scenes need hundreds,
-    a four-bar about 10. With ``error_bias = 0`` too few iterations make the run
-    diverge (:class:`SimulationDiverged`): such a count is passed over, never chosen.
+    Gauss-Seidel iterations converge slowly along a chain whose bodies differ much in
+    mass or inertia (the shaper's 8 kg ram driven through a slotted lever: 480; with
+    the ram ten times lighter, 120): such scenes need hundreds, a four-bar about 10.
+    With ``error_bias = 0`` too few iterations make the run diverge
+    (:class:`SimulationDiverged`): such a count is passed over, never chosen.
     The returned settings carry ``iterations_tried`` and ``iterations_diverged``.
 
     Raises

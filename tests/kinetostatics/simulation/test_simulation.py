@@ -34,8 +34,8 @@ STEPS = 2000          # steps per revolution (per sweep for the sliding driver)
 SAMPLES = 90
 
 # scene file -> (solver iterations, tolerance on max_error, pymunk's readings) at STEPS.
-# Iterations: 30 unless the scene's chain converges slowly (a light sliding block
-# between a crank and a slotted lever): the counts the automatic rule picks. Measured
+# Iterations: 30 unless the scene's chain converges slowly (bodies of very different
+# mass or inertia, such as the shaper's heavy ram): the counts the automatic rule picks. Measured
 # (pymunk 7.3.1): max_error, then the largest derived (momentum balance) error.
 CASES = {
     "four_bar": (30, 6e-5),                 # RRR; 3.13e-5, derived 3.22e-5
