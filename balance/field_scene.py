@@ -22,6 +22,7 @@ import numpy as np
 from kinetostatics.model.errors import SceneError
 from kinetostatics.model.tomlio import as_float, as_int, as_list, as_str, check_keys
 
+from .errors import BalanceError
 from .field import Combined, Split, combine_weights, split_correction
 from .influence import InfluenceResult, influence_balance
 from .influence_stats import parse_noise
@@ -66,6 +67,14 @@ class FieldScene:
 
 
 # ------------------------------------------------------------------ parsing
+def _within(where: str, func: Any, *args: Any, **kwargs: Any) -> Any:
+    """Call ``func``; a :class:`BalanceError` gets the scene section's name in front."""
+    try:
+        return func(*args, **kwargs)
+    except BalanceError as exc:
+        raise BalanceError(f"{where}: {exc}") from None
+
+
 def _array_of_tables(top: Mapping, key: str) -> list:
     items = top[key]
     if isinstance(items, dict):
@@ -139,7 +148,8 @@ def _influence(item: Any, i: int) -> dict:
         "trims": list(zip(_masses([r for r, _ in trims], n), [v for _, v in trims],
                           strict=True)),
         "coefficients": coefficients,
-        "noise": parse_noise(t.get("noise"), t.get("phase_noise"), t.get("confidence")),
+        "noise": _within(w, parse_noise, t.get("noise"), t.get("phase_noise"),
+                         t.get("confidence")),
     }
     if "points" in t:
         pts = [as_str(p, f"{w}.points[{k}]") for k, p in enumerate(as_list(t["points"],
@@ -424,11 +434,13 @@ def solve_field(fs: FieldScene) -> dict[str, Any]:
     if not fs.units.is_si:
         out["units"] = fs.units
     if fs.influence:
-        out["influence"] = [solve_influence(s) for s in fs.influence]
+        out["influence"] = [_within(f"influence[{i}]", solve_influence, s)
+                            for i, s in enumerate(fs.influence)]
     if fs.iso is not None:
-        out["iso"] = solve_iso(fs.iso, fs.units)
+        out["iso"] = _within("iso", solve_iso, fs.iso, fs.units)
     if fs.split:
-        out["split"] = [solve_split(s) for s in fs.split]
+        out["split"] = [_within(f"split[{i}]", solve_split, s) for i, s in enumerate(fs.split)]
     if fs.combine:
-        out["combine"] = [solve_combine(s) for s in fs.combine]
+        out["combine"] = [_within(f"combine[{i}]", solve_combine, s)
+                          for i, s in enumerate(fs.combine)]
     return out
