@@ -86,6 +86,7 @@ def plot_study(table: pd.DataFrame | Study, *, repeats: int | None = None):
     fig = Figure(figsize=(11, 5.5), layout="constrained")
     ax1, ax2 = fig.subplots(1, 2)
     top = blended_transform_factory(ax2.transData, ax2.transAxes)
+    row = 0                         # each series with diverged settings: its own row of x
     for i, ((case, it), g) in enumerate(t.groupby(["case", "iterations"], sort=False)):
         g = g.sort_values("dt")
         blown, noise = blown_col[g.index], noise_col[g.index]
@@ -101,8 +102,10 @@ def plot_study(table: pd.DataFrame | Study, *, repeats: int | None = None):
                        color="0.5", label="timing noise (cost fell as steps grew)")
         ax2.loglog(ok.dt, ok.max_error, "o-", ms=4, color=color, label=label)
         if blown.any():
-            ax2.plot(g.dt[blown], np.full(int(blown.sum()), 0.96), "x", ms=8, mew=2,
-                     color=color, transform=top, clip_on=False, label="diverged (no error)")
+            ax2.plot(g.dt[blown], np.full(int(blown.sum()), 0.965 - 0.045 * row), "x", ms=7,
+                     mew=2, color=color, transform=top, clip_on=False,
+                     label="diverged (no error)")
+            row += 1
     ax1.plot([1e3 * BUDGET], [TARGET_ERROR], marker="*", ms=12, color="k", ls="none",
              label=f"target: {TARGET_ERROR:g} within {1e3 * BUDGET:g} ms")
     ax1.axhline(1e-5, color="0.6", lw=0.8, ls="--")
@@ -120,10 +123,15 @@ def plot_study(table: pd.DataFrame | Study, *, repeats: int | None = None):
     ax2.set_ylabel("max relative error")
     ax2.set_title("convergence (x along the top: diverged)", fontsize=10)
     from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
-    if blown_col.any():
+    if not len(ok):
+        ax2.set_yticks([])
+        for ax in (ax1, ax2):
+            ax.text(0.5, 0.3, "every setting diverged: no error to show", ha="center",
+                    va="center", transform=ax.transAxes, fontsize=9, color="0.3")
+    elif blown_col.any():
         # an empty band along the top for the diverged marks, clear of the data
         lo, hi = ax2.get_ylim()
-        ax2.set_ylim(lo, hi * (hi / lo) ** 0.2)
+        ax2.set_ylim(lo, hi * (hi / lo) ** (0.06 + 0.07 * row))
     handles: dict = {}
     for ax in (ax1, ax2):
         ax.grid(alpha=0.3, which="both")
