@@ -139,8 +139,11 @@ def main(argv: list[str] | None = None) -> int:
         return 1
     shown = set()
     for where, msg in result_warnings(out):
-        shown.add(_one_line(msg))
-        print(f"warning: {where}: {_one_line(msg)}", file=sys.stderr)
+        text = _one_line(msg)
+        shown.add(text)
+        section = where.split("[")[0].split(".")[0]
+        print(f"warning: {text if text.startswith(section) else f'{where}: {text}'}",
+              file=sys.stderr)
     for w in caught:
         if _one_line(w.message) not in shown:
             shown.add(_one_line(w.message))
