@@ -372,3 +372,35 @@ def test_each_row_is_decided_on_its_own():
     assert 0 < locked.sum() < locked.size
     me = np.asarray(whole.Me)[pick]
     assert np.allclose(sol.Me[~locked], me[~locked], rtol=1e-13, atol=0)   # measured: equal
+
+
+@pytest.mark.parametrize("mu", [1.4, 1.7])           # |d| / r runs from 1.24 to 1.8
+def test_pin_friction_locks_where_the_rod_passes_inside_the_friction_circle(mu):
+    """The sliding driver made massless, a moment of 12 N m resisting the crank and
+    friction only in its ground pin A (rho = mu 0.05 m). The rod is a two-force member:
+    its force t e (e along C -> B) on the crank gives t d + 12 + rho |t| = 0 about A
+    (d = B x e, the rod line's signed distance from A; the friction couple against
+    omega < 0), which has a solution only while |d| > rho: t = -12 / (d - rho sgn(d)),
+    and Fe = t e_x. The flag falls exactly where |d| <= rho."""
+    d = load("sliding_driver")
+    d["gravity"] = [0.0, 0.0]
+    for b in d["bodies"]:
+        b["mass"], b["inertia"] = 0.0, 0.0
+    d["loads"] = [{"body": "crank", "moment": 12.0}]
+    ref = ks.solve(copy.deepcopy(d))
+    k = ref.kinematics
+    b = k[(k.body == "crank") & (k.point == "B")][["x", "y"]].to_numpy()
+    c = k[(k.body == "slider") & (k.point == "C")][["x", "y"]].to_numpy()
+    e = (b - c) / np.hypot(*(b - c).T)[:, None]
+    dist = b[:, 0] * e[:, 1] - b[:, 1] * e[:, 0]
+    assert (ref.bodies.query("body == 'crank'").omega < 0.0).all()
+    rho = mu * 0.05
+    next(j for j in d["joints"] if j["name"] == "A")["friction"] = {"mu": mu, "radius": 0.05}
+    sol = ks.solve(d)
+    locked = sol.driver.self_locking.to_numpy()
+    assert np.array_equal(locked, np.abs(dist) <= rho)
+    assert 0 < locked.sum() < locked.size
+    t = -12.0 / (dist - rho * np.sign(dist))
+    fe = t * e[:, 0]
+    # measured 6.2e-13 (mu = 1.4, a row 2.5e-5 m outside the circle: Fe = 4.8e5 N)
+    assert np.allclose(sol.Me[~locked], fe[~locked], rtol=2e-12, atol=0)
