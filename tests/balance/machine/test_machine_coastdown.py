@@ -1,4 +1,4 @@
-"""The pymunk cross-check of unbalance (issue 5, "pymunk cross-check"):
+"""The pymunk cross-check of unbalance:
 
 - a rotor with eccentric masses on a rigid pivot: the bearing force is the resultant
   inertia force |sum m r| omega^2 (seed 002 eqs 3.3-3.5), measured 2.6e-7 off at 8000
@@ -7,8 +7,9 @@
   spun above resonance and let run down, the amplitude read at the passage): the
   envelope's peak is proportional to m e (to 1e-13 when the rotor's mass is the same),
   independent of the unbalance's angle (to 2e-5 at a 5 s coast-down), and the three-
-  and four-run methods recover random unbalances within 0.5 % and 1 deg (measured:
-  about 1.5e-3 and 0.01 deg; 3e-4 with the mass correction).
+  and four-run methods recover random unbalances (measured: 2.5e-4 to 1.1e-3 of m r
+  and 5e-4 to 1.8e-3 deg; 5e-5 to 2e-4 with the mass correction; the tests assert a
+  few times these).
 
 The expected values are computed here from the seed's equations or by an independent
 integration of the machine's equation of motion, not taken from the code under test.
