@@ -193,8 +193,7 @@ def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
                              "(on the first body)"}.get(k, f"{k} forces"))
                for k, c in kinds.items()]
     h, _ = ax.get_legend_handles_labels()
-    ax.legend(handles=h + handles, fontsize=8, loc="upper left", bbox_to_anchor=(0.0, -0.12),
-              ncol=3, borderaxespad=0.0)
+    fig.legend(handles=h + handles, fontsize=8, loc="outside lower left", ncol=4)
     ax.set_aspect("equal", adjustable="datalim")
     ax.margins(0.15)
     ax.autoscale_view()

@@ -1,0 +1,378 @@
+"""The course's pictures: each draws the computed vectors it claims, returns a Figure or
+Axes without ``plt.show``, and no two of its labels overlap (nor leave the figure)."""
+
+from __future__ import annotations
+
+import math
+
+import matplotlib as mpl
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+
+import kinetostatics as ks
+from kinetostatics import plot as kp
+from kinetostatics.cams import optimal_offset, solve_cam
+from kinetostatics.model.errors import WorkbenchError
+from kinetostatics.model.examples import cam_examples, example
+
+NAMES = ks.examples()
+
+
+@pytest.fixture(scope="module")
+def sols():
+    return {n: ks.solve(ks.example(n)) for n in NAMES}
+
+
+@pytest.fixture(autouse=True)
+def _no_show(monkeypatch):
+    monkeypatch.setattr(plt, "show", lambda *a, **k: pytest.fail("plt.show called"))
+    yield
+    plt.close("all")
+
+
+def cross(a, b) -> float:
+    return float(a[0] * b[1] - a[1] * b[0])
+
+
+def clear(fig: Figure) -> None:
+    """No two labels of the figure overlap, none is cut by its edge."""
+    assert isinstance(fig, Figure)
+    hits = kp.overlapping_texts(fig)
+    assert not hits, hits
+
+
+def test_overlap_check_sees_overlaps():
+    fig, ax = plt.subplots()
+    ax.text(0.5, 0.5, "first label")
+    ax.text(0.5, 0.5, "second label")
+    assert ("first label", "second label") in kp.overlapping_texts(fig)
+    fig2, ax2 = plt.subplots()
+    ax2.set_title("x" * 400)
+    assert ("x" * 400, "outside the figure") in kp.overlapping_texts(fig2)
+
+
+def test_declutter_separates_labels():
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [0, 1])
+    texts = [ax.annotate(f"label {k}", (0.5, 0.5), xytext=(3, 3), textcoords="offset points")
+             for k in range(4)]
+    assert kp.overlapping_texts(fig)
+    kp.declutter(ax, texts)
+    assert not kp.overlapping_texts(fig)
+
+
+@pytest.mark.parametrize("name", [n for n in NAMES if n != "four_bar_motion"])  # = four_bar
+def test_every_new_picture_is_clear(name, sols):
+    """Free-body diagrams, instantaneous centres, plans, polar diagrams: no overlaps."""
+    sol = sols[name]
+    pos = float(sol.positions[len(sol.positions) // 7])
+    for d in range(len(sol.kin.dyads) + 1):
+        clear(kp.dyad_free_body(sol, d, pos))
+        plt.close("all")
+    for f in (kp.plot_instant_centres, kp.velocity_plan, kp.acceleration_plan,
+              kp.force_polygon):
+        ax = f(sol, position=pos) if f is not kp.force_polygon else f(sol, 1, pos)
+        assert isinstance(ax, Axes)
+        clear(ax.figure)
+        plt.close("all")
+    for j in sol.scene.joints:
+        clear(kp.plot_polar(sol, j).figure)
+        plt.close("all")
+    clear(kp.draw_mechanism(sol, pos, forces=True, loads=True).figure)
+    clear(kp.overview(sol))
+
+
+def _arrows(ax: Axes, color: str) -> list[tuple[np.ndarray, np.ndarray]]:
+    """(tail, tip) of the annotation arrows of one colour."""
+    rgba = mpl.colors.to_rgba(color)
+    return [(np.asarray(t.xyann, float), np.asarray(t.xy, float)) for t in ax.texts
+            if t.arrow_patch is not None and
+            np.allclose(t.arrow_patch.get_edgecolor()[:3], rgba[:3])]
+
+
+def test_four_bar_acceleration_plan_closes_from_both_sides(sols):
+    """a_C = a_B + a_CB^n + a_CB^t (from b) and a_C = a_D + a_CD^n + a_CD^t (from pi):
+    both tangential components end at the computed a_C."""
+    sol = sols["four_bar"]
+    i = 40
+    ax = kp.acceleration_plan(sol, row=i)
+    k = sol.kinematics
+    c = k[(k.body == "rocker") & (k.point == "C")].iloc[i]
+    b = k[(k.body == "crank") & (k.point == "B")].iloc[i]
+    a_c = np.array([c.ax, c.ay])
+    scale = float(np.hypot(*a_c))
+    near = 1e-12 * scale            # measured: the sides close to 2e-16 relative
+    tangential = _arrows(ax, "tab:cyan")
+    ends_at_c = [tail for tail, tip in tangential if np.hypot(*(tip - a_c)) <= near]
+    normal = _arrows(ax, "tab:olive")
+    starts = [n_tail for t in ends_at_c for n_tail, n_tip in normal
+              if np.hypot(*(n_tip - t)) <= near]
+    # one side starts at b, the other at the pole
+    assert len(ends_at_c) == 2 and len(starts) == 2
+    assert any(np.hypot(*(s - (b.ax, b.ay))) <= near for s in starts)
+    assert any(np.hypot(*s) <= near for s in starts)
+    clear(ax.figure)
+
+
+def test_slotted_lever_plan_closes_through_coriolis(sols):
+    """a_A(block) = a_A3(lever) + 2 omega x v_rel + a_rel: the Coriolis arrow starts at
+    the lever's coincident point, the relative one ends at the block's a_A."""
+    sol = sols["slotted_lever"]
+    i = 50
+    ax = kp.acceleration_plan(sol, row=i)
+    k = sol.kinematics
+    a = k[(k.body == "block") & (k.point == "A")].iloc[i]
+    a_a = np.array([a.ax, a.ay])
+    cor = _arrows(ax, "tab:pink")
+    rel = _arrows(ax, "tab:gray")
+    assert len(cor) == 1
+    assert any(np.hypot(*(tail - cor[0][1])) <= 1e-12 * np.hypot(*a_a) and
+               np.hypot(*(tip - a_a)) <= 1e-12 * np.hypot(*a_a) for tail, tip in rel)
+    m = sol.kin.bodies["lever"].take(i)
+    blk = sol.kin.bodies["block"].take(i)
+    x, y = blk.point(sol.scene.bodies["block"].local("A"))
+    v_rel = np.array(blk.vel_at(x, y)) - np.array(m.vel_at(x, y))
+    expect = 2.0 * float(m.omega) * np.array([-v_rel[1], v_rel[0]])     # 2 omega x v_rel
+    np.testing.assert_allclose(cor[0][1] - cor[0][0], expect, rtol=0,
+                               atol=1e-12 * np.hypot(*a_a))
+    # the velocity plan: the slider's tip is the computed velocity
+    vp = kp.velocity_plan(sol, row=i)
+    tips = [t.xy for t in vp.texts if t.get_text() == "a"]
+    np.testing.assert_allclose(tips[0], (a.vx, a.vy), rtol=0, atol=1e-12 * np.hypot(a.vx, a.vy))
+
+
+def test_slider_crank_plans(sols):
+    sol = sols["slider_crank"]
+    k = sol.kinematics
+    i = 25
+    c = k[(k.body == "piston") & (k.point == "C")].iloc[i]
+    ax = kp.velocity_plan(sol, row=i)
+    tips = [t.xy for t in ax.texts if "c" in t.get_text().split(" = ")]
+    np.testing.assert_allclose(tips[0], (c.vx, c.vy), rtol=0, atol=1e-12 * abs(c.vx))
+    ax = kp.acceleration_plan(sol, row=i)
+    tips = [t.xy for t in ax.texts if "c" in t.get_text().split(" = ")]
+    np.testing.assert_allclose(tips[0], (c.ax, c.ay), rtol=0, atol=1e-12 * abs(c.ax))
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_free_body_forces_balance_each_body(name, sols):
+    """On each body of a dyad (and the driver) the forces and couples balance."""
+    sol = sols[name]
+    n = sol.positions.size
+    for i in (0, n // 3, 2 * n // 3):
+        for d in range(len(sol.kin.dyads) + 1):
+            fs = kp.free_body_forces(sol, d, row=i)
+            scale = max(np.hypot(f["fx"], f["fy"]) for f in fs)
+            size = max(np.hypot(f["x"], f["y"]) for f in fs) + 1.0
+            for b in {f["body"] for f in fs}:
+                on = [f for f in fs if f["body"] == b]
+                F = np.sum([[f["fx"], f["fy"]] for f in on], axis=0)
+                M = sum(f["x"] * f["fy"] - f["y"] * f["fx"] + f["m"] for f in on)
+                # measured: 1e-14 relative at most
+                assert np.hypot(*F) <= 1e-11 * scale, (name, i, d, b, F)
+                assert abs(M) <= 1e-11 * scale * size, (name, i, d, b, M)
+
+
+def test_free_body_diagram_draws_the_forces(sols):
+    sol = sols["four_bar"]
+    fig = kp.dyad_free_body(sol, 1, 60)
+    assert len(fig.axes) == 2
+    fbd, poly = fig.axes
+    assert poly.get_xlabel() == "Fx [N]" and fbd.get_xlabel() == "x [m]"
+    fs = kp.free_body_forces(sol, 1, 60)
+    arrows = [t for t in fbd.texts if t.arrow_patch is not None and not t.get_text()]
+    drawn = [np.subtract(t.xy, t.xyann) for t in arrows]
+    drawn = [v for v in drawn if np.hypot(*v) > 0]
+    # every force (the inner joint once) is an arrow parallel to it
+    expect = [np.array([f["fx"], f["fy"]]) for f in fs if f["kind"] != "inner"
+              and np.hypot(f["fx"], f["fy"]) > 0]
+    for e in expect:
+        assert any(abs(cross(e / np.hypot(*e), v / np.hypot(*v))) < 1e-9 and
+                   np.dot(e, v) > 0 for v in drawn), e
+    labels = " ".join(t.get_text() for t in fbd.texts)
+    assert "Mi" in labels and "F[B] crank→coupler" in labels
+
+
+@pytest.mark.parametrize("name", ["four_bar", "slider_crank", "shaper"])
+def test_instant_centres(name, sols):
+    """Every body's velocity field turns about its centre I0k; Kennedy's three centres
+    of any three elements are collinear."""
+    sol = sols[name]
+    i = 33
+    tab = kp.instant_centres(sol, row=i)
+    nb = len(sol.scene.bodies)
+    assert len(tab) == (nb + 1) * nb // 2                                   # eq. 1
+    names = ["ground", *sol.scene.bodies]
+    size = 1.0
+    for k, b in enumerate(sol.scene.bodies, start=1):
+        r = tab[tab.name == f"I0{k}"].iloc[0]
+        m = sol.kin.bodies[b].take(i)
+        w = float(m.omega)
+        for p in sol.scene.bodies[b].points:
+            x, y = m.point(sol.scene.bodies[b].local(p))
+            v = np.array(m.vel_at(x, y), dtype=float)
+            if r.at_infinity:
+                assert abs(w) < 1e-12 and abs(np.dot(v, (r.dir_x, r.dir_y))) <= 1e-9 * (
+                    np.hypot(*v) + 1e-300)
+            else:
+                expect = w * np.array([-(y - r.y), x - r.x])
+                np.testing.assert_allclose(v, expect, rtol=0, atol=1e-12 * (np.hypot(*v) + 1))
+    xy = {r.name: np.array([r.x, r.y]) for r in tab.itertuples() if not r.at_infinity}
+    from itertools import combinations
+    for a, b, c in combinations(range(len(names)), 3):
+        trio = [f"I{a}{b}", f"I{a}{c}", f"I{b}{c}"]
+        if all(t in xy for t in trio):
+            p, q, s = (xy[t] for t in trio)
+            span = max(np.hypot(*(q - p)), np.hypot(*(s - p)), size)
+            # measured: 1e-15 relative
+            assert abs(cross(q - p, s - p)) <= 1e-9 * span**2, (name, trio)
+    if name == "slider_crank":       # the piston translates: I03 at infinity, across the guide
+        r = tab[tab.name == "I03"].iloc[0]
+        assert r.at_infinity and abs(r.dir_x) < 1e-12
+    clear(kp.plot_instant_centres(sol, row=i).figure)
+
+
+def test_polar_numbers(sols):
+    sol = sols["four_bar"]
+    ax = kp.plot_polar(sol, "B")
+    nums = [t for t in ax.texts if t.get_text().isdigit()]
+    assert [t.get_text() for t in nums] == [str(k) for k in range(12)]
+    fx, fy = sol.reaction("B")
+    for k, t in enumerate(nums):        # number k at 30 k deg
+        j = int(np.argmin(np.abs(sol.positions - 30.0 * k)))
+        np.testing.assert_allclose(t.xy, (fx[j], fy[j]), rtol=0, atol=1e-12)
+    assert not [t for t in kp.plot_polar(sol).texts if t.get_text().isdigit()]
+
+
+def test_collinear_polygon_gets_a_stretched_inset(sols):
+    sol = sols["shaper"]
+    ax = kp.force_polygon(sol, 1, 51)          # the RTR dyad: nearly collinear forces
+    assert len(ax.child_axes) == 1
+    assert "stretched" in ax.child_axes[0].get_title()
+    assert " at " in ax.get_legend().get_texts()[0].get_text()             # directions
+    clear(ax.figure)
+    ax = kp.force_polygon(sols["four_bar"], 1, 51)                         # a wide one
+    assert not ax.child_axes
+
+
+def test_projector_style():
+    base = plt.rcParams["font.size"]
+    with kp.projector():
+        fig, _ = plt.subplots()
+        assert fig.dpi == 150 and plt.rcParams["font.size"] > base
+    assert plt.rcParams["font.size"] == base
+    with kp.projector(**{"font.size": 20}):
+        assert plt.rcParams["font.size"] == 20
+
+
+def test_projector_pictures_stay_clear(sols):
+    with kp.projector():
+        clear(kp.overview(sols["four_bar"]))
+        clear(kp.dyad_free_body(sols["slider_crank"], 1, 40))
+
+
+# ------------------------------------------------------------------------------ flywheel
+@pytest.fixture(scope="module")
+def cycle():
+    return kp.reduced_cycle(ks.example("four_bar_motion"))
+
+
+def test_reduced_cycle(cycle):
+    assert list(cycle.columns) == ["phi", "I_r", "dI_r", "M_loads", "M_motor", "M", "delta_E"]
+    assert cycle.phi.iloc[0] == 0.0 and cycle.phi.iloc[-1] == 360.0
+    # the default motor does the loads' cycle work: Delta E closes (trapezoid rule)
+    assert abs(cycle.delta_E.iloc[-1]) <= 1e-12 * np.ptp(cycle.delta_E)
+    # dI_r is the derivative of I_r (central differences at 1 deg: measured 1.1e-3 of
+    # the range of I_r, the h^2 error of the difference)
+    phi = np.deg2rad(cycle.phi.to_numpy())
+    num = np.gradient(cycle.I_r.to_numpy(), phi)
+    assert np.max(np.abs(num[1:-1] - cycle.dI_r.to_numpy()[1:-1])) <= 3e-3 * np.ptp(cycle.I_r)
+    with pytest.raises(WorkbenchError, match="crank"):
+        kp.reduced_cycle(ks.example("sliding_driver"))
+
+
+def test_wittenbauer_tangents_give_delta(cycle):
+    """From (-J, -E0), omega^2 = 2 (E0 + Delta E) / (J + I_r) reaches exactly
+    omega_m^2 (1 +- delta/2)^2 at the touching points (eq. 4.20)."""
+    wm, delta = 31.45, 0.02
+    w = kp.wittenbauer_flywheel(cycle.I_r, cycle.delta_E, wm, delta)
+    assert w["J"] > 0
+    omega = np.sqrt(2.0 * (w["E0"] + cycle.delta_E) / (w["J"] + cycle.I_r))
+    np.testing.assert_allclose(omega.max(), wm * (1 + delta / 2), rtol=1e-12)
+    np.testing.assert_allclose(omega.min(), wm * (1 - delta / 2), rtol=1e-12)
+    ax = kp.plot_wittenbauer(cycle, wm, delta)
+    assert f"J = {w['J']:.4g}" in ax.get_title()
+    clear(ax.figure)
+    fig = kp.plot_flywheel_curves(cycle)
+    assert [a.get_ylabel() for a in fig.axes] == ["I_r [kg m²]", "reduced moment [N m]",
+                                                  "ΔE [J]"]
+    clear(fig)
+    with pytest.raises(WorkbenchError):
+        kp.wittenbauer_flywheel(cycle.I_r, cycle.delta_E, wm, 0.0)
+
+
+# ---------------------------------------------------------------------------------- cams
+@pytest.fixture(scope="module")
+def cams():
+    return {n: solve_cam(example(n)) for n in cam_examples()}
+
+
+def test_cam_shocks_against_closed_forms(cams):
+    res = cams["translating_roller"]
+    law, w, h = res.scene.law, res.scene.speed, res.scene.law.stroke
+    rise, ret = law.segments[0].angle, law.segments[2].angle
+    shocks = kp.cam_shocks(law, w)
+    assert all(s["kind"] == "soft" for s in shocks)
+    got = {round(s["angle"], 6): s["da"] for s in shocks}
+    a_rise = 4.0 * h * w**2 / rise**2                # constant acceleration: 4 h w^2 / b^2
+    a_ret = math.pi**2 * h * w**2 / (2.0 * ret**2)   # cosine: pi^2 h w^2 / (2 b^2)
+    deg = math.degrees
+    expect = {0.0: a_rise, round(deg(rise / 2), 6): -2 * a_rise, round(deg(rise), 6): a_rise,
+              round(deg(rise + law.segments[1].angle), 6): -a_ret,
+              round(deg(rise + law.segments[1].angle + ret), 6): -a_ret}
+    assert set(got) == set(expect)
+    for k, v in expect.items():
+        assert abs(got[k] - v) <= 1e-6 * abs(v), (k, got[k], v)       # measured 1e-8
+
+
+@pytest.mark.parametrize("name", cam_examples())
+def test_cam_pictures(name, cams):
+    res = cams[name]
+    fig = kp.plot_cam_motion(res)
+    assert len(fig.axes) == 3 and fig.axes[-1].get_xlabel() == "cam angle φ [deg]"
+    clear(fig)
+    for angle in (0.0, 60.0, 200.0):
+        ax = kp.draw_cam(res, angle)
+        clear(ax.figure)
+        # the roller touches the drawn profile: its centre is one roller radius from it
+        prof = next(ln for ln in ax.lines if ln.get_label() == "cam profile").get_xydata()
+        centre = next(ln for ln in ax.lines if ln.get_marker() == "o").get_xydata()[0]
+        rr = res.scene.follower.roller_radius
+        gap = float(np.min(np.hypot(*(prof - centre).T)))
+        assert abs(gap - rr) <= 2e-3 * res.scene.follower.base_radius, (angle, gap, rr)
+        plt.close("all")
+
+
+def test_cam_diagram(cams):
+    res = cams["translating_roller"]
+    ax = kp.plot_cam_diagram(res)
+    clear(ax.figure)
+    tau = math.radians(res.summary["transmission_angle_admissible"])
+    e, r0 = optimal_offset(res.scene.law, tau)
+    smallest = next(ln for ln in ax.lines if ln.get_label().startswith("smallest cam"))
+    np.testing.assert_allclose(smallest.get_xydata()[0], (e, -math.sqrt(r0**2 - e**2)),
+                               rtol=0, atol=1e-12)
+    # the tangents touch the curve and keep it above
+    m = res.motion
+    for ln in ax.lines:
+        if ln.get_label().startswith("tangent"):
+            (x0, y0), (x1, y1) = ln.get_xydata()
+            k = (y1 - y0) / (x1 - x0)
+            above = m.s - (y0 + k * (m.ds - x0))
+            assert above.min() >= -1e-12 and above.min() <= 1e-12
+            np.testing.assert_allclose(abs(k), math.tan(tau), rtol=1e-12)
+    with pytest.raises(WorkbenchError, match="translating"):
+        kp.plot_cam_diagram(cams["oscillating_roller"])
