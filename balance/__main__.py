@@ -139,10 +139,10 @@ def main(argv: list[str] | None = None) -> int:
         return 1
     shown = set()
     for where, msg in result_warnings(out):
-        text = _one_line(msg)
-        shown.add(text)
+        line = _one_line(msg)
+        shown.add(line)
         section = where.split("[")[0].split(".")[0]
-        print(f"warning: {text if text.startswith(section) else f'{where}: {text}'}",
+        print(f"warning: {line if line.startswith(section) else f'{where}: {line}'}",
               file=sys.stderr)
     for w in caught:
         if _one_line(w.message) not in shown:
