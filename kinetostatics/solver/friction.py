@@ -34,7 +34,7 @@ import numpy as np
 from ..model.errors import WorkbenchError
 from ..model.scene import GROUND, Joint, Scene
 from . import _arith as A
-from .friction_rows import Rows, Spec, arc, critical_scale, follow, newton_direct, row_scale
+from .friction_rows import Spec, settle
 from .kinematics import Kinematics
 from .loads import PointLoad, resultants
 from .reactions import DriverReaction, JointReaction, solve_reactions
@@ -118,16 +118,14 @@ def _scaled_loads(specs: list[Spec], s: np.ndarray) -> list[PointLoad]:
     return out
 
 
-def _lock_message(scene: Scene, specs: list[Spec], lam: np.ndarray, dirn: np.ndarray
-                  ) -> str:
-    """One line for a sweep that locks at every position."""
-    drv = scene.driver
-    unit = "deg" if drv.kind == "R" else "m"
-    pos = drv.positions
+def _lock_message(scene: Scene, pos: np.ndarray, specs: list[Spec], lam: np.ndarray,
+                  dirn: np.ndarray) -> str:
+    """One line for a sweep that locks at every position (``pos``)."""
+    unit = "deg" if scene.driver.kind == "R" else "m"
     best = int(np.argmax(lam))
     sp = specs[int(np.argmax(dirn[:, best]))]
     mu = sp.joint.friction.mu
-    where = (f"at every position ({pos[0]:g} to {pos[-1]:g} {unit})" if pos.size > 1 else
+    where = (f"at every position ({pos.min():g} to {pos.max():g} {unit})" if pos.size > 1 else
              f"at position {pos[0]:g} {unit}")
     others = "" if len(specs) == 1 else " (every friction coefficient scaled alike)"
     return (f"the mechanism self-locks {where}: the friction in joint '{sp.joint.name}' "
@@ -166,34 +164,9 @@ def solve_with_friction(scene: Scene, kin: Kinematics, loads: list[PointLoad]
         cols.append(np.stack([q for sp2, name in zip(specs, names, strict=True)
                               for q in _quantities(sp2, unit[name], n)]))
     g = np.stack(cols, axis=1)                                  # (m, k, n)
-    w = row_scale(specs, q0, g)
-    rows = Rows(specs, q0, g, w, np.broadcast_to(kin.positions, (n,)))
-    k = len(specs)
-    s = np.full((k, n), np.nan)
-    # rows where the friction feedback is a contraction: one solution, Newton from zero
-    easy = np.flatnonzero(rows.lipschitz() < 1.0)
-    sn, ok = newton_direct(rows, np.zeros((k, easy.size)), easy)
-    s[:, easy[ok]] = sn[:, ok] / w[:, easy[ok]]
-    hard = np.ones(n, dtype=bool)
-    hard[easy[ok]] = False
-    # the others: follow the branch from no friction, then settle at the given friction
-    x, locked, crossed, ended = follow(rows, np.flatnonzero(hard))
-    fold = np.flatnonzero(locked & ~crossed)
-    if fold.size:           # past a fold the branch may still reach the given friction
-        x[:, fold], blown, back, ended[fold] = arc(rows, fold)
-        locked[fold], crossed[fold] = blown | back, blown
-    free = np.flatnonzero(hard & ~locked)
-    sn, ok = newton_direct(rows, x[:k, free] / x[k, free], free)
-    if not ok.all():
-        p = scene.driver.positions[free[np.flatnonzero(~ok)[0]]]
-        raise WorkbenchError(f"the friction equations do not settle at driver position "
-                             f"{p:g}; lower the friction coefficients there")
-    s[:, free] = sn / w[:, free]
+    s, locked, lam, dirn = settle(specs, q0, g, np.broadcast_to(kin.positions, (n,)))
     if locked.all():
-        lam, dirn = ended, x[:k]
-        c = np.flatnonzero(crossed)
-        lam[c], dirn[:, c] = critical_scale(rows, c, x[:, c], ended[c])
-        raise SelfLockingError(_lock_message(scene, specs, lam, dirn))
+        raise SelfLockingError(_lock_message(scene, kin.positions, specs, lam, dirn))
     fl = _scaled_loads(specs, s)
     reactions, drive = solve_reactions(kin, resultants(loads + fl, scene.bodies, n))
     if locked.any():

@@ -47,6 +47,7 @@ MIN_STEP = 1e-9             # a step in lambda below this: the branch turns back
 MAX_STEPS = 400
 ARC_STEP = 0.05             # largest arc-length step past a fold (normalised units)
 MAX_ARC_STEPS = 1000
+CHUNK = 65536               # rows solved together (bounds the temporaries' memory)
 SOFT = 1e-4                 # kinks rounded within this fraction of the row's force
 
 @dataclass
@@ -432,3 +433,56 @@ def row_scale(specs: list[Spec], q0: np.ndarray, g: np.ndarray) -> np.ndarray:
     force = np.maximum(force, 1e-12 * top)
     coeff = np.array([sp.coeff for sp in specs])
     return 1.0 / (coeff[:, None] * force[None, :])
+
+
+def _settle_chunk(rows: Rows) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """One chunk of rows: normalised s (k, m), NaN where locked; the locked rows; and for
+    them the critical scale lambda* and the direction of the normalised s there."""
+    k, n = len(rows.specs), rows.n
+    s = np.full((k, n), np.nan)
+    # rows where the friction feedback is a contraction: one solution, Newton from zero
+    easy = np.flatnonzero(rows.lipschitz() < 1.0)
+    sn, ok = newton_direct(rows, np.zeros((k, easy.size)), easy)
+    s[:, easy[ok]] = sn[:, ok]
+    hard = np.ones(n, dtype=bool)
+    hard[easy[ok]] = False
+    # the others: follow the branch from no friction, then settle at the given friction
+    x, locked, crossed, ended = follow(rows, np.flatnonzero(hard))
+    fold = np.flatnonzero(locked & ~crossed)
+    if fold.size:           # past a fold the branch may still reach the given friction
+        x[:, fold], blown, back, ended[fold] = arc(rows, fold)
+        locked[fold], crossed[fold] = blown | back, blown
+    free = np.flatnonzero(hard & ~locked)
+    sn, ok = newton_direct(rows, x[:k, free] / x[k, free], free)
+    if not ok.all():
+        p = rows.positions[free[np.flatnonzero(~ok)[0]]]
+        raise WorkbenchError(f"the friction equations do not settle at driver position "
+                             f"{p:g}; lower the friction coefficients there")
+    s[:, free] = sn
+    lam, dirn = np.where(locked, ended, np.nan), np.where(locked, x[:k], np.nan)
+    c = np.flatnonzero(crossed)
+    if c.size:
+        lam[c], dirn[:, c] = critical_scale(rows, c, x[:, c], ended[c])
+    return s, locked, lam, dirn
+
+
+def settle(specs: list[Spec], q0: np.ndarray, g: np.ndarray, positions: np.ndarray
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Solve every row's friction system s = h(q0 + G s) (q0 (m, n), G (m, k, n)).
+
+    Returns the magnitudes s (k, n), NaN at self-locking rows; the self-locking mask;
+    and for those rows the scale lambda* of every coefficient below which the row would
+    move, and the direction (k, n) of the friction forces that grow without bound there
+    (NaN elsewhere). Rows are solved in chunks, each on its own scale."""
+    k, n = g.shape[1], g.shape[2]
+    w = row_scale(specs, q0, g)
+    s = np.empty((k, n))
+    locked = np.empty(n, dtype=bool)
+    lam = np.empty(n)
+    dirn = np.empty((k, n))
+    for a in range(0, n, CHUNK):
+        sl = slice(a, min(a + CHUNK, n))
+        rows = Rows(specs, q0[:, sl], g[:, :, sl], w[:, sl], positions[sl])
+        s[:, sl], locked[sl], lam[sl], dirn[:, sl] = _settle_chunk(rows)
+    return s / w, locked, lam, dirn
+
