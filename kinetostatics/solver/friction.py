@@ -156,14 +156,16 @@ def solve_with_friction(scene: Scene, kin: Kinematics, loads: list[PointLoad]
     base, drive = solve_reactions(kin, resultants(loads, scene.bodies, n))
     if not specs:                       # only pins of radius 0: no friction at all
         return base, drive, [], np.zeros(n, dtype=bool)
-    names = [sp.joint.name for sp in specs]
-    q0 = np.stack([q for sp in specs for q in _quantities(sp, base[sp.joint.name], n)])
-    cols = []
-    for sp in specs:
+    m = sum(sp.width for sp in specs)
+    q0 = np.empty((m, n))
+    g = np.empty((m, len(specs), n))        # column j: the response to joint j's unit load
+    for i, q in enumerate(q for sp in specs for q in _quantities(sp, base[sp.joint.name], n)):
+        q0[i] = q
+    for j, sp in enumerate(specs):
         unit, _ = solve_reactions(kin, resultants(sp.unit, scene.bodies, n))
-        cols.append(np.stack([q for sp2, name in zip(specs, names, strict=True)
-                              for q in _quantities(sp2, unit[name], n)]))
-    g = np.stack(cols, axis=1)                                  # (m, k, n)
+        for i, q in enumerate(q for sp2 in specs for q in _quantities(sp2, unit[sp2.joint.name],
+                                                                      n)):
+            g[i, j] = q
     s, locked, lam, dirn = settle(specs, q0, g, np.broadcast_to(kin.positions, (n,)))
     if locked.all():
         raise SelfLockingError(_lock_message(scene, kin.positions, specs, lam, dirn))
