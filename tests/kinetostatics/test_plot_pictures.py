@@ -17,6 +17,7 @@ from kinetostatics import plot as kp
 from kinetostatics.cams import optimal_offset, solve_cam
 from kinetostatics.model.errors import WorkbenchError
 from kinetostatics.model.examples import cam_examples, example
+from kinetostatics.plot.cli import cli_figures
 
 NAMES = ks.examples()
 
@@ -66,23 +67,23 @@ def test_declutter_separates_labels():
 
 @pytest.mark.parametrize("name", [n for n in NAMES if n != "four_bar_motion"])  # = four_bar
 def test_every_new_picture_is_clear(name, sols):
-    """Free-body diagrams, instantaneous centres, plans, polar diagrams: no overlaps."""
+    """Every figure of ``solve --plot`` (overview, Me, polar diagrams, mechanism with
+    loads, plans, instantaneous centres, free-body diagrams with their polygons) and the
+    force polygons alone: no overlaps."""
     sol = sols[name]
     pos = float(sol.positions[len(sol.positions) // 7])
+    figs = cli_figures(sol, [pos])
+    assert {"overview", "driver", f"mechanism_{pos:g}deg" if sol.scene.driver.kind == "R"
+            else "overview"} <= set(figs)
+    for stem, fig in figs.items():
+        assert isinstance(fig, Figure), stem
+        clear(fig)
+        plt.close(fig)
     for d in range(len(sol.kin.dyads) + 1):
-        clear(kp.dyad_free_body(sol, d, pos))
-        plt.close("all")
-    for f in (kp.plot_instant_centres, kp.velocity_plan, kp.acceleration_plan,
-              kp.force_polygon):
-        ax = f(sol, position=pos) if f is not kp.force_polygon else f(sol, 1, pos)
+        ax = kp.force_polygon(sol, d, pos)
         assert isinstance(ax, Axes)
         clear(ax.figure)
         plt.close("all")
-    for j in sol.scene.joints:
-        clear(kp.plot_polar(sol, j).figure)
-        plt.close("all")
-    clear(kp.draw_mechanism(sol, pos, forces=True, loads=True).figure)
-    clear(kp.overview(sol))
 
 
 def _arrows(ax: Axes, color: str) -> list[tuple[np.ndarray, np.ndarray]]:

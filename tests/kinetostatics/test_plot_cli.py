@@ -1,0 +1,63 @@
+"""``solve SCENE --plot DIR`` and ``demo SCENE``: pictures written, units in the console,
+one-line errors."""
+
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import pytest
+
+from kinetostatics.cli import main
+
+
+@pytest.fixture(autouse=True)
+def _close():
+    yield
+    plt.close("all")
+
+
+def test_solve_plot_writes_the_pictures(tmp_path, capsys):
+    out = tmp_path / "pics"
+    assert main(["solve", "slider_crank", "--plot", str(out), "--plot-at", "30", "200"]) == 0
+    printed = capsys.readouterr().out
+    names = {p.name for p in out.glob("*.png")}
+    expect = {"overview.png", "driver.png", "polar_A.png", "polar_B.png", "polar_C.png"}
+    for t in ("30deg", "200deg"):
+        expect |= {f"mechanism_{t}.png", f"velocity_plan_{t}.png",
+                   f"acceleration_plan_{t}.png", f"instant_centres_{t}.png",
+                   f"free_body_{t}_dyad0.png", f"free_body_{t}_dyad1.png"}
+    assert expect <= names, expect - names
+    assert all((out / n).stat().st_size > 10_000 for n in expect)
+    assert str(out / "overview.png") in printed
+    assert '"title"' in printed          # the summary still follows
+
+
+def test_solve_plot_default_position_and_errors(tmp_path, capsys):
+    assert main(["solve", "four_bar", "--plot", str(tmp_path)]) == 0
+    assert any(p.name.startswith("free_body_") for p in tmp_path.glob("*.png"))
+    capsys.readouterr()
+    assert main(["solve", "four_bar", "--plot", str(tmp_path), "--plot-at", "400"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: --plot-at 400: outside the sweep [0, 360] deg")
+    f = tmp_path / "file"
+    f.write_text("x")
+    assert main(["solve", "four_bar", "--plot", str(f)]) == 2
+    assert "is a file, not a folder" in capsys.readouterr().err
+
+
+def test_demo_scene(tmp_path, capsys):
+    assert main(["demo", "slotted_lever", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("Crank and slotted lever")
+    assert " deg\n" in out and "max |F| =" in out and " N at " in out
+    assert (tmp_path / "overview.png").exists() and (tmp_path / "reactions.csv").exists()
+    # the old form still works
+    assert main(["demo", "--example", "sliding_driver", "--out", str(tmp_path / "s")]) == 0
+    assert " m\n" in capsys.readouterr().out           # a sliding driver's position unit
+
+
+def test_demo_of_a_cam_scene_points_to_the_cam_command(tmp_path, capsys):
+    assert main(["demo", "translating_roller", "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert err.strip() == ("error: translating_roller is a cam scene: run "
+                           "python -m kinetostatics cam translating_roller")
+    assert main(["demo", "--example", "translating_roller", "--out", str(tmp_path)]) == 2
