@@ -12,12 +12,12 @@ import argparse
 import json
 import sys
 import warnings
-from pathlib import Path
 from typing import Any, NoReturn
 
 from .api import example_path, examples, results_to_dict, solve_results
 from .errors import WorkbenchError
 from .report_text import field_text, result_warnings
+from .scene import SCENES
 
 
 class _Parser(argparse.ArgumentParser):
@@ -101,13 +101,6 @@ def _report(out: dict[str, Any], speed: bool) -> str:
     return "\n".join(lines)
 
 
-def _resolve(name: str) -> Path | str:
-    path = Path(name)
-    if path.suffix != ".toml" and not path.exists() and name in examples():
-        return example_path(name)
-    return path
-
-
 def main(argv: list[str] | None = None) -> int:
     """Run the command line; return the exit code."""
     args = _parser().parse_args(argv)
@@ -118,8 +111,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            scene = _resolve(args.scene)
-            results = solve_results(scene)
+            results = solve_results(args.scene)
             out = results_to_dict(results)
         if args.json:
             text = json.dumps(out, indent=2, allow_nan=False, default=_json_default)
@@ -129,7 +121,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.report:
             from .report import write_report
 
-            write_report(args.report, results, out, scene)
+            write_report(args.report, results, out, SCENES.resolve(args.scene))
     except WorkbenchError as exc:
         print(f"error: {_one_line(exc)}", file=sys.stderr)
         return 2

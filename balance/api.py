@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-from importlib import resources
 from pathlib import Path
 from typing import Any
 
@@ -11,7 +10,7 @@ from .errors import BalanceError
 from .field_scene import solve_field
 from .resonance import ResonanceResult, parallelogram, trial_runs
 from .rotor import balance_rotor
-from .scene import BalanceScene, ResonanceSpec, load_scene
+from .scene import SCENES, BalanceScene, ResonanceSpec, load_scene
 from .static_device import static_device
 
 __all__ = ["example_path", "examples", "results_to_dict", "solve", "solve_results"]
@@ -120,14 +119,12 @@ def results_to_dict(results: dict[str, Any]) -> dict[str, Any]:
 
 def examples() -> list[str]:
     """Names of the example scenes bundled with the package (``balance/scenes``)."""
-    folder = resources.files("balance") / "scenes"
-    return sorted(p.name[:-5] for p in folder.iterdir() if p.name.endswith(".toml"))
+    return SCENES.names()
 
 
 def example_path(name: str) -> Path:
     """Path of a bundled example scene, by name (with or without ``.toml``)."""
-    stem = name[:-5] if name.endswith(".toml") else name
-    path = Path(str(resources.files("balance") / "scenes" / f"{stem}.toml"))
-    if not path.is_file():
+    path = SCENES.find(name)
+    if path is None:
         raise BalanceError(f"no bundled example scene {name!r}; known: {', '.join(examples())}")
     return path

@@ -25,10 +25,14 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from kinetostatics.model.errors import SceneError
+from kinetostatics.model.examples import BundledScenes
 from kinetostatics.model.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source
 
 from .field_scene import FIELD_SECTIONS, FieldScene, parse_field
 from .rotor import CorrectionPlane, Unbalance
+
+# the example scenes bundled with the package (balance/scenes): a bare name is one of them
+SCENES = BundledScenes("balance", ("scenes",))
 
 __all__ = [
     "BALANCE_SECTIONS",
@@ -134,7 +138,7 @@ def load_scene(source: Any) -> BalanceScene:
     """
     if isinstance(source, BalanceScene):
         return source
-    raw = read_source(source, "balancing scene")
+    raw = read_source(source, "balancing scene", bundled=SCENES)
     top = check_keys(raw, TOP_KEYS, "scene")
     title = as_str(top["title"], "title") if "title" in top else ""
     if "format" in top:
