@@ -20,6 +20,7 @@ import numpy as np
 import pandas as pd
 
 from . import csvtext
+from .longtable import LongTable
 from .model.errors import WorkbenchError
 
 CHUNK = 16_384          # rows formatted at a time (the arrays stay in the CPU caches)
@@ -66,9 +67,7 @@ def _fields(col, sep: str, repeats: _Repeats | None = None,
         if hit is not None:
             return hit
     if col.size and _same_bits(col, col[:1]):
-        chars, length = csvtext.format_floats(col[:1], sep)
-        out = (np.broadcast_to(chars, (col.size, chars.shape[1])),
-               np.broadcast_to(length, (col.size,)))
+        out = _repeat(csvtext.format_floats(col[:1], sep), col.size)
     else:
         out = csvtext.format_floats(col, sep)
     if repeats is not None:
@@ -100,36 +99,89 @@ def write_csv(df: pd.DataFrame, path: str | Path, block: int | None = None,
         Called with one line (size and time estimate) before a table of more than
         ``WARN_ROWS`` rows is written.
     """
-    path = Path(path)
     names = list(df.columns)
     data = []
     for name in names:
         s = df[name]
         data.append(s.array if isinstance(s.dtype, pd.CategoricalDtype) else s.to_numpy())
     repeats = {i: _Repeats() for i, n in enumerate(names) if n == "position" and block}
-    seps = [","] * (len(names) - 1) + ["\n"]
+    seps = _separators(len(names))
 
     def text(span: tuple[int, int, int]) -> bytes:
         start, stop, offset = span
         return csvtext.rows_text([_fields(d[start:stop], seps[i], repeats.get(i), offset)
                                   for i, d in enumerate(data)])
 
+    def per_row() -> float:
+        sample = np.linspace(0, len(df) - 1, 4096).astype(np.intp)
+        return len(csvtext.rows_text([_fields(d[sample], seps[i])
+                                      for i, d in enumerate(data)])) / sample.size
+
+    return _write_lines(Path(path), names, list(_chunks(len(df), block)), text, len(df),
+                        per_row, announce)
+
+
+def write_long_csv(table: LongTable, path: str | Path,
+                   announce: Callable[[str], None] | None = None) -> Path:
+    """Write a long table as CSV straight from its definition, chunk by chunk: the same
+    text as ``write_csv(table.frame(), path)`` without the table ever being held."""
+    names = table.columns
+    seps = _separators(len(names))
+    nl = len(table.labels)
+    labels = [[csvtext.format_column(pd.Categorical([x]), seps[1 + j]) for x in block_names]
+              for j, block_names in enumerate(table.labels.values())]
+    repeats = _Repeats()
+
+    def text(span: tuple[int, slice]) -> bytes:
+        i, part = span
+        m = part.stop - part.start
+        values = table.chunk(i, part)
+        fields = [_fields(np.asarray(table.positions[part], dtype=float), seps[0], repeats,
+                          part.start)]
+        fields += [_repeat(labels[j][i], m) for j in range(nl)]
+        for k, c in enumerate(table.floats):
+            v = values[c]
+            sep = seps[1 + nl + k]
+            fields.append(_repeat(csvtext.format_floats(np.array([v], dtype=float), sep), m)
+                          if np.ndim(v) == 0 else _fields(np.asarray(v, dtype=float), sep))
+        return csvtext.rows_text(fields)
+
+    def per_row() -> float:
+        parts = [(i, slice(0, min(512, table.n))) for i in range(table.blocks)]
+        return sum(len(text(p)) for p in parts) / sum(p.stop for _, p in parts)
+
+    return _write_lines(Path(path), names, list(table.parts(CHUNK)), text,
+                        table.n * table.blocks, per_row, announce)
+
+
+def _separators(columns: int) -> list[str]:
+    return [","] * (columns - 1) + ["\n"]
+
+
+def _repeat(fields: tuple[np.ndarray, np.ndarray], m: int) -> tuple[np.ndarray, np.ndarray]:
+    """One field (a row of chars, its length) on ``m`` rows, without copies."""
+    chars, length = fields
+    return (np.broadcast_to(chars[:1], (m, chars.shape[1])),
+            np.broadcast_to(length[:1], (m,)))
+
+
+def _write_lines(path: Path, names: list[str], spans: list, text: Callable[..., bytes],
+                 rows: int, per_row: Callable[[], float],
+                 announce: Callable[[str], None] | None) -> Path:
+    """The header, then ``text(span)`` of every span in order (two threads, bounded
+    read-ahead), after announcing a table of more than ``WARN_ROWS`` rows."""
     with path.open("wb") as fh:
         fh.write(csvtext.header_text(names))
-        spans = list(_chunks(len(df), block))
         if not names or not spans:
             return path
-        if announce is not None and len(df) > WARN_ROWS:
-            sample = np.linspace(0, len(df) - 1, 4096).astype(np.intp)
-            size = len(csvtext.rows_text([_fields(d[sample], seps[i])
-                                          for i, d in enumerate(data)])) \
-                * len(df) / sample.size
-            announce(f"{path.name}: {len(df):,} rows, about {size / 1e6:,.0f} MB of CSV and "
+        if announce is not None and rows > WARN_ROWS:
+            size = per_row() * rows
+            announce(f"{path.name}: {rows:,} rows, about {size / 1e6:,.0f} MB of CSV and "
                      f"{size / CSV_RATE:.0f} s to write (--format parquet is smaller and "
                      "faster)")
         if THREADS > 1 and len(spans) > 1:
             with ThreadPoolExecutor(THREADS) as pool:
-                window = 4 * THREADS        # bounded read-ahead: memory stays flat
+                window = 4 * THREADS
                 for i in range(0, len(spans), window):
                     for chunk in pool.map(text, spans[i:i + window]):
                         fh.write(chunk)

@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from .longtable import LongTable
 from .model.errors import WorkbenchError
 from .model.scene import GROUND, Scene
 from .solver.kinematics import Kinematics
@@ -41,50 +42,6 @@ def continuous_angle(theta: np.ndarray) -> np.ndarray:
 def _column(value, n: int, dtype=float) -> np.ndarray:
     """A table column of its own (a copy: the table never shares the solver's arrays)."""
     return np.array(np.broadcast_to(value, (n,)), dtype=dtype)
-
-
-def _frame(cols: dict) -> pd.DataFrame:
-    """A DataFrame that takes the given arrays as they are (no consolidating copy)."""
-    return pd.DataFrame(cols, copy=False)
-
-
-class _LongTable:
-    """The columns of a long table: ``blocks`` blocks of rows (one block per joint, point
-    or body), each with one row per position. Columns are filled block by block in
-    place; labels are categorical (one code per row, the names stored once)."""
-
-    def __init__(self, positions: np.ndarray, blocks: int):
-        self.positions = np.asarray(positions, dtype=float)
-        self.n = self.positions.size
-        self.blocks = blocks
-
-    def block(self, i: int) -> slice:
-        """The rows of block ``i``."""
-        return slice(i * self.n, (i + 1) * self.n)
-
-    def chunks(self, i: int, size: int = 32_768):
-        """(rows of the table, positions) of block ``i``, ``size`` positions at a time."""
-        for s in range(0, self.n, size):
-            e = min(s + size, self.n)
-            yield slice(i * self.n + s, i * self.n + e), slice(s, e)
-
-    def floats(self) -> np.ndarray:
-        """An empty float column, to fill block by block."""
-        return np.empty(self.n * self.blocks)
-
-    def position(self) -> np.ndarray:
-        """The position column: the sweep repeated once per block."""
-        return np.tile(self.positions, self.blocks)
-
-    def label(self, names: list[str]) -> pd.Categorical:
-        """A categorical column with ``names[i]`` on the rows of block ``i``."""
-        cats = list(dict.fromkeys(names))
-        codes = np.array([cats.index(x) for x in names], dtype=_code_type(len(cats)))
-        return pd.Categorical.from_codes(np.repeat(codes, self.n), categories=cats)
-
-
-def _code_type(k: int) -> type:
-    return np.int8 if k < 127 else np.int16 if k < 32767 else np.int32
 
 
 @dataclass
@@ -151,36 +108,14 @@ class Solution:
                 "undefined_load": _column(self.undefined_load, n, bool)}
         if self.self_locking is not None:
             cols["self_locking"] = _column(self.self_locking, n, bool)
-        return _frame(cols)
+        return pd.DataFrame(cols, copy=False)
 
     @cached_property
     def reactions(self) -> pd.DataFrame:
         """``position, joint, on, by, Fx, Fy, F, N, M, offset``; on revolute rows N and M
         are 0 (a pin carries no couple) and offset is empty. ``joint``, ``on`` and ``by``
-        are categorical; the table is built column-wise, one block of rows per joint."""
-        n = self.positions.size
-        joints = list(self.scene.joints)
-        cols = _LongTable(self.positions, len(joints))
-        fx, fy, f, nn, mm, off = (cols.floats() for _ in range(6))
-        for i, name in enumerate(joints):
-            r = self.joint_reactions[name]
-            rows = cols.block(i)
-            fx[rows], fy[rows] = self.reaction(name)
-            np.hypot(fx[rows], fy[rows], out=f[rows])
-            if r.N is None:
-                nn[rows] = mm[rows] = 0.0
-                off[rows] = np.nan
-            else:
-                nn[rows], mm[rows] = r.N, r.M
-                big = np.abs(nn[rows]).max() if n else 0.0
-                with np.errstate(divide="ignore", invalid="ignore"):
-                    off[rows] = np.where(np.abs(nn[rows]) > OFFSET_EMPTY * big,
-                                         mm[rows] / nn[rows], np.nan)
-        ons = [self.joint_reactions[j].on for j in joints]
-        bys = [self.joint_reactions[j].by for j in joints]
-        return _frame({"position": cols.position(), "joint": cols.label(joints),
-                       "on": cols.label(ons), "by": cols.label(bys), "Fx": fx, "Fy": fy,
-                       "F": f, "N": nn, "M": mm, "offset": off})
+        are categorical; one block of rows per joint."""
+        return self.long_table("reactions").frame()
 
     def _points(self):
         for name, body in self.scene.bodies.items():
@@ -192,39 +127,85 @@ class Solution:
     def kinematics(self) -> pd.DataFrame:
         """``position, body, point, x, y, vx, vy, ax, ay`` for every named point and cog
         (``body`` and ``point`` categorical), one block of rows per point."""
-        points = list(self._points())
-        cols = _LongTable(self.positions, len(points))
-        out = {k: cols.floats() for k in ("x", "y", "vx", "vy", "ax", "ay")}
-        for i, (b, _, loc) in enumerate(points):
-            motion = self.kin.bodies[b]
-            for rows, part in cols.chunks(i):
-                m = motion.take(part)     # a chunk of positions: temporaries stay in cache
-                x, y = m.point(loc)
-                out["x"][rows], out["y"][rows] = x, y
-                out["vx"][rows], out["vy"][rows] = m.vel_at(x, y)
-                out["ax"][rows], out["ay"][rows] = m.acc_at(x, y)
-        return _frame({"position": cols.position(),
-                       "body": cols.label([b for b, _, _ in points]),
-                       "point": cols.label([p for _, p, _ in points]), **out})
+        return self.long_table("kinematics").frame()
 
     @cached_property
     def bodies(self) -> pd.DataFrame:
         """``position, body, angle`` (deg, continuous), ``omega, alpha`` (rad/s, rad/s^2);
         ``body`` categorical, one block of rows per body."""
+        return self.long_table("bodies").frame()
+
+    LONG_TABLES = ("reactions", "kinematics", "bodies")
+
+    def long_table(self, name: str) -> LongTable:
+        """The definition of a long table (``reactions``, ``kinematics``, ``bodies``):
+        block names and how to compute any chunk of positions from the solver's arrays
+        (:mod:`kinetostatics.longtable`)."""
+        return {"reactions": self._reactions_long, "kinematics": self._kinematics_long,
+                "bodies": self._bodies_long}[name]()
+
+    def _reactions_long(self) -> LongTable:
+        n = self.positions.size
+        joints = list(self.scene.joints)
+        forces: dict[int, tuple] = {}
+
+        def chunk(i: int, part: slice) -> dict:
+            r = self.joint_reactions[joints[i]]
+            if i not in forces:         # the block's (Fx, Fy), N, M and largest |N|
+                nn = mm = big = None
+                if r.N is not None:
+                    nn = np.broadcast_to(np.asarray(r.N, dtype=float), (n,))
+                    mm = np.broadcast_to(np.asarray(r.M, dtype=float), (n,))
+                    big = np.abs(nn).max() if n else 0.0
+                forces[i] = (*self.reaction(joints[i]), nn, mm, big)
+            fx, fy, nn, mm, big = forces[i]
+            fx, fy = fx[part], fy[part]
+            out = {"Fx": fx, "Fy": fy, "F": np.hypot(fx, fy)}
+            if nn is None:
+                return {**out, "N": 0.0, "M": 0.0, "offset": np.nan}
+            nn, mm = nn[part], mm[part]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                off = np.where(np.abs(nn) > OFFSET_EMPTY * big, mm / nn, np.nan)
+            return {**out, "N": nn, "M": mm, "offset": off}
+
+        return LongTable(self.positions,
+                         {"joint": joints,
+                          "on": [self.joint_reactions[j].on for j in joints],
+                          "by": [self.joint_reactions[j].by for j in joints]},
+                         ("Fx", "Fy", "F", "N", "M", "offset"), chunk)
+
+    def _kinematics_long(self) -> LongTable:
+        points = list(self._points())
+
+        def chunk(i: int, part: slice) -> dict:
+            b, _, loc = points[i]
+            m = self.kin.bodies[b].take(part)
+            x, y = m.point(loc)
+            vx, vy = m.vel_at(x, y)
+            ax, ay = m.acc_at(x, y)
+            return {"x": x, "y": y, "vx": vx, "vy": vy, "ax": ax, "ay": ay}
+
+        return LongTable(self.positions, {"body": [b for b, _, _ in points],
+                                          "point": [p for _, p, _ in points]},
+                         ("x", "y", "vx", "vy", "ax", "ay"), chunk)
+
+    def _bodies_long(self) -> LongTable:
         n = self.positions.size
         names = list(self.scene.bodies)
-        cols = _LongTable(self.positions, len(names))
-        angle, omega, alpha = cols.floats(), cols.floats(), cols.floats()
-        for i, name in enumerate(names):
-            m = self.kin.bodies[name]
-            rows = cols.block(i)
-            if name == self.scene.driver.body and self.scene.driver.kind == "R":
-                angle[rows] = self.positions
-            else:
-                angle[rows] = continuous_angle(np.broadcast_to(m.theta, (n,)))
-            omega[rows], alpha[rows] = m.omega, m.alpha
-        return _frame({"position": cols.position(), "body": cols.label(names),
-                       "angle": angle, "omega": omega, "alpha": alpha})
+        angles: dict[int, np.ndarray] = {}
+
+        def chunk(i: int, part: slice) -> dict:
+            m = self.kin.bodies[names[i]]
+            if i not in angles:         # continuous over the whole sweep
+                if names[i] == self.scene.driver.body and self.scene.driver.kind == "R":
+                    angles[i] = np.asarray(self.positions, dtype=float)
+                else:
+                    angles[i] = continuous_angle(np.broadcast_to(m.theta, (n,)))
+            return {"angle": angles[i][part],
+                    "omega": np.broadcast_to(m.omega, (n,))[part],
+                    "alpha": np.broadcast_to(m.alpha, (n,))[part]}
+
+        return LongTable(self.positions, {"body": names}, ("angle", "omega", "alpha"), chunk)
 
     # -- project tables ---------------------------------------------------------
     @cached_property
@@ -422,10 +403,11 @@ class Solution:
     def write(self, directory: str | Path, fmt: str = "csv", announce=None) -> list[Path]:
         """Write every table (``fmt``: ``"csv"``, 17 significant digits, or
         ``"parquet"``) and ``summary.json``. A table built only for writing is
-        dropped once written, so that one long table at a time is held. ``announce``
+        dropped once written, and a long table not built yet is written as CSV straight
+        from the solver's arrays, never held whole. ``announce``
         (a callable taking one line) hears of every CSV table over 1e6 rows, with its
         size and time estimate (:func:`kinetostatics.output.write_csv`)."""
-        from .output import write_csv, write_parquet
+        from .output import write_csv, write_long_csv, write_parquet
         if fmt not in ("csv", "parquet"):
             raise WorkbenchError(f"format {fmt!r}: use csv or parquet")
         d = Path(directory)
@@ -433,6 +415,11 @@ class Solution:
         written = []
         for name in self.FILES:
             kept = name in self.__dict__
+            if fmt == "csv" and name in self.LONG_TABLES and not kept:
+                # straight from the solver's arrays, chunk by chunk: never held whole
+                written.append(write_long_csv(self.long_table(name), d / f"{name}.csv",
+                                              announce))
+                continue
             table = getattr(self, name)
             if fmt == "csv":
                 written.append(write_csv(table, d / f"{name}.csv", self.positions.size,
