@@ -404,3 +404,95 @@ def test_pin_friction_locks_where_the_rod_passes_inside_the_friction_circle(mu):
     fe = t * e[:, 0]
     # measured 6.2e-13 (mu = 1.4, a row 2.5e-5 m outside the circle: Fe = 4.8e5 N)
     assert np.allclose(sol.Me[~locked], fe[~locked], rtol=2e-12, atol=0)
+
+
+def test_flagged_rows_have_no_equilibrium_by_an_independent_search():
+    """Slider-crank, mu = 1.3 in every joint (pins r = 0.03 m, guide l = 0.08 m). The
+    friction system is rebuilt here from the tests' global matrix solve (the reactions
+    under the scene's loads and under each unit friction load, signs from the relative
+    motions) and searched by a damped Newton with a finite-difference Jacobian from 300
+    starts per row: at flagged rows no magnitudes s >= 0 satisfy s = h(reactions); at
+    free rows the search finds the solver's friction."""
+    from tests.kinetostatics.checks import matrix_solution
+    mu, r, length = 1.3, 0.03, 0.08
+    plain = load("slider_crank")
+    sol0 = ks.solve(plain)
+    ref, _ = matrix_solution(sol0)
+    w = {b: sol0.bodies.query(f"body == '{b}'").omega.to_numpy() for b in ("crank", "rod")}
+    k = sol0.kinematics
+    vx = k[(k.body == "piston") & (k.point == "C")].vx.to_numpy()
+    units = {"A": ([("crank", 1.0)], -np.sign(w["crank"])),
+             "B": ([("rod", 1.0), ("crank", -1.0)], -np.sign(w["rod"] - w["crank"])),
+             "C": ([("piston", 1.0), ("rod", -1.0)], np.sign(w["rod"])),
+             "C-slide": (None, -np.sign(vx))}
+    joints = list(units)
+
+    def quantities(res):
+        out = []
+        for j in joints:
+            fx, fy, nn, mm = res[j]
+            out += [fx, fy] if nn is None else [nn, mm]
+        return np.stack(out, axis=1)                            # (n, 8)
+
+    q0 = quantities(ref)
+    cols = []
+    for j in joints:
+        d = copy.deepcopy(plain)
+        couples, sign = units[j]
+        if couples is None:
+            d["loads"].append({"body": "piston", "point": "C", "force": [1.0, 0.0]})
+        else:
+            d["loads"] += [{"body": b, "moment": m} for b, m in couples]
+        cols.append((quantities(matrix_solution(ks.solve(d))[0]) - q0) * sign[:, None])
+    g = np.stack(cols, axis=2)                                  # (n, 8, 4)
+
+    def h(q):                                                   # (..., 8) -> (..., 4)
+        rho = mu * r
+        na = 0.5 * q[..., 6] - q[..., 7] / length
+        nb = 0.5 * q[..., 6] + q[..., 7] / length
+        return np.stack([rho * np.hypot(q[..., 0], q[..., 1]),
+                         rho * np.hypot(q[..., 2], q[..., 3]),
+                         rho * np.hypot(q[..., 4], q[..., 5]),
+                         mu * (np.abs(na) + np.abs(nb))], axis=-1)
+
+    def search(row, starts):
+        def f(s):
+            return s - h(q0[row] + s @ g[row].T)
+        s = starts
+        for _ in range(60):
+            fs = f(s)
+            jac = np.empty(s.shape + (4,))
+            for i in range(4):
+                e = np.zeros(4)
+                e[i] = 1e-7 * (1.0 + np.abs(s).max())
+                jac[..., i] = (f(s + e) - fs) / e[i]
+            with np.errstate(all="ignore"):
+                step = np.linalg.solve(jac + 1e-300, -fs[..., None])[..., 0]
+            s = np.where(np.isfinite(step), s + np.clip(step, -1e9, 1e9), s)
+        fs = f(s)
+        ok = (np.abs(fs).max(axis=1) <= 1e-8 * (1.0 + np.abs(s).max(axis=1))) & \
+            (s >= -1e-9 * np.abs(s).max(axis=1, keepdims=True)).all(axis=1)
+        return s[ok]
+
+    d = copy.deepcopy(plain)
+    for j in d["joints"]:
+        j["friction"] = {"mu": mu, "radius": r} if j["kind"] == "R" else \
+            {"mu": mu, "length": length}
+    sol = ks.solve(d)
+    locked = sol.driver.self_locking.to_numpy()
+    fric = np.stack([np.abs(np.broadcast_to(ld.m if ld.label.startswith("friction couple")
+                                            else ld.fx, locked.shape))
+                     for ld in sol.loads if ld.kind == "friction"
+                     and ld.body == {"A": "crank", "B": "rod", "C": "piston",
+                                     "C-slide": "piston"}[ld.label.split()[-1]]], axis=1)
+    rng = np.random.default_rng(3)
+    scale = np.abs(q0).max(axis=1) * mu * r
+    for row in np.flatnonzero(locked)[::9]:
+        starts = rng.exponential(1.0, (300, 4)) * 10.0 ** rng.uniform(-2, 5, (300, 1))
+        assert search(row, starts * scale[row]).size == 0, sol.positions[row]
+    moving = np.stack([np.abs(units[j][1]) for j in joints], axis=1)   # 0: no friction load
+    for row in np.flatnonzero(~locked)[::9]:
+        # the same random search finds the solver's friction (the search is not blind)
+        starts = rng.exponential(1.0, (300, 4)) * 10.0 ** rng.uniform(-2, 5, (300, 1))
+        found = search(row, starts * scale[row]) * moving[row]
+        assert np.isclose(found, fric[row], rtol=1e-6).all(axis=1).any(), sol.positions[row]
