@@ -120,6 +120,7 @@ def plot_instant_centres(sol: Solution, position: float | None = None, *,
     far = tab[~tab.index.isin(near.index)]
     xy = {r.name: np.array([r.x, r.y]) for r in tab.itertuples() if not r.at_infinity}
     toward = {r.name: np.array([r.dir_x, r.dir_y]) for r in tab.itertuples() if r.at_infinity}
+    shown = set(near.name)          # the three-centre lines use the centres in view
     texts = []
     handles = []
     n = sol.positions.size
@@ -141,11 +142,11 @@ def plot_instant_centres(sol: Solution, position: float | None = None, *,
             if m in (r.j, r.k) or lines == 2:
                 continue
             a, b = (_name(names, x, m) for x in (r.j, r.k))
-            if b in xy and a not in xy:
+            if b in shown and a not in shown:
                 a, b = b, a
-            if a not in xy or np.hypot(*(xy[a] - p)) <= 1e-9 * size:
+            if a not in shown or np.hypot(*(xy[a] - p)) <= 1e-9 * size:
                 continue
-            if b in xy:
+            if b in shown:
                 seg = np.array([xy[a], xy[b], p])
                 step = xy[b] - xy[a]
             elif b in toward:       # the line through I_jm towards a centre at infinity
