@@ -25,6 +25,7 @@ import pandas as pd
 
 from ..model.scene import Scene
 from .errors import SimulationError
+from .friction import near_reversals
 from .stepper import SimRecord
 
 ZERO_COUPLE = 1e-9
@@ -149,6 +150,10 @@ def compare(sc: Scene, model, rec: SimRecord, ref, *, compare_from: float) -> Cr
     used = rec.time > compare_from * (1.0 + 1e-12)
     flagged = np.asarray(ref.singular[1:], dtype=bool) | \
         np.asarray(ref.undefined_load[1:], dtype=bool) | rec.resist_unsure
+    if ref.self_locking is not None:
+        flagged |= np.asarray(ref.self_locking[1:], dtype=bool)
+    if model._friction:
+        flagged |= near_reversals(sc, ref.kin, rec.time, rec.dt)
     used &= ~flagged
     if not used.any():
         raise SimulationError(
@@ -214,9 +219,15 @@ def compare(sc: Scene, model, rec: SimRecord, ref, *, compare_from: float) -> Cr
         if b.mass_model is not None:
             notes.append(f"body {name!r} has a {b.mass_model.kind} mass model: kinetostatics "
                          "uses it, the simulation uses the body's exact mass and inertia")
+    if model._friction:
+        notes.append("joint friction simulated (" + ", ".join(j[1] for j in model._friction)
+                     + "): couples rho |F| and forces mu |N| from the reactions of the steps "
+                     "before, extrapolated; rows near a reversal of a joint's relative motion "
+                     "are flagged")
     skipped = int(np.count_nonzero(flagged))
     if skipped:
-        notes.append(f"{skipped} of {n} rows flagged singular / undefined_load / resist point "
-                     "nearly still: left out of the errors")
+        what = "singular / undefined_load / resist point nearly still" + (
+            " / self-locking / friction reversing" if model._friction else "")
+        notes.append(f"{skipped} of {n} rows flagged {what}: left out of the errors")
     rows = pd.concat(parts, ignore_index=True)
     return CrossCheck(sc, rec, ref, rows, errors, verr, {}, notes)

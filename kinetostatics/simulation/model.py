@@ -41,6 +41,7 @@ import pymunk
 
 from ..model.scene import GROUND, Scene, load_scene
 from .errors import SimulationError
+from .friction import prepare_friction
 from .geometry import _first, _foot, _line, _local, _on_line, _pin_range
 from .loads import _prepare_loads
 from .reference import (
@@ -141,6 +142,7 @@ class SimModel:
     _slider_local: tuple[float, float] = (0.0, 0.0)
     _loads: list = field(default_factory=list, repr=False)
     _resist: list = field(default_factory=list, repr=False)
+    _friction: list = field(default_factory=list, repr=False)
 
     @property
     def kind(self) -> str:
@@ -174,7 +176,7 @@ def _label(info: ConstraintInfo) -> str:
 
 def check_scene(scene: Scene) -> None:
     """Refuse what the simulation does not reproduce: a driver that accelerates or stands
-    still, and joint friction (the model has no friction at its joints)."""
+    still, and the friction of a prismatic joint with a bearing length."""
     d = scene.driver
     if d.acceleration != 0.0:
         raise SimulationError(
@@ -183,13 +185,14 @@ def check_scene(scene: Scene) -> None:
             "a constant-speed driver (acceleration = 0)")
     if d.speed == 0.0:
         raise SimulationError("driver.speed = 0: nothing moves; give the driver a speed")
-    rubbing = [n for n, j in scene.joints.items() if j.friction is not None and j.friction.mu > 0]
-    if rubbing:
-        raise SimulationError(
-            f"joint {rubbing[0]!r} has friction (mu = {scene.joints[rubbing[0]].friction.mu:g})"
-            f"{f' and {len(rubbing) - 1} more' if len(rubbing) > 1 else ''}: the cross-check "
-            "does not model joint friction; remove the friction tables to cross-check the "
-            "frictionless mechanism")
+    for n, j in scene.joints.items():
+        if j.kind == "T" and j.friction is not None and j.friction.mu > 0 \
+                and j.friction.length > 0:
+            raise SimulationError(
+                f"joint {n!r} has friction with a bearing length ({j.friction.length:g} m): "
+                "the cross-check does not model a prismatic joint's friction carried by its "
+                "two ends (it needs the signed N and M at every step); remove 'length' to "
+                "cross-check the friction mu |N|")
 
 
 def _check_bodies(scene: Scene, translating: set[str]) -> None:
@@ -374,5 +377,6 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
         model.actuator = act
         bodies["actuator"] = act
     _prepare_loads(model, sweep)
+    prepare_friction(model, sweep)
     return model
 

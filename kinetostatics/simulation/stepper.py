@@ -25,6 +25,7 @@ import pymunk
 
 from .drift import check_run, diverged
 from .errors import SimulationError
+from .friction import friction_function
 from .loads import _loads_function
 from .model import SimModel, _label
 from .signed import SingularBalance, _signed
@@ -241,6 +242,23 @@ def run(model: SimModel, steps: int, sample_every: int = 1, *,
     get_a, get_w, get_v, get_p = acc.angle, acc.omega, acc.velocity, acc.position
     get_f, get_t, get_i = acc.force, acc.torque, acc.impulse
     apply_loads, unsure = _loads_function(model, acc)
+    rubbing = friction_function(model, acc, unsure)
+    if rubbing is not None:
+        # joint friction: set after the scene's loads, from the reactions read after
+        # every step (kinetostatics.simulation.friction)
+        apply_friction, read_reactions = rubbing
+        scene_loads, plain_step = apply_loads, fstep
+
+        def apply_loads() -> None:
+            unsure[0] = False
+            if scene_loads is not None:
+                scene_loads()
+            apply_friction()
+
+        def fstep(h: float) -> None:
+            plain_step(h)
+            read_reactions()
+
     n_samples = steps // every
     schedule = [] if model.stepped else warmup_schedule(model.iterations)
 
