@@ -256,9 +256,11 @@ def follow(rows: Rows, subset: np.ndarray
         turned = bad[step[bad] < MIN_STEP]
         fold[turned] = True
         ended[turned] = lam[turned]
-    if ((lam < 1.0) & ~crossed & ~fold).any():
-        raise WorkbenchError("the friction equations could not be followed within "
-                             f"{MAX_STEPS} steps; lower the friction coefficients")
+    open_rows = np.flatnonzero((lam < 1.0) & ~crossed & ~fold)
+    if open_rows.size:
+        raise WorkbenchError(f"the friction equations could not be followed within {MAX_STEPS} "
+                             f"steps at driver position {rows.positions[open_rows[0]]:g}; "
+                             "lower the friction coefficients there")
     return x, crossed | fold, crossed, ended
 
 
