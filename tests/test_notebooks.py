@@ -43,14 +43,15 @@ from kinetostatics.notebook import Explorer as _Explorer
 _explorers = [v for v in list(globals().values()) if isinstance(v, _Explorer)]
 assert _explorers or not {topic}, "this topic sheet has no interactive cell (Explorer)"
 for _e in _explorers:
+    _e.close()                          # no frontend: the API alone (no widget redraws)
     assert _e.error is None, _e.error
     for _s in _e.sliders:
         _v = _s.value + (_s.max - _s.value) / 2 if _s.value < _s.max else _s.min
         _v = min(max(round(_v / _s.step) * _s.step, _s.min), _s.max)
-        _numbers, _png = dict(_e.numbers), _e.png()
+        _numbers, _png = dict(_e.numbers), _e.png(dpi=30)
         _e.set(**{_s.name: _v})
         assert _e.error is None, f"slider {_s.name} = {_v}: {_e.error}"
-        assert _e.png() != _png, f"slider {_s.name} = {_v} does not change the picture"
+        assert _e.png(dpi=30) != _png, f"slider {_s.name} = {_v} does not change the picture"
         assert _e.numbers != _numbers, f"slider {_s.name} = {_v} changes no key number"
         _e.table()                      # every key number is finite (raises otherwise)
 """

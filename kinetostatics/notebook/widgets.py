@@ -134,6 +134,7 @@ class Explorer:
         self.numbers: dict[str, Any] = {}
         self.error: str | None = None
         self._listeners: list[Callable[[], None]] = []
+        self._widgets: list[Any] = []
         self._update()
 
     def slider(self, name: str) -> Slider:
@@ -208,9 +209,24 @@ class Explorer:
                               description=s.label, continuous_update=False,
                               style={"description_width": "initial"},
                               layout=w.Layout(width="460px"))
-            c.observe(lambda change, name=s.name: self.set(**{name: change["new"]}),
-                      names="value")
+            def follow(change, name=s.name) -> None:
+                self.set(**{name: change["new"]})
+
+            c.observe(follow, names="value")
+            self._widgets.append((c, follow))
             controls.append(c)
         self._listeners.append(show)
         show()
-        return w.VBox([*controls, out])
+        box = w.VBox([*controls, out])
+        self._widgets += [(out, None), (box, None)]
+        return box
+
+    def close(self) -> None:
+        """Close the widgets made by :meth:`widget` (they stop following :meth:`set`);
+        the explorer itself keeps working through its Python API."""
+        for widget, follow in self._widgets:
+            if follow is not None:
+                widget.unobserve(follow, names="value")
+            widget.close()
+        self._widgets.clear()
+        self._listeners.clear()

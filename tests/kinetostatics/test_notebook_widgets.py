@@ -80,6 +80,11 @@ def test_the_widget_drives_the_explorer(explorer):
     crank_slider.value = 0.12                      # what moving the slider does
     assert explorer.values["crank"] == pytest.approx(0.12)
     assert explorer.numbers != before
+    explorer.close()                               # the widgets let go, the API works on
+    crank_slider.value = 0.10
+    assert explorer.values["crank"] == pytest.approx(0.12)
+    explorer.set(crank=0.11)
+    assert explorer.values["crank"] == pytest.approx(0.11)
 
 
 def test_key_numbers_are_never_nan():
