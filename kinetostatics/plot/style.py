@@ -112,6 +112,7 @@ def overlapping_texts(fig: Figure, tolerance: float = 1.0) -> list[tuple[str, st
 
 _DIRECTIONS = np.deg2rad(np.arange(0.0, 360.0, 30.0))
 _DISTANCES = (6.0, 12.0, 20.0, 30.0, 42.0, 56.0)
+_NEAR = 20.0        # points: how far a label may go to find a place off the arrows
 
 
 def _arrow_paths(fig: Figure) -> list:
@@ -130,8 +131,9 @@ def declutter(ax: Axes, texts: Sequence[Text], rounds: int = 3) -> None:
     figure overlap, and, where the room allows, none lies on an arrow.
 
     Each label that collides is tried around its anchor in twelve directions at growing
-    distances; the first place clear of every other label (and of the arrows) wins,
-    else the place clear of the labels, else the one farthest from them. The figure is
+    distances; the first place clear of every other label and of the arrows wins (up to
+    20 points away), else the nearest place clear of the labels, else the one farthest
+    from them. The figure is
     drawn between rounds so that a constrained layout settles.
 
     Parameters
@@ -189,8 +191,8 @@ def declutter(ax: Axes, texts: Sequence[Text], rounds: int = 3) -> None:
                         gap = min((_gap(bb, o) for o in placed + fixed), default=np.inf)
                         if gap > far[0]:
                             far = (gap, (t.xyann, t.get_ha(), t.get_va(), bb))
-                if best is not None:
-                    break
+                if best is not None or (second is not None and dist >= _NEAR):
+                    break       # near its anchor, even on an arrow, rather than far away
             xy, ha, va, bb = best or second or far[1]
             t.xyann = xy
             t.set_ha(ha)
