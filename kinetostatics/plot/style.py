@@ -4,8 +4,7 @@ labels of a figure overlap.
 
 from __future__ import annotations
 
-import contextlib
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 
 import matplotlib as mpl
 import numpy as np
@@ -23,21 +22,29 @@ PROJECTOR = {
 }
 
 
-@contextlib.contextmanager
-def projector(**overrides) -> Iterator[None]:
+class projector:
     """Pictures for a projector or a board: larger fonts, thicker lines, 150 dpi.
 
-    Use as ``with plot.projector(): fig = plot.overview(sol)``; the figures made inside
-    keep the style (fonts given explicitly by a picture function, such as the small
-    legends, are scaled by the same factor through ``font.size``). Any ``rcParams`` key
-    may be overridden, e.g. ``projector(**{"font.size": 16})``.
-
-    Yields
-    ------
-    None
+    One call: ``plot.projector()`` switches every later figure to the style (in a
+    notebook, for the rest of the session; ``.restore()`` switches back); or
+    ``with plot.projector(): fig = plot.overview(sol)`` for the figures made inside
+    only. Any ``rcParams`` key may be overridden, e.g. ``projector(**{"font.size": 16})``.
     """
-    with mpl.rc_context({**PROJECTOR, **overrides}):
-        yield
+
+    def __init__(self, **overrides) -> None:
+        style = {**PROJECTOR, **overrides}
+        self._old = {k: mpl.rcParams[k] for k in style}
+        mpl.rcParams.update(style)
+
+    def restore(self) -> None:
+        """Put back the settings from before the call."""
+        mpl.rcParams.update(self._old)
+
+    def __enter__(self) -> projector:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.restore()
 
 
 def _undrawn_ticks(fig: Figure) -> set[int]:

@@ -267,6 +267,10 @@ def test_projector_style():
     assert plt.rcParams["font.size"] == base
     with kp.projector(**{"font.size": 20}):
         assert plt.rcParams["font.size"] == 20
+    style = kp.projector()              # one call: on for every later figure
+    assert plt.figure().dpi == 150
+    style.restore()
+    assert plt.rcParams["font.size"] == base and plt.figure().dpi != 150
 
 
 def test_projector_pictures_stay_clear(sols):
