@@ -121,7 +121,8 @@ def plot_study(table: pd.DataFrame | Study, *, repeats: int | None = None):
         ax2.loglog(h, e0 * (h / h[1]) ** 2, "k--", lw=0.8, label="slope 2")
     ax2.set_xlabel("dt (s)")
     ax2.set_ylabel("max relative error")
-    ax2.set_title("convergence (x along the top: diverged)", fontsize=10)
+    ax2.set_title("convergence" + (" (x along the top: diverged)" if blown_col.any() else ""),
+                  fontsize=10)
     from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
     if not len(ok):
         ax2.set_yticks([])
