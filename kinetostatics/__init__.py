@@ -27,6 +27,7 @@ from . import _moved
 from .model.errors import (
     AssemblyError,
     SceneError,
+    SelfLockingError,
     StructureError,
     UnitWarning,
     WorkbenchError,
@@ -40,10 +41,10 @@ from .solver.pipeline import solve
 from .solver.structure import Dyad, Structure, analyse
 
 __all__ = [
-    "AssemblyError", "Dyad", "Kinematics", "Scene", "SceneError", "Solution", "Structure",
-    "StructureError", "UnitWarning", "WorkbenchError", "analyse", "cam_examples", "example",
-    "examples", "load_scene", "scene_path",
-    "simulate_motion", "solve", "solve_kinematics",
+    "AssemblyError", "Dyad", "Kinematics", "Scene", "SceneError", "SelfLockingError",
+    "Solution", "Structure", "StructureError", "UnitWarning", "WorkbenchError", "analyse",
+    "cam_examples", "example", "examples", "load_scene", "scene_path", "simulate_motion",
+    "solve", "solve_kinematics",
 ]
 
 _moved.install()

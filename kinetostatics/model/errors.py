@@ -25,6 +25,11 @@ class StructureError(WorkbenchError):
     """The chain is not a driver plus dyads (Assur groups of class II)."""
 
 
+class SelfLockingError(AssemblyError):
+    """Joint friction locks the mechanism at every position of the sweep (seed 002
+    s. 2.4): no finite driving effort moves it."""
+
+
 class UnitWarning(UserWarning):
     """A number that looks like a unit slip (radians for degrees, rpm for rad/s, mm for m).
     The solve goes on; the command line prints it as a ``warning:`` line."""

@@ -274,7 +274,9 @@ def _check_units(scene: Scene) -> None:
     if len(pts) < 2:
         return
     arr = np.asarray(pts, dtype=float)
-    size = max(float(np.max(np.hypot(*(arr - arr.mean(axis=0)).T))), 1e-300)
+    size = float(np.max(np.hypot(*(arr - arr.mean(axis=0)).T)))
+    if size <= 0.0:
+        return          # every joint at one point (a lone crank): no size to compare with
     for name, body in scene.bodies.items():
         ref = joint_pts[name]
         if not ref:

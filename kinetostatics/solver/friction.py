@@ -31,17 +31,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..model.errors import WorkbenchError
+from ..model.errors import SelfLockingError
 from ..model.scene import GROUND, Joint, Scene
 from . import _arith as A
 from .friction_rows import Spec, settle
 from .kinematics import Kinematics
 from .loads import PointLoad, resultants
 from .reactions import DriverReaction, JointReaction, solve_reactions
-
-
-class SelfLockingError(WorkbenchError):
-    """Joint friction locks the mechanism at every position of the sweep."""
 
 
 def has_friction(scene: Scene) -> bool:
