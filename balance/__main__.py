@@ -16,7 +16,7 @@ from typing import Any, NoReturn
 
 from .api import example_path, examples, results_to_dict, solve_results
 from .errors import WorkbenchError
-from .report_text import field_text, result_warnings
+from .report_text import result_warnings, summary_text
 from .scene import SCENES
 
 
@@ -39,68 +39,6 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
-def _fmt(x: Any, unit: str = "") -> str:
-    if x is None:
-        return "-"
-    return f"{x:.6g}{(' ' + unit) if unit else ''}"
-
-
-def _report(out: dict[str, Any], speed: bool) -> str:
-    lines: list[str] = []
-    if "rotor" in out:
-        r = out["rotor"]
-        fu, mu = ("N", "N m") if speed else ("kg m", "kg m^2")
-        kind = "static (one plane)" if len(r["corrections"]) == 1 else "dynamic (two planes)"
-        lines.append(f"rotor: {kind} balancing")
-        for c in r["corrections"]:
-            lines.append(f"  plane {c['plane']} (z = {c['z']:g} m): mass {_fmt(c['mass'], 'kg')}"
-                         f" at {_fmt(c['angle'], 'deg')}, radius {c['radius']:g} m, "
-                         f"U = {_fmt(c['U'], 'kg m')}")
-        lines.append(f"  force  before {_fmt(r['initial_force'], fu)}, "
-                     f"after {_fmt(r['residual_force'], fu)}")
-        lines.append(f"  moment before {_fmt(r['initial_moment'], mu)}, "
-                     f"after {_fmt(r['residual_moment'], mu)} (about z = 0)")
-    if "static_test" in out:
-        s = out["static_test"]
-        lines.append("static balancing device:")
-        lines.append(f"  eccentricity {_fmt(s['eccentricity'], 'm')}, correction mass "
-                     f"{_fmt(s['correction_mass'], 'kg')}")
-    for t in out.get("resonance_test", []):
-        lines.append(f"resonance test, plane {t['plane']}:")
-        lines.append(f"  A = {_fmt(t['A'])}, phi = {_fmt(t['phi'], 'deg')}, unbalance "
-                     f"{_fmt(t['unbalance'], 'kg m')}")
-        where = f"at {_fmt(t['angle'], 'deg')}"
-        if t["mirror_angle"] is not None:
-            where += f" (or at {_fmt(t['mirror_angle'], 'deg')}: the mirror position)"
-        lines.append(f"  correction mass {_fmt(t['correction_mass'], 'kg')} {where}")
-        if "uncertainty" in t:
-            u = t["uncertainty"]
-            ang = u["angle"]
-            lines.append(f"  with +-{u['dA']:g} on each amplitude: mass {_fmt(u['magnitude'][0])}"
-                         f" .. {_fmt(u['magnitude'][1], 'kg')}"
-                         + (f", angle {_fmt(ang[0])} .. {_fmt(ang[1], 'deg')}" if ang else ""))
-    lines.extend(field_text(out))
-    if "balancing" in out:
-        b = out["balancing"]
-        lines.append(f"mechanism balancing: {b['mechanism']}, method {b['method']}")
-        lines.append(f"  procedure: {b['procedure']}")
-        for c in b["counterweights"]:
-            lines.append(f"  counterweight on {c['body']} about {c['about']}: mass "
-                         f"{_fmt(c['mass'], 'kg')} at radius {c['radius']:g} m, angle "
-                         f"{_fmt(c['angle'], 'deg')} (body frame)")
-        if b.get("counter_rotating"):
-            p = b["counter_rotating"]
-            lines.append(f"  counter-rotating pair: two masses of {_fmt(p['mass'], 'kg')} at "
-                         f"{_fmt(p['radius'], 'm')}")
-        lines.append(f"  shaking force max: before {_fmt(b['shaking_force_before'], 'N')}, "
-                     f"after {_fmt(b['shaking_force_after'], 'N')}")
-        if "shaking_moment_before" in b:
-            lines.append(f"  shaking moment max (about the crank axis): before "
-                         f"{_fmt(b['shaking_moment_before'], 'N m')}, after "
-                         f"{_fmt(b['shaking_moment_after'], 'N m')}")
-    return "\n".join(lines)
-
-
 def main(argv: list[str] | None = None) -> int:
     """Run the command line; return the exit code."""
     args = _parser().parse_args(argv)
@@ -117,7 +55,7 @@ def main(argv: list[str] | None = None) -> int:
             text = json.dumps(out, indent=2, allow_nan=False, default=_json_default)
         else:
             speed = "rotor" in results and results["rotor"].speed_rpm is not None
-            text = _report(out, speed)
+            text = summary_text(out, speed)
         if args.report:
             from .report import write_report
 

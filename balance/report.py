@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from .errors import BalanceError
-from .report_text import result_warnings
+from .report_text import result_warnings, summary_text
 
 __all__ = ["influence_figure", "iso_figure", "report_figures", "report_scene", "write_report"]
 
@@ -191,11 +191,10 @@ pre{background:#f6f6f6;padding:.6em;overflow-x:auto;font-size:.85em}
 figcaption{font-size:.9em;color:#555}"""
 
 
-def _text_report(results: dict[str, Any], out: dict[str, Any]) -> list[str]:
-    from .__main__ import _report
+def _textsummary_text(results: dict[str, Any], out: dict[str, Any]) -> list[str]:
 
     speed = "rotor" in results and results["rotor"].speed_rpm is not None
-    return _report(out, speed).splitlines()
+    return summary_text(out, speed).splitlines()
 
 
 def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
@@ -222,7 +221,7 @@ def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
     source = ""
     if scene is not None and Path(str(scene)).is_file():
         source = Path(str(scene)).read_text(encoding="utf-8")
-    lines = _text_report(results, out)
+    lines = _textsummary_text(results, out)
     warns = [f"{w}: {m}" for w, m in result_warnings(out)]
     figs = report_figures(results, out)
     try:

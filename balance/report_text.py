@@ -9,11 +9,11 @@ from typing import Any
 __all__ = ["field_text", "fmt", "interval_text", "result_warnings"]
 
 
-def fmt(x: Any, unit: str = "") -> str:
-    """A number to 4 significant digits with its unit; '-' for None."""
+def fmt(x: Any, unit: str = "", digits: int = 4) -> str:
+    """A number to ``digits`` significant digits with its unit; '-' for None."""
     if x is None:
         return "-"
-    return f"{x:.4g}{(' ' + unit) if unit else ''}"
+    return f"{x:.{digits}g}{(' ' + unit) if unit else ''}"
 
 
 def interval_text(iv: dict | None, unit: str, confidence: float) -> str:
@@ -104,3 +104,63 @@ def result_warnings(out: dict[str, Any]) -> Iterator[tuple[str, str]]:
                 yield from walk(value, f"{where}[{i}]")
 
     yield from walk(out, "")
+
+
+def _fmt6(x: Any, unit: str = "") -> str:
+    return fmt(x, unit, 6)
+
+
+def summary_text(out: dict[str, Any], speed: bool) -> str:
+    lines: list[str] = []
+    if "rotor" in out:
+        r = out["rotor"]
+        fu, mu = ("N", "N m") if speed else ("kg m", "kg m^2")
+        kind = "static (one plane)" if len(r["corrections"]) == 1 else "dynamic (two planes)"
+        lines.append(f"rotor: {kind} balancing")
+        for c in r["corrections"]:
+            lines.append(f"  plane {c['plane']} (z = {c['z']:g} m): mass {_fmt6(c['mass'], 'kg')}"
+                         f" at {_fmt6(c['angle'], 'deg')}, radius {c['radius']:g} m, "
+                         f"U = {_fmt6(c['U'], 'kg m')}")
+        lines.append(f"  force  before {_fmt6(r['initial_force'], fu)}, "
+                     f"after {_fmt6(r['residual_force'], fu)}")
+        lines.append(f"  moment before {_fmt6(r['initial_moment'], mu)}, "
+                     f"after {_fmt6(r['residual_moment'], mu)} (about z = 0)")
+    if "static_test" in out:
+        s = out["static_test"]
+        lines.append("static balancing device:")
+        lines.append(f"  eccentricity {_fmt6(s['eccentricity'], 'm')}, correction mass "
+                     f"{_fmt6(s['correction_mass'], 'kg')}")
+    for t in out.get("resonance_test", []):
+        lines.append(f"resonance test, plane {t['plane']}:")
+        lines.append(f"  A = {_fmt6(t['A'])}, phi = {_fmt6(t['phi'], 'deg')}, unbalance "
+                     f"{_fmt6(t['unbalance'], 'kg m')}")
+        where = f"at {_fmt6(t['angle'], 'deg')}"
+        if t["mirror_angle"] is not None:
+            where += f" (or at {_fmt6(t['mirror_angle'], 'deg')}: the mirror position)"
+        lines.append(f"  correction mass {_fmt6(t['correction_mass'], 'kg')} {where}")
+        if "uncertainty" in t:
+            u = t["uncertainty"]
+            ang = u["angle"]
+            lines.append(f"  with +-{u['dA']:g} on each amplitude: mass {_fmt6(u['magnitude'][0])}"
+                         f" .. {_fmt6(u['magnitude'][1], 'kg')}"
+                         + (f", angle {_fmt6(ang[0])} .. {_fmt6(ang[1], 'deg')}" if ang else ""))
+    lines.extend(field_text(out))
+    if "balancing" in out:
+        b = out["balancing"]
+        lines.append(f"mechanism balancing: {b['mechanism']}, method {b['method']}")
+        lines.append(f"  procedure: {b['procedure']}")
+        for c in b["counterweights"]:
+            lines.append(f"  counterweight on {c['body']} about {c['about']}: mass "
+                         f"{_fmt6(c['mass'], 'kg')} at radius {c['radius']:g} m, angle "
+                         f"{_fmt6(c['angle'], 'deg')} (body frame)")
+        if b.get("counter_rotating"):
+            p = b["counter_rotating"]
+            lines.append(f"  counter-rotating pair: two masses of {_fmt6(p['mass'], 'kg')} at "
+                         f"{_fmt6(p['radius'], 'm')}")
+        lines.append(f"  shaking force max: before {_fmt6(b['shaking_force_before'], 'N')}, "
+                     f"after {_fmt6(b['shaking_force_after'], 'N')}")
+        if "shaking_moment_before" in b:
+            lines.append(f"  shaking moment max (about the crank axis): before "
+                         f"{_fmt6(b['shaking_moment_before'], 'N m')}, after "
+                         f"{_fmt6(b['shaking_moment_after'], 'N m')}")
+    return "\n".join(lines)
