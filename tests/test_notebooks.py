@@ -26,7 +26,7 @@ from nbclient import NotebookClient
 ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
 CELL_TIMEOUT = 120          # s per cell
-TOTAL_BUDGET = 180          # s for all the sheets together (about 130 s measured, 2 cores)
+TOTAL_BUDGET = 180          # s, all the sheets (175 s measured, load average 7 on 2 cores)
 _times: dict[str, float] = {}
 
 # the topic sheets: each teaches with one interactive cell (an Explorer)
