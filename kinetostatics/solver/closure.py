@@ -177,8 +177,8 @@ class DyadSolver:
             if np.min(h2) < 0.0 or not np.all(np.isfinite(h2)):
                 d = np.sqrt(d2)
                 r1, r2 = np.sqrt(r1s), np.sqrt(r2s)
-                gap = np.where(np.isfinite(h2), np.maximum(d - (r1 + r2), abs(r1 - r2) - d),
-                               np.inf)
+                # (coincident pivots, d = 0: the circles are concentric, |r1 - r2| apart)
+                gap = np.maximum(d - (r1 + r2), abs(r1 - r2) - d)
             kh = (k * inv) * np.sqrt(np.maximum(h2, 0.0))
             xi = x * inv
             tx = xi * ex - kh * ey                    # X - P1

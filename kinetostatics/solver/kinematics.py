@@ -181,14 +181,8 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
     reach = solver.pivot_distance(pr)
     if reach is not None:
         reach = A.full(reach / scene.size, n)
-        tiny = np.flatnonzero(~(reach > SINGULAR_FAIL))
-        if strict and tiny.size:
-            o1, o2 = dyad.outer
-            raise AssemblyError(
-                f"dyad {dyad.label}: the pivots of its joints {o1.name!r} and {o2.name!r} "
-                f"coincide at driver position(s) {_fmt_positions(scene, tiny)} (closer than "
-                f"1e-12 of the mechanism's size {scene.size:.4g} m); the dyad's angles are "
-                "undefined there: leave those positions out of the sweep")
+        if strict:
+            _refuse_coincident_pivots(scene, dyad, reach)
     if gap is not None and strict:
         gap = A.full(gap, n)
         bad = np.flatnonzero(~(gap <= 1e-9 * scene.size))
@@ -322,11 +316,27 @@ def _hint_points(scene: Scene, dyad: Dyad):
     return out
 
 
+def _refuse_coincident_pivots(scene: Scene, dyad: Dyad, reach: np.ndarray) -> None:
+    """Refuse rows where the dyad's outer pivots coincide (its closure divides by their
+    distance: closer than 1e-12 of the mechanism's size)."""
+    tiny = np.flatnonzero(~(reach > SINGULAR_FAIL))
+    if tiny.size:
+        o1, o2 = dyad.outer
+        raise AssemblyError(
+            f"dyad {dyad.label}: the pivots of its joints {o1.name!r} and {o2.name!r} "
+            f"coincide at driver position(s) {_fmt_positions(scene, tiny)} (closer than "
+            f"1e-12 of the mechanism's size {scene.size:.4g} m); the dyad's angles are "
+            "undefined there: leave those positions out of the sweep")
+
+
 def _choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver,
                    motions: dict[str, BodyMotion]) -> int:
     """The assembly k = +-1 whose hinted points lie closest at the first row."""
     first = {name: m.take(slice(0, 1)) for name, m in motions.items()}
     pr = (dyad_param(scene, dyad, 0, first), dyad_param(scene, dyad, 1, first))
+    reach = solver.pivot_distance(pr)
+    if reach is not None:
+        _refuse_coincident_pivots(scene, dyad, A.full(reach / scene.size, 1))
     cands = {}
     for k in (1, -1):
         cs, ss, gap = solver.positions(pr, k)

@@ -139,3 +139,12 @@ def test_every_table_number_is_checked_finite(field) -> None:
     setattr(m, field, value)
     with pytest.raises(AssemblyError, match=r"at driver position 7 deg"):
         _check_finite(sol)
+
+
+def test_coincident_pivots_at_the_first_row_are_named() -> None:
+    """A crank as long as the ground link puts B on D at 0 deg: was "do not reach by inf m"."""
+    with open(ks.example("four_bar"), "rb") as fh:
+        d = tomllib.load(fh)
+    d["bodies"][0]["points"]["B"] = [0.30, 0.0]
+    with pytest.raises(AssemblyError, match=r"'B' and 'D' coincide at driver position\(s\) 0 deg"):
+        ks.solve(d)
