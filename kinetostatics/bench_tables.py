@@ -11,12 +11,15 @@ process (so that its peak memory is its own):
 * ``peak_MB``: the process's peak resident memory with the solution and all four
   tables held;
 * ``csv_MB, csv_s, csv_MB_per_s``: writing the four tables as CSV (17 significant
-  digits), and ``parquet_s`` as Parquet when pyarrow is installed;
-* ``cli_out_s, cli_peak_MB``: ``python -m kinetostatics solve SCENE --out DIR`` on the
-  bundled ``four_bar`` with that many positions (every table and summary.json).
+  digits; ``csv_cpu_s`` the CPU time of both writer threads), and ``parquet_s`` as
+  Parquet when pyarrow is installed;
+* ``cli_out_s, cli_cpu_s, cli_peak_MB``: ``python -m kinetostatics solve SCENE --out
+  DIR`` on the bundled ``four_bar`` with that many positions (every table and
+  summary.json): wall time, CPU time (user + system) and peak memory.
 
 The machine may be shared: every size runs ``repeat`` times and the best and the
-median of each column are printed.
+median of each column are printed; on a busy machine the CPU times are the steadier
+measure.
 """
 
 from __future__ import annotations
@@ -54,11 +57,12 @@ def measure_tables(n: int, out: str) -> dict:
     row["long_tables_over_solve"] = row["long_tables_s"] / row["solve_s"]
     row["peak_MB"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     size = 0
-    t = time.perf_counter()
+    t, cpu = time.perf_counter(), time.process_time()
     for name in TABLES:
         path = write_csv(getattr(sol, name), Path(out) / f"{name}.csv", n)
         size += path.stat().st_size
     row["csv_s"] = time.perf_counter() - t
+    row["csv_cpu_s"] = time.process_time() - cpu
     row["csv_MB"] = size / 1e6
     row["csv_MB_per_s"] = row["csv_MB"] / row["csv_s"]
     try:
@@ -92,11 +96,14 @@ def measure_cli(n: int, folder: str) -> dict:
             "rc = main(sys.argv[1:]); "
             "print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, file=sys.stderr); "
             "sys.exit(rc)")
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t = time.perf_counter()
     r = subprocess.run([sys.executable, "-c", code, "solve", str(scene), "--out",
                         str(Path(folder) / "out")], capture_output=True, text=True, check=True)
     seconds = time.perf_counter() - t
-    return {"cli_out_s": seconds,
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
+    return {"cli_out_s": seconds, "cli_cpu_s": cpu,
             "cli_peak_MB": int(r.stderr.strip().splitlines()[-1]) / 1024}
 
 
