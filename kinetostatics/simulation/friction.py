@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..model.scene import GROUND
-from .loads import RESIST_UNSURE, SWITCH_SETTLE
+from .loads import RESIST_UNSURE, SWITCH_BOOST, SWITCH_SETTLE
 from .reference import reference_solution
 
 if TYPE_CHECKING:
@@ -131,6 +131,7 @@ def friction_function(model: SimModel, acc: _Access, unsure: list):
         joints.append((kind, acc.chandle(con), ha, hb, coeff, RESIST_UNSURE * top, cogs, geo,
                        [f0, f0, None, 0]))
     settle = [0]
+    boost = model._boost                 # steps left with more solver iterations
 
     def ahead(h, cog):
         """A body's centre of mass and angle at the pose the step will reach (x + v dt)."""
@@ -181,6 +182,7 @@ def friction_function(model: SimModel, acc: _Access, unsure: list):
             sign = (pred > 0.0) - (pred < 0.0)
             if sign != st[3] and st[3] != 0:
                 settle[0] = SWITCH_SETTLE
+                boost[0] = SWITCH_BOOST
                 flag = True
             st[3] = sign
             if abs(pred) <= still:

@@ -26,7 +26,7 @@ import pymunk
 from .drift import check_run, diverged
 from .errors import SimulationError
 from .friction import friction_function
-from .loads import _loads_function
+from .loads import SWITCH_BOOST, _loads_function
 from .model import SimModel, _label
 from .signed import SingularBalance, _signed
 
@@ -197,6 +197,11 @@ def make_stepper(space: pymunk.Space, fast: bool | None = None):
     return lambda dt: cstep(csp, dt)
 
 
+SWITCH_ITERATIONS = 480
+"""Solver iterations of the ``SWITCH_SETTLE`` steps after a load or a joint's friction
+switches (:mod:`.loads`, :mod:`.friction`): the step change excites a transient that a
+short count damps slowly, or lets grow (measured on the shaper, docs/simulation.md)."""
+
 VERIFY_EVERY = 8
 """The fast path's reads are checked against the public properties at every this many
 samples (one body and one constraint each time, in turn; all of them at the first)."""
@@ -262,6 +267,17 @@ def run(model: SimModel, steps: int, sample_every: int = 1, *,
     n_samples = steps // every
     schedule = [] if model.stepped else warmup_schedule(model.iterations)
 
+    boost = model._boost
+    boost[0] = 0
+    ramp = switch_ramp(model.iterations)
+
+    def boosted() -> None:
+        # a load or a friction switched: more iterations, falling back (switch_ramp)
+        boost[0] -= 1
+        space.iterations = ramp[min(boost[0], len(ramp) - 1)]
+        fstep(dt)
+        space.iterations = model.iterations
+
     def advance(n: int) -> None:
         if apply_loads is None:
             for _ in range(n):
@@ -269,7 +285,10 @@ def run(model: SimModel, steps: int, sample_every: int = 1, *,
         else:
             for _ in range(n):
                 apply_loads()
-                fstep(dt)
+                if boost[0]:
+                    boosted()
+                else:
+                    fstep(dt)
 
     def warm(n: int) -> None:
         for _ in range(n):
@@ -293,6 +312,9 @@ def run(model: SimModel, steps: int, sample_every: int = 1, *,
             space.iterations = schedule.pop()
         if apply_loads is not None:
             apply_loads()
+        if boost[0]:
+            boost[0] -= 1
+            space.iterations = max(space.iterations, ramp[min(boost[0], len(ramp) - 1)])
         row = []
         for h in hb:
             v, f = get_v(h), get_f(h)
@@ -338,6 +360,16 @@ def run(model: SimModel, steps: int, sample_every: int = 1, *,
                        "singular momentum balance") from None
     return SimRecord(times, positions, impulse, signed, np.array(flags, dtype=bool), check,
                      wall, steps, dt, model.iterations, bool(fast), pose, drift, vel)
+
+
+def switch_ramp(iterations: int) -> list[int]:
+    """Iterations of the steps after a load's or a friction's switch, indexed by the
+    steps left (:data:`~kinetostatics.simulation.loads.SWITCH_BOOST` at the switch):
+    from ``SWITCH_ITERATIONS`` down to ``iterations`` geometrically (an abrupt fall
+    back leaves a transient of its own)."""
+    top = max(iterations, SWITCH_ITERATIONS)
+    n = max(1, SWITCH_BOOST)
+    return [round(iterations * (top / iterations) ** (k / n)) for k in range(n + 1)]
 
 
 def warmup_schedule(iterations: int) -> list[int]:
