@@ -40,7 +40,7 @@ LR_RANGE = (np.log(1e-4), np.log(1e4))
 _GRID_R, _GRID_T = 48, 72          # global search grid (log rho x theta)
 _LOCAL = 41                        # local window grid per axis (odd: the minimum at centre)
 _STARTS = 4                        # grid minima refined per problem
-_NEWTON_STEPS = 40
+_NEWTON_STEPS = 60
 _SAME = 1e-6                       # two refined minima closer than this are one
 _CHUNK = 128                       # problems per vectorised block (memory)
 _TWO_PI = 2.0 * np.pi
@@ -165,11 +165,87 @@ def _derivatives(d: _Data, lr: np.ndarray, th: np.ndarray, h: float = 1e-5):
     return f0, g, H
 
 
-def _refine(d: _Data, lr: np.ndarray, th: np.ndarray) -> tuple[np.ndarray, ...]:
-    """Damped Newton descent from (P, S) starts; the step length is chosen among
-    halvings by the lowest chi2 (never uphill)."""
-    factors = 0.5 ** np.arange(12)
+def _residuals(d: _Data, c: np.ndarray, p: np.ndarray, jac: bool = False):
+    """Weighted residuals (A_k - model_k) / sigma_k, (P, S, n+1), and their Jacobian
+    (P, S, n+1, 3) when asked, in polar coordinates about a centre c (complex, (P, S)):
+    p = (log t, phi, log a) with u / a = c + t e^(i phi)."""
+    sw = np.sqrt(d.w)[:, None, :]
+    a = np.exp(p[..., 2])[..., None]
+    arm = np.exp(p[..., 0] + 1j * p[..., 1])[..., None]             # t e^(i phi)
+    ek = np.concatenate([np.zeros(1), d.c + 1j * d.s])              # e_0 = 0: the A1 run
+    z = c[..., None] + ek + arm
+    m = a * np.abs(z)
+    r = (d.A[:, None, :] - m) * sw
+    if not jac:
+        return r
+    zh = np.where(np.abs(z) > 0, z / np.where(np.abs(z) > 0, np.abs(z), 1.0), 1.0)
+    J = -np.stack([a * np.real(np.conj(zh) * arm), a * np.real(np.conj(zh) * 1j * arm), m],
+                  axis=-1) * sw[..., None]
+    return r, J
+
+
+def _lm(d: _Data, c: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Levenberg-Marquardt descent from p (P, S, 3) about the centres c; (p, chi2)."""
+    r = _residuals(d, c, p)
+    f = (r * r).sum(axis=-1)
+    lam = np.full(f.shape, 1e-3)
+    eye = np.eye(3)
     for _ in range(_NEWTON_STEPS):
+        r, J = _residuals(d, c, p, jac=True)
+        JTJ = np.einsum("...ki,...kj->...ij", J, J)
+        g = np.einsum("...ki,...k->...i", J, r)
+        dg = np.einsum("...ii->...i", JTJ)
+        dg = dg + 1e-9 * dg.max(axis=-1, keepdims=True) + 1e-300   # a direction J misses
+        diag = dg[..., None, :] * eye
+        step = np.linalg.solve(JTJ + lam[..., None, None] * diag, -g[..., None])[..., 0]
+        trial = p + np.clip(step, -3.0, 3.0)
+        rt = _residuals(d, c, trial)
+        ft = (rt * rt).sum(axis=-1)
+        with np.errstate(invalid="ignore"):
+            better = ft < f
+            settled = (better & (f - ft <= 1e-13 * f) & (lam < 1e-2)) | (lam > 1e12)
+        p = np.where(better[..., None], trial, p)
+        f = np.where(better, ft, f)
+        lam = np.where(better, np.maximum(lam / 3.0, 1e-12), lam * 4.0)
+        if np.all(settled):
+            break
+    return p, f
+
+
+def _refine(d: _Data, lr: np.ndarray, th: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Levenberg-Marquardt descent from (P, S) starts, twice: in polar coordinates about
+    the origin (the A1 reading's cone tip: rho, theta) and about the tip of the smallest
+    trial reading, -e_j, where |u + a e_j| = A_j is a straight line. A reading near zero
+    with a small sigma makes a thin ring round its tip, which a descent in any other
+    coordinates crawls along. Back to (log rho, theta) with a eliminated; the better of
+    the two per start."""
+    _, a0 = d.chi2(lr, th, with_a=True)
+    v = np.exp(lr + 1j * th)
+    j = np.argmin(d.A[:, 1:], axis=1)
+    tip = -(d.c[j] + 1j * d.s[j])[:, None] * np.ones(lr.shape)
+    out = []
+    for c in (np.zeros(lr.shape, dtype=complex), tip):
+        arm = v - c
+        p0 = np.stack([np.log(np.maximum(np.abs(arm), 1e-300)), np.angle(arm),
+                       np.log(np.maximum(a0, 1e-300))], axis=-1)
+        p, f = _lm(d, c, p0)
+        vv = c + np.exp(p[..., 0] + 1j * p[..., 1])
+        out.append((np.clip(np.log(np.maximum(np.abs(vv), 1e-300)), *LR_RANGE),
+                    np.angle(vv), f))
+    use2 = out[1][2] < out[0][2]
+    lr = np.where(use2, out[1][0], out[0][0])
+    th = np.where(use2, out[1][1], out[0][1])
+    lr, th = _polish(d, lr, th)
+    chi2, a = d.chi2(lr, th, with_a=True)
+    return lr, _wrap(th), chi2, a
+
+
+def _polish(d: _Data, lr: np.ndarray, th: np.ndarray, steps: int = 12):
+    """Damped Newton steps on chi2(log rho, theta) with its full Hessian (central
+    differences), never uphill: it sees the curvature Gauss-Newton misses, e.g. across
+    the mark line of three runs at 0 and 180 deg, where the best fit may lie."""
+    factors = 0.5 ** np.arange(8)
+    for _ in range(steps):
         f0, g, H = _derivatives(d, lr, th)
         det = H[..., 0, 0] * H[..., 1, 1] - H[..., 0, 1] ** 2
         pd = (H[..., 0, 0] > 0) & (det > 0)
@@ -178,20 +254,17 @@ def _refine(d: _Data, lr: np.ndarray, th: np.ndarray) -> tuple[np.ndarray, ...]:
                           -g[..., 0] / (np.abs(H[..., 0, 0]) + np.abs(g[..., 0]) + 1e-300))
         step_t = np.where(pd, -(H[..., 0, 0] * g[..., 1] - H[..., 0, 1] * g[..., 0]) / safe,
                           -g[..., 1] / (np.abs(H[..., 1, 1]) + np.abs(g[..., 1]) + 1e-300))
-        norm = np.hypot(step_r, step_t)
-        cap = np.minimum(1.0, 1.0 / np.maximum(norm, 1e-300))            # at most 1 per step
-        step_r, step_t = step_r * cap, step_t * cap
-        lr_try = np.clip(lr[..., None] + step_r[..., None] * factors, *LR_RANGE)
-        th_try = th[..., None] + step_t[..., None] * factors
+        cap = np.minimum(1.0, 0.1 / np.maximum(np.hypot(step_r, step_t), 1e-300))
+        lr_try = np.clip(lr[..., None] + (step_r * cap)[..., None] * factors, *LR_RANGE)
+        th_try = th[..., None] + (step_t * cap)[..., None] * factors
         f_try = d.chi2(lr_try, th_try)
         j = np.argmin(f_try, axis=-1)[..., None]
         better = np.take_along_axis(f_try, j, axis=-1)[..., 0] < f0
+        if not better.any():
+            break
         lr = np.where(better, np.take_along_axis(lr_try, j, axis=-1)[..., 0], lr)
         th = np.where(better, np.take_along_axis(th_try, j, axis=-1)[..., 0], th)
-        if not better.any() or float(np.max(np.where(better, norm * cap, 0.0))) < 1e-10:
-            break
-    chi2, a = d.chi2(lr, th, with_a=True)
-    return lr, _wrap(th), chi2, a
+    return lr, th
 
 
 def _keep(lr, th, chi2, a, threshold: float, K: int):
