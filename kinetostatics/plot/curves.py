@@ -11,6 +11,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.text import Annotation
 
 from ..model.errors import WorkbenchError
 from ..results import Solution
@@ -366,5 +367,8 @@ def overview(sol: Solution, position: float | None = None) -> Figure:
         plot_transmission(sol, ax=axs[1, 1])
     else:
         plot_trajectories(sol, ax=axs[1, 1])
+    # the other panels changed the layout: keep the drawing's labels clear once more
+    declutter(axs[0, 0], [t for t in axs[0, 0].texts if isinstance(t, Annotation)
+                          and t.get_text()])
     return fig
 

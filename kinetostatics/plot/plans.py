@@ -10,6 +10,7 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.lines import Line2D
 from matplotlib.patches import Polygon
+from matplotlib.text import Annotation
 
 from ..model.scene import GROUND
 from ..results import Solution
@@ -21,6 +22,7 @@ from .base import (
     row_index,
     vector_axes,
 )
+from .style import declutter
 
 __all__ = ["acceleration_plan", "velocity_plan"]
 
@@ -217,9 +219,10 @@ def _plan(sol: Solution, position, row, ax, kind: str, cog: bool,
         "acceleration plan (planul accelerațiilor)"
     drv = sol.scene.driver
     speed = f"ω = {drv.speed:g} rad/s" if drv.kind == "R" else f"v = {drv.speed:g} m/s"
-    ax.set_title(f"{what} at {position_text(sol, i)}, {speed}", fontsize=10)
+    ax.set_title(f"{what}\nat {position_text(sol, i)}, {speed}", fontsize=10)
     ax.grid(True, alpha=0.3)
     legend_outside(ax, handles=handles)
+    declutter(ax, [t for t in ax.texts if isinstance(t, Annotation) and t.get_text()])
     return ax
 
 

@@ -133,7 +133,7 @@ def _arrow_paths(fig: Figure) -> list:
     return out
 
 
-def declutter(ax: Axes, texts: Sequence[Text], rounds: int = 3) -> None:
+def declutter(ax: Axes, texts: Sequence[Text], rounds: int = 6) -> None:
     """Move annotations (offset in points from their anchor) until no two labels of the
     figure overlap, and, where the room allows, none lies on an arrow.
 
