@@ -23,7 +23,9 @@ What is built
   step, evaluated at the pose the step will reach (:mod:`.loads`).
 
 Every constraint has ``error_bias = 0`` (the whole drift corrected in the next step),
-``max_bias`` infinite, ``collide_bodies`` off. See ``docs/simulation.md`` for the
+``max_bias`` infinite, ``collide_bodies`` off. The solver sweeps the joints in the
+scene's order and the driver's constraint last, or, on request, from the driver
+outwards (:func:`solver_order`). See ``docs/simulation.md`` for the
 measured effect of these settings and of the iteration count.
 
 The start is the exact kinematic state of the scene (from the kinematic solution),
@@ -122,6 +124,9 @@ class SimModel:
     notes : list of str
         Modelling remarks (e.g. a prismatic joint whose groove cannot be laid out
         exactly; see :func:`build_space`).
+    driver_first : bool
+        The solver sweeps from the driver outwards instead of the scene's order with
+        the driver last (:func:`solver_order`).
     """
 
     scene: Scene
