@@ -173,6 +173,8 @@ def estimate(A1: float, marks: np.ndarray, amps: np.ndarray, mr: float, rc: floa
         return None if A1 == 0.0 else deg360(math.degrees(fit.theta[0, j]) + 180.0)
 
     other = keep[1] if len(keep) > 1 and A1 > 0.0 else None
+    if other is not None and _in_arc(corr_angle(other), interval(best)["angle"]):
+        other = None                     # a second point of the same basin, not a mirror
     unbalance = float(mr * fit.rho[0, best])
     return Estimate(
         unbalance=unbalance, correction_mass=unbalance / rc, angle=corr_angle(best),
