@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors import BalanceError
 from ..resonance import ResonanceResult
 from ..rotor import Unbalance
 
@@ -89,6 +90,8 @@ def method_result(res: ResonanceResult, amps: dict, us: list[Unbalance], recs: l
                   factors: dict | None = None) -> MachineResult:
     """A method's :class:`MachineResult`: the recovered unbalance and correction angle
     (and its mirror candidate, if the method gives one) against the ones put in."""
+    if res.unbalance is None:     # the runs' linear fit has no solution (A^2 <= 0)
+        raise BalanceError(res.warnings[0] if res.warnings else "the fit has no solution")
     U = sum((u.U for u in us), 0j)
     mirror = None
     if abs(U) == 0.0:
