@@ -9,6 +9,7 @@ from collections.abc import Sequence
 
 import matplotlib.pyplot as plt
 import numpy as np
+import pandas as pd
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.text import Annotation
@@ -147,8 +148,8 @@ def numbered_rows(sol: Solution, numbers: int) -> np.ndarray:
 
 
 def plot_transmission(sol: Solution, ax: Axes | None = None, admissible: float = 40.0) -> Axes:
-    """Transmission angle of every dyad over the cycle (eqs 2.60-2.61) with the
-    admissible band [admissible, 180 - admissible].
+    """Transmission angle of every dyad over the cycle (eqs 2.60-2.61), drawn as
+    min(tau, 180 - tau) in [0, 90] deg, with the band below ``admissible`` shaded.
 
     Parameters
     ----------
@@ -164,9 +165,12 @@ def plot_transmission(sol: Solution, ax: Axes | None = None, admissible: float =
     Axes
     """
     ax = axes_or_new(ax)
-    t = sol.dyads
+    t = getattr(sol, "transmission", None)
+    if not isinstance(t, pd.DataFrame) or "transmission_angle" not in t:
+        t = sol.dyads
     for d, g in t.groupby("dyad"):
-        ax.plot(g.position, g.transmission_angle, lw=2,
+        tau = g.transmission_angle.to_numpy()
+        ax.plot(g.position, np.minimum(tau, 180.0 - tau), lw=2,   # one definition, [0, 90]
                 label=f"dyad {d} {g.kind.iloc[0]} ({g.bodies.iloc[0]})")
     ax.axhspan(0, admissible, color="tab:red", alpha=0.1, label="not admissible")
     ax.set_ylim(0, 90)

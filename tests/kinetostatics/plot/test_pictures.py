@@ -381,3 +381,14 @@ def test_cam_diagram(cams):
             np.testing.assert_allclose(abs(k), math.tan(tau), rtol=1e-12)
     with pytest.raises(WorkbenchError, match="translating"):
         kp.plot_cam_diagram(cams["oscillating_roller"])
+
+
+def test_transmission_picture_matches_the_summary(sols):
+    """One definition, min(tau, 180 - tau): the curve's minimum is the summary's."""
+    for name in ("four_bar", "slider_crank"):
+        sol = sols[name]
+        ax = kp.plot_transmission(sol)
+        low = min(float(np.min(ln.get_ydata())) for ln in ax.lines if len(ln.get_ydata()) > 2)
+        assert abs(low - sol.summary()["transmission_angle_min"]) <= 1e-12
+        assert "min(τ, 180° − τ)" in ax.get_ylabel()
+        clear(ax.figure)
