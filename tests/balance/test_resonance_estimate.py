@@ -256,3 +256,11 @@ def test_intervals_cover_the_truth_95_percent_in_every_cell():
     for key, (cov_u, cov_t) in coverage(1000, seed=2024).items():
         assert 0.93 <= cov_u.mean() <= 0.97, key
         assert 0.93 <= cov_t.mean() <= 0.97, key
+
+
+def test_chi2_doctests():
+    import doctest
+
+    import balance.chi2
+
+    assert doctest.testmod(balance.chi2).failed == 0
