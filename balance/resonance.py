@@ -97,6 +97,9 @@ class ResonanceResult:
         Runs: |(A1 A cos, A1 A sin)| / (A1 A) from the fit; 1 for consistent data.
     uncertainty : Interval or None
         Worst-case bounds of the correction mass and ``angle`` for a given +-dA.
+    mirror_uncertainty : Interval or None
+        Three-run method: the same bounds for ``mirror_angle`` (``uncertainty``'s
+        ``mirror_angle`` in the dict).
     estimate : Estimate or None
         The maximum-likelihood estimate with its intervals.
     warnings : tuple of str
@@ -120,6 +123,7 @@ class ResonanceResult:
     cos_phi: float | None = None
     fit_ratio: float | None = None
     uncertainty: Interval | None = None
+    mirror_uncertainty: Interval | None = None
     estimate: Estimate | None = None
     warnings: tuple[str, ...] = ()
 
@@ -135,6 +139,9 @@ class ResonanceResult:
         }
         if self.uncertainty is not None:
             d["uncertainty"] = self.uncertainty.to_dict()
+            if self.mirror_uncertainty is not None and self.mirror_angle is not None:
+                m = self.mirror_uncertainty
+                d["uncertainty"]["mirror_angle"] = list(m.angle) if m.angle else None
         return d
 
 
@@ -308,7 +315,7 @@ def parallelogram(A1: float, A2: float, A3: float, trial_mass: float, trial_radi
         cos_out = cos_phi
         phi = math.degrees(math.acos(min(1.0, max(-1.0, cos_phi))))   # eq. 3.31, [0, 180]
         angle, mirror = deg360(180.0 + phi), deg360(180.0 - phi)      # fig. 3.15
-    unc = None
+    unc = mirror_unc = None
     if dA is not None:
         d = check_number(dA, f"{where}: dA", nonnegative=True)
 
@@ -318,11 +325,12 @@ def parallelogram(A1: float, A2: float, A3: float, trial_mass: float, trial_radi
             # a corner where no parallelogram closes has no solution: never clipped
             mass = np.where((pts[:, 0] > 0.0) & (np.abs(cb) > 1.0 + COS_TOLERANCE), np.nan, mass)
             with np.errstate(invalid="ignore"):
-                ang = np.where(pts[:, 0] > 0.0,
-                               180.0 + np.degrees(np.arccos(np.clip(cb, -1.0, 1.0))), np.nan)
-            return mass[:, None], ang[:, None]
+                phi_b = np.degrees(np.arccos(np.clip(cb, -1.0, 1.0)))
+                ang = np.where(pts[:, 0] > 0.0, 180.0 + phi_b, np.nan)
+                mir = np.where(pts[:, 0] > 0.0, 180.0 - phi_b, np.nan)
+            return np.column_stack([mass, mass]), np.column_stack([ang, mir])
 
-        unc = propagate(batch, np.array([a1, a2, a3]), d, "amplitudes A1, A2, A3")[0]
+        unc, mirror_unc = propagate(batch, np.array([a1, a2, a3]), d, "amplitudes A1, A2, A3")
     marks = np.array([0.0, 180.0])
     est = None if model is None else estimate(a1, marks, np.array([a2, a3]), m * r, rc,
                                               *model, symmetric=True)
@@ -332,6 +340,7 @@ def parallelogram(A1: float, A2: float, A3: float, trial_mass: float, trial_radi
         angle=angle, mirror_angle=mirror, method="three-run", A1=a1,
         marks=marks, amplitudes=np.array([a2, a3]), trial_mass=m,
         trial_radius=r, correction_radius=rc, cos_phi=cos_out, uncertainty=unc,
+        mirror_uncertainty=mirror_unc,
         estimate=est, warnings=notes)
 
 

@@ -274,6 +274,10 @@ def test_uncertainty_bounds_contain_sampled_perturbations() -> None:
     assert (ahi - alo) / 2 == pytest.approx(u.angle_linear, rel=0.05)
     assert "uncertainty" in r.to_dict() and "uncertainty" not in parallelogram(
         A1, A2, A3, M_TRIAL, R_TRIAL, R_CORR).to_dict()
+    # the mirror candidate is bracketed too: its bounds mirror the angle's about the mark
+    mlo, mhi = r.to_dict()["uncertainty"]["mirror_angle"]
+    assert mlo == pytest.approx(360.0 - ahi, abs=1e-9) and mhi == pytest.approx(360.0 - alo,
+                                                                                abs=1e-9)
 
 
 def test_uncertainty_zero_width_and_runs() -> None:
