@@ -141,6 +141,30 @@ def test_switch_ramp_falls_from_the_boost_to_the_count():
     assert switch_ramp(960) == [960] * (SWITCH_BOOST + 1)    # never below the count
 
 
+def test_lag_rule_picks_the_count_between(monkeypatch):
+    """Errors a + b / iterations through the two runs; the count put at LAG_TARGET."""
+    from types import SimpleNamespace as NS
+
+    from kinetostatics.simulation import runner
+    low, high = NS(max_error=1.07e-4, settings={"iterations": 120}), \
+        NS(max_error=5.4e-5, settings={"iterations": 240})     # the shaper, measured
+    calls = []
+
+    def fake(sc, p, n, error_bias, fast, err=7.1e-5):
+        calls.append(n)
+        return NS(max_error=err, settings={"iterations": n})
+
+    monkeypatch.setattr(runner, "_crosscheck", fake)
+    tried, blown = [120, 240], []
+    mid = runner._lag_bounded(None, None, low, high, 5.3e-5, tried, blown, 0.0, None)
+    assert calls == [180] and mid.settings["iterations"] == 180 and tried[-1] == 180
+    monkeypatch.setattr(runner, "_crosscheck",
+                        lambda *a: fake(*a, err=1.5 * runner.ACCEPTABLE_ERROR))
+    assert runner._lag_bounded(None, None, low, high, 5.3e-5, [], [], 0.0, None) is high
+    small = NS(max_error=3.3e-5, settings={"iterations": 120})    # the shaper at half speed
+    assert runner._lag_bounded(None, None, small, high, 2e-5, [], [], 0.0, None) is small
+
+
 def test_every_count_diverged_is_refused(monkeypatch):
     from kinetostatics.simulation import runner
     monkeypatch.setattr(runner, "AUTO_ITERATIONS", (10, 20))
