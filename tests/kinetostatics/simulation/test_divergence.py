@@ -161,8 +161,13 @@ def test_lag_rule_picks_the_count_between(monkeypatch):
     monkeypatch.setattr(runner, "_crosscheck",
                         lambda *a: fake(*a, err=1.5 * runner.ACCEPTABLE_ERROR))
     assert runner._lag_bounded(None, None, low, high, 5.3e-5, [], [], 0.0, None) is high
-    small = NS(max_error=3.3e-5, settings={"iterations": 120})    # the shaper at half speed
-    assert runner._lag_bounded(None, None, small, high, 2e-5, [], [], 0.0, None) is small
+    # the shaper at half speed: 3.3e-5 and 1.6e-5; the count put at the target lies
+    # below 120, so the doubled count is kept (no run)
+    small, half = NS(max_error=3.3e-5, settings={"iterations": 120}), \
+        NS(max_error=1.6e-5, settings={"iterations": 240})
+    calls.clear()
+    assert runner._lag_bounded(None, None, small, half, 2e-5, [], [], 0.0, None) is half
+    assert calls == []
 
 
 def test_every_count_diverged_is_refused(monkeypatch):
