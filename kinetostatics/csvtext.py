@@ -249,7 +249,9 @@ def rows_text(fields: list[tuple[np.ndarray, np.ndarray]]) -> bytes:
         w = int(length.max()) if length.size else 0
         mats.append(chars[:, :w])
         keeps.append(_COLUMNS[None, :w] < length[:, None])
-    return np.concatenate(mats, axis=1)[np.concatenate(keeps, axis=1)].tobytes()
+    # np.compress lets other threads run while it works (boolean indexing does not)
+    return np.compress(np.concatenate(keeps, axis=1).ravel(),
+                       np.concatenate(mats, axis=1).ravel()).tobytes()
 
 
 def header_text(names: list[str]) -> bytes:
