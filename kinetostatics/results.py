@@ -61,8 +61,9 @@ class Solution:
     undefined_load : ndarray of bool
         Rows where a ``resist`` point stands still.
     self_locking : ndarray of bool or None
-        With joint friction: rows where the friction passes did not settle (the
-        mechanism locks there); None without friction.
+        With joint friction: rows where no finite driving effort moves the mechanism
+        (friction locks it; Me/Fe and the reactions are NaN there and stay out of the
+        summary); None without friction.
     """
 
     scene: Scene
@@ -210,20 +211,28 @@ class Solution:
     # -- project tables ---------------------------------------------------------
     @cached_property
     def dyads(self) -> pd.DataFrame:
-        """``position, dyad, kind, bodies, transmission_angle`` (deg, in [0, 180]),
-        ``sin_tau`` and ``singular`` per dyad (seed 002 eqs 2.60-2.61: the angle between
-        the force a dyad's link transmits and the velocity of the point it drives)."""
+        """``position, dyad, kind, bodies, transmission_angle, tau, sin_tau, singular`` per
+        dyad.
+
+        ``transmission_angle`` is the workbench's one definition, in [0, 90] deg:
+        min(tau, 180 - tau), where tau in [0, 180] is the angle between the force a dyad's
+        link transmits and the velocity of the point it drives (seed 002 eqs 2.60-2.61);
+        tau and 180 - tau transmit alike, 90 deg is best, 0 is a dead centre. The summary's
+        ``transmission_angle_min``, the pictures and the exercises use it. ``tau`` keeps the
+        oriented angle; ``singular`` is the dyad's own flag (|sin tau| or its pivot
+        distance over the mechanism's size at most 1e-3)."""
         parts = []
         for dm in self.kin.dyads:
             tau = np.rad2deg(np.arctan2(np.abs(dm.sin_tau), dm.cos_tau))
             parts.append(pd.DataFrame({
                 "position": self.positions, "dyad": dm.dyad.index + 1, "kind": dm.dyad.kind,
                 "bodies": f"{dm.dyad.bodies[0]}-{dm.dyad.bodies[1]}",
-                "transmission_angle": tau, "sin_tau": np.abs(dm.sin_tau),
-                "singular": np.abs(dm.sin_tau) <= 1e-3}))
+                "transmission_angle": dm.transmission_angle, "tau": tau,
+                "sin_tau": np.abs(dm.sin_tau),
+                "singular": np.broadcast_to(dm.singular, self.positions.shape)}))
         if not parts:
             return pd.DataFrame(columns=["position", "dyad", "kind", "bodies",
-                                         "transmission_angle", "sin_tau", "singular"])
+                                         "transmission_angle", "tau", "sin_tau", "singular"])
         return pd.concat(parts, ignore_index=True)
 
     @cached_property
@@ -295,10 +304,10 @@ class Solution:
 
     def low_transmission(self, admissible: float = 40.0) -> pd.DataFrame:
         """Rows of the ``dyads`` table where the transmission angle leaves the admissible
-        band: min(tau, 180 - tau) < ``admissible`` (deg; seed 002 s. 2.3.4)."""
+        band: ``transmission_angle`` = min(tau, 180 - tau) < ``admissible`` (deg; seed 002
+        s. 2.3.4)."""
         t = self.dyads
-        worst = np.minimum(t.transmission_angle, 180.0 - t.transmission_angle)
-        return t[worst < admissible].reset_index(drop=True)
+        return t[t.transmission_angle < admissible].reset_index(drop=True)
 
     @cached_property
     def reaction_split(self) -> pd.DataFrame:
@@ -340,10 +349,12 @@ class Solution:
     @cached_property
     def reduced(self) -> pd.DataFrame:
         """Reduced moment (force) of the loads and reduced moment of inertia (mass) to the
-        driver (seed 002 eqs 2.72, 2.75): ``M_red`` = sum of the power of the applied
-        loads and gravity / driver speed, ``M_red_friction`` and ``M_red_inertia`` the same
-        for friction and inertia forces (the three add up to -Me, eq. 2.73),
-        ``I_red`` = sum (m v_G^2 + I_G omega^2) / driver speed^2."""
+        driver (seed 002 eqs 2.72, 2.75), for the scene as given (any speed and
+        acceleration, zero included): the velocity ratios come from the same mechanism at
+        unit driver speed. ``M_red`` = the virtual power of the applied loads and gravity
+        per unit driver speed, ``M_red_friction`` the same for friction, ``M_red_inertia``
+        = -(I_red eps + 1/2 dI_red/dphi omega^2) (eq. 2.73; the three add up to -Me),
+        ``I_red`` = sum (m v_G^2 + I_G omega^2) at unit driver speed."""
         from .solver.reduction import reduced_table
         return reduced_table(self)
 
@@ -377,8 +388,7 @@ class Solution:
         if self.kin.dyads:
             best = None
             for dm in self.kin.dyads:
-                tau = np.rad2deg(np.arctan2(np.abs(dm.sin_tau), dm.cos_tau))
-                t = np.broadcast_to(np.minimum(tau, 180.0 - tau), self.positions.shape)[keep]
+                t = np.broadcast_to(dm.transmission_angle, self.positions.shape)[keep]
                 i = int(np.argmin(t))
                 if best is None or t[i] < best[0]:
                     best = (float(t[i]), float(pos[i]), dm.dyad.index + 1)
@@ -388,6 +398,11 @@ class Solution:
         else:
             out["transmission_angle_min"] = None
         out["singular_rows"] = int(np.count_nonzero(self.singular))
+        # a dead point between two rows (a change point passed, a lever through its
+        # pivot): the pairs of positions around it, both rows flagged singular
+        pos_all = self.positions.astype(float)
+        out["dead_points_between_rows"] = [[float(pos_all[i]), float(pos_all[i + 1])]
+                                           for i in self.kin.between]
         out["undefined_load_rows"] = int(np.count_nonzero(self.undefined_load))
         if locked is not None:
             out["self_locking_rows"] = int(np.count_nonzero(locked))
