@@ -252,7 +252,7 @@ class Solution:
                 self.scene.bodies[j.slider].local(j.points[1])
             lx, ly = g.point(gl) if j.guide != GROUND else gl
             sx, sy = s.point(sl) if j.slider != GROUND else sl
-            beta = np.deg2rad(j.line_angle)
+            beta = j.beta
             ux, uy = g.rotate(np.cos(beta), np.sin(beta))
             vsx, vsy = s.vel_at(sx, sy)
             vgx, vgy = g.vel_at(sx, sy)
@@ -293,7 +293,7 @@ class Solution:
             mz -= self.Me
         else:
             j = self.scene.joints[self.scene.driver.joint]
-            beta = np.deg2rad(j.line_angle) if j.guide == GROUND else 0.0
+            beta = j.beta if j.guide == GROUND else 0.0
             ux, uy = np.cos(beta), np.sin(beta)
             r = self.joint_reactions[j.name]
             fx -= self.Me * ux

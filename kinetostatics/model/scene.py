@@ -113,6 +113,12 @@ class Joint:
     def slider(self) -> str:
         return self.bodies[1]
 
+    @property
+    def beta(self) -> float:
+        """The line angle in radians: the model works in radians, the scene file and the
+        tables in degrees; this is where a joint's angle is converted."""
+        return math.radians(self.line_angle)
+
     def other(self, body: str) -> str:
         """The body at the other side of the joint."""
         return self.bodies[1] if self.bodies[0] == body else self.bodies[0]
@@ -147,6 +153,12 @@ class Driver:
     speed: float
     acceleration: float
     positions: np.ndarray
+
+    @property
+    def angles(self) -> np.ndarray:
+        """A crank's positions in radians (the file and the tables give degrees; this is
+        where they are converted)."""
+        return np.deg2rad(self.positions)
 
 
 @dataclass(frozen=True)

@@ -94,7 +94,7 @@ def free_body_forces(sol: Solution, dyad, position: float | None = None, *,
             out.append({"label": "Me", "body": bodies[0], "kind": "applied", "x": x, "y": y,
                         "fx": 0.0, "fy": 0.0, "m": me})
         else:       # Fe along the driving guide, at the slider point (as in the polygon)
-            beta = np.deg2rad(dj.line_angle) if dj.guide == GROUND else 0.0
+            beta = dj.beta if dj.guide == GROUND else 0.0
             r = sol.joint_reactions[dj.name]
             out.append({"label": "Fe", "body": bodies[0], "kind": "applied",
                         "x": at_row(r.x, i, n), "y": at_row(r.y, i, n),

@@ -30,7 +30,7 @@ __all__ = ["animate", "draw_body", "draw_mechanism"]
 
 
 def _guide_angle(sol: Solution, j, i: int) -> float:
-    th = np.deg2rad(j.line_angle)
+    th = j.beta
     if j.guide != GROUND:
         th += at_row(sol.kin.bodies[j.guide].theta, i, sol.positions.size)
     return float(th)

@@ -133,7 +133,7 @@ def polygon_forces(sol: Solution, dyad: Dyad | None, i: int, components: bool):
             if b in j.bodies and j is not dj:
                 reaction(j, b, None, "darkred")
         if sol.drive.kind == "T":
-            beta = np.deg2rad(dj.line_angle)
+            beta = dj.beta
             u = np.array([np.cos(beta), np.sin(beta)])
             if dj.guide != GROUND:
                 u = np.array([1.0, 0.0])

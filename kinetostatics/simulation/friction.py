@@ -61,7 +61,7 @@ def relative_velocity(scene, kin, name: str) -> np.ndarray:
         sx, sy = np.full(n, sp[0]), np.full(n, sp[1])
     else:
         sx, sy = (np.broadcast_to(v, (n,)) for v in kin.bodies[s].point(sp))
-    beta = math.radians(j.line_angle)
+    beta = j.beta
     if g == GROUND:
         ux, uy = np.full(n, math.cos(beta)), np.full(n, math.sin(beta))
     else:
@@ -101,7 +101,7 @@ def prepare_friction(model: SimModel, sweep) -> None:
         else:
             g, s = j.guide, j.slider
             sp = sc.ground[j.points[1]] if s == GROUND else sc.bodies[s].local(j.points[1])
-            beta = math.radians(j.line_angle)
+            beta = j.beta
             out.append(("T", name, info.constraint, g, s, j.friction.mu, top, f0,
                         (sp, (math.cos(beta), math.sin(beta)))))
     model._friction = out

@@ -25,7 +25,7 @@ def _line(scene: Scene, joint: str, body: str) -> tuple[np.ndarray, np.ndarray]:
     a point on it and its unit direction."""
     j = scene.joints[joint]
     if body == j.guide:
-        beta = math.radians(j.line_angle)
+        beta = j.beta
         return np.array(_local(scene, body, j.points[0])), np.array([math.cos(beta),
                                                                       math.sin(beta)])
     # the slider's local x axis lies along the line, through the slider point

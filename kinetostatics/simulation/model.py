@@ -408,7 +408,7 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
             raise SimulationError("a sliding driver whose guide is not the ground is not "
                                   "supported by the simulation")
         lp = sc.ground[j.points[0]]
-        beta = math.radians(j.line_angle)
+        beta = j.beta
         ux, uy = math.cos(beta), math.sin(beta)
         sp = sc.bodies[d.body].local(j.points[1])
         model._slider_local = sp

@@ -73,7 +73,7 @@ def dyad_param(scene: Scene, dyad: Dyad, i: int, motions: dict[str, BodyMotion])
     if joint.kind == "R":
         px, py, vx, vy, ax, ay = known_point(scene, kname, kb, joint.point_on(kname))
         return Param("rot", kb, body.local(joint.point_on(name)), px, py, vx, vy, ax, ay)
-    beta = np.deg2rad(joint.line_angle)
+    beta = joint.beta
     cb, sb = float(np.cos(beta)), float(np.sin(beta))
     if joint.guide == kname:                         # known body carries the guide
         c, s = A.rotate(kb.cos, kb.sin, cb, sb)      # theta_i = theta_K + beta
@@ -123,7 +123,7 @@ class DyadSolver:
                         f"{inner.name!r} coincide; a dyad link needs a length")
         else:
             self.slider_first = inner.slider == dyad.bodies[0]
-            self.beta = float(np.deg2rad(inner.line_angle))
+            self.beta = inner.beta
 
     @property
     def branches(self) -> int:

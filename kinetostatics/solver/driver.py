@@ -84,7 +84,7 @@ def driver_motion(scene: Scene) -> BodyMotion:
     body = scene.bodies[drv.body]
     w, eps = float(drv.speed), float(drv.acceleration)
     if drv.kind == "R":
-        th = np.deg2rad(drv.positions)
+        th = drv.angles
         c, s = np.cos(th), np.sin(th)
         px, py = scene.ground[joint.point_on(GROUND)]
         rax, ray = A.rotate(c, s, *body.local(joint.point_on(drv.body)))   # o = P - R a
@@ -93,7 +93,7 @@ def driver_motion(scene: Scene) -> BodyMotion:
                           A.mul(w, ray), A.mul(-w, rax),
                           A.add(A.mul(eps, ray), A.mul(w2, rax)),
                           A.add(A.mul(-eps, rax), A.mul(w2, ray)))
-    beta = np.deg2rad(joint.line_angle)
+    beta = joint.beta
     pos = drv.positions
     if joint.guide == GROUND:
         th = float(beta)

@@ -65,7 +65,7 @@ def _unit_loads(scene: Scene, kin: Kinematics, j: Joint) -> list[PointLoad]:
         sx, sy = scene.ground[j.points[1]]
     else:
         sx, sy = s.point(scene.bodies[j.slider].local(j.points[1]))
-    ux, uy = g.rotate(np.cos(np.deg2rad(j.line_angle)), np.sin(np.deg2rad(j.line_angle)))
+    ux, uy = g.rotate(np.cos(j.beta), np.sin(j.beta))
     vsx, vsy = s.vel_at(sx, sy)
     vgx, vgy = g.vel_at(sx, sy)
     vrel = np.broadcast_to(A.add(A.mul(ux, A.sub(vsx, vgx)), A.mul(uy, A.sub(vsy, vgy))),

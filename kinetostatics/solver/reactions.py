@@ -223,7 +223,7 @@ def _solve_driver(scene: Scene, kin: Kinematics, store: _Store, out: dict) -> Dr
         return DriverReaction("R", A.full(me, kin.n))
     # sliding driver (eqs 2.49-2.51): Fe along the line through the slider point
     if joint.guide == GROUND:
-        beta = np.deg2rad(joint.line_angle)
+        beta = joint.beta
         ux, uy = float(np.cos(beta)), float(np.sin(beta))
         ax, ay = store.arm(scene, drv.body, joint.points[1])
         m = kin.bodies[drv.body]
