@@ -273,8 +273,10 @@ def candidate_marks(result: ResonanceResult, selected: float | None = None
     if result.mirror_angle is None:
         return [(result.angle, f"correction {result.angle:.1f} deg", True)]
     both = [result.angle, result.mirror_angle]
+    names = ("angle", "mirror_angle")      # the result's own keys
     if selected is None:
-        return [(a, f"candidate {a:.1f} deg", False) for a in both]
+        return [(a, f"candidate {n} {a:.1f} deg", False) for a, n in zip(both, names,
+                                                                          strict=True)]
 
     def gap(a):
         return abs((a - selected + 180.0) % 360.0 - 180.0)
@@ -282,8 +284,9 @@ def candidate_marks(result: ResonanceResult, selected: float | None = None
     if min(gap(a) for a in both) > 1e-6:
         raise BalanceError(f"plot_parallelogram: selected = {selected:g} deg is neither "
                            f"candidate ({both[0]:.6g} or {both[1]:.6g} deg)")
-    return [(a, f"correction {a:.1f} deg (selected)" if gap(a) <= 1e-6 else
-             f"mirror {a:.1f} deg (rejected)", gap(a) <= 1e-6) for a in both]
+    return [(a, f"correction = {n} {a:.1f} deg (selected)" if gap(a) <= 1e-6 else
+             f"{n} {a:.1f} deg (rejected)", gap(a) <= 1e-6)
+            for a, n in zip(both, names, strict=True)]
 
 
 def plot_amplitude_circles(result: ResonanceResult, ax: Axes | None = None, *,
