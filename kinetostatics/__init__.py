@@ -10,15 +10,16 @@ The public API::
 Bundled examples: ``ks.example("four_bar")`` (also ``slider_crank``, ``slotted_lever``,
 ``scotch_yoke``, ``sliding_driver``, ``shaper``).
 
-More of the course, one module per topic: :mod:`~kinetostatics.concentration` (mass
-concentration, s. 2.2), :mod:`~kinetostatics.gears` (s. 2.3.3),
-:mod:`~kinetostatics.friction` (s. 2.4), :mod:`~kinetostatics.reduction` (s. 2.5),
+More of the course, one subpackage per topic: :mod:`~kinetostatics.topics` (mass
+concentration s. 2.2, gears s. 2.3.3, efficiency s. 4.3), :mod:`~kinetostatics.solver`
+(structure, kinematics, loads, friction s. 2.4, reactions, reduction s. 2.5, dead points),
 :mod:`~kinetostatics.motion` and :func:`simulate_motion` (motion under forces, ch. 4),
-:mod:`~kinetostatics.efficiency` (s. 4.3), :mod:`~kinetostatics.cams` (ch. 1),
-:mod:`~kinetostatics.exercises` (exercise variants and grading),
-:mod:`~kinetostatics.plot` (pictures). The pymunk cross-check is
-:mod:`kinetostatics.crosscheck` (``crosscheck``, ``study``; it imports pymunk, so
-``import kinetostatics`` does not load it).
+:mod:`~kinetostatics.cams` (ch. 1), :mod:`~kinetostatics.teaching` (exercises for a class
+and grading), :mod:`~kinetostatics.plot` (pictures), :mod:`~kinetostatics.notebook` (the
+sheets' interactive cells). The pymunk cross-check is :mod:`kinetostatics.simulation`
+(``crosscheck``, ``study``; its names load pymunk lazily, so ``import kinetostatics`` does
+not). The scene model (reading, checking, exceptions, bundled scenes) is
+:mod:`~kinetostatics.model`.
 """
 
 from __future__ import annotations
