@@ -112,13 +112,10 @@ def _loads(t: Tables):
     return out
 
 
-def virtual_power(sol) -> float:
-    """max |Me w1 + sum of powers| / scale, the scale being the largest term."""
-    t = Tables(sol)
+def _driver_power(sol, t) -> np.ndarray:
+    """The power of Me (or Fe along the line, at the slider point) on the driver."""
     sc = t.scene
     drv = sc.driver
-    total = np.zeros(t.n)
-    scale = np.zeros(t.n)
     if drv.kind == "R":
         p = sol.Me * drv.speed
     else:
@@ -127,6 +124,15 @@ def virtual_power(sol) -> float:
                      j.points[1] if j.slider != GROUND else j.points[0])
         beta = np.deg2rad(j.line_angle) if j.guide == GROUND else 0.0
         p = sol.Me * (np.cos(beta) * sp["vx"] + np.sin(beta) * sp["vy"])
+    return p
+
+
+def virtual_power(sol) -> float:
+    """max |Me w1 + sum of powers| / scale, the scale being the largest term."""
+    t = Tables(sol)
+    total = np.zeros(t.n)
+    scale = np.zeros(t.n)
+    p = _driver_power(sol, t)
     total += p
     scale = np.maximum(scale, np.abs(p))
     for body, _x, _y, vx, vy, fx, fy, m in _loads(t):
@@ -372,16 +378,7 @@ def virtual_power_with_friction(sol) -> float:
     """max |Me w1 + power of loads and inertia + friction power| / scale over the rows
     that are not ``self_locking`` (the scale: the largest term of those rows)."""
     t = Tables(sol)
-    sc = t.scene
-    drv = sc.driver
-    if drv.kind == "R":
-        p = sol.Me * drv.speed
-    else:
-        j = sc.joints[drv.joint]
-        sp = t.point(j.slider if j.slider != GROUND else j.guide,
-                     j.points[1] if j.slider != GROUND else j.points[0])
-        beta = np.deg2rad(j.line_angle) if j.guide == GROUND else 0.0
-        p = sol.Me * (np.cos(beta) * sp["vx"] + np.sin(beta) * sp["vy"])
+    p = _driver_power(sol, t)
     terms = [np.asarray(p, dtype=float), friction_power(sol)]
     for body, _x, _y, vx, vy, fx, fy, m in _loads(t):
         terms.append(fx * vx + fy * vy + m * t.omega(body))
