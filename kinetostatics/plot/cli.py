@@ -126,7 +126,11 @@ def run_demo(args) -> int:
     print(f"{s['title']}: {s['positions']} positions")
     for line in s["structure"]:
         print("  " + line)
-    print(f"  {q} mean {s[q + '_mean']:.4g} {unit}, min {s[q + '_min']:.4g} {unit}, "
+    mean, peak = s[q + "_mean"], max(abs(s[q + "_min"]), abs(s[q + "_max"]))
+    # a cycle mean at rounding level (no net work: no loads doing work over a turn)
+    mean_text = ("0 (to rounding)" if abs(mean) <= 1e-12 * peak
+                 else f"{mean:.4g} {unit}")
+    print(f"  {q} mean {mean_text}, min {s[q + '_min']:.4g} {unit}, "
           f"max {s[q + '_max']:.4g} {unit}")
     for j, r in s["reaction_max"].items():
         print(f"  joint {j}: max |F| = {r['F']:.4g} N at {r['position']:g} {pu}")
