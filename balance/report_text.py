@@ -144,6 +144,8 @@ def summary_text(out: dict[str, Any], speed: bool) -> str:
             lines.append(f"  with +-{u['dA']:g} on each amplitude: mass {_fmt6(u['magnitude'][0])}"
                          f" .. {_fmt6(u['magnitude'][1], 'kg')}"
                          + (f", angle {_fmt6(ang[0])} .. {_fmt6(ang[1], 'deg')}" if ang else ""))
+        if t.get("estimate"):
+            lines.extend(_estimate_lines(t["estimate"]))
     lines.extend(field_text(out))
     if "balancing" in out:
         b = out["balancing"]
@@ -164,3 +166,24 @@ def summary_text(out: dict[str, Any], speed: bool) -> str:
                          f"{_fmt6(b['shaking_moment_before'], 'N m')}, after "
                          f"{_fmt6(b['shaking_moment_after'], 'N m')}")
     return "\n".join(lines)
+
+
+def _estimate_lines(est: dict[str, Any]) -> list[str]:
+    """The maximum-likelihood estimate of a resonance test, with its intervals."""
+    def arc(iv: dict[str, Any] | None) -> str:
+        if not iv:
+            return ""
+        u, a = iv["unbalance"], iv["angle"]
+        hi = "unbounded" if u[1] is None else fmt(u[1], "kg m")
+        text = f"; unbalance {fmt(u[0])} .. {hi}"
+        return text + (f", angle {fmt(a[0])} .. {fmt(a[1], 'deg')} (counterclockwise)"
+                       if a else "")
+    conf = est.get("confidence")
+    head = f"  estimate (maximum likelihood{f', {100 * conf:g} %' if conf else ''}): "
+    out = [head + f"unbalance {fmt(est['unbalance'], 'kg m')}, mass "
+           f"{fmt(est['correction_mass'], 'kg')} at {fmt(est['angle'], 'deg')}"
+           + arc(est.get("interval"))]
+    if est.get("mirror_angle") is not None:
+        out.append(f"    or at {fmt(est['mirror_angle'], 'deg')} (the readings cannot tell)"
+                   + arc(est.get("mirror_interval")))
+    return out
