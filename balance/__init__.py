@@ -33,8 +33,7 @@ from __future__ import annotations
 
 from .api import example_path, examples, solve, solve_results
 from .errors import BalanceError, BalanceWarning
-from .field import Combined, Split, combine_weights, split_correction
-from .influence import (
+from .field.influence import (
     InfluenceResult,
     influence_balance,
     influence_coefficients,
@@ -42,8 +41,8 @@ from .influence import (
     influence_two_plane,
     trim_balance,
 )
-from .influence_stats import NoiseModel
-from .iso import (
+from .field.influence_stats import NoiseModel
+from .field.iso import (
     GRADES,
     IsoAllocation,
     IsoCheck,
@@ -55,6 +54,7 @@ from .iso import (
     kgm_to_gmm,
     to_bearing_planes,
 )
+from .field.weights import Combined, Split, combine_weights, split_correction
 from .mechanism import (
     CounterRotatingPair,
     Counterweight,
@@ -66,10 +66,10 @@ from .mechanism import (
     shaking_force,
     solve_mechanism_balancing,
 )
-from .resonance import ResonanceResult, four_run, parallelogram, trial_runs
-from .rotor import Correction, CorrectionPlane, RotorResult, Unbalance, balance_rotor
+from .resonance.methods import ResonanceResult, four_run, parallelogram, trial_runs
+from .rotor.design import Correction, CorrectionPlane, RotorResult, Unbalance, balance_rotor
+from .rotor.static_device import StaticDeviceResult, static_device
 from .scene import BalanceScene, load_scene
-from .static_device import StaticDeviceResult, static_device
 from .uncertainty import Interval
 from .units import Units
 

@@ -16,7 +16,7 @@ from typing import Any, NoReturn
 
 from .api import example_path, examples, results_to_dict, solve_results
 from .errors import WorkbenchError
-from .report_text import result_warnings, summary_text
+from .report.text import result_warnings, summary_text
 from .scene import SCENES
 
 
@@ -57,7 +57,7 @@ def main(argv: list[str] | None = None) -> int:
             speed = "rotor" in results and results["rotor"].speed_rpm is not None
             text = summary_text(out, speed)
         if args.report:
-            from .report import write_report
+            from .report.document import write_report
 
             write_report(args.report, results, out, SCENES.resolve(args.scene))
     except WorkbenchError as exc:

@@ -7,11 +7,11 @@ from pathlib import Path
 from typing import Any
 
 from .errors import BalanceError
-from .field_scene import solve_field
-from .resonance import ResonanceResult, parallelogram, trial_runs
-from .rotor import balance_rotor
+from .field.scene import solve_field
+from .resonance.methods import ResonanceResult, parallelogram, trial_runs
+from .rotor.design import balance_rotor
+from .rotor.static_device import static_device
 from .scene import SCENES, BalanceScene, ResonanceSpec, load_scene
-from .static_device import static_device
 
 __all__ = ["example_path", "examples", "results_to_dict", "solve", "solve_results"]
 

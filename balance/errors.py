@@ -1,9 +1,9 @@
 """Errors and warnings of the balancing package.
 
 Every mistake in the input raises :class:`BalanceError` (a
-:class:`~kinetostatics.errors.WorkbenchError`, hence a ``ValueError``) with one line
+:class:`~kinetostatics.model.errors.WorkbenchError`, hence a ``ValueError``) with one line
 saying what is wrong, where, and how to mend it; scene-format mistakes raise
-:class:`~kinetostatics.errors.SceneError` from the shared TOML helpers. Results that
+:class:`~kinetostatics.model.errors.SceneError` from the shared TOML helpers. Results that
 are computed but deserve caution (a clipped arccos argument, a trial mass much
 smaller than the unbalance) emit a :class:`BalanceWarning`.
 """

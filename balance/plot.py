@@ -23,10 +23,10 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from ._util import polar
+from .common import polar
 from .errors import BalanceError
-from .resonance import ResonanceResult
-from .rotor import RotorResult
+from .resonance.methods import ResonanceResult
+from .rotor.design import RotorResult
 
 __all__ = [
     "candidate_marks",

@@ -28,8 +28,8 @@ from kinetostatics.model.errors import SceneError
 from kinetostatics.model.examples import BundledScenes
 from kinetostatics.model.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source
 
-from .field_scene import FIELD_SECTIONS, FieldScene, parse_field
-from .rotor import CorrectionPlane, Unbalance
+from .field.scene import FIELD_SECTIONS, FieldScene, parse_field
+from .rotor.design import CorrectionPlane, Unbalance
 
 # the example scenes bundled with the package (balance/scenes): a bare name is one of them
 SCENES = BundledScenes("balance", ("scenes",))
@@ -132,7 +132,7 @@ def load_scene(source: Any) -> BalanceScene:
 
     Raises
     ------
-    kinetostatics.errors.SceneError
+    kinetostatics.model.errors.SceneError
         One line naming the broken rule, the field and the fix: an unknown key (with
         the nearest known key), a missing field, a number out of range.
     """

@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from ._util import deg360
+from .common import deg360
 from .errors import BalanceError
 
 __all__ = ["Interval", "MAX_CORNER_DIMS", "propagate"]

@@ -24,7 +24,6 @@ not). The scene model (reading, checking, exceptions, bundled scenes) is
 
 from __future__ import annotations
 
-from . import _moved
 from .model.errors import (
     AssemblyError,
     SceneError,
@@ -48,4 +47,3 @@ __all__ = [
     "solve", "solve_kinematics",
 ]
 
-_moved.install()

@@ -55,7 +55,7 @@ class Solution:
     loads : list of PointLoad
         Applied loads, gravity and inertia loads.
     joint_reactions : dict
-        Per joint, the reaction arrays (:class:`~kinetostatics.reactions.JointReaction`).
+        Per joint, the reaction arrays (:class:`~kinetostatics.solver.reactions.JointReaction`).
     drive : DriverReaction
         ``Me`` (N m) on a crank or ``Fe`` (N) on a sliding driver.
     undefined_load : ndarray of bool
@@ -342,7 +342,8 @@ class Solution:
     @cached_property
     def powers(self) -> pd.DataFrame:
         """The power balance per position: ``P_driver, P_applied, P_gravity, P_inertia,
-        P_friction`` (W), adding up to zero (see :func:`kinetostatics.reduction.power_table`)."""
+        P_friction`` (W), adding up to zero (see
+        :func:`kinetostatics.solver.reduction.power_table`)."""
         from .solver.reduction import power_table
         return power_table(self)
 

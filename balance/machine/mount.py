@@ -66,13 +66,13 @@ from typing import Any
 from kinetostatics.simulation import run_batch
 
 from ..errors import BalanceError
-from ..resonance import parallelogram, trial_runs
-from ..rotor import Unbalance
+from ..resonance.methods import parallelogram, trial_runs
+from ..rotor.design import Unbalance
 from .coastdown import CoastDown
 from .demodulation import ENVELOPE_PASSES
 from .records import MachineRecord, MachineResult, method_result
 from .runs import record_coast, record_steady
-from .unbalances import _unbalances, add_rigid, spinning_rotor
+from .unbalances import add_rigid, as_unbalances, spinning_rotor
 
 
 @dataclass(frozen=True)
@@ -222,7 +222,7 @@ class BalancingMachine:
         -------
         MachineRecord
         """
-        us = _unbalances(unbalances, "unbalances")
+        us = as_unbalances(unbalances, "unbalances")
         if self.coast_down is not None:
             return record_coast(self, us)
         return record_steady(self, us)
@@ -236,10 +236,10 @@ class BalancingMachine:
         (pymunk.Space, pymunk.Body, pymunk.Body)
             The space, the frame and the rotor (whose local origin is on the axis).
         """
-        us = _unbalances(unbalances, "unbalances")
-        return self._build(us, steady=self.coast_down is not None)[:3]
+        us = as_unbalances(unbalances, "unbalances")
+        return self.build_space(us, steady=self.coast_down is not None)[:3]
 
-    def _build(self, us: list[Unbalance], steady: bool = False):
+    def build_space(self, us: list[Unbalance], steady: bool = False):
         import pymunk
         w = self.omega
         space = pymunk.Space()
@@ -272,7 +272,7 @@ class BalancingMachine:
     def steady_amplitude(self, unbalances: Iterable[Any] = ()) -> float:
         """The exact steady amplitude of the model (m): |U| omega^2 / |k - (M + m) omega^2
         + i c omega|, U the resultant unbalance, m the rotor's whole mass."""
-        us = _unbalances(unbalances, "unbalances")
+        us = as_unbalances(unbalances, "unbalances")
         mass = self.frame_mass + self.rotor_mass + sum(u.mass for u in us)
         w = self.omega
         U = abs(sum((u.U for u in us), 0j))
@@ -306,9 +306,9 @@ class BalancingMachine:
         """
         settings = self.settings()
         items = [(settings, [(u.mass, u.radius, u.angle)
-                             for u in _unbalances(us, f"unbalance_sets[{i}]")])
+                             for u in as_unbalances(us, f"unbalance_sets[{i}]")])
                  for i, us in enumerate(unbalance_sets)]
-        return run_batch(_machine_record, items, executor=executor)
+        return run_batch(machine_record, items, executor=executor)
 
     # -- the methods -------------------------------------------------------------
     def mass_factor(self, reference_mass: float, added_mass: float) -> float:
@@ -370,7 +370,7 @@ class BalancingMachine:
             angle error of ``result.angle`` and that of ``result.mirror_angle`` (the
             method cannot tell which of the two is right).
         """
-        us = _unbalances(unbalances, "unbalances")
+        us = as_unbalances(unbalances, "unbalances")
         recs = self.runs([us, [*us, Unbalance(trial_mass, trial_radius, 0.0)],
                           [*us, Unbalance(trial_mass, trial_radius, 180.0)]],
                          executor=executor)
@@ -389,7 +389,7 @@ class BalancingMachine:
         """The four-run method on the machine: the rotor as it is and the trial mass at
         each of ``marks`` (default 0, 120, 240 deg); :func:`balance.trial_runs`.
         ``mass_correction`` and ``executor`` as in :meth:`three_run`."""
-        us = _unbalances(unbalances, "unbalances")
+        us = as_unbalances(unbalances, "unbalances")
         recs = self.runs([us] + [[*us, Unbalance(trial_mass, trial_radius, a)]
                                  for a in marks], executor=executor)
         names = tuple(f"{a:g}" for a in marks)
@@ -409,7 +409,7 @@ class BalancingMachine:
         return {"A1": 1.0, **{n: f for n in names}}
 
 
-def _machine_record(item: tuple) -> MachineRecord:
+def machine_record(item: tuple) -> MachineRecord:
     """One run of a batch: (machine settings, [(mass, radius, angle), ...]) -> record."""
     settings, us = item
     return BalancingMachine.from_settings(settings).record(us)

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import BalanceError
-from .unbalances import _unbalances, add_rigid, spinning_rotor
+from .unbalances import add_rigid, as_unbalances, spinning_rotor
 
 PIVOT_STEPS_PER_REVOLUTION = 8000
 """Default time step of :func:`pivot_reaction`: the error is about 0.42 (omega dt)^2,
@@ -123,7 +123,7 @@ def pivot_reaction(unbalances: Iterable[Any], speed: float, *, rotor_mass: float
     import pymunk
 
     from kinetostatics.simulation import make_stepper
-    us = _unbalances(unbalances, "unbalances")
+    us = as_unbalances(unbalances, "unbalances")
     for name, v in (("rotor_mass", rotor_mass), ("rotor_inertia", rotor_inertia)):
         if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
             raise BalanceError(f"pivot_reaction: {name} = {v!r}; give a positive number")

@@ -9,8 +9,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import BalanceError
-from ..resonance import ResonanceResult
-from ..rotor import Unbalance
+from ..resonance.methods import ResonanceResult
+from ..rotor.design import Unbalance
 
 
 @dataclass

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import BalanceError
-from ..rotor import Unbalance
+from ..rotor.design import Unbalance
 from .demodulation import envelope, peak
 from .records import MachineRecord
 
@@ -24,7 +24,7 @@ def record_steady(machine: BalancingMachine, us: list[Unbalance]) -> MachineReco
     x = a cos(omega t) + b sin(omega t) + x0 by least squares; the amplitude is hypot(a, b).
     """
     from kinetostatics.simulation import make_stepper
-    space, frame, _, _ = machine._build(us)
+    space, frame, _, _ = machine.build_space(us)
     w = machine.omega
     dt = float(machine.dt)
     step = make_stepper(space, machine.fast)
@@ -60,7 +60,7 @@ def record_coast(machine: BalancingMachine, us: list[Unbalance]) -> MachineRecor
     cd = machine.coast_down
     wn, dt = machine.omega_n, float(machine.dt)
     n = int(math.ceil(cd.duration / dt))
-    space, frame, rotor, motor = machine._build(us, steady=True)
+    space, frame, rotor, motor = machine.build_space(us, steady=True)
     fast = fast_path_available() if machine.fast is None else bool(machine.fast)
     step = make_stepper(space, fast)
     # the motor's rate before step k is the history's speed at the step's end

@@ -11,17 +11,17 @@ from dataclasses import replace
 import numpy as np
 
 from ..errors import BalanceError
-from ..resonance import parallelogram, trial_runs
+from ..resonance.methods import parallelogram, trial_runs
 from .coastdown import CoastDown
-from .mount import BalancingMachine, _machine_record
+from .mount import BalancingMachine, machine_record
 from .records import MachineRecord, method_result
 from .unbalances import random_unbalance
 
 
 def _study_record(item: tuple) -> MachineRecord | None:
-    """A study's run: as :func:`_machine_record`, None when the run gives no peak."""
+    """A study's run: as :func:`machine_record`, None when the run gives no peak."""
     try:
-        return _machine_record(item)
+        return machine_record(item)
     except BalanceError:
         return None
 

@@ -14,10 +14,10 @@ from typing import Any
 import numpy as np
 
 from ..errors import BalanceError
-from ..rotor import Unbalance
+from ..rotor.design import Unbalance
 
 
-def _unbalances(items: Iterable[Any], where: str) -> list[Unbalance]:
+def as_unbalances(items: Iterable[Any], where: str) -> list[Unbalance]:
     """Unbalance objects, dicts {mass, radius, angle} or (mass, radius, angle) tuples."""
     out = []
     for i, u in enumerate(items):
@@ -51,7 +51,7 @@ def _unbalances(items: Iterable[Any], where: str) -> list[Unbalance]:
 def unbalance_vector(unbalances: Iterable[Any]) -> complex:
     """The resultant unbalance sum m_i r_i (kg m) as a complex number (angle from the
     rotor's 0 deg mark, counter-clockwise), eq. 3.3."""
-    return sum((u.U for u in _unbalances(unbalances, "unbalances")), 0j)
+    return sum((u.U for u in as_unbalances(unbalances, "unbalances")), 0j)
 
 
 def random_unbalance(seed: int) -> list[Unbalance]:

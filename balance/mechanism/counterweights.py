@@ -12,7 +12,7 @@ import numpy as np
 
 from kinetostatics.model.scene import Scene
 
-from .._util import deg360
+from ..common import deg360
 from ..errors import BalanceError
 from .linkage import CounterweightSpec, vec
 

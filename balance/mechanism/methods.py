@@ -55,10 +55,10 @@ import numpy as np
 import kinetostatics as ks
 from kinetostatics.model.errors import AssemblyError
 from kinetostatics.model.scene import Body, Scene
-from kinetostatics.solver._arith import full
+from kinetostatics.solver.arith import full
 from kinetostatics.solver.kinematics import Kinematics
 
-from .._util import deg360
+from ..common import deg360
 from ..errors import BalanceError
 from .counterweights import CounterRotatingPair, place
 from .linkage import (

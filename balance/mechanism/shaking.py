@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 
 from kinetostatics.model.scene import GROUND, Scene
-from kinetostatics.solver._arith import full
+from kinetostatics.solver.arith import full
 from kinetostatics.solver.kinematics import BodyMotion, Kinematics
 
 from ..errors import BalanceError

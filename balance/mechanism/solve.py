@@ -21,7 +21,7 @@ from kinetostatics.model.scene import Scene
 from kinetostatics.model.tomlio import read_source
 from kinetostatics.solver.kinematics import Kinematics
 
-from .._util import deg360
+from ..common import deg360
 from ..errors import BalanceError, BalanceWarning
 from .counterweights import CounterRotatingPair, Counterweight
 from .linkage import assign_roles, read_spec, recognise, vec

@@ -108,7 +108,7 @@ def load_cam_scene(source: Any) -> CamScene:
     """Read and check a ``[cam]`` scene (a path, TOML text or a dict; ``docs/cam-scenes.md``).
 
     Unknown keys are refused with the nearest known key suggested; every error is one line
-    (:class:`~kinetostatics.errors.SceneError` for the file's form, :class:`CamError` for a
+    (:class:`~kinetostatics.model.errors.SceneError` for the file's form, :class:`CamError` for a
     cam that cannot be built).
     """
     raw = read_source(source, "cam scene")

@@ -2,7 +2,7 @@
 
 ``load_scene`` accepts a path, a string naming a ``.toml`` file, a string of TOML text
 or a dict, and returns a :class:`Scene`. Every rule of the contract is checked here;
-a broken rule raises :class:`~kinetostatics.errors.SceneError` with one line naming
+a broken rule raises :class:`~kinetostatics.model.errors.SceneError` with one line naming
 the field and the fix. Unknown keys are refused with the nearest known key suggested.
 """
 

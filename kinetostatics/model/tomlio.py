@@ -1,7 +1,7 @@
 """Reading and checking TOML tables: shared by the mechanism and balancing scenes.
 
 The helpers turn a loosely typed mapping (from ``tomllib`` or a user's dict) into
-checked Python values, raising :class:`~kinetostatics.errors.SceneError` with one
+checked Python values, raising :class:`~kinetostatics.model.errors.SceneError` with one
 line that names the field (``where``) and the fix.
 """
 
@@ -14,7 +14,9 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
-from .errors import SceneError
+import numpy as np
+
+from .errors import SceneError, WorkbenchError
 
 
 def read_source(source: Any, kind: str = "scene", bundled: Any = None) -> dict:
@@ -119,22 +121,25 @@ overflow in the formulas."""
 
 
 def as_float(value: Any, where: str, *, positive: bool = False, nonnegative: bool = False,
-             nonzero: bool = False, limit: float = MAX_MAGNITUDE) -> float:
+             nonzero: bool = False, limit: float = MAX_MAGNITUDE,
+             error: type[WorkbenchError] = SceneError) -> float:
     """A finite float of magnitude at most ``limit``, optionally positive / non-negative /
-    non-zero."""
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        raise SceneError(f"{where} must be a number, not {_typename(value)}")
+    non-zero; else ``error`` (a :class:`SceneError` unless told) naming ``where``. Python
+    and numpy numbers are accepted, booleans are not."""
+    if isinstance(value, bool | np.bool_) or not isinstance(
+            value, int | float | np.integer | np.floating):
+        raise error(f"{where} must be a number, not {_typename(value)}")
     x = float(value)
     if not math.isfinite(x):
-        raise SceneError(f"{where} must be a finite number, not {value!r}")
+        raise error(f"{where} must be a finite number, not {value!r}")
     if abs(x) > limit:
-        raise SceneError(f"{where} = {x:g} is out of range (at most {limit:g} in magnitude)")
+        raise error(f"{where} = {x:g} is out of range (at most {limit:g} in magnitude)")
     if positive and x <= 0.0:
-        raise SceneError(f"{where} must be positive, got {x:g}")
+        raise error(f"{where} must be positive, got {x:g}")
     if nonnegative and x < 0.0:
-        raise SceneError(f"{where} must not be negative, got {x:g}")
+        raise error(f"{where} must not be negative, got {x:g}")
     if nonzero and x == 0.0:
-        raise SceneError(f"{where} must not be zero")
+        raise error(f"{where} must not be zero")
     return x
 
 

@@ -25,7 +25,7 @@ import pandas as pd
 from ..model.errors import SceneError
 from ..model.scene import Scene, load_scene
 from ..model.tomlio import as_float, as_int, as_list, check_keys
-from ..solver import _arith as A
+from ..solver import arith as A
 from ..solver.kinematics import solve_kinematics
 from ..solver.loads import applied_loads
 from ..solver.structure import analyse

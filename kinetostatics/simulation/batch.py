@@ -22,8 +22,8 @@ def run_batch(fn: Callable[[Any], Any], items: Iterable[Any], *,
               executor: Executor | str | None = None) -> list[Any]:
     """``[fn(item) for item in items]``, in order, run through an executor.
 
-    The batches of the cross-check (:func:`kinetostatics.crosscheck.study`,
-    :func:`kinetostatics.crosscheck.crosscheck_many`) and of the balancing machine
+    The batches of the cross-check (:func:`kinetostatics.simulation.study`,
+    :func:`kinetostatics.simulation.crosscheck_many`) and of the balancing machine
     (:meth:`balance.machine.BalancingMachine.runs`) go through here. Their ``fn`` is a
     top-level function and their items plain data (scene dicts, settings dicts,
     tuples), so any executor that pickles them can run them: a

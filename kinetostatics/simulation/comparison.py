@@ -97,7 +97,7 @@ class CrossCheck:
             d = np.abs(g.simulated.to_numpy() - g.computed.to_numpy())
             i = int(np.argmax(d))
             out.append({"quantity": q, "source": g.source.iloc[0],
-                        "unit": _unit(q, self.scene),
+                        "unit": quantity_unit(q, self.scene),
                         "scale": float(np.abs(g.computed).max()),
                         "max_abs_error": float(d[i]),
                         "error": self.errors.get(q, self.derived_errors.get(q)),
@@ -137,7 +137,7 @@ class CrossCheck:
         return s
 
 
-def _unit(q: str, scene: Scene) -> str:
+def quantity_unit(q: str, scene: Scene) -> str:
     if q.startswith("M[") or q in ("Me", "|Me|"):
         return "N m"
     return "N"

@@ -33,7 +33,7 @@ from .reference import reference_solution
 
 if TYPE_CHECKING:
     from .model import SimModel
-    from .stepper import _Access
+    from .stepper import BodyAccess
 
 
 def rubbing_joints(scene) -> list[str]:
@@ -107,7 +107,7 @@ def prepare_friction(model: SimModel, sweep) -> None:
     model._friction = out
 
 
-def friction_function(model: SimModel, acc: _Access, unsure: list):
+def friction_function(model: SimModel, acc: BodyAccess, unsure: list):
     """Two functions, or None without friction: one that adds the joints' friction loads
     to the bodies before a step (after the scene's loads are set; it sets ``unsure[0]``
     where a reading must be left out, module docstring), and one that reads the joints'

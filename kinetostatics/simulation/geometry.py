@@ -10,42 +10,42 @@ import numpy as np
 from ..model.scene import GROUND, Scene
 
 
-def _local(scene: Scene, body: str, point: str) -> tuple[float, float]:
+def local_point(scene: Scene, body: str, point: str) -> tuple[float, float]:
     if body == GROUND:
         return scene.ground[point]
     return scene.bodies[body].local(point)
 
 
-def _first(x) -> float:
+def first_value(x) -> float:
     return float(np.asarray(x, dtype=float).reshape(-1)[0])
 
 
-def _line(scene: Scene, joint: str, body: str) -> tuple[np.ndarray, np.ndarray]:
+def joint_line(scene: Scene, joint: str, body: str) -> tuple[np.ndarray, np.ndarray]:
     """A prismatic joint's line in ``body``'s frame (the guide's or the slider's):
     a point on it and its unit direction."""
     j = scene.joints[joint]
     if body == j.guide:
         beta = j.beta
-        return np.array(_local(scene, body, j.points[0])), np.array([math.cos(beta),
+        return np.array(local_point(scene, body, j.points[0])), np.array([math.cos(beta),
                                                                       math.sin(beta)])
     # the slider's local x axis lies along the line, through the slider point
-    return np.array(_local(scene, body, j.points[1])), np.array([1.0, 0.0])
+    return np.array(local_point(scene, body, j.points[1])), np.array([1.0, 0.0])
 
 
-def _on_line(scene: Scene, joint: str, body: str) -> bool:
+def cog_on_line(scene: Scene, joint: str, body: str) -> bool:
     """Whether ``body``'s centre of mass lies on the joint's line (or it is the ground)."""
     if body == GROUND:
         return True
-    p, u = _line(scene, joint, body)
+    p, u = joint_line(scene, joint, body)
     g = np.asarray(scene.bodies[body].cog, dtype=float) - p
     size = max(1.0, float(np.hypot(*g)))
     return abs(float(u[0] * g[1] - u[1] * g[0])) <= 1e-12 * size
 
 
-def _foot(scene: Scene, joint: str, body: str) -> tuple[float, float]:
+def line_foot(scene: Scene, joint: str, body: str) -> tuple[float, float]:
     """The point of the joint's line (in ``body``'s frame) nearest ``body``'s centre of
     mass: the groove's pin on that body (its arm from the cog is normal to the line)."""
-    p, u = _line(scene, joint, body)
+    p, u = joint_line(scene, joint, body)
     if body == GROUND:
         return tuple(p)
     g = np.asarray(scene.bodies[body].cog, dtype=float)
@@ -53,7 +53,7 @@ def _foot(scene: Scene, joint: str, body: str) -> tuple[float, float]:
 
 
 
-def _pin_range(sc: Scene, sweep, q: str, p: str, pin, lp, u) -> tuple[float, float]:
+def pin_range(sc: Scene, sweep, q: str, p: str, pin, lp, u) -> tuple[float, float]:
     """Range over the motion of the pin's coordinate along the groove body's line."""
     kin = sweep.kin
     n = kin.n

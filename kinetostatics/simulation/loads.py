@@ -12,7 +12,7 @@ from .reference import reference_solution
 
 if TYPE_CHECKING:
     from .model import SimModel
-    from .stepper import _Access
+    from .stepper import BodyAccess
 
 RESIST_UNSURE = 1e-4
 """Rows where a ``resist`` point is slower than this fraction of its top speed: the
@@ -32,7 +32,7 @@ degrees after the switch) or lets it grow."""
 
 
 
-def _prepare_loads(model: SimModel, sweep) -> None:
+def prepare_loads(model: SimModel, sweep) -> None:
     """Per body, the constant loads folded into F and a moment c A + s B + M (the
     moment of fixed global forces at body points turns with the body); ``resist``
     loads kept apart (their direction follows the point's velocity), with the top
@@ -85,7 +85,7 @@ def _start_acc(model: SimModel) -> list[tuple[float, float, float]]:
     return out
 
 
-def _loads_function(model: SimModel, acc: _Access):
+def loads_function(model: SimModel, acc: BodyAccess):
     """The function that sets the scene's loads before a step (None if only gravity),
     and a one-element list that it sets True when a ``resist`` point is nearly still.
 

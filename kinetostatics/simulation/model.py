@@ -44,8 +44,8 @@ import pymunk
 from ..model.scene import GROUND, Scene, load_scene
 from .errors import SimulationError
 from .friction import prepare_friction
-from .geometry import _first, _foot, _line, _local, _on_line, _pin_range
-from .loads import _prepare_loads
+from .geometry import cog_on_line, first_value, joint_line, line_foot, local_point, pin_range
+from .loads import prepare_loads
 from .reference import (
     point_acceleration,
     reference_solution,
@@ -173,7 +173,7 @@ class SimModel:
         return (px - lx) * ux + (py - ly) * uy
 
 
-def _label(info: ConstraintInfo) -> str:
+def reading_label(info: ConstraintInfo) -> str:
     """The reading's label of a constraint: the joint's name, ``"<joint>:lock"`` or
     ``"driver"``."""
     if info.role in ("motor", "actuator"):
@@ -328,10 +328,10 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
         # it so with no constraint (its couples follow from its momentum balance)
         body = pymunk.Body(b.mass, math.inf if name in frozen else b.inertia)
         body.center_of_gravity = tuple(b.cog)
-        gx, gy = (_first(v) for v in m.point(b.cog))
-        vx, vy = (_first(v) for v in m.vel_at(gx, gy))
-        ax, ay = (_first(v) for v in m.acc_at(gx, gy))
-        theta, omega, alpha = _first(m.theta), _first(m.omega), _first(m.alpha)
+        gx, gy = (first_value(v) for v in m.point(b.cog))
+        vx, vy = (first_value(v) for v in m.vel_at(gx, gy))
+        ax, ay = (first_value(v) for v in m.acc_at(gx, gy))
+        theta, omega, alpha = first_value(m.theta), first_value(m.omega), first_value(m.alpha)
         # the steady motion of the scheme: x - a dt^2/2, v + a dt/2 (module docstring)
         angle = theta - alpha * half * dt
         cx, cy = gx - ax * half * dt, gy - ay * half * dt
@@ -356,8 +356,8 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
     for name, j in sc.joints.items():
         if j.kind == "R":
             on, by = j.on_by
-            pa = _local(sc, by, j.point_on(by))
-            pb = _local(sc, on, j.point_on(on))
+            pa = local_point(sc, by, j.point_on(by))
+            pb = local_point(sc, on, j.point_on(on))
             c = pymunk.PivotJoint(bodies[by], bodies[on], pa, pb)
             add(c, ConstraintInfo(c, "pivot", name, by, on, pa, pb))
             continue
@@ -366,24 +366,24 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
         # (the ground, a body that cannot turn, or one whose cog is on the line), the
         # pin on the other at the foot of the normal from its cog (see the docstring)
         found = next(((q, p) for q, p in ((g, s), (s, g))
-                      if q in fixed or _on_line(sc, name, q)), None)
+                      if q in fixed or cog_on_line(sc, name, q)), None)
         q, p = found or (g, s)
         if found is None:
             notes.append(f"prismatic joint {name!r}: neither body's centre of mass lies on "
                          "the line and both turn; pymunk's groove then lags by a first-order "
                          "amount (expect errors proportional to dt)")
         if p in fixed:
-            pin = _local(sc, p, j.points[1] if p == s else j.points[0])
+            pin = local_point(sc, p, j.points[1] if p == s else j.points[0])
         else:
-            pin = _foot(sc, name, p)
-        lp, u = _line(sc, name, q)
-        lo, hi = _pin_range(sc, sweep, q, p, pin, lp, u)
+            pin = line_foot(sc, name, p)
+        lp, u = joint_line(sc, name, q)
+        lo, hi = pin_range(sc, sweep, q, p, pin, lp, u)
         reach = GROOVE_MARGIN * max(hi - lo, 0.1)
         ga = tuple(lp + (lo - reach) * u)
         gb = tuple(lp + (hi + reach) * u)
         c = pymunk.GrooveJoint(bodies[q], bodies[p], ga, gb, pin)
         add(c, ConstraintInfo(c, "groove", name, q, p, ga, pin, (-u[1], u[0]), s,
-                              _local(sc, s, j.points[1])))
+                              local_point(sc, s, j.points[1])))
         if g in fixed and s in fixed:
             # neither turns: no lock; the couple follows from the angular momentum
             # balance of the translating body (or bodies)
@@ -426,7 +426,7 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
         model.actuator = act
         bodies["actuator"] = act
     space.add(*solver_order(sc, infos, driver_first))
-    _prepare_loads(model, sweep)
+    prepare_loads(model, sweep)
     prepare_friction(model, sweep)
     return model
 

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pandas as pd
 
-from .comparison import CrossCheck, _unit
+from .comparison import CrossCheck, quantity_unit
 from .runner import BUDGET, TARGET_ERROR
 from .studies import Study
 
@@ -45,7 +45,7 @@ def plot_comparison(cc: CrossCheck, quantities: list[str] | None = None, *, ever
         src = "" if q in cc.errors else " (momentum balance)"
         ax.set_title(f"{q}: error {e:.1e}{src}", fontsize=9)
         ax.set_xlabel(xlab)
-        ax.set_ylabel(f"{q} ({_unit(q, cc.scene)})")
+        ax.set_ylabel(f"{q} ({quantity_unit(q, cc.scene)})")
         ax.grid(alpha=0.3)
     for ax in axes[len(qs):]:
         ax.set_visible(False)

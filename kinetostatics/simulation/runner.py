@@ -44,7 +44,7 @@ SETTLE_FRACTION = 0.01
 """A sweep shorter than a turn: its first 1 % is left out of the errors."""
 
 
-def _dict_scene(scene: Any) -> Scene:
+def rebuildable_scene(scene: Any) -> Scene:
     sc = load_scene(scene)
     if not sc.raw:
         raise SimulationError("the scene has no raw table to rebuild it from; pass a path, "
@@ -155,7 +155,7 @@ def crosscheck(scene: Any, *, dt: float | None = None, steps_per_revolution: int
     >>> cc.max_error < 1e-5
     True
     """
-    sc = _dict_scene(scene)
+    sc = rebuildable_scene(scene)
     check_scene(sc)
     auto = dt is None and steps_per_revolution is None
 
@@ -449,5 +449,5 @@ def crosscheck_many(scenes: Iterable[Any], *, executor: Executor | str | None = 
         raise SimulationError(f"crosscheck_many: unknown setting(s) "
                               f"{', '.join(sorted(bad | ({'scene'} & set(settings))))}; "
                               "give keywords of crosscheck()")
-    items = [(_dict_scene(s).raw, dict(settings)) for s in scenes]
+    items = [(rebuildable_scene(s).raw, dict(settings)) for s in scenes]
     return run_batch(_crosscheck_summary, items, executor=executor)

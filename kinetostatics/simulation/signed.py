@@ -21,7 +21,7 @@ import numpy as np
 from ..model.scene import GROUND
 from .errors import SimulationError
 from .geometry import pose_world
-from .model import _label
+from .model import reading_label
 
 if TYPE_CHECKING:
     from .model import SimModel
@@ -35,7 +35,7 @@ class SingularBalance(ArithmeticError):
         self.row = row
 
 
-def _signed(model: SimModel, pose, vel0, vel1, frc, mag):
+def signed_reactions(model: SimModel, pose, vel0, vel1, frc, mag):
     """Signed constraint forces from the momentum balance of every body over the step.
 
     Unknowns, per constraint: the force on ``b`` (two components) for a pivot, the
@@ -149,7 +149,7 @@ def _signed(model: SimModel, pose, vel0, vel1, frc, mag):
     for info in model.constraints:
         if info.constraint is not None:
             ci += 1
-        label = _label(info)
+        label = reading_label(info)
         if info.role == "pivot":
             fx, fy = lam[:, j], lam[:, j + 1]
             j += 2

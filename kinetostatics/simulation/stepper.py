@@ -26,9 +26,9 @@ import pymunk
 from .drift import check_run, diverged
 from .errors import SimulationError
 from .friction import friction_function
-from .loads import SWITCH_BOOST, _loads_function
-from .model import SimModel, _label
-from .signed import SingularBalance, _signed
+from .loads import SWITCH_BOOST, loads_function
+from .model import SimModel, reading_label
+from .signed import SingularBalance, signed_reactions
 
 PYMUNK_VERSION = "7.3.1"
 """The pymunk version the settings were measured with (docs/simulation.md)."""
@@ -116,7 +116,7 @@ def _fast_path(fast: bool | None) -> bool:
     return bool(fast)
 
 
-class _Access:
+class BodyAccess:
     """Reading and setting body state in the stepping loop.
 
     The public path uses pymunk's properties. The fast path (pinned pymunk version
@@ -234,7 +234,7 @@ def run(model: SimModel, steps: int, sample_every: int = 1, *,
     """
     steps, every = int(steps), max(1, int(sample_every))
     fast = _fast_path(fast)
-    acc = _Access(model, fast)      # its step: make_stepper (a public zero step first)
+    acc = BodyAccess(model, fast)      # its step: make_stepper (a public zero step first)
     dt = model.dt
     space = model.space
     fstep = acc.step
@@ -246,7 +246,7 @@ def run(model: SimModel, steps: int, sample_every: int = 1, *,
     hc = [acc.chandle(c) for c in cons]
     get_a, get_w, get_v, get_p = acc.angle, acc.omega, acc.velocity, acc.position
     get_f, get_t, get_i = acc.force, acc.torque, acc.impulse
-    apply_loads, unsure = _loads_function(model, acc)
+    apply_loads, unsure = loads_function(model, acc)
     rubbing = friction_function(model, acc, unsure)
     if rubbing is not None:
         # joint friction: set after the scene's loads, from the reactions read after
@@ -345,7 +345,7 @@ def run(model: SimModel, steps: int, sample_every: int = 1, *,
     after = np.array(after, dtype=float).reshape(n_samples, nb, 6)
     imp = np.array(imp, dtype=float).reshape(n_samples, nc) / dt
     times = (np.arange(n_samples) + 1) * every * dt
-    impulse = {_label(info): imp[:, i] for i, info in enumerate(real)}
+    impulse = {reading_label(info): imp[:, i] for i, info in enumerate(real)}
     pose = after[:, :, :3].copy()
     vel = after[:, :, 3:].copy()
     positions = _driver_positions(model, pose)
@@ -353,7 +353,7 @@ def run(model: SimModel, steps: int, sample_every: int = 1, *,
               & np.isfinite(imp).all(axis=1))
     drift = check_run(model, times, positions, pose, finite)     # or SimulationDiverged
     try:
-        signed, check = _signed(model, after[:, :, :3], before[:, :, :3], after[:, :, 3:],
+        signed, check = signed_reactions(model, after[:, :, :3], before[:, :, :3], after[:, :, 3:],
                                 before[:, :, 3:], imp)
     except SingularBalance as exc:
         raise diverged(model, float(times[exc.row]), float(positions[exc.row]), drift,

@@ -16,7 +16,7 @@ import pandas as pd
 from .batch import run_batch
 from .errors import SimulationDiverged, SimulationError
 from .model import check_scene
-from .runner import _dict_scene, crosscheck
+from .runner import crosscheck, rebuildable_scene
 
 STUDY_STEPS = (500, 1000, 2000, 4000, 8000, 16000, 32000)
 """Default steps per revolution of the study."""
@@ -158,7 +158,7 @@ def study(scene: Any, *, steps: tuple[int, ...] | None = None,
         A setting that diverged (:class:`~kinetostatics.simulation.SimulationDiverged`)
         is a row with ``diverged`` True and its drift, left out of the order's fit.
     """
-    sc = _dict_scene(scene)
+    sc = rebuildable_scene(scene)
     check_scene(sc)
     if steps is not None and dts is not None:
         raise SimulationError("give steps per revolution or dts, not both")

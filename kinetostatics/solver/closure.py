@@ -19,7 +19,7 @@ import numpy as np
 
 from ..model.errors import AssemblyError
 from ..model.scene import GROUND, Scene
-from . import _arith as A
+from . import arith as A
 from .driver import BodyMotion
 
 if TYPE_CHECKING:

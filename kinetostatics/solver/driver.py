@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..model.scene import GROUND, Scene
-from . import _arith as A
+from . import arith as A
 
 
 class BodyMotion:

@@ -33,7 +33,7 @@ import numpy as np
 
 from ..model.errors import SelfLockingError
 from ..model.scene import GROUND, Joint, Scene
-from . import _arith as A
+from . import arith as A
 from .friction_rows import Spec, settle
 from .kinematics import Kinematics
 from .loads import PointLoad, resultants

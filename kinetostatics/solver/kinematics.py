@@ -31,7 +31,7 @@ import numpy as np
 
 from ..model.errors import AssemblyError
 from ..model.scene import GROUND, Scene
-from . import _arith as A
+from . import arith as A
 from .closure import DyadSolver, Param, body_origin, dyad_param
 from .driver import BodyMotion, driver_motion, ground_motion
 

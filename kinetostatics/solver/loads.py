@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model.scene import Body, Scene
-from . import _arith as A
+from . import arith as A
 from .kinematics import Kinematics
 
 RESIST_STILL = 1e-9     # a resist point slower than this fraction of its top speed: undefined

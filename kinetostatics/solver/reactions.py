@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model.scene import GROUND, Joint, Scene
-from . import _arith as A
+from . import arith as A
 from .kinematics import DyadMotion, Kinematics
 
 
@@ -121,7 +121,7 @@ def solve_reactions(kin: Kinematics, acc: dict[str, list]
     acc : dict
         Per moving body [Fx, Fy, M_O]: resultant of its loads (applied, gravity,
         inertia) and its moment about the body's local origin, as arrays of their own
-        (from :func:`~kinetostatics.loads.resultants`). Updated in place.
+        (from :func:`~kinetostatics.solver.loads.resultants`). Updated in place.
     """
     scene = kin.scene
     store = _Store(acc, kin.bodies, kin.n)

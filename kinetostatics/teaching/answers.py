@@ -114,7 +114,7 @@ def _cell_answers(cell) -> tuple[str | None, dict] | None:
     if computed and not any(v is not None for v in answers.values()):
         raise WorkbenchError(f"the answer cell computes {', '.join(computed[:3])} instead of "
                              "holding numbers: run the notebook and save it (its output, "
-                             "kinetostatics.exercises.record(...), carries the values) or "
+                             "kinetostatics.teaching.record(...), carries the values) or "
                              "write the numbers")
     return student, answers
 

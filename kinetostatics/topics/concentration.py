@@ -17,7 +17,7 @@ The concentrated masses' inertia forces are -m_j a_Pj (eq. 2.8). A static pair i
 with G on BC has sum m_j |d_j|^2 = m |GB| |GC|, so it misses the couple
 -(I_G - m |GB| |GC|) eps: the method's error, which :func:`concentration_error_table`
 measures on a whole mechanism. The scene field ``mass_model`` (``scene-format.md``) uses
-the two-point models of :func:`kinetostatics.loads.concentrated_masses`.
+the two-point models of :func:`kinetostatics.solver.loads.concentrated_masses`.
 """
 
 from __future__ import annotations
@@ -331,7 +331,7 @@ def dynamic_two_point(mass: Any, inertia: Any, a: Any) -> tuple[Any, Any, Any]:
 
 def body_concentration(body: Body) -> Concentration:
     """The concentration of a scene body's ``mass_model`` (from
-    :func:`kinetostatics.loads.concentrated_masses`, the model the solver uses); a body
+    :func:`kinetostatics.solver.loads.concentrated_masses`, the model the solver uses); a body
     without one is a single mass at its cog (static, n = 1)."""
     if body.mass <= 0.0:
         raise ConcentrationError(f"body {body.name!r} has no mass to concentrate")

@@ -7,8 +7,9 @@ import importlib
 
 import pytest
 
-MODULES = ["balance.rotor", "balance.static_device", "balance.resonance", "balance.influence",
-           "balance.iso", "balance.api"]
+MODULES = ["balance.rotor.design", "balance.rotor.static_device", "balance.resonance.methods",
+           "balance.field.influence",
+           "balance.field.iso", "balance.api"]
 
 
 @pytest.mark.parametrize("name", MODULES)

@@ -11,7 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-import balance.field
+import balance.field.weights
 from balance import BalanceError, Units, combine_weights, split_correction
 from balance.units import parse_units
 
@@ -145,4 +145,4 @@ def test_units_errors(table, text) -> None:
 
 
 def test_doctests() -> None:
-    assert doctest.testmod(balance.field).failed == 0
+    assert doctest.testmod(balance.field.weights).failed == 0

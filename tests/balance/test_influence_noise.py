@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from balance import BalanceError, NoiseModel, influence_balance, trim_balance
-from balance.influence_stats import parse_noise
+from balance.field.influence_stats import parse_noise
 
 
 def pl(z) -> list[tuple[float, float]]:

@@ -13,8 +13,8 @@ import pytest
 
 import balance
 from balance import BalanceError, BalanceWarning, parallelogram, trial_runs
-from balance.amplitude_fit import fit_amplitudes
-from balance.chi2 import chi2_cdf, chi2_quantile
+from balance.resonance.amplitude_fit import fit_amplitudes
+from balance.resonance.chi2 import chi2_cdf, chi2_quantile
 
 Q95 = chi2_quantile(0.95, 1)
 
@@ -258,6 +258,6 @@ def test_intervals_cover_the_truth_95_percent_in_every_cell():
 def test_chi2_doctests():
     import doctest
 
-    import balance.chi2
+    import balance.resonance.chi2
 
-    assert doctest.testmod(balance.chi2).failed == 0
+    assert doctest.testmod(balance.resonance.chi2).failed == 0

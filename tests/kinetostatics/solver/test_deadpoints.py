@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 import kinetostatics as ks
 from kinetostatics.model.errors import AssemblyError
-from kinetostatics.solver import _arith as A
+from kinetostatics.solver import arith as A
 from kinetostatics.solver.pipeline import _check_finite
 
 

@@ -18,10 +18,10 @@ from typing import Any
 
 import numpy as np
 
-from ._util import check_number, deg360
+from ..common import check_number, deg360
+from ..errors import BalanceError
 from .amplitude_fit import fit_amplitudes
 from .chi2 import chi2_quantile
-from .errors import BalanceError
 
 __all__ = ["DEFAULT_NOISE", "WIDE", "Estimate", "check_model", "estimate", "warnings_for"]
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
-from .errors import BalanceError
+from ..errors import BalanceError
 
 __all__ = ["chi2_cdf", "chi2_quantile"]
 

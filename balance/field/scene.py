@@ -22,8 +22,8 @@ import numpy as np
 from kinetostatics.model.errors import SceneError
 from kinetostatics.model.tomlio import as_float, as_int, as_list, as_str, check_keys
 
-from .errors import BalanceError
-from .field import Combined, Split, combine_weights, split_correction
+from ..errors import BalanceError
+from ..units import Units, parse_units
 from .influence import InfluenceResult, influence_balance
 from .influence_stats import parse_noise
 from .iso import (
@@ -32,7 +32,7 @@ from .iso import (
     iso_tolerances,
     to_bearing_planes,
 )
-from .units import Units, parse_units
+from .weights import Combined, Split, combine_weights, split_correction
 
 __all__ = ["FIELD_SECTIONS", "FieldScene", "IsoResult", "parse_field", "solve_field", "solve_iso"]
 

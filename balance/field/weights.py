@@ -28,8 +28,8 @@ from typing import Any
 
 import numpy as np
 
-from ._util import angle_of, check_number, deg360
-from .errors import BalanceError
+from ..common import angle_of, check_number, deg360
+from ..errors import BalanceError
 
 __all__ = ["Combined", "Placement", "Split", "combine_weights", "split_correction"]
 

@@ -40,16 +40,16 @@ from typing import Any
 
 import numpy as np
 
-from ._util import angle_of, check_number, deg360_array, polar
-from .errors import BalanceError
-from .field import Split, split_correction
+from ..common import angle_of, check_number, deg360_array, polar
+from ..errors import BalanceError
+from ..uncertainty import Interval, propagate
 from .influence_stats import (
     NoiseModel,
     bootstrap_intervals,
     conditioning,
     conditioning_warnings,
 )
-from .uncertainty import Interval, propagate
+from .weights import Split, split_correction
 
 __all__ = [
     "InfluenceResult",

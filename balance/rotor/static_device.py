@@ -12,8 +12,8 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from ._util import check_number
-from .errors import BalanceError
+from ..common import check_number
+from ..errors import BalanceError
 
 __all__ = ["StaticDeviceResult", "static_device"]
 

@@ -23,8 +23,8 @@ from typing import Any
 
 import numpy as np
 
-from .errors import BalanceError
-from .report_text import result_warnings, summary_text
+from ..errors import BalanceError
+from .text import result_warnings, summary_text
 
 __all__ = ["influence_figure", "iso_figure", "report_figures", "report_scene", "write_report"]
 
@@ -144,7 +144,7 @@ def report_figures(results: dict[str, Any], out: dict[str, Any]) -> list[tuple[s
     """(caption, Figure) for every picture the report shows."""
     import matplotlib.pyplot as plt
 
-    from . import plot as bplot
+    from .. import plot as bplot
 
     figs: list[tuple[str, Any]] = []
     if "rotor" in results:
@@ -250,7 +250,7 @@ def report_scene(scene: Any, path: str | Path) -> Path:
     -------
     Path
     """
-    from .api import results_to_dict, solve_results
+    from ..api import results_to_dict, solve_results
 
     results = solve_results(scene)
     return write_report(path, results, results_to_dict(results), scene)

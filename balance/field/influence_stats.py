@@ -32,8 +32,8 @@ from typing import Any
 
 import numpy as np
 
-from ._util import check_number, deg360
-from .errors import BalanceError
+from ..common import check_number, deg360
+from ..errors import BalanceError
 
 __all__ = [
     "AMPLIFICATION_LIMIT",

@@ -7,6 +7,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
+from kinetostatics.model.tomlio import as_float
+
 from .errors import BalanceError
 
 RPM_TO_RAD_S = 2.0 * math.pi / 60.0
@@ -40,14 +42,7 @@ def polar(magnitude: float, angle_deg: float) -> complex:
 
 def check_number(value: object, name: str, *, positive: bool = False,
                  nonnegative: bool = False) -> float:
-    """A finite float, else :class:`BalanceError` naming ``name``."""
-    if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
-        raise BalanceError(f"{name} must be a number, not {type(value).__name__}")
-    x = float(value)
-    if not math.isfinite(x):
-        raise BalanceError(f"{name} must be a finite number, not {x!r}")
-    if positive and x <= 0.0:
-        raise BalanceError(f"{name} must be positive, got {x:g}")
-    if nonnegative and x < 0.0:
-        raise BalanceError(f"{name} must not be negative, got {x:g}")
-    return x
+    """A finite float, else :class:`BalanceError` naming ``name`` (the scene reader's
+    :func:`~kinetostatics.model.tomlio.as_float`, with no magnitude limit)."""
+    return as_float(value, name, positive=positive, nonnegative=nonnegative, limit=math.inf,
+                    error=BalanceError)

@@ -40,8 +40,8 @@ from typing import Any
 
 import numpy as np
 
-from ._util import check_number
-from .errors import BalanceError
+from ..common import check_number
+from ..errors import BalanceError
 
 __all__ = [
     "GRADES",

@@ -37,10 +37,10 @@ from typing import Any
 
 import numpy as np
 
-from ._util import check_number, deg360
-from .errors import BalanceError, BalanceWarning
-from .resonance_estimate import DEFAULT_NOISE, Estimate, check_model, estimate, warnings_for
-from .uncertainty import Interval, propagate
+from ..common import check_number, deg360
+from ..errors import BalanceError, BalanceWarning
+from ..uncertainty import Interval, propagate
+from .estimate import DEFAULT_NOISE, Estimate, check_model, estimate, warnings_for
 
 __all__ = [
     "COS_TOLERANCE",

@@ -22,8 +22,8 @@ import numpy as np
 
 from kinetostatics.model.tomlio import suggest
 
-from ._util import RPM_TO_RAD_S, angle_of, check_number
-from .errors import BalanceError, BalanceWarning
+from ..common import RPM_TO_RAD_S, angle_of, check_number
+from ..errors import BalanceError, BalanceWarning
 
 __all__ = [
     "CorrectionPlane",
