@@ -113,7 +113,7 @@ def parse_quantity(text: str, kind: str | None = None) -> tuple[float, str]:
     >>> parse_quantity("300800 N mm")
     (300.8, 'moment')
     >>> round(parse_quantity("75.9 deg")[0], 6)
-    1.324707
+    1.324705
 
     Parameters
     ----------
