@@ -10,8 +10,9 @@ The public API::
 Bundled examples: ``ks.example("four_bar")`` (also ``slider_crank``, ``slotted_lever``,
 ``scotch_yoke``, ``sliding_driver``, ``shaper``).
 
-More of the course, one subpackage per topic: :mod:`~kinetostatics.topics` (mass
-concentration s. 2.2, gears s. 2.3.3, efficiency s. 4.3), :mod:`~kinetostatics.solver`
+More of the course, one subpackage per topic: :mod:`~kinetostatics.concentration` (mass
+concentration s. 2.2), :mod:`~kinetostatics.transmission` (gears s. 2.3.3, efficiency
+s. 4.3), :mod:`~kinetostatics.solver`
 (structure, kinematics, loads, friction s. 2.4, reactions, reduction s. 2.5, dead points),
 :mod:`~kinetostatics.motion` and :func:`simulate_motion` (motion under forces, ch. 4),
 :mod:`~kinetostatics.cams` (ch. 1), :mod:`~kinetostatics.teaching` (exercises for a class

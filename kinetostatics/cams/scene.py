@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 
 from ..model.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source, suggest
-from ..topics.efficiency import mean_efficiency
+from ..transmission.efficiency import mean_efficiency
 from .followers import (
     Follower,
     OscillatingFollower,

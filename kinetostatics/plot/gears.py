@@ -20,7 +20,7 @@ def draw_gear_pair(pair, ax: Axes | None = None) -> Axes:
     Parameters
     ----------
     pair : GearPair
-        A solved pair (:func:`kinetostatics.topics.gears.gear_pair`); with an array of ``M2``
+        A solved pair (:func:`kinetostatics.transmission.gears.gear_pair`); with an array of ``M2``
         the first value is drawn.
     ax : Axes, optional
         Where to draw; a new figure when None.
@@ -35,13 +35,13 @@ def draw_gear_pair(pair, ax: Axes | None = None) -> Axes:
     Raises
     ------
     WorkbenchError
-        ``pair`` is not a :class:`~kinetostatics.topics.gears.GearPair`.
+        ``pair`` is not a :class:`~kinetostatics.transmission.gears.GearPair`.
     """
-    from ..topics.gears import GearPair
+    from ..transmission.gears import GearPair
 
     if not isinstance(pair, GearPair):
         raise WorkbenchError(
-            "draw_gear_pair: give a GearPair (kinetostatics.topics.gears.gear_pair)")
+            "draw_gear_pair: give a GearPair (kinetostatics.transmission.gears.gear_pair)")
     ax = axes_or_new(ax, figsize=(6, 6))
     o1, o2, p = (np.asarray(v, dtype=float) for v in (pair.O1, pair.O2, pair.P))
     r1, r2 = float(np.hypot(*(p - o1))), float(np.hypot(*(p - o2)))

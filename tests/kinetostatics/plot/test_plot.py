@@ -143,7 +143,7 @@ def test_animation(sols):
 
 
 def test_draw_gear_pair(monkeypatch):
-    from kinetostatics.topics.gears import gear_pair
+    from kinetostatics.transmission.gears import gear_pair
 
     monkeypatch.setattr(plt, "show", lambda *a, **k: pytest.fail("plt.show called"))
     for internal in (False, True):

@@ -21,7 +21,12 @@ import numpy as np
 import pytest
 
 import kinetostatics as ks
-from kinetostatics.topics.gears import equilibrating_moment, gear_pair, gear_ratio, tooth_force
+from kinetostatics.transmission.gears import (
+    equilibrating_moment,
+    gear_pair,
+    gear_ratio,
+    tooth_force,
+)
 
 POSITIONS = [10.0, 55.0, 100.0, 150.0, 200.0, 250.0, 310.0]
 

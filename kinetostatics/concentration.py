@@ -31,10 +31,10 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ..model.errors import WorkbenchError
-from ..model.scene import GROUND, Body, Scene, load_scene
-from ..solver.loads import concentrated_masses
-from ..solver.pipeline import solve
+from .model.errors import WorkbenchError
+from .model.scene import GROUND, Body, Scene, load_scene
+from .solver.loads import concentrated_masses
+from .solver.pipeline import solve
 
 __all__ = [
     "Concentration", "ConcentrationError", "body_concentration", "concentrate",

@@ -10,7 +10,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from kinetostatics.model.errors import WorkbenchError
-from kinetostatics.topics.gears import (
+from kinetostatics.transmission.gears import (
     GearError,
     GearStage,
     equilibrating_moment,

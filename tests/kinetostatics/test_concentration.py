@@ -12,10 +12,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import kinetostatics as ks
-from kinetostatics.model.errors import WorkbenchError
-from kinetostatics.model.scene import Body, MassModel
-from kinetostatics.solver.loads import concentrated_masses
-from kinetostatics.topics.concentration import (
+from kinetostatics.concentration import (
     ConcentrationError,
     body_concentration,
     concentrate,
@@ -24,6 +21,9 @@ from kinetostatics.topics.concentration import (
     seed_free_parameters,
     static_two_point,
 )
+from kinetostatics.model.errors import WorkbenchError
+from kinetostatics.model.scene import Body, MassModel
+from kinetostatics.solver.loads import concentrated_masses
 
 coord = st.floats(-1.0, 1.0)
 mass = st.floats(0.1, 50.0)

@@ -10,8 +10,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from kinetostatics.model.errors import WorkbenchError
-from kinetostatics.topics import efficiency as ef
-from kinetostatics.topics.efficiency import EfficiencyError
+from kinetostatics.transmission import efficiency as ef
+from kinetostatics.transmission.efficiency import EfficiencyError
 
 etas = st.lists(st.floats(0.05, 1.0), min_size=1, max_size=6)
 
