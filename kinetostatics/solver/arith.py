@@ -76,9 +76,9 @@ def cross(ax, ay, bx, by):
 
 def rotate(c, s, lx: float, ly: float):
     """R(theta) (lx, ly) with c = cos theta, s = sin theta; lx, ly are scalars."""
-    if ly == 0.0:
+    if zero(ly):
         return mul(c, lx), mul(s, lx)
-    if lx == 0.0:
+    if zero(lx):
         return mul(-ly, s), mul(c, ly)
     return c * lx - s * ly, s * lx + c * ly
 
@@ -101,6 +101,12 @@ def icross(acc, rx, ry, fx, fy, tmp, sign: float = 1.0) -> None:
     if not (zero(ry) or zero(fx)):
         np.multiply(ry, fx, out=tmp)
         iadd(acc, tmp, -sign)
+
+
+def scalar(x):
+    """A Python float of a scalar; a per-row array (a stacked batch of scenes,
+    :func:`kinetostatics.solve_many`) as it is."""
+    return x if isinstance(x, np.ndarray) else float(x)
 
 
 def full(x, n: int) -> np.ndarray:
