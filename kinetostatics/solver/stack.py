@@ -50,10 +50,13 @@ def signature(scene: Scene):
         return None
     drv = scene.driver
     dj = scene.joints[drv.joint]
-    fixed = []            # ground points the solver reads as plain numbers
+    fixed = []            # ground points the reactions read as plain numbers
     for j in scene.joints.values():
-        if GROUND in j.bodies and (j is dj or j.kind == "T"):
-            fixed += [(p, _bits(*scene.ground[p])) for p in j.points if p in scene.ground]
+        if j is dj and j.kind == "R":
+            fixed.append(j.point_on(GROUND))
+        elif j.kind == "T" and j.slider == GROUND:
+            fixed.append(j.points[1])
+    fixed = [(p, _bits(*scene.ground[p])) for p in fixed]
     bodies = tuple((b.name, tuple(b.points), b.cog is None, b.mass == 0.0, b.mass > 0.0,
                     b.inertia == 0.0) for b in scene.bodies.values())
     joints = tuple((j.name, j.kind, j.bodies, j.points, _bits(j.line_angle))
