@@ -5,7 +5,8 @@ hundreds; solved one by one, each pays the solver's cost per scene (reading, str
 assembly, a few hundred small array operations). :func:`solve_many` groups the scenes
 by structure (:func:`~kinetostatics.solver.stack.signature`) and solves each group as
 one scene over all its rows (:mod:`~kinetostatics.solver.stack`), in chunks of about
-``CHUNK_ROWS`` rows (the arrays stay in the CPU caches), then cuts the result into one
+``CHUNK_ROWS`` rows (the solver's cost per pass is spread over many scenes while the
+arrays stay moderate), then cuts the result into one
 :class:`~kinetostatics.results.Solution` per scene. Each holds exactly the numbers
 :func:`~kinetostatics.solve` gives that scene alone: the same elementwise operations
 run on every row. A scene that cannot be stacked (joint friction, a mass model, a
@@ -213,18 +214,21 @@ def _splitter(sol: Solution):
     """A function (scene, structure, rows, dead) -> that scene's Solution, cutting the
     rows of every array of the stacked ``sol``."""
     total = sol.positions.size
-    motions = [(name, [np.asarray(getattr(m, f)) if _per_row(getattr(m, f), total)
-                       else getattr(m, f) for f in ("_theta", *BodyMotion.__slots__[:-1])])
-               for name, m in sol.kin.bodies.items()]
+    motions = []
+    for name, m in sol.kin.bodies.items():
+        values = [getattr(m, f) for f in ("_theta", *BodyMotion.__slots__[:-1])]
+        motions.append((name, [(np.asarray(v), True) if _per_row(v, total) else (v, False)
+                               for v in values]))
     known = {id(m): name for name, m in sol.kin.bodies.items()}
     dyads = [(_Template(dm, total), [(_Template(p, total), known[id(p.known)])
                                      for p in dm.params]) for dm in sol.kin.dyads]
     loads = [_Template(ld, total) for ld in sol.loads]
     reactions = [(name, _Template(r, total)) for name, r in sol.joint_reactions.items()]
     drive, undefined = np.asarray(sol.drive.value), np.asarray(sol.undefined_load)
+    drive_rows, undefined_rows = _per_row(drive, total), _per_row(undefined, total)
 
     def cut(scene, structure, rows: slice, dead) -> Solution:
-        bodies = {name: BodyMotion(*[a[rows] if _per_row(a, total) else a for a in fs])
+        bodies = {name: BodyMotion(*[a[rows] if cut_it else a for a, cut_it in fs])
                   for name, fs in motions}
         n = rows.stop - rows.start
         dms = []
@@ -236,7 +240,6 @@ def _splitter(sol: Solution):
                          between=dead[0], ends=dead[1])
         return Solution(scene, structure, kin, [t.cut(rows) for t in loads],
                         {name: t.cut(rows) for name, t in reactions},
-                        DriverReaction(sol.drive.kind,
-                                       drive[rows] if _per_row(drive, total) else drive),
-                        undefined[rows] if _per_row(undefined, total) else undefined)
+                        DriverReaction(sol.drive.kind, drive[rows] if drive_rows else drive),
+                        undefined[rows] if undefined_rows else undefined)
     return cut

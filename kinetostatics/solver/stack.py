@@ -49,14 +49,6 @@ def signature(scene: Scene):
     if any(ld.resist is not None or ld.when != "always" for ld in scene.loads):
         return None
     drv = scene.driver
-    dj = scene.joints[drv.joint]
-    fixed = []            # ground points the reactions read as plain numbers
-    for j in scene.joints.values():
-        if j is dj and j.kind == "R":
-            fixed.append(j.point_on(GROUND))
-        elif j.kind == "T" and j.slider == GROUND:
-            fixed.append(j.points[1])
-    fixed = [(p, _bits(*scene.ground[p])) for p in fixed]
     bodies = tuple((b.name, tuple(b.points), b.cog is None, b.mass == 0.0, b.mass > 0.0,
                     b.inertia == 0.0) for b in scene.bodies.values())
     joints = tuple((j.name, j.kind, j.bodies, j.points, _bits(j.line_angle))
@@ -64,8 +56,7 @@ def signature(scene: Scene):
     loads = tuple((ld.body, ld.point, None if ld.force is None else _bits(*ld.force),
                    _bits(ld.moment)) for ld in scene.loads)
     return (drv.body, drv.joint, drv.kind, _bits(drv.speed, drv.acceleration), bodies,
-            tuple(scene.ground), tuple(fixed), joints, loads, _bits(*scene.gravity),
-            tuple(scene.near))
+            tuple(scene.ground), joints, loads, _bits(*scene.gravity), tuple(scene.near))
 
 
 def _bits(*values) -> tuple:
