@@ -20,7 +20,6 @@ import copy
 import gc
 import importlib.util
 import math
-import os
 import time
 from pathlib import Path
 
@@ -273,23 +272,14 @@ def bench_against_reference(path: str | Path, n: int = 200_001, repeat: int = 7)
 
 
 def run_bench(quick: bool = False, reference: str | None = None) -> dict[str, pd.DataFrame]:
-    """Run the benchmarks and print their tables."""
-    from . import bench_speed
+    """Run the benchmarks and print their tables (the ratios to baselines follow from
+    :func:`kinetostatics.bench_speed.run_speed`)."""
     sizes = (1_000, 10_000) if quick else (1_000, 100_000, 1_000_000)
     out = {"kinematics": bench_kinematics(sizes)}
     out["reactions"] = bench_reactions(10_000 if quick else 1_000_000)
     ref = reference or find_reference()
     if ref:
         out["reference"] = bench_against_reference(ref, 20_001 if quick else 200_001)
-    speed = []
-    if ref:
-        speed += bench_speed.bench_reference(
-            str(ref), (2_001, 20_001) if quick else (2_001, 200_001, 1_000_001))
-    speed += bench_speed.bench_many(100 if quick else 1000)
-    speed += bench_speed.bench_start(3 if quick else 7)
-    if not quick:
-        speed += bench_speed.bench_tables()
-    out["speed"] = pd.DataFrame(speed)
     pd.set_option("display.width", 160)
     for name, df in out.items():
         print(f"\n== {name} ==")
@@ -299,6 +289,4 @@ def run_bench(quick: bool = False, reference: str | None = None) -> dict[str, pd
               f"{out['reference'].attrs['Me_rel_difference']:.2e}")
     else:
         print("\n(reference_fourbar.py not found: pass --reference PATH to time the baseline)")
-    print(f"({os.cpu_count()} cores; ratios of runs side by side: see "
-          "kinetostatics.bench_speed)")
     return out

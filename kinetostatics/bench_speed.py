@@ -32,8 +32,9 @@ import time
 from collections.abc import Callable
 
 import numpy as np
+import pandas as pd
 
-from .bench import fourbar_scene
+from .bench import find_reference, fourbar_scene
 
 
 def side_by_side(jobs: dict[str, Callable[[], object]], repeat: int) -> dict[str, list]:
@@ -169,3 +170,21 @@ def bench_tables() -> list[dict]:
                  "seconds_best": math.nan, "baseline_best": math.nan,
                  "ratio_best": math.nan, "ratio_median": math.nan, "peak_MB": peak})
     return rows
+
+
+def run_speed(quick: bool = False, reference: str | None = None) -> pd.DataFrame:
+    """Every ratio of this module, printed as one table (``quick``: small sizes)."""
+    ref = reference or find_reference()
+    rows = []
+    if ref:
+        rows += bench_reference(str(ref), (2_001, 20_001) if quick else
+                                (2_001, 200_001, 1_000_001))
+    rows += bench_many(100 if quick else 1000)
+    rows += bench_start(3 if quick else 7)
+    if not quick:
+        rows += bench_tables()
+    df = pd.DataFrame(rows)
+    pd.set_option("display.width", 160)
+    print(f"\n== speed: ratios to baselines timed side by side ({os.cpu_count()} cores) ==")
+    print(df.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
+    return df

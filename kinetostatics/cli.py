@@ -82,7 +82,9 @@ def _cmd_bench(args) -> int:
         run_table_bench(quick=args.quick, repeat=args.repeat)
         return 0
     from .bench import run_bench
+    from .bench_speed import run_speed
     run_bench(quick=args.quick, reference=args.reference)
+    run_speed(quick=args.quick, reference=args.reference)
     return 0
 
 
