@@ -32,3 +32,11 @@ def test_public_names_still_there() -> None:
             "assert callable(balance.solve_mechanism_balancing)\n"
             "assert set(ks.__all__) <= set(dir(ks))")
     assert "pandas" in loaded_after(code)      # the names load what they need
+
+
+def test_solve_out_writes_csv_without_pandas(tmp_path) -> None:
+    """``python -m kinetostatics solve SCENE --out DIR`` (every table as CSV): no pandas."""
+    code = ("from kinetostatics.cli import main\n"
+            f"assert main(['solve', 'four_bar', '--out', {str(tmp_path)!r}]) == 0")
+    assert loaded_after(code) & set(HEAVY) == set()
+    assert (tmp_path / "dyads.csv").stat().st_size > 0
