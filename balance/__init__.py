@@ -31,6 +31,8 @@ demand: matplotlib is not loaded by ``import balance``).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from .api import example_path, examples, solve, solve_results
 from .errors import BalanceError, BalanceWarning
 from .field.influence import (
@@ -55,23 +57,26 @@ from .field.iso import (
     to_bearing_planes,
 )
 from .field.weights import Combined, Split, combine_weights, split_correction
-from .mechanism import (
-    CounterRotatingPair,
-    Counterweight,
-    MechanismBalancing,
-    balanced_scene,
-    centre_of_mass,
-    h_vectors,
-    harmonic_amplitude,
-    shaking_force,
-    solve_mechanism_balancing,
-)
 from .resonance.methods import ResonanceResult, four_run, parallelogram, trial_runs
 from .rotor.design import Correction, CorrectionPlane, RotorResult, Unbalance, balance_rotor
 from .rotor.static_device import StaticDeviceResult, static_device
 from .scene import BalanceScene, load_scene
 from .uncertainty import Interval
 from .units import Units
+
+if TYPE_CHECKING:
+    from .machine import BalancingMachine, CoastDown, coast_down_study, pivot_reaction
+    from .mechanism import (
+        CounterRotatingPair,
+        Counterweight,
+        MechanismBalancing,
+        balanced_scene,
+        centre_of_mass,
+        h_vectors,
+        harmonic_amplitude,
+        shaking_force,
+        solve_mechanism_balancing,
+    )
 
 __all__ = [
     "GRADES",
@@ -133,14 +138,25 @@ __all__ = [
 
 
 _MACHINE = ("BalancingMachine", "CoastDown", "pivot_reaction", "coast_down_study")
+# the static balancing of mechanisms needs pandas and the kinetostatic solver: imported
+# on first use, so that ``import balance`` costs little more than ``import numpy``
+_MECHANISM = ("CounterRotatingPair", "Counterweight", "MechanismBalancing", "balanced_scene",
+              "centre_of_mass", "h_vectors", "harmonic_amplitude", "shaking_force",
+              "solve_mechanism_balancing")
 
 
 def __getattr__(name: str):
     """The virtual balancing machine (``balance.BalancingMachine``, ``CoastDown``,
-    ``pivot_reaction``, ``coast_down_study``) without importing pymunk for
-    ``import balance``."""
+    ``pivot_reaction``, ``coast_down_study``: pymunk) and the static balancing of
+    mechanisms (``solve_mechanism_balancing``, ...: pandas), imported on first use."""
     if name in _MACHINE:
         from . import machine
 
         return getattr(machine, name)
+    if name in _MECHANISM:
+        from . import mechanism
+
+        value = getattr(mechanism, name)
+        globals()[name] = value
+        return value
     raise AttributeError(f"module 'balance' has no attribute {name!r}")

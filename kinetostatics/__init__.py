@@ -25,6 +25,8 @@ not). The scene model (reading, checking, exceptions, bundled scenes) is
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from .model.errors import (
     AssemblyError,
     SceneError,
@@ -34,17 +36,53 @@ from .model.errors import (
     WorkbenchError,
 )
 from .model.examples import cam_examples, example, examples, scene_path
-from .model.scene import Scene, load_scene
-from .motion.scene import simulate_motion
-from .results import Solution
-from .solver.kinematics import Kinematics, solve_kinematics
-from .solver.pipeline import solve
-from .solver.structure import Dyad, Structure, analyse
+
+if TYPE_CHECKING:
+    from .model.scene import Scene, load_scene
+    from .motion.scene import simulate_motion
+    from .results import Solution
+    from .solver.kinematics import Kinematics, solve_kinematics
+    from .solver.many import solve_many
+    from .solver.pipeline import solve
+    from .solver.structure import Dyad, Structure, analyse
+
+# Imported when first asked for (PEP 562), so that ``import kinetostatics`` costs little
+# more than ``import numpy``: pandas, matplotlib, scipy and pymunk load with the first
+# table, picture, motion or cross-check that needs them.
+_LAZY = {
+    "Scene": "model.scene", "load_scene": "model.scene",
+    "simulate_motion": "motion.scene", "Solution": "results",
+    "Kinematics": "solver.kinematics", "solve_kinematics": "solver.kinematics",
+    "solve": "solver.pipeline", "solve_many": "solver.many",
+    "Dyad": "solver.structure", "Structure": "solver.structure", "analyse": "solver.structure",
+}
 
 __all__ = [
     "AssemblyError", "Dyad", "Kinematics", "Scene", "SceneError", "SelfLockingError",
     "Solution", "Structure", "StructureError", "UnitWarning", "WorkbenchError", "analyse",
     "cam_examples", "example", "examples", "load_scene", "scene_path", "simulate_motion",
-    "solve", "solve_kinematics",
+    "solve", "solve_kinematics", "solve_many",
 ]
 
+
+def __getattr__(name: str):
+    """The public names of the solver, the results and the motion, imported on first use."""
+    where = _LAZY.get(name)
+    if where is None:
+        import importlib
+
+        try:   # a subpackage (kinetostatics.plot, .cams, ...) asked for as an attribute
+            return importlib.import_module(f"{__name__}.{name}")
+        except ModuleNotFoundError as exc:
+            if exc.name != f"{__name__}.{name}":
+                raise
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    import importlib
+
+    value = getattr(importlib.import_module(f"{__name__}.{where}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

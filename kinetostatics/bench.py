@@ -16,6 +16,7 @@ kinetostatic solve, with the error against independent closed forms.
 
 from __future__ import annotations
 
+import copy
 import gc
 import importlib.util
 import math
@@ -34,56 +35,41 @@ from .solver.structure import analyse
 # 500 N down at C on the rocker, no gravity
 FB = {"a": 0.1, "b": 0.25, "c": 0.2, "d": 0.3, "m2": 1.2, "m3": 2.0, "m4": 1.5,
       "I2": 0.004, "I3": 0.012, "I4": 0.006, "P": (0.0, -500.0)}
-SC = {"r": 0.150, "l": 0.350, "rpm": 1500.0}
+SC = {"r": 0.150, "l": 0.350, "rpm": 1500.0}      # the bundled slider_crank
+
+
+def _bundled(name: str) -> dict:
+    from .model.examples import example
+    from .model.scene import load_scene
+    return copy.deepcopy(load_scene(example(name)).raw)
 
 
 def fourbar_scene(count: int, speed: float = 20.0, p: dict = FB) -> dict:
-    """The baseline's four-bar as a scene dict (crank 0..360 deg, open assembly)."""
-    return {
-        "title": "four-bar (benchmark)",
-        "ground": {"A": [0.0, 0.0], "D": [p["d"], 0.0]},
-        "driver": {"body": "crank", "joint": "A", "speed": speed, "start": 0.0,
-                   "stop": 360.0, "count": int(count)},
-        "bodies": [
-            {"name": "crank", "mass": p["m2"], "inertia": p["I2"], "cog": [p["a"] / 2, 0.0],
-             "points": {"A": [0.0, 0.0], "B": [p["a"], 0.0]}},
-            {"name": "coupler", "mass": p["m3"], "inertia": p["I3"], "cog": [p["b"] / 2, 0.0],
-             "points": {"B": [0.0, 0.0], "C": [p["b"], 0.0]}},
-            {"name": "rocker", "mass": p["m4"], "inertia": p["I4"], "cog": [p["c"] / 2, 0.0],
-             "points": {"D": [0.0, 0.0], "C": [p["c"], 0.0]}},
-        ],
-        "joints": [
-            {"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
-            {"name": "B", "kind": "R", "bodies": ["crank", "coupler"]},
-            {"name": "C", "kind": "R", "bodies": ["coupler", "rocker"]},
-            {"name": "D", "kind": "R", "bodies": ["ground", "rocker"]},
-        ],
-        "loads": [{"body": "rocker", "point": "C", "force": list(p["P"])}],
-        "near": {"C": [p["d"], 0.2]},
-    }
+    """The baseline's four-bar as a scene dict (crank 0..360 deg, open assembly): the
+    bundled ``four_bar`` (its lengths are the baseline's) with the baseline's masses,
+    inertias and mid-link cogs, 500 N down at C on the rocker and no gravity; its extra
+    points (coupler P, rocker E) dropped."""
+    d = _bundled("four_bar")
+    d["title"] = "four-bar (benchmark)"
+    d["gravity"] = [0.0, 0.0]
+    d["ground"]["D"] = [p["d"], 0.0]
+    d["driver"].update(speed=speed, start=0.0, stop=360.0, count=int(count))
+    shape = {"crank": ("a", "m2", "I2", "A", "B"), "coupler": ("b", "m3", "I3", "B", "C"),
+             "rocker": ("c", "m4", "I4", "D", "C")}
+    for body in d["bodies"]:
+        length, m, inertia, start, end = shape[body["name"]]
+        body.update(mass=p[m], inertia=p[inertia], cog=[p[length] / 2, 0.0],
+                    points={start: [0.0, 0.0], end: [p[length], 0.0]})
+    d["loads"] = [{"body": "rocker", "point": "C", "force": list(p["P"])}]
+    return d
 
 
 def slider_crank_scene(count: int) -> dict:
-    """Centred slider-crank r = 0.150 m, l = 0.350 m at 1500 rpm (seed 004)."""
-    return {
-        "title": "slider-crank (benchmark)",
-        "ground": {"A": [0.0, 0.0], "O": [0.0, 0.0]},
-        "driver": {"body": "crank", "joint": "A", "speed_rpm": SC["rpm"], "start": 0.0,
-                   "stop": 360.0, "count": int(count)},
-        "bodies": [
-            {"name": "crank", "points": {"A": [0.0, 0.0], "B": [SC["r"], 0.0]}},
-            {"name": "rod", "points": {"B": [0.0, 0.0], "C": [SC["l"], 0.0]}},
-            {"name": "piston", "points": {"C": [0.0, 0.0]}},
-        ],
-        "joints": [
-            {"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
-            {"name": "B", "kind": "R", "bodies": ["crank", "rod"]},
-            {"name": "C", "kind": "R", "bodies": ["rod", "piston"]},
-            {"name": "slide", "kind": "T", "guide": "ground", "slider": "piston",
-             "line_point": "O", "slider_point": "C"},
-        ],
-        "near": {"C": [0.5, 0.0]},
-    }
+    """The bundled centred slider-crank (r = 0.150 m, l = 0.350 m, 1500 rpm, seed 004)
+    with ``count`` positions over a turn."""
+    d = _bundled("slider_crank")
+    d["driver"].update(start=0.0, stop=360.0, count=int(count))
+    return d
 
 
 def fourbar_closed_form(th: np.ndarray, w2: float, p: dict = FB) -> dict:
@@ -286,14 +272,15 @@ def bench_against_reference(path: str | Path, n: int = 200_001, repeat: int = 7)
 
 
 def run_bench(quick: bool = False, reference: str | None = None) -> dict[str, pd.DataFrame]:
-    """Run the benchmarks and print their tables."""
+    """Run the benchmarks and print their tables (the ratios to baselines follow from
+    :func:`kinetostatics.bench_speed.run_speed`)."""
     sizes = (1_000, 10_000) if quick else (1_000, 100_000, 1_000_000)
     out = {"kinematics": bench_kinematics(sizes)}
     out["reactions"] = bench_reactions(10_000 if quick else 1_000_000)
     ref = reference or find_reference()
     if ref:
         out["reference"] = bench_against_reference(ref, 20_001 if quick else 200_001)
-    pd.set_option("display.width", 120)
+    pd.set_option("display.width", 160)
     for name, df in out.items():
         print(f"\n== {name} ==")
         print(df.to_string(index=False, float_format=lambda x: f"{x:.4g}"))

@@ -82,7 +82,9 @@ def _cmd_bench(args) -> int:
         run_table_bench(quick=args.quick, repeat=args.repeat)
         return 0
     from .bench import run_bench
+    from .bench_speed import run_speed
     run_bench(quick=args.quick, reference=args.reference)
+    run_speed(quick=args.quick, reference=args.reference)
     return 0
 
 
@@ -97,7 +99,12 @@ on stderr with its size and time. --format parquet writes about 3x less, in abou
 the time, and keeps the dtypes."""
 
 
-def build_parser() -> argparse.ArgumentParser:
+# the commands of this module: their parser is built without the teaching package's
+# (which loads pandas and matplotlib), so that ``solve`` starts quickly
+CORE_COMMANDS = ("solve", "demo", "structure", "bench", "motion", "cam")
+
+
+def build_parser(extras: bool = True) -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="python -m kinetostatics",
                                 description="Kinetostatics of planar mechanisms.")
     sub = p.add_subparsers(dest="command", required=True)
@@ -139,9 +146,10 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("scene")
     c.add_argument("--out", help="folder for motion.csv, geometry.csv, forces.csv, summary.json")
     c.set_defaults(func=_cmd_cam)
-    _extra_commands(sub)
-    from .teaching.cli import add_commands as add_exercise_commands
-    add_exercise_commands(sub)
+    if extras:
+        _extra_commands(sub)
+        from .teaching.cli import add_commands as add_exercise_commands
+        add_exercise_commands(sub)
     return p
 
 
@@ -160,8 +168,9 @@ def _showwarning(message, category, filename, lineno, file=None, line=None) -> N
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    words = sys.argv[1:] if argv is None else list(argv)
+    parser = build_parser(extras=not (words and words[0] in CORE_COMMANDS))
+    args = parser.parse_args(words)
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("default")

@@ -28,7 +28,6 @@ from __future__ import annotations
 from fractions import Fraction
 
 import numpy as np
-import pandas as pd
 
 WIDTH = 25              # the longest '%.17g' text, -1.2345678901234567e-308, and a separator
 _RANGE = 270            # fast path for 1e-270 <= |x| <= 1e270 (no overflow in the split)
@@ -221,20 +220,32 @@ def format_column(col, sep: str = ",") -> tuple[np.ndarray, np.ndarray]:
     """A column's CSV fields: ``(chars, length)`` as in :func:`format_floats`.
 
     Floats go through :func:`format_floats`; booleans, categoricals and other columns
-    are formatted once per distinct value (NaN/None as empty fields)."""
-    if isinstance(getattr(col, "dtype", None), pd.CategoricalDtype):
-        cat = pd.Categorical(col)
-        texts = [str(c) for c in cat.categories] + [""]
-        codes = np.where(cat.codes < 0, len(texts) - 1, cat.codes)
-        return _labels(texts, codes, sep)
+    are formatted once per distinct value (NaN/None as empty fields). pandas is needed
+    only for a column of mixed or missing objects."""
+    if hasattr(col, "categories") and hasattr(col, "codes"):        # a pandas Categorical
+        texts = [str(c) for c in col.categories] + [""]
+        codes = np.asarray(col.codes)
+        return _labels(texts, np.where(codes < 0, len(texts) - 1, codes), sep)
+    if hasattr(getattr(col, "dtype", None), "categories"):           # a categorical Series
+        return format_column(col.array, sep)
     arr = np.asarray(col)
     if arr.dtype.kind == "f":
         return format_floats(arr, sep)
     if arr.dtype.kind == "b":
         return _labels(["False", "True"], arr.astype(np.intp), sep)
-    codes, uniques = pd.factorize(col)            # missing values: code -1, an empty field
-    texts = [str(u) for u in uniques] + [""]
-    return _labels(texts, np.where(codes < 0, len(texts) - 1, codes), sep)
+    if arr.dtype.kind in "iuU":
+        uniques, codes = np.unique(arr, return_inverse=True)
+        return _labels([str(u) for u in uniques], codes.ravel(), sep)
+    seen: dict = {}                   # objects, in order of appearance (pandas.factorize)
+    codes = np.fromiter((seen.setdefault(x, len(seen)) for x in arr.ravel()),
+                        dtype=np.intp, count=arr.size)
+    texts = ["" if x is None or (isinstance(x, float) and x != x) else str(x) for x in seen]
+    return _labels(texts or [""], codes, sep)
+
+
+def format_label(text: str, sep: str = ",") -> tuple[np.ndarray, np.ndarray]:
+    """One row holding ``text`` (a block's name in a long table)."""
+    return _labels([str(text)], np.zeros(1, dtype=np.intp), sep)
 
 
 _COLUMNS = np.arange(256, dtype=np.uint8)

@@ -12,15 +12,19 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 import numpy as np
-import pandas as pd
 
 CHUNK = 32_768          # positions computed at a time: the temporaries stay in the CPU caches
 
 
 def categorical(names: list[str], n: int) -> pd.Categorical:
     """A categorical column with ``names[i]`` on the ``n`` rows of block ``i``."""
+    import pandas as pd
     cats = list(dict.fromkeys(names))
     kind = np.int8 if len(cats) < 127 else np.int16 if len(cats) < 32767 else np.int32
     codes = np.array([cats.index(x) for x in names], dtype=kind)
@@ -69,6 +73,7 @@ class LongTable:
 
     def frame(self) -> pd.DataFrame:
         """The table as a DataFrame: each float column allocated once, filled in place."""
+        import pandas as pd
         n, k = self.n, self.blocks
         out = {c: np.empty(n * k) for c in self.floats}
         for i, part in self.parts():

@@ -15,13 +15,16 @@ from __future__ import annotations
 from collections.abc import Callable, Iterator
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from . import csvtext
 from .longtable import LongTable
 from .model.errors import WorkbenchError
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 CHUNK = 16_384          # rows formatted at a time (the arrays stay in the CPU caches)
 THREADS = 2
@@ -83,14 +86,15 @@ def _chunks(rows: int, block: int | None) -> Iterator[tuple[int, int, int]]:
             yield s, min(s + CHUNK, b + block, rows), s - b
 
 
-def write_csv(df: pd.DataFrame, path: str | Path, block: int | None = None,
+def write_csv(df: pd.DataFrame | dict, path: str | Path, block: int | None = None,
               announce: Callable[[str], None] | None = None) -> Path:
     """Write a table as CSV: header, then one line per row, floats as ``'%.17g'``.
 
     Parameters
     ----------
-    df : DataFrame
-        The table (its index is not written).
+    df : DataFrame or dict
+        The table (its index is not written), or its columns by name (arrays of one
+        length: written as the DataFrame of them would be, without pandas).
     path : str or Path
     block : int, optional
         Rows per block of a long table (the number of positions): ``position`` is
@@ -99,11 +103,16 @@ def write_csv(df: pd.DataFrame, path: str | Path, block: int | None = None,
         Called with one line (size and time estimate) before a table of more than
         ``WARN_ROWS`` rows is written.
     """
-    names = list(df.columns)
-    data = []
-    for name in names:
-        s = df[name]
-        data.append(s.array if isinstance(s.dtype, pd.CategoricalDtype) else s.to_numpy())
+    if isinstance(df, dict):
+        names = list(df)
+        data = [np.asarray(v) if not hasattr(v, "categories") else v for v in df.values()]
+    else:
+        names = list(df.columns)
+        data = []
+        for name in names:
+            s = df[name]
+            data.append(s.array if hasattr(s.dtype, "categories") else s.to_numpy())
+    rows = len(data[0]) if data else 0
     repeats = {i: _Repeats() for i, n in enumerate(names) if n == "position" and block}
     seps = _separators(len(names))
 
@@ -113,11 +122,11 @@ def write_csv(df: pd.DataFrame, path: str | Path, block: int | None = None,
                                   for i, d in enumerate(data)])
 
     def per_row() -> float:
-        sample = np.linspace(0, len(df) - 1, 4096).astype(np.intp)
+        sample = np.linspace(0, rows - 1, 4096).astype(np.intp)
         return len(csvtext.rows_text([_fields(d[sample], seps[i])
                                       for i, d in enumerate(data)])) / sample.size
 
-    return _write_lines(Path(path), names, list(_chunks(len(df), block)), text, len(df),
+    return _write_lines(Path(path), names, list(_chunks(rows, block)), text, rows,
                         per_row, announce)
 
 
@@ -128,7 +137,7 @@ def write_long_csv(table: LongTable, path: str | Path,
     names = table.columns
     seps = _separators(len(names))
     nl = len(table.labels)
-    labels = [[csvtext.format_column(pd.Categorical([x]), seps[1 + j]) for x in block_names]
+    labels = [[csvtext.format_label(x, seps[1 + j]) for x in block_names]
               for j, block_names in enumerate(table.labels.values())]
     repeats = _Repeats()
 

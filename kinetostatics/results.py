@@ -15,9 +15,9 @@ import json
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from .longtable import LongTable
 from .model.errors import WorkbenchError
@@ -26,6 +26,9 @@ from .solver.kinematics import Kinematics
 from .solver.loads import PointLoad
 from .solver.reactions import DriverReaction, JointReaction
 from .solver.structure import Structure
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 OFFSET_EMPTY = 1e-12     # offset = M / N is left empty where |N| <= 1e-12 max|N|
 
@@ -42,6 +45,26 @@ def continuous_angle(theta: np.ndarray) -> np.ndarray:
 def _column(value, n: int, dtype=float) -> np.ndarray:
     """A table column of its own (a copy: the table never shares the solver's arrays)."""
     return np.array(np.broadcast_to(value, (n,)), dtype=dtype)
+
+
+def _text(value: str, n: int) -> np.ndarray:
+    """A column of ``n`` copies of one text (object dtype, as pandas holds text)."""
+    out = np.empty(n, dtype=object)
+    out[:] = value
+    return out
+
+
+def _concat(parts: list[dict], names: list[str]) -> dict:
+    """The blocks of a table one after another (no block: empty columns)."""
+    if not parts:
+        return {c: np.empty(0, dtype=object) for c in names}
+    return {c: np.concatenate([p[c] for p in parts]) for c in names}
+
+
+def _frame(columns: dict, copy: bool | None = None) -> pd.DataFrame:
+    """A table's columns as a DataFrame (pandas imported here, when a table is asked for)."""
+    import pandas as pd
+    return pd.DataFrame(columns, copy=copy)
 
 
 @dataclass
@@ -102,6 +125,14 @@ class Solution:
     def driver(self) -> pd.DataFrame:
         """``position, Me`` (or ``Fe``), ``singular``, ``undefined_load`` (and, with joint
         friction, ``self_locking``)."""
+        return _frame(self.columns("driver"), copy=False)
+
+    def columns(self, table: str) -> dict:
+        """The columns of a short table (``driver``, ``dyads``, ``sliders``, ``frame``) as
+        arrays by name, without pandas (the CSV writer takes them as they are)."""
+        return getattr(self, f"_{table}_columns")()
+
+    def _driver_columns(self) -> dict:
         n = self.positions.size
         cols = {"position": self.positions.astype(float),
                 self.driver_quantity: _column(self.Me, n),
@@ -109,7 +140,7 @@ class Solution:
                 "undefined_load": _column(self.undefined_load, n, bool)}
         if self.self_locking is not None:
             cols["self_locking"] = _column(self.self_locking, n, bool)
-        return pd.DataFrame(cols, copy=False)
+        return cols
 
     @cached_property
     def reactions(self) -> pd.DataFrame:
@@ -221,25 +252,31 @@ class Solution:
         ``transmission_angle_min``, the pictures and the exercises use it. ``tau`` keeps the
         oriented angle; ``singular`` is the dyad's own flag (|sin tau| or its pivot
         distance over the mechanism's size at most 1e-3)."""
+        return _frame(self._dyads_columns())
+
+    def _dyads_columns(self) -> dict:
         parts = []
+        n = self.positions.size
         for dm in self.kin.dyads:
             tau = np.rad2deg(np.arctan2(np.abs(dm.sin_tau), dm.cos_tau))
-            parts.append(pd.DataFrame({
-                "position": self.positions, "dyad": dm.dyad.index + 1, "kind": dm.dyad.kind,
-                "bodies": f"{dm.dyad.bodies[0]}-{dm.dyad.bodies[1]}",
+            parts.append({
+                "position": self.positions, "dyad": np.full(n, dm.dyad.index + 1),
+                "kind": _text(dm.dyad.kind, n),
+                "bodies": _text(f"{dm.dyad.bodies[0]}-{dm.dyad.bodies[1]}", n),
                 "transmission_angle": dm.transmission_angle, "tau": tau,
                 "sin_tau": np.abs(dm.sin_tau),
-                "singular": np.broadcast_to(dm.singular, self.positions.shape)}))
-        if not parts:
-            return pd.DataFrame(columns=["position", "dyad", "kind", "bodies",
-                                         "transmission_angle", "tau", "sin_tau", "singular"])
-        return pd.concat(parts, ignore_index=True)
+                "singular": np.broadcast_to(dm.singular, self.positions.shape)})
+        return _concat(parts, ["position", "dyad", "kind", "bodies", "transmission_angle",
+                               "tau", "sin_tau", "singular"])
 
     @cached_property
     def sliders(self) -> pd.DataFrame:
         """Relative motion in every prismatic joint: ``s`` (m, slider point from the line
         point along the line), ``ds`` (m/s) and ``dds`` (m/s^2) seen from the guide (the
         relative acceleration, without the Coriolis term 2 omega x v_rel)."""
+        return _frame(self._sliders_columns())
+
+    def _sliders_columns(self) -> dict:
         n = self.positions.size
         parts = []
         for name, j in self.scene.joints.items():
@@ -261,19 +298,19 @@ class Solution:
             rel = (ux * (sx - lx) + uy * (sy - ly))
             ds = ux * (vsx - vgx) + uy * (vsy - vgy)
             dds = ux * (asx - agx) + uy * (asy - agy)
-            parts.append(pd.DataFrame({"position": self.positions, "joint": name,
-                                       "s": np.broadcast_to(rel, (n,)),
-                                       "ds": np.broadcast_to(ds, (n,)),
-                                       "dds": np.broadcast_to(dds, (n,))}))
-        if not parts:
-            return pd.DataFrame(columns=["position", "joint", "s", "ds", "dds"])
-        return pd.concat(parts, ignore_index=True)
+            parts.append({"position": self.positions, "joint": _text(name, n),
+                          "s": np.broadcast_to(rel, (n,)), "ds": np.broadcast_to(ds, (n,)),
+                          "dds": np.broadcast_to(dds, (n,))})
+        return _concat(parts, ["position", "joint", "s", "ds", "dds"])
 
     @cached_property
     def frame(self) -> pd.DataFrame:
         """Force and moment the mechanism transmits to its frame (shaking force and
         moment): the ground joints' reactions on the ground, the driver's reaction
         (-Me on the frame) included; moment about the global origin."""
+        return _frame(self._frame_columns())
+
+    def _frame_columns(self) -> dict:
         n = self.positions.size
         fx = np.zeros(n)
         fy = np.zeros(n)
@@ -299,8 +336,8 @@ class Solution:
             fx -= self.Me * ux
             fy -= self.Me * uy
             mz -= np.broadcast_to(r.x * (self.Me * uy) - r.y * (self.Me * ux), (n,))
-        return pd.DataFrame({"position": self.positions, "Fx": fx, "Fy": fy,
-                             "F": np.hypot(fx, fy), "M": mz})
+        return {"position": self.positions, "Fx": fx, "Fy": fy, "F": np.hypot(fx, fy),
+                "M": mz}
 
     def low_transmission(self, admissible: float = 40.0) -> pd.DataFrame:
         """Rows of the ``dyads`` table where the transmission angle leaves the admissible
@@ -314,6 +351,7 @@ class Solution:
         """The seed's split of each dyad's outer revolute reactions (eqs 2.17-2.18, 2.22,
         2.26): ``Fn`` along the link from the outer joint to the inner joint, ``Ft``
         perpendicular to it (the link direction turned +90 deg), on the dyad body."""
+        import pandas as pd
         n = self.positions.size
         parts = []
         for dm in self.kin.dyads:
@@ -435,6 +473,11 @@ class Solution:
                 # straight from the solver's arrays, chunk by chunk: never held whole
                 written.append(write_long_csv(self.long_table(name), d / f"{name}.csv",
                                               announce))
+                continue
+            if fmt == "csv" and not kept:
+                # the short tables' columns, written without building a DataFrame
+                written.append(write_csv(self.columns(name), d / f"{name}.csv",
+                                         self.positions.size, announce))
                 continue
             table = getattr(self, name)
             if fmt == "csv":

@@ -10,6 +10,7 @@ infinity multiplied by an exact zero stays NaN, so the solver's final check sees
 
 from __future__ import annotations
 
+import math
 import weakref
 
 import numpy as np
@@ -17,20 +18,32 @@ import numpy as np
 
 def zero(x) -> bool:
     """True for a Python or numpy scalar equal to 0 (never for an array)."""
+    t = type(x)
+    if t is np.ndarray:
+        return False
+    if t is float or t is int:
+        return x == 0
     return isinstance(x, float | int) and x == 0
 
 
 _FINITE: weakref.WeakValueDictionary = weakref.WeakValueDictionary()
 
 
+_REMEMBER = 4096        # arrays at least this long are remembered once found finite
+_sum = np.add.reduce
+
+
 def _finite(x) -> bool:
-    """True when x (a scalar or an array) holds no NaN or infinity; each array is summed
-    once (remembered by identity while it lives)."""
+    """True when x (a scalar or an array) holds no NaN or infinity; each long array is
+    summed once (remembered by identity while it lives: below ``_REMEMBER`` values a
+    second sum costs less than remembering)."""
     if not isinstance(x, np.ndarray):
         return bool(np.isfinite(x))
+    if x.size < _REMEMBER:
+        return math.isfinite(_sum(x, axis=None))
     if _FINITE.get(id(x)) is x:
         return True
-    ok = bool(np.isfinite(np.sum(x)))
+    ok = math.isfinite(_sum(x, axis=None))
     if ok:
         _FINITE[id(x)] = x
     return ok
@@ -76,9 +89,9 @@ def cross(ax, ay, bx, by):
 
 def rotate(c, s, lx: float, ly: float):
     """R(theta) (lx, ly) with c = cos theta, s = sin theta; lx, ly are scalars."""
-    if ly == 0.0:
+    if zero(ly):
         return mul(c, lx), mul(s, lx)
-    if lx == 0.0:
+    if zero(lx):
         return mul(-ly, s), mul(c, ly)
     return c * lx - s * ly, s * lx + c * ly
 
@@ -101,6 +114,12 @@ def icross(acc, rx, ry, fx, fy, tmp, sign: float = 1.0) -> None:
     if not (zero(ry) or zero(fx)):
         np.multiply(ry, fx, out=tmp)
         iadd(acc, tmp, -sign)
+
+
+def scalar(x):
+    """A Python float of a scalar; a per-row array (a stacked batch of scenes,
+    :func:`kinetostatics.solve_many`) as it is."""
+    return x if isinstance(x, np.ndarray) else float(x)
 
 
 def full(x, n: int) -> np.ndarray:

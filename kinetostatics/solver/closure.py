@@ -11,7 +11,6 @@ prismatic one.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -57,7 +56,7 @@ def known_point(scene: Scene, bname: str, motion: BodyMotion, pname: str):
     """Position, velocity and acceleration of a named point of a known body."""
     if bname == GROUND:
         x, y = scene.ground[pname]
-        return float(x), float(y), 0.0, 0.0, 0.0, 0.0
+        return A.scalar(x), A.scalar(y), 0.0, 0.0, 0.0, 0.0
     rx, ry = motion.rotate(*scene.bodies[bname].local(pname))
     vx, vy = motion.vel_arm(rx, ry)
     ax, ay = motion.acc_arm(rx, ry)
@@ -117,7 +116,7 @@ class DyadSolver:
                 if outer.kind != "R":
                     continue
                 ax, ay = self.b[i].local(outer.point_on(dyad.bodies[i]))
-                if math.hypot(qx - ax, qy - ay) <= 1e-12 * scene.size:
+                if np.any(np.hypot(qx - ax, qy - ay) <= 1e-12 * scene.size):
                     raise AssemblyError(
                         f"body {dyad.bodies[i]!r}: its joint points for {outer.name!r} and "
                         f"{inner.name!r} coincide; a dyad link needs a length")
@@ -237,7 +236,10 @@ class DyadSolver:
             if np.max(np.abs(y)) > 1.0 or not np.all(np.isfinite(y)):
                 gap = np.where(np.isfinite(y), abs(c) - dn, np.inf)
             x = np.arcsin(np.clip(y, -1.0, 1.0))
-            th = np.arctan2(dy, dx) - self.beta + (-x if k > 0 else x - np.pi)
+            if np.ndim(k):      # per-row assemblies (kinetostatics.solve_many)
+                th = np.arctan2(dy, dx) - self.beta + np.where(k > 0, -x, x - np.pi)
+            else:
+                th = np.arctan2(dy, dx) - self.beta + (-x if k > 0 else x - np.pi)
             cg, sg = np.cos(th), np.sin(th)
             out[i_g] = (cg, sg)
             out[i_s] = A.rotate(cg, sg, cb, sb)

@@ -89,7 +89,7 @@ def driver_motion(scene: Scene) -> BodyMotion:
         px, py = scene.ground[joint.point_on(GROUND)]
         rax, ray = A.rotate(c, s, *body.local(joint.point_on(drv.body)))   # o = P - R a
         w2 = w * w
-        return BodyMotion(th, c, s, w, eps, A.sub(float(px), rax), A.sub(float(py), ray),
+        return BodyMotion(th, c, s, w, eps, A.sub(A.scalar(px), rax), A.sub(A.scalar(py), ray),
                           A.mul(w, ray), A.mul(-w, rax),
                           A.add(A.mul(eps, ray), A.mul(w2, rax)),
                           A.add(A.mul(-eps, rax), A.mul(w2, ray)))

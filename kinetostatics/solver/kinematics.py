@@ -177,6 +177,34 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
     pr = (dyad_param(scene, dyad, 0, motions), dyad_param(scene, dyad, 1, motions))
     if k is None or solver.branches == 1:
         k = _choose_branch(scene, dyad, solver, motions) if solver.branches == 2 else 1
+    cs, ss, reach = _close(scene, dyad, solver, pr, k, strict)
+    org = [body_origin(pr[i], cs[i], ss[i]) for i in range(2)]
+    vs = _VelocitySystem(dyad, solver, pr, cs, org)
+    sin2 = _closeness2(vs, pr, reach, n)
+    sing = ~(sin2 > SINGULAR_WARN**2)
+    exact = np.flatnonzero(~(sin2 > SINGULAR_FAIL**2)) if sing.any() else ()
+    if strict and len(exact):
+        raise AssemblyError(
+            f"dyad {dyad.label} is exactly singular (dead centre: transmission angle 0) at "
+            f"driver position(s) {_fmt_positions(scene, exact)}; its velocities are undefined "
+            "there: leave those positions out of the sweep")
+    qd = vs.solve(vs.r1, vs.r2)
+    qdd = vs.solve(*_acceleration_rhs(vs, pr, qd))
+    for i, p in enumerate(pr):
+        motions[dyad.bodies[i]] = _body_motion(p, cs[i], org[i], qd[i], qdd[i])
+    inner = dyad.inner
+    return DyadMotion(dyad, pr, k, vs.xx, vs.xy, vs.c1, vs.c2, vs.det, n,
+                      singular=sing, closeness2=sin2,
+                      inner_local=tuple(solver.q) if inner.kind == "R" else None,
+                      slider_first=inner.kind == "T" and solver.slider_first,
+                      nx=vs.nx, ny=vs.ny)
+
+
+def _close(scene: Scene, dyad: Dyad, solver: DyadSolver, pr, k, strict: bool):
+    """Step 1, positions: each body's (cos, sin) and displacement for assembly k, and the
+    outer pivots' distance over the mechanism's size (or None); refuses (``strict``)
+    rows where the links do not reach or the pivots coincide."""
+    n = scene.driver.positions.size
     cs, ss, gap = solver.positions(pr, k)
     reach = solver.pivot_distance(pr)
     if reach is not None:
@@ -191,48 +219,71 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
                 f"dyad {dyad.label} cannot be assembled at driver position(s) "
                 f"{_fmt_positions(scene, bad, gap[bad])}: the links do not reach; shorten "
                 "the sweep or change the lengths")
-    org = [body_origin(pr[i], cs[i], ss[i]) for i in range(2)]
-    inner = dyad.inner
-    ib = 0 if inner.kind == "R" or solver.slider_first else 1
-    loc = solver.q[0] if inner.kind == "R" else solver.b[ib].local(inner.points[1])
-    rx, ry = A.rotate(cs[ib][0], cs[ib][1], *loc)
-    xx, xy = A.add(org[ib][0], rx), A.add(org[ib][1], ry)
-    (c1, k1, w1), (c2, k2, w2) = _columns(pr[0], xx, xy), _columns(pr[1], xx, xy)
-    if inner.kind == "R":
-        # c1 qd1 - c2 qd2 = k2 - k1
-        a11, a12, a21, a22 = c1[0], -c2[0], c1[1], -c2[1]
-        r1, r2 = A.sub(k2[0], k1[0]), A.sub(k2[1], k1[1])
-        nx = ny = None
-        ux = uy = None
-    else:
-        # w1 qd1 - w2 qd2 = omega0_2 - omega0_1 ; n.(c1 qd1 - c2 qd2) = n.(k2 - k1)
-        ig = 1 - ib
-        ux, uy = A.rotate(cs[ig][0], cs[ig][1], np.cos(solver.beta), np.sin(solver.beta))
-        nx, ny = -uy, ux
-        om0 = [0.0 if p.kind == "rot" else p.known.omega for p in pr]
-        a11, a12, r1 = w1, -w2, A.sub(om0[1], om0[0])
-        a21 = A.add(A.mul(nx, c1[0]), A.mul(ny, c1[1]))
-        a22 = -A.add(A.mul(nx, c2[0]), A.mul(ny, c2[1]))
-        r2 = A.add(A.mul(nx, A.sub(k2[0], k1[0])), A.mul(ny, A.sub(k2[1], k1[1])))
-    det = A.sub(A.mul(a11, a22), A.mul(a12, a21))
-    # |det| <= 1e-12 |c1| |c2|: exactly singular (for a prismatic inner joint the same
-    # test on the transmission measure of _inner_t_tau)
-    if inner.kind == "R":
+    return cs, ss, reach
+
+
+class _VelocitySystem:
+    """Step 2, the dyad's velocity system ``G qdot = r`` at its closing point X (the
+    inner joint's point; for a prismatic inner joint the slider point): a revolute inner
+    joint makes both bodies' points at X move alike, ``c1 qd1 - c2 qd2 = k2 - k1``; a
+    prismatic one keeps the slider's angle on the guide's, ``w1 qd1 - w2 qd2 = omega0_2 -
+    omega0_1``, and its point on the line, ``n.(c1 qd1 - c2 qd2) = n.(k2 - k1)``."""
+
+    def __init__(self, dyad: Dyad, solver: DyadSolver, pr, cs, org):
+        inner = dyad.inner
+        self.revolute = inner.kind == "R"
+        self.slider_first = solver.slider_first
+        ib = 0 if inner.kind == "R" or solver.slider_first else 1
+        self.guide = 1 - ib
+        loc = solver.q[0] if inner.kind == "R" else solver.b[ib].local(inner.points[1])
+        rx, ry = A.rotate(cs[ib][0], cs[ib][1], *loc)
+        xx, xy = A.add(org[ib][0], rx), A.add(org[ib][1], ry)
+        (c1, k1, w1), (c2, k2, w2) = _columns(pr[0], xx, xy), _columns(pr[1], xx, xy)
+        if inner.kind == "R":
+            a11, a12, a21, a22 = c1[0], -c2[0], c1[1], -c2[1]
+            r1, r2 = A.sub(k2[0], k1[0]), A.sub(k2[1], k1[1])
+            nx = ny = None
+            ux = uy = None
+        else:
+            ig = self.guide
+            ux, uy = A.rotate(cs[ig][0], cs[ig][1], np.cos(solver.beta), np.sin(solver.beta))
+            nx, ny = -uy, ux
+            om0 = [0.0 if p.kind == "rot" else p.known.omega for p in pr]
+            a11, a12, r1 = w1, -w2, A.sub(om0[1], om0[0])
+            a21 = A.add(A.mul(nx, c1[0]), A.mul(ny, c1[1]))
+            a22 = -A.add(A.mul(nx, c2[0]), A.mul(ny, c2[1]))
+            r2 = A.add(A.mul(nx, A.sub(k2[0], k1[0])), A.mul(ny, A.sub(k2[1], k1[1])))
+        self.xx, self.xy = xx, xy
+        self.c1, self.c2, self.k1, self.k2 = c1, c2, k1, k2
+        self.a = (a11, a12, a21, a22)
+        self.r1, self.r2 = r1, r2
+        self.ux, self.uy, self.nx, self.ny = ux, uy, nx, ny
+        self.det = A.sub(A.mul(a11, a22), A.mul(a12, a21))
+
+    def solve(self, r1, r2):
+        """qdot (or qddot) for the right-hand side (r1, r2), Cramer's rule."""
+        return _solve2(*self.a, r1, r2, self.det)
+
+
+def _closeness2(vs: _VelocitySystem, pr, reach, n: int):
+    """Step 3, the closeness to a dead centre: min(sin^2 tau, (pivot distance / size)^2),
+    with |det| <= 1e-12 |c1| |c2| exactly singular (for a prismatic inner joint the same
+    test on the transmission measure of _inner_t_tau)."""
+    if vs.revolute:
+        c1, c2 = vs.c1, vs.c2
         norm2 = (c1[0] * c1[0] + c1[1] * c1[1]) * (c2[0] * c2[0] + c2[1] * c2[1])
-        sin2 = A.full(det * det / norm2, n)
+        sin2 = A.full(vs.det * vs.det / norm2, n)
     else:
-        sin2 = A.full(_inner_t_tau(pr, ux, uy)[0], n) ** 2
+        sin2 = A.full(_inner_t_tau(pr, vs.ux, vs.uy)[0], n) ** 2
     if reach is not None:
         sin2 = np.minimum(sin2, reach * reach)
-    sing = ~(sin2 > SINGULAR_WARN**2)
-    exact = np.flatnonzero(~(sin2 > SINGULAR_FAIL**2)) if sing.any() else ()
-    if strict and len(exact):
-        raise AssemblyError(
-            f"dyad {dyad.label} is exactly singular (dead centre: transmission angle 0) at "
-            f"driver position(s) {_fmt_positions(scene, exact)}; its velocities are undefined "
-            "there: leave those positions out of the sweep")
-    qd = _solve2(a11, a12, a21, a22, r1, r2, det)
-    # accelerations: the same matrix, centripetal and Coriolis terms on the right
+    return sin2
+
+
+def _acceleration_rhs(vs: _VelocitySystem, pr, qd):
+    """Step 4, the right-hand side of the acceleration system (the same matrix): the
+    centripetal and Coriolis terms."""
+    xx, xy = vs.xx, vs.xy
     ka = []
     for i, p in enumerate(pr):
         if p.kind == "rot":
@@ -242,47 +293,47 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
             kax, kay = p.known.acc_at(xx, xy)
             f = A.mul(2.0 * p.known.omega, qd[i])          # Coriolis 2 omega_K x v_rel
             ka.append((A.sub(kax, A.mul(f, p.uy)), A.add(kay, A.mul(f, p.ux))))
-    if inner.kind == "R":
-        r1, r2 = A.sub(ka[1][0], ka[0][0]), A.sub(ka[1][1], ka[0][1])
+    if vs.revolute:
+        return A.sub(ka[1][0], ka[0][0]), A.sub(ka[1][1], ka[0][1])
+    c1, c2, k1, k2 = vs.c1, vs.c2, vs.k1, vs.k2
+    ux, uy, nx, ny = vs.ux, vs.uy, vs.nx, vs.ny
+    al0 = [0.0 if p.kind == "rot" else p.known.alpha for p in pr]
+    r1 = A.sub(al0[1], al0[0])
+    v1 = (A.add(k1[0], A.mul(c1[0], qd[0])), A.add(k1[1], A.mul(c1[1], qd[0])))
+    v2 = (A.add(k2[0], A.mul(c2[0], qd[1])), A.add(k2[1], A.mul(c2[1], qd[1])))
+    sgn = 1.0 if vs.slider_first else -1.0
+    rdot = A.mul(sgn, A.add(A.mul(ux, A.sub(v1[0], v2[0])), A.mul(uy, A.sub(v1[1], v2[1]))))
+    ig = vs.guide
+    om_g = qd[ig] if pr[ig].kind == "rot" else pr[ig].known.omega
+    # n.(a_slider - a_guide) = 2 omega_g rdot (Coriolis, seed 001 eq. 8)
+    r2 = A.sub(A.mul(2.0 * sgn, A.mul(om_g, rdot)),
+               A.add(A.mul(nx, A.sub(ka[0][0], ka[1][0])),
+                     A.mul(ny, A.sub(ka[0][1], ka[1][1]))))
+    return r1, r2
+
+
+def _body_motion(p: Param, cs, org, qd, qdd) -> BodyMotion:
+    """Step 5, a dyad body's motion from its unknown's rate and acceleration."""
+    c, sn = cs
+    ox, oy = org
+    kb = p.known
+    if p.kind == "rot":
+        om, al = qd, qdd
+        rax, ray = A.rotate(c, sn, -p.local[0], -p.local[1])   # o - P = -R a
+        w2_ = om * om
+        vx = A.sub(p.vpx, A.mul(om, ray))
+        vy = A.add(p.vpy, A.mul(om, rax))
+        ax_ = A.sub(A.sub(p.apx, A.mul(al, ray)), A.mul(w2_, rax))
+        ay_ = A.sub(A.add(p.apy, A.mul(al, rax)), A.mul(w2_, ray))
     else:
-        al0 = [0.0 if p.kind == "rot" else p.known.alpha for p in pr]
-        r1 = A.sub(al0[1], al0[0])
-        v1 = (A.add(k1[0], A.mul(c1[0], qd[0])), A.add(k1[1], A.mul(c1[1], qd[0])))
-        v2 = (A.add(k2[0], A.mul(c2[0], qd[1])), A.add(k2[1], A.mul(c2[1], qd[1])))
-        sgn = 1.0 if solver.slider_first else -1.0
-        rdot = A.mul(sgn, A.add(A.mul(ux, A.sub(v1[0], v2[0])), A.mul(uy, A.sub(v1[1], v2[1]))))
-        ig = 1 - ib
-        om_g = qd[ig] if pr[ig].kind == "rot" else pr[ig].known.omega
-        # n.(a_slider - a_guide) = 2 omega_g rdot (Coriolis, seed 001 eq. 8)
-        r2 = A.sub(A.mul(2.0 * sgn, A.mul(om_g, rdot)),
-                   A.add(A.mul(nx, A.sub(ka[0][0], ka[1][0])),
-                         A.mul(ny, A.sub(ka[0][1], ka[1][1]))))
-    qdd = _solve2(a11, a12, a21, a22, r1, r2, det)
-    for i, p in enumerate(pr):
-        c, sn = cs[i]
-        ox, oy = org[i]
-        kb = p.known
-        if p.kind == "rot":
-            om, al = qd[i], qdd[i]
-            rax, ray = A.rotate(c, sn, -p.local[0], -p.local[1])   # o - P = -R a
-            w2_ = om * om
-            vx = A.sub(p.vpx, A.mul(om, ray))
-            vy = A.add(p.vpy, A.mul(om, rax))
-            ax_ = A.sub(A.sub(p.apx, A.mul(al, ray)), A.mul(w2_, rax))
-            ay_ = A.sub(A.add(p.apy, A.mul(al, rax)), A.mul(w2_, ray))
-        else:
-            om, al = kb.omega, kb.alpha
-            vkx, vky = kb.vel_at(ox, oy)
-            akx, aky = kb.acc_at(ox, oy)
-            f = A.mul(2.0 * kb.omega, qd[i])
-            vx, vy = A.add(vkx, A.mul(qd[i], p.ux)), A.add(vky, A.mul(qd[i], p.uy))
-            ax_ = A.sub(A.add(akx, A.mul(qdd[i], p.ux)), A.mul(f, p.uy))
-            ay_ = A.add(A.add(aky, A.mul(qdd[i], p.uy)), A.mul(f, p.ux))
-        motions[dyad.bodies[i]] = BodyMotion(None, c, sn, om, al, ox, oy, vx, vy, ax_, ay_)
-    return DyadMotion(dyad, pr, k, xx, xy, c1, c2, det, n,
-                      singular=sing, closeness2=sin2,
-                      inner_local=tuple(solver.q) if inner.kind == "R" else None,
-                      slider_first=inner.kind == "T" and solver.slider_first, nx=nx, ny=ny)
+        om, al = kb.omega, kb.alpha
+        vkx, vky = kb.vel_at(ox, oy)
+        akx, aky = kb.acc_at(ox, oy)
+        f = A.mul(2.0 * kb.omega, qd)
+        vx, vy = A.add(vkx, A.mul(qd, p.ux)), A.add(vky, A.mul(qd, p.uy))
+        ax_ = A.sub(A.add(akx, A.mul(qdd, p.ux)), A.mul(f, p.uy))
+        ay_ = A.add(A.add(aky, A.mul(qdd, p.uy)), A.mul(f, p.ux))
+    return BodyMotion(None, c, sn, om, al, ox, oy, vx, vy, ax_, ay_)
 
 
 def _inner_t_tau(pr, ux, uy):

@@ -196,7 +196,7 @@ def _outer_prismatic(scene, store, out, joint, name, kname, ux, uy):
     r = store.acc[name]
     if joint.slider == GROUND:
         x, y = scene.ground[joint.points[1]]
-        sx, sy = float(x), float(y)
+        sx, sy = A.scalar(x), A.scalar(y)
     else:
         m = store.motions[joint.slider]
         ax, ay = store.arm(scene, joint.slider, joint.points[1])
@@ -219,7 +219,7 @@ def _solve_driver(scene: Scene, kin: Kinematics, store: _Store, out: dict) -> Dr
         px, py = scene.ground[joint.point_on(GROUND)]
         ax, ay = store.arm(scene, drv.body, joint.point_on(drv.body))
         me = -A.sub(r[2], A.cross(ax, ay, r[0], r[1]))
-        _record(out, joint, drv.body, r[0], r[1], float(px), float(py), sign=-1.0)
+        _record(out, joint, drv.body, r[0], r[1], A.scalar(px), A.scalar(py), sign=-1.0)
         return DriverReaction("R", A.full(me, kin.n))
     # sliding driver (eqs 2.49-2.51): Fe along the line through the slider point
     if joint.guide == GROUND:
@@ -231,7 +231,7 @@ def _solve_driver(scene: Scene, kin: Kinematics, store: _Store, out: dict) -> Dr
     else:
         ux, uy = 1.0, 0.0
         x, y = scene.ground[joint.points[1]]
-        sx, sy = float(x), float(y)
+        sx, sy = A.scalar(x), A.scalar(y)
         ax, ay = store.arm_to(drv.body, sx, sy)
     fe = -A.add(A.mul(r[0], ux), A.mul(r[1], uy))
     nx, ny = -uy, ux

@@ -1,0 +1,245 @@
+"""Many mechanisms at once: :func:`solve_many`.
+
+Every exercise checks many variants of one mechanism, and a design study sweeps
+hundreds; solved one by one, each pays the solver's cost per scene (reading, structure,
+assembly, a few hundred small array operations). :func:`solve_many` groups the scenes
+by structure (:func:`~kinetostatics.solver.stack.signature`) and solves each group as
+one scene over all its rows (:mod:`~kinetostatics.solver.stack`), in chunks of about
+``CHUNK_ROWS`` rows (the solver's cost per pass is spread over many scenes while the
+arrays stay moderate), then cuts the result into one
+:class:`~kinetostatics.results.Solution` per scene. Each holds exactly the numbers
+:func:`~kinetostatics.solve` gives that scene alone: the same elementwise operations
+run on every row. A scene that cannot be stacked (joint friction, a mass model, a
+``resist`` load), or that the stacked pass refuses, is solved alone.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from concurrent.futures import Executor
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from ..model.scene import load_scene
+from ..results import Solution
+from .driver import BodyMotion
+from .kinematics import Kinematics, solve_kinematics
+from .pipeline import _check_finite, _solve_loads, solve
+from .reactions import DriverReaction
+from .stack import Rows, Stacker, assemblies, dead_points, signature
+from .structure import analyse
+
+CHUNK_ROWS = 65_536     # rows solved at a time (positions x scenes; measured best of 4e3-4e5)
+
+
+def solve_many(scenes: Iterable[Any], *, executor: Executor | None = None,
+               batch: int | None = None) -> list[Solution]:
+    """The :class:`~kinetostatics.results.Solution` of each scene, in order, with exactly
+    the numbers :func:`~kinetostatics.solve` gives each alone.
+
+    Scenes of the same structure (the same bodies, points, joints, driver, loads and
+    gravity; their lengths, ground points, masses, inertias, hints and sweeps may differ)
+    are solved together in one vectorised pass, stacked along the position axis; the
+    others are grouped by structure.
+
+    Parameters
+    ----------
+    scenes : iterable of Scene, path, TOML text or dict
+        What :func:`~kinetostatics.solve` takes, one per mechanism.
+    executor : concurrent.futures.Executor, optional
+        Spreads the scenes over its workers in batches of ``batch`` scenes (a
+        ``ProcessPoolExecutor``, or a dask.distributed ``Client.get_executor()``); it is
+        not shut down. Default: all in this process (usually the fastest for a few
+        thousand scenes: one process solves them stacked).
+    batch : int, optional
+        Scenes per task for ``executor`` (default: about 4 tasks per 100 scenes, at
+        least 32 scenes a task).
+
+    Returns
+    -------
+    list of Solution
+        One per scene, in the order given.
+
+    Raises
+    ------
+    WorkbenchError
+        The error :func:`~kinetostatics.solve` raises for the first scene (in order) that
+        it refuses.
+
+    Examples
+    --------
+    >>> import kinetostatics as ks
+    >>> sols = ks.solve_many([ks.example("four_bar"), ks.example("slider_crank")])
+    >>> [s.scene.title for s in sols] == [ks.solve(ks.example(n)).scene.title
+    ...                                   for n in ("four_bar", "slider_crank")]
+    True
+    """
+    items = list(scenes)
+    if executor is None or len(items) <= 1:
+        out = solve_outcomes(items)
+    else:
+        size = batch or max(32, math.ceil(len(items) / 25))
+        parts = [items[i:i + size] for i in range(0, len(items), size)]
+        out = [r for part in executor.map(solve_outcomes, parts) for r in part]
+    for r in out:
+        if isinstance(r, Exception):
+            raise r
+    return out
+
+
+def solve_outcomes(items: list[Any]) -> list[Solution | Exception]:
+    """Per scene, its Solution or the exception :func:`~kinetostatics.solve` raises for it
+    (a top-level function: the task an executor runs)."""
+    out: list[Any] = [None] * len(items)
+    groups: dict[Any, list] = {}
+    for i, item in enumerate(items):
+        try:
+            sc = load_scene(item)
+            key = signature(sc) if sc.driver.positions.size else None
+        except Exception as exc:        # solve would raise it for this scene
+            out[i] = exc
+            continue
+        if key is None:
+            out[i] = _alone(sc)
+        else:
+            groups.setdefault(key, []).append((i, sc))
+    for members in groups.values():
+        chunk: list = []
+        rows = 0
+        for m in members:
+            chunk.append(m)
+            rows += m[1].driver.positions.size
+            if rows >= CHUNK_ROWS:
+                _solve_group(chunk, out)
+                chunk, rows = [], 0
+        if chunk:
+            _solve_group(chunk, out)
+    return out
+
+
+def _alone(sc) -> Solution | Exception:
+    try:
+        return solve(sc)
+    except Exception as exc:
+        return exc
+
+
+def _solve_group(members: list, out: list) -> None:
+    """Solve scenes of one signature stacked; any scene the stacked pass cannot vouch
+    for (or all of them, if it refuses) is solved alone."""
+    if len(members) == 1:
+        out[members[0][0]] = _alone(members[0][1])
+        return
+    try:
+        structure = analyse(members[0][1], assemble=False)
+        ks, ok = assemblies(Stacker([sc for _, sc in members]), structure)
+    except Exception:
+        ok = np.zeros(len(members), dtype=bool)
+    for (i, sc), good in zip(members, ok, strict=True):
+        if not good:
+            out[i] = _alone(sc)
+    kept = [m for m, good in zip(members, ok, strict=True) if good]
+    if len(kept) < 2:
+        for i, sc in kept:
+            out[i] = _alone(sc)
+        return
+    ks = ks[:, ok]
+    scenes = [sc for _, sc in kept]
+    try:
+        sols = _stacked(scenes, structure, ks)
+    except Exception:
+        sols = [_alone(sc) for sc in scenes]
+    for (i, _), s in zip(kept, sols, strict=True):
+        out[i] = s
+
+
+def _stacked(scenes: list, structure, ks: np.ndarray) -> list[Solution]:
+    """The solve of :func:`kinetostatics.solve` on the stacked scenes, cut per scene."""
+    counts = np.array([s.driver.positions.size for s in scenes])
+    starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    owner = np.repeat(np.arange(len(scenes)), counts)
+    stacker = Stacker(scenes)
+    per_scene = replace(structure, assembly=tuple(ks))
+    st = replace(structure, assembly=tuple(k[owner] for k in ks))
+    big = stacker.scene(owner, np.concatenate([s.driver.positions for s in scenes]))
+    kin = solve_kinematics(big, st)
+    dead = dead_points(stacker, per_scene, kin, starts, owner)
+    sol = _solve_loads(big, st, kin)
+    _check_finite(sol)
+    cut = _splitter(sol)
+    return [cut(sc, replace(structure, assembly=tuple(int(k[j]) for k in ks)),
+                slice(a, a + n), dead[j])
+            for j, (sc, a, n) in enumerate(zip(scenes, starts, counts, strict=True))]
+
+
+class _Template:
+    """How to cut one object of the stacked solution: its attributes that hold an array
+    over the rows (or tuples of them), and the rest, shared."""
+
+    def __init__(self, obj, total: int):
+        self.cls = type(obj)
+        self.same = {}
+        self.rows = []            # (name, array)
+        self.parts = []           # (name, tuple of array-or-value, which are arrays)
+        for k, v in obj.__dict__.items():
+            if _per_row(v, total):
+                self.rows.append((k, np.asarray(v)))
+            elif type(v) is tuple and any(_per_row(x, total) for x in v):
+                self.parts.append((k, tuple(np.asarray(x) if _per_row(x, total) else x
+                                            for x in v),
+                                   tuple(_per_row(x, total) for x in v)))
+            else:
+                self.same[k] = np.asarray(v) if type(v) is Rows else v
+
+    def cut(self, rows: slice, **extra):
+        new = object.__new__(self.cls)
+        d = new.__dict__
+        d.update(self.same)
+        for k, a in self.rows:
+            d[k] = a[rows]
+        for k, vals, which in self.parts:
+            d[k] = tuple([x[rows] if w else x for x, w in zip(vals, which, strict=True)])
+        d.update(extra)
+        return new
+
+
+def _per_row(v, total: int) -> bool:
+    return isinstance(v, np.ndarray) and v.ndim == 1 and v.shape[0] == total
+
+
+def _splitter(sol: Solution):
+    """A function (scene, structure, rows, dead) -> that scene's Solution, cutting the
+    rows of every array of the stacked ``sol``."""
+    total = sol.positions.size
+    motions = []
+    for name, m in sol.kin.bodies.items():
+        values = [getattr(m, f) for f in ("_theta", *BodyMotion.__slots__[:-1])]
+        motions.append((name, [(np.asarray(v), True) if _per_row(v, total) else (v, False)
+                               for v in values]))
+    known = {id(m): name for name, m in sol.kin.bodies.items()}
+    dyads = [(_Template(dm, total), [(_Template(p, total), known[id(p.known)])
+                                     for p in dm.params]) for dm in sol.kin.dyads]
+    loads = [_Template(ld, total) for ld in sol.loads]
+    reactions = [(name, _Template(r, total)) for name, r in sol.joint_reactions.items()]
+    drive, undefined = np.asarray(sol.drive.value), np.asarray(sol.undefined_load)
+    drive_rows, undefined_rows = _per_row(drive, total), _per_row(undefined, total)
+
+    def cut(scene, structure, rows: slice, dead) -> Solution:
+        bodies = {name: BodyMotion(*[a[rows] if cut_it else a for a, cut_it in fs])
+                  for name, fs in motions}
+        n = rows.stop - rows.start
+        dms = []
+        for d, (t, params) in enumerate(dyads):
+            pr = tuple([tp.cut(rows, known=bodies[b]) for tp, b in params])
+            dms.append(t.cut(rows, dyad=structure.dyads[d], params=pr,
+                             k=structure.assembly[d], n=n, _tau=None))
+        kin = Kinematics(scene, structure, scene.driver.positions, bodies, dms,
+                         between=dead[0], ends=dead[1])
+        return Solution(scene, structure, kin, [t.cut(rows) for t in loads],
+                        {name: t.cut(rows) for name, t in reactions},
+                        DriverReaction(sol.drive.kind, drive[rows] if drive_rows else drive),
+                        undefined[rows] if undefined_rows else undefined)
+    return cut

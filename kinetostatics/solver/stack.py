@@ -1,0 +1,243 @@
+"""Many scenes of one structure as one: their rows stacked along the position axis.
+
+Scenes that share a structure (the same bodies, points, joints, driver, loads and
+gravity; only the numbers of the points, the ground, the masses and the inertias
+differ) are solved as one scene over all their rows: each such number becomes an
+array over the rows (a number all the scenes share stays a number). Every elementwise
+operation of the solver then does, row by row, exactly what it does for each scene
+alone, so the numbers are the same. Used by :func:`kinetostatics.solve_many`.
+
+What the solver decides once per scene is decided here per scene, vectorised: the
+assembly of every dyad at the scene's first row (from its ``[near]`` hints, as
+:func:`~kinetostatics.solver.kinematics.choose_assembly`) and the dead points between
+rows (as :func:`~kinetostatics.solver.deadpoints.dead_points_between_rows`, with the
+probes of all the scenes in one solve).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from ..model.scene import GROUND, Body, Scene
+from .closure import DyadSolver, body_origin, dyad_param
+from .deadpoints import PROBES, ROUNDS, SCREEN, _candidates, _measure2
+from .driver import driver_motion, ground_motion
+from .kinematics import SINGULAR_FAIL, SINGULAR_WARN, _hint_points, solve_dyad, solve_kinematics
+from .structure import Structure
+
+
+class Rows(np.ndarray):
+    """A scene parameter over the rows of a stack. Its truth value is that of every row:
+    a stack holds only scenes for which each test the solver makes on a parameter
+    (``mass == 0``, ``mass > 0``) comes out alike (:func:`signature`)."""
+
+    def __bool__(self) -> bool:
+        return bool(self.view(np.ndarray).all())
+
+
+def signature(scene: Scene):
+    """What scenes must share to be stacked (structure, joints, driver, loads, gravity,
+    hints' names, the tests on the masses), or None for a scene solved alone: joint
+    friction (solved per scene by iteration), a mass model, a ``resist`` load or one
+    acting ``when = "resisting"`` (their thresholds take the maximum over the sweep)."""
+    if any(j.friction is not None for j in scene.joints.values()):
+        return None
+    if any(b.mass_model is not None for b in scene.bodies.values()):
+        return None
+    if any(ld.resist is not None or ld.when != "always" for ld in scene.loads):
+        return None
+    drv = scene.driver
+    bodies = tuple((b.name, tuple(b.points), b.cog is None, b.mass == 0.0, b.mass > 0.0,
+                    b.inertia == 0.0) for b in scene.bodies.values())
+    joints = tuple((j.name, j.kind, j.bodies, j.points, _bits(j.line_angle))
+                   for j in scene.joints.values())
+    loads = tuple((ld.body, ld.point, None if ld.force is None else _bits(*ld.force),
+                   _bits(ld.moment)) for ld in scene.loads)
+    return (drv.body, drv.joint, drv.kind, _bits(drv.speed, drv.acceleration), bodies,
+            tuple(scene.ground), joints, loads, _bits(*scene.gravity), tuple(scene.near))
+
+
+def _bits(*values) -> tuple:
+    return tuple(float(v) for v in values)
+
+
+class Stacker:
+    """Builds stacked scenes of a list of scenes of one :func:`signature`."""
+
+    def __init__(self, scenes: list[Scene]):
+        self.scenes = scenes
+        s0 = scenes[0]
+        self.base = s0
+        self.ground = {p: (self._col([s.ground[p][0] for s in scenes]),
+                           self._col([s.ground[p][1] for s in scenes])) for p in s0.ground}
+        self.bodies = {}
+        for name, b in s0.bodies.items():
+            bs = [s.bodies[name] for s in scenes]
+            cog = None if b.cog is None else (self._col([x.cog[0] for x in bs]),
+                                              self._col([x.cog[1] for x in bs]))
+            pts = {p: (self._col([x.points[p][0] for x in bs]),
+                       self._col([x.points[p][1] for x in bs])) for p in b.points}
+            self.bodies[name] = (self._col([x.mass for x in bs]),
+                                 self._col([x.inertia for x in bs]), cog, pts)
+        self.near = {k: (self._col([s.near[k][0] for s in scenes]),
+                         self._col([s.near[k][1] for s in scenes])) for k in s0.near}
+        self.size = self._col([s.size for s in scenes])
+
+    @staticmethod
+    def _col(values: list[float]):
+        """One parameter over the scenes: the number itself when every scene has the
+        same bits, else an array over the scenes."""
+        v = np.asarray(values, dtype=float)
+        if (v.view(np.int64) == v.view(np.int64)[0]).all():
+            return values[0]
+        return v
+
+    def scene(self, owner: np.ndarray, positions: np.ndarray) -> Scene:
+        """The stacked scene: row i is scene ``owner[i]`` at driver position
+        ``positions[i]``."""
+        def at(x):
+            return x[owner].view(Rows) if isinstance(x, np.ndarray) else x
+
+        def pair(p):
+            return (at(p[0]), at(p[1]))
+        bodies = {}
+        for name, (m, inertia, cog, pts) in self.bodies.items():
+            b0 = self.base.bodies[name]
+            bodies[name] = Body(name, at(m), at(inertia), None if cog is None else pair(cog),
+                                {p: pair(v) for p, v in pts.items()}, b0.mass_model)
+        sc = replace(self.base, ground={p: pair(v) for p, v in self.ground.items()},
+                     bodies=bodies, near={k: pair(v) for k, v in self.near.items()},
+                     driver=replace(self.base.driver, positions=positions), raw={})
+        sc.__dict__["size"] = at(self.size)       # the cached property, per row
+        return sc
+
+
+def assemblies(stacker: Stacker, structure: Structure) -> tuple[np.ndarray, np.ndarray]:
+    """Each scene's assembly k = +-1 per dyad (an array (dyads, scenes)), chosen at its
+    first row as :func:`~kinetostatics.solver.kinematics.choose_assembly` does, and which
+    scenes it settles: a scene that cannot close at its first row, or whose hints do not
+    settle an assembly, is left to be solved (and refused) alone."""
+    m = len(stacker.scenes)
+    owner = np.arange(m)
+    first = stacker.scene(owner, np.array([s.driver.positions[0] for s in stacker.scenes]))
+    size = np.broadcast_to(np.asarray(first.size, dtype=float), (m,))
+    motions = {GROUND: ground_motion(), first.driver.body: driver_motion(first)}
+    ok = np.ones(m, dtype=bool)
+    ks = np.ones((len(structure.dyads), m), dtype=int)
+    with np.errstate(all="ignore"):
+        for d, dyad in enumerate(structure.dyads):
+            solver = DyadSolver(first, dyad)
+            if solver.branches == 2:
+                ks[d] = _branch(first, dyad, solver, motions, size, ok)
+            dm = solve_dyad(first, dyad, motions, ks[d] if solver.branches == 2 else 1,
+                            strict=False)
+            ok &= np.broadcast_to(dm.closeness2, (m,)) > SINGULAR_FAIL**2
+    return ks, ok
+
+
+def _branch(first: Scene, dyad, solver: DyadSolver, motions, size, ok) -> np.ndarray:
+    """The assembly whose hinted points lie closest, per scene (``ok`` cleared where the
+    first row cannot close or no hint settles it)."""
+    pr = (dyad_param(first, dyad, 0, motions), dyad_param(first, dyad, 1, motions))
+    reach = solver.pivot_distance(pr)
+    if reach is not None:
+        ok &= np.broadcast_to(reach / first.size, ok.shape) > SINGULAR_FAIL
+    cands = {}
+    for k in (1, -1):
+        cs, ss, gap = solver.positions(pr, k)
+        if gap is not None:
+            ok &= ~(np.broadcast_to(gap, ok.shape) > 1e-9 * size)
+        cands[k] = (cs, [body_origin(pr[i], cs[i], ss[i]) for i in range(2)])
+
+    def where(k, b, loc):
+        i = dyad.bodies.index(b)
+        (c, s), (ox, oy) = cands[k][0][i], cands[k][1][i]
+        return (np.broadcast_to(ox + c * loc[0] - s * loc[1], ok.shape),
+                np.broadcast_to(oy + s * loc[0] + c * loc[1], ok.shape))
+    hints = _hint_points(first, dyad)
+    if not hints:
+        ok[:] = False
+        return np.ones(ok.shape, dtype=int)
+    dist = {}
+    for k in (1, -1):
+        total = 0
+        for _, b, loc, t in hints:
+            x, y = where(k, b, loc)
+            total = total + ((x - t[0]) ** 2 + (y - t[1]) ** 2)
+        dist[k] = total
+    ok &= np.abs(dist[1] - dist[-1]) > 1e-12 * size ** 2
+    return np.where(dist[1] < dist[-1], 1, -1)
+
+
+def dead_points(stacker: Stacker, structure: Structure, kin, starts: np.ndarray,
+                owner: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Per scene, the dead points between its rows and just beyond its ends, as
+    :func:`~kinetostatics.solver.deadpoints.dead_points_between_rows` finds them (the
+    probes of every scene in one solve)."""
+    none = np.zeros(0, dtype=int)
+    m2 = _measure2(kin)
+    pos = np.asarray(kin.positions, dtype=float)
+    counts = np.diff(np.append(starts, m2.size))
+    # candidates: the rows of every scene with an infinite measure between scenes
+    gaps = np.insert(m2, starts[1:], np.inf)
+    cand_g = _candidates(gaps)
+    inside = np.ones(gaps.size, dtype=bool)
+    inside[starts[1:] + np.arange(counts.size - 1)] = False      # the separators
+    cand_g = cand_g[inside[cand_g] & inside[cand_g + 1]]
+    cand = (np.cumsum(inside) - 1)[cand_g]
+    outer = []                                           # (row, lo, hi)
+    for a, n in zip(starts, counts, strict=True):
+        if n < 2:
+            continue
+        b = a + n - 1
+        if m2[a] < SCREEN**2 and m2[a] <= m2[a + 1]:
+            outer.append((a, 2.0 * pos[a] - pos[a + 1], pos[a]))
+        if m2[b] < SCREEN**2 and m2[b] <= m2[b - 1]:
+            outer.append((b, pos[b], 2.0 * pos[b] - pos[b - 1]))
+    lo = np.concatenate([pos[cand], [o[1] for o in outer]])
+    hi = np.concatenate([pos[cand + 1], [o[2] for o in outer]])
+    between, edge = none, none
+    if lo.size:
+        who = owner[np.concatenate([cand, np.array([o[0] for o in outer], dtype=int)])]
+        best = _probe(stacker, structure, who, lo, hi)
+        k = cand.size
+        ends_m2 = np.minimum(m2[cand], m2[cand + 1])
+        between = cand[(best[:k] <= SINGULAR_WARN**2) & (best[:k] < ends_m2)]
+        edge = np.array([o[0] for o, b in zip(outer, best[k:], strict=True)
+                         if b <= SINGULAR_WARN**2 and b < m2[o[0]]], dtype=int)
+    out = []
+    for s, a in enumerate(starts):
+        b = a + counts[s]
+        out.append((between[(between >= a) & (between < b)] - a,
+                    edge[(edge >= a) & (edge < b)] - a))
+    return out
+
+
+def _probe(stacker: Stacker, structure: Structure, who: np.ndarray, lo: np.ndarray,
+           hi: np.ndarray) -> np.ndarray:
+    """The smallest m^2 inside each interval (lo, hi) of scene ``who``, zooming as
+    :mod:`~kinetostatics.solver.deadpoints` does."""
+    t = np.linspace(0.0, 1.0, PROBES + 2)
+    rows = np.arange(lo.size)
+    best = np.full(lo.size, np.inf)
+    owner = np.repeat(who, PROBES)
+    st = replace(structure, assembly=tuple(k[owner] if np.ndim(k) else k
+                                           for k in structure.assembly))
+    for _ in range(ROUNDS):
+        grid = lo[:, None] + (hi - lo)[:, None] * t[None, :]
+        probe = solve_kinematics(stacker.scene(owner, grid[:, 1:-1].ravel()), st,
+                                 strict=False)
+        pm2 = _measure2(probe).reshape(lo.size, PROBES)
+        pm2 = np.where(np.isnan(pm2), 0.0, pm2)
+        j = np.argmin(pm2, axis=1)
+        best = np.minimum(best, pm2[rows, j])
+        lo, hi = grid[rows, j], grid[rows, j + 2]
+    return best
+
+
+def plain(x):
+    """A stacked value as the solver gives it for one scene: an array as a plain array."""
+    return np.asarray(x) if isinstance(x, np.ndarray) else x
+

@@ -1,0 +1,138 @@
+"""kinetostatics.solve_many: each scene's Solution, in order, with exactly the numbers
+solve gives it alone; scenes of one structure solved stacked."""
+
+from __future__ import annotations
+
+import copy
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import kinetostatics as ks
+from kinetostatics.model.errors import AssemblyError
+from kinetostatics.model.scene import load_scene
+from kinetostatics.solver import many
+
+from .test_deadpoints import change_point_four_bar, slotted_lever
+
+TABLES = ("driver", "reactions", "kinematics", "bodies", "dyads", "sliders", "frame")
+
+
+def assert_same(got: ks.Solution, want: ks.Solution) -> None:
+    """Every table bit for bit (check_exact), the summary, the assemblies and the flags."""
+    for t in TABLES:
+        pd.testing.assert_frame_equal(getattr(got, t), getattr(want, t), check_exact=True)
+    assert got.summary() == want.summary()
+    assert got.structure.assembly == want.structure.assembly
+    assert got.scene is not None and got.scene.title == want.scene.title
+    np.testing.assert_array_equal(got.singular, want.singular)
+
+
+def variants(name: str, count: int, spread: float, seed: int = 0) -> list[dict]:
+    """``count`` scenes of a bundled example with every local point, ground point and mass
+    scaled by a factor in 1 +- spread (those that assemble)."""
+    base = load_scene(ks.example(name)).raw
+    rng = np.random.default_rng(seed)
+    out = []
+    while len(out) < count:
+        d = copy.deepcopy(base)
+        for b in d["bodies"]:
+            b["points"] = {p: [x * rng.uniform(1 - spread, 1 + spread) for x in v]
+                           for p, v in b["points"].items()}
+            if "mass" in b:
+                b["mass"] *= rng.uniform(1 - spread, 1 + spread)
+        d["ground"] = {p: [x * rng.uniform(1 - spread, 1 + spread) for x in v]
+                       for p, v in d["ground"].items()}
+        try:
+            ks.solve(d)
+        except ks.WorkbenchError:
+            continue
+        out.append(d)
+    return out
+
+
+@pytest.fixture
+def alone_calls(monkeypatch):
+    """The scenes solve_many solves alone (not stacked)."""
+    calls = []
+    solo = many._alone
+
+    def spy(sc):
+        calls.append(sc.title)
+        return solo(sc)
+    monkeypatch.setattr(many, "_alone", spy)
+    return calls
+
+
+@pytest.mark.parametrize("name", ["four_bar", "scotch_yoke", "sliding_driver",
+                                  "slotted_lever"])
+def test_variants_stacked_equal_solve_alone(name, alone_calls) -> None:
+    scenes = variants(name, 12, 0.05)
+    sols = ks.solve_many(scenes)
+    assert alone_calls == []            # all twelve in one stacked pass
+    for s, d in zip(sols, scenes, strict=True):
+        assert_same(s, ks.solve(d))
+
+
+def test_both_assemblies_in_one_stack(alone_calls) -> None:
+    """Open and crossed four-bars (the hint above or below) stacked together."""
+    scenes = variants("four_bar", 6, 0.05, seed=1)
+    for d in scenes[::2]:
+        x, y = d["near"]["C"]
+        d["near"]["C"] = [x, -y]
+    sols = ks.solve_many(scenes)
+    assert alone_calls == []
+    assert {s.structure.assembly for s in sols} == {(1,), (-1,)}
+    for s, d in zip(sols, scenes, strict=True):
+        assert_same(s, ks.solve(d))
+
+
+def test_dead_points_between_rows_per_scene(alone_calls) -> None:
+    """Change points and a block through its pivot between rows, found per scene as
+    solve finds them (the probes of all scenes in one solve); sweeps of other lengths."""
+    scenes = [change_point_four_bar(0.1, 0.3, 0.2, 100.3, 361),
+              change_point_four_bar(0.1, 0.3, 0.2, 100.0, 361),
+              change_point_four_bar(0.11, 0.3, 0.2, 50.3, 181),
+              change_point_four_bar(0.1, 0.31, 0.2, 0.3, 2)]
+    sols = ks.solve_many(scenes)
+    assert alone_calls == []
+    assert sols[0].summary()["dead_points_between_rows"] == [[359.3, 360.3]]
+    for s, d in zip(sols, scenes, strict=True):
+        assert_same(s, ks.solve(d))
+    levers = [slotted_lever(0.30, start=0.5), slotted_lever(0.25), slotted_lever(0.30, 0.5, 91)]
+    for s, d in zip(ks.solve_many(levers), levers, strict=True):
+        assert_same(s, ks.solve(d))
+    assert alone_calls == []
+
+
+def test_mixed_structures_in_order() -> None:
+    names = ks.examples()
+    order = names + names[::-1] + names
+    sols = ks.solve_many([ks.example(n) for n in order])
+    assert [s.scene.title for s in sols] == [load_scene(ks.example(n)).title for n in order]
+    alone = {n: ks.solve(ks.example(n)) for n in names}
+    for s, n in zip(sols, order, strict=True):
+        assert_same(s, alone[n])
+
+
+def test_with_an_executor() -> None:
+    scenes = variants("four_bar", 9, 0.05, seed=2) + [ks.example("slider_crank")]
+    scenes.insert(3, ks.example("shaper"))
+    with ThreadPoolExecutor(2) as pool:
+        sols = ks.solve_many(scenes, executor=pool, batch=3)
+    for s, d in zip(sols, scenes, strict=True):
+        assert_same(s, ks.solve(d))
+
+
+def test_first_refused_scene_raises_as_solve_does() -> None:
+    good = variants("four_bar", 3, 0.05, seed=3)
+    bad = copy.deepcopy(good[0])
+    bad["bodies"][2]["points"]["C"] = [0.01, 0.0]       # the rocker cannot reach
+    with pytest.raises(AssemblyError) as alone:
+        ks.solve(bad)
+    with pytest.raises(AssemblyError) as together:
+        ks.solve_many([good[0], bad, good[1], good[2]])
+    assert str(together.value) == str(alone.value)
+    assert ks.solve_many([]) == []

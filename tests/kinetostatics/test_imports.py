@@ -1,0 +1,42 @@
+"""A quick start: ``import kinetostatics`` and ``import balance`` load numpy and the
+scene model, not pandas, matplotlib, scipy or pymunk (those come with the first table,
+picture or simulation that needs them). Not a timing test: it reads sys.modules."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+HEAVY = ("pandas", "matplotlib", "scipy", "pymunk")
+
+
+def loaded_after(code: str) -> set[str]:
+    probe = (f"{code}\nimport json, sys\n"
+             "print(json.dumps(sorted({m.split('.')[0] for m in sys.modules})))")
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                         check=True)
+    return set(json.loads(out.stdout.splitlines()[-1]))
+
+
+@pytest.mark.parametrize("package", ["kinetostatics", "balance"])
+def test_import_loads_no_heavy_library(package: str) -> None:
+    assert loaded_after(f"import {package}") & set(HEAVY) == set()
+
+
+def test_public_names_still_there() -> None:
+    code = ("import kinetostatics as ks, balance\n"
+            "assert callable(ks.solve) and callable(ks.solve_many) and ks.Solution\n"
+            "assert callable(balance.solve_mechanism_balancing)\n"
+            "assert set(ks.__all__) <= set(dir(ks))")
+    assert "pandas" in loaded_after(code)      # the names load what they need
+
+
+def test_solve_out_writes_csv_without_pandas(tmp_path) -> None:
+    """``python -m kinetostatics solve SCENE --out DIR`` (every table as CSV): no pandas."""
+    code = ("from kinetostatics.cli import main\n"
+            f"assert main(['solve', 'four_bar', '--out', {str(tmp_path)!r}]) == 0")
+    assert loaded_after(code) & set(HEAVY) == set()
+    assert (tmp_path / "dyads.csv").stat().st_size > 0
