@@ -100,7 +100,7 @@ def question_rows(exercise, variant: Mapping) -> list[dict]:
         words = exercise.labels.get(q) or describe(q, exercise.position)
         rtol = 0.0 if kind == "angle" else exercise.rtol
         out.append({"question": q, "asked": words, "unit": unit,
-                    "tolerance": tolerance_text(q, unit, rtol)})
+                    "tolerance": tolerance_text(q, unit, rtol, kind)})
     return out
 
 
