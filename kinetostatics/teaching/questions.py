@@ -53,6 +53,7 @@ from __future__ import annotations
 
 import math
 import re
+import unicodedata
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -147,8 +148,9 @@ def is_mechanism(raw: Mapping) -> bool:
 
 
 def normalize_id(student: Any) -> str:
-    """A student id as it is matched: trimmed and case-folded (``" Ana "`` -> ``"ana"``)."""
-    return str(student).strip().casefold()
+    """A student id as it is matched: trimmed, case-folded and Unicode-normalised (NFC)
+    (``" Ana "`` -> ``"ana"``; an accent typed as one or two code points matches)."""
+    return unicodedata.normalize("NFC", str(student).strip()).casefold()
 
 
 # ------------------------------------------------------------ words for the sheets
