@@ -59,8 +59,15 @@ SIGNED = frozenset({"Me", "Fe", "Me_mean", "Me_max", "Me_min", "Fe_mean", "Fe_ma
                     "Fx", "Fy", "N", "M", "omega", "alpha", "x", "y"})
 """Quantities with a sign (a flipped sign is a slip); magnitudes and angles are not."""
 
-# the same quantity under two kinds of the unit table (an amplitude in um is a length)
-_SAME = {frozenset({"length", "vibration"})}
+# a vibration unit of the unit table is a length (um, mils) or a velocity (mm/s)
+_VIBRATION = {"um": "length", "mils": "length", "mm/s": "velocity"}
+
+
+def _kind(unit: str, kind: str) -> str:
+    if kind != "vibration":
+        return kind
+    name = " ".join(unit.split())
+    return _VIBRATION.get({"µm": "um", "μm": "um", "mil": "mils"}.get(name, name), kind)
 
 
 def _times(f: float) -> str:
@@ -153,12 +160,14 @@ def answer_value(x: Any, unit: str) -> tuple[float, str]:
         f_key, k_key = unit_kind(unit) if unit else (1.0, "")
     except ValueError:
         return math.nan, f"{x!r}: the key's unit {unit!r} is not in the unit table"
-    if kind != k_key and frozenset({kind, k_key}) not in _SAME:
+    lead = _LEAD.match(t)
+    written = t[lead.end():].strip() if lead else ""
+    kind, k_key = _kind(written, kind), _kind(unit, k_key)
+    if kind != k_key:
         what = k_key or "a plain number"
         art = "an" if kind[:1] in "aeiou" else "a"
         return math.nan, (f"{x!r} is {art} {kind}, the question asks for {what} "
                           f"({unit or '-'})")
     v = si / f_key
-    lead = _LEAD.match(t)
     same = lead is not None and math.isclose(float(lead.group(0)), v, rel_tol=1e-12)
     return v, "" if same else f"read {x!r} as {v:.6g} {unit}"
