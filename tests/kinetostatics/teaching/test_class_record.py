@@ -17,6 +17,7 @@ import math
 import os
 import re
 import time
+from concurrent.futures import Executor
 
 import nbformat
 import pandas as pd
@@ -270,6 +271,17 @@ def test_saved_unrun_answers_cell_that_computes(klass, tmp_path):
 
 
 # -------------------------------------------------------------- 7. executors
+class _Counting(Executor):
+    """An executor that counts the tasks it hands to another."""
+
+    def __init__(self, inner):
+        self.inner, self.calls = inner, 0
+
+    def submit(self, fn, /, *args, **kwargs):
+        self.calls += 1
+        return self.inner.submit(fn, *args, **kwargs)
+
+
 def test_generate_and_grade_through_executors(klass, tmp_path):
     ids = ["p1", "p2", "p3"]
     serial = T.generate_class("slider_crank", ids, tmp_path / "a", seed=7)
@@ -287,7 +299,8 @@ def test_generate_and_grade_through_executors(klass, tmp_path):
 
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                       dashboard_address=None) as cluster, Client(cluster) as client:
-        rep = T.grade_class(klass["dir"], [subs], execute=False,
-                            executor=client.get_executor())
+        ex = _Counting(client.get_executor())
+        rep = T.grade_class(klass["dir"], [subs], execute=False, executor=ex)
+    assert ex.calls == 4                          # one submission per task, on the cluster
     sc = rep.scores.set_index("student")
     assert (sc.loc[IDS[:4], "score %"] == 100.0).all() and rep.missing == IDS[4:]
