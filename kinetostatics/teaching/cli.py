@@ -95,7 +95,7 @@ def _cmd_generate(args) -> int:
           "key.csv and variants.csv away from the students)")
     pdf = " and <id>.pdf" if args.pdf else ""
     print(f"for the students: {d / 'students'}/<id>.ipynb ({n} notebooks), "
-          f"{d / 'handouts'}/<id>.html{pdf} ({n} pages, each with its mechanism)")
+          f"{d / 'handouts'}/<id>.html{pdf} ({n} pages)")
     print(f"for the teacher: {d / 'key.csv'}, {d / 'variants.csv'}, "
           f"{d / 'answer_form.csv'}, {d / 'teacher.json'}")
     print(f"grade with: python -m kinetostatics exercises grade {d} SUBMISSIONS...")
