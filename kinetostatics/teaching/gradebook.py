@@ -241,11 +241,12 @@ def grade_class(directory: str | Path, submissions: Iterable[Any], *, execute: b
     flags: dict[str, list[str]] = {s: list(e["flags"]) for s, e in got.items() if e["flags"]}
     parts = []
     if got:
+        # one empty row per student too: an answers cell that holds nothing is graded
+        # (every question missing), not dropped
         long = pd.DataFrame([{"student": s, "question": q, "answer": a}
-                             for s, e in got.items() for q, a in e["answers"].items()],
+                             for s, e in got.items()
+                             for q, a in [("", None), *e["answers"].items()]],
                             columns=["student", "question", "answer"])
-        if long.empty:       # answers cells that held nothing: every question missing
-            long = pd.DataFrame({"student": list(got), "question": "", "answer": None})
         graded, _ = grade(long, key[key["student"].isin(list(got))],
                           unit_slip_credit=unit_slip_credit)
         graded["source"] = graded["student"].map({s: e["file"] for s, e in got.items()})

@@ -261,9 +261,13 @@ def test_saved_unrun_answers_cell_that_computes(klass, tmp_path):
     kz = _key(klass, "zoë")
     p = _typed(klass, "zoë", {"Me@60": "sol.Me[60]", "Me_mean": kz["Me_mean"]},
                tmp_path / "zoe.ipynb")
-    rep = T.grade_class(klass["dir"], [p], execute=False)
-    assert not rep.broken and rep.scores.set_index("student").loc["zoë", "points"] == 1.0
+    only = _typed(klass, "c1", {"Me@60": "sol.Me[60]"}, tmp_path / "c1.ipynb")
+    rep = T.grade_class(klass["dir"], [p, only], execute=False)
+    sc = rep.scores.set_index("student")
+    assert not rep.broken and sc.loc["zoë", "points"] == 1.0
     assert "read as saved (not run): the answers cell computes Me@60" in rep.flags["zoë"][0]
+    assert sc.loc["c1", "points"] == 0.0 and "computes Me@60" in sc.loc["c1", "flags"]
+    assert (rep.graded[rep.graded.student == "c1"].status == "missing").all()
     rep = T.grade_class(klass["dir"], [_typed(klass, "zoë", {"Me@60": "sol.Me[60]"},
                                               tmp_path / "z2.ipynb")],
                         execute=False, on_error="zero")
