@@ -261,7 +261,8 @@ def test_saved_unrun_answers_cell_that_computes(klass, tmp_path):
     kz = _key(klass, "zoë")
     p = _typed(klass, "zoë", {"Me@60": "sol.Me[60]", "Me_mean": kz["Me_mean"]},
                tmp_path / "zoe.ipynb")
-    only = _typed(klass, "c1", {"Me@60": "sol.Me[60]"}, tmp_path / "c1.ipynb")
+    only = _typed(klass, "c1", {q: "sol.Me[60]" for q in _key(klass, "c1")},
+                  tmp_path / "c1.ipynb")             # every value computed
     rep = T.grade_class(klass["dir"], [p, only], execute=False)
     sc = rep.scores.set_index("student")
     assert not rep.broken and sc.loc["zoë", "points"] == 1.0
