@@ -90,7 +90,7 @@ def picture_figure(exercise, variant: Mapping):
 def _clean(blob: str, values: Mapping[str, float], angles: set, seed: int) -> bool:
     low = blob.lower()
     return (not leaked_values(blob, values, angles) and "seed" not in low
-            and "expected" not in low and str(seed) not in blob)
+            and "expected" not in low and (len(str(seed)) < 6 or str(seed) not in blob))
 
 
 def picture_uri(exercise, variant: Mapping) -> str | None:

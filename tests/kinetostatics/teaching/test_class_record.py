@@ -295,8 +295,9 @@ def test_generate_and_grade_through_executors(klass, tmp_path):
     ka, kb = (pd.read_csv(tmp_path / x / "key.csv") for x in "ab")
     pd.testing.assert_frame_equal(ka, kb)
     for sid in ids:
-        assert (tmp_path / "b" / "handouts" / f"{sid}.html").read_text(encoding="utf-8") == \
-            (tmp_path / "a" / "handouts" / f"{sid}.html").read_text(encoding="utf-8")
+        page = (tmp_path / "a" / "handouts" / f"{sid}.html").read_text(encoding="utf-8")
+        assert (tmp_path / "b" / "handouts" / f"{sid}.html").read_text(encoding="utf-8") == page
+        assert "src='data:image/png;base64," in page        # a short seed: still a picture
     subs = tmp_path / "subs"
     for sid in IDS[:4]:
         _typed(klass, sid, _key(klass, sid), subs / f"{sid}.ipynb")
