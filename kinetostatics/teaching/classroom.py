@@ -1,14 +1,14 @@
-"""The teacher's loop: a sealed class folder, and the grading of what comes back.
+"""The teacher's loop: a sealed class folder (and, re-exported from
+:mod:`~kinetostatics.teaching.gradebook`, the grading of what comes back).
 
 :func:`generate_class` writes, for a class list, ``DIR/students/<id>.ipynb`` (the
-student's sealed notebook), ``DIR/handouts/<id>.html``, and for the teacher
-``DIR/key.csv``, ``DIR/variants.csv``, ``DIR/answer_form.csv`` and
-``DIR/teacher.json`` (the exercise, its seed, the class list, the tolerance rule).
-:func:`grade_class` reads notebooks (run in a clean kernel first, see
-:mod:`~kinetostatics.teaching.execute`), CSV answer forms and JSON dicts; it takes each
-submission's student id from the submission itself, matches ids after trimming and
-case-folding, and reports broken submissions, unknown ids and missing students
-without stopping: a broken submission and a missing student score 0.
+student's sealed notebook), ``DIR/handouts/<id>.html`` (with the student's mechanism
+drawn, see :mod:`~kinetostatics.teaching.handouts`; ``pdf=True`` adds
+``<id>.pdf``), and for the teacher ``DIR/key.csv``, ``DIR/variants.csv``,
+``DIR/answer_form.csv`` and ``DIR/teacher.json`` (the exercise, its seed, the class
+list, the tolerance rule). Students are prepared one after another, in ``jobs``
+processes, or through any ``concurrent.futures.Executor``. A repeated id in the class
+list is dropped with a warning.
 """
 
 from __future__ import annotations
