@@ -3,9 +3,12 @@
 ``questions`` (the question language, units, tolerances), ``keys`` (answer keys with
 :func:`kinetostatics.solve` or :func:`balance.solve`), ``variants`` (an exercise's
 draws per student and the class set), ``answers`` (reading dicts, tables and notebooks),
-``grading`` (answers against the key), ``library`` (the ready exercises), ``sheets``
-(what a student receives), ``execute`` (running a submitted notebook), ``classroom``
-(the teacher's class folder and its grading) and ``cli`` (the ``exercises`` command).
+``grading`` (answers against the key), ``slips`` (unit slips, answers with units),
+``library`` (the ready exercises), ``sheets`` (what a student receives), ``handouts``
+(the handout's picture and PDF), ``execute`` (running a submitted notebook),
+``submissions`` (reading one submission), ``copies`` (answers of another variant),
+``gradebook`` (grading a class folder), ``lms`` (gradebook imports), ``classroom``
+(the teacher's class folder) and ``cli`` (the ``exercises`` command).
 """
 
 from __future__ import annotations
@@ -16,9 +19,11 @@ from .answers import (
     notebook_answers,
     read_answers,
     record,
+    saved_answers,
     write_answer_notebook,
 )
 from .classroom import ClassReport, generate_class, grade_class, read_class_list
+from .copies import find_copies
 from .grading import class_table, grade
 from .keys import answer_key
 from .library import (
@@ -31,6 +36,7 @@ from .library import (
     slider_crank_exercise,
     slotted_lever_exercise,
 )
+from .lms import lms_table, write_lms
 from .questions import (
     ANGLE_ATOL,
     ANSWER_TAG,
@@ -42,11 +48,13 @@ from .questions import (
     var_name,
     wrap_angle,
 )
+from .slips import answer_value, slip_note
 from .variants import Exercise, ExerciseSet, generate
 
 __all__ = [
     "ANGLE_ATOL", "ANSWER_TAG", "ATOL_FRACTION", "DEFAULT_RTOL", "EXERCISES", "ClassReport",
-    "generate_class", "grade_class", "read_class_list",
+    "generate_class", "grade_class", "read_class_list", "answer_value", "find_copies",
+    "lms_table", "saved_answers", "slip_note", "write_lms",
     "TOLERANCE_RULE", "answer_key", "AnswerSheet", "class_table", "Exercise", "exercise",
     "ExerciseSet", "fill_answer_cell", "four_bar_exercise", "generate", "grade",
     "list_exercises", "normalize_id", "notebook_answers", "read_answers", "record",

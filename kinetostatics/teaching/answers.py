@@ -15,7 +15,7 @@ from ..model.errors import WorkbenchError
 from .questions import ANSWER_TAG, to_float
 
 __all__ = ["AnswerSheet", "fill_answer_cell", "notebook_answers", "read_answers", "record",
-           "write_answer_notebook"]
+           "saved_answers", "write_answer_notebook"]
 
 
 # ------------------------------------------------------------------ reading answers
@@ -71,15 +71,17 @@ class _NotLiteral(Exception):
     pass
 
 
-def _cell_answers(cell) -> tuple[str | None, dict] | None:
+def _cell_answers(cell, strict: bool = True) -> tuple | None:
     """(student id, answers) from one answer cell: its JSON output first, else its
-    source's literal assignments."""
+    source's literal assignments; with ``strict=False`` (student id, answers, the
+    names of the values the cell computes) and no error for computed values."""
     for out in cell.get("outputs", []):
         data = out.get("data", {})
         js = data.get("application/json")
         if isinstance(js, Mapping) and "answers" in js:
-            return (None if js.get("student_id") is None else str(js["student_id"]),
-                    dict(js["answers"]))
+            got = (None if js.get("student_id") is None else str(js["student_id"]),
+                   dict(js["answers"]))
+            return got if strict else (*got, [])
     src = cell.get("source", "")
     src = "".join(src) if isinstance(src, list) else src
     try:
@@ -111,11 +113,13 @@ def _cell_answers(cell) -> tuple[str | None, dict] | None:
                     answers[target.id] = _literal(node.value)
             except _NotLiteral:
                 computed.append(target.id)
-    if computed and not any(v is not None for v in answers.values()):
+    if strict and computed and not any(v is not None for v in answers.values()):
         raise WorkbenchError(f"the answer cell computes {', '.join(computed[:3])} instead of "
                              "holding numbers: run the notebook and save it (its output, "
                              "kinetostatics.teaching.record(...), carries the values) or "
                              "write the numbers")
+    if not strict:
+        return student, answers, computed
     return student, answers
 
 
@@ -143,9 +147,24 @@ def notebook_answers(nb) -> tuple[str | None, str | None, dict]:
         No answer cell, or an answer cell that is not valid Python or that computes
         its values (run the notebook first).
     """
+    meta_id, student, answers, _ = saved_answers(nb, strict=True)
+    return meta_id, student, answers
+
+
+def saved_answers(nb, strict: bool = False) -> tuple[str | None, str | None, dict, list]:
+    """Like :func:`notebook_answers`, and the questions whose value the answers cell
+    computes (an expression, not a number written down); with ``strict=False`` (the
+    default) an answers cell that only computes is no error: its answers are empty.
+
+    Returns
+    -------
+    metadata_id, cell_id, answers, computed
+        ``computed`` lists the questions (or variable names) the cell computes.
+    """
     meta = nb.get("metadata", {}).get("kinetostatics", {})
     meta_id = meta.get("student_id") if isinstance(meta, Mapping) else None
     answers: dict = {}
+    computed: list = []
     student = None
     found = False
     for cell in nb.cells:
@@ -158,16 +177,18 @@ def notebook_answers(nb) -> tuple[str | None, str | None, dict]:
                 "student_id" not in tags:
             continue
         found = True
-        got = _cell_answers(cell)
+        got = _cell_answers(cell, strict)
         if got is None:
             continue
-        sid, ans = got
+        sid, ans = got[0], got[1]
+        if not strict:
+            computed += got[2]
         student = sid or student
         answers.update(ans)
     if not found:
         raise WorkbenchError(f"no answer cell (a code cell tagged {ANSWER_TAG!r} or with "
                              f"nbgrader grade_id {ANSWER_TAG!r})")
-    return (None if meta_id is None else str(meta_id)), student, answers
+    return (None if meta_id is None else str(meta_id)), student, answers, computed
 
 
 def _read_notebook(path: Path) -> pd.DataFrame:

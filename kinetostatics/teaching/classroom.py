@@ -1,14 +1,14 @@
-"""The teacher's loop: a sealed class folder, and the grading of what comes back.
+"""The teacher's loop: a sealed class folder (and, re-exported from
+:mod:`~kinetostatics.teaching.gradebook`, the grading of what comes back).
 
 :func:`generate_class` writes, for a class list, ``DIR/students/<id>.ipynb`` (the
-student's sealed notebook), ``DIR/handouts/<id>.html``, and for the teacher
-``DIR/key.csv``, ``DIR/variants.csv``, ``DIR/answer_form.csv`` and
-``DIR/teacher.json`` (the exercise, its seed, the class list, the tolerance rule).
-:func:`grade_class` reads notebooks (run in a clean kernel first, see
-:mod:`~kinetostatics.teaching.execute`), CSV answer forms and JSON dicts; it takes each
-submission's student id from the submission itself, matches ids after trimming and
-case-folding, and reports broken submissions, unknown ids and missing students
-without stopping: a broken submission and a missing student score 0.
+student's sealed notebook), ``DIR/handouts/<id>.html`` (with the student's mechanism
+drawn, see :mod:`~kinetostatics.teaching.handouts`; ``pdf=True`` adds
+``<id>.pdf``), and for the teacher ``DIR/key.csv``, ``DIR/variants.csv``,
+``DIR/answer_form.csv`` and ``DIR/teacher.json`` (the exercise, its seed, the class
+list, the tolerance rule). Students are prepared one after another, in ``jobs``
+processes, or through any ``concurrent.futures.Executor``. A repeated id in the class
+list is dropped with a warning.
 """
 
 from __future__ import annotations
@@ -18,18 +18,14 @@ import json
 import os
 import re
 from collections.abc import Iterable, Sequence
-from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field
+from concurrent.futures import Executor, ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-import pandas as pd
-
 from ..model.errors import WorkbenchError
-from .answers import notebook_answers, read_answers
-from .execute import SubmissionError, run_notebook
-from .grading import grade
+from ..simulation.batch import run_batch
+from .gradebook import ClassReport, grade_class
+from .handouts import handout_pdf, picture_uri
 from .library import exercise as library_exercise
 from .questions import TOLERANCE_RULE, normalize_id
 from .sheets import handout_html, key_values, leaked_values, student_notebook
@@ -40,14 +36,23 @@ __all__ = ["ClassReport", "generate_class", "grade_class", "read_class_list"]
 _BAD_ID = re.compile(r"[/\\:*?\"<>|\x00-\x1f]")
 
 
-def read_class_list(source: str | Path | Iterable[Any]) -> list[str]:
+def read_class_list(source: str | Path | Iterable[Any],
+                    warnings: list[str] | None = None) -> list[str]:
     """Student ids from a file (one per line; blank lines and ``#`` comments skipped)
-    or from a list; each is trimmed.
+    or from a list; each is trimmed and kept as written (accents and case).
+
+    Parameters
+    ----------
+    source : path or iterable
+        The class list.
+    warnings : list, optional
+        Receives one line per id dropped because it repeats an earlier one (equal after
+        trimming, case-folding and Unicode normalisation), naming both lines.
 
     Raises
     ------
     WorkbenchError
-        An id that cannot be a file name, two ids equal after case-folding, no id.
+        An id that cannot be a file name, no id.
     """
     if isinstance(source, str | Path):
         p = Path(source)
@@ -71,9 +76,12 @@ def read_class_list(source: str | Path | Iterable[Any]) -> list[str]:
                                  "(no / \\ : * ? \" < > |, no leading dot)")
         n = normalize_id(sid)
         if n in seen:
-            raise WorkbenchError(f"{at}: student id {sid!r} repeats {seen[n]!r} (ids are "
-                                 "matched ignoring case and surrounding spaces)")
-        seen[n] = sid
+            first, where_first = seen[n]
+            if warnings is not None:
+                warnings.append(f"{at}: student id '{sid}' repeats '{first}' ({where_first}); "
+                                "dropped")
+            continue
+        seen[n] = (sid, at)
         ids.append(sid)
     if not ids:
         raise WorkbenchError("the class list holds no student id")
@@ -81,7 +89,8 @@ def read_class_list(source: str | Path | Iterable[Any]) -> list[str]:
 
 
 def generate_class(exercise: str | Exercise, students: str | Path | Iterable[Any],
-                   out: str | Path, seed: int | None = None) -> dict[str, Any]:
+                   out: str | Path, seed: int | None = None, *, pdf: bool = False,
+                   jobs: int | None = 1, executor: Executor | None = None) -> dict[str, Any]:
     """Write a sealed class folder.
 
     Parameters
@@ -89,18 +98,29 @@ def generate_class(exercise: str | Exercise, students: str | Path | Iterable[Any
     exercise : str or Exercise
         A library name (``"four_bar"``, see :func:`list_exercises`) or an exercise.
     students : path or iterable
-        The class list (see :func:`read_class_list`).
+        The class list (see :func:`read_class_list`: repeated ids are dropped with a
+        warning).
     out : path
         The folder (must not hold a class already).
     seed : int, optional
         The exercise's seed; None draws a secret one (stored in ``teacher.json``).
+    pdf : bool
+        Write ``handouts/<id>.pdf`` beside each HTML handout.
+    jobs : int, optional
+        Students prepared at the same time, in processes (default 1: in this process;
+        None: one per core).
+    executor : concurrent.futures.Executor, optional
+        Run the students through this executor instead (a dask ``Client.get_executor()``
+        spreads a large class over a cluster); it is not shut down.
 
     Returns
     -------
     dict
-        ``exercise, students, seed_source, folder, files`` (the written paths).
+        ``exercise, students, seed_source, folder, files`` (the written paths) and
+        ``warnings`` (the repeated ids dropped from the class list).
     """
-    ids = read_class_list(students)
+    warn: list[str] = []
+    ids = read_class_list(students, warn)
     if isinstance(exercise, Exercise):
         if seed is not None:
             raise WorkbenchError("give the seed to the Exercise, not to generate_class")
@@ -112,19 +132,23 @@ def generate_class(exercise: str | Exercise, students: str | Path | Iterable[Any
     if (d / "teacher.json").exists():
         raise WorkbenchError(f"{d} already holds a class (teacher.json): choose another "
                              "folder, or delete it first")
-    cls = ex.generate(ids)
     (d / "students").mkdir(parents=True, exist_ok=True)
     (d / "handouts").mkdir(parents=True, exist_ok=True)
-    import nbformat
-
+    spec = (ex.name, int(ex.seed)) if isinstance(exercise, str) else ex
+    tasks = [(spec, sid, str(d), bool(pdf)) for sid in ids]
+    if executor is not None:
+        done = run_batch(_student_files, tasks, executor=executor)
+    elif jobs == 1 or len(tasks) < 2:
+        done = [_student_files(t, ex) for t in tasks]
+    else:
+        k = max(1, min(len(tasks), int(jobs) if jobs else (os.cpu_count() or 1)))
+        with ProcessPoolExecutor(k) as pool:
+            done = run_batch(_student_files, tasks, executor=pool)
     files = []
-    for sid in ids:
-        v = ex.variant(sid)
-        nb_path, html_path = d / "students" / f"{sid}.ipynb", d / "handouts" / f"{sid}.html"
-        nbformat.write(student_notebook(ex, sid, v), str(nb_path))
-        html_path.write_text(handout_html(ex, sid, v), encoding="utf-8")
-        _verify_sealed([nb_path, html_path], v, ex.seed)
-        files += [nb_path, html_path]
+    for sid, (variant, written) in zip(ids, done, strict=True):
+        ex._cache.setdefault(sid, variant)        # the key below needs no new solve
+        files += [Path(f) for f in written]
+    cls = ex.generate(ids)
     for name, df in (("key", cls.key), ("variants", cls.variants),
                      ("answer_form", cls.answer_form())):
         p = d / f"{name}.csv"
@@ -134,10 +158,39 @@ def generate_class(exercise: str | Exercise, students: str | Path | Iterable[Any
             "seed_source": source, "students": ids, "questions": list(ex.questions),
             "rtol": ex.rtol, "tolerance_rule": TOLERANCE_RULE,
             "created": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")}
-    (d / "teacher.json").write_text(json.dumps(meta, indent=2) + "\n", encoding="utf-8")
+    (d / "teacher.json").write_text(json.dumps(meta, indent=2, ensure_ascii=False) + "\n",
+                                    encoding="utf-8")
     files.append(d / "teacher.json")
     return {"exercise": ex.name, "students": ids, "seed_source": source, "folder": d,
-            "files": files}
+            "files": files, "warnings": warn}
+
+
+_EXERCISES: dict[tuple, Exercise] = {}
+
+
+def _student_files(task: tuple, ex: Exercise | None = None) -> tuple[dict, list[str]]:
+    """Write one student's notebook and handout (and PDF); return the variant and the
+    paths. ``task = (exercise or (name, seed), student, folder, pdf)``: plain data, so
+    that a process or a cluster's worker can run it."""
+    spec, sid, folder, pdf = task
+    if ex is None:
+        if isinstance(spec, Exercise):
+            ex = spec
+        else:
+            ex = _EXERCISES.get(spec) or _EXERCISES.setdefault(spec, library_exercise(*spec))
+    import nbformat
+
+    d = Path(folder)
+    v = ex.variant(sid)
+    nb_path, html_path = d / "students" / f"{sid}.ipynb", d / "handouts" / f"{sid}.html"
+    nbformat.write(student_notebook(ex, sid, v), str(nb_path))
+    html_path.write_text(handout_html(ex, sid, v, picture_uri(ex, v)), encoding="utf-8")
+    _verify_sealed([nb_path, html_path], v, ex.seed)
+    written = [str(nb_path), str(html_path)]
+    if pdf:
+        handout_pdf(ex, sid, v, d / "handouts" / f"{sid}.pdf")
+        written.append(str(d / "handouts" / f"{sid}.pdf"))
+    return v, written
 
 
 def _verify_sealed(paths: Sequence[Path], variant: dict, seed: int) -> None:
@@ -152,185 +205,3 @@ def _verify_sealed(paths: Sequence[Path], variant: dict, seed: int) -> None:
             raise WorkbenchError(f"{p}: would show {what}; not written")
 
 
-# ------------------------------------------------------------------------- grading
-@dataclass
-class ClassReport:
-    """What grading a class found: the graded rows, and the problems to read."""
-
-    graded: pd.DataFrame
-    scores: pd.DataFrame
-    submissions: list[dict] = field(default_factory=list)
-    broken: list[dict] = field(default_factory=list)
-    unknown: list[dict] = field(default_factory=list)
-    missing: list[str] = field(default_factory=list)
-    duplicates: list[dict] = field(default_factory=list)
-    conflicts: list[dict] = field(default_factory=list)
-
-
-def _expand(submissions: Iterable[Any]) -> list[Path]:
-    out = []
-    for s in submissions:
-        p = Path(s)
-        if p.is_dir():
-            out += sorted(q for q in p.rglob("*") if q.is_file()
-                          and q.suffix.lower() in (".ipynb", ".csv", ".json")
-                          and ".ipynb_checkpoints" not in q.parts)
-        elif p.is_file():
-            out.append(p)
-        else:
-            raise WorkbenchError(f"submission {str(p)!r}: no such file or folder")
-    return out
-
-
-def _read_submission(p: Path, execute: bool, timeout: float) -> list[dict]:
-    """[{ids: [...], answers: {...}}] of one file (a form may hold many students)."""
-    if p.suffix.lower() != ".ipynb":
-        df = read_answers(p)
-        return [{"ids": [sid], "answers": dict(zip(g.question, g.answer, strict=True))}
-                for sid, g in df.groupby("student", sort=False)]
-    import nbformat
-
-    try:
-        nb = nbformat.read(str(p), as_version=4)
-    except Exception as exc:        # nbformat raises several kinds on a damaged file
-        raise SubmissionError(f"not a readable notebook ({type(exc).__name__})") from None
-    meta = nb.get("metadata", {}).get("kinetostatics", {})
-    meta_id = meta.get("student_id") if isinstance(meta, dict) else None
-    ids = [] if meta_id is None else [str(meta_id)]
-    try:
-        _, cell_id, literal = notebook_answers(nb)
-    except WorkbenchError as exc:
-        if "no answer cell" in str(exc) or not execute:
-            raise SubmissionError(str(exc), ids) from None
-        cell_id, literal = None, {}
-    if cell_id is not None:
-        ids.append(cell_id)
-    if not execute:
-        return [{"ids": ids, "answers": literal}]
-    try:
-        run_id, answers = run_notebook(nb, timeout=timeout)
-    except SubmissionError as exc:
-        raise SubmissionError(str(exc), ids) from None
-    if run_id is not None:
-        ids.append(run_id)
-    return [{"ids": ids, "answers": answers}]
-
-
-def grade_class(directory: str | Path, submissions: Iterable[Any], *, execute: bool = True,
-                timeout: float = 60.0, jobs: int | None = None) -> ClassReport:
-    """Grade every submission of a class folder written by :func:`generate_class`.
-
-    Parameters
-    ----------
-    directory : path
-        The class folder (``key.csv``, ``teacher.json``).
-    submissions : iterable of paths
-        Notebooks, CSV answer forms (wide: a ``student`` column and one column per
-        question; long: ``student, question, answer``), JSON dicts, or folders of them.
-    execute : bool
-        Run each notebook in a clean kernel before reading ``answers`` (default); with
-        False the answers are read from the saved cell (its literal values).
-    timeout : float
-        Seconds allowed per notebook cell.
-    jobs : int, optional
-        Notebooks run at the same time (default: the number of cores, at most 4).
-
-    Returns
-    -------
-    ClassReport
-        ``graded`` (one row per student and question: ``student, question, expected,
-        answer, unit, error, tolerance, passed, status, source``), ``scores`` (one row
-        per student), and the lists ``broken, unknown, missing, duplicates,
-        conflicts`` (id in the metadata and in the answer cell disagree).
-    """
-    d = Path(directory)
-    if jobs is None:
-        jobs = min(4, os.cpu_count() or 1)
-    if not (d / "key.csv").is_file():
-        raise WorkbenchError(f"{d}: no key.csv; give the folder written by "
-                             "'exercises generate'")
-    key = pd.read_csv(d / "key.csv", dtype={"student": str}, keep_default_na=False,
-                      na_values={"expected": [""], "atol": [""], "rtol": [""]})
-    canon = {normalize_id(s): s for s in dict.fromkeys(key["student"])}
-    rep = ClassReport(graded=pd.DataFrame(), scores=pd.DataFrame())
-    got: dict[str, tuple[dict, str]] = {}
-    failed: dict[str, tuple[str, str]] = {}
-    own = {(d / n).resolve() for n in ("key.csv", "variants.csv", "teacher.json")}
-    files = [p for p in _expand(submissions) if p.resolve() not in own]   # never the key
-
-    def read(p: Path) -> tuple[list | None, str, list]:
-        try:
-            return _read_submission(p, execute, timeout), "", []
-        except SubmissionError as exc:
-            return None, str(exc.args[0]), list(exc.args[1]) if len(exc.args) > 1 else []
-        except WorkbenchError as exc:
-            return None, str(exc), []
-        except Exception as exc:     # whatever one submission does, the class goes on
-            return None, f"{type(exc).__name__}: {exc}", []
-
-    # each notebook runs in its own kernel process: a few at a time, results in order
-    with ThreadPoolExecutor(max(1, int(jobs))) as pool:
-        results = list(pool.map(read, files))
-    for p, (parts, reason, ids) in zip(files, results, strict=True):
-        if parts is None:
-            known = [canon[normalize_id(i)] for i in ids if normalize_id(i) in canon]
-            sid = known[0] if known else None
-            rep.broken.append({"file": str(p), "student": sid, "reason": reason})
-            if sid in got:
-                rep.duplicates.append({"student": sid, "files": [got[sid][1], str(p)],
-                                       "kept": got[sid][1]})
-            elif sid is not None:
-                failed[sid] = (reason, str(p))
-            continue
-        for part in parts:
-            ids = [i for i in part["ids"] if i is not None and str(i).strip()]
-            known = list(dict.fromkeys(canon[normalize_id(i)] for i in ids
-                                       if normalize_id(i) in canon))
-            rep.submissions.append({"file": str(p), "ids": ids})
-            if len(known) > 1 or (known and len({normalize_id(i) for i in ids}) > 1):
-                rep.conflicts.append({"file": str(p), "ids": ids,
-                                      "graded_as": known[0] if known else None})
-            if not known:
-                rep.unknown.append({"file": str(p),
-                                    "student": ids[0] if ids else "(no id)"})
-                continue
-            sid = known[0]
-            if sid in got or sid in failed:
-                before = got[sid][1] if sid in got else failed[sid][1]
-                rep.duplicates.append({"student": sid, "files": [before, str(p)],
-                                       "kept": str(p)})
-            got[sid] = (part["answers"], str(p))
-            failed.pop(sid, None)
-    long = pd.DataFrame([{"student": s, "question": q, "answer": a}
-                         for s, (ans, _) in got.items() for q, a in ans.items()],
-                        columns=["student", "question", "answer"])
-    parts = []
-    if got:
-        graded, _ = grade(long, key[key["student"].isin(list(got))])
-        graded["source"] = graded["student"].map({s: f for s, (_, f) in got.items()})
-        parts.append(graded)
-    zero = key[~key["student"].isin(list(got))]
-    if not zero.empty:
-        tol = np.where(zero["kind"] == "angle", zero["atol"],
-                       np.maximum(zero["atol"], zero["rtol"] * zero["expected"].abs()))
-        status = [("broken: " + failed[s][0]) if s in failed else "no submission"
-                  for s in zero["student"]]
-        parts.append(pd.DataFrame({
-            "student": zero["student"], "question": zero["question"],
-            "expected": zero["expected"], "answer": np.nan, "unit": zero["unit"],
-            "error": np.nan, "tolerance": tol, "passed": False, "status": status,
-            "source": [failed[s][1] if s in failed else "" for s in zero["student"]]}))
-    rep.graded = pd.concat(parts, ignore_index=True) if parts else pd.DataFrame()
-    order = {s: k for k, s in enumerate(canon.values())}
-    rep.graded = rep.graded.sort_values("student", key=lambda c: c.map(order),
-                                        kind="stable").reset_index(drop=True)
-    rep.missing = [s for s in canon.values() if s not in got and s not in failed]
-    rows = []
-    for s, g in rep.graded.groupby("student", sort=False):
-        rows.append({"student": s, "passed": int(g.passed.sum()), "total": int(len(g)),
-                     "score %": round(100.0 * float(g.passed.mean()), 1),
-                     "failed": ", ".join(g.loc[~g.passed.astype(bool), "question"]),
-                     "source": g["source"].iloc[0]})
-    rep.scores = pd.DataFrame(rows, columns=["student", "passed", "total", "score %",
-                                             "failed", "source"])
-    return rep

@@ -33,6 +33,10 @@ def add_commands(sub) -> None:
     g.add_argument("--seed", type=int,
                    help="the exercise's seed (default: a random secret one, kept in "
                         "DIR/teacher.json)")
+    g.add_argument("--pdf", action="store_true",
+                   help="also write DIR/handouts/<id>.pdf (matplotlib, no browser)")
+    g.add_argument("--jobs", type=int, default=1,
+                   help="students prepared at the same time, in processes (default 1)")
     g.set_defaults(func=_cmd_generate)
     r = es.add_parser("grade", help="grade notebooks, CSV answer forms and JSON dicts",
                       description="Grade the submissions of a class folder: notebooks "
@@ -42,13 +46,27 @@ def add_commands(sub) -> None:
     r.add_argument("submissions", nargs="+", metavar="SUBMISSION",
                    help="notebooks, CSV or JSON files, or folders of them")
     r.add_argument("--out", metavar="grades.csv",
-                   help="write one row per student and question (with the tolerance)")
+                   help="write one row per student and question (with the tolerance), "
+                        "one per submission not graded, and beside it "
+                        "grades_students.csv (one row per student)")
     r.add_argument("--no-execute", action="store_true",
                    help="read the saved answer cells without running the notebooks")
     r.add_argument("--timeout", type=float, default=60.0,
                    help="seconds allowed per notebook cell (default 60)")
     r.add_argument("--jobs", type=int,
-                   help="notebooks run at the same time (default: cores, at most 4)")
+                   help="notebooks run at the same time, in processes (default: cores, "
+                        "at most 4)")
+    r.add_argument("--on-error", choices=["saved", "zero"], default="saved",
+                   help="a notebook that does not run: graded on its answers cell as "
+                        "saved, flagged (default), or 0 ('zero')")
+    r.add_argument("--unit-slip-credit", type=float, default=0.0, metavar="0..1",
+                   help="credit of an answer that is the key times a unit factor "
+                        "(N mm for N m, rad for deg, a flipped sign...; default 0)")
+    r.add_argument("--prefer", action="append", default=[], metavar="PATH",
+                   help="when a student handed in several files, keep this one (a file "
+                        "or a folder; repeatable); default: the newest readable one")
+    r.add_argument("--lms", nargs=2, metavar=("moodle|canvas", "FILE.csv"),
+                   help="write the per-student totals for a gradebook import")
     r.set_defaults(func=_cmd_grade)
 
 
@@ -64,14 +82,20 @@ def _cmd_list(args) -> int:
 def _cmd_generate(args) -> int:
     from .classroom import generate_class
 
-    res = generate_class(args.exercise, args.students, args.out, seed=args.seed)
+    res = generate_class(args.exercise, args.students, args.out, seed=args.seed,
+                         pdf=args.pdf, jobs=args.jobs)
+    for w in res["warnings"]:
+        print(f"warning: {w}")
     d = Path(res["folder"])
-    n = len(res["students"])
-    print(f"{res['exercise']}: {n} students")
+    ids = res["students"]
+    n = len(ids)
+    print(f"{res['exercise']}: {n} students: {', '.join(ids[:12])}"
+          + (f", ... ({n - 12} more)" if n > 12 else ""))
     print(f"seed: {res['seed_source']}, kept in {d / 'teacher.json'} (keep that file, "
           "key.csv and variants.csv away from the students)")
+    pdf = " and <id>.pdf" if args.pdf else ""
     print(f"for the students: {d / 'students'}/<id>.ipynb ({n} notebooks), "
-          f"{d / 'handouts'}/<id>.html ({n} pages)")
+          f"{d / 'handouts'}/<id>.html{pdf} ({n} pages)")
     print(f"for the teacher: {d / 'key.csv'}, {d / 'variants.csv'}, "
           f"{d / 'answer_form.csv'}, {d / 'teacher.json'}")
     print(f"grade with: python -m kinetostatics exercises grade {d} SUBMISSIONS...")
@@ -79,46 +103,68 @@ def _cmd_generate(args) -> int:
 
 
 def _cmd_grade(args) -> int:
+    from ..model.errors import WorkbenchError
     from .classroom import grade_class
+    from .lms import LMS, write_lms
     from .questions import TOLERANCE_RULE
 
+    if not 0.0 <= args.unit_slip_credit <= 1.0:
+        raise WorkbenchError(f"--unit-slip-credit {args.unit_slip_credit:g}: give a number "
+                             "in 0..1")
+    if args.lms and args.lms[0].lower() not in LMS:
+        raise WorkbenchError(f"--lms {args.lms[0]!r}: give one of {', '.join(LMS)}")
     t = time.perf_counter()
     rep = grade_class(args.dir, args.submissions, execute=not args.no_execute,
-                      timeout=args.timeout, jobs=args.jobs)
+                      timeout=args.timeout, jobs=args.jobs, on_error=args.on_error,
+                      unit_slip_credit=args.unit_slip_credit, prefer=args.prefer)
     dt = time.perf_counter() - t
-    print(f"tolerance: {TOLERANCE_RULE}")
+    credit = f"{100 * args.unit_slip_credit:g} %"
+    print(f"tolerance: {TOLERANCE_RULE} A unit slip (the key times a unit factor: N mm "
+          f"for N m, rad for deg, rpm for rad/s, a flipped sign) earns {credit} credit.")
     how = "read as saved" if args.no_execute else "run in a clean kernel"
-    print(f"read {len(rep.submissions) + len(rep.broken)} submission(s) in {dt:.1f} s "
-          f"(notebooks {how})")
+    n = len({x["file"] for x in rep.submissions} | {b["file"] for b in rep.broken})
+    print(f"read {n} submission(s) in {dt:.1f} s (notebooks {how}; one that does not run "
+          f"is graded {'0' if args.on_error == 'zero' else 'on its answers cell as saved'})")
     loud = []
     for b in rep.broken:
         who = f"{b['student']} graded 0" if b["student"] else "no known id: not graded"
         loud.append(f"BROKEN  {b['file']}: {b['reason']} ({who})")
     for u in rep.unknown:
         loud.append(f"UNKNOWN student id {u['student']!r} in {u['file']}: not in the "
-                    "class list, not graded")
+                    "class list, not graded (on record in the grades)")
     for c in rep.conflicts:
         loud.append(f"ID CONFLICT in {c['file']}: ids {', '.join(map(repr, c['ids']))}; "
                     f"graded as {c['graded_as']!r}")
     for dup in rep.duplicates:
         loud.append(f"DUPLICATE {dup['student']}: {' and '.join(dup['files'])}; kept "
-                    f"{dup['kept']}")
+                    f"{dup['kept']} ({dup['why']})")
+    for s, fl in rep.flags.items():
+        for f in fl:
+            tag = "COPY?" if f.startswith(("copy?", "same answers")) else "FLAG"
+            loud.append(f"{tag} {s}: {f}")
     if rep.missing:
         loud.append(f"MISSING {len(rep.missing)} student(s) handed in nothing (graded 0): "
                     f"{', '.join(rep.missing)}")
     for line in loud:
         print("!! " + line)
     sc = rep.scores
-    print(f"{'student':16s} {'score':>7s} {'right':>7s}  failed")
-    for row in sc.itertuples():
-        print(f"{row.student:16s} {row._4:6.1f}% {row.passed:3d}/{row.total:<3d}  "
-              f"{row.failed}")
+    print(f"{'student':16s} {'score':>7s} {'points':>9s}  failed")
+    for row in sc.to_dict("records"):
+        print(f"{row['student']:16s} {row['score %']:6.1f}% {row['points']:4g}/{row['total']:<4d}"
+              f"  {row['failed']}")
     print(f"class: {len(sc)} students, mean {sc['score %'].mean():.1f} %")
     if loud:
         print(f"!! {len(loud)} problem(s) listed above (lines starting with !!)")
     if args.out:
-        Path(args.out).parent.mkdir(parents=True, exist_ok=True)
-        rep.graded.to_csv(args.out, index=False)
-        print(f"wrote {args.out} ({len(rep.graded)} rows: student, question, expected, "
-              "answer, unit, error, tolerance, passed, status, source)")
+        out = Path(args.out)
+        out.parent.mkdir(parents=True, exist_ok=True)
+        rep.graded.to_csv(out, index=False)
+        summary = out.with_name(out.stem + "_students.csv")
+        sc.to_csv(summary, index=False)
+        print(f"wrote {out} ({len(rep.graded)} rows: one per student and question, one per "
+              f"submission not graded) and {summary} ({len(sc)} rows: one per student)")
+    if args.lms:
+        p = write_lms(sc, args.lms[0], args.lms[1], rep.exercise or "exercise")
+        print(f"wrote {p} ({args.lms[0].lower()} gradebook import, {len(sc)} students, "
+              "score in %)")
     return 0

@@ -20,7 +20,7 @@ from typing import Any
 
 from ..model.errors import WorkbenchError
 
-__all__ = ["SubmissionError", "run_notebook"]
+__all__ = ["NotebookRunError", "SubmissionError", "cell_name", "run_notebook"]
 
 _MARK = "KS-ANSWERS "
 _GUARD = '''import socket as _ks_socket
@@ -75,12 +75,33 @@ def _env() -> dict[str, str]:
     return env
 
 
-def _failed_cell(nb) -> str:
-    for k, cell in enumerate(nb.cells):
+def _first_line(cell) -> str:
+    src = cell.get("source", "")
+    src = "".join(src) if isinstance(src, list) else str(src)
+    line = next((ln.strip() for ln in src.splitlines() if ln.strip()), "")
+    return line if len(line) <= 60 else line[:57] + "..."
+
+
+def cell_name(nb, k: int) -> str:
+    """``cell k ("its first line")``: a cell as a teacher finds it (every cell counted
+    from 1, as the notebook shows them top to bottom)."""
+    return f"cell {k} ({_first_line(nb.cells[k - 1])!r})" if 0 < k <= len(nb.cells) \
+        else f"cell {k}"
+
+
+def _failed_cell(run, nb) -> str:
+    """The failing cell of ``run`` (``nb`` with a guard cell before its first), named
+    in ``nb``'s numbering."""
+    for k, cell in enumerate(run.cells):
         for out in cell.get("outputs", []):
             if out.get("output_type") == "error":
-                return f"cell {k} (counting from 1) raised {out.get('ename')}: {out.get('evalue')}"
+                return f"{cell_name(nb, k)} raised {out.get('ename')}: {out.get('evalue')}"
     return "a cell raised an error"
+
+
+class NotebookRunError(SubmissionError):
+    """The notebook did not run to its end: a cell raised, ran too long, or the kernel
+    died (its saved answers may still be read)."""
 
 
 def run_notebook(nb, timeout: float = 60.0, kernel: str = "python3"
@@ -122,19 +143,29 @@ def run_notebook(nb, timeout: float = 60.0, kernel: str = "python3"
     run.cells.append(nbformat.v4.new_code_cell(_READER))
     run.metadata["kernelspec"] = {"name": kernel, "display_name": kernel,
                                   "language": "python"}
+    started = [0]
+
+    def on_start(cell=None, cell_index=0, **_):
+        started[0] = int(cell_index)
+
+    orig = [*nb.cells]
     with tempfile.TemporaryDirectory(prefix="ks-grade-") as tmp:
         client = NotebookClient(run, timeout=max(1, math.ceil(timeout)), kernel_name=kernel,
-                                allow_errors=False, resources={"metadata": {"path": tmp}})
+                                allow_errors=False, resources={"metadata": {"path": tmp}},
+                                on_cell_start=on_start)
         try:
             # the kernel's own stderr (its start-up chatter) is not the teacher's business;
             # what the cells print comes back through the notebook's outputs
             client.execute(env=_env(), stderr=subprocess.DEVNULL)
         except CellTimeoutError:
-            raise SubmissionError(f"a cell ran longer than {timeout:g} s") from None
+            # run.cells[k] is the student's cell k (the guard cell is run.cells[0])
+            k = started[0]
+            where = cell_name(nb, k) if 0 < k <= len(orig) else "a cell"
+            raise NotebookRunError(f"{where} ran longer than {timeout:g} s") from None
         except DeadKernelError:
-            raise SubmissionError("the kernel died while running the notebook") from None
+            raise NotebookRunError("the kernel died while running the notebook") from None
         except CellExecutionError:
-            raise SubmissionError(_failed_cell(run)) from None
+            raise NotebookRunError(_failed_cell(run, nb)) from None
     text = "".join(o.get("text", "") for o in run.cells[-1].get("outputs", [])
                    if o.get("output_type") == "stream")
     line = next((ln for ln in text.splitlines() if ln.startswith(_MARK)), None)

@@ -17,7 +17,8 @@ import pandas as pd
 
 from ..model.errors import WorkbenchError
 from .answers import read_answers
-from .questions import ANGLE_ATOL, DEFAULT_RTOL, normalize_id, to_float, var_name, wrap_angle
+from .questions import ANGLE_ATOL, DEFAULT_RTOL, normalize_id, var_name, wrap_angle
+from .slips import answer_value, slip_note
 
 __all__ = ["class_table", "grade"]
 
@@ -50,7 +51,7 @@ def _key_table(key: Any, students: Sequence[str]) -> pd.DataFrame:
 
 def grade(answers: Any, key: Any, *, rtol: float | None = None, atol: float | None = None,
           angle_keys: Iterable[str] = (), angle_atol: float | None = None,
-          student: Any = None) -> tuple[pd.DataFrame, dict]:
+          student: Any = None, unit_slip_credit: float = 0.0) -> tuple[pd.DataFrame, dict]:
     """Grade answers against a key.
 
     Parameters
@@ -71,13 +72,20 @@ def grade(answers: Any, key: Any, *, rtol: float | None = None, atol: float | No
         is wrapped into (-180, 180] first, so 330 and -30 are the same answer.
     student : optional
         The id, when ``answers`` is one student's dict without ``student_id``.
+    unit_slip_credit : float
+        Credit (0..1) of a wrong answer that is a unit slip (see
+        :mod:`~kinetostatics.teaching.slips`): 1000x the key of a moment in N m, an
+        angle in rad for deg, a flipped sign... (default 0: named, not credited).
 
     Returns
     -------
     graded : DataFrame
         One row per student and question: ``student, question, expected, answer, unit,
-        error`` (answer - expected, wrapped for angles), ``tolerance, passed, status``
-        (``ok``, ``wrong``, ``missing``, ``not a number``).
+        error`` (answer - expected, wrapped for angles), ``tolerance, passed, points``
+        (1 when passed, ``unit_slip_credit`` for a unit slip, else 0), ``status``
+        (``ok``, ``wrong``, ``unit slip``, ``missing``, ``not a number``) and ``note``
+        (the slip named, an answer read with its unit). Answers written with a unit
+        (``"300800 N mm"``) are converted to the key's unit first.
     summary : dict
         ``students, items, passed, failed, missing, score`` (fraction passed),
         ``per_student`` {id: {passed, total, score, failed: [questions]}},
@@ -126,7 +134,12 @@ def grade(answers: Any, key: Any, *, rtol: float | None = None, atol: float | No
     kt = kt[kt["student"].isin(graded_students)]
     m = kt.merge(ans, on=["student", "question"], how="left")
     exp = m["expected"].to_numpy(dtype=float)
-    got = np.array([to_float(a) for a in m["answer"]], dtype=float)
+    if not 0.0 <= float(unit_slip_credit) <= 1.0:
+        raise WorkbenchError(f"unit slip credit {unit_slip_credit!r}: give a number in 0..1")
+    units = m["unit"].fillna("").astype(str)
+    read = [answer_value(a, u) for a, u in zip(m["answer"], units, strict=True)]
+    got = np.array([r[0] for r in read], dtype=float)
+    notes = [r[1] for r in read]
     is_angle = (m["kind"] == "angle").to_numpy()
     r = np.where(np.isnan(m["rtol"].to_numpy(dtype=float)), DEFAULT_RTOL,
                  m["rtol"].to_numpy(dtype=float))
@@ -149,21 +162,33 @@ def grade(answers: Any, key: Any, *, rtol: float | None = None, atol: float | No
         [isinstance(x, float) and math.isnan(x) for x in m["answer"]], dtype=bool)
     status = np.where(passed, "ok", np.where(missing, "missing",
                                              np.where(np.isnan(got), "not a number", "wrong")))
+    status = np.where([("the question asks for" in n) for n in notes], "wrong unit", status)
+    points = passed.astype(float)
+    kinds = np.where(is_angle, "angle", "number")
+    for i in np.flatnonzero(status == "wrong"):
+        slip = slip_note(str(m["question"].iat[i]), str(units.iat[i]), str(kinds[i]),
+                         float(got[i]), float(exp[i]), float(tol[i]))
+        if slip:
+            status[i], points[i] = "unit slip", float(unit_slip_credit)
+            notes[i] = "; ".join(filter(None, [slip, notes[i]]))
     graded = pd.DataFrame({
         "student": m["student"], "question": m["question"], "expected": exp,
         "answer": got, "unit": m["unit"].fillna(""), "error": err, "tolerance": tol,
-        "passed": passed, "status": status})
+        "passed": passed, "points": points, "status": status, "note": notes})
     per = {}
     for s, g in graded.groupby("student", sort=False):
         per[s] = {"passed": int(g.passed.sum()), "total": int(len(g)),
-                  "score": float(g.passed.mean()) if len(g) else 0.0,
+                  "points": float(g.points.sum()),
+                  "score": float(g.points.mean()) if len(g) else 0.0,
                   "failed": g.loc[~g.passed, "question"].tolist()}
     asked = set(kt["question"])
     summary = {
         "students": len(per), "items": int(len(graded)), "passed": int(graded.passed.sum()),
-        "failed": int((graded.status == "wrong").sum() + (graded.status == "not a number").sum()),
+        "failed": int(graded.status.isin(["wrong", "not a number", "unit slip",
+                                           "wrong unit"]).sum()),
         "missing": int((graded.status == "missing").sum()),
-        "score": float(graded.passed.mean()) if len(graded) else 0.0,
+        "unit_slips": int((graded.status == "unit slip").sum()),
+        "score": float(graded.points.mean()) if len(graded) else 0.0,
         "per_student": per,
         "missing_students": [s for s in key_students if s not in set(ans["student"])],
         "unknown_students": unknown_students,

@@ -45,6 +45,7 @@ _MECH_UNITS = {"Me": "N m", "Fe": "N", "F": "N", "Fx": "N", "Fy": "N", "Fmax": "
                "v": "m/s", "a": "m/s^2", "Me_mean": "N m", "Me_max": "N m", "Me_min": "N m",
                "Fe_mean": "N", "Fe_max": "N", "Fe_min": "N"}
 _ANGLES = {"Fangle", "angle", "res_angle", "res_mirror"}
+_PLAIN_DEG = {"tau", "tau_min"}      # transmission angles, min(tau, 180 - tau) in [0, 90]
 
 
 def _needs_position(q: Question) -> None:
@@ -194,7 +195,9 @@ def _mechanism_values(raw: dict, questions: Sequence[Question]) -> dict[str, tup
         else:
             raise WorkbenchError(f"question {q.text!r}: unknown mechanism quantity {q.q!r}; "
                                  f"known: {', '.join(sorted(_MECH_UNITS))}")
-        if kind == "angle" or unit == "deg":
+        if q.q in _PLAIN_DEG:           # in [0, 90]: a plain number, not modulo 360
+            kind, atol = "number", ANGLE_ATOL
+        elif kind == "angle" or unit == "deg":
             kind, atol = "angle", ANGLE_ATOL
         else:
             atol = ATOL_FRACTION * (scale or 0.0)

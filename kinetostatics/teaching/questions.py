@@ -43,15 +43,17 @@ balancing                 meaning (unit)
 Tolerances (:data:`TOLERANCE_RULE`, applied by :func:`kinetostatics.teaching.grade`):
 a number passes when |answer - key| <= max(rtol |key|, atol), rtol 1 % by default and
 atol 1e-3 of the quantity's largest magnitude over the cycle (so that a value near zero
-is not judged by its relative error alone); every answer in degrees is an angle: it
-passes when the difference, wrapped into (-180, 180], is at most 0.5 deg (so 330 and
--30 are the same answer).
+is not judged by its relative error alone); every other answer in degrees is an angle:
+it passes when the difference, wrapped into (-180, 180], is at most 0.5 deg (so 330
+and -30 are the same answer); the transmission angles (``tau``, ``tau_min``, in
+[0, 90] deg) are plain numbers, right within 0.5 deg.
 """
 
 from __future__ import annotations
 
 import math
 import re
+import unicodedata
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -71,7 +73,8 @@ ANSWER_TAG = "answers"      # cell tag (and nbgrader grade_id) of a notebook's a
 TOLERANCE_RULE = (
     "A number is right when |answer - key| <= max(1 % of |key|, 0.1 % of the quantity's "
     "largest magnitude over the cycle); an answer in degrees is an angle: right when the "
-    "difference, taken modulo 360 deg into (-180, 180], is at most 0.5 deg.")
+    "difference, taken modulo 360 deg into (-180, 180], is at most 0.5 deg; a "
+    "transmission angle, in [0, 90] deg, is a plain number, right within 0.5 deg.")
 
 _Q = re.compile(r"^(?P<q>[A-Za-z_][A-Za-z0-9_.]*)(?:\[(?P<arg>[^\]]+)\])?"
                 r"(?:@(?P<pos>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?))?$")
@@ -145,8 +148,9 @@ def is_mechanism(raw: Mapping) -> bool:
 
 
 def normalize_id(student: Any) -> str:
-    """A student id as it is matched: trimmed and case-folded (``" Ana "`` -> ``"ana"``)."""
-    return str(student).strip().casefold()
+    """A student id as it is matched: trimmed, case-folded and Unicode-normalised (NFC)
+    (``" Ana "`` -> ``"ana"``; an accent typed as one or two code points matches)."""
+    return unicodedata.normalize("NFC", str(student).strip()).casefold()
 
 
 # ------------------------------------------------------------ words for the sheets
@@ -235,7 +239,7 @@ def describe(question: str, position: str = "phi = {pos:g} deg") -> str:
     return words.format(arg=q.arg or "1", at=at)
 
 
-def tolerance_text(question: str, unit: str, rtol: float) -> str:
+def tolerance_text(question: str, unit: str, rtol: float, kind: str = "angle") -> str:
     """The tolerance of one question as applied, in words (no number of the key in it).
 
     Parameters
@@ -246,6 +250,9 @@ def tolerance_text(question: str, unit: str, rtol: float) -> str:
         Its unit (``"deg"`` makes it an angle).
     rtol : float
         The relative tolerance.
+    kind : str
+        ``"angle"`` (the default for an answer in deg: compared modulo 360 deg) or
+        ``"number"`` (an angle in [0, 90] deg such as ``tau_min``: a plain number).
 
     Returns
     -------
@@ -254,6 +261,8 @@ def tolerance_text(question: str, unit: str, rtol: float) -> str:
         ``"+-0.5 deg, modulo 360 deg"``.
     """
     if unit == "deg":
+        if kind != "angle":
+            return f"+-{ANGLE_ATOL:g} deg"
         return f"+-{ANGLE_ATOL:g} deg, modulo 360 deg"
     q = parse_question(question)
     scale = _SCALES.get(q.q, _SCALES.get(q.q[:2], "the value")).format(arg=q.arg or "1")

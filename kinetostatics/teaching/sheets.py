@@ -100,7 +100,7 @@ def question_rows(exercise, variant: Mapping) -> list[dict]:
         words = exercise.labels.get(q) or describe(q, exercise.position)
         rtol = 0.0 if kind == "angle" else exercise.rtol
         out.append({"question": q, "asked": words, "unit": unit,
-                    "tolerance": tolerance_text(q, unit, rtol)})
+                    "tolerance": tolerance_text(q, unit, rtol, kind)})
     return out
 
 
@@ -231,10 +231,14 @@ _CSS = ("body{font-family:sans-serif;max-width:46em;margin:2em auto;line-height:
         "td.v{text-align:right;font-family:monospace}")
 
 
-def handout_html(exercise, student: str, variant: Mapping) -> str:
+def handout_html(exercise, student: str, variant: Mapping, picture: str | None = None) -> str:
     """The printable handout of one student: one HTML page (data with units, the
+    picture of the student's mechanism when ``picture`` (a ``data:`` URI) is given, the
     questions with units and tolerances, the tolerance rule)."""
     e = html.escape
+    fig = "" if not picture else (
+        "<h2>Your mechanism</h2>\n<p><img style='max-width:100%' alt='your mechanism at "
+        f"its first position, with its dimensions' src='{picture}'></p>\n")
     data = "".join(f"<tr><td>{e(d['symbol'])}</td><td class='v'>{e(format_value(d['value']))}"
                    f"</td><td>{e(d['unit'])}</td><td>{e(d['meaning'])}</td></tr>"
                    for d in data_rows(exercise, variant))
@@ -246,7 +250,7 @@ def handout_html(exercise, student: str, variant: Mapping) -> str:
             f" - {e(student)}</title><style>{_CSS}</style></head><body>\n"
             f"<h1>{e(exercise.title)}</h1>\n<p>Student: <b>{e(student)}</b></p>\n"
             f"<p>{e(exercise.text)}</p>\n<h2>Your data</h2>\n<table><tr><th>symbol</th>"
-            f"<th>value</th><th>unit</th><th>meaning</th></tr>{data}</table>\n"
+            f"<th>value</th><th>unit</th><th>meaning</th></tr>{data}</table>\n{fig}"
             f"<h2>Questions</h2>\n<table><tr><th>#</th><th>key</th><th>asked</th>"
             f"<th>unit</th><th>tolerance</th><th>your answer</th></tr>{qs}</table>\n"
             f"<p><b>How the answers are graded.</b> {e(TOLERANCE_RULE)}</p>\n"

@@ -1,0 +1,138 @@
+"""Reading one submission: a notebook (run in a clean kernel, or read as saved), a CSV
+answer form, a JSON dict.
+
+:func:`read_one` is a top-level function of plain data, so that a class's submissions
+can go through any ``concurrent.futures.Executor`` (processes on this machine, a dask
+``Client.get_executor()`` over a cluster): each notebook still runs in its own kernel,
+with the network off (:mod:`~kinetostatics.teaching.execute`).
+
+A notebook that does not run to its end (a cell raises, runs too long, the kernel
+dies) is graded, by default (``on_error="saved"``), on its answers cell as saved:
+its plain numbers count, the values it computes count for nothing, and the
+submission carries the flag ``"did not run: cell 5 ('while True:') ran longer than
+60 s"``. ``on_error="zero"`` keeps the stricter policy: such a notebook is broken and
+scores 0. Read without running (``execute=False``), an answers cell that computes its
+values is graded on its plain numbers and flagged the same way.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any
+
+from ..model.errors import WorkbenchError
+from .answers import read_answers, saved_answers
+from .execute import NotebookRunError, SubmissionError, run_notebook
+
+__all__ = ["ON_ERROR", "read_one", "read_submission"]
+
+ON_ERROR = ("saved", "zero")
+"""What a notebook that does not run is graded on: its saved answers cell, or nothing."""
+
+
+def _computed_flag(computed: list[str], how: str) -> str:
+    few = ", ".join(computed[:4]) + (" ..." if len(computed) > 4 else "")
+    return (f"{how}: the answers cell computes {few}; "
+            f"{'those count' if how.startswith('ran') else 'those count for nothing'}")
+
+
+def read_submission(p: Path, execute: bool = True, timeout: float = 60.0,
+                    on_error: str = "saved") -> list[dict]:
+    """The parts of one submission file: ``[{ids, answers, flags}]`` (a form may hold
+    many students; a notebook is one).
+
+    Raises
+    ------
+    SubmissionError
+        The file cannot be read, or (``on_error="zero"``) the notebook did not run; its
+        second argument lists the ids it carries.
+    """
+    if on_error not in ON_ERROR:
+        raise WorkbenchError(f"on_error {on_error!r}: give one of {', '.join(ON_ERROR)}")
+    if p.suffix.lower() != ".ipynb":
+        df = read_answers(p)
+        return [{"ids": [sid], "answers": dict(zip(g.question, g.answer, strict=True)),
+                 "flags": []}
+                for sid, g in df.groupby("student", sort=False)]
+    import nbformat
+
+    try:
+        nb = nbformat.read(str(p), as_version=4)
+    except Exception as exc:        # nbformat raises several kinds on a damaged file
+        raise SubmissionError(f"not a readable notebook ({type(exc).__name__})") from None
+    meta = nb.get("metadata", {}).get("kinetostatics", {})
+    meta_id = meta.get("student_id") if isinstance(meta, dict) else None
+    ids = [] if meta_id is None else [str(meta_id)]
+    problem = ""
+    try:
+        _, cell_id, literal, computed = saved_answers(nb)
+    except WorkbenchError as exc:
+        if "no answer cell" in str(exc):
+            raise SubmissionError(str(exc), ids) from None
+        if not execute:
+            raise SubmissionError(str(exc), ids) from None
+        cell_id, literal, computed, problem = None, {}, [], str(exc)
+    if cell_id is not None:
+        ids.append(cell_id)
+    if not execute:
+        flags = []
+        if computed:
+            if on_error == "zero" and not any(v is not None for v in literal.values()):
+                raise SubmissionError(_computed_flag(computed, "read as saved"), ids)
+            flags.append(_computed_flag(computed, "read as saved (not run)"))
+        return [{"ids": ids, "answers": literal, "flags": flags}]
+    try:
+        run_id, answers = run_notebook(nb, timeout=timeout)
+    except NotebookRunError as exc:
+        why = f"did not run: {exc.args[0]}"
+        if on_error == "zero":
+            raise SubmissionError(why, ids) from None
+        if problem:
+            flag = f"{why}; the answers cell could not be read either ({problem})"
+        elif computed:
+            flag = f"{why}; " + _computed_flag(computed, "graded as saved")
+        elif any(v is not None for v in literal.values()):
+            flag = f"{why}; graded on the answers cell as saved"
+        else:
+            flag = f"{why}; the answers cell holds no number"
+        return [{"ids": ids, "answers": literal, "flags": [flag]}]
+    except SubmissionError as exc:
+        raise SubmissionError(str(exc.args[0]), ids) from None
+    if run_id is not None:
+        ids.append(run_id)
+    return [{"ids": ids, "answers": answers, "flags": []}]
+
+
+def read_one(task: tuple) -> dict[str, Any]:
+    """One submission file read, whatever it holds: never raises.
+
+    Parameters
+    ----------
+    task : tuple
+        ``(path, execute, timeout, on_error)`` (plain data: any executor can run it).
+
+    Returns
+    -------
+    dict
+        ``file, mtime, parts`` (None when broken), ``reason`` (why broken) and ``ids``
+        (the ids a broken file carries).
+    """
+    path, execute, timeout, on_error = task
+    p = Path(path)
+    try:
+        mtime = os.stat(p).st_mtime
+    except OSError:
+        mtime = float("nan")
+    out: dict[str, Any] = {"file": str(p), "mtime": mtime, "parts": None, "reason": "",
+                           "ids": []}
+    try:
+        out["parts"] = read_submission(p, execute, timeout, on_error)
+    except SubmissionError as exc:
+        out["reason"] = str(exc.args[0])
+        out["ids"] = list(exc.args[1]) if len(exc.args) > 1 else []
+    except WorkbenchError as exc:
+        out["reason"] = str(exc)
+    except Exception as exc:     # whatever one submission does, the class goes on
+        out["reason"] = f"{type(exc).__name__}: {exc}"
+    return out
