@@ -291,16 +291,19 @@ class Explorer:
         return buf.getvalue()
 
     def status(self, computing: bool = False) -> str:
-        """The widget's status line as HTML: computing, the error, the crossed limits,
-        or the slider values of the picture shown."""
-        shown = ", ".join(f"{k} = {format_number(v)}" for k, v in self.values.items())
+        """The widget's status line as HTML: computing, the error or the crossed limits,
+        then the slider values of the picture shown (``values: crank = 0.1, ...``)."""
+        shown = "values: " + ", ".join(f"{k} = {format_number(v)}"
+                                       for k, v in self.values.items())
         if computing:
             return f"<span>computing… (picture: {html.escape(shown)})</span>"
         if self.error is not None:
-            return f"<b style='color:#c00'>{html.escape(self.error)}</b>"
+            return (f"<b style='color:#c00'>{html.escape(self.error)}</b> "
+                    f"<span>({html.escape(shown)})</span>")
         if self.crossed:
             marks = "; ".join(f"{k}: {m}" for k, m in self.crossed.items())
-            return f"<b style='color:#c00'>limit crossed: {html.escape(marks)}</b>"
+            return (f"<b style='color:#c00'>limit crossed: {html.escape(marks)}</b> "
+                    f"<span>({html.escape(shown)})</span>")
         return f"<span>{html.escape(shown)}</span>"
 
     def widget(self, dpi: float | None = None):
