@@ -35,7 +35,8 @@ SHEETS = ["02_four_bar_kinetostatics.ipynb", "13_motion_flywheel.ipynb"]
 RUN_ALL = 600_000      # ms: stops a hung kernel only (a full run took 20-65 s, load 1-17)
 UPDATE = 300_000       # ms: one slider update (1.5-15 s measured)
 WIDGET_ERRORS = re.compile(r"Error displaying widget|model not found|Could not find model|"
-                           r"Failed to create view|No such model", re.IGNORECASE)
+                           r"Class \S+ not found|Failed to (create|load|render)|No such model",
+                           re.IGNORECASE)
 INSTALL = ("the browser test needs Chromium and Playwright: apt-get install chromium "
            "(/usr/bin/chromium) and pip install playwright (never `playwright install`)")
 
