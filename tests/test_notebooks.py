@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import os
 import re
-import time
 from pathlib import Path
 
 import nbformat
@@ -25,9 +24,9 @@ from nbclient import NotebookClient
 
 ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
-CELL_TIMEOUT = 120          # s per cell
-TOTAL_BUDGET = 240          # s, all the sheets: 80 s measured on a quiet machine, 175 s at load 7
-_times: dict[str, float] = {}
+# s per cell: only stops a hung kernel, never a budget (a test asserts no wall time; the
+# slowest cell took 15 s at load 13 on 2 cores)
+CELL_TIMEOUT = 600
 
 # the topic sheets: each teaches with one interactive cell (an Explorer)
 TOPIC_SHEETS = {"01", "02", "03", "04", "05", "06", "07", "13", "14", "15"}
@@ -94,9 +93,7 @@ def test_notebook_runs(path, monkeypatch):
         _EXPLORER_CHECK.replace("{topic}", str(path.name[:2] in TOPIC_SHEETS))))
     client = NotebookClient(nb, timeout=CELL_TIMEOUT, kernel_name="python3",
                             resources={"metadata": {"path": str(path.parent)}})
-    t = time.perf_counter()
     client.execute()            # raises CellExecutionError, naming the cell, on any error
-    _times[path.name] = time.perf_counter() - t
     outputs = [o for c in nb.cells if c.cell_type == "code" for o in c.outputs]
     errors = [o for o in outputs if o.output_type == "error"]
     assert not errors, errors
@@ -108,14 +105,6 @@ def test_notebook_runs(path, monkeypatch):
     assert not stderr, f"{path.name} writes to stderr (a warning?): {stderr}"
     bad = sorted({m.group(0) for t in _output_texts(outputs) for m in _NOT_A_NUMBER.finditer(t)})
     assert not bad, f"{path.name} shows {bad} in its outputs: show a dash where no value applies"
-
-
-def test_total_time():
-    """All the sheets together within the budget (measured by the runs above)."""
-    if len(_times) < len(NOTEBOOKS):
-        pytest.skip("not every notebook ran in this session")
-    total = sum(_times.values())
-    assert total < TOTAL_BUDGET, f"the sheets took {total:.0f} s: {_times}"
 
 
 EXERCISES = [p for p in NOTEBOOKS if "exercise" in p.stem and "teacher" not in p.stem]

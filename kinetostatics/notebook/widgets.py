@@ -13,12 +13,23 @@ A value for which the scene cannot be solved (a link too short to close the loop
 is not an exception in the sheet: the explorer keeps the message of the
 :class:`~kinetostatics.model.errors.WorkbenchError` (any ``ValueError``), writes it in
 the picture and shows no numbers, until a value that can be solved is set.
+
+Updates are serialised: one update computes at a time, and a value set while one is
+computing (a slider moved again, by a student faster than the scene solves) replaces the
+value waiting, so the explorer computes the first and the newest value, never a stack of
+stale ones; the picture is cleared and drawn once per update, after ``compute`` returns,
+so it never holds two updates' axes. The limits the course teaches (a
+:class:`~kinetostatics.notebook.limits.Limit` on a key number, e.g. the transmission
+angle >= 40 deg) are marked when a value crosses them.
 """
 
 from __future__ import annotations
 
+import asyncio
+import html
 import io
 import math
+import threading
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -26,6 +37,8 @@ from typing import Any
 import pandas as pd
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+
+from .limits import Limit
 
 __all__ = ["Explorer", "Slider", "format_number"]
 
@@ -104,28 +117,36 @@ class Explorer:
         ``numbers(result, **values) -> dict`` of the key numbers (float, str or None).
     figsize : (float, float)
         Size of the explorer's figure in inches.
+    limits : sequence of Limit
+        Admissible ranges of key numbers (by name); a number outside its range is marked.
 
     Attributes
     ----------
     values : dict
-        The current slider values.
+        The slider values of the last update.
     result : object or None
         The last result of ``compute`` (None when it raised).
     numbers : dict
         The last key numbers (empty when ``compute`` raised).
     error : str or None
         The message of the last ``ValueError`` raised by ``compute`` or ``draw``.
+    crossed : dict
+        Key number -> mark, for every limit the last update crossed.
+    updates : int
+        How many updates were computed (a value replaced while waiting is not).
     figure : matplotlib.figure.Figure
         The picture (one figure, redrawn in place).
     """
 
     def __init__(self, sliders: Sequence[Slider], compute: Callable[..., Any],
                  draw: Callable[..., None], numbers: Callable[..., Mapping[str, Any]], *,
-                 figsize: tuple[float, float] = (10.0, 4.0)) -> None:
+                 figsize: tuple[float, float] = (10.0, 4.0),
+                 limits: Sequence[Limit] = ()) -> None:
         names = [s.name for s in sliders]
         if not names or len(set(names)) != len(names):
             raise ValueError(f"an explorer needs sliders with distinct names, got {names}")
         self.sliders = tuple(sliders)
+        self.limits = tuple(limits)
         self._compute, self._draw, self._numbers = compute, draw, numbers
         self.figure = Figure(figsize=figsize, layout="constrained")
         FigureCanvasAgg(self.figure)     # a canvas that renders (no pyplot, no window)
@@ -133,9 +154,18 @@ class Explorer:
         self.result: Any = None
         self.numbers: dict[str, Any] = {}
         self.error: str | None = None
-        self._listeners: list[Callable[[], None]] = []
+        self.crossed: dict[str, str] = {}
+        self.updates = 0
+        self._lock = threading.Lock()     # guards _pending, _busy, _scheduled
+        self._pending: dict[str, float] | None = None
+        self._busy = self._scheduled = False
+        self._listeners: list[Callable[[bool], None]] = []
         self._widgets: list[Any] = []
         self._update()
+        missing = [lim.key for lim in self.limits if lim.key not in self.numbers]
+        if self.error is None and missing:
+            raise ValueError(f"limits on {missing}: no such key number; the key numbers "
+                             f"are {list(self.numbers)}")
 
     def slider(self, name: str) -> Slider:
         """The slider called ``name``."""
@@ -145,24 +175,86 @@ class Explorer:
         raise ValueError(f"no slider {name!r}; the sliders are "
                          f"{', '.join(s.name for s in self.sliders)}")
 
+    def _queue(self, values: Mapping[str, float]) -> bool:
+        """Check ``values`` and merge them into the waiting values (replacing any value
+        waiting for the same slider); True when no update is running or scheduled."""
+        with self._lock:
+            new = dict(self._pending if self._pending is not None else self.values)
+            for name, v in values.items():
+                new[name] = self.slider(name).check(v)
+            self._pending = new
+            idle = not (self._busy or self._scheduled)
+            return idle
+
     def set(self, **values: float) -> dict[str, Any]:
-        """Set slider values (by name), recompute and redraw; returns the key numbers."""
-        new = dict(self.values)
-        for name, v in values.items():
-            new[name] = self.slider(name).check(v)
-        self.values = new
-        self._update()
-        for f in self._listeners:
-            f()
+        """Set slider values (by name), recompute and redraw; returns the key numbers.
+
+        Called while an update is computing (from ``compute`` itself, or from another
+        thread), the values wait, replacing any values waiting before them, and the
+        running update computes them next; the call returns at once with the key numbers
+        of the update that is running."""
+        if self._queue(values):
+            with self._lock:
+                self._busy = True
+            self._run_pending()
         return dict(self.numbers)
 
-    def _update(self) -> None:
-        self.figure.clear()
+    def request(self, **values: float) -> None:
+        """Like :meth:`set`, but without blocking the caller when an event loop runs
+        (the kernel's, when a widget moves): the update runs when the loop is free next,
+        with the newest values requested by then. Without a running loop: :meth:`set`."""
+        if not self._queue(values):
+            return                      # the running or scheduled update takes them
         try:
-            self.result = self._compute(**self.values)
-            self._draw(self.result, self.figure, **self.values)
-            self.numbers = dict(self._numbers(self.result, **self.values))
-            self.error = None
+            loop = asyncio.get_running_loop()
+        except RuntimeError:
+            loop = None
+        if loop is None:
+            with self._lock:
+                self._busy = True
+            self._run_pending()
+            return
+        with self._lock:
+            self._scheduled = True
+        for f in self._listeners:
+            f(True)                     # shows "computing"
+        loop.call_soon(self._scheduled_run)
+
+    def _scheduled_run(self) -> None:
+        with self._lock:
+            self._scheduled, self._busy = False, True
+        try:
+            self._run_pending()
+        except Exception as exc:        # noqa: BLE001 (an event loop callback: show it)
+            self.error = f"{type(exc).__name__}: {exc}"
+            for f in self._listeners:
+                f(False)
+
+    def _run_pending(self) -> None:
+        """Compute the waiting values until none wait (the caller set ``_busy``)."""
+        try:
+            while True:
+                with self._lock:
+                    if self._pending is None:
+                        self._busy = False
+                        break
+                    self.values, self._pending = self._pending, None
+                self._update()
+        except BaseException:
+            with self._lock:
+                self._busy, self._pending = False, None
+            raise
+        for f in self._listeners:
+            f(False)
+
+    def _update(self) -> None:
+        self.updates += 1
+        try:
+            result = self._compute(**self.values)
+            self.figure.clear()         # after compute: the picture holds one update
+            self._draw(result, self.figure, **self.values)
+            self.numbers = dict(self._numbers(result, **self.values))
+            self.result, self.error = result, None
         except ValueError as exc:      # WorkbenchError and BalanceError are ValueErrors
             self.result, self.numbers, self.error = None, {}, str(exc)
             self.figure.clear()
@@ -171,37 +263,70 @@ class Explorer:
             ax.text(0.5, 0.5, "cannot be solved with these values:\n" + self.error,
                     ha="center", va="center", wrap=True, transform=ax.transAxes,
                     color="tab:red")
+        self.crossed = {}
+        for lim in self.limits:
+            mark = lim.check(self.numbers.get(lim.key))
+            if mark is not None:
+                self.crossed[lim.key] = mark
 
     def table(self) -> pd.DataFrame:
-        """The key numbers as a one-column table (text, 4 significant digits), or the
-        error message."""
+        """The key numbers as a table (text, 4 significant digits; with a ``limit``
+        column when the explorer has limits: the admissible range, or the mark when the
+        number crosses it), or the error message."""
         if self.error is not None:
             return pd.DataFrame({"value": [self.error]}, index=["cannot be solved"])
-        return pd.DataFrame({"value": [format_number(v) for v in self.numbers.values()]},
-                            index=list(self.numbers))
+        table = pd.DataFrame({"value": [format_number(v) for v in self.numbers.values()]},
+                             index=list(self.numbers))
+        if self.limits:
+            ranges = {lim.key: "ok: " + lim.describe() for lim in self.limits}
+            table["limit"] = [("CROSSED, " + self.crossed[k]) if k in self.crossed
+                              else ranges.get(k, "") for k in table.index]
+        return table
 
-    def png(self, dpi: int = 60) -> bytes:
-        """The current picture as PNG bytes (to compare two states in a test)."""
+    def png(self, dpi: float | None = 60) -> bytes:
+        """The current picture as PNG bytes (to compare two states in a test; ``dpi``
+        None: the figure's own)."""
         buf = io.BytesIO()
-        self.figure.savefig(buf, format="png", dpi=dpi)
+        self.figure.savefig(buf, format="png", dpi=dpi if dpi is not None else "figure")
         return buf.getvalue()
 
-    def widget(self):
+    def status(self, computing: bool = False) -> str:
+        """The widget's status line as HTML: computing, the error or the crossed limits,
+        then the slider values of the picture shown (``values: crank = 0.1, ...``)."""
+        shown = "values: " + ", ".join(f"{k} = {format_number(v)}"
+                                       for k, v in self.values.items())
+        if computing:
+            return f"<span>computing… (picture: {html.escape(shown)})</span>"
+        if self.error is not None:
+            return (f"<b style='color:#c00'>{html.escape(self.error)}</b> "
+                    f"<span>({html.escape(shown)})</span>")
+        if self.crossed:
+            marks = "; ".join(f"{k}: {m}" for k, m in self.crossed.items())
+            return (f"<b style='color:#c00'>limit crossed: {html.escape(marks)}</b> "
+                    f"<span>({html.escape(shown)})</span>")
+        return f"<span>{html.escape(shown)}</span>"
+
+    def widget(self, dpi: float | None = None):
         """The sliders, the picture and the table as one ipywidgets box for JupyterLab.
 
-        Moving a slider calls :meth:`set` (on release) and redraws the output below the
-        sliders. Without a browser (a headless run) the box shows the starting state.
+        Moving a slider (on release) calls :meth:`request`: the kernel stays free to
+        take the next move, and the update computes the newest value. The picture is a
+        PNG image widget whose value is replaced by each update (never a stack of
+        outputs), under it a status line (computing, an error, a limit crossed) and the
+        table of key numbers. ``dpi`` None: the figure's own.
         """
         import ipywidgets as w
-        from IPython.display import display
 
-        out = w.Output()
+        image = w.Image(value=self.png(dpi), format="png",
+                        layout=w.Layout(max_width="100%", height="auto"))
+        status = w.HTML(self.status())
+        table = w.HTML(self.table().to_html())
 
-        def show() -> None:
-            out.clear_output(wait=True)
-            with out:
-                display(self.figure)
-                display(self.table())
+        def show(computing: bool) -> None:
+            status.value = self.status(computing)
+            if not computing:
+                image.value = self.png(dpi)
+                table.value = self.table().to_html()
 
         controls = []
         for s in self.sliders:
@@ -209,16 +334,16 @@ class Explorer:
                               description=s.label, continuous_update=False,
                               style={"description_width": "initial"},
                               layout=w.Layout(width="460px"))
+
             def follow(change, name=s.name) -> None:
-                self.set(**{name: change["new"]})
+                self.request(**{name: change["new"]})
 
             c.observe(follow, names="value")
             self._widgets.append((c, follow))
             controls.append(c)
         self._listeners.append(show)
-        show()
-        box = w.VBox([*controls, out])
-        self._widgets += [(out, None), (box, None)]
+        box = w.VBox([*controls, image, status, table])
+        self._widgets += [(image, None), (status, None), (table, None), (box, None)]
         return box
 
     def close(self) -> None:

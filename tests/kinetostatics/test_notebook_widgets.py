@@ -2,12 +2,22 @@
 
 from __future__ import annotations
 
+import asyncio
+import threading
+
 import numpy as np
 import pandas as pd
 import pytest
 
 import kinetostatics as ks
-from kinetostatics.notebook import Explorer, Slider, dash_missing, format_number
+from kinetostatics.notebook import (
+    Explorer,
+    Limit,
+    Slider,
+    dash_missing,
+    format_number,
+    transmission_angle_limit,
+)
 
 
 def _four_bar(crank: float, phi: float):
@@ -99,3 +109,150 @@ def test_missing_cells_show_a_dash():
     html = dash_missing(pd.DataFrame({"N": [1.5, np.nan], "offset": [None, 0.25]})).to_html()
     assert "–" in html and "nan" not in html.lower() and "none" not in html.lower()
     assert "1.5000" in html and "0.2500" in html
+
+
+# --- serialised updates: a value set while one computes replaces the waiting one ----------
+
+class _Recorder:
+    """compute/draw/numbers of a light explorer that records what it computed; ``during``
+    is called inside the first compute of value 1 (a slider moved again meanwhile)."""
+
+    def __init__(self):
+        self.computed, self.during = [], None
+
+    def compute(self, x):
+        self.computed.append(x)
+        if x == 1.0 and self.during is not None:
+            during, self.during = self.during, None
+            during()
+        return x
+
+    @staticmethod
+    def draw(x, fig):
+        ax1, ax2 = fig.subplots(1, 2)            # two axes per picture, as the sheets
+        ax1.plot([0, 1], [0, x])
+        ax2.set_title(f"x = {x}")
+
+    @staticmethod
+    def numbers(result):
+        return {"x": result, "x squared": result * result}
+
+
+def _light(rec, **kw):
+    return Explorer([Slider("x", "x", 0.0, 10.0, 1.0, 0.0)], rec.compute,
+                    lambda r, fig, x: rec.draw(r, fig), lambda r, x: rec.numbers(r),
+                    figsize=(4, 2), **kw)
+
+
+def test_values_set_while_computing_wait_and_the_newest_replaces_the_others():
+    rec = _Recorder()
+    e = _light(rec)
+    # two more moves arrive while x = 1 computes: 2 waits, then 3 replaces it
+    rec.during = lambda: (e.set(x=2.0), e.set(x=3.0))
+    e.set(x=1.0)
+    assert rec.computed == [0.0, 1.0, 3.0]           # 2 was replaced, never computed
+    assert e.values == {"x": 3.0} and e.numbers == {"x": 3.0, "x squared": 9.0}
+    assert len(e.figure.axes) == 2                   # redrawn, never stacked
+    assert e.figure.axes[1].get_title() == "x = 3.0"
+    assert e.updates == 3
+
+
+def test_a_move_from_another_thread_does_not_stack_axes():
+    rec = _Recorder()
+    e = _light(rec)
+    entered, gate = threading.Event(), threading.Event()
+
+    def slow():
+        entered.set()
+        assert gate.wait(30)
+
+    rec.during = slow
+    worker = threading.Thread(target=e.set, kwargs={"x": 1.0})
+    worker.start()
+    assert entered.wait(30)
+    assert e.set(x=2.0) == {"x": 0.0, "x squared": 0.0}   # returns at once: x = 1 runs
+    e.set(x=3.0)
+    gate.set()
+    worker.join(30)
+    assert rec.computed == [0.0, 1.0, 3.0] and e.values == {"x": 3.0}
+    assert len(e.figure.axes) == 2
+
+
+def test_the_widget_under_an_event_loop_computes_the_newest_value_once():
+    rec = _Recorder()
+    e = _light(rec)
+
+    async def student():
+        box = e.widget()
+        slider, image, status = box.children[0], box.children[1], box.children[2]
+        png = image.value
+        for v in (4.0, 5.0, 6.0):                    # three moves before the kernel is free
+            slider.value = v
+        assert "computing" in status.value and rec.computed == [0.0]
+        for _ in range(5):
+            await asyncio.sleep(0)
+        return png, image.value, status.value
+
+    png, new_png, status = asyncio.run(student())
+    assert rec.computed == [0.0, 6.0]                # one update, the newest value
+    assert new_png != png and "computing" not in status and "x = 6" in status
+    assert len(e.figure.axes) == 2
+    e.close()
+
+
+def test_a_bug_in_a_scheduled_update_is_shown_not_lost():
+    def broken(x):
+        if x > 5:
+            raise ZeroDivisionError("planted")
+        return x
+
+    e = Explorer([Slider("x", "x", 0.0, 10.0, 1.0, 0.0)], broken,
+                 lambda r, fig, x: fig.subplots(), lambda r, x: {"x": x})
+
+    async def move():
+        box = e.widget()
+        box.children[0].value = 7.0
+        for _ in range(5):
+            await asyncio.sleep(0)
+        return box.children[2].value
+
+    status = asyncio.run(move())
+    assert "ZeroDivisionError: planted" in status and "ZeroDivisionError" in e.error
+
+
+# --- the limits the course teaches are marked when crossed ------------------------------
+
+def _tau_numbers(sol, crank, phi):
+    return {"Me max [N m]": sol.summary()["Me_max"],
+            "smallest transmission angle [deg]": sol.summary()["transmission_angle_min"]}
+
+
+def test_a_transmission_angle_below_40_deg_is_marked():
+    key = "smallest transmission angle [deg]"
+    e = Explorer([Slider("crank", "crank AB [m]", 0.06, 0.15, 0.01, 0.10),
+                  Slider("phi", "crank angle [deg]", 0.0, 355.0, 5.0, 30.0)],
+                 _four_bar, _draw, _tau_numbers, figsize=(5, 3),
+                 limits=[transmission_angle_limit(key)])
+    # crank 0.10 m: 51.3 deg (measured), within the limit
+    assert e.crossed == {} and e.table().loc[key, "limit"].startswith("ok: >= 40")
+    assert "limit crossed" not in e.status()
+    e.set(crank=0.13)                               # 34.51 deg (measured, sheet 02's case)
+    assert e.numbers[key] == pytest.approx(34.51, abs=0.01)
+    assert e.crossed[key].startswith("below 40: 34.51")
+    assert e.table().loc[key, "limit"].startswith("CROSSED, below 40")
+    assert "limit crossed" in e.status() and "34.51" in e.status()
+    assert e.table().loc["Me max [N m]", "limit"] == ""
+    e.set(crank=0.12)                               # 42.35 deg: the mark goes
+    assert e.crossed == {}
+
+
+def test_limits_are_checked_when_made():
+    with pytest.raises(ValueError, match="give min, max or both"):
+        Limit("x")
+    with pytest.raises(ValueError, match="min < max"):
+        Limit("x", min=2.0, max=1.0)
+    with pytest.raises(ValueError, match="no such key number"):
+        _light(_Recorder(), limits=[Limit("y", min=0.0)])
+    lim = Limit("x", max=2.0, source="the course")
+    assert lim.check(1.0) is None and lim.check("text") is None and lim.check(None) is None
+    assert lim.check(3.0) == "above 2: 3 (the course)" and lim.describe() == "<= 2 (the course)"
