@@ -246,24 +246,3 @@ def test_coast_down_public_stepping_gives_the_same_peak():
     public = BalancingMachine(coast_down=cd, fast=False).record(us)
     assert fast.amplitude == public.amplitude
     assert np.array_equal(fast.x, public.x)
-
-
-MACHINE_MODULES = ["coastdown", "demodulation", "mount", "pivot", "records", "runs",
-                   "studies", "unbalances"]
-
-
-@pytest.mark.parametrize("name", MACHINE_MODULES)
-def test_docstring_examples(name):
-    import doctest
-    import importlib
-
-    module = importlib.import_module(f"balance.machine.{name}")
-    assert doctest.testmod(module).failed == 0
-
-
-def test_pivot_example_is_collected():
-    """The pivot's docstring example runs (a module with no examples would pass above)."""
-    import doctest
-
-    from balance.machine import pivot
-    assert doctest.testmod(pivot).attempted >= 2
