@@ -185,8 +185,15 @@ def crosscheck(scene: Any, *, dt: float | None = None, steps_per_revolution: int
             except SimulationDiverged as exc:
                 cc.notes.append(f"{n1} steps per revolution diverged ({exc}); kept {n0}")
             else:
-                if finer.max_error < cc.max_error:
-                    cc = finer
+                # the finer run is the better-converged one, kept whatever it shows: a
+                # cross-check never chooses by agreement with what it checks
+                if finer.max_error > cc.max_error:
+                    finer.notes.append(
+                        f"refining from {n0} to {n1} steps per revolution made the "
+                        f"agreement worse ({cc.max_error:.2g} -> {finer.max_error:.2g}): "
+                        "the simulation converges away from kinetostatics, the sign of a "
+                        "real discrepancy (or of a solver that has not settled)")
+                cc = finer
     cc.settings["steps_tried"] = tried
     cc.settings["steps_rule"] = ("auto: first guess from the fastest body and the smallest "
                                  "link, then the dt^2 law towards the target error")
