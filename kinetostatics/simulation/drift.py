@@ -22,6 +22,8 @@ from ..model.scene import GROUND
 from .errors import SimulationDiverged
 from .geometry import pose_world
 
+__all__ = ["DRIFT_FACTOR", "DRIFT_LIMIT", "drift_bound", "drift_rows", "joint_drift"]
+
 if TYPE_CHECKING:
     from .model import SimModel
 

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from ..model.errors import WorkbenchError
 
+__all__ = ["SimulationDiverged", "SimulationError"]
+
 
 class SimulationError(WorkbenchError):
     """A scene that the simulation cannot reproduce (or a bad simulation setting)."""

@@ -10,6 +10,8 @@ import numpy as np
 
 from .reference import reference_solution
 
+__all__ = ["RESIST_UNSURE", "SWITCH_SETTLE"]
+
 if TYPE_CHECKING:
     from .model import SimModel
     from .stepper import BodyAccess

@@ -53,6 +53,9 @@ from .reference import (
     translating_bodies,
 )
 
+__all__ = ["ConstraintInfo", "DEFAULT_ITERATIONS", "GROOVE_MARGIN", "SimModel", "build_space",
+           "check_scene"]
+
 DEFAULT_ITERATIONS = 30
 """Solver iterations: about 10 suffice for a four-bar, about 30 for a slider-crank
 (fewer make ``error_bias = 0`` diverge); more change nothing but cost."""

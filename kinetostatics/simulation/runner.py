@@ -30,6 +30,10 @@ from .reference import reference_solution
 from .stepper import PYMUNK_VERSION, run
 from .stepsize import first_guess_steps
 
+__all__ = ["ACCEPTABLE_ERROR", "AUTO_ITERATIONS", "BUDGET", "DEFAULT_STEPS_PER_REVOLUTION",
+           "MAX_AUTO_STEPS", "MAX_STEPS", "SETTLE_FRACTION", "TARGET_ERROR",
+           "converged_iterations", "crosscheck", "crosscheck_many", "plan"]
+
 DEFAULT_STEPS_PER_REVOLUTION = 3600
 """Steps per revolution of a run given ``dt = None`` and no steps by a caller of
 :func:`plan` (the cross-check itself chooses them per scene, :func:`crosscheck`)."""

@@ -23,6 +23,8 @@ from .errors import SimulationError
 from .geometry import pose_world
 from .model import reading_label
 
+__all__: list[str] = []          # used by the other simulation modules only
+
 if TYPE_CHECKING:
     from .model import SimModel
 

@@ -30,6 +30,9 @@ from .loads import SWITCH_BOOST, loads_function
 from .model import SimModel, reading_label
 from .signed import SingularBalance, signed_reactions
 
+__all__ = ["PYMUNK_VERSION", "SimRecord", "VERIFY_EVERY", "WARMUP_ITERATIONS", "WARMUP_STEPS",
+           "fast_path_available", "make_stepper", "run", "warmup_schedule"]
+
 PYMUNK_VERSION = "7.3.1"
 """The pymunk version the settings were measured with (docs/simulation.md)."""
 

@@ -365,6 +365,25 @@ def test_raw_scene_is_not_modified():
     assert raw == before
 
 
+def test_the_package_names_are_its_modules_all():
+    """The package's lazy table is read from its modules' ``__all__``: the names are
+    exactly their union (the command line's module apart), each from its module."""
+    import importlib
+    import pkgutil
+
+    import kinetostatics.simulation as sim
+    union = {}
+    for info in pkgutil.iter_modules(sim.__path__):
+        module = importlib.import_module(f"kinetostatics.simulation.{info.name}")
+        assert isinstance(module.__all__, list), info.name
+        assert all(hasattr(module, n) for n in module.__all__), info.name
+        if info.name != "cli":
+            assert not set(module.__all__) & set(union), info.name     # each name once
+            union.update(dict.fromkeys(module.__all__, module))
+    assert sim.__all__ == sorted(union)
+    assert all(getattr(sim, n) is getattr(union[n], n) for n in union)
+
+
 def test_public_names_load_lazily():
     import subprocess
     import sys
