@@ -7,62 +7,34 @@ until a simulation name is used.
 
 from __future__ import annotations
 
+import ast
 import importlib
+import re
+from pathlib import Path
 
-_HOME = {
-    "SERIAL": "batch",
-    "run_batch": "batch",
-    "ACCEPTABLE_ERROR": "runner",
-    "BUDGET": "runner",
-    "TARGET_ERROR": "runner",
-    "MAX_AUTO_STEPS": "runner",
-    "first_guess_steps": "stepsize",
-    "check_scene": "model",
-    "CrossCheck": "comparison",
-    "ZERO_COUPLE": "comparison",
-    "compare": "comparison",
-    "DRIFT_FACTOR": "drift",
-    "DRIFT_LIMIT": "drift",
-    "drift_bound": "drift",
-    "drift_rows": "drift",
-    "joint_drift": "drift",
-    "SimulationDiverged": "errors",
-    "SimulationError": "errors",
-    "RESIST_UNSURE": "loads",
-    "SWITCH_SETTLE": "loads",
-    "ConstraintInfo": "model",
-    "DEFAULT_ITERATIONS": "model",
-    "GROOVE_MARGIN": "model",
-    "SimModel": "model",
-    "build_space": "model",
-    "plot_comparison": "plots",
-    "plot_study": "plots",
-    "reference_solution": "reference",
-    "sweep_positions": "reference",
-    "translating_bodies": "reference",
-    "AUTO_ITERATIONS": "runner",
-    "DEFAULT_STEPS_PER_REVOLUTION": "runner",
-    "MAX_STEPS": "runner",
-    "SETTLE_FRACTION": "runner",
-    "converged_iterations": "runner",
-    "crosscheck": "runner",
-    "crosscheck_many": "runner",
-    "plan": "runner",
-    "PYMUNK_VERSION": "stepper",
-    "SimRecord": "stepper",
-    "VERIFY_EVERY": "stepper",
-    "WARMUP_ITERATIONS": "stepper",
-    "WARMUP_STEPS": "stepper",
-    "fast_path_available": "stepper",
-    "make_stepper": "stepper",
-    "run": "stepper",
-    "warmup_schedule": "stepper",
-    "ORDER_FLOOR": "studies",
-    "STUDY_ITERATIONS": "studies",
-    "STUDY_STEPS": "studies",
-    "Study": "studies",
-    "study": "studies",
-}
+_NOT_EXPORTED = ("__init__", "cli")
+"""The package itself, and the command line's module (``kinetostatics.cli`` imports it)."""
+
+
+def _read_home() -> dict[str, str]:
+    """``name -> module`` for the names in the ``__all__`` of every module here, read
+    from the source text (importing the modules would import pymunk): each module
+    declares ``__all__ = [...]`` as a literal list (tests/kinetostatics/simulation checks
+    the result against the imported modules' ``__all__``)."""
+    home: dict[str, str] = {}
+    for path in sorted(Path(__file__).parent.glob("*.py")):
+        if path.stem in _NOT_EXPORTED:
+            continue
+        found = re.search(r"^__all__(?:: list\[str\])? = (\[.*?\])", path.read_text(),
+                          re.MULTILINE | re.DOTALL)
+        if found is None:
+            raise ImportError(f"kinetostatics.simulation.{path.stem} declares no __all__")
+        for name in ast.literal_eval(found.group(1)):
+            home[name] = path.stem
+    return home
+
+
+_HOME = _read_home()
 
 __all__ = sorted(_HOME)
 

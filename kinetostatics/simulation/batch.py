@@ -14,6 +14,8 @@ from typing import Any
 
 from .errors import SimulationError
 
+__all__ = ["SERIAL", "run_batch"]
+
 SERIAL = "serial"
 """``executor=SERIAL``: run a batch one item after another in this process."""
 

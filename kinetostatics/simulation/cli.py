@@ -19,6 +19,8 @@ import json
 import math
 from pathlib import Path
 
+__all__ = ["add_commands"]
+
 
 def _error(msg: str) -> Exception:
     """A :class:`~kinetostatics.simulation.SimulationError` (pymunk is imported only

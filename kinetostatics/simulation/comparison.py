@@ -28,6 +28,8 @@ from .errors import SimulationError
 from .friction import near_reversals
 from .stepper import SimRecord
 
+__all__ = ["CrossCheck", "ZERO_COUPLE", "compare"]
+
 ZERO_COUPLE = 1e-9
 """A prismatic joint's couple below this times max|F| x the mechanism's size counts as
 zero in kinetostatics (it is compared on that scale, not on its own)."""

@@ -22,6 +22,8 @@ from ..model.scene import GROUND
 from .errors import SimulationDiverged
 from .geometry import pose_world
 
+__all__ = ["DRIFT_FACTOR", "DRIFT_LIMIT", "drift_bound", "drift_rows", "joint_drift"]
+
 if TYPE_CHECKING:
     from .model import SimModel
 
@@ -53,8 +55,9 @@ def drift_bound(model: SimModel) -> float:
     return min(max(bound, DRIFT_FLOOR * size), DRIFT_LIMIT * size)
 
 
-def drift_rows(model: SimModel, pose: np.ndarray) -> np.ndarray:
-    """Largest joint error at each sampled pose (m); inf where the pose is not finite.
+def drift_by_joint(model: SimModel, pose: np.ndarray) -> dict[str, np.ndarray]:
+    """Each joint's error at each sampled pose (m), by joint name (a prismatic joint's
+    lock as ``"<joint>:lock"``); inf where the pose is not finite.
 
     Pivots: the distance between the joint's points on the two bodies; grooves: the
     pin's distance from the groove line; locks: the relative angle's error times the
@@ -63,9 +66,9 @@ def drift_rows(model: SimModel, pose: np.ndarray) -> np.ndarray:
     names = model.moving
     index = {n: i for i, n in enumerate(names)}
     K = pose.shape[0]
-    worst = np.zeros(K)
+    out: dict[str, np.ndarray] = {}
     if K == 0:
-        return worst
+        return out
 
     def world(body: str, local):
         return pose_world(pose, index, body, local)
@@ -91,7 +94,18 @@ def drift_rows(model: SimModel, pose: np.ndarray) -> np.ndarray:
             d = np.abs(rel - rel[0]) * size
         else:
             continue
-        worst = np.fmax(worst, np.where(np.isfinite(d), d, math.inf))
+        d = np.where(np.isfinite(d), d, math.inf)
+        label = info.joint if info.role != "lock" else f"{info.joint}:lock"
+        out[label] = np.fmax(out[label], d) if label in out else d
+    return out
+
+
+def drift_rows(model: SimModel, pose: np.ndarray) -> np.ndarray:
+    """Largest joint error at each sampled pose (m); inf where the pose is not finite
+    (:func:`drift_by_joint`, the largest over the joints)."""
+    worst = np.zeros(pose.shape[0])
+    for d in drift_by_joint(model, pose).values():
+        worst = np.fmax(worst, d)
     return worst
 
 
@@ -113,24 +127,34 @@ def steps_per_revolution(model: SimModel) -> float:
 
 
 def diverged(model: SimModel, time: float, position: float, drift: float,
-             reason: str) -> SimulationDiverged:
+             reason: str, where: str = "") -> SimulationDiverged:
     """The :class:`SimulationDiverged` error of a run of ``model``."""
     return SimulationDiverged(time=time, position=position, kind=model.kind, drift=drift,
                               size=model.scene.size, iterations=model.iterations,
                               dt=model.dt, steps_per_revolution=steps_per_revolution(model),
-                              reason=reason)
+                              reason=reason, where=where)
 
 
 def check_run(model: SimModel, times: np.ndarray, positions: np.ndarray, pose: np.ndarray,
               finite: np.ndarray) -> float:
     """The run's largest drift (m), or :class:`SimulationDiverged` at the first sample
     whose state or readings are not finite (``finite`` False) or whose drift exceeds
-    :func:`drift_bound`."""
-    rows = drift_rows(model, pose)
+    :func:`drift_bound`; the error names the joint that drifted most there (or the first
+    body whose state is not finite)."""
+    by_joint = drift_by_joint(model, pose)
+    rows = np.zeros(pose.shape[0])
+    for d in by_joint.values():
+        rows = np.fmax(rows, d)
     bad = ~finite | (rows > drift_bound(model))
     if bad.any():
         k = int(np.argmax(bad))
         worst = float(np.max(rows)) if np.all(finite) else math.inf
+        if finite[k]:
+            where = "joint " + max(by_joint, key=lambda j: by_joint[j][k])
+        else:
+            blown = [n for i, n in enumerate(model.moving)
+                     if not np.isfinite(pose[k, i]).all()]
+            where = f"body {blown[0]}" if blown else "the readings"
         raise diverged(model, float(times[k]), float(positions[k]), worst,
-                       "drift" if finite[k] else "not finite")
+                       "drift" if finite[k] else "not finite", where)
     return float(np.max(rows)) if rows.size else 0.0

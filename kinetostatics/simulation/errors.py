@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from ..model.errors import WorkbenchError
 
+__all__ = ["SimulationDiverged", "SimulationError"]
+
 
 class SimulationError(WorkbenchError):
     """A scene that the simulation cannot reproduce (or a bad simulation setting)."""
@@ -31,12 +33,17 @@ class SimulationDiverged(SimulationError):
         Steps per driver revolution (a sliding driver: per sweep).
     reason : str
         What was found: ``"drift"``, ``"not finite"`` or ``"singular momentum balance"``.
+    where : str
+        What drifted: ``"joint <name>"`` (the joint that drifted most at that sample),
+        ``"body <name>"`` (the first whose state was not finite), or ``""``.
     """
 
     def __init__(self, *, time: float, position: float, kind: str, drift: float, size: float,
-                 iterations: int, dt: float, steps_per_revolution: float, reason: str):
+                 iterations: int, dt: float, steps_per_revolution: float, reason: str,
+                 where: str = ""):
         self.time, self.position, self.kind = float(time), float(position), kind
         self.drift, self.size, self.reason = float(drift), float(size), reason
+        self.where = where
         self.iterations, self.dt = int(iterations), float(dt)
         self.steps_per_revolution = float(steps_per_revolution)
         super().__init__(self._message())
@@ -45,7 +52,7 @@ class SimulationDiverged(SimulationError):
         """Picklable (a batch's worker may raise it): rebuilt from its fields."""
         fields = {k: getattr(self, k) for k in ("time", "position", "kind", "drift", "size",
                                                  "iterations", "dt", "steps_per_revolution",
-                                                 "reason")}
+                                                 "reason", "where")}
         return _rebuild, (fields,)
 
     @property
@@ -63,6 +70,9 @@ class SimulationDiverged(SimulationError):
             at = f"t = {self.time:.4g} s"
         drift = (f"drift {self.drift:.2g} m = {self.drift / self.size:.2g} x the mechanism's "
                  f"size" if self.drift < float("inf") else "state not finite")
+        if self.where:
+            drift += (f", first in {self.where}" if self.reason == "not finite"
+                      else f", first over the bound at {self.where}")
         if self.reason == "singular momentum balance":
             drift += ", singular momentum balance"
         it, steps = self.advice

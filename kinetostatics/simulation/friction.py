@@ -31,6 +31,8 @@ from ..model.scene import GROUND
 from .loads import RESIST_UNSURE, SWITCH_BOOST, SWITCH_SETTLE
 from .reference import reference_solution
 
+__all__: list[str] = []          # used by the other simulation modules only
+
 if TYPE_CHECKING:
     from .model import SimModel
     from .stepper import BodyAccess

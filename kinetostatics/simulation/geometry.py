@@ -9,6 +9,8 @@ import numpy as np
 
 from ..model.scene import GROUND, Scene
 
+__all__: list[str] = []          # used by the other simulation modules only
+
 
 def local_point(scene: Scene, body: str, point: str) -> tuple[float, float]:
     if body == GROUND:

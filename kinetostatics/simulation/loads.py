@@ -10,6 +10,8 @@ import numpy as np
 
 from .reference import reference_solution
 
+__all__ = ["RESIST_UNSURE", "SWITCH_SETTLE"]
+
 if TYPE_CHECKING:
     from .model import SimModel
     from .stepper import BodyAccess
@@ -94,118 +96,11 @@ def loads_function(model: SimModel, acc: BodyAccess):
     velocity at the pose the step reaches, extrapolated to second order from the last
     two steps' velocities (1.5 v_n - 0.5 v_(n-1)); the force is opposite to it.
     """
-    dt = model.dt
-    H = acc.handle
-    get_a, get_w, get_v = acc.angle, acc.omega, acc.velocity
-    set_f, set_t = acc.set_force, acc.set_torque
     unsure = [False]
-    per: dict[int, dict] = {}
-    for b, fx, fy, ca, cb, mm in model._loads:
-        per[id(b)] = {"body": b, "const": (fx, fy, ca, cb, mm), "resist": []}
-    for (b, px, py, mag, top), (ax, ay, al) in zip(model._resist, _start_acc(model),
-                                                    strict=True):
-        d = per.setdefault(id(b), {"body": b, "const": (0.0, 0.0, 0.0, 0.0, 0.0),
-                                   "resist": []})
-        d["resist"].append((px, py, mag, top, ax, ay, al))
+    per = _loads_by_body(model)
     if not per:
         return None, unsure
-    cos, sin, hypot = math.cos, math.sin, math.hypot
-
-    def body_function(d: dict):
-        h = H(d["body"])
-        fx0, fy0, ca, cb, mm = d["const"]
-        turning = bool(ca or cb or any(px or py for px, py, *_ in d["resist"]))
-        if not d["resist"]:
-            f0 = (fx0, fy0)
-
-            def apply_const() -> None:
-                a = get_a(h) + get_w(h) * dt
-                set_f(h, f0)
-                set_t(h, cos(a) * ca + sin(a) * cb + mm)
-
-            return apply_const
-        # the start carries v(t0) + a dt / 2; one step earlier the scheme had a dt less
-        v = get_v(h)
-        w0 = get_w(h)
-        res = d["resist"]
-        first = res[0]
-        prev = [v.x - first[4] * dt, v.y - first[5] * dt, w0 - first[6] * dt]
-        arms = [(px, py, mag, top) for px, py, mag, top, *_ in res]
-        if not turning and not mm and len(arms) == 1 and not isinstance(arms[0][2], tuple):
-            # one resist force at the centre of mass of a body with no other moment
-            # (a piston): no angle, no angular velocity, no torque needed
-            _, _, mag, top = arms[0]
-            still = RESIST_UNSURE * top
-
-            def apply_point() -> None:
-                v = get_v(h)
-                vx, vy = v.x, v.y
-                ex, ey = 1.5 * vx - 0.5 * prev[0], 1.5 * vy - 0.5 * prev[1]
-                prev[0], prev[1] = vx, vy
-                sp = hypot(ex, ey)
-                unsure[0] = sp <= still
-                if sp > 0.0:
-                    set_f(h, (fx0 - mag * ex / sp, fy0 - mag * ey / sp))
-                else:
-                    set_f(h, (fx0, fy0))
-
-            return apply_point
-
-        gated_on = [None] * len(arms)       # when = "resisting": on at the last step
-        settle = [0]                        # steps left in a switch's transient
-        boost = model._boost                # steps left with more solver iterations
-
-        def apply_resist() -> None:
-            v = get_v(h)
-            w = get_w(h)
-            vx, vy = v.x, v.y
-            ex, ey = 1.5 * vx - 0.5 * prev[0], 1.5 * vy - 0.5 * prev[1]
-            ew = 1.5 * w - 0.5 * prev[2]
-            prev[0], prev[1], prev[2] = vx, vy, w
-            fx, fy, t = fx0, fy0, mm
-            c = s = 0.0
-            if turning:
-                a = get_a(h) + w * dt
-                c, s = cos(a), sin(a)
-                t += c * ca + s * cb
-            flag = settle[0] > 0
-            if flag:
-                settle[0] -= 1
-            for k, (px, py, mag, top) in enumerate(arms):
-                rx, ry = c * px - s * py, s * px + c * py
-                qx, qy = ex - ew * ry, ey + ew * rx
-                if isinstance(mag, tuple):          # when = "resisting": on while F.v < 0
-                    gx, gy = mag
-                    power = gx * qx + gy * qy
-                    if abs(power) <= RESIST_UNSURE * top:
-                        flag = True
-                    on = power < 0.0
-                    if gated_on[k] is not None and on != gated_on[k]:
-                        settle[0] = SWITCH_SETTLE
-                        boost[0] = SWITCH_BOOST
-                        flag = True
-                    gated_on[k] = on
-                    if on:
-                        fx += gx
-                        fy += gy
-                        t += rx * gy - ry * gx
-                    continue
-                sp = hypot(qx, qy)
-                if sp <= RESIST_UNSURE * top:
-                    flag = True
-                if sp > 0.0:
-                    gx, gy = -mag * qx / sp, -mag * qy / sp
-                    fx += gx
-                    fy += gy
-                    t += rx * gy - ry * gx
-            set_f(h, (fx, fy))
-            if turning or mm:
-                set_t(h, t)
-            unsure[0] = flag
-
-        return apply_resist
-
-    funcs = [body_function(d) for d in per.values()]
+    funcs = [_body_function(model, acc, d, unsure) for d in per.values()]
     if len(funcs) == 1:
         return funcs[0], unsure
 
@@ -215,3 +110,142 @@ def loads_function(model: SimModel, acc: BodyAccess):
 
     return apply_all, unsure
 
+
+def _loads_by_body(model: SimModel) -> dict[int, dict]:
+    """The loads grouped by body: its constant force and moment terms
+    ``(fx, fy, A, B, M)`` and its ``resist`` points with their start accelerations."""
+    per: dict[int, dict] = {}
+    for b, fx, fy, ca, cb, mm in model._loads:
+        per[id(b)] = {"body": b, "const": (fx, fy, ca, cb, mm), "resist": []}
+    for (b, px, py, mag, top), (ax, ay, al) in zip(model._resist, _start_acc(model),
+                                                    strict=True):
+        d = per.setdefault(id(b), {"body": b, "const": (0.0, 0.0, 0.0, 0.0, 0.0),
+                                   "resist": []})
+        d["resist"].append((px, py, mag, top, ax, ay, al))
+    return per
+
+
+def _body_function(model: SimModel, acc: BodyAccess, d: dict, unsure: list):
+    """The function that sets one body's loads: constant ones only, one resist force at
+    the centre of mass of a body with no moment, or the general case."""
+    h = acc.handle(d["body"])
+    ca, cb, mm = d["const"][2:]
+    if not d["resist"]:
+        return _constant_loads(model, acc, h, d["const"])
+    # the start carries v(t0) + a dt / 2; one step earlier the scheme had a dt less
+    dt = model.dt
+    v = acc.velocity(h)
+    w0 = acc.omega(h)
+    res = d["resist"]
+    first = res[0]
+    prev = [v.x - first[4] * dt, v.y - first[5] * dt, w0 - first[6] * dt]
+    arms = [(px, py, mag, top) for px, py, mag, top, *_ in res]
+    turning = bool(ca or cb or any(px or py for px, py, *_ in res))
+    if not turning and not mm and len(arms) == 1 and not isinstance(arms[0][2], tuple):
+        return _resist_at_centre(acc, h, d["const"], arms[0], prev, unsure)
+    return _resist_loads(model, acc, h, d["const"], arms, prev, turning, unsure)
+
+
+def _constant_loads(model: SimModel, acc: BodyAccess, h, const: tuple):
+    """F, and the moment cos(a) A + sin(a) B + M at the angle after the step."""
+    dt = model.dt
+    get_a, get_w = acc.angle, acc.omega
+    set_f, set_t = acc.set_force, acc.set_torque
+    cos, sin = math.cos, math.sin
+    fx0, fy0, ca, cb, mm = const
+    f0 = (fx0, fy0)
+
+    def apply_const() -> None:
+        a = get_a(h) + get_w(h) * dt
+        set_f(h, f0)
+        set_t(h, cos(a) * ca + sin(a) * cb + mm)
+
+    return apply_const
+
+
+def _resist_at_centre(acc: BodyAccess, h, const: tuple, arm: tuple, prev: list,
+                      unsure: list):
+    """One resist force at the centre of mass of a body with no other moment (a
+    piston): no angle, no angular velocity, no torque needed."""
+    get_v, set_f, hypot = acc.velocity, acc.set_force, math.hypot
+    fx0, fy0 = const[:2]
+    _, _, mag, top = arm
+    still = RESIST_UNSURE * top
+
+    def apply_point() -> None:
+        v = get_v(h)
+        vx, vy = v.x, v.y
+        ex, ey = 1.5 * vx - 0.5 * prev[0], 1.5 * vy - 0.5 * prev[1]
+        prev[0], prev[1] = vx, vy
+        sp = hypot(ex, ey)
+        unsure[0] = sp <= still
+        if sp > 0.0:
+            set_f(h, (fx0 - mag * ex / sp, fy0 - mag * ey / sp))
+        else:
+            set_f(h, (fx0, fy0))
+
+    return apply_point
+
+
+def _resist_loads(model: SimModel, acc: BodyAccess, h, const: tuple, arms: list,
+                  prev: list, turning: bool, unsure: list):
+    """Resist forces at points of a body (or gated ``when = "resisting"`` forces, whose
+    switch starts a transient of more solver iterations), with its constant loads."""
+    dt = model.dt
+    get_a, get_w, get_v = acc.angle, acc.omega, acc.velocity
+    set_f, set_t = acc.set_force, acc.set_torque
+    cos, sin, hypot = math.cos, math.sin, math.hypot
+    fx0, fy0, ca, cb, mm = const
+    gated_on = [None] * len(arms)       # when = "resisting": on at the last step
+    settle = [0]                        # steps left in a switch's transient
+    boost = model._boost                # steps left with more solver iterations
+
+    def apply_resist() -> None:
+        v = get_v(h)
+        w = get_w(h)
+        vx, vy = v.x, v.y
+        ex, ey = 1.5 * vx - 0.5 * prev[0], 1.5 * vy - 0.5 * prev[1]
+        ew = 1.5 * w - 0.5 * prev[2]
+        prev[0], prev[1], prev[2] = vx, vy, w
+        fx, fy, t = fx0, fy0, mm
+        c = s = 0.0
+        if turning:
+            a = get_a(h) + w * dt
+            c, s = cos(a), sin(a)
+            t += c * ca + s * cb
+        flag = settle[0] > 0
+        if flag:
+            settle[0] -= 1
+        for k, (px, py, mag, top) in enumerate(arms):
+            rx, ry = c * px - s * py, s * px + c * py
+            qx, qy = ex - ew * ry, ey + ew * rx
+            if isinstance(mag, tuple):          # when = "resisting": on while F.v < 0
+                gx, gy = mag
+                power = gx * qx + gy * qy
+                if abs(power) <= RESIST_UNSURE * top:
+                    flag = True
+                on = power < 0.0
+                if gated_on[k] is not None and on != gated_on[k]:
+                    settle[0] = SWITCH_SETTLE
+                    boost[0] = SWITCH_BOOST
+                    flag = True
+                gated_on[k] = on
+                if on:
+                    fx += gx
+                    fy += gy
+                    t += rx * gy - ry * gx
+                continue
+            sp = hypot(qx, qy)
+            if sp <= RESIST_UNSURE * top:
+                flag = True
+            if sp > 0.0:
+                gx, gy = -mag * qx / sp, -mag * qy / sp
+                fx += gx
+                fy += gy
+                t += rx * gy - ry * gx
+        set_f(h, (fx, fy))
+        if turning or mm:
+            set_t(h, t)
+        unsure[0] = flag
+
+    return apply_resist

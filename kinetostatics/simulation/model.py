@@ -53,6 +53,9 @@ from .reference import (
     translating_bodies,
 )
 
+__all__ = ["ConstraintInfo", "DEFAULT_ITERATIONS", "GROOVE_MARGIN", "SimModel", "build_space",
+           "check_scene"]
+
 DEFAULT_ITERATIONS = 30
 """Solver iterations: about 10 suffice for a four-bar, about 30 for a slider-crank
 (fewer make ``error_bias = 0`` diverge); more change nothing but cost."""
@@ -302,15 +305,9 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
     """
     sc = load_scene(scene)
     check_scene(sc)
-    if not (dt > 0.0 and math.isfinite(dt)):
-        raise SimulationError(f"dt = {dt!r}: the time step must be a positive number of s")
-    if int(iterations) != iterations or iterations < 1:
-        raise SimulationError(f"iterations = {iterations!r}: give a whole number >= 1")
-    if not 0.0 <= error_bias <= 1.0:
-        raise SimulationError(f"error_bias = {error_bias!r}: give a fraction in [0, 1]")
+    _check_settings(dt, iterations, error_bias)
     d = sc.driver
     p0 = float(d.positions[0]) if start is None else float(start)
-    kin0 = reference_solution(sc, [p0]).kin
     sweep = reference_solution(sc, sweep_positions(sc))
 
     space = pymunk.Space()
@@ -318,9 +315,37 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
     space.gravity = tuple(sc.gravity)
     space.sleep_time_threshold = math.inf
     space.damping = 1.0
-    bodies: dict[str, pymunk.Body] = {GROUND: space.static_body}
     frozen = translating_bodies(sc, sweep)
     _check_bodies(sc, frozen)
+    bodies = _add_bodies(sc, space, reference_solution(sc, [p0]).kin, frozen, dt)
+    joints = _Joints(error_bias)
+    _add_joints(sc, bodies, sweep, {GROUND} | frozen, joints)
+    model = SimModel(sc, space, bodies, joints.infos, float(dt), int(iterations), p0,
+                     d.speed, frozen, error_bias=float(error_bias),
+                     accel_scale=point_acceleration(sc, sweep), notes=joints.notes,
+                     driver_first=bool(driver_first))
+    _add_driver(model, joints)
+    space.add(*solver_order(sc, joints.infos, driver_first))
+    prepare_loads(model, sweep)
+    prepare_friction(model, sweep)
+    return model
+
+
+def _check_settings(dt: float, iterations: int, error_bias: float) -> None:
+    """Refuse a time step, an iteration count or an error bias that cannot be run."""
+    if not (dt > 0.0 and math.isfinite(dt)):
+        raise SimulationError(f"dt = {dt!r}: the time step must be a positive number of s")
+    if int(iterations) != iterations or iterations < 1:
+        raise SimulationError(f"iterations = {iterations!r}: give a whole number >= 1")
+    if not 0.0 <= error_bias <= 1.0:
+        raise SimulationError(f"error_bias = {error_bias!r}: give a fraction in [0, 1]")
+
+
+def _add_bodies(sc: Scene, space: pymunk.Space, kin0, frozen: set[str],
+                dt: float) -> dict[str, pymunk.Body]:
+    """The scene's bodies in the space, on the exact kinematic state ``kin0`` shifted by
+    the scheme's half step (a body that only translates with an infinite inertia)."""
+    bodies: dict[str, pymunk.Body] = {GROUND: space.static_body}
     half = 0.5 * dt
     for name, b in sc.bodies.items():
         m = kin0.bodies[name].take(slice(1, 2))
@@ -342,36 +367,49 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
         body.angular_velocity = omega + alpha * half
         bodies[name] = body
         space.add(body)
+    return bodies
 
-    infos: list[ConstraintInfo] = []
 
-    def add(c: pymunk.Constraint, info: ConstraintInfo) -> None:
-        c.error_bias = error_bias
+class _Joints:
+    """The constraints made so far, in the scene's order, with their notes; each made
+    rigid (``error_bias``, no ``max_bias``) and free of collisions."""
+
+    def __init__(self, error_bias: float):
+        self.error_bias = error_bias
+        self.infos: list[ConstraintInfo] = []
+        self.notes: list[str] = []
+
+    def add(self, c: pymunk.Constraint, info: ConstraintInfo) -> None:
+        c.error_bias = self.error_bias
         c.max_bias = math.inf
         c.collide_bodies = False
-        infos.append(info)
+        self.infos.append(info)
 
-    notes: list[str] = []
-    fixed = {GROUND} | frozen
+
+def _add_joints(sc: Scene, bodies: dict[str, pymunk.Body], sweep, fixed: set[str],
+                joints: _Joints) -> None:
+    """A pivot per revolute joint; a groove per prismatic joint, with a lock where a
+    body on it turns (``fixed``: the ground and the bodies that only translate)."""
     for name, j in sc.joints.items():
         if j.kind == "R":
             on, by = j.on_by
             pa = local_point(sc, by, j.point_on(by))
             pb = local_point(sc, on, j.point_on(on))
             c = pymunk.PivotJoint(bodies[by], bodies[on], pa, pb)
-            add(c, ConstraintInfo(c, "pivot", name, by, on, pa, pb))
+            joints.add(c, ConstraintInfo(c, "pivot", name, by, on, pa, pb))
             continue
         g, s = j.guide, j.slider
         # the groove on a body whose arm to the pin's contact runs along the line
         # (the ground, a body that cannot turn, or one whose cog is on the line), the
-        # pin on the other at the foot of the normal from its cog (see the docstring)
+        # pin on the other at the foot of the normal from its cog (see build_space)
         found = next(((q, p) for q, p in ((g, s), (s, g))
                       if q in fixed or cog_on_line(sc, name, q)), None)
         q, p = found or (g, s)
         if found is None:
-            notes.append(f"prismatic joint {name!r}: neither body's centre of mass lies on "
-                         "the line and both turn; pymunk's groove then lags by a first-order "
-                         "amount (expect errors proportional to dt)")
+            joints.notes.append(
+                f"prismatic joint {name!r}: neither body's centre of mass lies on the line "
+                "and both turn; pymunk's groove then lags by a first-order amount (expect "
+                "errors proportional to dt)")
         if p in fixed:
             pin = local_point(sc, p, j.points[1] if p == s else j.points[0])
         else:
@@ -382,51 +420,49 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
         ga = tuple(lp + (lo - reach) * u)
         gb = tuple(lp + (hi + reach) * u)
         c = pymunk.GrooveJoint(bodies[q], bodies[p], ga, gb, pin)
-        add(c, ConstraintInfo(c, "groove", name, q, p, ga, pin, (-u[1], u[0]), s,
-                              local_point(sc, s, j.points[1])))
+        joints.add(c, ConstraintInfo(c, "groove", name, q, p, ga, pin, (-u[1], u[0]), s,
+                                     local_point(sc, s, j.points[1])))
         if g in fixed and s in fixed:
             # neither turns: no lock; the couple follows from the angular momentum
             # balance of the translating body (or bodies)
-            infos.append(ConstraintInfo(None, "couple", name, g, s))
+            joints.infos.append(ConstraintInfo(None, "couple", name, g, s))
         else:
             phase = bodies[s].angle - bodies[g].angle
             c = pymunk.GearJoint(bodies[g], bodies[s], phase, 1.0)
-            add(c, ConstraintInfo(c, "lock", name, g, s))
+            joints.add(c, ConstraintInfo(c, "lock", name, g, s))
 
-    model = SimModel(sc, space, bodies, infos, float(dt), int(iterations), p0, d.speed,
-                     frozen, error_bias=float(error_bias),
-                     accel_scale=point_acceleration(sc, sweep), notes=notes,
-                     driver_first=bool(driver_first))
+
+def _add_driver(model: SimModel, joints: _Joints) -> None:
+    """The driver's constraint: a motor at the crank's speed, or a kinematic body moving
+    along the line that pushes the slider through a groove across it (its force Fe)."""
+    sc, space, bodies = model.scene, model.space, model.bodies
+    d = sc.driver
     drv = bodies[d.body]
     if d.kind == "R":
         # SimpleMotor(a, b, rate) holds b.w - a.w = -rate: here the crank turns at `speed`
         c = pymunk.SimpleMotor(drv, space.static_body, d.speed)
-        add(c, ConstraintInfo(c, "motor", None, GROUND, d.body))
-    else:
-        j = sc.joints[d.joint]
-        if j.guide != GROUND:
-            raise SimulationError("a sliding driver whose guide is not the ground is not "
-                                  "supported by the simulation")
-        lp = sc.ground[j.points[0]]
-        beta = j.beta
-        ux, uy = math.cos(beta), math.sin(beta)
-        sp = sc.bodies[d.body].local(j.points[1])
-        model._slider_local = sp
-        model.line = (lp, (ux, uy))
-        px, py = drv.local_to_world(sp)
-        # a kinematic body moves at the constant speed along the line; a groove across
-        # the line, through the slider point, pushes the driver: its force is Fe
-        act = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
-        act.position = (px, py)
-        act.velocity = (d.speed * ux, d.speed * uy)
-        space.add(act)
-        ga, gb = (-uy, ux), (uy, -ux)          # its left normal is the line direction u
-        c = pymunk.GrooveJoint(act, drv, ga, gb, sp)
-        add(c, ConstraintInfo(c, "actuator", None, "actuator", d.body, ga, sp, (ux, uy)))
-        model.actuator = act
-        bodies["actuator"] = act
-    space.add(*solver_order(sc, infos, driver_first))
-    prepare_loads(model, sweep)
-    prepare_friction(model, sweep)
-    return model
+        joints.add(c, ConstraintInfo(c, "motor", None, GROUND, d.body))
+        return
+    j = sc.joints[d.joint]
+    if j.guide != GROUND:
+        raise SimulationError("a sliding driver whose guide is not the ground is not "
+                              "supported by the simulation")
+    lp = sc.ground[j.points[0]]
+    beta = j.beta
+    ux, uy = math.cos(beta), math.sin(beta)
+    sp = sc.bodies[d.body].local(j.points[1])
+    model._slider_local = sp
+    model.line = (lp, (ux, uy))
+    px, py = drv.local_to_world(sp)
+    # a kinematic body moves at the constant speed along the line; a groove across
+    # the line, through the slider point, pushes the driver: its force is Fe
+    act = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+    act.position = (px, py)
+    act.velocity = (d.speed * ux, d.speed * uy)
+    space.add(act)
+    ga, gb = (-uy, ux), (uy, -ux)          # its left normal is the line direction u
+    c = pymunk.GrooveJoint(act, drv, ga, gb, sp)
+    joints.add(c, ConstraintInfo(c, "actuator", None, "actuator", d.body, ga, sp, (ux, uy)))
+    model.actuator = act
+    bodies["actuator"] = act
 

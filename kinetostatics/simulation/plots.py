@@ -11,6 +11,8 @@ from .comparison import CrossCheck, quantity_unit
 from .runner import BUDGET, TARGET_ERROR
 from .studies import Study
 
+__all__ = ["plot_comparison", "plot_study"]
+
 
 def plot_comparison(cc: CrossCheck, quantities: list[str] | None = None, *, every: int = 1):
     """Simulated against computed values over the driver's positions, one panel each.

@@ -10,6 +10,8 @@ import numpy as np
 
 from ..model.scene import Scene, load_scene
 
+__all__ = ["reference_solution", "sweep_positions", "translating_bodies"]
+
 
 def _raw_with_positions(scene: Scene, positions) -> dict:
     """A copy of the scene's raw dict with ``positions`` as the driver's sweep."""

@@ -30,6 +30,10 @@ from .reference import reference_solution
 from .stepper import PYMUNK_VERSION, run
 from .stepsize import first_guess_steps
 
+__all__ = ["ACCEPTABLE_ERROR", "AUTO_ITERATIONS", "BUDGET", "DEFAULT_STEPS_PER_REVOLUTION",
+           "MAX_AUTO_STEPS", "MAX_STEPS", "SETTLE_FRACTION", "TARGET_ERROR",
+           "converged_iterations", "crosscheck", "crosscheck_many", "plan"]
+
 DEFAULT_STEPS_PER_REVOLUTION = 3600
 """Steps per revolution of a run given ``dt = None`` and no steps by a caller of
 :func:`plan` (the cross-check itself chooses them per scene, :func:`crosscheck`)."""
@@ -185,8 +189,15 @@ def crosscheck(scene: Any, *, dt: float | None = None, steps_per_revolution: int
             except SimulationDiverged as exc:
                 cc.notes.append(f"{n1} steps per revolution diverged ({exc}); kept {n0}")
             else:
-                if finer.max_error < cc.max_error:
-                    cc = finer
+                # the finer run is the better-converged one, kept whatever it shows: a
+                # cross-check never chooses by agreement with what it checks
+                if finer.max_error > cc.max_error:
+                    finer.notes.append(
+                        f"refining from {n0} to {n1} steps per revolution made the "
+                        f"agreement worse ({cc.max_error:.2g} -> {finer.max_error:.2g}): "
+                        "the simulation converges away from kinetostatics, the sign of a "
+                        "real discrepancy (or of a solver that has not settled)")
+                cc = finer
     cc.settings["steps_tried"] = tried
     cc.settings["steps_rule"] = ("auto: first guess from the fastest body and the smallest "
                                  "link, then the dt^2 law towards the target error")

@@ -23,6 +23,8 @@ from .errors import SimulationError
 from .geometry import pose_world
 from .model import reading_label
 
+__all__: list[str] = []          # used by the other simulation modules only
+
 if TYPE_CHECKING:
     from .model import SimModel
 
@@ -43,66 +45,93 @@ def signed_reactions(model: SimModel, pose, vel0, vel1, frc, mag):
     for a lock or the motor; ``a`` gets the opposite. Equations: per moving body
     m (v' - v) / dt - m g - F (two rows) and I (w' - w) / dt - T, the arms taken at
     the pose after the step (where pymunk forms its constraints).
+
+    Returns ``(signed, check)``: the readings by label (:class:`SimRecord` ``signed``)
+    and the largest relative gap between their magnitudes and the impulses ``mag``.
     """
+    frame = _Frame(model, pose)
+    rhs = _momentum_change(model, vel0, vel1, frc)
+    lam = _solve_balance(_unknowns(model, frame), rhs)
+    return _signed_readings(model, frame, lam, mag)
+
+
+class _Frame:
+    """The sampled poses of the moving bodies, with the world points, directions and
+    arms about the centres of mass that the balance's columns are made of."""
+
+    def __init__(self, model: SimModel, pose: np.ndarray):
+        sc = model.scene
+        self.names = model.moving
+        self.index = {n: i for i, n in enumerate(self.names)}
+        self.K = pose.shape[0]
+        self.pose = pose
+        cog = np.array([sc.bodies[n].cog for n in self.names], dtype=float)
+        ang = pose[:, :, 2]
+        self.c, self.s = np.cos(ang), np.sin(ang)
+        c, s = self.c, self.s
+        self.gxw = pose[:, :, 0] + c * cog[:, 0] - s * cog[:, 1]      # cog, world
+        self.gyw = pose[:, :, 1] + s * cog[:, 0] + c * cog[:, 1]
+
+    def world(self, body: str, local) -> tuple[np.ndarray, np.ndarray]:
+        return pose_world(self.pose, self.index, body, local, self.c, self.s)
+
+    def rot(self, body: str, v) -> tuple[np.ndarray, np.ndarray]:
+        if body in (GROUND, "actuator"):
+            return np.full(self.K, v[0]), np.full(self.K, v[1])
+        i = self.index[body]
+        return (self.c[:, i] * v[0] - self.s[:, i] * v[1],
+                self.s[:, i] * v[0] + self.c[:, i] * v[1])
+
+    def arm(self, body: str, x, y):
+        i = self.index[body]
+        return x - self.gxw[:, i], y - self.gyw[:, i]
+
+
+def _momentum_change(model: SimModel, vel0, vel1, frc) -> np.ndarray:
+    """The right-hand side, rows (sample, body, fx / fy / m): the change of momentum over
+    the step less gravity and the forces set on the body."""
     sc = model.scene
     dt = model.dt
     names = model.moving
-    index = {n: i for i, n in enumerate(names)}
-    K = pose.shape[0]
-    nb = len(names)
+    K, nb = vel0.shape[0], len(names)
     mass = np.array([sc.bodies[n].mass for n in names])
     inert = np.array([sc.bodies[n].inertia for n in names])
-    cog = np.array([sc.bodies[n].cog for n in names], dtype=float)
-    ang = pose[:, :, 2]
-    c, s = np.cos(ang), np.sin(ang)
-    gxw = pose[:, :, 0] + c * cog[:, 0] - s * cog[:, 1]      # cog, world
-    gyw = pose[:, :, 1] + s * cog[:, 0] + c * cog[:, 1]
     gvec = np.asarray(model.scene.gravity, dtype=float)
-
-    # right-hand side: rows (body, fx / fy / m)
     rhs = np.empty((K, nb, 3))
     rhs[:, :, 0] = mass * (vel1[:, :, 0] - vel0[:, :, 0]) / dt - mass * gvec[0] - frc[:, :, 0]
     rhs[:, :, 1] = mass * (vel1[:, :, 1] - vel0[:, :, 1]) / dt - mass * gvec[1] - frc[:, :, 1]
     rhs[:, :, 2] = inert * (vel1[:, :, 2] - vel0[:, :, 2]) / dt - frc[:, :, 2]
+    return rhs
 
-    cols = []        # (label, list of (body index, fx, fy, m) arrays over K)
 
-    def world(body: str, local) -> tuple[np.ndarray, np.ndarray]:
-        return pose_world(pose, index, body, local, c, s)
-
-    def rot(body: str, v) -> tuple[np.ndarray, np.ndarray]:
-        if body in (GROUND, "actuator"):
-            return np.full(K, v[0]), np.full(K, v[1])
-        i = index[body]
-        return c[:, i] * v[0] - s[:, i] * v[1], s[:, i] * v[0] + c[:, i] * v[1]
-
-    def arm(body: str, x, y):
-        i = index[body]
-        return x - gxw[:, i], y - gyw[:, i]
-
+def _unknowns(model: SimModel, f: _Frame) -> list:
+    """One column per unknown: a list of (body index, fx, fy, m) over the samples, what
+    a unit value of the unknown puts on each body it acts on."""
+    index = f.index
+    cols = []
     for info in model.constraints:
         a, b = info.a, info.b
         if info.role == "pivot":
-            ax_, ay_ = world(a, info.anchor_a)
-            bx_, by_ = world(b, info.anchor_b)
+            ax_, ay_ = f.world(a, info.anchor_a)
+            bx_, by_ = f.world(b, info.anchor_b)
             for ux, uy in ((1.0, 0.0), (0.0, 1.0)):
                 ent = []
                 if b in index:
-                    rx, ry = arm(b, bx_, by_)
+                    rx, ry = f.arm(b, bx_, by_)
                     ent.append((index[b], ux, uy, rx * uy - ry * ux))
                 if a in index:
-                    rx, ry = arm(a, ax_, ay_)
+                    rx, ry = f.arm(a, ax_, ay_)
                     ent.append((index[a], -ux, -uy, -(rx * uy - ry * ux)))
                 cols.append(ent)
         elif info.role in ("groove", "actuator"):
-            nx, ny = rot(a, info.normal)
-            px, py = world(b, info.anchor_b)      # the pin (the force acts along n there)
+            nx, ny = f.rot(a, info.normal)
+            px, py = f.world(b, info.anchor_b)      # the pin (the force acts along n there)
             ent = []
             if b in index:
-                rx, ry = arm(b, px, py)
+                rx, ry = f.arm(b, px, py)
                 ent.append((index[b], nx, ny, rx * ny - ry * nx))
             if a in index:
-                rx, ry = arm(a, px, py)
+                rx, ry = f.arm(a, px, py)
                 ent.append((index[a], -nx, -ny, -(rx * ny - ry * nx)))
             cols.append(ent)
         else:    # lock, motor, couple: a couple on b, the opposite on a
@@ -112,7 +141,13 @@ def signed_reactions(model: SimModel, pose, vel0, vel1, frc, mag):
             if a in index:
                 ent.append((index[a], 0.0, 0.0, -1.0))
             cols.append(ent)
+    return cols
 
+
+def _solve_balance(cols: list, rhs: np.ndarray) -> np.ndarray:
+    """The unknowns at every sample: the square system of the columns against the
+    momentum change; :class:`SingularBalance` at the first sample it cannot be solved."""
+    K, nb = rhs.shape[:2]
     n_unk = len(cols)
     A = np.zeros((K, nb, 3, n_unk))
     for j, ent in enumerate(cols):
@@ -137,7 +172,15 @@ def signed_reactions(model: SimModel, pose, vel0, vel1, frc, mag):
         if lam is not None:
             bad |= ~np.all(np.isfinite(lam), axis=1)
         raise SingularBalance(int(np.argmax(bad)) if bad.any() else 0)
+    return lam
 
+
+def _signed_readings(model: SimModel, f: _Frame, lam: np.ndarray, mag) -> tuple[dict, float]:
+    """The unknowns as the record's signed readings (a slider's normal force and couple
+    about its point, the driving moment), and the check of their magnitudes against the
+    public impulses ``mag``."""
+    sc = model.scene
+    K = f.K
     signed: dict[str, Any] = {}
     check = 0.0
     j = 0
@@ -161,7 +204,7 @@ def signed_reactions(model: SimModel, pose, vel0, vel1, frc, mag):
             got = np.abs(val)
             if info.role == "groove":
                 jt = sc.joints[info.joint]
-                nx, ny = rot(info.a, info.normal)
+                nx, ny = f.rot(info.a, info.normal)
                 # N: the force on the slider along the line's left normal (the groove's
                 # normal, whichever body carries the groove)
                 N = val if info.b == info.slider else -val
@@ -169,8 +212,8 @@ def signed_reactions(model: SimModel, pose, vel0, vel1, frc, mag):
                 signed[label] = (sign * N * nx, sign * N * ny)
                 signed[f"{label}:N"] = N
                 # its moment about the slider point: the pin lies on the line, d along it
-                px, py = world(info.b, info.anchor_b)
-                sx, sy = world(info.slider, info.slider_point)
+                px, py = f.world(info.b, info.anchor_b)
+                sx, sy = f.world(info.slider, info.slider_point)
                 d = (px - sx) * ny - (py - sy) * nx          # (pin - S) . u, u = (ny, -nx)
                 signed[f"{label}:M"] = signed.get(f"{label}:M", 0.0) + d * N
             elif info.role in ("lock", "couple"):
@@ -190,4 +233,3 @@ def signed_reactions(model: SimModel, pose, vel0, vel1, frc, mag):
         if sc.joints[name].kind == "T":
             signed[f"{name}:M"] = np.broadcast_to(signed.get(f"{name}:M", 0.0), (K,)).copy()
     return signed, check
-

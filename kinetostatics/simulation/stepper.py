@@ -30,6 +30,9 @@ from .loads import SWITCH_BOOST, loads_function
 from .model import SimModel, reading_label
 from .signed import SingularBalance, signed_reactions
 
+__all__ = ["PYMUNK_VERSION", "SimRecord", "VERIFY_EVERY", "WARMUP_ITERATIONS", "WARMUP_STEPS",
+           "fast_path_available", "make_stepper", "run", "warmup_schedule"]
+
 PYMUNK_VERSION = "7.3.1"
 """The pymunk version the settings were measured with (docs/simulation.md)."""
 
@@ -166,17 +169,22 @@ class BodyAccess:
             self.set_torque = set_torque
 
     def verify(self, body: pymunk.Body, constraint: pymunk.Constraint | None) -> None:
-        """Raise if a fast read differs from the public property (pinned version check)."""
+        """Raise if a fast read differs from the public property (pinned version check).
+
+        A value that is not finite reads the same both ways (NaN is not equal to
+        itself): a run whose state blew up is left to :func:`check_run`, which reports
+        it as diverged, never as a pymunk version problem."""
         if not self.fast:
             return
         h = self.handle(body)
         v, f, p = self.velocity(h), self.force(h), self.position(h)
-        ok = (self.angle(h) == body.angle and self.omega(h) == body.angular_velocity
-              and (v.x, v.y) == tuple(body.velocity) and (f.x, f.y) == tuple(body.force)
-              and (p.x, p.y) == tuple(body.position) and self.torque(h) == body.torque)
+        fast = [self.angle(h), self.omega(h), v.x, v.y, f.x, f.y, p.x, p.y, self.torque(h)]
+        public = [body.angle, body.angular_velocity, *body.velocity, *body.force,
+                  *body.position, body.torque]
         if constraint is not None:
-            ok = ok and self.impulse(self.chandle(constraint)) == constraint.impulse
-        if not ok:
+            fast.append(self.impulse(self.chandle(constraint)))
+            public.append(constraint.impulse)
+        if not all(a == b or (a != a and b != b) for a, b in zip(fast, public, strict=True)):
             raise SimulationError(
                 f"pymunk {pymunk.version}: the direct Chipmunk reads differ from the public "
                 f"properties (the fast path is pinned to pymunk {PYMUNK_VERSION}); run with "
@@ -235,41 +243,46 @@ def run(model: SimModel, steps: int, sample_every: int = 1, *,
     steps, every = int(steps), max(1, int(sample_every))
     fast = _fast_path(fast)
     acc = BodyAccess(model, fast)      # its step: make_stepper (a public zero step first)
-    dt = model.dt
-    space = model.space
+    apply_loads, fstep, unsure = _step_functions(model, acc)
+    t0 = time.perf_counter()
+    samples = _stepping_loop(model, acc, apply_loads, fstep, unsure, steps, every)
+    wall = time.perf_counter() - t0
+    model.stepped += steps
+    return _record(model, *samples, steps, every, wall, fast)
+
+
+def _step_functions(model: SimModel, acc: BodyAccess):
+    """``(apply_loads, step, unsure)``: the function that sets the loads before a step
+    (None: gravity only), the step, and the flag of a nearly still ``resist`` point.
+    With joint friction, the friction is set after the scene's loads and the
+    reactions are read after every step (:mod:`.friction`)."""
     fstep = acc.step
-    bods = [model.bodies[n] for n in model.moving]
-    real = [i for i in model.constraints if i.constraint is not None]
-    cons = [i.constraint for i in real]
-    H = acc.handle
-    hb = [H(b) for b in bods]
-    hc = [acc.chandle(c) for c in cons]
-    get_a, get_w, get_v, get_p = acc.angle, acc.omega, acc.velocity, acc.position
-    get_f, get_t, get_i = acc.force, acc.torque, acc.impulse
     apply_loads, unsure = loads_function(model, acc)
     rubbing = friction_function(model, acc, unsure)
-    if rubbing is not None:
-        # joint friction: set after the scene's loads, from the reactions read after
-        # every step (kinetostatics.simulation.friction)
-        apply_friction, read_reactions = rubbing
-        scene_loads, plain_step = apply_loads, fstep
+    if rubbing is None:
+        return apply_loads, fstep, unsure
+    apply_friction, read_reactions = rubbing
+    scene_loads, plain_step = apply_loads, fstep
 
-        def apply_loads() -> None:
-            unsure[0] = False
-            if scene_loads is not None:
-                scene_loads()
-            apply_friction()
+    def loads_and_friction() -> None:
+        unsure[0] = False
+        if scene_loads is not None:
+            scene_loads()
+        apply_friction()
 
-        def fstep(h: float) -> None:
-            plain_step(h)
-            read_reactions()
+    def step_and_read(h: float) -> None:
+        plain_step(h)
+        read_reactions()
 
-    n_samples = steps // every
-    schedule = [] if model.stepped else warmup_schedule(model.iterations)
+    return loads_and_friction, step_and_read, unsure
 
+
+def _advancers(model: SimModel, apply_loads, fstep, schedule: list, ramp: list):
+    """``(advance, warm)``: ``advance(n)`` takes n unsampled steps (with more iterations
+    while a switch's boost lasts), ``warm(n)`` n steps of the warm-up ``schedule``."""
+    dt = model.dt
+    space = model.space
     boost = model._boost
-    boost[0] = 0
-    ramp = switch_ramp(model.iterations)
 
     def boosted() -> None:
         # a load or a friction switched: more iterations, falling back (switch_ramp)
@@ -298,9 +311,30 @@ def run(model: SimModel, steps: int, sample_every: int = 1, *,
             fstep(dt)
         space.iterations = schedule[-1] if schedule else model.iterations
 
+    return advance, warm
+
+
+def _stepping_loop(model: SimModel, acc: BodyAccess, apply_loads, fstep, unsure: list,
+                   steps: int, every: int):
+    """Step ``steps`` times; at every ``every``-th step read the velocities and forces
+    before it and the pose, velocities and impulses after it (lists of rows), and
+    whether a resist point was nearly still; the fast reads checked in turn."""
+    dt = model.dt
+    space = model.space
+    bods = [model.bodies[n] for n in model.moving]
+    cons = [i.constraint for i in model.constraints if i.constraint is not None]
+    hb = [acc.handle(b) for b in bods]
+    hc = [acc.chandle(c) for c in cons]
+    get_a, get_w, get_v, get_p = acc.angle, acc.omega, acc.velocity, acc.position
+    get_f, get_t, get_i = acc.force, acc.torque, acc.impulse
+    n_samples = steps // every
+    schedule = [] if model.stepped else warmup_schedule(model.iterations)
+    boost = model._boost
+    boost[0] = 0
+    ramp = switch_ramp(model.iterations)
+    advance, warm = _advancers(model, apply_loads, fstep, schedule, ramp)
+
     before, after, imp, flags = [], [], [], []
-    nb, nc = len(bods), len(cons)
-    t0 = time.perf_counter()
     for k in range(n_samples):
         inner = every - 1
         if schedule:
@@ -329,18 +363,35 @@ def run(model: SimModel, steps: int, sample_every: int = 1, *,
         after.append(row)
         imp.append([get_i(c) for c in hc])
         flags.append(unsure[0])
-        if k == 0:
-            for i, b in enumerate(bods):
-                acc.verify(b, cons[i] if i < nc else None)
-            for c in cons[nb:]:
-                acc.verify(bods[0], c)
-        elif k % VERIFY_EVERY == 0:
-            j = k // VERIFY_EVERY
-            acc.verify(bods[j % nb], cons[j % nc] if nc else None)
+        _verify_sample(acc, k, bods, cons)
     space.iterations = model.iterations
     advance(steps - n_samples * every)
-    wall = time.perf_counter() - t0
-    model.stepped += steps
+    return before, after, imp, flags
+
+
+def _verify_sample(acc: BodyAccess, k: int, bods: list, cons: list) -> None:
+    """The fast reads against the public properties (:meth:`BodyAccess.verify`): every
+    body and constraint at the first sample, then one of each at every
+    ``VERIFY_EVERY`` samples, in turn."""
+    nb, nc = len(bods), len(cons)
+    if k == 0:
+        for i, b in enumerate(bods):
+            acc.verify(b, cons[i] if i < nc else None)
+        for c in cons[nb:]:
+            acc.verify(bods[0], c)
+    elif k % VERIFY_EVERY == 0:
+        j = k // VERIFY_EVERY
+        acc.verify(bods[j % nb], cons[j % nc] if nc else None)
+
+
+def _record(model: SimModel, before: list, after: list, imp: list, flags: list,
+            steps: int, every: int, wall: float, fast: bool) -> SimRecord:
+    """The sampled rows as a :class:`SimRecord`: the run checked for divergence
+    (:func:`check_run`), the reactions signed by the momentum balance."""
+    dt = model.dt
+    real = [i for i in model.constraints if i.constraint is not None]
+    nb, nc = len(model.moving), len(real)
+    n_samples = steps // every
     before = np.array(before, dtype=float).reshape(n_samples, nb, 6)
     after = np.array(after, dtype=float).reshape(n_samples, nb, 6)
     imp = np.array(imp, dtype=float).reshape(n_samples, nc) / dt
@@ -353,8 +404,8 @@ def run(model: SimModel, steps: int, sample_every: int = 1, *,
               & np.isfinite(imp).all(axis=1))
     drift = check_run(model, times, positions, pose, finite)     # or SimulationDiverged
     try:
-        signed, check = signed_reactions(model, after[:, :, :3], before[:, :, :3], after[:, :, 3:],
-                                before[:, :, 3:], imp)
+        signed, check = signed_reactions(model, after[:, :, :3], before[:, :, :3],
+                                         after[:, :, 3:], before[:, :, 3:], imp)
     except SingularBalance as exc:
         raise diverged(model, float(times[exc.row]), float(positions[exc.row]), drift,
                        "singular momentum balance") from None

@@ -18,6 +18,8 @@ from .errors import SimulationDiverged, SimulationError
 from .model import check_scene
 from .runner import crosscheck, rebuildable_scene
 
+__all__ = ["ORDER_FLOOR", "STUDY_ITERATIONS", "STUDY_STEPS", "Study", "study"]
+
 STUDY_STEPS = (500, 1000, 2000, 4000, 8000, 16000, 32000)
 """Default steps per revolution of the study."""
 

@@ -1,21 +1,6 @@
-"""The docstring examples of the balance package run and hold."""
+"""The balance package's public names (its docstring examples: tests/test_doctests.py)."""
 
 from __future__ import annotations
-
-import doctest
-import importlib
-
-import pytest
-
-MODULES = ["balance.rotor.design", "balance.rotor.static_device", "balance.resonance.methods",
-           "balance.field.influence",
-           "balance.field.iso", "balance.api"]
-
-
-@pytest.mark.parametrize("name", MODULES)
-def test_doctests(name: str) -> None:
-    result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS)
-    assert result.failed == 0
 
 
 def test_public_api_is_complete() -> None:

@@ -9,7 +9,7 @@ import types
 import pytest
 
 import balance
-from balance import load_scene
+from balance import BalanceWarning, load_scene
 from kinetostatics.model.errors import SceneError, WorkbenchError
 from tests.balance._balance_cases import SCENES
 
@@ -92,7 +92,12 @@ def test_runs_in_a_scene() -> None:
         "A2 = 1071.9\nA3 = 495.0",
         "runs = [{ angle = 0.0, A = 1071.9 }, { angle = 120.0, A = 700.0 }, "
         "{ angle = 240.0, A = 300.0 }]")
-    out = balance.solve(text)["resonance_test"][0]
+    # made-up readings: the estimate says they do not fit a linear machine, and that
+    # the seed's result falls outside its interval (in the result and as warnings)
+    with pytest.warns(BalanceWarning) as seen:
+        out = balance.solve(text)["resonance_test"][0]
+    assert [str(w.message) for w in seen] == out["warnings"]
+    assert any("do not fit a linear machine" in w for w in out["warnings"])
     assert out["mirror_angle"] is None and 0.0 <= out["angle"] < 360.0
     both = SCENES["resonance_example"].replace("A3 = 495.0", "A3 = 495.0\nruns = []")
     assert "not both" in error_of(both)

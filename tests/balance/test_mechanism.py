@@ -339,16 +339,6 @@ def test_massless_mechanism_refused():
         solve_mechanism_balancing(r)
 
 
-@pytest.mark.parametrize("name", ["linkage", "counterweights", "methods", "shaking", "solve",
-                                  "plot"])
-def test_doctests(name):
-    import doctest
-    import importlib
-
-    result = doctest.testmod(importlib.import_module(f"balance.mechanism.{name}"))
-    assert result.failed == 0
-
-
 def test_no_balancing_table():
     with pytest.raises(BalanceError, match="no \\[balancing\\]"):
         solve_mechanism_balancing(raw("four_bar"))

@@ -37,7 +37,10 @@ def applied(result) -> tuple[complex, complex]:
        st.floats(0.01, 0.5), st.floats(0.01, 0.5), st.booleans())
 def test_two_planes_cancel_force_and_moment(ub, z1, gap, r1, r2, flip) -> None:
     z2 = z1 - gap if flip else z1 + gap
-    res = balance_rotor(ub, [(z1, r1), (z2, r2)])
+    with warnings.catch_warnings(record=True) as seen:   # close planes, large corrections
+        warnings.simplefilter("always", BalanceWarning)
+        res = balance_rotor(ub, [(z1, r1), (z2, r2)])
+    assert [str(w.message) for w in seen] == list(res.warnings)   # each said in the result
     F, M = applied(res)
     size = sum(m * r for m, r, _, _ in ub)
     zsize = sum(m * r * (abs(z) + 1.0) for m, r, _, z in ub) / gap
@@ -156,14 +159,18 @@ def test_planes_too_close_for_the_rotor_warn() -> None:
     """Planes 10 um apart on a 0.3 m rotor give corrections of kilograms: flagged, with
     the numbers, in the result and as a BalanceWarning."""
     ub = [(0.02, 0.1, 30.0, 0.05), (0.015, 0.12, 150.0, 0.15), (0.01, 0.08, 260.0, 0.3)]
-    with pytest.warns(BalanceWarning, match="planes are 1e-05 m apart"):
+    with pytest.warns(BalanceWarning) as seen:
         r = balance_rotor(ub, [(0.1, 0.1), (0.10001, 0.1)])
+    assert [str(w.message) for w in seen] == list(r.warnings)
+    assert "planes are 1e-05 m apart" in r.warnings[0]
     assert max(c.mass for c in r.corrections) > 100.0        # the absurd correction
     assert len(r.warnings) == 2 and "times the unbalance" in r.warnings[1]
     assert r.to_dict()["warnings"] == list(r.warnings)
     # planes 5 % of the extent apart warn; a 0.3 m span on a 0.3 m rotor does not
-    with pytest.warns(BalanceWarning, match="apart"):
-        balance_rotor(ub, [(0.1, 0.1), (0.11, 0.1)])   # 0.04 of 0.25 m
+    with pytest.warns(BalanceWarning) as seen:
+        near = balance_rotor(ub, [(0.1, 0.1), (0.11, 0.1)])   # 0.04 of 0.25 m
+    assert [str(w.message) for w in seen] == list(near.warnings)
+    assert "apart" in near.warnings[0] and "times the unbalance" in near.warnings[1]
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert balance_rotor(ub, [(0.0, 0.1), (0.3, 0.1)]).warnings == ()

@@ -110,7 +110,7 @@ SLOW = BalancingMachine(coast_down=CoastDown(duration=5.0))
 def test_coast_down_peak_is_proportional_to_the_unbalance():
     a1 = SLOW.amplitude([(0.02, 0.05, 40.0)])
     a2 = SLOW.amplitude([(0.02, 0.10, 40.0)])       # same mass, twice the radius
-    assert a2 / a1 == pytest.approx(2.0, rel=1e-4)  # measured 1e-13
+    assert a2 / a1 == pytest.approx(2.0, rel=1e-13)  # measured 2.1e-14 (rounding)
     # the peak depends on |U| only (same mass, same speed history), not on its angle
     others = [SLOW.amplitude([(0.02, 0.05, a)]) for a in (100.0, 220.0)]
     assert np.ptp([a1, *others]) <= 1e-4 * a1      # measured 2e-5
@@ -246,24 +246,3 @@ def test_coast_down_public_stepping_gives_the_same_peak():
     public = BalancingMachine(coast_down=cd, fast=False).record(us)
     assert fast.amplitude == public.amplitude
     assert np.array_equal(fast.x, public.x)
-
-
-MACHINE_MODULES = ["coastdown", "demodulation", "mount", "pivot", "records", "runs",
-                   "studies", "unbalances"]
-
-
-@pytest.mark.parametrize("name", MACHINE_MODULES)
-def test_docstring_examples(name):
-    import doctest
-    import importlib
-
-    module = importlib.import_module(f"balance.machine.{name}")
-    assert doctest.testmod(module).failed == 0
-
-
-def test_pivot_example_is_collected():
-    """The pivot's docstring example runs (a module with no examples would pass above)."""
-    import doctest
-
-    from balance.machine import pivot
-    assert doctest.testmod(pivot).attempted >= 2
