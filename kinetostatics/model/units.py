@@ -230,9 +230,10 @@ class Units:
         return ", ".join(f'{q} = "{getattr(self, q)}"' for q in quantities
                          if getattr(self, q) != DEFAULTS[q]) or "the default units"
 
-    def to_dict(self) -> dict[str, str]:
-        """JSON-ready: the unit of each quantity."""
-        return {f.name: getattr(self, f.name) for f in fields(self)}
+    def to_dict(self, quantities: tuple[str, ...] | None = None) -> dict[str, str]:
+        """JSON-ready: the unit of each quantity (of ``quantities``, default all)."""
+        names = quantities if quantities is not None else [f.name for f in fields(self)]
+        return {q: getattr(self, q) for q in names}
 
 
 def parse_units(table: Mapping[str, Any] | None, where: str = "[units]", *,
