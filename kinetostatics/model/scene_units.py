@@ -41,7 +41,7 @@ from .units import Units, angle_slip, parse_units
 if TYPE_CHECKING:
     from .scene import Scene
 
-__all__ = ["check_unit_slips", "to_contract_units"]
+__all__ = ["check_unit_slips", "convert_mechanism", "to_contract_units"]
 
 SPEED_SLIP = 1e4
 """rad/s: a faster angular speed looks like rpm typed in a rad/s field."""
@@ -106,10 +106,17 @@ def to_contract_units(raw: dict) -> tuple[dict, Units]:
     if "units" not in raw:
         return raw, Units()
     units = parse_units(raw["units"])
-    out = {k: v for k, v in raw.items() if k != "units"}
+    return convert_mechanism({k: v for k, v in raw.items() if k != "units"}, units), units
+
+
+def convert_mechanism(raw: dict, units: Units) -> dict:
+    """A copy of a mechanism scene's mapping (without ``[units]``) with the numbers written in
+    ``units`` rewritten in the contract's units; keys it does not know are left as they are
+    (a balancing scene's sections: :mod:`balance.scene_units` converts those). In the
+    default units, ``raw`` itself is returned."""
     if units.is_default:
-        return out, units
-    out = copy.deepcopy(out)
+        return raw
+    out = copy.deepcopy(raw)
     f = units.file_factor
     L, M, I, A, W, F, T = (f("length"), f("mass"), f("inertia"), f("angle"), f("speed"),
                            f("force"), f("moment"))
@@ -154,7 +161,7 @@ def to_contract_units(raw: dict) -> tuple[dict, Units]:
         for cw in _each(bal.get("counterweights")):
             _scale(cw, "radius", L)
         _scale(bal, "pair_radius", L)
-    return out, units
+    return out
 
 
 def _warn(text: str) -> None:
