@@ -251,5 +251,5 @@ def _far_points(scene: Scene, units: Units) -> None:
             if far > 100.0 * size:
                 _warn(f"body {name!r}: point {pname} = [{p[0] / f:g}, {p[1] / f:g}] {unit} is "
                       f"{far / f:.3g} {unit} from the body's joints, over 100 times the "
-                      f"mechanism's size ({size / f:.3g} {unit}): a length typed in another "
-                      f"unit? Every length is in {unit}")
+                      f"mechanism's size ({size / f:.3g} {unit}): millimetres among metres (a "
+                      f"length typed in another unit)? Every length is in {unit}")
