@@ -86,10 +86,10 @@ def cam_to_contract_units(raw: Any) -> tuple[Any, Units]:
 
 def check_cam_slips(raw: Any, units: Units) -> None:
     """Warn (:class:`~kinetostatics.model.errors.UnitWarning`) where a cam scene's numbers
-    look like unit slips: its angles (the segments' alone, or with ``stroke_angle`` and
-    ``transmission_angle``) all within 2 pi with fractional values under ``angle = "deg"``
-    (radians typed for degrees), a speed above 1e4 rad/s (rpm typed for rad/s). ``raw`` is
-    the scene in the contract's units."""
+    look like unit slips: its angles (the segments' alone, ``stroke_angle`` or
+    ``transmission_angle`` alone, or all of them) all within 2 pi with fractional values
+    under ``angle = "deg"`` (radians typed for degrees), a speed above 1e4 rad/s (rpm
+    typed for rad/s). ``raw`` is the scene in the contract's units."""
     cam = raw.get("cam") if isinstance(raw, dict) else None
     if not isinstance(cam, dict):
         return
@@ -101,7 +101,9 @@ def check_cam_slips(raw: Any, units: Units) -> None:
     for table, key in ((fol, "stroke_angle"), (cam, "transmission_angle")):
         if isinstance(table, dict) and _num(table.get(key)):
             angles.append(table[key])
-    if angles and (angle_slip(angles, units.angle) or angle_slip(seg_angles, units.angle)):
+    singles = [[a] for a in angles[len(seg_angles):]]      # stroke_angle, transmission_angle
+    if angles and (angle_slip(angles, units.angle) or angle_slip(seg_angles, units.angle)
+                   or any(angle_slip(a, units.angle) for a in singles)):
         warnings.warn(f"cam angles {[float(a) for a in angles[:5]]} look like radians (all "
                       "within 2 pi, with fractional values) but angles are in degrees (the "
                       "segments add up to 360); write them in degrees, or angle = \"rad\" in "

@@ -173,7 +173,8 @@ def check_unit_slips(scene: Scene, units: Units) -> None:
     opening): a rotating driver's positions that all lie within [-2 pi, 2 pi] with fractional
     values, or that span about 2 pi, under ``angle = "deg"`` (radians typed for degrees); a
     speed above 1e4 rad/s (rpm typed for rad/s: the driver's, ``[motion]`` ``omega0`` and
-    ``no_load_speed``); the angles of ``motor_table`` likewise; a point or cog farther from
+    ``no_load_speed``); the angles of ``motor_table`` likewise, and the prismatic joints'
+    ``line_angle`` values; a point or cog farther from
     its body's joints than 100 times the mechanism's size (a length typed in mm among
     metres). A warning never stops the solve."""
     drv = scene.driver
@@ -191,6 +192,12 @@ def check_unit_slips(scene: Scene, units: Units) -> None:
         _warn(f"driver.speed = {drv.speed:.6g} rad/s ({abs(drv.speed) * 30 / math.pi:.4g} "
               "rpm) looks like rpm in a rad/s field; give speed_rpm, or speed = \"rpm\" in "
               "[units]")
+    lines = {n: j.line_angle for n, j in scene.joints.items() if j.kind == "T"}
+    if lines and angle_slip(list(lines.values()), units.angle):
+        shown = ", ".join(f"{n} = {a:g}" for n, a in lines.items())
+        _warn(f"line_angle ({shown}) looks like radians (within 2 pi, with fractional "
+              "values) but angles are in degrees; write it in degrees, or angle = \"rad\" "
+              "in [units]")
     if scene.motion is not None:
         _motion_slips(scene.motion, units)
     _far_points(scene, units)

@@ -195,3 +195,23 @@ def test_the_unit_checks_use_the_scenes_length_unit() -> None:
     d["bodies"][1]["points"]["P"] = [100000.0, 60000.0]
     msgs = _warnings(d)
     assert any("point P" in m and " mm " in m for m in msgs)
+
+
+def test_a_line_angle_in_radians_warns() -> None:
+    with open(ks.example("slider_crank"), "rb") as fh:
+        d = tomllib.load(fh)
+    slide = next(j for j in d["joints"] if j["kind"] == "T")
+    slide["line_angle"] = 0.2618                     # 15 deg typed in radians
+    msgs = _all_warnings(ks.load_scene, d)
+    assert len(msgs) == 1 and "line_angle" in msgs[0] and "radians" in msgs[0]
+    slide["line_angle"] = 15.0
+    assert _all_warnings(ks.load_scene, d) == []
+
+
+def test_a_cam_stroke_angle_in_radians_warns() -> None:
+    from kinetostatics.cams import load_cam_scene
+    with open(ks.scene_path("oscillating_roller"), "rb") as fh:
+        d = tomllib.load(fh)
+    d["cam"]["follower"]["stroke_angle"] = 0.3491     # 20 deg typed in radians
+    msgs = _all_warnings(load_cam_scene, d)
+    assert len(msgs) == 1 and "radians" in msgs[0]
