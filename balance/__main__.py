@@ -18,6 +18,7 @@ from .api import example_path, examples, results_to_dict, solve_results
 from .errors import WorkbenchError
 from .report.text import result_warnings, summary_text
 from .scene import SCENES
+from .units import SI
 
 
 class _Parser(argparse.ArgumentParser):
@@ -55,7 +56,7 @@ def main(argv: list[str] | None = None) -> int:
             text = json.dumps(out, indent=2, allow_nan=False, default=_json_default)
         else:
             speed = "rotor" in results and results["rotor"].speed_rpm is not None
-            text = summary_text(out, speed)
+            text = summary_text(out, speed) + _units_line(out)
         if args.report:
             from .report.document import write_report
 
@@ -80,6 +81,17 @@ def main(argv: list[str] | None = None) -> int:
             print(f"warning: {_one_line(w.message)}", file=sys.stderr)
     print(text)
     return 0
+
+
+def _units_line(out: dict[str, Any]) -> str:
+    """The scene's [units], and which results are SI (scene-format.md, opening)."""
+    u = out.get("units")
+    if not u or not any(k in out for k in ("rotor", "static_test", "resonance_test",
+                                           "balancing")):
+        return ""
+    named = ", ".join(f'{k} = "{v}"' for k, v in u.items() if v != SI.get(k))
+    return (f"\nscene units: {named}; the rotor, static test, resonance and mechanism "
+            "results above are SI (kg, m, kg m, N, N m; deg)")
 
 
 def _one_line(exc: object) -> str:

@@ -12,6 +12,7 @@ from .resonance.methods import ResonanceResult, parallelogram, trial_runs
 from .rotor.design import balance_rotor
 from .rotor.static_device import static_device
 from .scene import SCENES, BalanceScene, ResonanceSpec, load_scene
+from .slips import check_corrections
 
 __all__ = ["example_path", "examples", "results_to_dict", "solve", "solve_results"]
 
@@ -74,6 +75,7 @@ def solve_results(scene: Any) -> dict[str, Any]:
     if sc.balancing is not None:
         out["balancing"] = _mechanism_balancing(sc.raw)
     out.update(solve_field(sc.field_scene))
+    check_corrections(out, sc)
     return out
 
 

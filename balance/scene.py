@@ -3,9 +3,10 @@
 :func:`load_scene` accepts a path, a string naming a ``.toml`` file, a string of TOML
 text or a dict. Sections: ``[rotor]`` (with ``[[rotor.unbalance]]`` and one or two
 ``[[rotor.planes]]``), ``[static_test]``, ``[[resonance_test]]``; ``title`` and
-``format = 1`` may stand at the top; the field-balancing sections ``[units]``,
+``format = 1`` may stand at the top; ``[units]`` names the units of every section
+(:mod:`balance.scene_units` rewrites the scene once, here); the field-balancing sections
 ``[[influence]]``, ``[iso]``, ``[[split]]`` and ``[[combine]]`` are read by
-:mod:`balance.field_scene`. A mechanism scene's keys (section 1) are let
+:mod:`balance.field.scene`. A mechanism scene's keys (section 1) are let
 through unchecked (``kinetostatics`` checks them), so that its ``[balancing]``
 section can be dispatched; every other unknown key is refused with the nearest
 known key suggested.
@@ -30,6 +31,9 @@ from kinetostatics.model.tomlio import as_float, as_int, as_list, as_str, check_
 
 from .field.scene import FIELD_SECTIONS, FieldScene, parse_field
 from .rotor.design import CorrectionPlane, Unbalance
+from .scene_units import to_contract_units
+from .slips import check_slips
+from .units import Units
 
 # the example scenes bundled with the package (balance/scenes): a bare name is one of them
 SCENES = BundledScenes("balance", ("scenes",))
@@ -98,7 +102,8 @@ class ResonanceSpec:
 
 @dataclass(frozen=True)
 class BalanceScene:
-    """A checked balancing scene; ``raw`` keeps the mapping as read."""
+    """A checked balancing scene; ``raw`` keeps the mapping as read, rewritten into its
+    solvers' units (:mod:`balance.scene_units`); ``units`` is the file's ``[units]``."""
 
     title: str = ""
     rotor: RotorSpec | None = None
@@ -107,6 +112,7 @@ class BalanceScene:
     balancing: dict | None = None
     raw: dict = field(default_factory=dict, repr=False)
     field_scene: FieldScene = field(default_factory=FieldScene)
+    units: Units = field(default_factory=Units)
 
     @property
     def sections(self) -> tuple[str, ...]:
@@ -138,7 +144,7 @@ def load_scene(source: Any) -> BalanceScene:
     """
     if isinstance(source, BalanceScene):
         return source
-    raw = read_source(source, "balancing scene", bundled=SCENES)
+    raw, units = to_contract_units(read_source(source, "balancing scene", bundled=SCENES))
     top = check_keys(raw, TOP_KEYS, "scene")
     title = as_str(top["title"], "title") if "title" in top else ""
     if "format" in top:
@@ -158,10 +164,11 @@ def load_scene(source: Any) -> BalanceScene:
     balancing = top.get("balancing")
     if balancing is not None and not isinstance(balancing, dict):
         raise SceneError("[balancing] must be a table")
-    return BalanceScene(title=title, rotor=rotor, static_test=static, resonance_tests=tests,
-                        balancing=balancing, raw=raw,
-                        field_scene=parse_field(top, tuple(k for k in BALANCE_SECTIONS[:3]
-                                                     if k in top)))
+    scene = BalanceScene(title=title, rotor=rotor, static_test=static, resonance_tests=tests,
+                         balancing=balancing, raw=raw, field_scene=parse_field(top, units),
+                         units=units)
+    check_slips(scene)
+    return scene
 
 
 def _rotor(table: Any) -> RotorSpec:

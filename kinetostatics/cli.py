@@ -16,22 +16,26 @@ from .model.errors import WorkbenchError
 
 
 def _cmd_solve(args) -> int:
+    from .output import summary_with_units, write_summary
     from .solver.pipeline import solve
     if args.out and args.format == "parquet":
         from .output import parquet_available
         parquet_available()
     sol = solve(scene_path(args.scene))
+    summary = summary_with_units(sol.summary(), sol.scene.units)
     if args.out:
         def announce(line: str) -> None:
             print(f"warning: {line}", file=sys.stderr, flush=True)
         for p in sol.write(args.out, args.format, announce):
+            if p.name == "summary.json":        # the scene's [units] repeated there too
+                write_summary(p, summary)
             print(p)
     if args.plot:
         from .plot.cli import write_pictures
         for p in write_pictures(sol, args.plot, args.plot_at):
             print(p)
     if args.json or not args.out:
-        print(json.dumps(sol.summary(), indent=2))
+        print(json.dumps(summary, indent=2))
     return 0
 
 
@@ -56,6 +60,9 @@ def _cmd_motion(args) -> int:
     else:
         for k, v in res.summary.items():
             print(f"{k}: {v}")
+        if not res.units.is_default:
+            print(f"scene units: {res.units.describe()} (the numbers above are SI: rad/s, "
+                  "s, kg m^2)")
         if args.out:
             Path(args.out).parent.mkdir(parents=True, exist_ok=True)
             res.motion.to_csv(args.out, index=False, float_format="%.17g")
@@ -65,14 +72,16 @@ def _cmd_motion(args) -> int:
 
 def _cmd_cam(args) -> int:
     from .cams import solve_cam
+    from .output import summary_with_units, write_summary
     res = solve_cam(scene_path(args.scene))
+    summary = summary_with_units(res.summary, res.scene.units)
     if args.out:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
         for name in ("motion", "geometry", "forces"):
             getattr(res, name).to_csv(out / f"{name}.csv", index=False, float_format="%.17g")
-        (out / "summary.json").write_text(json.dumps(res.summary, indent=2) + "\n")
-    print(json.dumps(res.summary, indent=2))
+        write_summary(out / "summary.json", summary)
+    print(json.dumps(summary, indent=2))
     return 0
 
 

@@ -12,6 +12,7 @@ the dtypes, categoricals included, and every bit of every float.
 
 from __future__ import annotations
 
+import json
 from collections.abc import Callable, Iterator
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -22,6 +23,7 @@ import numpy as np
 from . import csvtext
 from .longtable import LongTable
 from .model.errors import WorkbenchError
+from .model.units import BASE, Units
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -214,4 +216,18 @@ def write_parquet(df: pd.DataFrame, path: str | Path) -> Path:
     parquet_available()
     path = Path(path)
     df.to_parquet(path, index=False, engine="pyarrow")
+    return path
+
+
+def summary_with_units(summary: dict, units: Units) -> dict:
+    """A summary that repeats the scene's ``[units]`` (scene-format.md, opening: the result
+    tables and numbers stay SI; ``units`` says how the scene was written). ``units`` is a
+    :class:`~kinetostatics.model.units.Units`."""
+    return {**summary, "units": units.to_dict(BASE)}
+
+
+def write_summary(path: str | Path, summary: dict) -> Path:
+    """Write ``summary.json`` (indented JSON, one trailing newline)."""
+    path = Path(path)
+    path.write_text(json.dumps(summary, indent=2) + "\n")
     return path

@@ -252,22 +252,20 @@ def _iso(table: Any) -> dict:
     return out
 
 
-def parse_field(top: Mapping[str, Any], seed_sections: tuple[str, ...] = ()) -> FieldScene:
+def parse_field(top: Mapping[str, Any], units: Units | None = None) -> FieldScene:
     """Read the field sections of a scene's top-level mapping.
 
     Parameters
     ----------
     top : mapping
-        The scene's top-level keys (already checked against the known ones).
-    seed_sections : tuple of str
-        The seed's sections present (``rotor``, ``static_test``, ``resonance_test``):
-        they stay in SI, so a ``[units]`` table other than SI is refused beside them.
+        The scene's top-level keys (already checked against the known ones), with its
+        angles in degrees (:mod:`balance.scene_units`).
+    units : Units, optional
+        The scene's ``[units]`` (default: parsed from ``top``, for a mapping that was not
+        rewritten): masses, radii and readings stay in them.
     """
-    units = parse_units(top.get("units"))
-    if not units.is_si and seed_sections:
-        raise SceneError(f"[units] applies to [[influence]], [iso], [[split]] and "
-                         f"[[combine]]; [{seed_sections[0]}] stays in SI (kg, m): put it in "
-                         "a scene of its own or drop [units]")
+    if units is None:
+        units = parse_units(top.get("units"))
     infl = tuple(_influence(x, i) for i, x in enumerate(_array_of_tables(top, "influence"))) \
         if "influence" in top else ()
     split = tuple(_split(x, i) for i, x in enumerate(_array_of_tables(top, "split"))) \

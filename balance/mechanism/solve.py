@@ -7,7 +7,6 @@ from __future__ import annotations
 import copy
 import dataclasses
 import math
-import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
@@ -22,7 +21,7 @@ from kinetostatics.model.tomlio import read_source
 from kinetostatics.solver.kinematics import Kinematics
 
 from ..common import deg360
-from ..errors import BalanceError, BalanceWarning
+from ..errors import BalanceError
 from .counterweights import CounterRotatingPair, Counterweight
 from .linkage import assign_roles, read_spec, recognise, vec
 from .methods import (
@@ -262,9 +261,10 @@ def _checks(res: MechanismBalancing, gk: Kinematics | None, u: np.ndarray | None
            "centre_of_mass_drift_after": _drift(res.centre_of_mass(after=True))}
     size = res.scene.size
     if res.method == "full" and out["centre_of_mass_drift_after"] > CHECK * size:
-        warnings.warn(f"after full balancing the centre of mass still moves by "
-                      f"{out['centre_of_mass_drift_after']:.3g} m", BalanceWarning,
-                      stacklevel=3)
+        raise BalanceError(f"after full balancing ({res.procedure}) the centre of mass still "
+                           f"moves by {out['centre_of_mass_drift_after']:.3g} m (more than "
+                           f"{CHECK:g} of the mechanism's size): the closed form fails its own "
+                           "check for this mechanism, so its counterweights are refused")
     if gk is not None and u is not None:
         before = shaking_force(gk)
         after = shaking_force(gk, res.counterweights, res.pair)
@@ -275,9 +275,12 @@ def _checks(res: MechanismBalancing, gk: Kinematics | None, u: np.ndarray | None
         out["line_angle"] = deg360(math.degrees(math.atan2(u[1], u[0])))
         if res.method in ("first-harmonic", "counter-rotating", "full") and \
                 out["first_harmonic_after"] > CHECK * max(out["first_harmonic_before"], 1e-300):
-            warnings.warn(f"after {res.method} balancing the first harmonic along the line is "
-                          f"still {out['first_harmonic_after']:.3g} N", BalanceWarning,
-                          stacklevel=3)
+            raise BalanceError(f"after {res.method} balancing the first harmonic of the "
+                               f"shaking force along the line is still "
+                               f"{out['first_harmonic_after']:.3g} N (before: "
+                               f"{out['first_harmonic_before']:.3g} N): the closed form fails "
+                               "its own check for this mechanism, so its counterweights are "
+                               "refused")
     return out
 
 

@@ -65,6 +65,10 @@ class AmplitudeFit:
         Readings minus 3.
     threshold : float
         The chi-square quantile q_1(confidence) that bounds the intervals.
+    at_bound : numpy.ndarray of bool, shape (B, K)
+        True where a minimum's rho sits on the edge of the searched range
+        (:data:`LR_RANGE`, 1e-4 to 1e4): the likelihood still rises beyond it, so that
+        is no true maximum; the estimate must be flagged, not reported as found.
     """
 
     rho: np.ndarray
@@ -77,6 +81,11 @@ class AmplitudeFit:
     theta_hi: np.ndarray
     dof: int
     threshold: float
+    at_bound: np.ndarray | None = None
+
+
+BOUND_TOL = 1e-6
+"""|log rho - range end| within which a minimum counts as sitting on the range's edge."""
 
 
 class _Data:
@@ -473,12 +482,15 @@ def fit_amplitudes(readings: np.ndarray, marks_deg: np.ndarray, sigma: np.ndarra
     B = A.shape[0]
     cols = {k: np.full((B, keep), np.nan) for k in
             ("rho", "theta", "a", "chi2", "rho_lo", "rho_hi", "theta_lo", "theta_hi")}
+    bound = np.zeros((B, keep), dtype=bool)
     for start in range(0, B, _CHUNK):
         sl = slice(start, min(B, start + _CHUNK))
         d = _Data(A[sl], S[sl], marks)
         lr0, th0 = _grid_starts(d)
         lr, th, chi2, a = _refine(d, lr0, th0)
         lr, th, chi2, a = _keep(lr, th, chi2, a, threshold, keep)
+        bound[sl] = np.isfinite(chi2) & ((lr <= LR_RANGE[0] + BOUND_TOL)
+                                         | (lr >= LR_RANGE[1] - BOUND_TOL))
         rows, ks = np.nonzero(np.isfinite(chi2))
         thr = chi2[:, 0][rows] + threshold
         sub = d.take(rows)
@@ -488,4 +500,5 @@ def fit_amplitudes(readings: np.ndarray, marks_deg: np.ndarray, sigma: np.ndarra
         for name, v in (("rho_lo", lo), ("rho_hi", hi), ("theta_lo", tlo), ("theta_hi", thi)):
             block = cols[name][sl]
             block[rows, ks] = v
-    return AmplitudeFit(dof=A.shape[1] - 3, threshold=float(threshold), **cols)
+    return AmplitudeFit(dof=A.shape[1] - 3, threshold=float(threshold), at_bound=bound,
+                        **cols)

@@ -57,7 +57,12 @@ class Estimate:
     chi2 : float
         sum ((A_k - model_k) / sigma_k)^2 at the best minimum.
     dof : int
-        Readings minus the 3 unknowns (0 for three runs).
+        Readings minus the 3 unknowns (0 for three runs). When A1 = 0 is read without
+        noise (sigma of A1 = 0: no absolute noise) the reading pins the unbalance to 0
+        exactly, its angle drops out and A is the one unknown left: the trial runs'
+        amplitudes must all equal A, and dof = trial runs - 1 (1 for three runs). That
+        is the chi-square the consistency test needs: chi2 is then the scatter of the
+        trial runs about their weighted mean, distributed as chi2(runs - 1).
     consistent : bool or None
         chi2 within its chi-square quantile at ``confidence``; None when dof = 0.
     interval, mirror_interval : dict or None
@@ -70,6 +75,10 @@ class Estimate:
         (relative, absolute) 1-sigma noise of a reading.
     rho : float
         |u| / a, the unbalance over the trial mass (U/T).
+    at_bound : bool
+        The best minimum sits on the edge of the searched range of U/T (1e-4 or 1e4): the
+        likelihood still rises beyond it, the estimate is a bound, not a maximum (a
+        warning says so).
     """
 
     unbalance: float
@@ -85,13 +94,18 @@ class Estimate:
     confidence: float
     noise: tuple[float, float]
     rho: float
+    at_bound: bool = False
 
     def to_dict(self) -> dict[str, Any]:
-        """The contract's keys of ``estimate``."""
-        return {"unbalance": self.unbalance, "correction_mass": self.correction_mass,
-                "angle": self.angle, "mirror_angle": self.mirror_angle, "A": self.A,
-                "chi2": self.chi2, "dof": self.dof, "consistent": self.consistent,
-                "interval": self.interval, "mirror_interval": self.mirror_interval}
+        """The contract's keys of ``estimate``; ``at_bound = true`` marks an estimate on
+        the bound of the searched range (the key is absent otherwise)."""
+        out = {"unbalance": self.unbalance, "correction_mass": self.correction_mass,
+               "angle": self.angle, "mirror_angle": self.mirror_angle, "A": self.A,
+               "chi2": self.chi2, "dof": self.dof, "consistent": self.consistent,
+               "interval": self.interval, "mirror_interval": self.mirror_interval}
+        if self.at_bound:
+            out["at_bound"] = True
+        return out
 
 
 def check_model(noise: Any, confidence: Any, where: str) -> tuple[tuple[float, float], float]:
@@ -182,7 +196,8 @@ def estimate(A1: float, marks: np.ndarray, amps: np.ndarray, mr: float, rc: floa
         A=float(fit.a[0, best]), chi2=chi2, dof=dof,
         consistent=None if dof == 0 else bool(chi2 <= chi2_quantile(confidence, dof)),
         interval=interval(best), mirror_interval=None if other is None else interval(other),
-        confidence=confidence, noise=noise, rho=float(fit.rho[0, best]))
+        confidence=confidence, noise=noise, rho=float(fit.rho[0, best]),
+        at_bound=bool(fit.at_bound is not None and fit.at_bound[0, best]))
 
 
 def _in_arc(angle: float, arc: list[float] | None) -> bool:
@@ -213,6 +228,13 @@ def warnings_for(est: Estimate, *, method: str, A1: float, seed_unbalance: float
     """
     out: list[str] = []
     conf = f"{100.0 * est.confidence:g} %"
+    if est.at_bound:
+        side = "above 1e4" if est.rho > 1.0 else "below 1e-4"
+        out.append(f"{where}: the estimate sits on the bound of the searched range: U/T = "
+                   f"{est.rho:.4g} (the unbalance over the trial mass's, searched from 1e-4 to "
+                   f"1e4); the readings put it {side}, so the estimate's unbalance "
+                   f"{est.unbalance:.4g} kg m is a bound, not a maximum of the likelihood: "
+                   "repeat the test with a trial mass nearer the unbalance")
     if est.mirror_angle is not None and method != "three-run":
         out.append(f"{where}: the readings cannot tell the correction angle {est.angle:.1f} "
                    f"deg from {est.mirror_angle:.1f} deg (both fit within the {conf} "

@@ -121,6 +121,12 @@ def oscillating_follower_force(moment: Any, tau: Any, arm: float, mu: float = 0.
 
 # --------------------------------------------------------------------------- tables
 
+def cam_angles(count: int) -> np.ndarray:
+    """The cam angles of a table of ``count`` rows over one turn, rad (both ends included:
+    the ``angle`` column is their value in degrees, 0 to 360)."""
+    return np.linspace(0.0, 2.0 * np.pi, count)
+
+
 def cam_table(law: CamLaw, follower: Follower, count: int = 361, speed: float = 1.0,
               rotation: str = "ccw") -> pd.DataFrame:
     """Motion, transmission angle and profile of a cam over one turn.
@@ -145,7 +151,7 @@ def cam_table(law: CamLaw, follower: Follower, count: int = 361, speed: float = 
     """
     if count < 2:
         raise CamError("count must be at least 2")
-    phi = np.radians(np.linspace(0.0, 360.0, count))
+    phi = cam_angles(count)
     s, ds, dds = law(phi)
     tau = transmission_angle(law, follower, phi)
     if isinstance(follower, TranslatingFollower):

@@ -5,13 +5,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 import pandas as pd
 
 from ..model.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source, suggest
+from ..model.units import Units
 from ..transmission.efficiency import mean_efficiency
 from .followers import (
     Follower,
@@ -31,6 +32,7 @@ from .followers import (
     transmission_angle,
 )
 from .forces import (
+    cam_angles,
     cam_table,
     critical_transmission_angle,
     critical_transmission_angle_oscillating,
@@ -55,6 +57,7 @@ from .laws import (
     sine_acceleration,
     zero_acceleration,
 )
+from .units import cam_to_contract_units, check_cam_slips
 
 # --------------------------------------------------------------------------- scenes
 
@@ -98,6 +101,7 @@ class CamScene:
     count: int
     loads: CamLoads
     transmission_angle: float | None = None     # admissible, rad, if the radius came from it
+    units: Units = field(default_factory=Units)  # the file's [units] (the numbers here are SI)
 
 
 def _opt_float(table: dict, key: str, where: str, default: float = 0.0, **kw: bool) -> float:
@@ -111,7 +115,8 @@ def load_cam_scene(source: Any) -> CamScene:
     (:class:`~kinetostatics.model.errors.SceneError` for the file's form, :class:`CamError` for a
     cam that cannot be built).
     """
-    raw = read_source(source, "cam scene")
+    raw, units = cam_to_contract_units(read_source(source, "cam scene"))
+    check_cam_slips(raw, units)
     if isinstance(raw, dict) and "cam" not in raw and "driver" in raw:
         raise CamError("this is a mechanism scene (it has [driver]); the cam command takes a "
                        "[cam] scene (docs/cam-scenes.md), e.g. the bundled translating_roller")
@@ -212,7 +217,7 @@ def load_cam_scene(source: Any) -> CamScene:
         r0 = (base_radius_oscillating(law, tau_adm, arm, dist, sense) if tau_adm is not None
               else as_float(cam["base_radius"], "cam.base_radius", positive=True))
         follower = OscillatingFollower(r0, arm, dist, roller, sense)
-    return CamScene(title, law, follower, speed, rotation, count, loads, tau_adm)
+    return CamScene(title, law, follower, speed, rotation, count, loads, tau_adm, units)
 
 
 def _load_loads(raw: Any, kind: str, stroke: float) -> CamLoads:
@@ -279,7 +284,7 @@ def solve_cam(source: Any) -> CamResults:
     sc = source if isinstance(source, CamScene) else load_cam_scene(source)
     law, fol, w, ld = sc.law, sc.follower, sc.speed, sc.loads
     table = cam_table(law, fol, sc.count, w, sc.rotation)
-    phi = np.radians(table["angle"].to_numpy())
+    phi = cam_angles(sc.count)
     s, ds, dds = law(phi)
     b, d1, _, u, vel = follower_points(fol, s, ds, dds)
     tau = tau_of(b, d1, u)

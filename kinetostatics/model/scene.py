@@ -16,8 +16,9 @@ from typing import Any
 
 import numpy as np
 
-from .errors import SceneError, UnitWarning
+from .errors import SceneError
 from .examples import SCENES
+from .scene_units import check_unit_slips, to_contract_units
 from .tomlio import (
     as_float,
     as_int,
@@ -28,10 +29,11 @@ from .tomlio import (
     read_source,
     suggest,
 )
+from .units import Units
 
 GROUND = "ground"
 MAX_COUNT = 10_000_000
-TOP_KEYS = ("title", "format", "gravity", "ground", "driver", "bodies", "joints", "loads",
+TOP_KEYS = ("title", "format", "units", "gravity", "ground", "driver", "bodies", "joints", "loads",
             "near", "motion", "balancing")
 DRIVER_KEYS = ("body", "joint", "speed", "speed_rpm", "acceleration", "start", "stop",
                "count", "positions")
@@ -182,7 +184,13 @@ class Load:
 
 @dataclass(frozen=True)
 class Scene:
-    """A checked mechanism scene (``scene-format.md`` section 1)."""
+    """A checked mechanism scene (``scene-format.md`` section 1).
+
+    Every number is in the contract's units (SI; degrees for the driver's positions and
+    ``line_angle``), whatever units the file named: ``raw`` is the mapping as read,
+    rewritten into those units (:mod:`kinetostatics.model.scene_units`), and ``units``
+    the file's ``[units]`` (for the output, which repeats them).
+    """
 
     title: str
     gravity: tuple[float, float]
@@ -195,6 +203,7 @@ class Scene:
     motion: dict[str, Any] | None = None
     balancing: dict[str, Any] | None = None
     raw: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
+    units: Units = field(default_factory=Units, compare=False)
 
     @cached_property
     def size(self) -> float:
@@ -234,7 +243,7 @@ def load_scene(source: Any) -> Scene:
     """
     if isinstance(source, Scene):
         return source
-    raw = read_source(source, bundled=SCENES)
+    raw, units = to_contract_units(read_source(source, bundled=SCENES))
     top = check_keys(raw, TOP_KEYS, "scene", required=("driver", "bodies", "joints"))
     title = str(top.get("title", ""))
     if "format" in top and top["format"] != 1:
@@ -252,57 +261,9 @@ def load_scene(source: Any) -> Scene:
         raise SceneError("[balancing] must be a table")
     scene = Scene(title=title, gravity=gravity, ground=ground, driver=driver, bodies=bodies,
                   joints=joints, loads=loads, near=near, motion=motion, balancing=balancing,
-                  raw=raw)
-    _check_units(scene)
+                  raw=raw, units=units)
+    check_unit_slips(scene, units)
     return scene
-
-
-def _check_units(scene: Scene) -> None:
-    """Warn (:class:`UnitWarning`) where a number looks like a unit slip: a crank's sweep
-    of 2 pi degrees (radians typed in a degree field), a speed above 1e4 rad/s (rpm typed
-    in a rad/s field), a point or cog farther from its body's joints than 100 times the
-    mechanism's size (millimetres among metres: a length typed in mm is 1000 times too
-    long). A warning never stops the solve."""
-    drv = scene.driver
-    pos = drv.positions
-    if drv.kind == "R" and pos.size > 1:
-        extent = float(np.ptp(pos))
-        if abs(extent - 2.0 * math.pi) <= 0.01 * 2.0 * math.pi:
-            warnings.warn(f"driver: the sweep spans {extent:.4g} deg, about 2 pi: positions are "
-                          "in degrees (a full turn is 360), not radians", UnitWarning,
-                          stacklevel=3)
-    if drv.kind == "R" and abs(drv.speed) > 1e4:
-        warnings.warn(f"driver.speed = {drv.speed:.6g} rad/s ({abs(drv.speed) * 30 / math.pi:.4g} "
-                      "rpm) looks like rpm in a rad/s field; give speed_rpm instead",
-                      UnitWarning, stacklevel=3)
-    joint_pts: dict[str, list[tuple[float, float]]] = {b: [] for b in scene.bodies}
-    for j in scene.joints.values():
-        if j.kind != "R":
-            continue
-        for b, p in zip(j.bodies, j.points, strict=True):
-            if b in joint_pts:
-                joint_pts[b].append(scene.bodies[b].points[p])
-    pts = [p for b in joint_pts.values() for p in b] + list(scene.ground.values())
-    if len(pts) < 2:
-        return
-    arr = np.asarray(pts, dtype=float)
-    size = float(np.max(np.hypot(*(arr - arr.mean(axis=0)).T)))
-    if size <= 0.0:
-        return          # every joint at one point (a lone crank): no size to compare with
-    for name, body in scene.bodies.items():
-        ref = joint_pts[name]
-        if not ref:
-            continue
-        named = dict(body.points)
-        if body.cog is not None:
-            named["cog"] = body.cog
-        for pname, p in named.items():
-            far = min(math.hypot(p[0] - q[0], p[1] - q[1]) for q in ref)
-            if far > 100.0 * size:
-                warnings.warn(f"body {name!r}: point {pname} = [{p[0]:g}, {p[1]:g}] is "
-                              f"{far:.3g} m from the body's joints, over 100 times the "
-                              f"mechanism's size ({size:.3g} m): millimetres among metres? "
-                              "Every length is in m", UnitWarning, stacklevel=3)
 
 
 def _ground(table: Any) -> dict[str, tuple[float, float]]:

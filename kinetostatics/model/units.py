@@ -33,8 +33,8 @@ from typing import Any
 
 from .errors import SceneError
 
-__all__ = ["BASE", "DEFAULTS", "FACTORS", "Units", "convert", "parse_quantity", "parse_units",
-           "unit_kind"]
+__all__ = ["BASE", "DEFAULTS", "FACTORS", "Units", "angle_slip", "convert", "parse_quantity",
+           "parse_units", "ratio_slip", "unit_kind"]
 
 FACTORS: dict[str, dict[str, float]] = {
     "length": {"m": 1.0, "mm": 1e-3, "cm": 1e-2, "in": 0.0254},
@@ -194,6 +194,19 @@ class Units:
         """A number (or numpy array) written in the scene's unit of ``quantity``, in SI."""
         return value * self.factor(quantity)
 
+    def file_factor(self, quantity: str) -> float:
+        """The value, in the contract's default unit (SI; degrees for an angle), of one
+        scene unit of ``quantity``: 1 for a scene in the default units."""
+        f = self.factor(quantity)
+        return f / FACTORS["angle"]["deg"] if quantity == "angle" else f
+
+    def to_file(self, value: Any, quantity: str) -> Any:
+        """A number written in the scene's unit, in the contract's default unit (SI, and
+        degrees for an angle): how a scene is rewritten into the contract's units when it is
+        read. A default unit leaves the value untouched (bit for bit)."""
+        f = self.file_factor(quantity)
+        return value if f == 1.0 else value * f
+
     def from_si(self, value: Any, quantity: str) -> Any:
         """An SI number (or numpy array) in the scene's unit of ``quantity``."""
         return value / self.factor(quantity)
@@ -207,9 +220,20 @@ class Units:
         """True when every unit is the contract's default."""
         return all(getattr(self, f.name) == DEFAULTS[f.name] for f in fields(self))
 
-    def to_dict(self) -> dict[str, str]:
-        """JSON-ready: the unit of each quantity."""
-        return {f.name: getattr(self, f.name) for f in fields(self)}
+    @property
+    def is_si(self) -> bool:
+        """The same as :attr:`is_default` (the name balancing's field sections use)."""
+        return self.is_default
+
+    def describe(self, quantities: tuple[str, ...] = BASE) -> str:
+        """``length = "mm", mass = "g"``: the units that differ from the defaults."""
+        return ", ".join(f'{q} = "{getattr(self, q)}"' for q in quantities
+                         if getattr(self, q) != DEFAULTS[q]) or "the default units"
+
+    def to_dict(self, quantities: tuple[str, ...] | None = None) -> dict[str, str]:
+        """JSON-ready: the unit of each quantity (of ``quantities``, default all)."""
+        names = quantities if quantities is not None else [f.name for f in fields(self)]
+        return {q: getattr(self, q) for q in names}
 
 
 def parse_units(table: Mapping[str, Any] | None, where: str = "[units]", *,
@@ -250,3 +274,43 @@ def parse_units(table: Mapping[str, Any] | None, where: str = "[units]", *,
             raise error(f"{where}.{key}: unknown unit {value!r}; known: {known}")
         out[key] = name
     return Units(**out)
+
+
+TWO_PI = 2.0 * math.pi
+
+
+def angle_slip(values: Any, unit: str) -> bool:
+    """True when angles written under ``unit`` look like radians typed in a degree field:
+    the unit is ``"deg"``, every value lies within [-2 pi, 2 pi] and at least one has a
+    fractional part (scene-format.md, opening). Whole numbers (0, 90, 180...) never do.
+
+    >>> angle_slip([0.0, 2.7925, 1.5708], "deg"), angle_slip([0, 160, 90], "deg")
+    (True, False)
+    >>> angle_slip([0.0, 2.7925], "rad")
+    False
+    """
+    if unit != "deg":
+        return False
+    vals = [float(v) for v in values]
+    if not vals:
+        return False
+    small = all(abs(v) <= TWO_PI + 1e-9 for v in vals)
+    frac = any(abs(v - round(v)) > 1e-6 for v in vals)
+    return small and frac
+
+
+def ratio_slip(values: Any, ratio: float = 1000.0) -> tuple[float, float] | None:
+    """(smallest, largest) of the non-zero magnitudes when they are ``ratio`` or more
+    apart (a value 1000 times off the others of its kind: grams among kilograms), else
+    None.
+
+    >>> ratio_slip([0.1, 80.0, 120.0])
+    (0.1, 120.0)
+    >>> ratio_slip([10.0, 20.0]) is None
+    True
+    """
+    mags = [abs(float(v)) for v in values if float(v) != 0.0]
+    if len(mags) < 2:
+        return None
+    lo, hi = min(mags), max(mags)
+    return (lo, hi) if hi >= ratio * lo else None

@@ -16,7 +16,7 @@ motion costs a few kinematic solves, not one per step.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -25,6 +25,7 @@ import pandas as pd
 from ..model.errors import SceneError
 from ..model.scene import Scene, load_scene
 from ..model.tomlio import as_float, as_int, as_list, check_keys
+from ..model.units import BASE, Units
 from ..solver import arith as A
 from ..solver.kinematics import solve_kinematics
 from ..solver.loads import applied_loads
@@ -43,7 +44,7 @@ class MotionSpec:
 
     stall_moment: float | None
     no_load_speed: float | None
-    table: np.ndarray | None          # (k, 2): angle (deg), moment (N m)
+    table: np.ndarray | None          # (k, 2): driver angle (rad), moment (N m)
     flywheel: float
     omega0: float
     cycles: int
@@ -81,6 +82,7 @@ def motion_spec(scene: Scene) -> MotionSpec:
             raise SceneError("motion.motor_table: angles must be strictly increasing")
         if table[-1, 0] - table[0, 0] > 360.0:
             raise SceneError("motion.motor_table spans more than 360 deg")
+        table[:, 0] = np.radians(table[:, 0])        # the file's degrees, once, here
     flywheel = as_float(m.get("flywheel", 0.0), "motion.flywheel", nonnegative=True)
     omega0 = as_float(m["omega0"], "motion.omega0", positive=True)
     cycles = as_int(m["cycles"], "motion.cycles", lo=1, hi=100_000)
@@ -170,26 +172,29 @@ def _motor(spec: MotionSpec):
         ms, w0 = spec.stall_moment, spec.no_load_speed
         return lambda phi, w: ms * (1.0 - np.asarray(w) / w0)
     ang, val = spec.table[:, 0], spec.table[:, 1]
-    period = 360.0
-    xp = np.concatenate((ang, [ang[0] + period]))
+    xp = np.concatenate((ang, [ang[0] + TWO_PI]))
     fp = np.concatenate((val, [val[0]]))
 
     def table(phi, w):
-        x = np.mod(np.degrees(np.asarray(phi, dtype=float)) - ang[0], period) + ang[0]
+        x = np.mod(np.asarray(phi, dtype=float) - ang[0], TWO_PI) + ang[0]
         return np.interp(x, xp, fp)
     return table
 
 
 @dataclass
 class MotionResult:
-    """The ``motion`` table (cycle, position, time, omega, alpha) and the summary."""
+    """The ``motion`` table (cycle, position, time, omega, alpha) and the summary (SI);
+    ``units`` are the scene's ``[units]``, which the JSON repeats."""
 
     motion: pd.DataFrame
     summary: dict
     solution: Any
+    units: Units = field(default_factory=Units)
 
     def to_json(self) -> dict:
-        return {"summary": self.summary, "motion": self.motion.to_dict(orient="records")}
+        """``{"summary": {..., "units": {...}}, "motion": [rows]}``."""
+        return {"summary": {**self.summary, "units": self.units.to_dict(BASE)},
+                "motion": self.motion.to_dict(orient="records")}
 
 
 def simulate_motion(scene: Any, rtol: float = 1e-12) -> MotionResult:
@@ -238,4 +243,4 @@ def simulate_motion(scene: Any, rtol: float = 1e-12) -> MotionResult:
         summary["flywheel_for_target"] = flywheel_for_delta(
             inertia_with(0.0), moment, spec.target_delta, phi0, st["omega_mean"], rtol=rtol,
             periodic_inertia=True)
-    return MotionResult(sol.table(positions), summary, sol)
+    return MotionResult(sol.table(positions), summary, sol, sc.units)

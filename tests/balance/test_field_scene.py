@@ -146,10 +146,20 @@ def test_influence_scene_errors(old, new, expected) -> None:
     assert expected in error_of(BASE.replace(old, new, 1))
 
 
-def test_units_beside_seed_sections_are_refused() -> None:
-    text = BASE + '\n[units]\nmass = "g"\n\n[static_test]\ndisk_mass = 5.0\n' \
-        'comparison_mass = 0.05\ncomparison_radius = 0.1\nalpha = 25.0\ncorrection_radius = 0.08\n'
-    assert "stays in SI" in error_of(text)
+def test_units_beside_seed_sections_apply_to_them() -> None:
+    """[units] now applies to every section (issue 18): the static test in g and mm gives
+    the SI result of the same test in kg and m; the influence section stays in g."""
+    si = '[static_test]\ndisk_mass = 5.0\ncomparison_mass = 0.05\ncomparison_radius = 0.1\n' \
+        'alpha = 25.0\ncorrection_radius = 0.08\n'
+    text = BASE + '\n[units]\nmass = "g"\nlength = "mm"\n\n[static_test]\ndisk_mass = 5000.0\n' \
+        'comparison_mass = 50.0\ncomparison_radius = 100.0\nalpha = 25.0\n' \
+        'correction_radius = 80.0\n'
+    out = balance.solve(text)
+    ref = balance.solve(si)["static_test"]
+    assert out["static_test"]["correction_mass"] == pytest.approx(ref["correction_mass"],
+                                                                  rel=1e-14)
+    assert out["units"]["mass"] == "g" and out["units"]["length"] == "mm"
+    assert out["influence"][0]["corrections"]
 
 
 @pytest.mark.parametrize("body, expected", [

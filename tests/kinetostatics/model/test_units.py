@@ -3,6 +3,8 @@ line), never a change of the exit code or of the numbers."""
 
 from __future__ import annotations
 
+import json
+import math
 import subprocess
 import sys
 import tomllib
@@ -79,3 +81,137 @@ def test_scene_sources_say_what_is_wrong(tmp_path) -> None:
     bad.write_bytes('title = "ok"\n\n# r\u00e9glage\n'.encode("latin-1"))
     with pytest.raises(ks.SceneError, match=r"save it as UTF-8 \(line 3\)"):
         ks.load_scene(bad)
+
+
+# ---------------------------------------------------------------- issue 18: [units], slips
+def _all_warnings(fn, *args) -> list[str]:
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        fn(*args)
+    return [str(w.message) for w in seen if issubclass(w.category, ks.UnitWarning)]
+
+
+def _positions(values: list[float], units: dict | None = None) -> dict:
+    d = four_bar()
+    for k in ("start", "stop", "count"):
+        d["driver"].pop(k)
+    d["driver"]["positions"] = values
+    if units:
+        d["units"] = units
+    return d
+
+
+def test_positions_typed_in_radians_warn_under_degrees() -> None:
+    rad = [0.0, 0.7854, 1.5708, 3.1416]             # 0, 45, 90, 180 deg typed in radians
+    msgs = _warnings(_positions(rad))
+    assert len(msgs) == 1 and "driver positions" in msgs[0] and "radians" in msgs[0]
+    assert _warnings(_positions(rad, {"angle": "rad"})) == []          # said so: no slip
+    assert _warnings(_positions([0.0, 45.0, 90.0, 180.0])) == []
+    assert _warnings(_positions([0.0, 1.0, 2.0, 3.0])) == []            # whole degrees
+
+
+def test_positions_in_radians_are_converted_once() -> None:
+    """angle = "rad": the tables give degrees (hand conversion: pi/4 rad = 45 deg)."""
+    sol = ks.solve(_positions([0.0, math.pi / 4, math.pi / 2], {"angle": "rad"}))
+    ref = ks.solve(_positions([0.0, 45.0, 90.0]))
+    assert sol.driver["position"].to_numpy() == pytest.approx([0.0, 45.0, 90.0], abs=1e-13)
+    assert sol.driver["Me"].to_numpy() == pytest.approx(ref.driver["Me"].to_numpy(),
+                                                        rel=1e-12)   # measured 4e-16
+
+
+def test_motion_slips_warn() -> None:
+    with open(ks.example("four_bar_motion"), "rb") as fh:
+        d = tomllib.load(fh)
+    d["motion"]["omega0"] = 30000.0                 # rpm typed in rad/s
+    msgs = _all_warnings(ks.load_scene, d)
+    assert any("motion.omega0" in m and "rpm" in m for m in msgs)
+    d["motion"]["omega0"] = 20.0
+    d["motion"].pop("motor"), d["motion"].pop("target_delta")
+    d["motion"]["motor_table"] = [[0.0, 40.0], [1.5708, 60.0], [3.1416, 50.0]]
+    assert any("motor_table" in m and "radians" in m for m in _all_warnings(ks.load_scene, d))
+
+
+def test_cam_slips_warn() -> None:
+    from kinetostatics.cams import load_cam_scene
+    with open(ks.scene_path("translating_roller"), "rb") as fh:
+        d = tomllib.load(fh)
+    d["cam"].pop("speed_rpm")
+    d["cam"]["speed"] = 30000.0
+    assert any("cam.speed" in m for m in _all_warnings(load_cam_scene, d))
+    d["cam"]["speed"] = 30.0
+    for seg in d["cam"]["segments"]:
+        seg["angle"] = math.radians(seg["angle"])
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        with pytest.raises(ks.WorkbenchError, match="add up to"):
+            load_cam_scene(d)
+    assert any("radians" in str(w.message) for w in seen)
+    d["units"] = {"angle": "rad"}                    # said so: converted, solved, no warning
+    d["cam"]["transmission_angle"] = math.radians(d["cam"]["transmission_angle"])
+    assert _all_warnings(load_cam_scene, d) == []
+
+
+@pytest.mark.parametrize("table, text", [
+    ({"length": "km"}, "unknown unit 'km'"),
+    ({"lenght": "mm"}, "unknown quantity 'lenght'"),
+    ({"unbalance": "g mm"}, "unknown quantity 'unbalance'"),
+    ("mm", "[units] must be a table"),
+])
+def test_bad_units_are_one_line_errors(table, text, tmp_path) -> None:
+    d = four_bar()
+    d["units"] = table
+    with pytest.raises(ks.SceneError) as exc:
+        ks.load_scene(d)
+    assert text in str(exc.value) and "\n" not in str(exc.value)
+    if isinstance(table, dict):
+        path = tmp_path / "bad.toml"
+        path.write_text(to_toml(d))
+        out = subprocess.run([sys.executable, "-m", "kinetostatics", "solve", str(path)],
+                             capture_output=True, text=True)
+        assert out.returncode == 2 and out.stderr.startswith("error: ")
+        assert len(out.stderr.strip().splitlines()) == 1
+
+
+def test_summary_json_repeats_the_units(tmp_path) -> None:
+    out = subprocess.run([sys.executable, "-m", "kinetostatics", "solve", "four_bar_mm",
+                          "--out", str(tmp_path)], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert summary["units"] == {"length": "mm", "mass": "g", "angle": "deg", "speed": "rpm",
+                                "force": "N"}
+    assert summary["positions"] == 361
+    plain = json.loads(subprocess.run([sys.executable, "-m", "kinetostatics", "solve",
+                                       "four_bar", "--json"], capture_output=True,
+                                      text=True).stdout)
+    assert plain["units"]["length"] == "m"
+
+
+def test_the_unit_checks_use_the_scenes_length_unit() -> None:
+    """A cog typed in metres in a millimetre scene: 0.125 mm is no slip, but a point typed
+    in micrometres is (the message gives the scene's unit)."""
+    with open(ks.example("four_bar_mm"), "rb") as fh:
+        d = tomllib.load(fh)
+    assert _warnings(d) == []
+    d["bodies"][1]["points"]["P"] = [100000.0, 60000.0]
+    msgs = _warnings(d)
+    assert any("point P" in m and " mm " in m for m in msgs)
+
+
+def test_a_line_angle_in_radians_warns() -> None:
+    with open(ks.example("slider_crank"), "rb") as fh:
+        d = tomllib.load(fh)
+    slide = next(j for j in d["joints"] if j["kind"] == "T")
+    slide["line_angle"] = 0.2618                     # 15 deg typed in radians
+    msgs = _all_warnings(ks.load_scene, d)
+    assert len(msgs) == 1 and "line_angle" in msgs[0] and "radians" in msgs[0]
+    slide["line_angle"] = 15.0
+    assert _all_warnings(ks.load_scene, d) == []
+
+
+def test_a_cam_stroke_angle_in_radians_warns() -> None:
+    from kinetostatics.cams import load_cam_scene
+    with open(ks.scene_path("oscillating_roller"), "rb") as fh:
+        d = tomllib.load(fh)
+    d["cam"]["follower"]["stroke_angle"] = 0.3491     # 20 deg typed in radians
+    msgs = _all_warnings(load_cam_scene, d)
+    assert len(msgs) == 1 and "radians" in msgs[0]
