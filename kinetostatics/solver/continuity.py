@@ -69,6 +69,20 @@ def check_distinct(positions: np.ndarray, unit: str) -> None:
             "(start = stop with count > 1 repeats it too)")
 
 
+def open_rows(kin: Kinematics) -> np.ndarray:
+    """Rows of a kinematics solved with ``strict = False`` (probes between rows) where
+    some dyad cannot close: its links do not reach by more than 1e-9 of the mechanism's
+    size (the closed forms clip there, so the motion arrays alone do not show it)."""
+    from .closure import DyadSolver
+    out = np.zeros(kin.n, dtype=bool)
+    for dm in kin.dyads:
+        gap = DyadSolver(kin.scene, dm.dyad).positions(dm.params, dm.k)[2]
+        if gap is not None:
+            with np.errstate(invalid="ignore"):
+                out |= ~(np.broadcast_to(gap, (kin.n,)) <= 1e-9 * kin.scene.size)
+    return out
+
+
 def _wrap(d: np.ndarray) -> np.ndarray:
     """Angles in [-pi, pi)."""
     return np.mod(d + np.pi, 2.0 * np.pi) - np.pi
@@ -103,6 +117,7 @@ class _Probe:
         k = solve_kinematics(self.scene, self.structure, positions=positions, strict=False)
         n = positions.size
         th = np.stack([np.broadcast_to(k.bodies[b].theta, (n,)) for b in self.names])
+        th = np.where(open_rows(k)[None, :], np.nan, th)    # no motion there
         r = np.stack([np.broadcast_to(k.bodies[b].omega, (n,)) for b in self.names])
         rp = np.stack([np.broadcast_to(k.bodies[b].alpha, (n,)) for b in self.names])
         return th, r, rp

@@ -33,7 +33,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..model.scene import Scene
-from .continuity import sweep_order
+from .continuity import open_rows, sweep_order
 from .kinematics import SINGULAR_WARN, Kinematics, solve_kinematics
 from .structure import Structure
 
@@ -79,7 +79,7 @@ def _probe(scene: Scene, structure: Structure, lo: np.ndarray, hi: np.ndarray
         probe = solve_kinematics(scene, structure, positions=grid[:, 1:-1].ravel(),
                                  strict=False)
         pm2 = _measure2(probe).reshape(lo.size, PROBES)
-        nan = np.isnan(pm2)
+        nan = np.isnan(pm2) | open_rows(probe).reshape(lo.size, PROBES)
         open_ |= nan.any(axis=1)
         pm2 = np.where(nan, np.inf, pm2)        # no closed form there: not a dead point
         j = np.argmin(pm2, axis=1)
