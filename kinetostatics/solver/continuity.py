@@ -123,6 +123,15 @@ class _Probe:
         return th, r, rp
 
 
+def _split(first: np.ndarray, mid: np.ndarray, last: np.ndarray, keep: np.ndarray
+           ) -> tuple[np.ndarray, np.ndarray]:
+    """Values at the ends of the parts of the intervals ``keep``: (bodies, parts) at
+    their lower and upper ends, from the intervals' ends and the interior probes."""
+    full = np.concatenate([first[:, keep, None], mid, last[:, keep, None]], axis=2)
+    nb = full.shape[0]
+    return full[:, :, :-1].reshape(nb, -1), full[:, :, 1:].reshape(nb, -1)
+
+
 def _turns(probe: _Probe, lo, hi, ends) -> np.ndarray:
     """The turn of every body over each interval (lo, hi), by zooming sub-samples.
 
@@ -136,6 +145,7 @@ def _turns(probe: _Probe, lo, hi, ends) -> np.ndarray:
     parent = np.arange(m)
     (tha, ra, pa), (thb, rb, pb) = ends
     a, b = lo.copy(), hi.copy()
+    t = np.arange(1, SPLIT) / SPLIT
     for round_ in range(MAX_ROUNDS + 1):
         h = b - a
         hs = np.deg2rad(h) if probe.rad else h
@@ -150,38 +160,29 @@ def _turns(probe: _Probe, lo, hi, ends) -> np.ndarray:
         keep = np.flatnonzero(bad & ~nan)
         if keep.size == 0:
             break
-        t = np.arange(1, SPLIT) / SPLIT
         inner = a[keep, None] + h[keep, None] * t[None, :]          # (k, SPLIT - 1)
-        th, r, rp = probe(inner.ravel())
         shape = (nb, keep.size, SPLIT - 1)
-        th, r, rp = th.reshape(shape), r.reshape(shape), rp.reshape(shape)
-
-        def chain(first, mid, last):
-            return np.concatenate([first[:, keep, None], mid, last[:, keep, None]], axis=2)
+        th, r, rp = (v.reshape(shape) for v in probe(inner.ravel()))
         pts = np.concatenate([a[keep, None], inner, b[keep, None]], axis=1)
-        th_all, r_all, p_all = chain(tha, th, thb), chain(ra, r, rb), chain(pa, rp, pb)
         a, b = pts[:, :-1].ravel(), pts[:, 1:].ravel()
         parent = np.repeat(parent[keep], SPLIT)
-        tha, thb = th_all[:, :, :-1].reshape(nb, -1), th_all[:, :, 1:].reshape(nb, -1)
-        ra, rb = r_all[:, :, :-1].reshape(nb, -1), r_all[:, :, 1:].reshape(nb, -1)
-        pa, pb = p_all[:, :, :-1].reshape(nb, -1), p_all[:, :, 1:].reshape(nb, -1)
+        tha, thb = _split(tha, th, thb, keep)
+        ra, rb = _split(ra, r, rb, keep)
+        pa, pb = _split(pa, rp, pb, keep)
     total[:, lost] = np.nan
     return total
 
 
-def _row_ratios(kin: Kinematics, names: list[str], probe: _Probe, pos: np.ndarray):
-    """theta, r, r' per body at the rows (sorted): from the rows' omega and alpha, or at
-    rest from the mechanism at unit speed."""
-    n = pos.size
+def _row_ratios(kin: Kinematics, names: list[str]) -> tuple[np.ndarray, np.ndarray]:
+    """r = d theta / d phi and r' = d r / d phi per body at the rows, from the rows' omega
+    and alpha (a moving driver: omega = r phidot, alpha = r' phidot^2 + r phiddot)."""
+    n = kin.n
     drv = kin.scene.driver
     w, eps = float(drv.speed), float(drv.acceleration)
-    if w == 0.0:
-        return probe(pos)
-    th = np.stack([np.broadcast_to(kin.bodies[b].theta, (n,)) for b in names])
     om = np.stack([np.broadcast_to(kin.bodies[b].omega, (n,)) for b in names])
     al = np.stack([np.broadcast_to(kin.bodies[b].alpha, (n,)) for b in names])
     r = om / w
-    return th, r, (al - r * eps) / (w * w)
+    return r, (al - r * eps) / (w * w)
 
 
 def _anchor(a: np.ndarray) -> np.ndarray:
@@ -231,9 +232,9 @@ def body_angles(kin: Kinematics) -> dict[str, np.ndarray]:
         probe = _Probe(kin, names)
         drv = scene.driver
         if drv.speed != 0.0:
-            _, r, rp = _row_ratios(kin, names, probe, pos)
+            r, rp = _row_ratios(kin, names)
             r, rp = r[:, order], rp[:, order]
-        else:
+        else:               # at rest every omega is 0: the ratios at unit speed
             _, r, rp = probe(ps)
         h = np.diff(ps)
         hs = np.deg2rad(h) if drv.kind == "R" else h

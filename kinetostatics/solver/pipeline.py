@@ -42,8 +42,9 @@ def solve(scene: Any, positions: Any = None) -> Solution:
     Raises
     ------
     SceneError, StructureError, AssemblyError
-        One-line messages for a bad scene (a position listed twice included), a chain that is not driver + dyads, a
-        mechanism that cannot be assembled or is exactly singular somewhere.
+        One-line messages for a bad scene (a position listed twice included), a chain
+        that is not driver + dyads, a mechanism that cannot be assembled or is exactly
+        singular somewhere.
 
     Examples
     --------
