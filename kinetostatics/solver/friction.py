@@ -39,7 +39,7 @@ from ..model.scene import GROUND, Joint, Scene
 from . import arith as A
 from .friction_rows import Spec, settle
 from .kinematics import Kinematics
-from .loads import RESIST_STILL, PointLoad, resultants
+from .loads import RESIST_STILL, PointLoad, motion_scales, resultants
 from .reactions import DriverReaction, JointReaction, solve_reactions
 
 
@@ -48,20 +48,22 @@ def has_friction(scene: Scene) -> bool:
     return any(j.friction is not None and j.friction.mu > 0 for j in scene.joints.values())
 
 
-def against_motion(vrel, arel, n: int) -> tuple[np.ndarray, np.ndarray]:
+def against_motion(vrel, arel, n: int, vscale: float = 0.0, ascale: float = 0.0
+                   ) -> tuple[np.ndarray, np.ndarray]:
     """The sign of a friction load, against the relative motion, and the rows where it
     has no direction.
 
     Where the joint moves, -sign(relative velocity). Where it is at rest (|vrel| at most
-    1e-9 of its largest over the sweep: the same test as a ``resist`` point's), the
-    friction opposes the motion about to start, -sign(relative acceleration); where that
-    vanishes too (at most 1e-9 of its largest), the direction is undefined: sign 0 and
-    the row is flagged ``undefined_load`` (scene-format section 1, Results).
+    1e-9 of its largest over the sweep or of the mechanism's scale ``vscale`` if larger:
+    the same test as a ``resist`` point's), the friction opposes the motion about to
+    start, -sign(relative acceleration); where that vanishes too (at most 1e-9 of its
+    largest, or of ``ascale``), the direction is undefined: sign 0 and the row is
+    flagged ``undefined_load`` (scene-format section 1, Results).
     """
     v = np.broadcast_to(np.asarray(vrel, dtype=float), (n,))
     a = np.broadcast_to(np.asarray(arel, dtype=float), (n,))
-    vtop = float(np.abs(v).max()) if n else 0.0
-    atop = float(np.abs(a).max()) if n else 0.0
+    vtop = max(float(np.abs(v).max()) if n else 0.0, vscale)
+    atop = max(float(np.abs(a).max()) if n else 0.0, ascale)
     still = np.abs(v) <= RESIST_STILL * vtop
     if not still.any():
         return -np.sign(v), still
@@ -81,7 +83,9 @@ def _unit_loads(scene: Scene, kin: Kinematics, j: Joint
         b0, b1 = j.bodies
         k0, k1 = kin.bodies[b0], kin.bodies[b1]
         # on b1, against omega_10 (at rest: against its angular acceleration)
-        m1, undefined = against_motion(A.sub(k1.omega, k0.omega), A.sub(k1.alpha, k0.alpha), n)
+        _, ws, _, als = motion_scales(scene)
+        m1, undefined = against_motion(A.sub(k1.omega, k0.omega), A.sub(k1.alpha, k0.alpha), n,
+                                       ws, als)
         for body, m in ((b1, m1), (b0, -m1)):
             if body != GROUND:
                 out.append(PointLoad(body, "friction", 0.0, 0.0, 0.0, 0.0, m,
@@ -101,7 +105,8 @@ def _unit_loads(scene: Scene, kin: Kinematics, j: Joint
     # at rest the Coriolis term 2 omega_g x v_rel vanishes: the relative acceleration
     # along the line is u . (a_slider - a_guide) at the slider point
     arel = A.add(A.mul(ux, A.sub(asx, agx)), A.mul(uy, A.sub(asy, agy)))
-    f, undefined = against_motion(vrel, arel, n)        # on the slider, along u
+    vs, _, acs, _ = motion_scales(scene)
+    f, undefined = against_motion(vrel, arel, n, vs, acs)   # on the slider, along u
     ffx, ffy = A.mul(f, ux), A.mul(f, uy)
     for body, sign in ((j.slider, 1.0), (j.guide, -1.0)):
         if body == GROUND:
