@@ -18,7 +18,7 @@ from .reactions import solve_reactions
 from .structure import analyse
 
 
-def solve(scene: Any, positions: Any = None) -> Solution:
+def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> Solution:
     """Kinematics, reactions in every joint and the equilibrating moment over the sweep.
 
     Parameters
@@ -32,6 +32,10 @@ def solve(scene: Any, positions: Any = None) -> Solution:
         row. Default: the scene's sweep. The tables keep the given order; the summary,
         the continuity of angles and the dead points between rows follow increasing
         driver position.
+    allow_repeats : bool
+        Solve a sweep that lists a position more than once instead of refusing it (for
+        the project's own callers, e.g. a simulation's record that passes a position
+        twice, or a reference row prepended to a batch); each repeat is its own row.
 
     Returns
     -------
@@ -54,8 +58,9 @@ def solve(scene: Any, positions: Any = None) -> Solution:
     True
     """
     sc = load_scene(scene)
-    check_distinct(sc.driver.positions if positions is None else np.atleast_1d(
-        np.asarray(positions, dtype=float)), "deg" if sc.driver.kind == "R" else "m")
+    if not allow_repeats:
+        check_distinct(sc.driver.positions if positions is None else np.atleast_1d(
+            np.asarray(positions, dtype=float)), "deg" if sc.driver.kind == "R" else "m")
     structure = analyse(sc)
     try:
         kin = solve_kinematics(sc, structure, positions)
