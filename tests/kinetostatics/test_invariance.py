@@ -273,7 +273,6 @@ def test_speed_to_zero_is_continuous_with_rest(path, data) -> None:
         undefined = rest.driver.undefined_load.to_numpy()
         # at rest friction has a direction wherever the motion about to start has one
         assert undefined.tolist() == moving.driver.undefined_load.tolist()
-        assert undefined.sum() <= undefined.size // 2
         ok = ~undefined
         if rest.self_locking is not None:
             ok &= ~rest.driver.self_locking.to_numpy() & ~moving.driver.self_locking.to_numpy()
