@@ -31,15 +31,6 @@ from .solver.structure import Structure
 OFFSET_EMPTY = 1e-12     # offset = M / N is left empty where |N| <= 1e-12 max|N|
 
 
-def continuous_angle(theta: np.ndarray) -> np.ndarray:
-    """Degrees, continuous over the sweep, the first in (-180, 180]."""
-    a = np.rad2deg(np.unwrap(np.asarray(theta, dtype=float)))
-    if a.size:
-        first = 180.0 - np.mod(180.0 - a[0], 360.0)
-        a = a + (first - a[0])
-    return a
-
-
 def _column(value, n: int, dtype=float) -> np.ndarray:
     """A table column of its own (a copy: the table never shares the solver's arrays)."""
     return np.array(np.broadcast_to(value, (n,)), dtype=dtype)
