@@ -22,6 +22,7 @@ import numpy as np
 from .longtable import LongTable
 from .model.errors import WorkbenchError
 from .model.scene import GROUND, Scene
+from .solver.continuity import body_angles, sweep_order
 from .solver.kinematics import Kinematics
 from .solver.loads import PointLoad
 from .solver.reactions import DriverReaction, JointReaction
@@ -31,15 +32,6 @@ if TYPE_CHECKING:
     import pandas as pd
 
 OFFSET_EMPTY = 1e-12     # offset = M / N is left empty where |N| <= 1e-12 max|N|
-
-
-def continuous_angle(theta: np.ndarray) -> np.ndarray:
-    """Degrees, continuous over the sweep, the first in (-180, 180]."""
-    a = np.rad2deg(np.unwrap(np.asarray(theta, dtype=float)))
-    if a.size:
-        first = 180.0 - np.mod(180.0 - a[0], 360.0)
-        a = a + (first - a[0])
-    return a
 
 
 def _column(value, n: int, dtype=float) -> np.ndarray:
@@ -224,20 +216,27 @@ class Solution:
     def _bodies_long(self) -> LongTable:
         n = self.positions.size
         names = list(self.scene.bodies)
-        angles: dict[int, np.ndarray] = {}
 
         def chunk(i: int, part: slice) -> dict:
             m = self.kin.bodies[names[i]]
-            if i not in angles:         # continuous over the whole sweep
-                if names[i] == self.scene.driver.body and self.scene.driver.kind == "R":
-                    angles[i] = np.asarray(self.positions, dtype=float)
-                else:
-                    angles[i] = continuous_angle(np.broadcast_to(m.theta, (n,)))
-            return {"angle": angles[i][part],
+            return {"angle": self.angles[names[i]][part],
                     "omega": np.broadcast_to(m.omega, (n,))[part],
                     "alpha": np.broadcast_to(m.alpha, (n,))[part]}
 
         return LongTable(self.positions, {"body": names}, ("angle", "omega", "alpha"), chunk)
+
+    @cached_property
+    def angles(self) -> dict[str, np.ndarray]:
+        """Every body's angle (deg) per row: continuous along increasing driver position
+        and following the true motion between rows, however far apart
+        (:func:`kinetostatics.solver.continuity.body_angles`)."""
+        return body_angles(self.kin)
+
+    @cached_property
+    def order(self) -> np.ndarray:
+        """The rows in increasing driver position: the order of the motion, along which
+        the summary's means, extremes and intervals are taken."""
+        return sweep_order(self.positions)
 
     # -- project tables ---------------------------------------------------------
     @cached_property
@@ -399,18 +398,22 @@ class Solution:
 
     # -- summary and files ------------------------------------------------------
     def summary(self) -> dict:
-        """The contract's ``summary.json`` content."""
+        """The contract's ``summary.json`` content. Everything that depends on the order
+        of the motion (the mean by the trapezoid rule, the position of an extreme when
+        several rows tie, the intervals between rows) is taken along increasing driver
+        position, so that the same set of positions gives the same summary in any order."""
         q = self.driver_quantity
-        me = np.asarray(self.Me, dtype=float)
-        pos = self.positions.astype(float)
+        order = self.order
+        me = np.asarray(self.Me, dtype=float)[order]
+        pos = self.positions.astype(float)[order]
         locked = self.self_locking
         if locked is not None and locked.any():
             # with friction, rows where the mechanism locks have no settled Me or
             # reactions: the statistics are over the other rows (counted below)
-            keep = ~locked
-            me, pos = me[keep], pos[keep]
+            keep = order[~locked[order]]
+            me, pos = me[~locked[order]], pos[~locked[order]]
         else:
-            keep = slice(None)
+            keep = order
         if pos.size > 1 and pos[-1] != pos[0]:
             mean = float(np.trapezoid(me, pos) / (pos[-1] - pos[0]))
         else:
@@ -440,8 +443,13 @@ class Solution:
         # a dead point between two rows (a change point passed, a lever through its
         # pivot): the pairs of positions around it, both rows flagged singular
         pos_all = self.positions.astype(float)
-        out["dead_points_between_rows"] = [[float(pos_all[i]), float(pos_all[i + 1])]
-                                           for i in self.kin.between]
+        out["dead_points_between_rows"] = [[float(pos_all[i]), float(pos_all[j])]
+                                           for i, j in self.kin.between]
+        # a dyad that cannot close somewhere between two rows: no motion joins them
+        # (listed only when there is one)
+        if len(self.kin.unassembled):
+            out["unassembled_between_rows"] = [[float(pos_all[i]), float(pos_all[j])]
+                                               for i, j in self.kin.unassembled]
         out["undefined_load_rows"] = int(np.count_nonzero(self.undefined_load))
         if locked is not None:
             out["self_locking_rows"] = int(np.count_nonzero(locked))

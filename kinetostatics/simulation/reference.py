@@ -33,7 +33,7 @@ def reference_solution(scene: Any, positions):
     from ..solver.pipeline import solve
     sc = load_scene(scene)
     pos = np.concatenate([[sc.driver.positions[0]], np.asarray(positions, dtype=float)])
-    return solve(_raw_with_positions(sc, pos))
+    return solve(_raw_with_positions(sc, pos), allow_repeats=True)
 
 
 def sweep_positions(scene: Scene, count: int = 73) -> np.ndarray:

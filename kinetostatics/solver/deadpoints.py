@@ -16,6 +16,16 @@ interior minimum is at most 1e-3 and below both its rows' values holds a dead po
 rows are flagged ``singular`` and the interval is reported. The same probe one row's
 spacing beyond each end of the sweep flags an end row near a dead point just outside it
 (for a whole turn that is the same state as the other end row).
+
+Rows are taken in increasing driver position (:func:`~.continuity.sweep_order`), so a
+``positions`` list in any order finds the same intervals.
+
+A probe where some dyad cannot close (no closed form: the links do not reach) is not a
+dead point: there is no motion from one row to the other at all, the two rows lie in
+separate ranges of assembly. Such intervals are reported apart (``unassembled``;
+``summary.json``: ``unassembled_between_rows``), their rows are not flagged
+``singular`` for it, and no dead point is looked for in them. Beyond the ends of the
+sweep such probes are left out.
 """
 
 from __future__ import annotations
@@ -23,6 +33,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..model.scene import Scene
+from .continuity import open_rows, sweep_order
 from .kinematics import SINGULAR_WARN, Kinematics, solve_kinematics
 from .structure import Structure
 
@@ -55,46 +66,59 @@ def _candidates(m2: np.ndarray) -> np.ndarray:
     return out[(out >= 0) & (out < n - 1)]
 
 
-def _probe(scene: Scene, structure: Structure, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    """The smallest m^2 found inside each interval (lo, hi), zooming ROUNDS times."""
+def _probe(scene: Scene, structure: Structure, lo: np.ndarray, hi: np.ndarray
+           ) -> tuple[np.ndarray, np.ndarray]:
+    """The smallest m^2 found inside each interval (lo, hi), zooming ROUNDS times, and
+    the intervals where some probe found a dyad that cannot close (no closed form)."""
     t = np.linspace(0.0, 1.0, PROBES + 2)
     rows = np.arange(lo.size)
     best = np.full(lo.size, np.inf)
+    open_ = np.zeros(lo.size, dtype=bool)
     for _ in range(ROUNDS):
         grid = lo[:, None] + (hi - lo)[:, None] * t[None, :]
         probe = solve_kinematics(scene, structure, positions=grid[:, 1:-1].ravel(),
                                  strict=False)
         pm2 = _measure2(probe).reshape(lo.size, PROBES)
-        pm2 = np.where(np.isnan(pm2), 0.0, pm2)        # no closed form there: a dead point
+        nan = np.isnan(pm2) | open_rows(probe).reshape(lo.size, PROBES)
+        open_ |= nan.any(axis=1)
+        pm2 = np.where(nan, np.inf, pm2)        # no closed form there: not a dead point
         j = np.argmin(pm2, axis=1)
         best = np.minimum(best, pm2[rows, j])
         lo, hi = grid[rows, j], grid[rows, j + 2]
-    return best
+    return best, open_
 
 
-def dead_points_between_rows(scene: Scene, structure: Structure,
-                             kin: Kinematics) -> tuple[np.ndarray, np.ndarray]:
-    """Dead points between rows, and just beyond the sweep's ends.
+def dead_points_between_rows(scene: Scene, structure: Structure, kin: Kinematics
+                             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Dead points between rows, and just beyond the sweep's ends; intervals the
+    mechanism cannot cross.
 
     Parameters
     ----------
     scene, structure, kin
-        The mechanism and its kinematics over the sweep.
+        The mechanism and its kinematics over the sweep (rows in any order).
 
     Returns
     -------
     between : numpy.ndarray
-        The intervals i (between rows i and i + 1) that hold a dead point, ascending.
+        (k, 2) rows (i, j), neighbours in increasing driver position (i before j), with a
+        dead point between them; in increasing position.
     ends : numpy.ndarray
-        The end rows (0 and/or n - 1) with a dead point within one row's spacing beyond
-        them (outside the sweep: for a whole turn, the same state as the other end).
+        The end rows (smallest and/or largest position) with a dead point within one
+        row's spacing beyond them (outside the sweep: for a whole turn, the same state as
+        the other end).
+    unassembled : numpy.ndarray
+        (k, 2) rows (i, j) as in ``between`` where some dyad cannot close at a position
+        probed between them: the two rows are not joined by any motion of the mechanism.
     """
-    none = np.zeros(0, dtype=int)
-    m2 = _measure2(kin)
-    n = m2.size
+    none, pairs = np.zeros(0, dtype=int), np.zeros((0, 2), dtype=int)
+    m2u = _measure2(kin)
+    n = m2u.size
     if n < 2:
-        return none, none
-    pos = np.asarray(kin.positions, dtype=float)
+        return pairs, none, pairs
+    order = sweep_order(kin.positions)
+    m2 = m2u[order]
+    pos = np.asarray(kin.positions, dtype=float)[order]
     cand = _candidates(m2)
     # beyond the ends: an end row that is a dip of m, probed over one spacing outside
     outer = [(0, 2.0 * pos[0] - pos[1], pos[0]), (n - 1, pos[-1], 2.0 * pos[-1] - pos[-2])]
@@ -103,11 +127,14 @@ def dead_points_between_rows(scene: Scene, structure: Structure,
     lo = np.concatenate([pos[cand], [o[1] for o in outer]])
     hi = np.concatenate([pos[cand + 1], [o[2] for o in outer]])
     if lo.size == 0:
-        return none, none
-    best = _probe(scene, structure, lo, hi)
+        return pairs, none, pairs
+    best, open_ = _probe(scene, structure, lo, hi)
     k = cand.size
     ends_m2 = np.minimum(m2[cand], m2[cand + 1])
-    between = cand[(best[:k] <= SINGULAR_WARN**2) & (best[:k] < ends_m2)]
-    edge = np.array([o[0] for o, b in zip(outer, best[k:], strict=True)
+    dead = (best[:k] <= SINGULAR_WARN**2) & (best[:k] < ends_m2) & ~open_[:k]
+    between = cand[dead]
+    gaps = cand[open_[:k]]
+    edge = np.array([order[o[0]] for o, b in zip(outer, best[k:], strict=True)
                      if b <= SINGULAR_WARN**2 and b < m2[o[0]]], dtype=int)
-    return between, edge
+    return (np.stack([order[between], order[between + 1]], axis=1),
+            edge, np.stack([order[gaps], order[gaps + 1]], axis=1))

@@ -5,6 +5,9 @@ Scene extension (documented in ``docs/scene-extensions.md``): a joint may carry
 ``friction = { mu = 0.1, length = 0.08 }`` (prismatic: the slider's bearing length,
 optional). Without it a joint has no friction.
 
+* At rest (no relative velocity in the joint at a row) the friction opposes the
+  relative acceleration, the motion about to start; where both vanish its direction is
+  undefined: no friction load there, and the row is flagged ``undefined_load``.
 * Revolute joint: the friction circle of radius rho = r mu (eq. 2.62); the friction
   couple on each body is rho |F| against the relative rotation of that body.
 * Prismatic joint: the friction force mu N^0 against the relative sliding (s. 2.4,
@@ -36,7 +39,7 @@ from ..model.scene import GROUND, Joint, Scene
 from . import arith as A
 from .friction_rows import Spec, settle
 from .kinematics import Kinematics
-from .loads import PointLoad, resultants
+from .loads import RESIST_STILL, PointLoad, motion_scales, resultants
 from .reactions import DriverReaction, JointReaction, solve_reactions
 
 
@@ -45,21 +48,49 @@ def has_friction(scene: Scene) -> bool:
     return any(j.friction is not None and j.friction.mu > 0 for j in scene.joints.values())
 
 
-def _unit_loads(scene: Scene, kin: Kinematics, j: Joint) -> list[PointLoad]:
-    """Friction loads of unit magnitude against the relative motion (zero where the
-    joint does not move)."""
+def against_motion(vrel, arel, n: int, vscale: float = 0.0, ascale: float = 0.0
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """The sign of a friction load, against the relative motion, and the rows where it
+    has no direction.
+
+    Where the joint moves, -sign(relative velocity). Where it is at rest (|vrel| at most
+    1e-9 of its largest over the sweep or of the mechanism's scale ``vscale`` if larger:
+    the same test as a ``resist`` point's), the friction opposes the motion about to
+    start, -sign(relative acceleration); where that vanishes too (at most 1e-9 of its
+    largest, or of ``ascale``), the direction is undefined: sign 0 and the row is
+    flagged ``undefined_load`` (scene-format section 1, Results).
+    """
+    v = np.broadcast_to(np.asarray(vrel, dtype=float), (n,))
+    a = np.broadcast_to(np.asarray(arel, dtype=float), (n,))
+    vtop = max(float(np.abs(v).max()) if n else 0.0, vscale)
+    atop = max(float(np.abs(a).max()) if n else 0.0, ascale)
+    still = np.abs(v) <= RESIST_STILL * vtop
+    if not still.any():
+        return -np.sign(v), still
+    quiet = np.abs(a) <= RESIST_STILL * atop
+    sign = np.where(still, np.where(quiet, 0.0, -np.sign(a)), -np.sign(v))
+    return sign, still & quiet
+
+
+def _unit_loads(scene: Scene, kin: Kinematics, j: Joint
+                ) -> tuple[list[PointLoad], np.ndarray]:
+    """Friction loads of unit magnitude against the relative motion (at rest, against
+    the relative acceleration: :func:`against_motion`), and the rows where the joint's
+    friction has no direction (zero load there)."""
     n = kin.n
     out: list[PointLoad] = []
     if j.kind == "R":
         b0, b1 = j.bodies
-        w0 = np.broadcast_to(kin.bodies[b0].omega, (n,))
-        w1 = np.broadcast_to(kin.bodies[b1].omega, (n,))
-        m1 = -np.sign(w1 - w0)                          # on b1, against omega_10
+        k0, k1 = kin.bodies[b0], kin.bodies[b1]
+        # on b1, against omega_10 (at rest: against its angular acceleration)
+        _, ws, _, als = motion_scales(scene)
+        m1, undefined = against_motion(A.sub(k1.omega, k0.omega), A.sub(k1.alpha, k0.alpha), n,
+                                       ws, als)
         for body, m in ((b1, m1), (b0, -m1)):
             if body != GROUND:
                 out.append(PointLoad(body, "friction", 0.0, 0.0, 0.0, 0.0, m,
                                      f"friction couple in {j.name}"))
-        return out
+        return out, undefined
     g, s = kin.bodies[j.guide], kin.bodies[j.slider]
     if j.slider == GROUND:
         sx, sy = scene.ground[j.points[1]]
@@ -68,9 +99,14 @@ def _unit_loads(scene: Scene, kin: Kinematics, j: Joint) -> list[PointLoad]:
     ux, uy = g.rotate(np.cos(j.beta), np.sin(j.beta))
     vsx, vsy = s.vel_at(sx, sy)
     vgx, vgy = g.vel_at(sx, sy)
-    vrel = np.broadcast_to(A.add(A.mul(ux, A.sub(vsx, vgx)), A.mul(uy, A.sub(vsy, vgy))),
-                           (n,))
-    f = -np.sign(vrel)                                  # on the slider, along u
+    vrel = A.add(A.mul(ux, A.sub(vsx, vgx)), A.mul(uy, A.sub(vsy, vgy)))
+    asx, asy = s.acc_at(sx, sy)
+    agx, agy = g.acc_at(sx, sy)
+    # at rest the Coriolis term 2 omega_g x v_rel vanishes: the relative acceleration
+    # along the line is u . (a_slider - a_guide) at the slider point
+    arel = A.add(A.mul(ux, A.sub(asx, agx)), A.mul(uy, A.sub(asy, agy)))
+    vs, _, acs, _ = motion_scales(scene)
+    f, undefined = against_motion(vrel, arel, n, vs, acs)   # on the slider, along u
     ffx, ffy = A.mul(f, ux), A.mul(f, uy)
     for body, sign in ((j.slider, 1.0), (j.guide, -1.0)):
         if body == GROUND:
@@ -79,21 +115,24 @@ def _unit_loads(scene: Scene, kin: Kinematics, j: Joint) -> list[PointLoad]:
         out.append(PointLoad(body, "friction", A.sub(sx, m.ox), A.sub(sy, m.oy),
                              A.mul(sign, ffx), A.mul(sign, ffy), 0.0,
                              f"friction force in {j.name}"))
-    return out
+    return out, undefined
 
 
-def _specs(scene: Scene, kin: Kinematics) -> list[Spec]:
+def _specs(scene: Scene, kin: Kinematics) -> tuple[list[Spec], np.ndarray]:
+    """The joints with friction, and the rows where some friction has no direction."""
     out = []
+    undefined = np.zeros(kin.n, dtype=bool)
     for j in scene.joints.values():
         fr = j.friction
         if fr is None or fr.mu == 0.0 or (j.kind == "R" and fr.radius == 0.0):
             continue                    # no friction (a pin of radius 0 has none)
+        unit, still = _unit_loads(scene, kin, j)
+        undefined |= still
         if j.kind == "R":
-            out.append(Spec(j, fr.radius * fr.mu, 0.0, 2, _unit_loads(scene, kin, j)))
+            out.append(Spec(j, fr.radius * fr.mu, 0.0, 2, unit))
         else:
-            out.append(Spec(j, fr.mu, fr.length, 2 if fr.length > 0.0 else 1,
-                             _unit_loads(scene, kin, j)))
-    return out
+            out.append(Spec(j, fr.mu, fr.length, 2 if fr.length > 0.0 else 1, unit))
+    return out, undefined
 
 
 def _quantities(spec: Spec, r: JointReaction, n: int) -> list[np.ndarray]:
@@ -132,12 +171,14 @@ def _lock_message(scene: Scene, pos: np.ndarray, specs: list[Spec], lam: np.ndar
 
 def solve_with_friction(scene: Scene, kin: Kinematics, loads: list[PointLoad]
                         ) -> tuple[dict[str, JointReaction], DriverReaction, list[PointLoad],
-                                   np.ndarray]:
+                                   np.ndarray, np.ndarray]:
     """Reactions and Me with joint friction, each row solved on its own scale.
 
-    Returns the reactions, the driver's Me/Fe, the friction loads and the
+    Returns the reactions, the driver's Me/Fe, the friction loads, the
     ``self_locking`` mask (rows where no finite driving effort moves the mechanism;
-    their Me/Fe, reactions and friction loads are NaN).
+    their Me/Fe, reactions and friction loads are NaN) and the rows where some joint's
+    friction has no direction (at rest with no relative acceleration either: its load
+    is zero there, the row is flagged ``undefined_load``).
 
     Raises
     ------
@@ -148,10 +189,10 @@ def solve_with_friction(scene: Scene, kin: Kinematics, loads: list[PointLoad]
         If some row's friction equations cannot be followed (never met in practice).
     """
     n = kin.n
-    specs = _specs(scene, kin)
+    specs, undefined = _specs(scene, kin)
     base, drive = solve_reactions(kin, resultants(loads, scene.bodies, n))
     if not specs:                       # only pins of radius 0: no friction at all
-        return base, drive, [], np.zeros(n, dtype=bool)
+        return base, drive, [], np.zeros(n, dtype=bool), undefined
     m = sum(sp.width for sp in specs)
     q0 = np.empty((m, n))
     g = np.empty((m, len(specs), n))        # column j: the response to joint j's unit load
@@ -170,7 +211,7 @@ def solve_with_friction(scene: Scene, kin: Kinematics, loads: list[PointLoad]
     if locked.any():
         reactions = {name: _blank(r, locked, n) for name, r in reactions.items()}
         drive = DriverReaction(drive.kind, np.where(locked, np.nan, drive.value))
-    return reactions, drive, fl, locked
+    return reactions, drive, fl, locked, undefined
 
 
 def _blank(r: JointReaction, rows: np.ndarray, n: int) -> JointReaction:

@@ -182,34 +182,49 @@ def _eye(k: int) -> np.ndarray:
     return np.eye(k)[:, :, None]
 
 
+def _newton(x: np.ndarray, system) -> tuple[np.ndarray, np.ndarray]:
+    """Batched Newton's method, every row on its own scale: ``system(live, x_live)``
+    gives, for the rows still iterating (indices into x's columns), the Jacobian
+    (K, K, rows), the right-hand side -residual (K, rows) and the scale of each row's
+    unknowns. A row is done when its step is at most NEWTON_TOLERANCE times its scale,
+    and fails where its Jacobian is singular. Returns x and the converged rows."""
+    x = x.copy()
+    m = x.shape[1]
+    done = np.zeros(m, dtype=bool)
+    failed = np.zeros(m, dtype=bool)
+    live = np.arange(m)
+    for _ in range(NEWTON_ITERATIONS):
+        if live.size == 0:
+            break
+        jac, rhs, scale = system(live, x[:, live])
+        step, ok = _solve_batch(jac, rhs)
+        x[:, live] += step
+        failed[live[~ok]] = True
+        done[live[ok & (np.abs(step).max(axis=0) <= NEWTON_TOLERANCE * scale)]] = True
+        live = np.flatnonzero(~done & ~failed)
+    return x, done & ~failed
+
+
 def _newton_path(rows: Rows, idx: np.ndarray, lam: np.ndarray, x: np.ndarray
                  ) -> tuple[np.ndarray, np.ndarray]:
     """Newton's method on the projective system at scales ``lam`` for rows ``idx``,
     from ``x`` = (w s, sigma) (k + 1, rows). Returns the solutions and which rows
     converged."""
     k = len(rows.specs)
-    x = x.copy()
-    done = np.zeros(idx.size, dtype=bool)
-    failed = np.zeros(idx.size, dtype=bool)
-    live = np.arange(idx.size)
-    for _ in range(NEWTON_ITERATIONS):
+
+    def system(live, xl):
         q0, gt, w = rows.take(idx[live])
         la = lam[live]
-        s, sig = x[:k, live], x[k, live]
+        s, sig = xl[:k], xl[k]
         hv, dhg, dhq = rows.linearise(sig * q0 + _apply(gt, s), w, gt, q0)
         res = np.concatenate([s - la * hv, (sig + s.sum(axis=0) - 1.0)[None]])
         jac = np.empty((k + 1, k + 1, live.size))
         jac[:k, :k] = _eye(k) - la * dhg
         jac[:k, k] = -la * dhq
         jac[k, :] = 1.0
-        step, ok = _solve_batch(jac, -res)
-        x[:, live] += step
-        failed[live[~ok]] = True
-        done[live[ok & (np.abs(step).max(axis=0) <= NEWTON_TOLERANCE)]] = True
-        live = np.flatnonzero(~done & ~failed)
-        if live.size == 0:
-            break
-    return x, done & ~failed
+        return jac, -res, 1.0
+
+    return _newton(x, system)
 
 
 def follow(rows: Rows, subset: np.ndarray
@@ -379,26 +394,17 @@ def newton_direct(rows: Rows, s: np.ndarray, idx: np.ndarray
     """Newton's method on s = h(q0 + G s) (normalised s, (k, rows)) at the given
     friction; convergence on each row's own scale. Returns s and the converged rows."""
     k = len(rows.specs)
-    s = s.copy()
     if idx.size == 0:
-        return s, np.zeros(0, dtype=bool)
-    done = np.zeros(idx.size, dtype=bool)
-    failed = np.zeros(idx.size, dtype=bool)
-    live = np.arange(idx.size)
-    for _ in range(NEWTON_ITERATIONS):
+        return s.copy(), np.zeros(0, dtype=bool)
+
+    def system(live, sl):
         q0, gt, w = rows.take(idx[live])
-        sl = s[:, live]
         hv, dhg, _ = rows.linearise(q0 + _apply(gt, sl), w, gt, q0)
-        step, ok = _solve_batch(_eye(k) - dhg, hv - sl)
-        s[:, live] += step
-        failed[live[~ok]] = True
         # the row's own scale: its unknowns and the terms of its residual
         scale = 1.0 + np.abs(sl).max(axis=0) + np.abs(hv).max(axis=0)
-        done[live[ok & (np.abs(step).max(axis=0) <= NEWTON_TOLERANCE * scale)]] = True
-        live = np.flatnonzero(~done & ~failed)
-        if live.size == 0:
-            break
-    return s, done & ~failed
+        return _eye(k) - dhg, hv - sl, scale
+
+    return _newton(s, system)
 
 
 def critical_scale(rows: Rows, idx: np.ndarray, x: np.ndarray, lam0: np.ndarray

@@ -106,7 +106,10 @@ class Kinematics:
     positions: np.ndarray
     bodies: dict[str, BodyMotion]
     dyads: list[DyadMotion] = field(default_factory=list)
-    between: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+    # rows (i, j), i before j in driver position, with a dead point between them; rows
+    # whose dyads cannot close somewhere between them; end rows near a dead point beyond
+    between: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=int))
+    unassembled: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=int))
     ends: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
 
     @property
@@ -119,8 +122,7 @@ class Kinematics:
         out = np.zeros(self.n, dtype=bool)
         for d in self.dyads:
             out |= d.singular
-        out[self.between] = True            # a dead point between rows i and i + 1
-        out[self.between + 1] = True
+        out[self.between.ravel()] = True    # a dead point between two rows
         out[self.ends] = True               # a dead point just beyond an end of the sweep
         return out
 

@@ -11,6 +11,7 @@ couple) so that the resultants, the virtual power and the pictures use one list.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -105,17 +106,35 @@ def inertia_loads(scene: Scene, kin: Kinematics) -> list[PointLoad]:
     return out
 
 
+def motion_scales(scene: Scene) -> tuple[float, float, float, float]:
+    """The mechanism's own scales of motion: (linear speed, angular speed, linear
+    acceleration, angular acceleration) of a point at the mechanism's size from a pivot
+    turning with the driver (for a sliding driver: of the driver, and that over the
+    size). "Standing still" is measured against the larger of these and the largest
+    value over the sweep, so that a sweep whose rows all lie at dead centres (every
+    speed rounding noise) still sees them stand still."""
+    drv = scene.driver
+    size = scene.size
+    w, eps = abs(float(drv.speed)), abs(float(drv.acceleration))
+    if drv.kind == "R":
+        return w * size, w, (eps + w * w) * size, eps + w * w
+    acc = eps + w * w / size
+    return w, w / size, acc, acc / size
+
+
 def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.ndarray]:
     """Gravity (at every cog) and the scene's ``[[loads]]``.
 
     Returns the loads and the ``undefined_load`` mask: rows where a ``resist`` point
-    stands still (its speed at most 1e-9 of its top speed), where that force is zero,
-    and rows where a ``when = "resisting"`` force's power is at most 1e-9 of its top
-    (the force switches there; it is taken as zero).
+    stands still (its speed at most 1e-9 of its top speed, or of the mechanism's speed
+    scale if larger: :func:`motion_scales`), where that force is zero, and rows where a
+    ``when = "resisting"`` force's power is at most 1e-9 of its top (the force switches
+    there; it is taken as zero).
     """
     n = kin.n
     undefined = np.zeros(n, dtype=bool)
     out = []
+    vscale = motion_scales(scene)[0]
     gx, gy = scene.gravity
     if gx or gy:
         for name, body in scene.bodies.items():
@@ -135,7 +154,7 @@ def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.nd
             vx, vy = m.vel_arm(rx, ry)
             vx, vy = np.broadcast_to(vx, (n,)), np.broadcast_to(vy, (n,))
             speed = np.hypot(vx, vy)
-            top = speed.max() if n else 0.0
+            top = max(speed.max() if n else 0.0, vscale)
             still = speed <= RESIST_STILL * top
             undefined |= still
             with np.errstate(divide="ignore", invalid="ignore"):
@@ -147,7 +166,7 @@ def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.nd
             fx, fy = float(load.force[0]), float(load.force[1])
             vx, vy = m.vel_arm(rx, ry)
             power = np.broadcast_to(fx * vx + fy * vy, (n,))
-            top = np.abs(power).max() if n else 0.0
+            top = max(np.abs(power).max() if n else 0.0, math.hypot(fx, fy) * vscale)
             still = np.abs(power) <= RESIST_STILL * top
             undefined |= still
             on = (power < 0.0) & ~still

@@ -9,6 +9,7 @@ import numpy as np
 from ..model.errors import AssemblyError
 from ..model.scene import load_scene
 from ..results import Solution
+from .continuity import check_distinct
 from .deadpoints import dead_points_between_rows
 from .friction import has_friction, solve_with_friction
 from .kinematics import solve_kinematics
@@ -17,7 +18,7 @@ from .reactions import solve_reactions
 from .structure import analyse
 
 
-def solve(scene: Any, positions: Any = None) -> Solution:
+def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> Solution:
     """Kinematics, reactions in every joint and the equilibrating moment over the sweep.
 
     Parameters
@@ -26,9 +27,15 @@ def solve(scene: Any, positions: Any = None) -> Solution:
         A loaded scene, a path to a ``.toml`` file, TOML text or a dict
         (``scene-format.md`` section 1).
     positions : array_like, optional
-        Driver positions (deg or m) at which to solve the same mechanism, in any order:
-        each dyad keeps the assembly chosen at the scene's own first row. Default: the
-        scene's sweep.
+        Driver positions (deg or m) at which to solve the same mechanism, in any order
+        (each listed once): each dyad keeps the assembly chosen at the scene's own first
+        row. Default: the scene's sweep. The tables keep the given order; the summary,
+        the continuity of angles and the dead points between rows follow increasing
+        driver position.
+    allow_repeats : bool
+        Solve a sweep that lists a position more than once instead of refusing it (for
+        the project's own callers, e.g. a simulation's record that passes a position
+        twice, or a reference row prepended to a batch); each repeat is its own row.
 
     Returns
     -------
@@ -39,8 +46,9 @@ def solve(scene: Any, positions: Any = None) -> Solution:
     Raises
     ------
     SceneError, StructureError, AssemblyError
-        One-line messages for a bad scene, a chain that is not driver + dyads, a
-        mechanism that cannot be assembled or is exactly singular somewhere.
+        One-line messages for a bad scene (a position listed twice included), a chain
+        that is not driver + dyads, a mechanism that cannot be assembled or is exactly
+        singular somewhere.
 
     Examples
     --------
@@ -50,10 +58,14 @@ def solve(scene: Any, positions: Any = None) -> Solution:
     True
     """
     sc = load_scene(scene)
+    if not allow_repeats:
+        check_distinct(sc.driver.positions if positions is None else np.atleast_1d(
+            np.asarray(positions, dtype=float)), "deg" if sc.driver.kind == "R" else "m")
     structure = analyse(sc)
     try:
         kin = solve_kinematics(sc, structure, positions)
-        kin.between, kin.ends = dead_points_between_rows(kin.scene, structure, kin)
+        kin.between, kin.ends, kin.unassembled = dead_points_between_rows(kin.scene, structure,
+                                                                           kin)
         sol = _solve_loads(kin.scene, structure, kin)
     except (OverflowError, ZeroDivisionError) as exc:
         raise AssemblyError(f"the scene's numbers overflow ({exc}); check its dimensions "
@@ -67,9 +79,9 @@ def _solve_loads(sc, structure, kin) -> Solution:
     applied, undefined = applied_loads(sc, kin)
     loads = applied + inertia
     if has_friction(sc):
-        reactions, drive, fl, locking = solve_with_friction(sc, kin, loads)
-        return Solution(sc, structure, kin, loads + fl, reactions, drive, undefined,
-                        self_locking=locking)
+        reactions, drive, fl, locking, at_rest = solve_with_friction(sc, kin, loads)
+        return Solution(sc, structure, kin, loads + fl, reactions, drive,
+                        np.broadcast_to(undefined, (kin.n,)) | at_rest, self_locking=locking)
     acc = resultants(loads, sc.bodies, kin.n)
     reactions, drive = solve_reactions(kin, acc)
     return Solution(sc, structure, kin, loads, reactions, drive, undefined)

@@ -43,7 +43,8 @@ def test_structure_carries_the_assembly() -> None:
 
 
 @settings(max_examples=25, deadline=None)
-@given(st.lists(st.floats(0.0, 360.0, allow_nan=False), min_size=1, max_size=12),
+@given(st.lists(st.floats(0.0, 360.0, allow_nan=False), min_size=1, max_size=12,
+                unique=True),
        st.randoms(use_true_random=False))
 def test_batch_order_never_changes_a_result(angles, rnd) -> None:
     """Positions solved in any order and in any batch give the rows of one sweep."""
@@ -69,14 +70,14 @@ def test_batch_order_never_changes_a_result(angles, rnd) -> None:
                                   by_position(shuffled, "driver", ["position", "Me"]))
     a = by_position(ordered, "bodies", ["position", "angle", "omega", "alpha"])
     b = by_position(shuffled, "bodies", ["position", "angle", "omega", "alpha"])
-    np.testing.assert_array_equal(a[:, [0, 2, 3]], b[:, [0, 2, 3]])
-    # the angle column is continuous along each sweep: equal modulo 360 deg
-    turns = (a[:, 1] - b[:, 1]) / 360.0
-    assert np.abs(turns - np.round(turns)).max() <= 1e-13
+    # the angles too: continuity follows increasing driver position, whatever the order
+    np.testing.assert_array_equal(a, b)
+    assert ordered.summary() == shuffled.summary()
     # and a single position alone is the same row as in the whole sweep
     one = ks.solve(scene, positions=[batch[0]])
-    full = ks.solve(scene, positions=[scene.driver.positions[0], batch[0]])
-    assert float(np.asarray(one.Me)[0]) == float(np.asarray(full.Me)[1])
+    if batch[0] != scene.driver.positions[0]:
+        full = ks.solve(scene, positions=[scene.driver.positions[0], batch[0]])
+        assert float(np.asarray(one.Me)[0]) == float(np.asarray(full.Me)[1])
 
 
 def test_reduced_mechanism_is_the_same_at_any_batch() -> None:
