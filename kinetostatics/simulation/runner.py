@@ -30,8 +30,8 @@ from .reference import reference_solution
 from .stepper import PYMUNK_VERSION, run
 from .stepsize import first_guess_steps
 
-__all__ = ["ACCEPTABLE_ERROR", "AUTO_ITERATIONS", "BUDGET", "WORK_BUDGET", "DEFAULT_STEPS_PER_REVOLUTION",
-           "MAX_AUTO_STEPS", "MAX_STEPS", "SETTLE_FRACTION", "TARGET_ERROR",
+__all__ = ["ACCEPTABLE_ERROR", "AUTO_ITERATIONS", "BUDGET", "DEFAULT_STEPS_PER_REVOLUTION",
+           "MAX_AUTO_STEPS", "MAX_STEPS", "SETTLE_FRACTION", "TARGET_ERROR", "WORK_BUDGET",
            "converged_iterations", "crosscheck", "crosscheck_many", "plan"]
 
 DEFAULT_STEPS_PER_REVOLUTION = 3600
