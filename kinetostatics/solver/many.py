@@ -25,11 +25,12 @@ import numpy as np
 
 from ..model.scene import load_scene
 from ..results import Solution
+from .deadpoints import dead_points_between_rows
 from .driver import BodyMotion
 from .kinematics import Kinematics, solve_kinematics
-from .pipeline import _check_finite, _solve_loads, solve
+from .pipeline import _check_finite, _solve_loads, check_distinct, solve
 from .reactions import DriverReaction
-from .stack import Rows, Stacker, assemblies, dead_points, signature
+from .stack import Rows, Stacker, assemblies, signature
 from .structure import analyse
 
 CHUNK_ROWS = 65_536     # rows solved at a time (positions x scenes; measured best of 4e3-4e5)
@@ -98,6 +99,7 @@ def solve_outcomes(items: list[Any]) -> list[Solution | Exception]:
     for i, item in enumerate(items):
         try:
             sc = load_scene(item)
+            check_distinct(sc.driver.positions, "deg" if sc.driver.kind == "R" else "m")
             key = signature(sc) if sc.driver.positions.size else None
         except Exception as exc:        # solve would raise it for this scene
             out[i] = exc
@@ -162,16 +164,14 @@ def _stacked(scenes: list, structure, ks: np.ndarray) -> list[Solution]:
     starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
     owner = np.repeat(np.arange(len(scenes)), counts)
     stacker = Stacker(scenes)
-    per_scene = replace(structure, assembly=tuple(ks))
     st = replace(structure, assembly=tuple(k[owner] for k in ks))
     big = stacker.scene(owner, np.concatenate([s.driver.positions for s in scenes]))
     kin = solve_kinematics(big, st)
-    dead = dead_points(stacker, per_scene, kin, starts, owner)
     sol = _solve_loads(big, st, kin)
     _check_finite(sol)
     cut = _splitter(sol)
     return [cut(sc, replace(structure, assembly=tuple(int(k[j]) for k in ks)),
-                slice(a, a + n), dead[j])
+                slice(a, a + n))
             for j, (sc, a, n) in enumerate(zip(scenes, starts, counts, strict=True))]
 
 
@@ -227,7 +227,7 @@ def _splitter(sol: Solution):
     drive, undefined = np.asarray(sol.drive.value), np.asarray(sol.undefined_load)
     drive_rows, undefined_rows = _per_row(drive, total), _per_row(undefined, total)
 
-    def cut(scene, structure, rows: slice, dead) -> Solution:
+    def cut(scene, structure, rows: slice) -> Solution:
         bodies = {name: BodyMotion(*[a[rows] if cut_it else a for a, cut_it in fs])
                   for name, fs in motions}
         n = rows.stop - rows.start
@@ -236,8 +236,11 @@ def _splitter(sol: Solution):
             pr = tuple([tp.cut(rows, known=bodies[b]) for tp, b in params])
             dms.append(t.cut(rows, dyad=structure.dyads[d], params=pr,
                              k=structure.assembly[d], n=n, _tau=None))
-        kin = Kinematics(scene, structure, scene.driver.positions, bodies, dms,
-                         between=dead[0], ends=dead[1])
+        kin = Kinematics(scene, structure, scene.driver.positions, bodies, dms)
+        # the dead points between rows, and the intervals no motion crosses, found per
+        # scene along increasing driver position exactly as solve finds them
+        kin.between, kin.ends, kin.unassembled = dead_points_between_rows(scene, structure,
+                                                                           kin)
         return Solution(scene, structure, kin, [t.cut(rows) for t in loads],
                         {name: t.cut(rows) for name, t in reactions},
                         DriverReaction(sol.drive.kind, drive[rows] if drive_rows else drive),

@@ -9,9 +9,10 @@ alone, so the numbers are the same. Used by :func:`kinetostatics.solve_many`.
 
 What the solver decides once per scene is decided here per scene, vectorised: the
 assembly of every dyad at the scene's first row (from its ``[near]`` hints, as
-:func:`~kinetostatics.solver.kinematics.choose_assembly`) and the dead points between
-rows (as :func:`~kinetostatics.solver.deadpoints.dead_points_between_rows`, with the
-probes of all the scenes in one solve).
+:func:`~kinetostatics.solver.kinematics.choose_assembly`). The dead points between rows
+are found for each scene's cut by
+:func:`~kinetostatics.solver.deadpoints.dead_points_between_rows` itself (rows in any
+order, intervals no motion crosses).
 """
 
 from __future__ import annotations
@@ -22,9 +23,8 @@ import numpy as np
 
 from ..model.scene import GROUND, Body, Scene
 from .closure import DyadSolver, body_origin, dyad_param
-from .deadpoints import PROBES, ROUNDS, SCREEN, _candidates, _measure2
 from .driver import driver_motion, ground_motion
-from .kinematics import SINGULAR_FAIL, SINGULAR_WARN, _hint_points, solve_dyad, solve_kinematics
+from .kinematics import SINGULAR_FAIL, _hint_points, solve_dyad
 from .structure import Structure
 
 
@@ -169,72 +169,6 @@ def _branch(first: Scene, dyad, solver: DyadSolver, motions, size, ok) -> np.nda
         dist[k] = total
     ok &= np.abs(dist[1] - dist[-1]) > 1e-12 * size ** 2
     return np.where(dist[1] < dist[-1], 1, -1)
-
-
-def dead_points(stacker: Stacker, structure: Structure, kin, starts: np.ndarray,
-                owner: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
-    """Per scene, the dead points between its rows and just beyond its ends, as
-    :func:`~kinetostatics.solver.deadpoints.dead_points_between_rows` finds them (the
-    probes of every scene in one solve)."""
-    none = np.zeros(0, dtype=int)
-    m2 = _measure2(kin)
-    pos = np.asarray(kin.positions, dtype=float)
-    counts = np.diff(np.append(starts, m2.size))
-    # candidates: the rows of every scene with an infinite measure between scenes
-    gaps = np.insert(m2, starts[1:], np.inf)
-    cand_g = _candidates(gaps)
-    inside = np.ones(gaps.size, dtype=bool)
-    inside[starts[1:] + np.arange(counts.size - 1)] = False      # the separators
-    cand_g = cand_g[inside[cand_g] & inside[cand_g + 1]]
-    cand = (np.cumsum(inside) - 1)[cand_g]
-    outer = []                                           # (row, lo, hi)
-    for a, n in zip(starts, counts, strict=True):
-        if n < 2:
-            continue
-        b = a + n - 1
-        if m2[a] < SCREEN**2 and m2[a] <= m2[a + 1]:
-            outer.append((a, 2.0 * pos[a] - pos[a + 1], pos[a]))
-        if m2[b] < SCREEN**2 and m2[b] <= m2[b - 1]:
-            outer.append((b, pos[b], 2.0 * pos[b] - pos[b - 1]))
-    lo = np.concatenate([pos[cand], [o[1] for o in outer]])
-    hi = np.concatenate([pos[cand + 1], [o[2] for o in outer]])
-    between, edge = none, none
-    if lo.size:
-        who = owner[np.concatenate([cand, np.array([o[0] for o in outer], dtype=int)])]
-        best = _probe(stacker, structure, who, lo, hi)
-        k = cand.size
-        ends_m2 = np.minimum(m2[cand], m2[cand + 1])
-        between = cand[(best[:k] <= SINGULAR_WARN**2) & (best[:k] < ends_m2)]
-        edge = np.array([o[0] for o, b in zip(outer, best[k:], strict=True)
-                         if b <= SINGULAR_WARN**2 and b < m2[o[0]]], dtype=int)
-    out = []
-    for s, a in enumerate(starts):
-        b = a + counts[s]
-        out.append((between[(between >= a) & (between < b)] - a,
-                    edge[(edge >= a) & (edge < b)] - a))
-    return out
-
-
-def _probe(stacker: Stacker, structure: Structure, who: np.ndarray, lo: np.ndarray,
-           hi: np.ndarray) -> np.ndarray:
-    """The smallest m^2 inside each interval (lo, hi) of scene ``who``, zooming as
-    :mod:`~kinetostatics.solver.deadpoints` does."""
-    t = np.linspace(0.0, 1.0, PROBES + 2)
-    rows = np.arange(lo.size)
-    best = np.full(lo.size, np.inf)
-    owner = np.repeat(who, PROBES)
-    st = replace(structure, assembly=tuple(k[owner] if np.ndim(k) else k
-                                           for k in structure.assembly))
-    for _ in range(ROUNDS):
-        grid = lo[:, None] + (hi - lo)[:, None] * t[None, :]
-        probe = solve_kinematics(stacker.scene(owner, grid[:, 1:-1].ravel()), st,
-                                 strict=False)
-        pm2 = _measure2(probe).reshape(lo.size, PROBES)
-        pm2 = np.where(np.isnan(pm2), 0.0, pm2)
-        j = np.argmin(pm2, axis=1)
-        best = np.minimum(best, pm2[rows, j])
-        lo, hi = grid[rows, j], grid[rows, j + 2]
-    return best
 
 
 def plain(x):

@@ -136,3 +136,27 @@ def test_first_refused_scene_raises_as_solve_does() -> None:
         ks.solve_many([good[0], bad, good[1], good[2]])
     assert str(together.value) == str(alone.value)
     assert ks.solve_many([]) == []
+
+
+def test_positions_in_any_order_and_repeats_as_solve(alone_calls) -> None:
+    """Stacked scenes whose positions come in any order give solve's rows, angles and
+    summary (continuity and dead points along increasing position); a repeated position
+    is refused as solve refuses it."""
+    scenes = variants("four_bar", 3, 0.05, seed=3)
+    rng = np.random.default_rng(7)
+    for d in scenes:
+        pos = np.linspace(0.0, 360.0, 13)[:-1]
+        d["driver"] = {k: v for k, v in d["driver"].items()
+                       if k not in ("start", "stop", "count")}
+        d["driver"]["positions"] = [float(p) for p in rng.permutation(pos)]
+    sols = ks.solve_many(scenes)
+    assert alone_calls == []
+    for got, d in zip(sols, scenes, strict=True):
+        assert_same(got, ks.solve(d))
+    bad = copy.deepcopy(scenes[0])
+    bad["driver"]["positions"] = [0.0, 90.0, 0.0]
+    with pytest.raises(ks.SceneError) as alone:
+        ks.solve(bad)
+    with pytest.raises(ks.SceneError) as batch:
+        ks.solve_many([scenes[1], bad])
+    assert str(batch.value) == str(alone.value)
