@@ -63,7 +63,7 @@ def influence_figure(result: Any, *, mass_unit: str = "", vib_unit: str = ""):
                   if result.trim_runs else "") + "predicted residual (dots)", fontsize=10)
     ax1.set_xlabel(f"Re ({vib_unit or 'reading unit'})")
     ax1.set_ylabel(f"Im ({vib_unit or 'reading unit'})")
-    ax1.legend(fontsize=8, loc="best")
+    ax1.legend(fontsize=10, loc="best")
     lim2 = 0.0
     for j, w in enumerate(result.corrections):
         c = colors[j % len(colors)]
@@ -85,7 +85,7 @@ def influence_figure(result: Any, *, mass_unit: str = "", vib_unit: str = ""):
     ax2.set_title(f"corrections with their {conf:g} % intervals (shaded)", fontsize=10)
     ax2.set_xlabel(f"mass x cos(angle) ({mass_unit or 'trial mass unit'})")
     ax2.set_ylabel(f"mass x sin(angle) ({mass_unit or 'trial mass unit'})")
-    ax2.legend(fontsize=8, loc="best")
+    ax2.legend(fontsize=10, loc="best")
     for ax, r in ((ax1, lim), (ax2, lim2)):
         r = 1.15 * r if r > 0 else 1.0
         ax.set_xlim(-r, r)
@@ -135,7 +135,7 @@ def iso_figure(iso: dict[str, Any]):
     ax.set_ylabel(f"unbalance ({iso['unbalance_unit']})")
     ax.set_title(f"ISO 21940-11, G {iso['grade']:g}: U_per = {iso['U_per']:.4g} "
                  f"{iso['unbalance_unit']}", fontsize=10)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=10)
     ax.grid(True, axis="y", color="0.9")
     return fig
 
@@ -306,7 +306,7 @@ def _write_pdf(path: Path, lines: list[str], warns: list[str], figs: list,
         for start in range(0, len(text), 60):
             fig = plt.figure(figsize=(8.27, 11.69))
             fig.text(0.05, 0.97, "\n".join(text[start:start + 60]), va="top",
-                     family="monospace", fontsize=7, wrap=True)
+                     family="monospace", fontsize=10, wrap=True)
             pdf.savefig(fig)
             plt.close(fig)
         for caption, fig in figs:

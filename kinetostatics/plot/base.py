@@ -98,7 +98,7 @@ def math_name(name: str) -> str:
 
 def legend_outside(ax: Axes, **kw) -> None:
     """A small legend to the right of the Axes, outside the drawing."""
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0,
+    ax.legend(fontsize=10, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0,
               **kw)
 
 

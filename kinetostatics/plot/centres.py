@@ -16,7 +16,7 @@ from ..model.scene import GROUND
 from ..results import Solution
 from .base import at_row, axes_or_new, global_point, legend_outside, position_text, row_index
 from .mechanism import draw_mechanism
-from .style import declutter
+from .place import declutter
 
 __all__ = ["instant_centres", "plot_instant_centres"]
 

@@ -26,7 +26,7 @@ from .base import (
     vector_axes,
 )
 from .mechanism import draw_mechanism
-from .style import declutter
+from .place import declutter
 
 __all__ = [
     "overview", "plot_accelerations", "plot_angular", "plot_driver", "plot_polar",
@@ -70,7 +70,7 @@ def plot_driver(sol: Solution, ax: Axes | None = None) -> Axes:
                   else "equilibrating force Fe [N]")
     ax.set_title(f"{q} over the cycle", fontsize=10)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=10)
     return ax
 
 
@@ -117,7 +117,7 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
         ax.plot(fx[rows], fy[rows], ".", color=c, ms=4)
         for k, i in enumerate(rows):
             texts.append(ax.annotate(str(k), (float(fx[i]), float(fy[i])), xytext=(3, 3),
-                                     textcoords="offset points", fontsize=7, color=c))
+                                     textcoords="offset points", fontsize=10, color=c))
     ax.plot(0, 0, "k+", ms=10)
     if len(rows):
         step = float(sol.positions[rows[1]] - sol.positions[rows[0]]) if len(rows) > 1 else 0.0
@@ -179,7 +179,7 @@ def plot_transmission(sol: Solution, ax: Axes | None = None, admissible: float =
     ax.set_ylabel("transmission angle min(τ, 180° − τ) [deg]")
     ax.set_title("transmission angle", fontsize=10)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=10)
     return ax
 
 
@@ -231,7 +231,7 @@ def plot_trajectories(sol: Solution, points: Sequence[str] | None = None,
     ax.set_ylabel("y [m]")
     ax.set_title("trajectories", fontsize=10)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7, ncol=2)
+    ax.legend(fontsize=10, ncol=2)
     return ax
 
 
@@ -256,7 +256,7 @@ def _point_curves(sol: Solution, points, component: str, ax: Axes | None, kind: 
     ax.set_title(f"{'velocities' if kind == 'v' else 'accelerations'} of points over the "
                  "cycle", fontsize=10)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, ncol=2)
+    ax.legend(fontsize=10, ncol=2)
     return ax
 
 
@@ -339,7 +339,7 @@ def plot_angular(sol: Solution, bodies: Sequence[str] | str | None = None) -> Fi
         a.set_ylabel(lab)
         a.grid(True, alpha=0.3)
         a.axhline(0.0, color="0.5", lw=0.6)
-    axs[0].legend(fontsize=8, ncol=3)
+    axs[0].legend(fontsize=10, ncol=3)
     axs[0].set_title("angular motion of the bodies", fontsize=10)
     axs[-1].set_xlabel(position_label(sol))
     cycle_axis(axs[-1], sol)

@@ -22,7 +22,7 @@ from .base import (
     row_index,
     vector_axes,
 )
-from .style import declutter
+from .place import declutter
 
 __all__ = ["acceleration_plan", "velocity_plan"]
 

@@ -26,7 +26,7 @@ from .base import (
     row_index,
     vector_axes,
 )
-from .style import declutter
+from .place import declutter
 
 __all__ = ["find_dyad", "force_on", "force_polygon", "polygon_forces", "stretched_inset"]
 
@@ -249,7 +249,7 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
     ax.plot(0, 0, "ko", ms=4)
     closure = float(np.hypot(*tail))
     ax.text(0.01, 0.01, f"closure |ΣF| = {closure:.1e} N", transform=ax.transAxes,
-            fontsize=8, color="0.3")
+            fontsize=10, color="0.3")
     ax.set_aspect("equal", adjustable="datalim")
     ax.autoscale_view()
     ax.margins(0.12)
@@ -335,5 +335,5 @@ def stretched_inset(ax: Axes, segs: list, flat: float = 0.08, exact: float = 1e-
     ins.margins(0.08)
     ins.set_xticks([])
     ins.set_yticks([])
-    ins.set_title(f"stretched ×{k:.3g} across", fontsize=7, pad=2)
+    ins.set_title(f"stretched ×{k:.3g} across", fontsize=10, pad=2)
     return k
