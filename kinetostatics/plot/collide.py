@@ -9,7 +9,7 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.legend import Legend
-from matplotlib.patches import FancyArrowPatch
+from matplotlib.patches import Arc, FancyArrowPatch
 from matplotlib.path import Path
 from matplotlib.text import Annotation, Text
 
@@ -54,8 +54,9 @@ def drawn_paths(ax: Axes, skip=()) -> list[tuple[str, Path, int]]:
             out.append((f"arrow of '{t.get_text()}'" if t.get_text().strip() else "an arrow",
                         patch.get_transform().transform_path(patch.get_path()), id(patch)))
     for p in ax.patches:
-        if isinstance(p, FancyArrowPatch) and p.get_visible() and id(p) not in skip:
-            out.append(("an arrow", p.get_transform().transform_path(p.get_path()), id(p)))
+        if isinstance(p, FancyArrowPatch | Arc) and p.get_visible() and id(p) not in skip:
+            name = "an arc" if isinstance(p, Arc) else "an arrow"
+            out.append((name, p.get_transform().transform_path(p.get_path()), id(p)))
     return out
 
 

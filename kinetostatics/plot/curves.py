@@ -21,11 +21,13 @@ from .base import (
     axes_or_new,
     cycle_axis,
     legend_outside,
+    magnitude_text,
     position_label,
     trace_points,
     vector_axes,
 )
 from .mechanism import draw_mechanism
+from .notation import direction_text, gloss, number, titled
 from .place import declutter
 
 __all__ = [
@@ -58,7 +60,8 @@ def plot_driver(sol: Solution, ax: Axes | None = None) -> Axes:
     mean = sol.summary()[f"{q}_mean"]
     if abs(mean) < 1e-9 * (np.abs(me).max() or 1.0):
         mean = 0.0
-    ax.axhline(mean, color="tab:orange", ls="--", label=f"mean {mean:.4g} {unit}")
+    mean_text = "0 (to rounding)" if mean == 0.0 else f"{number(mean)} {unit}"
+    ax.axhline(mean, color="tab:orange", ls="--", label=f"mean {mean_text}")
     ax.axhline(0.0, color="0.5", lw=0.8)
     sing = sol.singular
     if sing.any():
@@ -68,9 +71,11 @@ def plot_driver(sol: Solution, ax: Axes | None = None) -> Axes:
     cycle_axis(ax, sol)
     ax.set_ylabel("equilibrating moment Me [N m]" if q == "Me"
                   else "equilibrating force Fe [N]")
-    ax.set_title(f"{q} over the cycle", fontsize=10)
+    ax.set_title(f"{q} over the cycle\n"
+                 f"{titled('balancing moment' if q == 'Me' else 'balancing force')}",
+                 fontsize=11)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=10)
+    legend_outside(ax)
     return ax
 
 
@@ -111,8 +116,25 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
     for j in joints:
         fx, fy = sol.reaction(j)
         r = sol.joint_reactions[j]
+        kind, u = _polar_kind(fx, fy)
+        f0 = np.array([float(fx[0]), float(fy[0])])
+        if kind == "constant":      # one point: say it, number nothing
+            ax.plot(fx[:1], fy[:1], "o", ms=7, label=f"F[{j}] on {r.on}")
+            c = ax.lines[-1].get_color()
+            texts.append(ax.annotate(
+                f"F[{j}] = {magnitude_text(float(np.hypot(*f0)))} N at {direction_text(f0)}"
+                "\nover the whole cycle", tuple(f0), xytext=(6, 6),
+                textcoords="offset points", fontsize=10, color=c))
+            continue
         ax.plot(fx, fy, lw=1.8, label=f"F[{j}] on {r.on}")
         c = ax.lines[-1].get_color()
+        if kind == "fixed direction":
+            along = np.asarray(fx) * u[0] + np.asarray(fy) * u[1]
+            ax.plot([], [], ls="none", label=f"F[{j}]: fixed direction {direction_text(u)}, "
+                    f"{number(along.min(), '.4g')} to {number(along.max(), '.4g')} N along it")
+            ax.annotate("", tuple(u * float(np.abs(along).max())), (0.0, 0.0),
+                        arrowprops={"arrowstyle": "-|>", "color": c, "lw": 0.8, "ls": ":",
+                                    "shrinkA": 0, "shrinkB": 0})
         ax.plot(fx[:1], fy[:1], "o", color=c, ms=5)
         ax.plot(fx[rows], fy[rows], ".", color=c, ms=4)
         for k, i in enumerate(rows):
@@ -128,11 +150,26 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
     vector_axes(ax)
     ax.set_xlabel("Fx [N]")
     ax.set_ylabel("Fy [N]")
-    ax.set_title("polar diagram of joint reactions (dot: first position)", fontsize=10)
+    ax.set_title(f"polar diagram of the joint reactions\n({gloss('polar diagram')}; "
+                 "dot: first position)", fontsize=11)
     ax.grid(True, alpha=0.3)
     legend_outside(ax)
     declutter(ax, texts)
     return ax
+
+
+def _polar_kind(fx, fy) -> tuple[str, np.ndarray]:
+    """``"constant"`` (one vector over the cycle), ``"fixed direction"`` (every vector
+    along one line, the unit vector returned) or ``"curve"``; to 1e-9 of the largest."""
+    f = np.column_stack([np.broadcast_to(fx, np.shape(fy)), fy]).astype(float)
+    big = float(np.hypot(f[:, 0], f[:, 1]).max()) if len(f) else 0.0
+    if big == 0.0 or float(np.ptp(f, axis=0).max()) <= 1e-9 * big:
+        return "constant", np.array([1.0, 0.0])
+    k = int(np.argmax(np.hypot(f[:, 0], f[:, 1])))
+    u = f[k] / np.hypot(*f[k])
+    if float(np.abs(f[:, 0] * u[1] - f[:, 1] * u[0]).max()) <= 1e-9 * big:
+        return "fixed direction", u
+    return "curve", u
 
 
 def numbered_rows(sol: Solution, numbers: int) -> np.ndarray:
@@ -168,18 +205,26 @@ def plot_transmission(sol: Solution, ax: Axes | None = None, admissible: float =
     t = getattr(sol, "transmission", None)
     if not isinstance(t, pd.DataFrame) or "transmission_angle" not in t:
         t = sol.dyads
+    texts = []
     for d, g in t.groupby("dyad"):
         tau = g.transmission_angle.to_numpy()
-        ax.plot(g.position, np.minimum(tau, 180.0 - tau), lw=2,   # one definition, [0, 90]
-                label=f"dyad {d} {g.kind.iloc[0]} ({g.bodies.iloc[0]})")
+        low = np.minimum(tau, 180.0 - tau)          # one definition, [0, 90]
+        ax.plot(g.position, low, lw=2, label=f"dyad {d} {g.kind.iloc[0]} ({g.bodies.iloc[0]})")
+        if len(low) and float(np.ptp(low)) <= 1e-9 * 90.0:      # constant: say it
+            texts.append(ax.annotate(
+                f"dyad {d}: τ = {number(float(low[0]), '.4g')}° over the whole cycle",
+                (float(np.mean(g.position)), float(low[0])), xytext=(0, -6),
+                textcoords="offset points", ha="center", va="top", fontsize=10,
+                color=ax.lines[-1].get_color()))
     ax.axhspan(0, admissible, color="tab:red", alpha=0.1, label="not admissible")
-    ax.set_ylim(0, 90)
+    ax.set_ylim(0, 95)
     ax.set_xlabel(position_label(sol))
     cycle_axis(ax, sol)
     ax.set_ylabel("transmission angle min(τ, 180° − τ) [deg]")
-    ax.set_title("transmission angle", fontsize=10)
+    ax.set_title(titled("transmission angle"), fontsize=11)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=10)
+    legend_outside(ax)
+    declutter(ax, texts)
     return ax
 
 

@@ -28,6 +28,7 @@ from .base import (
     row_index,
 )
 from .mechanism import draw_body
+from .notation import signed_text, titled
 from .place import declutter
 from .polygons import find_dyad, force_on, force_polygon
 
@@ -184,7 +185,7 @@ def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
             r = 0.04 * size
             _couple(ax, x, y, f["m"], r, col)
             name = "Mi" if f["kind"] == "inertia" else "M" if f["label"] != "Me" else "Me"
-            texts.append(ax.annotate(f"{name} = {f['m']:.4g} N m", (x, y),
+            texts.append(ax.annotate(signed_text(name, f["m"], "N m"), (x, y),
                                      xytext=(-6, -14), textcoords="offset points",
                                      fontsize=10, color=col, ha="right", va="top"))
         if f["kind"] == "inner":
@@ -203,7 +204,7 @@ def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
     ax.grid(True, alpha=0.3)
     what = f"dyad {d.index + 1} {d.kind} ({', '.join(d.bodies)})" if d is not None else \
         f"driver {bodies[0]}"
-    ax.set_title(f"free-body diagram: {what} at {position_text(sol, i)}\n"
+    ax.set_title(f"{titled('free-body diagram')}: {what} at {position_text(sol, i)}\n"
                  f"arrows: {sc * fmax:.3g} m ≙ {magnitude_text(fmax)} N", fontsize=10)
     force_polygon(sol, 0 if d is None else d.index + 1, row=i, ax=ax2)
     declutter(ax, texts)
