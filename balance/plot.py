@@ -315,13 +315,14 @@ def plot_amplitude_circles(result: ResonanceResult, ax: Axes | None = None, *,
     t = np.linspace(0.0, 2.0 * math.pi, 361)
     circle = np.exp(1j * t)
     c0 = result.A1 * circle
-    ax.plot(c0.real, c0.imag, color="k", lw=1.2, label=f"A1 = {result.A1:.4g} about O")
+    u = {"um": "µm"}.get(unit, unit)        # micrometres with the micro sign
+    ax.plot(c0.real, c0.imag, color="k", lw=1.2, label=f"A1 = {result.A1:.4g} {u} about O")
     for k, (mark, amp) in enumerate(zip(result.marks, result.amplitudes, strict=True)):
         centre = -polar(result.A, float(mark))
         c = centre + amp * circle
         color = _COLORS[k % len(_COLORS)]
         ax.plot(c.real, c.imag, color=color, lw=1.2,
-                label=f"trial at {mark:g} deg: A = {amp:.4g}")
+                label=f"trial at {mark:g} deg: A = {amp:.4g} {u}")
         ax.plot([centre.real], [centre.imag], "+", color=color, ms=8)
     if result.phi is not None:
         tips = [polar(result.A1, result.phi)]
@@ -332,9 +333,9 @@ def plot_amplitude_circles(result: ResonanceResult, ax: Axes | None = None, *,
                     label=("unbalance" if len(tips) == 1 else "candidate unbalances")
                     if n == 0 else None)
             ax.plot([0.0, tip.real], [0.0, tip.imag], color=_CORRECTION, lw=1.0)
-    ax.legend(fontsize=10, loc="upper right", framealpha=0.85)
+    ax.legend(fontsize=10, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     kind = "three-run" if result.method == "three-run" else f"{result.marks.size + 1}-run"
-    return _finish(ax, f"x ({unit}), 0 deg mark along +x", f"y ({unit})",
+    return _finish(ax, f"x ({u}), 0 deg mark along +x", f"y ({u})",
                    f"{kind} method, plane {result.plane}: circles of the measured amplitudes")
 
 

@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import BalanceError
-from .text import result_warnings, summary_text
+from .text import result_warnings, summary_text, unit_text
 
 __all__ = ["influence_figure", "iso_figure", "report_figures", "report_scene", "write_report"]
 
@@ -43,7 +43,8 @@ def influence_figure(result: Any, *, mass_unit: str = "", vib_unit: str = ""):
     """
     import matplotlib.pyplot as plt
 
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10.5, 5.0), layout="constrained")
+    vib_unit = unit_text(vib_unit)
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11.0, 6.5), layout="constrained")
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     pts = result.points or tuple(f"point {i + 1}" for i in range(result.initial.size))
     lim = 0.0
@@ -52,7 +53,7 @@ def influence_figure(result: Any, *, mass_unit: str = "", vib_unit: str = ""):
         c = colors[i % len(colors)]
         ax1.annotate("", (v0.real, v0.imag), (0, 0),
                      arrowprops={"arrowstyle": "-|>", "color": c, "lw": 1.8})
-        ax1.plot([], [], color=c, label=f"{pts[i]}: {abs(v0):.3g} at "
+        ax1.plot([], [], color=c, label=f"{pts[i]}: {abs(v0):.3g} {vib_unit} at "
                  f"{math.degrees(np.angle(v0)) % 360:.1f} deg")
         if result.trim_runs:
             ax1.annotate("", (vc.real, vc.imag), (0, 0),
@@ -63,7 +64,8 @@ def influence_figure(result: Any, *, mass_unit: str = "", vib_unit: str = ""):
                   if result.trim_runs else "") + "predicted residual (dots)", fontsize=10)
     ax1.set_xlabel(f"Re ({vib_unit or 'reading unit'})")
     ax1.set_ylabel(f"Im ({vib_unit or 'reading unit'})")
-    ax1.legend(fontsize=10, loc="best")
+    ax1.legend(fontsize=10, loc="upper center", bbox_to_anchor=(0.5, -0.14),
+               borderaxespad=0.0)
     lim2 = 0.0
     for j, w in enumerate(result.corrections):
         c = colors[j % len(colors)]
@@ -85,7 +87,8 @@ def influence_figure(result: Any, *, mass_unit: str = "", vib_unit: str = ""):
     ax2.set_title(f"corrections with their {conf:g} % intervals (shaded)", fontsize=10)
     ax2.set_xlabel(f"mass x cos(angle) ({mass_unit or 'trial mass unit'})")
     ax2.set_ylabel(f"mass x sin(angle) ({mass_unit or 'trial mass unit'})")
-    ax2.legend(fontsize=10, loc="best")
+    ax2.legend(fontsize=10, loc="upper center", bbox_to_anchor=(0.5, -0.14),
+               borderaxespad=0.0)
     for ax, r in ((ax1, lim), (ax2, lim2)):
         r = 1.15 * r if r > 0 else 1.0
         ax.set_xlim(-r, r)
@@ -179,7 +182,7 @@ def _png(fig: Any) -> str:
     import matplotlib.pyplot as plt
 
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=110)
+    fig.savefig(buf, format="png", dpi=150)
     plt.close(fig)
     return base64.b64encode(buf.getvalue()).decode("ascii")
 

@@ -54,7 +54,7 @@ from .flywheel import (
 from .freebody import dyad_free_body, free_body_forces
 from .gears import draw_gear_pair
 from .mechanism import animate, draw_body, draw_mechanism
-from .place import declutter
+from .place import declutter, settle
 from .plans import acceleration_plan, velocity_plan
 from .polygons import find_dyad, force_on, force_polygon, polygon_forces
 from .style import LECTURE, PROJECTOR, lecture_style, overlapping_texts, projector
@@ -98,6 +98,7 @@ __all__ = [
     "polygon_forces",
     "projector",
     "reduced_cycle",
+    "settle",
     "velocity_plan",
     "wittenbauer_flywheel",
 ]

@@ -101,6 +101,18 @@ def legend_outside(ax: Axes, **kw) -> None:
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, **kw)
 
 
+def legend_below(ax: Axes, ncol: int = 2) -> None:
+    """Move an Axes' legend below it, in ``ncol`` columns (a panel of a grid)."""
+    lg = ax.get_legend()
+    if lg is None:
+        return
+    handles, labels = lg.legend_handles, [t.get_text() for t in lg.get_texts()]
+    title = lg.get_title().get_text()
+    lg.remove()
+    ax.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, -0.14),
+              borderaxespad=0.0, ncol=ncol, title=title or None)
+
+
 def trace_points(sol: Solution) -> list[tuple[str, str]]:
     """(body, point) of every named point of the moving bodies, one per location name."""
     seen, out = set(), []

@@ -12,7 +12,6 @@ import numpy as np
 import pandas as pd
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
-from matplotlib.text import Annotation
 
 from ..model.errors import WorkbenchError
 from ..results import Solution
@@ -20,6 +19,7 @@ from .base import (
     PATH_COLORS,
     axes_or_new,
     cycle_axis,
+    legend_below,
     legend_outside,
     magnitude_text,
     position_label,
@@ -28,7 +28,7 @@ from .base import (
 )
 from .mechanism import draw_mechanism
 from .notation import direction_text, gloss, number, titled
-from .place import declutter
+from .place import declutter, settle
 
 __all__ = [
     "overview", "plot_accelerations", "plot_angular", "plot_driver", "plot_polar",
@@ -52,7 +52,7 @@ def plot_driver(sol: Solution, ax: Axes | None = None) -> Axes:
     Axes
         Position against Me [N m] (Fe [N] for a sliding driver).
     """
-    ax = axes_or_new(ax)
+    ax = axes_or_new(ax, figsize=(8.5, 5.0))
     q = sol.driver_quantity
     me = sol.Me
     unit = "N m" if q == "Me" else "N"
@@ -104,7 +104,7 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
     Axes
         Fx [N] against Fy [N], equal aspect; a dot marks the first position.
     """
-    ax = axes_or_new(ax)
+    ax = axes_or_new(ax, figsize=(8.5, 5.5))
     if joints is None:
         joints = list(sol.scene.joints)
     elif isinstance(joints, str):
@@ -113,6 +113,7 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
         numbers = 12 if len(joints) <= 2 else 0
     rows = numbered_rows(sol, numbers)
     texts = []
+    numbered = False
     for j in joints:
         fx, fy = sol.reaction(j)
         r = sol.joint_reactions[j]
@@ -121,11 +122,14 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
         if kind == "constant":      # one point: say it, number nothing
             ax.plot(fx[:1], fy[:1], "o", ms=7, label=f"F[{j}] on {r.on}")
             c = ax.lines[-1].get_color()
+            ax.annotate("", tuple(f0), (0.0, 0.0), arrowprops={
+                "arrowstyle": "-|>", "color": c, "lw": 1.2, "shrinkA": 0, "shrinkB": 4})
             texts.append(ax.annotate(
                 f"F[{j}] = {magnitude_text(float(np.hypot(*f0)))} N at {direction_text(f0)}"
                 "\nover the whole cycle", tuple(f0), xytext=(6, 6),
                 textcoords="offset points", fontsize=10, color=c))
             continue
+        numbered = True
         ax.plot(fx, fy, lw=1.8, label=f"F[{j}] on {r.on}")
         c = ax.lines[-1].get_color()
         if kind == "fixed direction":
@@ -141,7 +145,7 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
             texts.append(ax.annotate(str(k), (float(fx[i]), float(fy[i])), xytext=(3, 3),
                                      textcoords="offset points", fontsize=10, color=c))
     ax.plot(0, 0, "k+", ms=10)
-    if len(rows):
+    if len(rows) and numbered:
         step = float(sol.positions[rows[1]] - sol.positions[rows[0]]) if len(rows) > 1 else 0.0
         unit = "°" if sol.scene.driver.kind == "R" else " m"
         ax.plot([], [], ".", color="0.3",
@@ -406,7 +410,7 @@ def overview(sol: Solution, position: float | None = None) -> Figure:
     -------
     Figure
     """
-    fig, axs = plt.subplots(2, 2, figsize=(12, 9), layout="constrained")
+    fig, axs = plt.subplots(2, 2, figsize=(14, 11.5), layout="constrained")
     if position is None:
         position = float(sol.positions[len(sol.positions) // 12])
     draw_mechanism(sol, position, ax=axs[0, 0], forces=True, loads=True)
@@ -416,8 +420,8 @@ def overview(sol: Solution, position: float | None = None) -> Figure:
         plot_transmission(sol, ax=axs[1, 1])
     else:
         plot_trajectories(sol, ax=axs[1, 1])
-    # the other panels changed the layout: keep the drawing's labels clear once more
-    declutter(axs[0, 0], [t for t in axs[0, 0].texts if isinstance(t, Annotation)
-                          and t.get_text()])
+    for ax in axs.flat:         # four panels: each legend below its panel, not beside
+        legend_below(ax)
+    settle(fig)
     return fig
 

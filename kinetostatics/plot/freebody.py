@@ -29,7 +29,7 @@ from .base import (
 )
 from .mechanism import draw_body
 from .notation import signed_text, titled
-from .place import declutter
+from .place import declutter, settle
 from .polygons import find_dyad, force_on, force_polygon
 
 __all__ = ["dyad_free_body", "free_body_forces"]
@@ -208,4 +208,5 @@ def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
                  f"arrows: {sc * fmax:.3g} m ≙ {magnitude_text(fmax)} N", fontsize=10)
     force_polygon(sol, 0 if d is None else d.index + 1, row=i, ax=ax2)
     declutter(ax, texts)
+    settle(fig)
     return fig

@@ -83,9 +83,8 @@ class _Room:
         return not any(_meets(p, ext, box) for p, ext in self.paths)
 
     def leader_clear(self, a: np.ndarray, box: Bbox, skip: Bbox) -> bool:
-        """A leader from the anchor to the box's nearest edge crosses no other label."""
-        tip = np.clip(a, [box.x0, box.y0], [box.x1, box.y1])
-        seg = Path([a, tip])
+        """A leader from the anchor to the box's nearest point crosses no other label."""
+        seg = Path([a, np.clip(a, [box.x0, box.y0], [box.x1, box.y1])])
         return not any(seg.intersects_bbox(b, filled=False) for b in self.boxes
                        if b is not skip)
 
@@ -131,6 +130,9 @@ def _place_one(t: Annotation, room: _Room, renderer, scale: float) -> bool:
             t.set_va("bottom" if s > 0.3 else "top" if s < -0.3 else "center")
             _set_leader(t, far)
             tip = np.clip(a, [box.x0, box.y0], [box.x1, box.y1])
+            if far:     # the leader leaves the label at its point nearest the anchor
+                t._arrow_relpos = (float((tip[0] - box.x0) / box.width),
+                                   float((tip[1] - box.y0) / box.height))
             room.take(box.padded(-_PAD + 0.5), Path([a, tip]) if far else None)
             return True
     return False
@@ -235,7 +237,8 @@ def declutter(ax: Axes, texts: Sequence[Text], rounds: int = 1,
     for t in movable:
         t.set_in_layout(False)
     if remember:
-        ax._clear_labels = [*getattr(ax, "_clear_labels", []), *movable]
+        old = getattr(ax, "_clear_labels", [])
+        ax._clear_labels = old + [t for t in movable if all(t is not o for o in old)]
     scale = fig.dpi / 72.0
     missing: list[Text] = []
     for _ in range(rounds):
