@@ -6,8 +6,10 @@ embedded as base64 ``data:`` URIs: the unbalance and moment polygons of
 ``[rotor]``, the amplitude parallelogram or circles of each ``[[resonance_test]]``,
 the reading and correction vectors of each ``[[influence]]``, the tolerances and
 residuals of ``[iso]``), the corrections with
-their intervals, the ISO 21940-11 check and every warning. The PDF holds the same
-pictures, one per page, after a page with the text report.
+their intervals, the ISO 21940-11 check and every warning. The PDF
+(:mod:`~balance.report.pdf`) is a document of A4 pages with the same sections in the
+same order (the data, the results, the ISO check, the warnings, the pictures); only the
+results as JSON, for machines, are left to the HTML.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import BalanceError
+from .pdf import write_pdf
 from .text import result_warnings, summary_text, unit_text
 
 __all__ = ["influence_figure", "iso_figure", "report_figures", "report_scene", "write_report"]
@@ -152,22 +155,24 @@ def report_figures(results: dict[str, Any], out: dict[str, Any]) -> list[tuple[s
     figs: list[tuple[str, Any]] = []
     if "rotor" in results:
         r = results["rotor"]
-        fig, axes = plt.subplots(1, 1 + (len(r.corrections) == 2), figsize=(10.5, 5.0),
+        two = len(r.corrections) == 2       # one above the other: each at a page's width
+        fig, axes = plt.subplots(1 + two, 1, figsize=(6.8, 4.8 * (1 + two)),
                                  layout="constrained", squeeze=False)
         bplot.plot_unbalance_polygon(r, axes[0, 0])
-        if len(r.corrections) == 2:
-            bplot.plot_moment_polygon(r, axes[0, 1])
+        if two:
+            bplot.plot_moment_polygon(r, axes[1, 0])
         figs.append(("rotor: unbalance polygon closed by the corrections", fig))
+    units = out.get("units") or {}
+    vib = unit_text(units.get("vibration", "")) or "amplitude unit"
     for k, t in enumerate(results.get("resonance_test", [])):
         if t.A is None:
             continue
         if t.method == "three-run":
             figs.append((f"resonance test {k + 1}: the amplitude parallelogram",
-                         bplot.plot_parallelogram(t).figure))
+                         bplot.plot_parallelogram(t, unit=vib).figure))
         else:
             figs.append((f"resonance test {k + 1}: each run's amplitude circle",
-                         bplot.plot_amplitude_circles(t).figure))
-    units = out.get("units") or {}
+                         bplot.plot_amplitude_circles(t, unit=vib).figure))
     for r in results.get("influence", []):
         figs.append((f"{r.name or 'influence coefficients'}: readings and corrections",
                      influence_figure(r, mass_unit=units.get("mass", ""),
@@ -182,7 +187,7 @@ def _png(fig: Any) -> str:
     import matplotlib.pyplot as plt
 
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=150)
+    fig.savefig(buf, format="png", dpi=150, bbox_inches="tight", pad_inches=0.05)
     plt.close(fig)
     return base64.b64encode(buf.getvalue()).decode("ascii")
 
@@ -230,7 +235,8 @@ def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         if suffix == ".pdf":
-            _write_pdf(path, lines, warns, figs, source)
+            write_pdf(path, datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"), source,
+                      lines, _iso_line(out), warns, figs)
         else:
             path.write_text(_html(lines, warns, figs, source, out), encoding="utf-8")
     except OSError as exc:
@@ -269,11 +275,10 @@ def _html(lines: list[str], warns: list[str], figs: list, source: str,
     if source:
         parts += ["<h2>Data (the scene)</h2>", f"<pre>{esc(source)}</pre>"]
     parts += ["<h2>Results</h2>", f"<pre>{esc(chr(10).join(lines))}</pre>"]
-    if "iso" in out and "check" in out["iso"]:
+    iso = _iso_line(out)
+    if iso:
         ok = out["iso"]["check"]["ok"]
-        parts.append(f"<p class=\"{'ok' if ok else 'warn'}\">ISO 21940-11 check: "
-                     + ("the residual unbalance is within tolerance" if ok
-                        else "NOT within tolerance") + "</p>")
+        parts.append(f"<p class=\"{'ok' if ok else 'warn'}\">{esc(iso)}</p>")
     parts.append("<h2>Warnings</h2>")
     if warns:
         parts.append("<ul>" + "".join(f"<li class=\"warn\">{esc(w)}</li>" for w in warns)
@@ -291,28 +296,17 @@ def _html(lines: list[str], warns: list[str], figs: list, source: str,
     return "\n".join(parts)
 
 
+def _iso_line(out: dict[str, Any]) -> str | None:
+    """The ISO 21940-11 verdict, or None without a check."""
+    if "iso" not in out or "check" not in out["iso"]:
+        return None
+    return "ISO 21940-11 check: " + ("the residual unbalance is within tolerance"
+                                     if out["iso"]["check"]["ok"] else "NOT within tolerance")
+
+
 def _plain(x: Any) -> Any:
     if isinstance(x, np.generic):
         return x.item()
     if isinstance(x, np.ndarray):
         return x.tolist()
     raise TypeError(f"{type(x).__name__} is not JSON serialisable")
-
-
-def _write_pdf(path: Path, lines: list[str], warns: list[str], figs: list,
-               source: str) -> None:
-    import matplotlib.pyplot as plt
-    from matplotlib.backends.backend_pdf import PdfPages
-
-    text = ["Balancing report", ""] + lines + ["", "Warnings:"] + (warns or ["none"])
-    with PdfPages(path) as pdf:
-        for start in range(0, len(text), 60):
-            fig = plt.figure(figsize=(8.27, 11.69))
-            fig.text(0.05, 0.97, "\n".join(text[start:start + 60]), va="top",
-                     family="monospace", fontsize=10, wrap=True)
-            pdf.savefig(fig)
-            plt.close(fig)
-        for caption, fig in figs:
-            fig.suptitle(caption, fontsize=10)
-            pdf.savefig(fig)
-            plt.close(fig)
