@@ -172,6 +172,7 @@ def plot_wittenbauer(data: pd.DataFrame, omega_mean: float | None = None,
     Axes
         I_r [kg m^2] against Delta E [J]; the title gives J when the tangents are drawn.
     """
+    from .notation import titled
     from .place import declutter
 
     ax = axes_or_new(ax, figsize=(8.5, 5.5))
@@ -179,7 +180,7 @@ def plot_wittenbauer(data: pd.DataFrame, omega_mean: float | None = None,
     closed = abs(p[-1] - p[0] - 360.0) < 1e-9
     rows = np.unique(np.linspace(0, len(p) - 1, numbers, endpoint=not closed).round()
                      .astype(int)) if numbers > 0 else np.array([], dtype=int)
-    title = "Wittenbauer diagram (energy against reduced inertia)"
+    title = f"{titled('Wittenbauer diagram')}: energy against reduced inertia"
     curve = ax
     w = None
     if omega_mean is not None and delta is not None:
@@ -213,7 +214,7 @@ def plot_wittenbauer(data: pd.DataFrame, omega_mean: float | None = None,
                             textcoords="offset points", fontsize=10, color="tab:blue")
              for k, r in enumerate(rows)]
     curve.plot(i_r[rows], de[rows], ".", color="tab:blue")
-    ax.set_xlabel("reduced moment of inertia I_r [kg m²]")
+    ax.set_xlabel("reduced moment of inertia $I_r$ [kg m²]")
     ax.set_ylabel("energy ΔE [J]")
     ax.set_title(title, fontsize=10)
     ax.grid(True, alpha=0.3)

@@ -205,7 +205,7 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
     ax.autoscale_view()
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
-    ax.set_title(f"{scene.title or 'mechanism'} at {position_text(sol, i)}", fontsize=10)
+    ax.set_title(f"{scene.title or 'mechanism'} at {position_text(sol, i)}", fontsize=11)
     ax.grid(True, alpha=0.3)
     h, _ = ax.get_legend_handles_labels()
     ax.legend(handles=h + handles, fontsize=10, loc="best")
