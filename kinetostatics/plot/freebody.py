@@ -204,7 +204,7 @@ def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
     ax.grid(True, alpha=0.3)
     what = f"dyad {d.index + 1} {d.kind} ({', '.join(d.bodies)})" if d is not None else \
         f"driver {bodies[0]}"
-    ax.set_title(f"{titled('free-body diagram')}: {what} at {position_text(sol, i)}\n"
+    ax.set_title(f"{titled('free-body diagram')}\n{what} at {position_text(sol, i)}\n"
                  f"arrows: {sc * fmax:.3g} m ≙ {magnitude_text(fmax)} N", fontsize=10)
     force_polygon(sol, 0 if d is None else d.index + 1, row=i, ax=ax2)
     declutter(ax, texts)

@@ -198,8 +198,7 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
                       if any(a[5] == c for a in arrows)]
         handles = [Line2D([], [], color=c, lw=1.5, label=k) for k, c in kinds]
         ref = 10.0 ** np.floor(np.log10(0.1 * size))
-        ax.text(0.99, 0.01, f"arrows: {ref:g} m ≙ {ref / sc:.3g} N", transform=ax.transAxes,
-                ha="right", va="bottom", fontsize=10, color="0.3")
+        handles.append(Line2D([], [], ls="none", label=f"arrows: {ref:g} m ≙ {ref / sc:.3g} N"))
     ax.set_aspect("equal", adjustable="datalim")
     ax.margins(0.08)
     ax.autoscale_view()

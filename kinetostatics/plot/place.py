@@ -154,7 +154,9 @@ def _not_placed(fig, texts: list[Text]) -> None:
         labels.append(" ".join(t.get_text().split()))
     if old is not None:
         old.remove()
-    fig.legend(handles, labels, loc="outside lower right", fontsize=10,
+    others = [lg for lg in fig.legends if lg is not old]
+    fig.legend(handles, labels, loc="outside upper center" if others else "outside lower right",
+               fontsize=10,
                title=_UNPLACED_TITLE, title_fontsize=10, ncol=min(3, len(handles)))
 
 
@@ -182,6 +184,24 @@ def _fix_best(ax: Axes, renderer) -> None:
         lg.borderaxespad = 0.0
 
 
+def _thin_ticks(ax: Axes, renderer) -> bool:
+    """Fewer ticks on an axis whose tick labels touch each other; True if changed."""
+    from matplotlib.ticker import MaxNLocator
+    changed = False
+    for axis in (ax.xaxis, ax.yaxis):
+        labels = [t for t in axis.get_ticklabels() if t.get_visible() and t.get_text()]
+        boxes = [t.get_window_extent(renderer).padded(2.0) for t in labels]
+        if any(a.overlaps(b) for a, b in zip(boxes[:-1], boxes[1:], strict=True)):
+            n = max(2, len(labels) - 2)
+            loc = axis.get_major_locator()
+            if isinstance(loc, MaxNLocator):
+                loc.set_params(nbins=n)
+            else:
+                axis.set_major_locator(MaxNLocator(nbins=n, steps=[1, 2, 2.5, 5, 10]))
+            changed = True
+    return changed
+
+
 def settle(fig) -> None:
     """The last step of a picture: legends off the data, the layout made final, every
     label registered by :func:`declutter` placed again on the final layout.
@@ -199,6 +219,10 @@ def settle(fig) -> None:
     for ax in axes:
         declutter(ax, ax._clear_labels, rounds=1, remember=False)
     fig.canvas.draw()
+    for _ in range(3):
+        if not any([_thin_ticks(ax, r) for ax in fig.axes]):
+            break
+        fig.canvas.draw()
     for ax in fig.axes:
         _fix_best(ax, r)
     if fig.get_layout_engine() is not None:

@@ -23,7 +23,7 @@ from .base import (
     row_index,
     vector_axes,
 )
-from .notation import POLE, signed_text, titled
+from .notation import POLE, gloss, signed_text
 from .place import declutter
 
 __all__ = ["acceleration_plan", "velocity_plan"]
@@ -255,7 +255,8 @@ def _frame(pl: _Plan) -> None:
     vector_axes(ax)
     ax.set_xlabel(f"${attr}_x$ [{pl.unit}]")
     ax.set_ylabel(f"${attr}_y$ [{pl.unit}]")
-    what = titled("velocity plan" if pl.kind == "v" else "acceleration plan")
+    term = "velocity plan" if pl.kind == "v" else "acceleration plan"
+    what = f"{term}\n({gloss(term)})"
     drv = sol.scene.driver
     speed = f"ω = {drv.speed:g} rad/s" if drv.kind == "R" else f"v = {drv.speed:g} m/s"
     ax.set_title(f"{what}\nat {position_text(sol, pl.i)}, {speed}", fontsize=11)

@@ -259,9 +259,9 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
     extra = ""
     if d is None and sol.drive.kind == "R":
         extra = ", " + signed_text("Me", float(sol.Me[i]), "N m")
-    ax.set_title(f"force polygon ({gloss('force polygon')}): {what}\n"
-                 f"at {position_text(sol, i)}{extra}; closing error |ΣF| = "
-                 f"{closure:.1e} N", fontsize=10)
+    ax.set_title(f"force polygon ({gloss('force polygon')})\n{what} at "
+                 f"{position_text(sol, i)}{extra}\nclosing error |ΣF| = {closure:.1e} N",
+                 fontsize=11)
     ax.grid(True, alpha=0.3)
     legend_outside(ax, handles=handles)
     declutter(ax, texts)
