@@ -17,7 +17,6 @@ from ..results import Solution
 from .base import (
     axes_or_new,
     body_colors,
-    legend_outside,
     math_name,
     position_text,
     row_index,
@@ -123,7 +122,7 @@ class _Plan:
 
 def _start(sol: Solution, position, row, ax, kind: str, cog: bool) -> _Plan:
     """The points of the plan, their vectors, and which of them sit on the pole."""
-    ax = axes_or_new(ax, figsize=(7.5, 5.0))
+    ax = axes_or_new(ax, figsize=(8.0, 9.0))
     i = row_index(sol, position, row)
     pts, slides = _plan_points(sol, i, cog)
     vec = {id(q): (q.v if kind == "v" else q.a) for q in pts}
@@ -261,7 +260,8 @@ def _frame(pl: _Plan) -> None:
     speed = f"ω = {drv.speed:g} rad/s" if drv.kind == "R" else f"v = {drv.speed:g} m/s"
     ax.set_title(f"{what}\nat {position_text(sol, pl.i)}, {speed}", fontsize=11)
     ax.grid(True, alpha=0.3)
-    legend_outside(ax, handles=pl.handles)
+    ax.legend(handles=pl.handles, loc="upper center", bbox_to_anchor=(0.5, -0.1),
+              borderaxespad=0.0)      # below: the plan keeps the figure's width
 
 
 def _plan(sol: Solution, position, row, ax, kind: str, cog: bool,
