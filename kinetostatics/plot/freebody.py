@@ -26,6 +26,7 @@ from .base import (
     magnitude_text,
     position_text,
     row_index,
+    vector_axes,
 )
 from .mechanism import draw_body
 from .notation import signed_text, titled
@@ -199,6 +200,7 @@ def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
     ax.set_aspect("equal", adjustable="datalim")
     ax.margins(0.15)
     ax.autoscale_view()
+    vector_axes(ax)             # few ticks: the diagram is narrow beside its polygon
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.grid(True, alpha=0.3)

@@ -132,7 +132,7 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
     -------
     Axes
     """
-    ax = axes_or_new(ax)
+    ax = axes_or_new(ax, figsize=(8.0, 6.0))
     i = row_index(sol, position, row)
     n = sol.positions.size
     scene = sol.scene
@@ -204,7 +204,7 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
     ax.autoscale_view()
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
-    ax.set_title(f"{scene.title or 'mechanism'} at {position_text(sol, i)}", fontsize=11)
+    ax.set_title(f"{scene.title or 'mechanism'}\nat {position_text(sol, i)}", fontsize=11)
     ax.grid(True, alpha=0.3)
     h, _ = ax.get_legend_handles_labels()
     ax.legend(handles=h + handles, fontsize=10, loc="best")
