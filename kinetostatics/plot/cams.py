@@ -166,7 +166,7 @@ def draw_cam(res, angle: float = 0.0, ax: Axes | None = None) -> Axes:
     """
     from ..cams import TranslatingFollower, follower_points
 
-    ax = axes_or_new(ax, figsize=(6.5, 6.0))
+    ax = axes_or_new(ax, figsize=(9.0, 6.5))
     sc, g = res.scene, res.geometry
     ang = g["angle"].to_numpy()
     k = int(np.argmin(np.abs(((ang - angle) + 180.0) % 360.0 - 180.0)))

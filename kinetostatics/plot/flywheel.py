@@ -81,7 +81,7 @@ def plot_flywheel_curves(data: pd.DataFrame) -> Figure:
     p = data["phi"].to_numpy()
     axs[0].plot(p, data["I_r"], lw=2, color="tab:blue")
     axs[0].set_ylabel("I_r [kg m²]")
-    axs[0].set_title("reduced moment of inertia, reduced moments and energy over a cycle",
+    axs[0].set_title("reduced moment of inertia, reduced moments\nand energy over a cycle",
                      fontsize=10)
     axs[1].plot(p, data["M_loads"], lw=1.8, label="loads M_r")
     axs[1].plot(p, data["M_motor"], lw=1.8, label="motor M_m")
