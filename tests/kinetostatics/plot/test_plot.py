@@ -87,7 +87,7 @@ def test_plans_show_the_computed_vectors(sols):
     c = k[(k.body == "coupler") & (k.point == "C")].iloc[i]
     tips = [a.xy for a in ax.texts if a.get_text() == "c"]
     assert np.allclose(tips[0], (c.ax, c.ay))
-    assert ax.get_ylabel() == "ay [m/s²]"
+    assert ax.get_ylabel() == "$a_y$ [m/s²]"
     # the slotted lever: the guide's coincident point and the Coriolis term
     ax = kp.acceleration_plan(sols["slotted_lever"], 40)
     legend = " ".join(t.get_text() for t in ax.get_legend().get_texts())
