@@ -183,11 +183,11 @@ def report_figures(results: dict[str, Any], out: dict[str, Any]) -> list[tuple[s
     return figs
 
 
-def _png(fig: Any) -> str:
+def _png(fig: Any, dpi: float = 150) -> str:
     import matplotlib.pyplot as plt
 
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=150, bbox_inches="tight", pad_inches=0.05)
+    fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight", pad_inches=0.05)
     plt.close(fig)
     return base64.b64encode(buf.getvalue()).decode("ascii")
 
@@ -206,7 +206,7 @@ def _textsummary_text(results: dict[str, Any], out: dict[str, Any]) -> list[str]
 
 
 def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
-                 scene: Any = None) -> Path:
+                 scene: Any = None, dpi: float = 150) -> Path:
     """Write the balancing report as HTML (pictures embedded) or PDF.
 
     Parameters
@@ -217,6 +217,8 @@ def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
         :func:`balance.solve_results` and :func:`balance.results_to_dict` of the scene.
     scene : path or str, optional
         The scene file: its text is shown as the data.
+    dpi : float
+        Dots per inch of the pictures (150, the lecture-room default).
 
     Returns
     -------
@@ -236,9 +238,9 @@ def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
         path.parent.mkdir(parents=True, exist_ok=True)
         if suffix == ".pdf":
             write_pdf(path, datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"), source,
-                      lines, _iso_line(out), warns, figs)
+                      lines, _iso_line(out), warns, figs, dpi)
         else:
-            path.write_text(_html(lines, warns, figs, source, out), encoding="utf-8")
+            path.write_text(_html(lines, warns, figs, source, out, dpi), encoding="utf-8")
     except OSError as exc:
         raise BalanceError(f"--report {path}: cannot write the file ({exc.strerror})") from exc
     return path
@@ -266,7 +268,7 @@ def report_scene(scene: Any, path: str | Path) -> Path:
 
 
 def _html(lines: list[str], warns: list[str], figs: list, source: str,
-          out: dict[str, Any]) -> str:
+          out: dict[str, Any], dpi: float = 150) -> str:
     esc = html.escape
     stamp = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
     parts = ["<!DOCTYPE html>", "<html lang=\"en\"><head><meta charset=\"utf-8\">",
@@ -289,7 +291,7 @@ def _html(lines: list[str], warns: list[str], figs: list, source: str,
         parts.append("<h2>Pictures</h2>")
         for caption, fig in figs:
             parts.append(f"<figure><img alt=\"{esc(caption)}\" src=\"data:image/png;base64,"
-                         f"{_png(fig)}\"><figcaption>{esc(caption)}</figcaption></figure>")
+                         f"{_png(fig, dpi)}\"><figcaption>{esc(caption)}</figcaption></figure>")
     parts += ["<h2>Results as JSON</h2>",
               f"<pre>{esc(json.dumps(out, indent=1, allow_nan=False, default=_plain))}</pre>",
               "</body></html>"]

@@ -73,14 +73,14 @@ class _Pages:
             for k, part in enumerate(textwrap.wrap(raw.strip(), width) or [""]):
                 self.line(part, color=color, indent=indent + (0.25 if k else 0.0))
 
-    def picture(self, caption: str, fig: Any) -> None:
+    def picture(self, caption: str, fig: Any, dpi: float = 150) -> None:
         import matplotlib.pyplot as plt
         w0, h0 = fig.get_size_inches()
         text_width = A4[0] - 2 * _MARGIN
         if w0 > text_width:         # drawn at the printed size: its fonts stay >= 10 pt
             fig.set_size_inches(text_width, h0 * text_width / w0)
         buf = io.BytesIO()
-        fig.savefig(buf, format="png", dpi=150, bbox_inches="tight", pad_inches=0.05)
+        fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight", pad_inches=0.05)
         plt.close(fig)
         buf.seek(0)
         img = plt.imread(buf)
@@ -105,7 +105,7 @@ class _Pages:
 
 
 def write_pdf(path: Path, stamp: str, source: str, lines: list[str], iso_line: str | None,
-              warns: list[str], figs: list) -> None:
+              warns: list[str], figs: list, dpi: float = 150) -> None:
     """Write the report as an A4 PDF, section by section as in the HTML.
 
     Parameters
@@ -121,6 +121,8 @@ def write_pdf(path: Path, stamp: str, source: str, lines: list[str], iso_line: s
         The ISO 21940-11 verdict.
     warns : list of str
     figs : list of (caption, Figure)
+    dpi : float
+        Dots per inch of the pictures.
     """
     from matplotlib.backends.backend_pdf import PdfPages
 
@@ -145,5 +147,5 @@ def write_pdf(path: Path, stamp: str, source: str, lines: list[str], iso_line: s
         if figs:
             pages.heading("Pictures")
             for caption, fig in figs:
-                pages.picture(caption, fig)
+                pages.picture(caption, fig, dpi)
         pages.close()
