@@ -27,6 +27,17 @@ class _Parser(argparse.ArgumentParser):
         raise SystemExit(2)
 
 
+def _dpi(text: str) -> float:
+    """A --dpi value: a number from 50 to 600."""
+    try:
+        v = float(text)
+    except ValueError:
+        v = float("nan")
+    if not 50.0 <= v <= 600.0:
+        raise argparse.ArgumentTypeError(f"{text!r}: give a number from 50 to 600")
+    return v
+
+
 def _parser() -> argparse.ArgumentParser:
     p = _Parser(prog="python -m balance",
                 description="Rotor and resonance balancing (seed 002 ch. 3).")
@@ -36,6 +47,8 @@ def _parser() -> argparse.ArgumentParser:
     s.add_argument("--json", action="store_true", help="print the result dict as JSON")
     s.add_argument("--report", metavar="FILE",
                    help="write a balancing report: FILE.html (pictures embedded) or FILE.pdf")
+    s.add_argument("--dpi", type=_dpi, default=150,
+                   help="dots per inch of the report's pictures (default 150)")
     sub.add_parser("examples", help="list the bundled example scenes")
     return p
 
@@ -60,7 +73,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.report:
             from .report.document import write_report
 
-            write_report(args.report, results, out, SCENES.resolve(args.scene))
+            write_report(args.report, results, out, SCENES.resolve(args.scene), dpi=args.dpi)
     except WorkbenchError as exc:
         print(f"error: {_one_line(exc)}", file=sys.stderr)
         return 2

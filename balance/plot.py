@@ -63,7 +63,7 @@ def _arrow(ax: Axes, tail: complex, tip: complex, label: str | None, color: str,
         d = tip - tail
         n = 1j * d / abs(d) if abs(d) > 0 else 0j
         pos = mid + n * text_offset
-        ax.annotate(label, (pos.real, pos.imag), color=color, fontsize=9, ha="center",
+        ax.annotate(label, (pos.real, pos.imag), color=color, fontsize=10, ha="center",
                     va="center", xytext=(0, 0), textcoords="offset points",
                     bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none",
                           "alpha": 0.8})
@@ -244,13 +244,13 @@ def plot_parallelogram(result: ResonanceResult, ax: Axes | None = None, *,
         right = q.real > 0.0        # the label runs towards the inside of the picture
         ax.annotate(text, (q.real, q.imag), xytext=(-6 if right else 6,
                                                     -12 if q.imag < 0 else 6),
-                    textcoords="offset points", color=_CORRECTION, fontsize=9,
+                    textcoords="offset points", color=_CORRECTION, fontsize=10,
                     ha="right" if right else "left")
         ax.update_datalim([(q.real, q.imag)])
     t = np.linspace(0.0, 2.0 * math.pi, 181)
     ax.plot(R * np.cos(t), R * np.sin(t), color="0.9", lw=0.8, zorder=0)
     ax.annotate("0 deg mark", (R, 0.0), xytext=(4, 4), textcoords="offset points",
-                fontsize=8, color="0.4")
+                fontsize=10, color="0.4")
     return _finish(ax, f"amplitude, along the 0 deg mark ({unit})",
                    f"amplitude, normal to it ({unit})",
                    f"Amplitude parallelogram, plane {result.plane}: phi = {result.phi:.2f} deg"
@@ -315,13 +315,14 @@ def plot_amplitude_circles(result: ResonanceResult, ax: Axes | None = None, *,
     t = np.linspace(0.0, 2.0 * math.pi, 361)
     circle = np.exp(1j * t)
     c0 = result.A1 * circle
-    ax.plot(c0.real, c0.imag, color="k", lw=1.2, label=f"A1 = {result.A1:.4g} about O")
+    u = {"um": "µm"}.get(unit, unit)        # micrometres with the micro sign
+    ax.plot(c0.real, c0.imag, color="k", lw=1.2, label=f"A1 = {result.A1:.4g} {u} about O")
     for k, (mark, amp) in enumerate(zip(result.marks, result.amplitudes, strict=True)):
         centre = -polar(result.A, float(mark))
         c = centre + amp * circle
         color = _COLORS[k % len(_COLORS)]
         ax.plot(c.real, c.imag, color=color, lw=1.2,
-                label=f"trial at {mark:g} deg: A = {amp:.4g}")
+                label=f"trial at {mark:g} deg: A = {amp:.4g} {u}")
         ax.plot([centre.real], [centre.imag], "+", color=color, ms=8)
     if result.phi is not None:
         tips = [polar(result.A1, result.phi)]
@@ -332,9 +333,9 @@ def plot_amplitude_circles(result: ResonanceResult, ax: Axes | None = None, *,
                     label=("unbalance" if len(tips) == 1 else "candidate unbalances")
                     if n == 0 else None)
             ax.plot([0.0, tip.real], [0.0, tip.imag], color=_CORRECTION, lw=1.0)
-    ax.legend(fontsize=8, loc="upper right", framealpha=0.85)
+    ax.legend(fontsize=10, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     kind = "three-run" if result.method == "three-run" else f"{result.marks.size + 1}-run"
-    return _finish(ax, f"x ({unit}), 0 deg mark along +x", f"y ({unit})",
+    return _finish(ax, f"x ({u}), 0 deg mark along +x", f"y ({u})",
                    f"{kind} method, plane {result.plane}: circles of the measured amplitudes")
 
 

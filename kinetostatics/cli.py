@@ -32,11 +32,22 @@ def _cmd_solve(args) -> int:
             print(p)
     if args.plot:
         from .plot.cli import write_pictures
-        for p in write_pictures(sol, args.plot, args.plot_at):
+        for p in write_pictures(sol, args.plot, args.plot_at, dpi=args.dpi):
             print(p)
     if args.json or not args.out:
         print(json.dumps(summary, indent=2))
     return 0
+
+
+def _dpi(text: str) -> float:
+    """A --dpi value: a number from 50 to 600."""
+    try:
+        v = float(text)
+    except ValueError:
+        v = float("nan")
+    if not 50.0 <= v <= 600.0:
+        raise argparse.ArgumentTypeError(f"{text!r}: give a number from 50 to 600")
+    return v
 
 
 def _cmd_demo(args) -> int:
@@ -129,11 +140,15 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
                    "Me, polar diagrams, mechanism with loads, plans, force polygons")
     s.add_argument("--plot-at", metavar="POS", type=float, nargs="+",
                    help="driver positions (deg, or m) of those pictures (default: max |Me|)")
+    s.add_argument("--dpi", type=_dpi, default=150, help="dots per inch of the pictures "
+                   "(default 150, the lecture-room size; 200 or more for a large room)")
     s.set_defaults(func=_cmd_solve)
     d = sub.add_parser("demo", help="solve a scene; write its tables and pictures")
     d.add_argument("scene", nargs="?", help="bundled scene name or scene file")
     d.add_argument("--example", default="four_bar", help="bundled scene (default four_bar)")
     d.add_argument("--out", default="demo-out", help="output folder (default demo-out)")
+    d.add_argument("--dpi", type=_dpi, default=150, help="dots per inch of the pictures "
+                   "(default 150)")
     d.set_defaults(func=_cmd_demo)
     t = sub.add_parser("structure", help="print the driver and the dyads of a scene")
     t.add_argument("scene")

@@ -95,7 +95,7 @@ def plot_shaking_hodograph(result: MechanismBalancing, ax: Axes | None = None, *
     ax.set_title(f"Shaking-force hodograph, {result.kind}, method {result.method!r}\n"
                  "(dot: first position of the sweep)", fontsize=10)
     ax.grid(True, color="0.93")
-    ax.legend(fontsize=8, loc="best")
+    ax.legend(fontsize=10, loc="best")
     return ax
 
 
@@ -123,7 +123,7 @@ def plot_shaking_force(result: MechanismBalancing, fig: Figure | None = None) ->
     ax2.set_xlabel(_position_label(result))
     for ax in (ax1, ax2):
         ax.grid(True, color="0.9")
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=10)
     return fig
 
 
@@ -150,7 +150,7 @@ def plot_centre_of_mass(result: MechanismBalancing, ax: Axes | None = None) -> A
     ax.set_ylabel("y (m)")
     ax.set_title(f"Centre of mass of the mechanism, method {result.method!r}", fontsize=10)
     ax.grid(True, color="0.93")
-    ax.legend(fontsize=8, loc="best")
+    ax.legend(fontsize=10, loc="best")
     return ax
 
 
@@ -195,7 +195,7 @@ def plot_counterweights(result: MechanismBalancing, position: float | None = Non
         ax.plot(float(x[i]), float(y[i]), "o", color="0.25", alpha=0.8,
                 ms=6 + 18 * math.sqrt(c.mass / top))
         ax.annotate(f"{c.mass:.3g} kg", (float(x[i]), float(y[i])), xytext=(8, -12),
-                    textcoords="offset points", fontsize=8)
+                    textcoords="offset points", fontsize=10)
     if result.pair is not None:
         (xc, yc, _, _), (xr, yr, _, _) = pair_motion(result.kin, result.pair)
         ang = np.linspace(0.0, 2.0 * np.pi, 121)
@@ -206,7 +206,7 @@ def plot_counterweights(result: MechanismBalancing, position: float | None = Non
             ax.plot(float(x[i]), float(y[i]), "o", color="tab:purple", alpha=0.6,
                     ms=6 + 18 * math.sqrt(result.pair.mass / top))
             ax.annotate(f"{result.pair.mass:.3g} kg ({name})", (float(x[i]), float(y[i])),
-                        xytext=(8, 6), textcoords="offset points", fontsize=8,
+                        xytext=(8, 6), textcoords="offset points", fontsize=10,
                         color="tab:purple")
     ax.set_aspect("equal", adjustable="datalim")
     ax.margins(0.1)
@@ -234,6 +234,6 @@ def overview(result: MechanismBalancing, position: float | None = None) -> Figur
     ax.set_ylabel("|F| (N)")
     ax.set_title("Shaking force over the sweep", fontsize=10)
     ax.grid(True, color="0.9")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=10)
     fig.suptitle(f"Static balancing of the {result.kind}: {result.method}")
     return fig

@@ -6,8 +6,10 @@ embedded as base64 ``data:`` URIs: the unbalance and moment polygons of
 ``[rotor]``, the amplitude parallelogram or circles of each ``[[resonance_test]]``,
 the reading and correction vectors of each ``[[influence]]``, the tolerances and
 residuals of ``[iso]``), the corrections with
-their intervals, the ISO 21940-11 check and every warning. The PDF holds the same
-pictures, one per page, after a page with the text report.
+their intervals, the ISO 21940-11 check and every warning. The PDF
+(:mod:`~balance.report.pdf`) is a document of A4 pages with the same sections in the
+same order (the data, the results, the ISO check, the warnings, the pictures); only the
+results as JSON, for machines, are left to the HTML.
 """
 
 from __future__ import annotations
@@ -24,7 +26,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import BalanceError
-from .text import result_warnings, summary_text
+from .pdf import write_pdf
+from .text import result_warnings, summary_text, unit_text
 
 __all__ = ["influence_figure", "iso_figure", "report_figures", "report_scene", "write_report"]
 
@@ -43,7 +46,8 @@ def influence_figure(result: Any, *, mass_unit: str = "", vib_unit: str = ""):
     """
     import matplotlib.pyplot as plt
 
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10.5, 5.0), layout="constrained")
+    vib_unit = unit_text(vib_unit)
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11.0, 6.5), layout="constrained")
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     pts = result.points or tuple(f"point {i + 1}" for i in range(result.initial.size))
     lim = 0.0
@@ -52,7 +56,7 @@ def influence_figure(result: Any, *, mass_unit: str = "", vib_unit: str = ""):
         c = colors[i % len(colors)]
         ax1.annotate("", (v0.real, v0.imag), (0, 0),
                      arrowprops={"arrowstyle": "-|>", "color": c, "lw": 1.8})
-        ax1.plot([], [], color=c, label=f"{pts[i]}: {abs(v0):.3g} at "
+        ax1.plot([], [], color=c, label=f"{pts[i]}: {abs(v0):.3g} {vib_unit} at "
                  f"{math.degrees(np.angle(v0)) % 360:.1f} deg")
         if result.trim_runs:
             ax1.annotate("", (vc.real, vc.imag), (0, 0),
@@ -63,7 +67,8 @@ def influence_figure(result: Any, *, mass_unit: str = "", vib_unit: str = ""):
                   if result.trim_runs else "") + "predicted residual (dots)", fontsize=10)
     ax1.set_xlabel(f"Re ({vib_unit or 'reading unit'})")
     ax1.set_ylabel(f"Im ({vib_unit or 'reading unit'})")
-    ax1.legend(fontsize=8, loc="best")
+    ax1.legend(fontsize=10, loc="upper center", bbox_to_anchor=(0.5, -0.14),
+               borderaxespad=0.0)
     lim2 = 0.0
     for j, w in enumerate(result.corrections):
         c = colors[j % len(colors)]
@@ -85,7 +90,8 @@ def influence_figure(result: Any, *, mass_unit: str = "", vib_unit: str = ""):
     ax2.set_title(f"corrections with their {conf:g} % intervals (shaded)", fontsize=10)
     ax2.set_xlabel(f"mass x cos(angle) ({mass_unit or 'trial mass unit'})")
     ax2.set_ylabel(f"mass x sin(angle) ({mass_unit or 'trial mass unit'})")
-    ax2.legend(fontsize=8, loc="best")
+    ax2.legend(fontsize=10, loc="upper center", bbox_to_anchor=(0.5, -0.14),
+               borderaxespad=0.0)
     for ax, r in ((ax1, lim), (ax2, lim2)):
         r = 1.15 * r if r > 0 else 1.0
         ax.set_xlim(-r, r)
@@ -135,7 +141,7 @@ def iso_figure(iso: dict[str, Any]):
     ax.set_ylabel(f"unbalance ({iso['unbalance_unit']})")
     ax.set_title(f"ISO 21940-11, G {iso['grade']:g}: U_per = {iso['U_per']:.4g} "
                  f"{iso['unbalance_unit']}", fontsize=10)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=10)
     ax.grid(True, axis="y", color="0.9")
     return fig
 
@@ -149,22 +155,24 @@ def report_figures(results: dict[str, Any], out: dict[str, Any]) -> list[tuple[s
     figs: list[tuple[str, Any]] = []
     if "rotor" in results:
         r = results["rotor"]
-        fig, axes = plt.subplots(1, 1 + (len(r.corrections) == 2), figsize=(10.5, 5.0),
+        two = len(r.corrections) == 2       # one above the other: each at a page's width
+        fig, axes = plt.subplots(1 + two, 1, figsize=(6.8, 4.8 * (1 + two)),
                                  layout="constrained", squeeze=False)
         bplot.plot_unbalance_polygon(r, axes[0, 0])
-        if len(r.corrections) == 2:
-            bplot.plot_moment_polygon(r, axes[0, 1])
+        if two:
+            bplot.plot_moment_polygon(r, axes[1, 0])
         figs.append(("rotor: unbalance polygon closed by the corrections", fig))
+    units = out.get("units") or {}
+    vib = unit_text(units.get("vibration", "")) or "amplitude unit"
     for k, t in enumerate(results.get("resonance_test", [])):
         if t.A is None:
             continue
         if t.method == "three-run":
             figs.append((f"resonance test {k + 1}: the amplitude parallelogram",
-                         bplot.plot_parallelogram(t).figure))
+                         bplot.plot_parallelogram(t, unit=vib).figure))
         else:
             figs.append((f"resonance test {k + 1}: each run's amplitude circle",
-                         bplot.plot_amplitude_circles(t).figure))
-    units = out.get("units") or {}
+                         bplot.plot_amplitude_circles(t, unit=vib).figure))
     for r in results.get("influence", []):
         figs.append((f"{r.name or 'influence coefficients'}: readings and corrections",
                      influence_figure(r, mass_unit=units.get("mass", ""),
@@ -175,11 +183,11 @@ def report_figures(results: dict[str, Any], out: dict[str, Any]) -> list[tuple[s
     return figs
 
 
-def _png(fig: Any) -> str:
+def _png(fig: Any, dpi: float = 150) -> str:
     import matplotlib.pyplot as plt
 
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=110)
+    fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight", pad_inches=0.05)
     plt.close(fig)
     return base64.b64encode(buf.getvalue()).decode("ascii")
 
@@ -198,7 +206,7 @@ def _textsummary_text(results: dict[str, Any], out: dict[str, Any]) -> list[str]
 
 
 def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
-                 scene: Any = None) -> Path:
+                 scene: Any = None, dpi: float = 150) -> Path:
     """Write the balancing report as HTML (pictures embedded) or PDF.
 
     Parameters
@@ -209,6 +217,8 @@ def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
         :func:`balance.solve_results` and :func:`balance.results_to_dict` of the scene.
     scene : path or str, optional
         The scene file: its text is shown as the data.
+    dpi : float
+        Dots per inch of the pictures (150, the lecture-room default).
 
     Returns
     -------
@@ -227,9 +237,10 @@ def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         if suffix == ".pdf":
-            _write_pdf(path, lines, warns, figs, source)
+            write_pdf(path, datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"), source,
+                      lines, _iso_line(out), warns, figs, dpi)
         else:
-            path.write_text(_html(lines, warns, figs, source, out), encoding="utf-8")
+            path.write_text(_html(lines, warns, figs, source, out, dpi), encoding="utf-8")
     except OSError as exc:
         raise BalanceError(f"--report {path}: cannot write the file ({exc.strerror})") from exc
     return path
@@ -257,7 +268,7 @@ def report_scene(scene: Any, path: str | Path) -> Path:
 
 
 def _html(lines: list[str], warns: list[str], figs: list, source: str,
-          out: dict[str, Any]) -> str:
+          out: dict[str, Any], dpi: float = 150) -> str:
     esc = html.escape
     stamp = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
     parts = ["<!DOCTYPE html>", "<html lang=\"en\"><head><meta charset=\"utf-8\">",
@@ -266,11 +277,10 @@ def _html(lines: list[str], warns: list[str], figs: list, source: str,
     if source:
         parts += ["<h2>Data (the scene)</h2>", f"<pre>{esc(source)}</pre>"]
     parts += ["<h2>Results</h2>", f"<pre>{esc(chr(10).join(lines))}</pre>"]
-    if "iso" in out and "check" in out["iso"]:
+    iso = _iso_line(out)
+    if iso:
         ok = out["iso"]["check"]["ok"]
-        parts.append(f"<p class=\"{'ok' if ok else 'warn'}\">ISO 21940-11 check: "
-                     + ("the residual unbalance is within tolerance" if ok
-                        else "NOT within tolerance") + "</p>")
+        parts.append(f"<p class=\"{'ok' if ok else 'warn'}\">{esc(iso)}</p>")
     parts.append("<h2>Warnings</h2>")
     if warns:
         parts.append("<ul>" + "".join(f"<li class=\"warn\">{esc(w)}</li>" for w in warns)
@@ -281,11 +291,19 @@ def _html(lines: list[str], warns: list[str], figs: list, source: str,
         parts.append("<h2>Pictures</h2>")
         for caption, fig in figs:
             parts.append(f"<figure><img alt=\"{esc(caption)}\" src=\"data:image/png;base64,"
-                         f"{_png(fig)}\"><figcaption>{esc(caption)}</figcaption></figure>")
+                         f"{_png(fig, dpi)}\"><figcaption>{esc(caption)}</figcaption></figure>")
     parts += ["<h2>Results as JSON</h2>",
               f"<pre>{esc(json.dumps(out, indent=1, allow_nan=False, default=_plain))}</pre>",
               "</body></html>"]
     return "\n".join(parts)
+
+
+def _iso_line(out: dict[str, Any]) -> str | None:
+    """The ISO 21940-11 verdict, or None without a check."""
+    if "iso" not in out or "check" not in out["iso"]:
+        return None
+    return "ISO 21940-11 check: " + ("the residual unbalance is within tolerance"
+                                     if out["iso"]["check"]["ok"] else "NOT within tolerance")
 
 
 def _plain(x: Any) -> Any:
@@ -294,22 +312,3 @@ def _plain(x: Any) -> Any:
     if isinstance(x, np.ndarray):
         return x.tolist()
     raise TypeError(f"{type(x).__name__} is not JSON serialisable")
-
-
-def _write_pdf(path: Path, lines: list[str], warns: list[str], figs: list,
-               source: str) -> None:
-    import matplotlib.pyplot as plt
-    from matplotlib.backends.backend_pdf import PdfPages
-
-    text = ["Balancing report", ""] + lines + ["", "Warnings:"] + (warns or ["none"])
-    with PdfPages(path) as pdf:
-        for start in range(0, len(text), 60):
-            fig = plt.figure(figsize=(8.27, 11.69))
-            fig.text(0.05, 0.97, "\n".join(text[start:start + 60]), va="top",
-                     family="monospace", fontsize=7, wrap=True)
-            pdf.savefig(fig)
-            plt.close(fig)
-        for caption, fig in figs:
-            fig.suptitle(caption, fontsize=10)
-            pdf.savefig(fig)
-            plt.close(fig)

@@ -27,9 +27,22 @@ def interval_text(iv: dict | None, unit: str, confidence: float) -> str:
     return f"{fmt(m[0])} .. {hi}{ang} ({100.0 * confidence:g} %)"
 
 
+def unit_text(unit: str) -> str:
+    """A unit as printed: micrometres with the micro sign (``um`` -> ``µm``)."""
+    return {"um": "µm", "um/s": "µm/s", "mum": "µm"}.get(unit, unit)
+
+
+def rounded(x: Any, ref: float, unit: str = "", digits: int = 4) -> str:
+    """``fmt(x, unit)``, or ``0 (to rounding)`` when |x| is at rounding level of ``ref``
+    (under 1e-9 of it: a residual the corrections cancel exactly)."""
+    if x is not None and ref > 0 and abs(float(x)) <= 1e-9 * ref:
+        return "0 (to rounding)"
+    return fmt(x, unit, digits)
+
+
 def _units(out: dict[str, Any]) -> dict[str, str]:
     u = out.get("units") or {}
-    return {"mass": u.get("mass", "kg"), "vibration": u.get("vibration", ""),
+    return {"mass": u.get("mass", "kg"), "vibration": unit_text(u.get("vibration", "")),
             "length": u.get("length", "m"), "unbalance": u.get("unbalance", "kg m")}
 
 
@@ -50,7 +63,11 @@ def field_text(out: dict[str, Any]) -> list[str]:
                 parts = ", ".join(f"{fmt(p['mass'], mu)} in position {p['position']} "
                                   f"({fmt(p['angle'], 'deg')})" for p in c["split"]["placements"])
                 lines.append(f"    on {c['split']['positions']} positions: {parts}")
-        res = ", ".join(f"{r2.get('point', f'point {i + 1}')} {fmt(r2['amplitude'], vu)}"
+        ref = max((abs(x) for row in r.get("coefficients") or [] for x in _moduli(row)),
+                  default=0.0) * max((abs(c["mass"] or 0.0) for c in r["corrections"]),
+                                     default=0.0)
+        res = ", ".join(f"{r2.get('point', f'point {i + 1}')} "
+                        f"{rounded(r2['amplitude'], ref, vu)}"
                         for i, r2 in enumerate(r["residual_vibration"]))
         lines.append(f"  predicted residual vibration: {res}")
         lines.append(f"  condition number {fmt(r['condition_number'])}, noise amplified to "
@@ -106,6 +123,21 @@ def result_warnings(out: dict[str, Any]) -> Iterator[tuple[str, str]]:
     yield from walk(out, "")
 
 
+def _moduli(row: Any) -> list[float]:
+    """The moduli of a row of influence coefficients (complex as [re, im] or dicts)."""
+    out = []
+    for c in row if isinstance(row, list) else [row]:
+        if isinstance(c, dict):
+            c = c.get("amplitude", c.get("modulus", 0.0))
+        if isinstance(c, list | tuple) and len(c) == 2:
+            c = complex(c[0], c[1])
+        try:
+            out.append(abs(complex(c)))
+        except (TypeError, ValueError):
+            continue
+    return out
+
+
 def _fmt6(x: Any, unit: str = "") -> str:
     return fmt(x, unit, 6)
 
@@ -121,10 +153,11 @@ def summary_text(out: dict[str, Any], speed: bool) -> str:
             lines.append(f"  plane {c['plane']} (z = {c['z']:g} m): mass {_fmt6(c['mass'], 'kg')}"
                          f" at {_fmt6(c['angle'], 'deg')}, radius {c['radius']:g} m, "
                          f"U = {_fmt6(c['U'], 'kg m')}")
-        lines.append(f"  force  before {_fmt6(r['initial_force'], fu)}, "
-                     f"after {_fmt6(r['residual_force'], fu)}")
-        lines.append(f"  moment before {_fmt6(r['initial_moment'], mu)}, "
-                     f"after {_fmt6(r['residual_moment'], mu)} (about z = 0)")
+        lines.append(f"  force  before {_fmt6(r['initial_force'], fu)}, after "
+                     f"{rounded(r['residual_force'], r['initial_force'] or 0.0, fu, 6)}")
+        lines.append(f"  moment before {_fmt6(r['initial_moment'], mu)}, after "
+                     f"{rounded(r['residual_moment'], r['initial_moment'] or 0.0, mu, 6)}"
+                     " (about z = 0)")
     if "static_test" in out:
         s = out["static_test"]
         lines.append("static balancing device:")

@@ -22,8 +22,11 @@ geometry and vector diagrams use equal aspect.
   :func:`cam_shocks`), :func:`draw_cam` (the follower on the cam), :func:`plot_cam_diagram`
   (the (ds/dphi, s) diagram of the smallest base circle) (``cams``);
 - a gear pair: :func:`draw_gear_pair` (``gears``);
-- the projector style :func:`projector` and the label check :func:`overlapping_texts`
-  (``style``).
+- the lecture-room style of the command line and the sheets :func:`lecture_style`
+  (150 dpi, labels >= 10 pt), the larger :func:`projector` style and the label check
+  :func:`overlapping_texts` (``style``); every collision of a drawn figure (label on
+  label, link, curve or arrow; legend on data) :func:`collisions` (``collide``); labels
+  placed clear of them :func:`declutter` (``place``).
 """
 
 from __future__ import annotations
@@ -31,6 +34,7 @@ from __future__ import annotations
 from .base import LOAD_COLORS, PATH_COLORS, REACTION_COLOR
 from .cams import cam_shocks, draw_cam, plot_cam_diagram, plot_cam_motion
 from .centres import instant_centres, plot_instant_centres
+from .collide import collisions
 from .curves import (
     overview,
     plot_accelerations,
@@ -50,11 +54,13 @@ from .flywheel import (
 from .freebody import dyad_free_body, free_body_forces
 from .gears import draw_gear_pair
 from .mechanism import animate, draw_body, draw_mechanism
+from .place import declutter, settle
 from .plans import acceleration_plan, velocity_plan
 from .polygons import find_dyad, force_on, force_polygon, polygon_forces
-from .style import PROJECTOR, declutter, overlapping_texts, projector
+from .style import LECTURE, PROJECTOR, lecture_style, overlapping_texts, projector
 
 __all__ = [
+    "LECTURE",
     "LOAD_COLORS",
     "PATH_COLORS",
     "PROJECTOR",
@@ -62,6 +68,7 @@ __all__ = [
     "acceleration_plan",
     "animate",
     "cam_shocks",
+    "collisions",
     "declutter",
     "draw_body",
     "draw_cam",
@@ -72,6 +79,7 @@ __all__ = [
     "force_on",
     "force_polygon",
     "instant_centres",
+    "lecture_style",
     "free_body_forces",
     "overlapping_texts",
     "overview",
@@ -90,6 +98,7 @@ __all__ = [
     "polygon_forces",
     "projector",
     "reduced_cycle",
+    "settle",
     "velocity_plan",
     "wittenbauer_flywheel",
 ]

@@ -50,16 +50,16 @@ def position_text(sol: Solution, i: int) -> str:
 def vector_axes(ax: Axes) -> None:
     """Few ticks, large numbers as powers of ten: legible tick labels on vector diagrams."""
     for a in (ax.xaxis, ax.yaxis):
-        a.set_major_locator(MaxNLocator(nbins=6, steps=[1, 2, 2.5, 5, 10]))
+        a.set_major_locator(MaxNLocator(nbins=4, steps=[1, 2, 2.5, 5, 10]))
     ax.ticklabel_format(style="sci", axis="both", scilimits=(-3, 4), useMathText=True)
 
 
 def cycle_axis(ax: Axes, sol: Solution) -> None:
-    """Ticks every 45 deg (90 deg beyond a turn) on a crank-angle axis."""
+    """Ticks every 45 deg (90 deg beyond half a turn) on a crank-angle axis."""
     if sol.scene.driver.kind == "R" and sol.positions.size > 1:
         span = float(np.ptp(sol.positions))
         if span >= 180.0:
-            ax.xaxis.set_major_locator(MultipleLocator(45.0 if span <= 360.0 else 90.0))
+            ax.xaxis.set_major_locator(MultipleLocator(45.0 if span <= 180.0 else 90.0))
 
 
 def row_index(sol: Solution, position: float | None, row: int | None) -> int:
@@ -97,9 +97,20 @@ def math_name(name: str) -> str:
 
 
 def legend_outside(ax: Axes, **kw) -> None:
-    """A small legend to the right of the Axes, outside the drawing."""
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0,
-              **kw)
+    """The legend to the right of the Axes, outside the drawing."""
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, **kw)
+
+
+def legend_below(ax: Axes, ncol: int = 2) -> None:
+    """Move an Axes' legend below it, in ``ncol`` columns (a panel of a grid)."""
+    lg = ax.get_legend()
+    if lg is None:
+        return
+    handles, labels = lg.legend_handles, [t.get_text() for t in lg.get_texts()]
+    title = lg.get_title().get_text()
+    lg.remove()
+    ax.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, -0.14),
+              borderaxespad=0.0, ncol=ncol, title=title or None)
 
 
 def trace_points(sol: Solution) -> list[tuple[str, str]]:

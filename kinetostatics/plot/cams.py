@@ -14,7 +14,7 @@ from matplotlib.patches import Circle
 
 from ..model.errors import WorkbenchError
 from .base import axes_or_new, legend_outside, vector_axes
-from .style import declutter
+from .place import declutter
 
 __all__ = ["cam_shocks", "draw_cam", "plot_cam_diagram", "plot_cam_motion"]
 
@@ -119,7 +119,7 @@ def plot_cam_motion(res) -> Figure:
         name = seg.kind if seg.law is None else f"{seg.kind}\n{seg.law}"
         texts.append(axs[0].annotate(name, (b + 0.5 * math.degrees(seg.angle), 0.5),
                                      xycoords=("data", "axes fraction"), ha="center",
-                                     va="center", fontsize=8, color="0.3",
+                                     va="center", fontsize=10, color="0.3",
                                      xytext=(0, 0), textcoords="offset points"))
     shocks = cam_shocks(law, w)
     kinds = set()
@@ -166,7 +166,7 @@ def draw_cam(res, angle: float = 0.0, ax: Axes | None = None) -> Axes:
     """
     from ..cams import TranslatingFollower, follower_points
 
-    ax = axes_or_new(ax, figsize=(6.5, 6.0))
+    ax = axes_or_new(ax, figsize=(9.0, 6.5))
     sc, g = res.scene, res.geometry
     ang = g["angle"].to_numpy()
     k = int(np.argmin(np.abs(((ang - angle) + 180.0) % 360.0 - 180.0)))
@@ -287,7 +287,7 @@ def plot_cam_diagram(res, transmission_angle: float | None = None,
                      .astype(int)) if numbers > 0 else np.array([], dtype=int)
     ax.plot(ds[rows], s[rows], ".", color="tab:blue")
     texts = [ax.annotate(str(i), (ds[r], s[r]), xytext=(3, 3), textcoords="offset points",
-                         fontsize=8, color="tab:blue") for i, r in enumerate(rows)]
+                         fontsize=10, color="tab:blue") for i, r in enumerate(rows)]
     ax.plot(0.0, 0.0, "k+", ms=10)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("ds/dφ [m]")

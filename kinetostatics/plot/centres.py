@@ -16,7 +16,8 @@ from ..model.scene import GROUND
 from ..results import Solution
 from .base import at_row, axes_or_new, global_point, legend_outside, position_text, row_index
 from .mechanism import draw_mechanism
-from .style import declutter
+from .notation import gloss
+from .place import declutter
 
 __all__ = ["instant_centres", "plot_instant_centres"]
 
@@ -180,7 +181,8 @@ def plot_instant_centres(sol: Solution, position: float | None = None, *,
     handles.insert(0, Line2D([], [], color="none", label=key))
     ax.relim()
     ax.autoscale_view()
-    ax.set_title(f"instantaneous centres of velocity at {position_text(sol, i)}", fontsize=10)
+    ax.set_title(f"instantaneous centres of velocity\n({gloss('instantaneous centres')}) "
+                 f"at {position_text(sol, i)}", fontsize=11)
     legend_outside(ax, handles=handles)
     declutter(ax, texts)
     return ax

@@ -18,7 +18,9 @@ from .centres import plot_instant_centres
 from .curves import overview, plot_driver, plot_polar
 from .freebody import dyad_free_body
 from .mechanism import draw_mechanism
+from .place import settle
 from .plans import acceleration_plan, velocity_plan
+from .style import lecture_style
 
 __all__ = ["cli_figures", "position_unit", "run_demo", "write_pictures"]
 
@@ -75,22 +77,26 @@ def cli_figures(sol: Solution, positions: list[float] | None = None) -> dict[str
         figs[f"instant_centres_{t}"] = plot_instant_centres(sol, p).figure
         for d in range(len(sol.kin.dyads) + 1):
             figs[f"free_body_{t}_dyad{d}"] = dyad_free_body(sol, d, p)
+    for fig in figs.values():
+        settle(fig)
     return figs
 
 
 def write_pictures(sol: Solution, directory: str | Path,
-                   positions: list[float] | None = None, dpi: int = 110) -> list[Path]:
-    """Save :func:`cli_figures` as ``DIR/<stem>.png``; the paths written."""
+                   positions: list[float] | None = None, dpi: float = 150) -> list[Path]:
+    """Save :func:`cli_figures`, drawn in the :func:`~kinetostatics.plot.lecture_style`
+    at ``dpi``, as ``DIR/<stem>.png``; the paths written."""
     out = Path(directory)
     if out.exists() and not out.is_dir():
         raise WorkbenchError(f"--plot {out}: is a file, not a folder")
     out.mkdir(parents=True, exist_ok=True)
     written = []
-    for stem, fig in cli_figures(sol, positions).items():
-        path = out / f"{stem}.png"
-        fig.savefig(path, dpi=dpi)
-        plt.close(fig)
-        written.append(path)
+    with lecture_style(dpi):
+        for stem, fig in cli_figures(sol, positions).items():
+            path = out / f"{stem}.png"
+            fig.savefig(path, dpi=dpi)
+            plt.close(fig)
+            written.append(path)
     return written
 
 
@@ -118,7 +124,7 @@ def run_demo(args) -> int:
     sol = solve(path)
     out = Path(args.out)
     written = sol.to_csv(out)
-    written += write_pictures(sol, out)
+    written += write_pictures(sol, out, dpi=getattr(args, "dpi", 150))
     s = sol.summary()
     q = sol.driver_quantity
     unit = "N m" if q == "Me" else "N"

@@ -12,7 +12,6 @@ import numpy as np
 import pandas as pd
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
-from matplotlib.text import Annotation
 
 from ..model.errors import WorkbenchError
 from ..results import Solution
@@ -20,13 +19,16 @@ from .base import (
     PATH_COLORS,
     axes_or_new,
     cycle_axis,
+    legend_below,
     legend_outside,
+    magnitude_text,
     position_label,
     trace_points,
     vector_axes,
 )
 from .mechanism import draw_mechanism
-from .style import declutter
+from .notation import direction_text, gloss, number, titled
+from .place import declutter, settle
 
 __all__ = [
     "overview", "plot_accelerations", "plot_angular", "plot_driver", "plot_polar",
@@ -50,7 +52,7 @@ def plot_driver(sol: Solution, ax: Axes | None = None) -> Axes:
     Axes
         Position against Me [N m] (Fe [N] for a sliding driver).
     """
-    ax = axes_or_new(ax)
+    ax = axes_or_new(ax, figsize=(8.5, 5.0))
     q = sol.driver_quantity
     me = sol.Me
     unit = "N m" if q == "Me" else "N"
@@ -58,7 +60,8 @@ def plot_driver(sol: Solution, ax: Axes | None = None) -> Axes:
     mean = sol.summary()[f"{q}_mean"]
     if abs(mean) < 1e-9 * (np.abs(me).max() or 1.0):
         mean = 0.0
-    ax.axhline(mean, color="tab:orange", ls="--", label=f"mean {mean:.4g} {unit}")
+    mean_text = "0 (to rounding)" if mean == 0.0 else f"{number(mean)} {unit}"
+    ax.axhline(mean, color="tab:orange", ls="--", label=f"mean {mean_text}")
     ax.axhline(0.0, color="0.5", lw=0.8)
     sing = sol.singular
     if sing.any():
@@ -68,9 +71,11 @@ def plot_driver(sol: Solution, ax: Axes | None = None) -> Axes:
     cycle_axis(ax, sol)
     ax.set_ylabel("equilibrating moment Me [N m]" if q == "Me"
                   else "equilibrating force Fe [N]")
-    ax.set_title(f"{q} over the cycle", fontsize=10)
+    ax.set_title(f"{q} over the cycle\n"
+                 f"{titled('balancing moment' if q == 'Me' else 'balancing force')}",
+                 fontsize=11)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    legend_outside(ax)
     return ax
 
 
@@ -99,7 +104,7 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
     Axes
         Fx [N] against Fy [N], equal aspect; a dot marks the first position.
     """
-    ax = axes_or_new(ax)
+    ax = axes_or_new(ax, figsize=(8.5, 5.5))
     if joints is None:
         joints = list(sol.scene.joints)
     elif isinstance(joints, str):
@@ -108,18 +113,39 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
         numbers = 12 if len(joints) <= 2 else 0
     rows = numbered_rows(sol, numbers)
     texts = []
+    numbered = False
     for j in joints:
         fx, fy = sol.reaction(j)
         r = sol.joint_reactions[j]
+        kind, u = _polar_kind(fx, fy)
+        f0 = np.array([float(fx[0]), float(fy[0])])
+        if kind == "constant":      # one point: say it, number nothing
+            ax.plot(fx[:1], fy[:1], "o", ms=7, label=f"F[{j}] on {r.on}")
+            c = ax.lines[-1].get_color()
+            ax.annotate("", tuple(f0), (0.0, 0.0), arrowprops={
+                "arrowstyle": "-|>", "color": c, "lw": 1.2, "shrinkA": 0, "shrinkB": 4})
+            texts.append(ax.annotate(
+                f"F[{j}] = {magnitude_text(float(np.hypot(*f0)))} N at {direction_text(f0)}"
+                "\nover the whole cycle", tuple(f0), xytext=(6, 6),
+                textcoords="offset points", fontsize=10, color=c))
+            continue
+        numbered = True
         ax.plot(fx, fy, lw=1.8, label=f"F[{j}] on {r.on}")
         c = ax.lines[-1].get_color()
+        if kind == "fixed direction":
+            along = np.asarray(fx) * u[0] + np.asarray(fy) * u[1]
+            ax.plot([], [], ls="none", label=f"F[{j}]: fixed direction {direction_text(u)}, "
+                    f"{number(along.min(), '.4g')} to {number(along.max(), '.4g')} N along it")
+            ax.annotate("", tuple(u * float(np.abs(along).max())), (0.0, 0.0),
+                        arrowprops={"arrowstyle": "-|>", "color": c, "lw": 0.8, "ls": ":",
+                                    "shrinkA": 0, "shrinkB": 0})
         ax.plot(fx[:1], fy[:1], "o", color=c, ms=5)
         ax.plot(fx[rows], fy[rows], ".", color=c, ms=4)
         for k, i in enumerate(rows):
             texts.append(ax.annotate(str(k), (float(fx[i]), float(fy[i])), xytext=(3, 3),
-                                     textcoords="offset points", fontsize=7, color=c))
+                                     textcoords="offset points", fontsize=10, color=c))
     ax.plot(0, 0, "k+", ms=10)
-    if len(rows):
+    if len(rows) and numbered:
         step = float(sol.positions[rows[1]] - sol.positions[rows[0]]) if len(rows) > 1 else 0.0
         unit = "°" if sol.scene.driver.kind == "R" else " m"
         ax.plot([], [], ".", color="0.3",
@@ -128,11 +154,26 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
     vector_axes(ax)
     ax.set_xlabel("Fx [N]")
     ax.set_ylabel("Fy [N]")
-    ax.set_title("polar diagram of joint reactions (dot: first position)", fontsize=10)
+    ax.set_title(f"polar diagram of the joint reactions\n({gloss('polar diagram')}; "
+                 "dot: first position)", fontsize=11)
     ax.grid(True, alpha=0.3)
     legend_outside(ax)
     declutter(ax, texts)
     return ax
+
+
+def _polar_kind(fx, fy) -> tuple[str, np.ndarray]:
+    """``"constant"`` (one vector over the cycle), ``"fixed direction"`` (every vector
+    along one line, the unit vector returned) or ``"curve"``; to 1e-9 of the largest."""
+    f = np.column_stack([np.broadcast_to(fx, np.shape(fy)), fy]).astype(float)
+    big = float(np.hypot(f[:, 0], f[:, 1]).max()) if len(f) else 0.0
+    if big == 0.0 or float(np.ptp(f, axis=0).max()) <= 1e-9 * big:
+        return "constant", np.array([1.0, 0.0])
+    k = int(np.argmax(np.hypot(f[:, 0], f[:, 1])))
+    u = f[k] / np.hypot(*f[k])
+    if float(np.abs(f[:, 0] * u[1] - f[:, 1] * u[0]).max()) <= 1e-9 * big:
+        return "fixed direction", u
+    return "curve", u
 
 
 def numbered_rows(sol: Solution, numbers: int) -> np.ndarray:
@@ -168,18 +209,26 @@ def plot_transmission(sol: Solution, ax: Axes | None = None, admissible: float =
     t = getattr(sol, "transmission", None)
     if not isinstance(t, pd.DataFrame) or "transmission_angle" not in t:
         t = sol.dyads
+    texts = []
     for d, g in t.groupby("dyad"):
         tau = g.transmission_angle.to_numpy()
-        ax.plot(g.position, np.minimum(tau, 180.0 - tau), lw=2,   # one definition, [0, 90]
-                label=f"dyad {d} {g.kind.iloc[0]} ({g.bodies.iloc[0]})")
+        low = np.minimum(tau, 180.0 - tau)          # one definition, [0, 90]
+        ax.plot(g.position, low, lw=2, label=f"dyad {d} {g.kind.iloc[0]} ({g.bodies.iloc[0]})")
+        if len(low) and float(np.ptp(low)) <= 1e-9 * 90.0:      # constant: say it
+            texts.append(ax.annotate(
+                f"dyad {d}: τ = {number(float(low[0]), '.4g')}° over the whole cycle",
+                (float(np.mean(g.position)), float(low[0])), xytext=(0, -6),
+                textcoords="offset points", ha="center", va="top", fontsize=10,
+                color=ax.lines[-1].get_color()))
     ax.axhspan(0, admissible, color="tab:red", alpha=0.1, label="not admissible")
-    ax.set_ylim(0, 90)
+    ax.set_ylim(0, 95)
     ax.set_xlabel(position_label(sol))
     cycle_axis(ax, sol)
     ax.set_ylabel("transmission angle min(τ, 180° − τ) [deg]")
-    ax.set_title("transmission angle", fontsize=10)
+    ax.set_title(titled("transmission angle"), fontsize=11)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    legend_outside(ax)
+    declutter(ax, texts)
     return ax
 
 
@@ -231,7 +280,7 @@ def plot_trajectories(sol: Solution, points: Sequence[str] | None = None,
     ax.set_ylabel("y [m]")
     ax.set_title("trajectories", fontsize=10)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7, ncol=2)
+    ax.legend(fontsize=10, ncol=2)
     return ax
 
 
@@ -256,7 +305,7 @@ def _point_curves(sol: Solution, points, component: str, ax: Axes | None, kind: 
     ax.set_title(f"{'velocities' if kind == 'v' else 'accelerations'} of points over the "
                  "cycle", fontsize=10)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, ncol=2)
+    ax.legend(fontsize=10, ncol=2)
     return ax
 
 
@@ -339,7 +388,7 @@ def plot_angular(sol: Solution, bodies: Sequence[str] | str | None = None) -> Fi
         a.set_ylabel(lab)
         a.grid(True, alpha=0.3)
         a.axhline(0.0, color="0.5", lw=0.6)
-    axs[0].legend(fontsize=8, ncol=3)
+    axs[0].legend(fontsize=10, ncol=3)
     axs[0].set_title("angular motion of the bodies", fontsize=10)
     axs[-1].set_xlabel(position_label(sol))
     cycle_axis(axs[-1], sol)
@@ -361,7 +410,7 @@ def overview(sol: Solution, position: float | None = None) -> Figure:
     -------
     Figure
     """
-    fig, axs = plt.subplots(2, 2, figsize=(12, 9), layout="constrained")
+    fig, axs = plt.subplots(2, 2, figsize=(14, 11.5), layout="constrained")
     if position is None:
         position = float(sol.positions[len(sol.positions) // 12])
     draw_mechanism(sol, position, ax=axs[0, 0], forces=True, loads=True)
@@ -371,8 +420,8 @@ def overview(sol: Solution, position: float | None = None) -> Figure:
         plot_transmission(sol, ax=axs[1, 1])
     else:
         plot_trajectories(sol, ax=axs[1, 1])
-    # the other panels changed the layout: keep the drawing's labels clear once more
-    declutter(axs[0, 0], [t for t in axs[0, 0].texts if isinstance(t, Annotation)
-                          and t.get_text()])
+    for ax in axs.flat:         # four panels: each legend below its panel, not beside
+        legend_below(ax)
+    settle(fig)
     return fig
 

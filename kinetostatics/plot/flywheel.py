@@ -81,14 +81,14 @@ def plot_flywheel_curves(data: pd.DataFrame) -> Figure:
     p = data["phi"].to_numpy()
     axs[0].plot(p, data["I_r"], lw=2, color="tab:blue")
     axs[0].set_ylabel("I_r [kg m²]")
-    axs[0].set_title("reduced moment of inertia, reduced moments and energy over a cycle",
+    axs[0].set_title("reduced moment of inertia, reduced moments\nand energy over a cycle",
                      fontsize=10)
     axs[1].plot(p, data["M_loads"], lw=1.8, label="loads M_r")
     axs[1].plot(p, data["M_motor"], lw=1.8, label="motor M_m")
     axs[1].plot(p, data["M"], lw=2.2, color="k", label="M = M_m + M_r")
     axs[1].axhline(0.0, color="0.5", lw=0.8)
     axs[1].set_ylabel("reduced moment [N m]")
-    axs[1].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
+    axs[1].legend(fontsize=10, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     de = data["delta_E"].to_numpy()
     k_hi, k_lo = int(np.argmax(de)), int(np.argmin(de))
     axs[2].plot(p, de, lw=2, color="tab:green")
@@ -101,7 +101,7 @@ def plot_flywheel_curves(data: pd.DataFrame) -> Figure:
                       f"({p[k_lo]:.0f}° to {p[k_hi]:.0f}°)")
     axs[2].set_ylabel("ΔE [J]")
     axs[2].set_xlabel("crank angle φ [deg]")
-    axs[2].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
+    axs[2].legend(fontsize=10, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     for a in axs:
         a.grid(True, alpha=0.3)
     if np.ptp(p) >= 180.0:
@@ -172,14 +172,15 @@ def plot_wittenbauer(data: pd.DataFrame, omega_mean: float | None = None,
     Axes
         I_r [kg m^2] against Delta E [J]; the title gives J when the tangents are drawn.
     """
-    from .style import declutter
+    from .notation import titled
+    from .place import declutter
 
     ax = axes_or_new(ax, figsize=(8.5, 5.5))
     i_r, de, p = (data[c].to_numpy() for c in ("I_r", "delta_E", "phi"))
     closed = abs(p[-1] - p[0] - 360.0) < 1e-9
     rows = np.unique(np.linspace(0, len(p) - 1, numbers, endpoint=not closed).round()
                      .astype(int)) if numbers > 0 else np.array([], dtype=int)
-    title = "Wittenbauer diagram (energy against reduced inertia)"
+    title = f"{titled('Wittenbauer diagram')}: energy against reduced inertia"
     curve = ax
     w = None
     if omega_mean is not None and delta is not None:
@@ -195,7 +196,7 @@ def plot_wittenbauer(data: pd.DataFrame, omega_mean: float | None = None,
         title += f"\nω_m = {omega_mean:g} rad/s, δ = {delta:g}: flywheel J = {w['J']:.4g} kg m²"
         # the curve is small beside the construction: zoomed in an inset
         curve = ax.inset_axes([0.08, 0.5, 0.45, 0.42])
-        curve.set_title("the curve, zoomed", fontsize=8)
+        curve.set_title("the curve, zoomed", fontsize=10)
         curve.tick_params(labelsize=7)
         curve.grid(True, alpha=0.3)
     for a in {ax, curve}:
@@ -210,13 +211,13 @@ def plot_wittenbauer(data: pd.DataFrame, omega_mean: float | None = None,
         curve.set_xlim(i_r.min() - pad_x, i_r.max() + pad_x)
         curve.set_ylim(de.min() - pad_y, de.max() + pad_y)
     texts = [curve.annotate(str(k), (i_r[r], de[r]), xytext=(3, 3),
-                            textcoords="offset points", fontsize=8, color="tab:blue")
+                            textcoords="offset points", fontsize=10, color="tab:blue")
              for k, r in enumerate(rows)]
     curve.plot(i_r[rows], de[rows], ".", color="tab:blue")
-    ax.set_xlabel("reduced moment of inertia I_r [kg m²]")
+    ax.set_xlabel("reduced moment of inertia $I_r$ [kg m²]")
     ax.set_ylabel("energy ΔE [J]")
     ax.set_title(title, fontsize=10)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
+    ax.legend(fontsize=10, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     declutter(curve, texts)
     return ax

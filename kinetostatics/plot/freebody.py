@@ -26,10 +26,12 @@ from .base import (
     magnitude_text,
     position_text,
     row_index,
+    vector_axes,
 )
 from .mechanism import draw_body
+from .notation import signed_text, titled
+from .place import declutter, settle
 from .polygons import find_dyad, force_on, force_polygon
-from .style import declutter
 
 __all__ = ["dyad_free_body", "free_body_forces"]
 
@@ -148,9 +150,10 @@ def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
     colors = body_colors()
     names = list(sol.scene.bodies)
     texts: list = []
+    named: set = set()          # a point shared by the two bodies is named once
     pts = []
     for b in bodies:
-        pts += draw_body(ax, sol, b, i, colors[names.index(b) % len(colors)], texts, set())
+        pts += draw_body(ax, sol, b, i, colors[names.index(b) % len(colors)], texts, named)
     forces = free_body_forces(sol, dyad, row=i)
     pts = np.array(pts + [(f["x"], f["y"]) for f in forces])
     size = float(np.ptp(pts, axis=0).max()) or 1.0
@@ -175,7 +178,7 @@ def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
             lab = f["label"] + (" (reversed on the other)" if f["kind"] == "inner" else "")
             texts.append(ax.annotate(f"{lab}\n{magnitude_text(mag)} N", tip,
                                      xytext=(4 * f["fx"] / mag, 4 * f["fy"] / mag),
-                                     textcoords="offset points", fontsize=8, color=col,
+                                     textcoords="offset points", fontsize=10, color=col,
                                      ha="left" if f["fx"] >= 0 else "right",
                                      va="bottom" if f["fy"] >= 0 else "top"))
             kinds.setdefault(f["kind"], col)
@@ -183,9 +186,9 @@ def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
             r = 0.04 * size
             _couple(ax, x, y, f["m"], r, col)
             name = "Mi" if f["kind"] == "inertia" else "M" if f["label"] != "Me" else "Me"
-            texts.append(ax.annotate(f"{name} = {f['m']:.4g} N m", (x, y),
+            texts.append(ax.annotate(signed_text(name, f["m"], "N m"), (x, y),
                                      xytext=(-6, -14), textcoords="offset points",
-                                     fontsize=8, color=col, ha="right", va="top"))
+                                     fontsize=10, color=col, ha="right", va="top"))
         if f["kind"] == "inner":
             first_inner = False
     handles = [Line2D([], [], color=c, lw=1.6, ls="--" if k == "inner" else "-",
@@ -193,17 +196,19 @@ def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
                              "(on the first body)"}.get(k, f"{k} forces"))
                for k, c in kinds.items()]
     h, _ = ax.get_legend_handles_labels()
-    fig.legend(handles=h + handles, fontsize=8, loc="outside lower left", ncol=4)
+    fig.legend(handles=h + handles, fontsize=10, loc="outside lower left", ncol=4)
     ax.set_aspect("equal", adjustable="datalim")
     ax.margins(0.15)
     ax.autoscale_view()
+    vector_axes(ax)             # few ticks: the diagram is narrow beside its polygon
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.grid(True, alpha=0.3)
     what = f"dyad {d.index + 1} {d.kind} ({', '.join(d.bodies)})" if d is not None else \
         f"driver {bodies[0]}"
-    ax.set_title(f"free-body diagram: {what} at {position_text(sol, i)}\n"
+    ax.set_title(f"{titled('free-body diagram')}\n{what} at {position_text(sol, i)}\n"
                  f"arrows: {sc * fmax:.3g} m ≙ {magnitude_text(fmax)} N", fontsize=10)
     force_polygon(sol, 0 if d is None else d.index + 1, row=i, ax=ax2)
     declutter(ax, texts)
+    settle(fig)
     return fig

@@ -54,7 +54,7 @@ def draw_gear_pair(pair, ax: Axes | None = None) -> Axes:
         ax.plot(o[0] + r * cos_a * np.cos(t), o[1] + r * cos_a * np.sin(t), color=c, lw=1,
                 ls="--")
         ax.plot(*o, "+", color=c, ms=12, mew=2)
-        ax.annotate(f"O{k}", o, xytext=(5, -12), textcoords="offset points", fontsize=9,
+        ax.annotate(f"O{k}", o, xytext=(5, -12), textcoords="offset points", fontsize=10,
                     color=c)
     span = max(r1, r2)
     centres = o2 - o1
@@ -87,7 +87,7 @@ def draw_gear_pair(pair, ax: Axes | None = None) -> Axes:
                                                  "shrinkA": 0, "shrinkB": 0}, zorder=6)
             ax.annotate(f"{lab} = {fmag:.4g} N", p + 0.6 * sign * size * u,
                         xytext=(8 * side[0], 8 * side[1]), textcoords="offset points",
-                        fontsize=9, color=col, ha="left" if side[0] >= 0 else "right",
+                        fontsize=10, color=col, ha="left" if side[0] >= 0 else "right",
                         va="bottom" if side[1] >= 0 else "top",
                         bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none",
                               "alpha": 0.85})
@@ -105,6 +105,6 @@ def draw_gear_pair(pair, ax: Axes | None = None) -> Axes:
     ax.set_ylabel("y [m]")
     ax.grid(True, alpha=0.3)
     h, _ = ax.get_legend_handles_labels()
-    ax.legend(handles=h + handles, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12),
+    ax.legend(handles=h + handles, fontsize=10, loc="upper center", bbox_to_anchor=(0.5, -0.12),
               ncol=2, borderaxespad=0.0)
     return ax

@@ -24,7 +24,7 @@ from .base import (
     row_index,
     trace_points,
 )
-from .style import declutter
+from .place import declutter
 
 __all__ = ["animate", "draw_body", "draw_mechanism"]
 
@@ -98,7 +98,7 @@ def draw_body(ax: Axes, sol: Solution, name: str, i: int, color: str,
             if key not in named:
                 named.add(key)
                 texts.append(ax.annotate(p, xy, xytext=(4, 4), textcoords="offset points",
-                                         fontsize=9))
+                                         fontsize=10))
     return pts
 
 
@@ -132,7 +132,7 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
     -------
     Axes
     """
-    ax = axes_or_new(ax)
+    ax = axes_or_new(ax, figsize=(8.0, 6.0))
     i = row_index(sol, position, row)
     n = sol.positions.size
     scene = sol.scene
@@ -188,7 +188,7 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
             ax.update_datalim([(x, y), tip])
             mag = float(np.hypot(fx, fy)) or 1.0
             texts.append(ax.annotate(lab, tip, xytext=(4 * fx / mag, 4 * fy / mag),
-                        textcoords="offset points", fontsize=9, color=col,
+                        textcoords="offset points", fontsize=10, color=col,
                         ha="left" if fx >= 0 else "right", va="bottom" if fy >= 0 else "top",
                         bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none",
                               "alpha": 0.6}))
@@ -198,17 +198,16 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
                       if any(a[5] == c for a in arrows)]
         handles = [Line2D([], [], color=c, lw=1.5, label=k) for k, c in kinds]
         ref = 10.0 ** np.floor(np.log10(0.1 * size))
-        ax.text(0.99, 0.01, f"arrows: {ref:g} m ≙ {ref / sc:.3g} N", transform=ax.transAxes,
-                ha="right", va="bottom", fontsize=8, color="0.3")
+        handles.append(Line2D([], [], ls="none", label=f"arrows: {ref:g} m ≙ {ref / sc:.3g} N"))
     ax.set_aspect("equal", adjustable="datalim")
     ax.margins(0.08)
     ax.autoscale_view()
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
-    ax.set_title(f"{scene.title or 'mechanism'} at {position_text(sol, i)}", fontsize=10)
+    ax.set_title(f"{scene.title or 'mechanism'}\nat {position_text(sol, i)}", fontsize=11)
     ax.grid(True, alpha=0.3)
     h, _ = ax.get_legend_handles_labels()
-    ax.legend(handles=h + handles, fontsize=8, loc="best")
+    ax.legend(handles=h + handles, fontsize=10, loc="best")
     declutter(ax, texts)
     return ax
 
@@ -299,7 +298,7 @@ def animate(sol: Solution, frames: int = 24, *, ax: Axes | None = None,
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, loc="best")
+    ax.legend(fontsize=10, loc="best")
     update(0)
     return FuncAnimation(fig, update, frames=len(rows), interval=interval, blit=False)
 

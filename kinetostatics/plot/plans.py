@@ -1,5 +1,5 @@
 """The graphical method of the course (seed 001): the velocity and acceleration plans
-(planul vitezelor, planul accelerațiilor) at one position.
+(planul vitezelor, planul accelerațiilor) at one position, both from one pole o.
 """
 
 from __future__ import annotations
@@ -17,12 +17,13 @@ from ..results import Solution
 from .base import (
     axes_or_new,
     body_colors,
-    legend_outside,
+    math_name,
     position_text,
     row_index,
     vector_axes,
 )
-from .style import declutter
+from .notation import POLE, gloss, signed_text
+from .place import declutter
 
 __all__ = ["acceleration_plan", "velocity_plan"]
 
@@ -90,149 +91,204 @@ def _plan_points(sol: Solution, i: int, cog: bool) -> tuple[list[_PlanPoint], li
     return list(pts.values()), slides
 
 
-def _plan(sol: Solution, position, row, ax, kind: str, cog: bool,
-          components: bool) -> Axes:
-    ax = axes_or_new(ax, figsize=(7.5, 5.0))
+@dataclass
+class _Plan:
+    """One plan being drawn: its Axes, its points, their vectors and the legend."""
+    ax: Axes
+    sol: Solution
+    i: int
+    kind: str           # "v" or "a"
+    pts: list
+    slides: list
+    vec: dict
+    big: float
+    at_pole: set
+    handles: list
+
+    @property
+    def unit(self) -> str:
+        return "m/s" if self.kind == "v" else "m/s²"
+
+    def arrow(self, tail, tip, color, lw=1.6, ls="-", alpha=1.0) -> None:
+        self.ax.annotate("", tuple(tip), tuple(tail),
+                         arrowprops={"arrowstyle": "-|>", "color": color, "lw": lw,
+                                     "ls": ls, "shrinkA": 0, "shrinkB": 0, "alpha": alpha,
+                                     "mutation_scale": 12})
+        self.ax.update_datalim([tuple(tail), tuple(tip)])
+
+    def legend(self, label: str, color, lw=1.6, ls="-") -> None:
+        self.handles.append(Line2D([], [], color=color, lw=lw, ls=ls, label=label))
+
+
+def _start(sol: Solution, position, row, ax, kind: str, cog: bool) -> _Plan:
+    """The points of the plan, their vectors, and which of them sit on the pole."""
+    ax = axes_or_new(ax, figsize=(8.0, 9.0))
     i = row_index(sol, position, row)
     pts, slides = _plan_points(sol, i, cog)
-    attr = "v" if kind == "v" else "a"
-    unit = "m/s" if kind == "v" else "m/s²"
-    colors = body_colors()
-    bodies = list(sol.scene.bodies)
-    vec = {id(q): getattr(q, attr) for q in pts}
+    vec = {id(q): (q.v if kind == "v" else q.a) for q in pts}
     big = max((np.hypot(*v) for v in vec.values()), default=0.0) or 1.0
     at_pole = {id(q) for q in pts if np.hypot(*vec[id(q)]) <= 1e-9 * big}
-    handles = []
+    return _Plan(ax, sol, i, kind, pts, slides, vec, big, at_pole, [])
 
-    def arrow(tail, tip, color, lw=1.6, ls="-", alpha=1.0):
-        ax.annotate("", tuple(tip), tuple(tail),
-                    arrowprops={"arrowstyle": "-|>", "color": color, "lw": lw, "ls": ls,
-                                "shrinkA": 0, "shrinkB": 0, "alpha": alpha,
-                                "mutation_scale": 12})
-        ax.update_datalim([tuple(tail), tuple(tip)])
 
-    # absolute vectors from the pole
-    pole = "p" if kind == "v" else "π"
-    sym = "v" if kind == "v" else "a"
-    for q in pts:
-        if q.label == pole:
-            q.label = pole + "′"
-    tips: list[list] = []       # tips at one place share one label "y0 = k"
-    for q in pts:
-        if id(q) in at_pole:
+def _absolute_vectors(pl: _Plan) -> None:
+    """From the pole, the absolute vector of every point (tips at one place share one
+    label "b = c"); the points on the pole are named beside it."""
+    colors, bodies = body_colors(), list(pl.sol.scene.bodies)
+    sym = "v" if pl.kind == "v" else "a"
+    tips: list[list] = []
+    for q in pl.pts:
+        if id(q) in pl.at_pole:
             continue
         c = colors[bodies.index(q.bodies[0]) % len(colors)]
-        v = vec[id(q)]
-        arrow((0.0, 0.0), v, c)
-        same = next((t for t in tips if np.hypot(*(t[0] - v)) <= 1e-6 * big), None)
+        v = pl.vec[id(q)]
+        pl.arrow((0.0, 0.0), v, c)
+        same = next((t for t in tips if np.hypot(*(t[0] - v)) <= 1e-6 * pl.big), None)
         if same is None:
             tips.append([v, [q.label], c])
         else:
             same[1].append(q.label)
-        handles.append(Line2D([], [], color=c, lw=1.6,
-                              label=f"{pole}{q.label} = {sym}({q.text}): "
-                                    f"{np.hypot(*v):.3g} {unit}"))
+        pl.legend(f"{POLE}{q.label} = {sym}({q.text}): {np.hypot(*v):.3g} {pl.unit}", c)
     for v, labs, c in tips:
         off = 10.0 * v / np.hypot(*v)
-        ax.annotate(" = ".join(labs), tuple(v), xytext=tuple(off), textcoords="offset points",
-                    fontsize=10, fontweight="bold", color=c, ha="center", va="center")
-    # relative vectors between points of the same body
+        pl.ax.annotate(" = ".join(labs), tuple(v), xytext=tuple(off),
+                       textcoords="offset points", fontsize=11, fontweight="bold", color=c,
+                       ha="center", va="center")
+    fixed = [q.label for q in pl.pts if id(q) in pl.at_pole]
+    pl.ax.plot(0, 0, "ko", ms=5, zorder=5)
+    pl.ax.annotate(" = ".join([POLE] + fixed), (0, 0), xytext=(-12, -12),
+                   textcoords="offset points", fontsize=11, fontweight="bold")
+    pl.handles.append(Line2D([], [], ls="none", marker="o", color="k", ms=5,
+                             label=f"{POLE}: the pole" + (f" (= {', '.join(fixed)}: fixed "
+                                                          "points)" if fixed else "")))
+
+
+def _relative_vectors(pl: _Plan, components: bool) -> tuple[bool, bool]:
+    """Between the tips of points of one body, the relative vectors (the first of each
+    body named with the body's angular speed or acceleration, and split into its
+    normal and tangential parts in the acceleration plan). Returns (relative drawn,
+    components drawn)."""
+    colors, bodies = body_colors(), list(pl.sol.scene.bodies)
+    vec = pl.vec
     rel_drawn = comp_drawn = False
     for b in bodies:
         # a point at the pole first: the side of the plan from the fixed pivot (a_C =
-        # a_D + a_CD^n + a_CD^t from pi) is drawn as well as the side from b
-        own = sorted((q for q in pts if b in q.bodies), key=lambda q: id(q) not in at_pole)
+        # a_D + a_CD^n + a_CD^t from the pole) is drawn as well as the side from b
+        own = sorted((q for q in pl.pts if b in q.bodies), key=lambda q: id(q) not in
+                     pl.at_pole)
         if len(own) < 2:
             continue
         pairs = list(zip(own[:-1], own[1:], strict=True))
         if len(own) >= 3:
             pairs.append((own[-1], own[0]))
-            ax.add_patch(Polygon([vec[id(q)] for q in own], closed=True, alpha=0.12,
-                                 color=colors[bodies.index(b) % len(colors)]))
-        m = sol.kin.bodies[b].take(i)
+            pl.ax.add_patch(Polygon([vec[id(q)] for q in own], closed=True, alpha=0.12,
+                                    color=colors[bodies.index(b) % len(colors)]))
+        m = pl.sol.kin.bodies[b].take(pl.i)
         omega, alpha = float(m.omega), float(m.alpha)
         for k, (q0, q1) in enumerate(pairs):
             t0, t1 = vec[id(q0)], vec[id(q1)]
-            if np.hypot(*(t1 - t0)) <= 1e-9 * big:
+            if np.hypot(*(t1 - t0)) <= 1e-9 * pl.big:
                 continue
-            if id(q0) not in at_pole and id(q1) not in at_pole:
-                arrow(t0, t1, "0.35", lw=1.0)   # from the pole: the absolute vector
+            if id(q0) not in pl.at_pole and id(q1) not in pl.at_pole:
+                pl.arrow(t0, t1, "0.35", lw=1.0)   # from the pole: the absolute vector
                 rel_drawn = True
             if k == 0:
-                ln = float(np.hypot(*(q1.xy - q0.xy)))
-                rel = float(np.hypot(*(t1 - t0)))
-                rn, ln_name = f"{q1.name}{q0.name}", f"{q0.name}{q1.name}"
-                if kind == "v":
-                    txt = f"ω({b}) = v{rn}/{ln_name} = {omega:.4g} rad/s"
-                else:
-                    txt = f"ε({b}) = a{rn}ᵗ/{ln_name} = {alpha:.4g} rad/s²"
-                handles.append(Line2D([], [], color="0.35", lw=1.0,
-                                      label=f"{q0.label}{q1.label}: {rel:.3g} {unit}, {txt}"
-                                      if ln > 0 else f"{q0.label}{q1.label}: {rel:.3g} {unit}"))
-            if kind == "a" and components and k == 0:
+                pl.legend(_relative_text(pl, b, q0, q1, omega, alpha), "0.35", lw=1.0)
+            if pl.kind == "a" and components and k == 0:
                 d = q1.xy - q0.xy
                 an = -omega ** 2 * d                          # towards q0: omega^2 l
                 at = alpha * np.array([-d[1], d[0]])         # eps x r
                 mid = t0 + an
-                arrow(t0, mid, "tab:olive", lw=1.0, ls="--")
-                arrow(mid, mid + at, "tab:cyan", lw=1.0, ls="--")
+                pl.arrow(t0, mid, "tab:olive", lw=1.0, ls="--")
+                pl.arrow(mid, mid + at, "tab:cyan", lw=1.0, ls="--")
                 comp_drawn = True
-    for j, ts, tg in slides:
-        t0, t1 = vec[id(tg)], vec[id(ts)]
-        if kind == "v":
-            arrow(t0, t1, "tab:gray", lw=1.2, ls=":")
-            rel_drawn = True
-        else:
-            g = sol.kin.bodies[j.guide].take(i)
-            vrel = ts.v - tg.v
-            cor = 2.0 * float(g.omega) * np.array([-vrel[1], vrel[0]])   # 2 omega x v_rel
-            if np.hypot(*cor) > 1e-9 * big:
-                arrow(t0, t0 + cor, "tab:pink", lw=1.2, ls="--")
-                handles.append(Line2D([], [], color="tab:pink", ls="--",
-                                      label=f"Coriolis 2ω×v_rel at {j.name} = "
-                                            f"{np.hypot(*cor):.3g} {unit}"))
-            arrow(t0 + cor, t1, "tab:gray", lw=1.2, ls=":")
-            handles.append(Line2D([], [], color="tab:gray", ls=":",
-                                  label=f"relative along {j.name} = "
-                                        f"{np.hypot(*(t1 - t0 - cor)):.3g} {unit}"))
-    if kind == "v" and slides:
-        handles.append(Line2D([], [], color="tab:gray", ls=":",
-                              label="relative velocity along the guide"))
-    if rel_drawn:
-        handles.append(Line2D([], [], color="0.35", lw=1.0,
-                              label="relative, points of one body"))
-    if comp_drawn:
-        handles.append(Line2D([], [], color="tab:olive", ls="--",
-                              label="normal component ω²l"))
-        handles.append(Line2D([], [], color="tab:cyan", ls="--",
-                              label="tangential component εl"))
-    ax.plot(0, 0, "ko", ms=5, zorder=5)
-    ax.annotate(pole, (0, 0), xytext=(-12, -12),
-                textcoords="offset points", fontsize=11, fontweight="bold")
+    return rel_drawn, comp_drawn
+
+
+def _relative_text(pl: _Plan, b: str, q0, q1, omega: float, alpha: float) -> str:
+    """``bc: 0.183 m/s, ω(coupler) = v_CB/BC = 0.787 rad/s, clockwise``."""
+    rel = float(np.hypot(*(pl.vec[id(q1)] - pl.vec[id(q0)])))
+    head = f"{q0.label}{q1.label}: {rel:.3g} {pl.unit}"
+    if float(np.hypot(*(q1.xy - q0.xy))) == 0.0:
+        return head
+    rn, ln = q1.name + q0.name, q0.name + q1.name
+    if pl.kind == "v":
+        return head + ", " + signed_text(
+            f"ω({b}) = $v_{{\\mathrm{{{math_name(rn)}}}}}$/{ln}", omega, "rad/s")
+    return head + ", " + signed_text(
+        f"ε({b}) = $a^{{t}}_{{\\mathrm{{{math_name(rn)}}}}}$/{ln}", alpha, "rad/s²")
+
+
+def _sliding_vectors(pl: _Plan) -> bool:
+    """At a prismatic joint on a moving guide: the relative vector along the guide
+    (and the Coriolis acceleration 2ω×v_rel before it). Returns: relative drawn."""
+    drawn = False
+    for j, ts, tg in pl.slides:
+        t0, t1 = pl.vec[id(tg)], pl.vec[id(ts)]
+        if pl.kind == "v":
+            pl.arrow(t0, t1, "tab:gray", lw=1.2, ls=":")
+            drawn = True
+            continue
+        g = pl.sol.kin.bodies[j.guide].take(pl.i)
+        vrel = ts.v - tg.v
+        cor = 2.0 * float(g.omega) * np.array([-vrel[1], vrel[0]])   # 2 omega x v_rel
+        if np.hypot(*cor) > 1e-9 * pl.big:
+            pl.arrow(t0, t0 + cor, "tab:pink", lw=1.2, ls="--")
+            pl.legend(f"Coriolis 2ω × $v_{{\\mathrm{{rel}}}}$ at {j.name} = "
+                      f"{np.hypot(*cor):.3g} {pl.unit}", "tab:pink", ls="--")
+        pl.arrow(t0 + cor, t1, "tab:gray", lw=1.2, ls=":")
+        pl.legend(f"relative along {j.name} = {np.hypot(*(t1 - t0 - cor)):.3g} {pl.unit}",
+                  "tab:gray", ls=":")
+    if pl.kind == "v" and pl.slides:
+        pl.legend("relative velocity along the guide", "tab:gray", ls=":")
+    return drawn
+
+
+def _frame(pl: _Plan) -> None:
+    """Equal axes in m/s or m/s², the title with the gloss, the legend outside."""
+    ax, sol = pl.ax, pl.sol
+    attr = "v" if pl.kind == "v" else "a"
     ax.set_aspect("equal", adjustable="datalim")
     ax.autoscale_view()
     ax.margins(0.1)
     vector_axes(ax)
-    ax.set_xlabel(f"{attr}x [{unit}]")
-    ax.set_ylabel(f"{attr}y [{unit}]")
-    what = "velocity plan (planul vitezelor)" if kind == "v" else \
-        "acceleration plan (planul accelerațiilor)"
+    ax.set_xlabel(f"${attr}_x$ [{pl.unit}]")
+    ax.set_ylabel(f"${attr}_y$ [{pl.unit}]")
+    term = "velocity plan" if pl.kind == "v" else "acceleration plan"
+    what = f"{term}\n({gloss(term)})"
     drv = sol.scene.driver
     speed = f"ω = {drv.speed:g} rad/s" if drv.kind == "R" else f"v = {drv.speed:g} m/s"
-    ax.set_title(f"{what}\nat {position_text(sol, i)}, {speed}", fontsize=10)
+    ax.set_title(f"{what}\nat {position_text(sol, pl.i)}, {speed}", fontsize=11)
     ax.grid(True, alpha=0.3)
-    legend_outside(ax, handles=handles)
-    declutter(ax, [t for t in ax.texts if isinstance(t, Annotation) and t.get_text()])
-    return ax
+    ax.legend(handles=pl.handles, loc="upper center", bbox_to_anchor=(0.5, -0.1),
+              borderaxespad=0.0)      # below: the plan keeps the figure's width
+
+
+def _plan(sol: Solution, position, row, ax, kind: str, cog: bool,
+          components: bool) -> Axes:
+    """A velocity (``kind="v"``) or acceleration (``"a"``) plan, in named steps."""
+    pl = _start(sol, position, row, ax, kind, cog)
+    _absolute_vectors(pl)
+    rel_drawn, comp_drawn = _relative_vectors(pl, components)
+    rel_drawn |= _sliding_vectors(pl)
+    if rel_drawn:
+        pl.legend("relative, points of one body", "0.35", lw=1.0)
+    if comp_drawn:
+        pl.legend("normal component ω²l", "tab:olive", lw=1.0, ls="--")
+        pl.legend("tangential component εl", "tab:cyan", lw=1.0, ls="--")
+    _frame(pl)
+    declutter(pl.ax, [t for t in pl.ax.texts if isinstance(t, Annotation) and t.get_text()])
+    return pl.ax
 
 
 def velocity_plan(sol: Solution, position: float | None = None, *, row: int | None = None,
                   ax: Axes | None = None, cog: bool = False) -> Axes:
     """The velocity plan of the graphical method at one position.
 
-    From the pole p, the absolute velocity of every named point (tip labelled with the
-    point's lowercase letter); between tips of points of one body, the relative
-    velocities (v_CB from b to c; a body with three points gives a figure similar to
+    From the pole o (the fixed points sit on it), the absolute velocity of every named
+    point (tip labelled with the point's lowercase letter); between tips of points of
+    one body, the relative velocities (v_CB from b to c; a body with three points gives
+    a figure similar to
     the body, turned by 90 deg); at a prismatic joint on a moving guide, the tip of the
     guide's coincident point (``a3``: point A of body 3) and the relative velocity along
     the guide (dotted). Seed 001: v_C = v_B + omega x BC.
@@ -259,9 +315,9 @@ def acceleration_plan(sol: Solution, position: float | None = None, *,
                       components: bool = True) -> Axes:
     """The acceleration plan of the graphical method at one position.
 
-    From the pole π, the absolute acceleration of every named point; between tips of
-    points of one body the relative accelerations, the first of each body split
-    (``components``) into its normal part omega^2 l (towards the first point, dashed
+    From the pole o (as in the velocity plan), the absolute acceleration of every named
+    point; between tips of points of one body the relative accelerations, the first of
+    each body split (``components``) into its normal part omega^2 l (towards the first point, dashed
     olive) and tangential part eps l (dashed cyan): a_C = a_B + a_CB^n + a_CB^t (seed
     001 eq. 9). At a prismatic joint on a moving guide, from the guide's coincident
     point: the Coriolis acceleration 2 omega x v_rel (dashed pink) and the relative

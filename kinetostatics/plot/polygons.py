@@ -26,9 +26,11 @@ from .base import (
     row_index,
     vector_axes,
 )
-from .style import declutter
+from .notation import direction_text, gloss, signed_text
+from .place import declutter
+from .sidebyside import side_by_side
 
-__all__ = ["find_dyad", "force_on", "force_polygon", "polygon_forces", "stretched_inset"]
+__all__ = ["find_dyad", "force_on", "force_polygon", "polygon_forces"]
 
 
 def find_dyad(sol: Solution, dyad) -> Dyad | None:
@@ -201,139 +203,111 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
     -------
     Axes
         In newtons; the legend gives every vector's magnitude, the lower corner the
-        closure error |sum F|. A polygon whose forces are nearly collinear (as in an RTR
-        dyad) gets an inset with the polygon stretched across its direction
-        (:func:`stretched_inset`) and the legend gives each force's direction.
+        closing error |sum F| is in the title, a scale bar in N in the lower right
+        corner. Arrows that would lie on one another (nearly collinear forces, as in an
+        RTR dyad) are drawn side by side, joined by dotted connectors, the offset named in
+        the legend (:func:`~kinetostatics.plot.sidebyside.side_by_side`).
     """
     d = find_dyad(sol, dyad)
     ax = axes_or_new(ax, figsize=(7.5, 5.0))
     i = row_index(sol, position, row)
     forces, split = polygon_forces(sol, d, i, components)
     big = max((np.hypot(*f[1]) for f in forces), default=1.0) or 1.0
-    tail = np.zeros(2)
-    corners = [tail.copy()]
-    handles = []
-    labels = []         # (text, anchor, unit normal, colour): placed at the end
-    segs = []           # (tail, tip, colour, dashed) for a stretched inset
-    for lab, f, col, _ in forces:
-        tip = tail + f
+    chain = _chain(forces, d, split, big)
+    corners = np.array([p for t, h, *_ in chain for p in (t, h)] or [[0.0, 0.0]])
+    span = float(np.ptp(corners, axis=0).max()) or big
+    offset = _OFFSET * span
+    placed = side_by_side([(t, h) for t, h, *_ in chain], offset, span)
+    handles, labels = [], []    # labels: (text, anchor, unit normal, colour), placed last
+    moved = False
+    for (t, h, lab, col, dashed, legend), (a, b, level) in zip(chain, placed, strict=True):
+        f = h - t
         mag = float(np.hypot(*f))
-        if mag > 1e-12 * big:
-            segs.append((tail.copy(), tip.copy(), col, False))
-            ax.annotate("", tuple(tip), tuple(tail),
-                        arrowprops={"arrowstyle": "-|>", "color": col, "lw": 1.8,
-                                    "shrinkA": 0, "shrinkB": 0, "mutation_scale": 13})
-            if mag > 0.04 * big:
-                labels.append((lab, tail + 0.5 * f, np.array([-f[1], f[0]]) / mag, col))
-        handles.append(Line2D([], [], color=col, lw=1.8,
-                              label=f"{lab} = {magnitude_text(mag)} N"
-                                    f" at {np.degrees(np.arctan2(f[1], f[0])):.1f}°"))
-        tail = tip
-        corners.append(tail.copy())
-    if d is not None and split is not None:
-        s = corners[split]
-        fin = -s
-        mag = float(np.hypot(*fin))
-        ax.annotate("", (0.0, 0.0), tuple(s),
-                    arrowprops={"arrowstyle": "-|>", "color": "k", "lw": 1.4, "ls": "--",
-                                "shrinkA": 0, "shrinkB": 0, "mutation_scale": 13})
-        segs.append((s.copy(), np.zeros(2), "k", True))
-        name = math_name(d.inner.name)
-        lab = f"$F_{{\\mathrm{{{name}}}}}$ on {d.bodies[0]}"
+        if level:
+            moved = True
+            ax.plot(*np.array([t, a]).T, ":", color="0.5", lw=1.0)
+            ax.plot(*np.array([b, h]).T, ":", color="0.5", lw=1.0)
+        ax.annotate("", tuple(b), tuple(a),
+                    arrowprops={"arrowstyle": "-|>", "color": col, "lw": 1.4 if dashed else 1.8,
+                                "ls": "--" if dashed else "-", "shrinkA": 0, "shrinkB": 0,
+                                "mutation_scale": 13})
+        ax.update_datalim([tuple(a), tuple(b)])
         if mag > 0.04 * big:
-            labels.append((f"$F_{{\\mathrm{{{name}}}}}$", s + 0.5 * fin,
-                           np.array([-fin[1], fin[0]]) / mag, "k"))
-        handles.append(Line2D([], [], color="k", ls="--", lw=1.4,
-                              label=f"{lab} = {magnitude_text(mag)} N (inner joint)"))
-    ax.update_datalim(np.array(corners))
+            labels.append((lab, a + 0.5 * f, np.array([-f[1], f[0]]) / mag, col))
+        handles.append(Line2D([], [], color=col, ls="--" if dashed else "-",
+                              lw=1.4 if dashed else 1.8, label=legend))
+    for lab, f, col, _ in forces:       # forces too small to draw: in the legend only
+        if np.hypot(*f) <= 1e-12 * big:
+            handles.append(Line2D([], [], color=col, lw=1.8,
+                                  label=f"{lab} = 0 N (to rounding)"))
+    if moved:
+        handles.append(Line2D([], [], ls=":", color="0.5", lw=1.0,
+                              label=f"side-by-side offset {magnitude_text(offset)} N "
+                                    "(drawing only)"))
     ax.plot(0, 0, "ko", ms=4)
-    closure = float(np.hypot(*tail))
-    ax.text(0.01, 0.01, f"closure |ΣF| = {closure:.1e} N", transform=ax.transAxes,
-            fontsize=8, color="0.3")
+    closure = float(np.hypot(*sum((f for _, f, _, _ in forces), np.zeros(2))))
     ax.set_aspect("equal", adjustable="datalim")
     ax.autoscale_view()
     ax.margins(0.12)
     vector_axes(ax)
-    stretch = stretched_inset(ax, segs)
     texts = place_labels(ax, labels)
+    texts.append(_scale_bar(ax, span))
     ax.set_xlabel("Fx [N]")
     ax.set_ylabel("Fy [N]")
     what = f"dyad {d.index + 1} {d.kind} ({d.bodies[0]}, {d.bodies[1]})" if d is not None \
         else f"driver {sol.scene.driver.body}"
     extra = ""
     if d is None and sol.drive.kind == "R":
-        extra = f", Me = {float(sol.Me[i]):.4g} N m"
-    if stretch == 0.0:
-        extra += " (forces collinear)"
-    ax.set_title(f"force polygon (poligonul forțelor): {what}\nat {position_text(sol, i)}{extra}",
-                 fontsize=10)
+        extra = ", " + signed_text("Me", float(sol.Me[i]), "N m")
+    ax.set_title(f"force polygon ({gloss('force polygon')})\n{what} at "
+                 f"{position_text(sol, i)}{extra}\nclosing error |ΣF| = {closure:.1e} N",
+                 fontsize=11)
     ax.grid(True, alpha=0.3)
     legend_outside(ax, handles=handles)
     declutter(ax, texts)
     return ax
 
 
+_OFFSET = 0.05      # one side-by-side step, as a fraction of the polygon's size
 
 
-def stretched_inset(ax: Axes, segs: list, flat: float = 0.08, exact: float = 1e-9) -> float | None:
-    """An inset with a thin polygon stretched across its principal direction.
+def _chain(forces: list, d, split: int | None, big: float) -> list:
+    """(tail, tip, label, colour, dashed, legend text) of every arrow drawn: the forces
+    head to tail from the pole, then the inner joint's reaction (dashed) from the end
+    of the first body's forces back to the pole."""
+    tail = np.zeros(2)
+    corners = [tail.copy()]
+    out = []
+    for lab, f, col, _ in forces:
+        tip = tail + f
+        mag = float(np.hypot(*f))
+        if mag > 1e-12 * big:
+            out.append((tail.copy(), tip.copy(), lab, col, False,
+                        f"{lab} = {magnitude_text(mag)} N at {direction_text(f)}"))
+        tail = tip
+        corners.append(tail.copy())
+    if d is not None and split is not None:
+        s = corners[split]
+        mag = float(np.hypot(*s))
+        name = math_name(d.inner.name)
+        if mag > 1e-12 * big:
+            out.append((s.copy(), np.zeros(2), f"$F_{{\\mathrm{{{name}}}}}$", "k", True,
+                        f"$F_{{\\mathrm{{{name}}}}}$ on {d.bodies[0]} = {magnitude_text(mag)} N "
+                        "(inner joint)"))
+    return out
 
-    When the polygon's width across its longest direction is under ``flat`` of its
-    length, its arrows are drawn again in an inset (in a free corner of ``ax``) with the
-    across coordinate multiplied by k, so that the closing of a polygon of nearly
-    collinear forces can be seen.
 
-    Parameters
-    ----------
-    ax : Axes
-        The polygon's Axes.
-    segs : list of (tail, tip, colour, dashed)
-        The arrows [N].
-    flat : float
-        The width/length ratio under which the inset is drawn.
-    exact : float
-        Under this ratio the forces are collinear to rounding: no inset.
-
-    Returns
-    -------
-    float or None
-        k; 0.0 when the forces are collinear to rounding; None for a polygon wide enough.
-    """
-    if not segs:
-        return None
-    pts = np.array([p for t, h, _, _ in segs for p in (t, h)])
-    centred = pts - pts.mean(axis=0)
-    u = np.linalg.svd(centred, full_matrices=False)[2][0]
-    nrm = np.array([-u[1], u[0]])
-    length, width = float(np.ptp(pts @ u)), float(np.ptp(pts @ nrm))
-    if length == 0.0 or width >= flat * length:
-        return None
-    if width <= exact * length:
-        return 0.0
-    k = 0.35 * length / width
+def _scale_bar(ax: Axes, span: float):
+    """A bar of a round number of newtons in the lower right corner, named."""
+    step = 10.0 ** np.floor(np.log10(0.25 * span))
+    length = max(m * step for m in (1.0, 2.0, 5.0) if m * step <= 0.3 * span)
     ax.apply_aspect()
-    samples = np.array([t + f * (h - t) for t, h, _, _ in segs for f in np.linspace(0, 1, 15)])
-    frac = ax.transAxes.inverted().transform(ax.transData.transform(samples))
-    boxes = [(0.03, 0.1), (0.55, 0.1), (0.03, 0.56), (0.55, 0.56)]
-    w, h = 0.42, 0.32
-
-    def crowd(b):
-        return int(np.sum((frac[:, 0] >= b[0]) & (frac[:, 0] <= b[0] + w) &
-                          (frac[:, 1] >= b[1]) & (frac[:, 1] <= b[1] + h)))
-
-    x0, y0 = min(boxes, key=crowd)
-    ins = ax.inset_axes([x0, y0, w, h])
-    for t, hd, col, dashed in segs:
-        a, b = (np.array([p @ u, k * (p @ nrm)]) for p in (t, hd))
-        ins.annotate("", tuple(b), tuple(a),
-                     arrowprops={"arrowstyle": "-|>", "color": col, "lw": 1.4,
-                                 "ls": "--" if dashed else "-", "shrinkA": 0, "shrinkB": 0,
-                                 "mutation_scale": 10})
-        ins.update_datalim([tuple(a), tuple(b)])
-    ins.plot(0, 0, "ko", ms=3)
-    ins.autoscale_view()
-    ins.margins(0.08)
-    ins.set_xticks([])
-    ins.set_yticks([])
-    ins.set_title(f"stretched ×{k:.3g} across", fontsize=7, pad=2)
-    return k
+    x0, x1 = ax.get_xlim()
+    y0, y1 = ax.get_ylim()
+    xr = x1 - 0.04 * (x1 - x0)
+    yb = y0 + 0.06 * (y1 - y0)
+    ax.plot([xr - length, xr], [yb, yb], "-", color="0.2", lw=3, solid_capstyle="butt",
+            label="_scale")
+    return ax.annotate(f"{magnitude_text(length)} N", (xr - 0.5 * length, yb), xytext=(0, 4),
+                       textcoords="offset points", ha="center", va="bottom", fontsize=10,
+                       color="0.2")

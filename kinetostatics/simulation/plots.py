@@ -45,13 +45,13 @@ def plot_comparison(cc: CrossCheck, quantities: list[str] | None = None, *, ever
         ax.plot(s.position, s.simulated, ".", ms=3, color="C1", label="pymunk")
         e = cc.errors.get(q, cc.derived_errors.get(q, float("nan")))
         src = "" if q in cc.errors else " (momentum balance)"
-        ax.set_title(f"{q}: error {e:.1e}{src}", fontsize=9)
+        ax.set_title(f"{q}: error {e:.1e}{src}", fontsize=10)
         ax.set_xlabel(xlab)
         ax.set_ylabel(f"{q} ({quantity_unit(q, cc.scene)})")
         ax.grid(alpha=0.3)
     for ax in axes[len(qs):]:
         ax.set_visible(False)
-    axes[0].legend(fontsize=8)
+    axes[0].legend(fontsize=10)
     fig.suptitle(f"{cc.scene.title}: pymunk (dt = {cc.settings.get('dt', 0):.3g} s, "
                  f"{cc.settings.get('iterations')} iterations) against kinetostatics",
                  fontsize=10)
@@ -130,7 +130,7 @@ def plot_study(table: pd.DataFrame | Study, *, repeats: int | None = None):
         ax2.set_yticks([])
         for ax in (ax1, ax2):
             ax.text(0.5, 0.3, "every setting diverged: no error to show", ha="center",
-                    va="center", transform=ax.transAxes, fontsize=9, color="0.3")
+                    va="center", transform=ax.transAxes, fontsize=10, color="0.3")
     elif blown_col.any():
         # an empty band along the top for the diverged marks, clear of the data
         lo, hi = ax2.get_ylim()
@@ -145,7 +145,7 @@ def plot_study(table: pd.DataFrame | Study, *, repeats: int | None = None):
         for h, lab in zip(*ax.get_legend_handles_labels(), strict=True):
             handles.setdefault(lab, h)
     fig.legend(handles.values(), handles.keys(), loc="outside lower center", ncol=3,
-               fontsize=8, frameon=False)
+               fontsize=10, frameon=False)
     return fig
 
 

@@ -1,0 +1,83 @@
+"""The balancing report as a PDF document (issue 22, item 8): A4 pages, the sections of
+the HTML report, proportional fonts, units in the legends, rounding-level residuals as
+"0 (to rounding)"."""
+
+from __future__ import annotations
+
+import re
+
+import matplotlib
+import pytest
+from matplotlib.backends import backend_pdf
+from matplotlib.legend import Legend
+from matplotlib.text import Text
+
+from balance.report import report_figures, report_scene
+from balance.scene import SCENES
+
+matplotlib.use("Agg")
+
+
+@pytest.fixture
+def pages(monkeypatch):
+    """Every page figure the PDF writer saves: (size in inches, texts)."""
+    seen = []
+    save = backend_pdf.PdfPages.savefig
+
+    def spy(self, fig=None, **kw):
+        texts = [t for t in fig.findobj(Text) if t.get_text().strip()]
+        seen.append((tuple(fig.get_size_inches()), texts,
+                     [ax for ax in fig.axes if ax.images]))
+        return save(self, fig, **kw)
+
+    monkeypatch.setattr(backend_pdf.PdfPages, "savefig", spy)
+    return seen
+
+
+@pytest.mark.parametrize("name", ["influence_two_plane", "rotor_two_plane",
+                                  "resonance_example"])
+def test_pdf_is_an_a4_document_with_the_html_sections(tmp_path, pages, name):
+    f = report_scene(SCENES.resolve(name), tmp_path / "r.pdf")
+    raw = f.read_bytes()
+    boxes = re.findall(rb"/MediaBox \[\s*0 0 ([\d.]+) ([\d.]+)\s*\]", raw)
+    assert boxes and all(abs(float(w) - 595.4) < 1 and abs(float(h) - 841.7) < 1
+                         for w, h in boxes), boxes
+    assert all(abs(w - 8.27) < 1e-9 and abs(h - 11.69) < 1e-9 for (w, h), _, _ in pages)
+    words = [t.get_text() for _, texts, _ in pages for t in texts]
+    heads = [w for w in words if w in ("Data (the scene)", "Results", "Warnings",
+                                       "Pictures")]
+    assert heads == ["Data (the scene)", "Results", "Warnings", "Pictures"]
+    families = {t.get_fontfamily()[0] for _, texts, _ in pages for t in texts}
+    assert families == {"sans-serif"}                   # no monospace page
+    assert sum(len(imgs) for _, _, imgs in pages) == len(
+        report_figures(*_results(name)))                # every picture on a page
+    assert all(len(texts) >= 1 for _, texts, _ in pages)
+
+
+def _results(name):
+    from balance.api import results_to_dict, solve_results
+    r = solve_results(SCENES.resolve(name))
+    return r, results_to_dict(r)
+
+
+def test_residual_at_rounding_and_micrometres(tmp_path, pages):
+    report_scene(SCENES.resolve("influence_two_plane"), tmp_path / "r.pdf")
+    words = " ".join(t.get_text() for _, texts, _ in pages for t in texts)
+    # measured: the predicted residuals are 5.7e-14 and 2.5e-14 um of readings ~170 um
+    assert "bearing A 0 (to rounding), bearing B 0 (to rounding)" in words
+    assert "e-14" not in words
+
+
+def test_legends_carry_units():
+    figs = report_figures(*_results("influence_two_plane"))
+    labels = [t.get_text() for _, fig in figs for lg in fig.findobj(Legend)
+              for t in lg.get_texts()]
+    assert any("170 µm at 112.0 deg" in s for s in labels), labels
+    assert all(" um" not in s for s in labels)
+    figs = report_figures(*_results("four_run"))
+    labels = [t.get_text() for _, fig in figs for lg in fig.findobj(Legend)
+              for t in lg.get_texts()]
+    amplitudes = [s for s in labels if "A1 =" in s or "A =" in s]
+    # four_run names no vibration unit: its legends say "amplitude unit"
+    assert amplitudes and all(re.search(r"\d (µm|mm|mm/s|amplitude unit)( |$)", s)
+                              for s in amplitudes), labels
