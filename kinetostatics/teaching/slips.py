@@ -113,6 +113,8 @@ def slip_note(question: str, unit: str, kind: str, answer: float, expected: floa
     if abs(expected) <= 4.0 * tol and kind != "angle":
         return ""
     for f, what in _candidates(question, unit):
+        if kind == "angle" and abs(f) < 1.0 and abs(answer) > 2.0 * math.pi + abs(f) * tol:
+            continue        # no angle in radians: a degree-sized answer is no such slip
         back = answer / f                     # the answer, undone by the slip
         diff = float(wrap_angle(back - expected)) if kind == "angle" else back - expected
         if abs(diff) <= tol:
