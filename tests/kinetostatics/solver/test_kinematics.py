@@ -1,6 +1,7 @@
 """Kinematics against the course's closed forms, and properties over random geometries."""
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
