@@ -30,7 +30,7 @@ def _close():
     plt.close("all")
 
 
-def _positions(sol, which: int) -> list[float]:
+def _positions(sol, which: int = 1) -> list[float]:
     """One row of the sweep per scene, each scene at another place of its cycle (an
     eighth, the middle, five sixths): every picture type of every scene at one position
     costs about 20 s of CPU per scene on this machine, three positions a minute."""
