@@ -14,6 +14,8 @@ import sys
 import warnings
 from typing import Any, NoReturn
 
+from kinetostatics.cli import dpi_argument
+
 from .api import example_path, examples, results_to_dict, solve_results
 from .errors import WorkbenchError
 from .report.text import result_warnings, summary_text
@@ -27,17 +29,6 @@ class _Parser(argparse.ArgumentParser):
         raise SystemExit(2)
 
 
-def _dpi(text: str) -> float:
-    """A --dpi value: a number from 50 to 600."""
-    try:
-        v = float(text)
-    except ValueError:
-        v = float("nan")
-    if not 50.0 <= v <= 600.0:
-        raise argparse.ArgumentTypeError(f"{text!r}: give a number from 50 to 600")
-    return v
-
-
 def _parser() -> argparse.ArgumentParser:
     p = _Parser(prog="python -m balance",
                 description="Rotor and resonance balancing (seed 002 ch. 3).")
@@ -47,7 +38,7 @@ def _parser() -> argparse.ArgumentParser:
     s.add_argument("--json", action="store_true", help="print the result dict as JSON")
     s.add_argument("--report", metavar="FILE",
                    help="write a balancing report: FILE.html (pictures embedded) or FILE.pdf")
-    s.add_argument("--dpi", type=_dpi, default=150,
+    s.add_argument("--dpi", type=dpi_argument, default=150,
                    help="dots per inch of the report's pictures (default 150)")
     sub.add_parser("examples", help="list the bundled example scenes")
     return p

@@ -39,8 +39,8 @@ def _cmd_solve(args) -> int:
     return 0
 
 
-def _dpi(text: str) -> float:
-    """A --dpi value: a number from 50 to 600."""
+def dpi_argument(text: str) -> float:
+    """A --dpi value: a number from 50 to 600 (the argparse type of both CLIs)."""
     try:
         v = float(text)
     except ValueError:
@@ -140,14 +140,14 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
                    "Me, polar diagrams, mechanism with loads, plans, force polygons")
     s.add_argument("--plot-at", metavar="POS", type=float, nargs="+",
                    help="driver positions (deg, or m) of those pictures (default: max |Me|)")
-    s.add_argument("--dpi", type=_dpi, default=150, help="dots per inch of the pictures "
+    s.add_argument("--dpi", type=dpi_argument, default=150, help="dots per inch of the pictures "
                    "(default 150, the lecture-room size; 200 or more for a large room)")
     s.set_defaults(func=_cmd_solve)
     d = sub.add_parser("demo", help="solve a scene; write its tables and pictures")
     d.add_argument("scene", nargs="?", help="bundled scene name or scene file")
     d.add_argument("--example", default="four_bar", help="bundled scene (default four_bar)")
     d.add_argument("--out", default="demo-out", help="output folder (default demo-out)")
-    d.add_argument("--dpi", type=_dpi, default=150, help="dots per inch of the pictures "
+    d.add_argument("--dpi", type=dpi_argument, default=150, help="dots per inch of the pictures "
                    "(default 150)")
     d.set_defaults(func=_cmd_demo)
     t = sub.add_parser("structure", help="print the driver and the dyads of a scene")

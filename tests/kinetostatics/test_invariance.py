@@ -182,7 +182,10 @@ def test_coarse_rows_of_fully_turning_links_are_the_fine_rows(mech, data) -> Non
 def mirrored(d: dict) -> dict:
     """y -> -y for every point, hint, load and the gravity; every angle negated."""
     m = copy.deepcopy(d)
-    flip = lambda p: [p[0], -p[1]]   # noqa: E731
+
+    def flip(p: list) -> list:
+        return [p[0], -p[1]]
+
     m["gravity"] = flip(m.get("gravity", [0.0, 0.0]))
     m["ground"] = {k: flip(v) for k, v in m["ground"].items()}
     m["near"] = {k: flip(v) for k, v in m.get("near", {}).items()}
