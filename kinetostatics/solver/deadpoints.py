@@ -30,10 +30,12 @@ sweep such probes are left out.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from ..model.scene import Scene
-from .continuity import open_rows, sweep_order
+from .continuity import open_rows
 from .kinematics import SINGULAR_WARN, Kinematics, solve_kinematics
 from .structure import Structure
 
@@ -50,34 +52,47 @@ def _measure2(kin: Kinematics) -> np.ndarray:
     return m2
 
 
-def _candidates(m2: np.ndarray) -> np.ndarray:
-    """Intervals i (rows i, i + 1) next to a local minimum of m over the rows."""
+def _candidates(m2: np.ndarray, starts: np.ndarray | None = None,
+                counts: np.ndarray | None = None) -> np.ndarray:
+    """Intervals i (rows i, i + 1) next to a local minimum of m over the rows; with
+    ``starts`` and ``counts``, over each segment of rows alone (many scenes' sweeps one
+    after another, :func:`dead_points_stacked`): no interval joins two segments."""
     n = m2.size
+    if starts is None:
+        starts, counts = np.zeros(1, dtype=int), np.array([n])
     if n < 2:
         return np.zeros(0, dtype=int)
     left = np.concatenate([[np.inf], m2[:-1]])
     right = np.concatenate([m2[1:], [np.inf]])
+    left[starts] = np.inf
+    right[starts + counts - 1] = np.inf
     # a real dip (not rounding jitter on a constant measure), small enough to matter
     shrink = 1.0 - 1e-9
     dip = (((m2 < left * shrink) & (m2 <= right))
            | ((m2 <= left) & (m2 < right * shrink)))
     rows = np.flatnonzero(dip & (m2 < SCREEN**2))
     out = np.unique(np.concatenate([rows - 1, rows]))
-    return out[(out >= 0) & (out < n - 1)]
+    out = out[(out >= 0) & (out < n - 1)]
+    last = np.zeros(n, dtype=bool)          # the last row of a segment starts no interval
+    last[starts + counts - 1] = True
+    return out[~last[out]]
 
 
-def _probe(scene: Scene, structure: Structure, lo: np.ndarray, hi: np.ndarray
-           ) -> tuple[np.ndarray, np.ndarray]:
+def _probe(at: Callable[[np.ndarray, np.ndarray], Kinematics], lo: np.ndarray,
+           hi: np.ndarray, owner: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The smallest m^2 found inside each interval (lo, hi), zooming ROUNDS times, and
-    the intervals where some probe found a dyad that cannot close (no closed form)."""
+    the intervals where some probe found a dyad that cannot close (no closed form).
+    ``at(positions, owner)`` solves the kinematics (``strict = False``) at driver
+    positions, row i of the mechanism (segment) ``owner[i]``; interval j belongs to
+    ``owner[j]``."""
     t = np.linspace(0.0, 1.0, PROBES + 2)
     rows = np.arange(lo.size)
     best = np.full(lo.size, np.inf)
     open_ = np.zeros(lo.size, dtype=bool)
+    probe_owner = np.repeat(owner, PROBES)
     for _ in range(ROUNDS):
         grid = lo[:, None] + (hi - lo)[:, None] * t[None, :]
-        probe = solve_kinematics(scene, structure, positions=grid[:, 1:-1].ravel(),
-                                 strict=False)
+        probe = at(grid[:, 1:-1].ravel(), probe_owner)
         pm2 = _measure2(probe).reshape(lo.size, PROBES)
         nan = np.isnan(pm2) | open_rows(probe).reshape(lo.size, PROBES)
         open_ |= nan.any(axis=1)
@@ -111,30 +126,103 @@ def dead_points_between_rows(scene: Scene, structure: Structure, kin: Kinematics
         (k, 2) rows (i, j) as in ``between`` where some dyad cannot close at a position
         probed between them: the two rows are not joined by any motion of the mechanism.
     """
+    def at(positions: np.ndarray, owner: np.ndarray) -> Kinematics:
+        return solve_kinematics(scene, structure, positions=positions, strict=False)
+    n = kin.n
+    return dead_points_stacked(_measure2(kin), np.asarray(kin.positions, dtype=float),
+                               np.zeros(1, dtype=int), np.array([n]), at)[0]
+
+
+def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarray,
+                        counts: np.ndarray,
+                        at: Callable[[np.ndarray, np.ndarray], Kinematics]) -> list[tuple]:
+    """:func:`dead_points_between_rows` of many sweeps at once: segment s holds rows
+    ``starts[s]`` to ``starts[s] + counts[s]`` (one scene of a stack,
+    :func:`kinetostatics.solve_many`), searched alone, with the probes of all segments in
+    one solve (``at``, as for :func:`_probe`). Every number is the one a segment's scene
+    gives alone: the same elementwise operations on each row.
+
+    Parameters
+    ----------
+    m2u : numpy.ndarray
+        m^2 per row (:func:`_measure2`), rows in the sweeps' own order.
+    positions : numpy.ndarray
+        The driver position of each row.
+    starts, counts : numpy.ndarray
+        Each segment's first row and number of rows (one after another, in order).
+    at : callable
+        ``at(positions, owner)``: the kinematics at ``positions`` (row i of segment
+        ``owner[i]``), ``strict = False``.
+
+    Returns
+    -------
+    list of tuple
+        Per segment, ``(between, ends, unassembled)`` as :func:`dead_points_between_rows`
+        returns them, in the segment's own row numbers.
+    """
+    starts = np.asarray(starts, dtype=int)
+    counts = np.asarray(counts, dtype=int)
+    m = starts.size
     none, pairs = np.zeros(0, dtype=int), np.zeros((0, 2), dtype=int)
-    m2u = _measure2(kin)
-    n = m2u.size
-    if n < 2:
-        return pairs, none, pairs
-    order = sweep_order(kin.positions)
+    seg = np.repeat(np.arange(m), counts)
+    order = _segment_order(positions, seg, starts)
     m2 = m2u[order]
-    pos = np.asarray(kin.positions, dtype=float)[order]
-    cand = _candidates(m2)
+    pos = positions[order]
+    cand = _candidates(m2, starts, counts)
     # beyond the ends: an end row that is a dip of m, probed over one spacing outside
-    outer = [(0, 2.0 * pos[0] - pos[1], pos[0]), (n - 1, pos[-1], 2.0 * pos[-1] - pos[-2])]
-    outer = [o for o in outer
-             if m2[o[0]] < SCREEN**2 and m2[o[0]] <= m2[1 if o[0] == 0 else n - 2]]
-    lo = np.concatenate([pos[cand], [o[1] for o in outer]])
-    hi = np.concatenate([pos[cand + 1], [o[2] for o in outer]])
-    if lo.size == 0:
-        return pairs, none, pairs
-    best, open_ = _probe(scene, structure, lo, hi)
+    two = counts >= 2
+    first, last = starts[two], (starts + counts - 1)[two]
+    lo_f, hi_f = 2.0 * pos[first] - pos[first + 1], pos[first]
+    lo_l, hi_l = pos[last], 2.0 * pos[last] - pos[last - 1]
+    use_f = (m2[first] < SCREEN**2) & (m2[first] <= m2[first + 1])
+    use_l = (m2[last] < SCREEN**2) & (m2[last] <= m2[last - 1])
+    segs = np.flatnonzero(two)
     k = cand.size
+    lo = np.concatenate([pos[cand], lo_f[use_f], lo_l[use_l]])
+    hi = np.concatenate([pos[cand + 1], hi_f[use_f], hi_l[use_l]])
+    owner = np.concatenate([seg[cand], segs[use_f], segs[use_l]])
+    if lo.size == 0:
+        return [(pairs, none, pairs) for _ in range(m)]
+    best, open_ = _probe(at, lo, hi, owner)
     ends_m2 = np.minimum(m2[cand], m2[cand + 1])
     dead = (best[:k] <= SINGULAR_WARN**2) & (best[:k] < ends_m2) & ~open_[:k]
-    between = cand[dead]
-    gaps = cand[open_[:k]]
-    edge = np.array([order[o[0]] for o, b in zip(outer, best[k:], strict=True)
-                     if b <= SINGULAR_WARN**2 and b < m2[o[0]]], dtype=int)
-    return (np.stack([order[between], order[between + 1]], axis=1),
-            edge, np.stack([order[gaps], order[gaps + 1]], axis=1))
+    kf = int(use_f.sum())
+    edge_f = np.full(m, -1)
+    edge_l = np.full(m, -1)
+    bf, bl = best[k:k + kf], best[k + kf:]
+    rf, rl = first[use_f], last[use_l]
+    hit_f = (bf <= SINGULAR_WARN**2) & (bf < m2[rf])
+    hit_l = (bl <= SINGULAR_WARN**2) & (bl < m2[rl])
+    edge_f[segs[use_f][hit_f]] = order[rf[hit_f]]
+    edge_l[segs[use_l][hit_l]] = order[rl[hit_l]]
+    between = _per_segment(cand[dead], order, seg, starts, m)
+    gaps = _per_segment(cand[open_[:k]], order, seg, starts, m)
+    out = []
+    for s in range(m):
+        edge = [e - starts[s] for e in (edge_f[s], edge_l[s]) if e >= 0]
+        out.append((between[s], np.array(edge, dtype=int) if edge else none, gaps[s]))
+    return out
+
+
+def _segment_order(positions: np.ndarray, seg: np.ndarray, starts: np.ndarray) -> np.ndarray:
+    """The rows in increasing driver position within each segment (each segment's
+    :func:`~.continuity.sweep_order`; the identity where every sweep increases)."""
+    n = positions.size
+    up = positions[1:] > positions[:-1]
+    up[starts[1:][starts[1:] > 0] - 1] = True         # no order across segments
+    if n < 2 or bool(up.all()):
+        return np.arange(n)
+    return np.lexsort((positions, seg))
+
+
+def _per_segment(intervals: np.ndarray, order: np.ndarray, seg: np.ndarray,
+                 starts: np.ndarray, m: int) -> list[np.ndarray]:
+    """Intervals (global rows in increasing position) as (k, 2) row pairs per segment,
+    in each segment's own row numbers."""
+    if intervals.size == 0:
+        empty = np.zeros((0, 2), dtype=int)
+        return [empty] * m
+    owner = seg[intervals]
+    pairs = np.stack([order[intervals], order[intervals + 1]], axis=1) - starts[owner, None]
+    cuts = np.searchsorted(owner, np.arange(m + 1))
+    return [pairs[cuts[s]:cuts[s + 1]] for s in range(m)]

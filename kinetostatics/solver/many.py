@@ -25,7 +25,7 @@ import numpy as np
 
 from ..model.scene import load_scene
 from ..results import Solution
-from .deadpoints import dead_points_between_rows
+from .deadpoints import _measure2, dead_points_stacked
 from .driver import BodyMotion
 from .kinematics import Kinematics, solve_kinematics
 from .pipeline import _check_finite, _solve_loads, check_distinct, solve
@@ -159,20 +159,69 @@ def _solve_group(members: list, out: list) -> None:
 
 
 def _stacked(scenes: list, structure, ks: np.ndarray) -> list[Solution]:
-    """The solve of :func:`kinetostatics.solve` on the stacked scenes, cut per scene."""
+    """The solve of :func:`kinetostatics.solve` on the stacked scenes, cut per scene: the
+    dead points of every scene screened at once (:func:`dead_points_stacked`, the probes
+    of all scenes in one solve), each scene's Solution a light view whose arrays are cut
+    from the stacked ones when first read."""
     counts = np.array([s.driver.positions.size for s in scenes])
     starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
     owner = np.repeat(np.arange(len(scenes)), counts)
     stacker = Stacker(scenes)
     st = replace(structure, assembly=tuple(k[owner] for k in ks))
-    big = stacker.scene(owner, np.concatenate([s.driver.positions for s in scenes]))
+    positions = np.concatenate([s.driver.positions for s in scenes])
+    big = stacker.scene(owner, positions)
     kin = solve_kinematics(big, st)
     sol = _solve_loads(big, st, kin)
     _check_finite(sol)
+
+    def at(where: np.ndarray, who: np.ndarray) -> Kinematics:
+        probe = replace(structure, assembly=tuple(k[who] for k in ks))
+        return solve_kinematics(stacker.scene(who, where), probe, strict=False)
+    dead = dead_points_stacked(_measure2(kin), positions, starts, counts, at)
     cut = _splitter(sol)
-    return [cut(sc, replace(structure, assembly=tuple(int(k[j]) for k in ks)),
-                slice(a, a + n))
-            for j, (sc, a, n) in enumerate(zip(scenes, starts, counts, strict=True))]
+    drive = np.asarray(sol.drive.value)
+    drive_rows = _per_row(drive, positions.size)
+    undefined = np.asarray(sol.undefined_load)
+    undefined_rows = _per_row(undefined, positions.size)
+    kind = sol.drive.kind
+    structures: dict[tuple, Any] = {}
+    out = []
+    for j, (sc, a, n) in enumerate(zip(scenes, starts.tolist(), counts.tolist(),
+                                       strict=True)):
+        assembly = tuple(int(k[j]) for k in ks)
+        sj = structures.get(assembly)
+        if sj is None:
+            sj = structures[assembly] = replace(structure, assembly=assembly)
+        rows = slice(a, a + n)
+        one = object.__new__(_Cut)
+        one.__dict__.update(
+            scene=sc, structure=sj, self_locking=None,
+            drive=DriverReaction(kind, drive[rows] if drive_rows else drive),
+            undefined_load=undefined[rows] if undefined_rows else undefined,
+            _lazy=(cut, rows, dead[j]))
+        out.append(one)
+    return out
+
+
+class _Cut(Solution):
+    """One scene's :class:`~kinetostatics.results.Solution` cut from a stacked solve: its
+    kinematics, loads and joint reactions (views of the stacked arrays) are cut when
+    first read; everything else is the scene's own from the start."""
+
+    def __getattr__(self, name: str):
+        lazy = self.__dict__.get("_lazy")
+        if lazy is None or name not in ("kin", "loads", "joint_reactions"):
+            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+        cut, rows, dead = lazy
+        kin, loads, reactions = cut(self.scene, self.structure, rows, dead)
+        d = self.__dict__
+        d.update(kin=kin, loads=loads, joint_reactions=reactions)
+        del d["_lazy"]
+        return d[name]
+
+    def __getstate__(self) -> dict:
+        self.kin        # noqa: B018 (cut now: the state holds arrays, not the stack's cutter)
+        return dict(self.__dict__)
 
 
 class _Template:
@@ -211,8 +260,8 @@ def _per_row(v, total: int) -> bool:
 
 
 def _splitter(sol: Solution):
-    """A function (scene, structure, rows, dead) -> that scene's Solution, cutting the
-    rows of every array of the stacked ``sol``."""
+    """A function (scene, structure, rows, dead points) -> that scene's kinematics, loads
+    and joint reactions, cutting the rows of every array of the stacked ``sol``."""
     total = sol.positions.size
     motions = []
     for name, m in sol.kin.bodies.items():
@@ -224,10 +273,8 @@ def _splitter(sol: Solution):
                                      for p in dm.params]) for dm in sol.kin.dyads]
     loads = [_Template(ld, total) for ld in sol.loads]
     reactions = [(name, _Template(r, total)) for name, r in sol.joint_reactions.items()]
-    drive, undefined = np.asarray(sol.drive.value), np.asarray(sol.undefined_load)
-    drive_rows, undefined_rows = _per_row(drive, total), _per_row(undefined, total)
 
-    def cut(scene, structure, rows: slice) -> Solution:
+    def cut(scene, structure, rows: slice, dead: tuple) -> tuple:
         bodies = {name: BodyMotion(*[a[rows] if cut_it else a for a, cut_it in fs])
                   for name, fs in motions}
         n = rows.stop - rows.start
@@ -239,10 +286,7 @@ def _splitter(sol: Solution):
         kin = Kinematics(scene, structure, scene.driver.positions, bodies, dms)
         # the dead points between rows, and the intervals no motion crosses, found per
         # scene along increasing driver position exactly as solve finds them
-        kin.between, kin.ends, kin.unassembled = dead_points_between_rows(scene, structure,
-                                                                           kin)
-        return Solution(scene, structure, kin, [t.cut(rows) for t in loads],
-                        {name: t.cut(rows) for name, t in reactions},
-                        DriverReaction(sol.drive.kind, drive[rows] if drive_rows else drive),
-                        undefined[rows] if undefined_rows else undefined)
+        kin.between, kin.ends, kin.unassembled = dead
+        return (kin, [t.cut(rows) for t in loads],
+                {name: t.cut(rows) for name, t in reactions})
     return cut
