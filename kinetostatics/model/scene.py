@@ -26,6 +26,7 @@ from .tomlio import (
     as_str,
     as_vec2,
     check_keys,
+    plain_vec2,
     read_source,
     suggest,
 )
@@ -269,7 +270,7 @@ def load_scene(source: Any) -> Scene:
 def _ground(table: Any) -> dict[str, tuple[float, float]]:
     if not isinstance(table, dict):
         raise SceneError("[ground] must be a table of point = [x, y]")
-    return {str(k): as_vec2(v, f"ground.{k}") for k, v in table.items()}
+    return {str(k): plain_vec2(v) or as_vec2(v, f"ground.{k}") for k, v in table.items()}
 
 
 def _bodies(items: Any) -> dict[str, Body]:
@@ -288,7 +289,8 @@ def _bodies(items: Any) -> dict[str, Body]:
             raise SceneError(f"{where}: the name is used twice; body names must be unique")
         mass = as_float(item.get("mass", 0.0), f"{where}.mass", nonnegative=True)
         inertia = as_float(item.get("inertia", 0.0), f"{where}.inertia", nonnegative=True)
-        cog = as_vec2(item["cog"], f"{where}.cog") if "cog" in item else None
+        cog = (plain_vec2(item["cog"]) or as_vec2(item["cog"], f"{where}.cog")
+               if "cog" in item else None)
         if mass > 0.0 and cog is None:
             raise SceneError(f"{where}: mass > 0 needs 'cog' (centre of mass, local coordinates)")
         pts = item.get("points", {})
@@ -298,7 +300,7 @@ def _bodies(items: Any) -> dict[str, Body]:
         for pname, pval in pts.items():
             if pname == "cog":
                 raise SceneError(f"{where}.points: 'cog' is reserved for the centre of mass")
-            points[str(pname)] = as_vec2(pval, f"{where}.points.{pname}")
+            points[str(pname)] = plain_vec2(pval) or as_vec2(pval, f"{where}.points.{pname}")
         model = None
         if "mass_model" in item:
             model = _mass_model(item["mass_model"], where, points, cog, mass)
@@ -469,8 +471,26 @@ def _driver(table: Any, bodies: dict, joints: dict) -> Driver:
         start = as_float(t["start"], "driver.start")
         stop = as_float(t["stop"], "driver.stop")
         count = as_int(t["count"], "driver.count", lo=1, hi=MAX_COUNT)
-        positions = np.linspace(start, stop, count)
+        positions = _sweep(start, stop, count)
     return Driver(body, jname, kind, speed, acc, positions)
+
+
+_SWEEPS: dict[tuple[str, str, int], np.ndarray] = {}
+
+
+def _sweep(start: float, stop: float, count: int) -> np.ndarray:
+    """``np.linspace(start, stop, count)``, a copy of its own; the last few sweeps are
+    remembered (variants of one mechanism share theirs, and a copy costs less)."""
+    key = (start.hex(), stop.hex(), count)       # the bits: -0.0 is not 0.0
+    done = _SWEEPS.get(key)
+    if done is None:
+        done = np.linspace(start, stop, count)
+        if count > 100_000:
+            return done
+        if len(_SWEEPS) >= 16:
+            _SWEEPS.clear()
+        _SWEEPS[key] = done
+    return done.copy()
 
 
 def _loads(items: Any, bodies: dict) -> tuple[Load, ...]:

@@ -116,7 +116,7 @@ def convert_mechanism(raw: dict, units: Units) -> dict:
     default units, ``raw`` itself is returned."""
     if units.is_default:
         return raw
-    out = copy.deepcopy(raw)
+    out = _copy(raw)
     f = units.file_factor
     L, M, I, A, W, F, T = (f("length"), f("mass"), f("inertia"), f("angle"), f("speed"),
                            f("force"), f("moment"))
@@ -164,6 +164,22 @@ def convert_mechanism(raw: dict, units: Units) -> dict:
     return out
 
 
+_PLAIN = (str, int, float, bool, type(None))
+
+
+def _copy(value: Any) -> Any:
+    """``copy.deepcopy`` of a scene's mapping, quicker on what TOML gives (tables, lists,
+    texts, numbers: each plain value is immutable and kept as it is)."""
+    t = type(value)
+    if t is dict:
+        return {k: _copy(v) for k, v in value.items()}
+    if t is list:
+        return [_copy(v) for v in value]
+    if t in _PLAIN:
+        return value
+    return copy.deepcopy(value)
+
+
 def _warn(text: str) -> None:
     warnings.warn(text, UnitWarning, stacklevel=4)
 
@@ -181,9 +197,8 @@ def check_unit_slips(scene: Scene, units: Units) -> None:
     pos = drv.positions
     if drv.kind == "R" and units.angle == "deg":
         typed = _typed_positions(scene)
-        extent = float(np.ptp(pos)) if pos.size > 1 else 0.0
-        if angle_slip(typed, "deg") or (
-                pos.size > 1 and abs(extent - 2.0 * math.pi) <= 0.01 * 2.0 * math.pi):
+        if angle_slip(typed, "deg") or (pos.size > 1 and abs(
+                float(pos.max() - pos.min()) - 2.0 * math.pi) <= 0.01 * 2.0 * math.pi):
             shown = ", ".join(f"{v:g}" for v in typed[:4]) + (", ..." if len(typed) > 4 else "")
             _warn(f"driver positions [{shown}] look like radians (all within 2 pi, with "
                   "fractional values) but angles are in degrees (a full turn is 360); write "
@@ -238,7 +253,7 @@ def _far_points(scene: Scene, units: Units) -> None:
             if b in joint_pts:
                 joint_pts[b].append(scene.bodies[b].points[p])
     pts = [p for b in joint_pts.values() for p in b] + list(scene.ground.values())
-    if len(pts) < 2:
+    if len(pts) < 2 or _all_near(scene, joint_pts, pts):
         return
     arr = np.asarray(pts, dtype=float)
     size = float(np.max(np.hypot(*(arr - arr.mean(axis=0)).T)))
@@ -260,3 +275,35 @@ def _far_points(scene: Scene, units: Units) -> None:
                       f"{far / f:.3g} {unit} from the body's joints, over 100 times the "
                       f"mechanism's size ({size / f:.3g} {unit}): millimetres among metres (a "
                       f"length typed in another unit)? Every length is in {unit}")
+
+
+def _all_near(scene: Scene, joint_pts: dict, pts: list) -> bool:
+    """True when every point and cog clearly lies within 100 sizes of its body's joints
+    (the usual scene, told in plain Python without numpy's cost per call); a scene near
+    that line, or with a point beyond it, is left to the exact test (False)."""
+    n = len(pts)
+    mx = my = 0.0
+    for x, y in pts:
+        mx += x
+        my += y
+    mx, my = mx / n, my / n
+    hypot = math.hypot
+    size = max(hypot(x - mx, y - my) for x, y in pts)
+    scale = max(max(abs(x), abs(y)) for x, y in pts)
+    if not size > 1e-6 * scale:     # rounding could weigh here: the exact test decides
+        return False
+    limit = 100.0 * size * (1.0 - 1e-6)     # a margin for the rounding of mean and size
+    for name, body in scene.bodies.items():
+        ref = joint_pts[name]
+        if not ref:
+            continue
+        named = list(body.points.values())
+        if body.cog is not None:
+            named.append(body.cog)
+        for x, y in named:
+            for q in ref:
+                if hypot(x - q[0], y - q[1]) <= limit:
+                    break
+            else:
+                return False
+    return True

@@ -126,6 +126,12 @@ def as_float(value: Any, where: str, *, positive: bool = False, nonnegative: boo
     """A finite float of magnitude at most ``limit``, optionally positive / non-negative /
     non-zero; else ``error`` (a :class:`SceneError` unless told) naming ``where``. Python
     and numpy numbers are accepted, booleans are not."""
+    t = type(value)
+    if t is float or t is int:      # the common case, checked without a detour
+        x = float(value)
+        if (-limit <= x <= limit and (not positive or x > 0.0)
+                and (not nonnegative or x >= 0.0) and (not nonzero or x != 0.0)):
+            return x
     if isinstance(value, bool | np.bool_) or not isinstance(
             value, int | float | np.integer | np.floating):
         raise error(f"{where} must be a number, not {_typename(value)}")
@@ -167,9 +173,24 @@ def as_str(value: Any, where: str) -> str:
 
 def as_vec2(value: Any, where: str) -> tuple[float, float]:
     """A pair of finite numbers ``[x, y]``."""
+    plain = plain_vec2(value)
+    if plain is not None:
+        return plain
     if not isinstance(value, list | tuple) or len(value) != 2:
         raise SceneError(f"{where} must be a pair [x, y] of numbers, not {value!r}")
     return (as_float(value[0], f"{where}[0]"), as_float(value[1], f"{where}[1]"))
+
+
+def plain_vec2(value: Any) -> tuple[float, float] | None:
+    """``(x, y)`` of a list of two floats within range (the common case, told without
+    building a message), else None: :func:`as_vec2` then checks it (``plain_vec2(v) or
+    as_vec2(v, where)`` names ``where`` only when needed)."""
+    if type(value) is list and len(value) == 2:
+        x, y = value
+        if (type(x) is float and type(y) is float and -MAX_MAGNITUDE <= x <= MAX_MAGNITUDE
+                and -MAX_MAGNITUDE <= y <= MAX_MAGNITUDE):
+            return (x, y)
+    return None
 
 
 def as_list(value: Any, where: str) -> list:
