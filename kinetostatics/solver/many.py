@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from ..model.errors import WorkbenchError
 from ..model.scene import load_scene
 from ..results import Solution
 from .deadpoints import _measure2, dead_points_stacked
@@ -68,7 +69,8 @@ def solve_many(scenes: Iterable[Any], *, executor: Executor | None = None,
     ------
     WorkbenchError
         The error :func:`~kinetostatics.solve` raises for the first scene (in order) that
-        it refuses.
+        it refuses, of the same class, its message led by the scene's place in the list:
+        ``scenes[417]: body 'rocker'.mass must not be negative, got -1``.
 
     Examples
     --------
@@ -85,7 +87,9 @@ def solve_many(scenes: Iterable[Any], *, executor: Executor | None = None,
         size = batch or max(32, math.ceil(len(items) / 25))
         parts = [items[i:i + size] for i in range(0, len(items), size)]
         out = [r for part in executor.map(solve_outcomes, parts) for r in part]
-    for r in out:
+    for i, r in enumerate(out):
+        if isinstance(r, WorkbenchError):
+            raise type(r)(f"scenes[{i}]: {r}") from None    # which scene, in one line
         if isinstance(r, Exception):
             raise r
     return out
@@ -95,13 +99,19 @@ def solve_outcomes(items: list[Any]) -> list[Solution | Exception]:
     """Per scene, its Solution or the exception :func:`~kinetostatics.solve` raises for it
     (a top-level function: the task an executor runs)."""
     out: list[Any] = [None] * len(items)
-    groups: dict[Any, list] = {}
+    loaded: list[tuple[int, Any]] = []
     for i, item in enumerate(items):
         try:
-            sc = load_scene(item)
-            check_distinct(sc.driver.positions, "deg" if sc.driver.kind == "R" else "m")
-            key = signature(sc) if sc.driver.positions.size else None
+            loaded.append((i, load_scene(item)))
         except Exception as exc:        # solve would raise it for this scene
+            out[i] = exc
+    groups: dict[Any, list] = {}
+    for (i, sc), plain in zip(loaded, _increasing([sc for _, sc in loaded]), strict=True):
+        try:
+            if not plain:
+                check_distinct(sc.driver.positions, "deg" if sc.driver.kind == "R" else "m")
+            key = signature(sc) if sc.driver.positions.size else None
+        except Exception as exc:
             out[i] = exc
             continue
         if key is None:
@@ -120,6 +130,25 @@ def solve_outcomes(items: list[Any]) -> list[Solution | Exception]:
         if chunk:
             _solve_group(chunk, out)
     return out
+
+
+def _increasing(scenes: list) -> np.ndarray:
+    """Per scene, whether its driver positions strictly increase (then none repeats:
+    :func:`~kinetostatics.solver.continuity.check_distinct` has nothing to refuse), told
+    for all the scenes in one pass."""
+    if not scenes:
+        return np.zeros(0, dtype=bool)
+    pos = [s.driver.positions for s in scenes]
+    counts = np.array([p.size for p in pos])
+    allp = np.concatenate(pos).astype(float, copy=False)
+    down = np.zeros(allp.size, dtype=bool)          # row i not above row i - 1
+    down[1:] = ~(allp[1:] > allp[:-1])
+    starts = np.cumsum(counts) - counts
+    down[starts[counts > 0]] = False                # each scene's first row
+    seg = np.repeat(np.arange(len(scenes)), counts)
+    ok = np.ones(len(scenes), dtype=bool)
+    ok[seg[down]] = False
+    return ok
 
 
 def _alone(sc) -> Solution | Exception:

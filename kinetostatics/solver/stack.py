@@ -29,9 +29,10 @@ from .structure import Structure
 
 
 class Rows(np.ndarray):
-    """A scene parameter over the rows of a stack. Its truth value is that of every row:
-    a stack holds only scenes for which each test the solver makes on a parameter
-    (``mass == 0``, ``mass > 0``) comes out alike (:func:`signature`)."""
+    """A mass or an inertia over the rows of a stack. Its truth value is that of every
+    row: a stack holds only scenes for which each test the solver makes on them
+    (``mass == 0``, ``mass > 0``) comes out alike (:func:`signature`). The lengths are
+    plain arrays (an ndarray subclass costs time in every operation it enters)."""
 
     def __bool__(self) -> bool:
         return bool(self.view(np.ndarray).all())
@@ -49,18 +50,16 @@ def signature(scene: Scene):
     if any(ld.resist is not None or ld.when != "always" for ld in scene.loads):
         return None
     drv = scene.driver
-    bodies = tuple((b.name, tuple(b.points), b.cog is None, b.mass == 0.0, b.mass > 0.0,
-                    b.inertia == 0.0) for b in scene.bodies.values())
-    joints = tuple((j.name, j.kind, j.bodies, j.points, _bits(j.line_angle))
-                   for j in scene.joints.values())
-    loads = tuple((ld.body, ld.point, None if ld.force is None else _bits(*ld.force),
-                   _bits(ld.moment)) for ld in scene.loads)
-    return (drv.body, drv.joint, drv.kind, _bits(drv.speed, drv.acceleration), bodies,
-            tuple(scene.ground), joints, loads, _bits(*scene.gravity), tuple(scene.near))
-
-
-def _bits(*values) -> tuple:
-    return tuple(float(v) for v in values)
+    bodies = tuple([(b.name, tuple(b.points), b.cog is None, b.mass == 0.0, b.mass > 0.0,
+                     b.inertia == 0.0) for b in scene.bodies.values()])
+    joints = tuple([(j.name, j.kind, j.bodies, j.points, float(j.line_angle))
+                    for j in scene.joints.values()])
+    loads = tuple([(ld.body, ld.point, None if ld.force is None else
+                    (float(ld.force[0]), float(ld.force[1])), float(ld.moment))
+                   for ld in scene.loads])
+    g = scene.gravity
+    return (drv.body, drv.joint, drv.kind, float(drv.speed), float(drv.acceleration), bodies,
+            tuple(scene.ground), joints, loads, float(g[0]), float(g[1]), tuple(scene.near))
 
 
 class Stacker:
@@ -98,6 +97,9 @@ class Stacker:
         """The stacked scene: row i is scene ``owner[i]`` at driver position
         ``positions[i]``."""
         def at(x):
+            return x[owner] if isinstance(x, np.ndarray) else x
+
+        def tested(x):      # a mass or inertia: the solver tests its value (Rows)
             return x[owner].view(Rows) if isinstance(x, np.ndarray) else x
 
         def pair(p):
@@ -105,7 +107,8 @@ class Stacker:
         bodies = {}
         for name, (m, inertia, cog, pts) in self.bodies.items():
             b0 = self.base.bodies[name]
-            bodies[name] = Body(name, at(m), at(inertia), None if cog is None else pair(cog),
+            bodies[name] = Body(name, tested(m), tested(inertia),
+                                None if cog is None else pair(cog),
                                 {p: pair(v) for p, v in pts.items()}, b0.mass_model)
         sc = replace(self.base, ground={p: pair(v) for p, v in self.ground.items()},
                      bodies=bodies, near={k: pair(v) for k, v in self.near.items()},

@@ -134,7 +134,7 @@ def test_first_refused_scene_raises_as_solve_does() -> None:
         ks.solve(bad)
     with pytest.raises(AssemblyError) as together:
         ks.solve_many([good[0], bad, good[1], good[2]])
-    assert str(together.value) == str(alone.value)
+    assert str(together.value) == "scenes[1]: " + str(alone.value)
     assert ks.solve_many([]) == []
 
 
@@ -159,4 +159,20 @@ def test_positions_in_any_order_and_repeats_as_solve(alone_calls) -> None:
         ks.solve(bad)
     with pytest.raises(ks.SceneError) as batch:
         ks.solve_many([scenes[1], bad])
-    assert str(batch.value) == str(alone.value)
+    assert str(batch.value) == "scenes[1]: " + str(alone.value)
+
+
+def test_a_bad_value_names_its_scene_and_field() -> None:
+    """A bad number in one dict of many: one line naming the scene's place and the field,
+    of the class solve raises."""
+    scenes = variants("four_bar", 3, 0.05, seed=4) * 4
+    scenes = [copy.deepcopy(d) for d in scenes]
+    scenes[7]["bodies"][1]["mass"] = -2.0
+    scenes[9]["ground"]["D"] = [float("nan"), 0.0]
+    with pytest.raises(ks.SceneError) as alone:
+        ks.solve(scenes[7])
+    with pytest.raises(ks.SceneError) as batch:
+        ks.solve_many(scenes)
+    msg = str(batch.value)
+    assert msg == "scenes[7]: " + str(alone.value)
+    assert "coupler" in msg and "mass" in msg and "\n" not in msg
