@@ -43,6 +43,8 @@ if TYPE_CHECKING:
 
 __all__ = ["check_unit_slips", "convert_mechanism", "to_contract_units"]
 
+_max, _min = np.maximum.reduce, np.minimum.reduce     # np.ptp's parts, without its detours
+
 SPEED_SLIP = 1e4
 """rad/s: a faster angular speed looks like rpm typed in a rad/s field."""
 
@@ -198,7 +200,7 @@ def check_unit_slips(scene: Scene, units: Units) -> None:
     if drv.kind == "R" and units.angle == "deg":
         typed = _typed_positions(scene)
         if angle_slip(typed, "deg") or (pos.size > 1 and abs(
-                float(pos.max() - pos.min()) - 2.0 * math.pi) <= 0.01 * 2.0 * math.pi):
+                float(_max(pos) - _min(pos)) - 2.0 * math.pi) <= 0.01 * 2.0 * math.pi):
             shown = ", ".join(f"{v:g}" for v in typed[:4]) + (", ..." if len(typed) > 4 else "")
             _warn(f"driver positions [{shown}] look like radians (all within 2 pi, with "
                   "fractional values) but angles are in degrees (a full turn is 360); write "
@@ -288,8 +290,10 @@ def _all_near(scene: Scene, joint_pts: dict, pts: list) -> bool:
         my += y
     mx, my = mx / n, my / n
     hypot = math.hypot
-    size = max(hypot(x - mx, y - my) for x, y in pts)
-    scale = max(max(abs(x), abs(y)) for x, y in pts)
+    size = scale = 0.0
+    for x, y in pts:
+        size = max(size, hypot(x - mx, y - my))
+        scale = max(scale, abs(x), abs(y))
     if not size > 1e-6 * scale:     # rounding could weigh here: the exact test decides
         return False
     limit = 100.0 * size * (1.0 - 1e-6)     # a margin for the rounding of mean and size

@@ -292,11 +292,9 @@ def angle_slip(values: Any, unit: str) -> bool:
     if unit != "deg":
         return False
     vals = [float(v) for v in values]
-    if not vals:
+    if not vals or not all(abs(v) <= TWO_PI + 1e-9 for v in vals):
         return False
-    small = all(abs(v) <= TWO_PI + 1e-9 for v in vals)
-    frac = any(abs(v - round(v)) > 1e-6 for v in vals)
-    return small and frac
+    return any(abs(v - round(v)) > 1e-6 for v in vals)
 
 
 def ratio_slip(values: Any, ratio: float = 1000.0) -> tuple[float, float] | None:

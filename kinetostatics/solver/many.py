@@ -23,8 +23,8 @@ from typing import Any
 
 import numpy as np
 
+from ..model.batch import load_scenes
 from ..model.errors import WorkbenchError
-from ..model.scene import load_scene
 from ..results import Solution
 from .deadpoints import _measure2, dead_points_stacked
 from .driver import BodyMotion
@@ -100,11 +100,11 @@ def solve_outcomes(items: list[Any]) -> list[Solution | Exception]:
     (a top-level function: the task an executor runs)."""
     out: list[Any] = [None] * len(items)
     loaded: list[tuple[int, Any]] = []
-    for i, item in enumerate(items):
-        try:
-            loaded.append((i, load_scene(item)))
-        except Exception as exc:        # solve would raise it for this scene
-            out[i] = exc
+    for i, sc in enumerate(load_scenes(items)):     # dicts of one form read at once
+        if isinstance(sc, Exception):   # solve would raise it for this scene
+            out[i] = sc
+        else:
+            loaded.append((i, sc))
     groups: dict[Any, list] = {}
     for (i, sc), plain in zip(loaded, _increasing([sc for _, sc in loaded]), strict=True):
         try:
