@@ -139,6 +139,7 @@ def generate_class(exercise: str | Exercise, students: str | Path | Iterable[Any
     if executor is not None:
         done = run_batch(_student_files, tasks, executor=executor)
     elif jobs == 1 or len(tasks) < 2:
+        ex.prepare(ids)                 # the class's first draws solved together
         done = [_student_files(t, ex) for t in tasks]
     else:
         k = max(1, min(len(tasks), int(jobs) if jobs else (os.cpu_count() or 1)))

@@ -8,8 +8,8 @@ text and tables, one page with the picture) is written with matplotlib's
 ``PdfPages``: nothing to download.
 
 The embedded picture is checked like the rest of the page: a PNG whose base64 text
-happens to spell a key value (to 4 significant digits) or the word "seed" is drawn
-again at another resolution.
+happens to spell a key value (to 4 significant digits) or the word "seed" is encoded
+again (the same pixels, another zlib level or text chunk: no new drawing).
 """
 
 from __future__ import annotations
@@ -100,13 +100,37 @@ def picture_uri(exercise, variant: Mapping) -> str | None:
     if fig is None:
         return None
     values, angles = key_values(variant)
-    for dpi in range(90, 130):
-        buf = io.BytesIO()
-        fig.savefig(buf, format="png", dpi=dpi, metadata={"Software": None})
-        blob = base64.b64encode(buf.getvalue()).decode("ascii")
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=PICTURE_DPI, metadata={"Software": None})
+    for png in _encodings(buf.getvalue()):
+        blob = base64.b64encode(png).decode("ascii")
         if _clean(blob, values, angles, int(exercise.seed)):
             return "data:image/png;base64," + blob
     return None             # no clean picture: the page goes without one
+
+
+PICTURE_DPI = 90
+_LEVELS = (1, 2, 3, 4, 5, 7, 8, 9)      # zlib levels other than the default 6
+
+
+def _encodings(first: bytes):
+    """The PNG as drawn, then the same pixels encoded otherwise (another zlib level, a
+    text chunk of another length): each is another base64 text, without drawing again;
+    40 in all."""
+    yield first
+    from PIL import Image, PngImagePlugin
+
+    image = Image.open(io.BytesIO(first))       # PNG is lossless: the pixels as drawn
+    image.load()
+    for pad in range(5):
+        info = PngImagePlugin.PngInfo()
+        if pad:
+            info.add_text("Comment", " " * pad)
+        for level in _LEVELS[:7 if pad == 4 else 8]:
+            buf = io.BytesIO()
+            image.save(buf, format="png", compress_level=level, pnginfo=info,
+                       dpi=(PICTURE_DPI, PICTURE_DPI))
+            yield buf.getvalue()
 
 
 def handout_pdf(exercise, student: str, variant: Mapping, path: Any) -> None:

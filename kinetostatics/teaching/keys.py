@@ -19,7 +19,7 @@ from ..model.errors import WorkbenchError
 from ..model.tomlio import read_source
 from .questions import ANGLE_ATOL, ATOL_FRACTION, Question, is_mechanism, parse_question
 
-__all__ = ["answer_key", "key_rows"]
+__all__ = ["answer_key", "key_rows", "key_rows_many"]
 
 _LIBRARY_NOTICES = (DeprecationWarning, PendingDeprecationWarning, FutureWarning,
                     ResourceWarning)      # about the libraries' future, not this result
@@ -31,10 +31,9 @@ def _vouched(solver, raw: dict):
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         out = solver(raw)
-    caught = [w for w in caught if not issubclass(w.category, _LIBRARY_NOTICES)]
-    if caught:
-        msg = " ".join(str(caught[0].message).split())
-        raise WorkbenchError(f"the solver flags this scene: {msg}")
+    flag = _flag(caught)
+    if flag is not None:
+        raise flag
     return out
 
 
@@ -90,14 +89,25 @@ def _with_positions(raw: dict, extra: Sequence[float]) -> dict | None:
     return out
 
 
-def _mechanism_values(raw: dict, questions: Sequence[Question]) -> dict[str, tuple]:
-    """question -> (value, unit, kind, atol)."""
+def _mechanism_values(raw: dict, questions: Sequence[Question],
+                      solved: dict | None = None) -> dict[str, tuple]:
+    """question -> (value, unit, kind, atol). ``solved``: ``_vouched(solve, s)`` (the
+    Solution or the exception) of the scene and of its sweep with the asked positions
+    added, by the scene's id, where already solved (:func:`key_rows_many`)."""
     from ..solver.pipeline import solve
 
-    sol = _vouched(solve, raw)
+    done = solved.get(id(raw), (None, None)) if solved is not None else (None, None)
+
+    def vouched(scene: dict, got):
+        if got is None:
+            return _vouched(solve, scene)
+        if isinstance(got, Exception):
+            raise got
+        return got
+    sol = vouched(raw, done[0])
     at = [q.pos for q in questions if q.pos is not None]
     aug = _with_positions(raw, at) if at else None
-    psol = _vouched(solve, aug) if aug is not None else sol
+    psol = vouched(aug, done[1]) if aug is not None else sol
     summ = sol.summary()
     dq = sol.driver_quantity
     out: dict[str, tuple] = {}
@@ -305,6 +315,83 @@ def answer_key(scene: Any, questions: Iterable[str]) -> dict[str, float]:
     ['Fmax[B]', 'Me@30']
     """
     return {k: v[0] for k, v in key_rows(read_source(scene), list(questions)).items()}
+
+
+def key_rows_many(raws: Sequence[dict], questions: Sequence[str]) -> list[dict | Exception]:
+    """:func:`key_rows` of each scene, or the exception it raises, in order; the
+    mechanism scenes (and their sweeps with the asked positions added) solved together
+    by :func:`~kinetostatics.solver.many.solve_outcomes`, each with exactly the numbers
+    and the refusals (an error, a warning) of its own solve."""
+    qs = [parse_question(q) for q in questions]
+    at = [q.pos for q in qs if q.pos is not None]
+    scenes, augs = [], []
+    for raw in raws:
+        if is_mechanism(raw):
+            try:
+                aug = _with_positions(raw, at) if at else None
+            except Exception:           # raised again, in its turn, by key_rows below
+                aug = None
+            scenes.append(raw)
+            augs.append(aug)
+    done = _vouched_many(scenes + [a for a in augs if a is not None])
+    more = iter(done[len(scenes):])
+    solved = {id(raw): (got, None if aug is None else next(more))
+              for raw, aug, got in zip(scenes, augs, done, strict=False)}
+    out: list[Any] = []
+    for raw in raws:
+        try:
+            out.append(_mechanism_values(raw, qs, solved) if is_mechanism(raw)
+                       else _balance_values(raw, qs))
+        except Exception as exc:        # the caller takes it as key_rows' own
+            out.append(exc)
+    return out
+
+
+def _vouched_many(raws: list[dict]) -> list:
+    """``_vouched(solve, raw)`` of each scene (its Solution or exception), solved
+    together; a warning that the batch cannot pin on one scene sends each back to
+    :func:`_vouched` alone."""
+    from ..model.scene import load_scene
+    from ..solver.many import solve_outcomes
+    from ..solver.pipeline import solve
+
+    flags: list[Any] = []
+    loaded: list[Any] = []
+    for raw in raws:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            try:
+                loaded.append(load_scene(raw))
+            except Exception as exc:
+                loaded.append(exc)
+        flags.append(_flag(caught))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        sols = solve_outcomes([sc for sc in loaded if not isinstance(sc, Exception)])
+    if _flag(caught) is not None:
+        return [_outcome(_vouched, solve, raw) for raw in raws]
+    it = iter(sols)
+    out = []
+    for sc, flag in zip(loaded, flags, strict=True):
+        got = sc if isinstance(sc, Exception) else next(it)
+        out.append(flag if flag is not None and not isinstance(got, Exception) else got)
+    return out
+
+
+def _flag(caught: list) -> WorkbenchError | None:
+    """The refusal :func:`_vouched` makes of these warnings, or None."""
+    caught = [w for w in caught if not issubclass(w.category, _LIBRARY_NOTICES)]
+    if not caught:
+        return None
+    msg = " ".join(str(caught[0].message).split())
+    return WorkbenchError(f"the solver flags this scene: {msg}")
+
+
+def _outcome(f, *args):
+    try:
+        return f(*args)
+    except Exception as exc:
+        return exc
 
 
 def key_rows(raw: dict, questions: Sequence[str]) -> dict[str, tuple]:

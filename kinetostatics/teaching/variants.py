@@ -26,7 +26,7 @@ import pandas as pd
 from ..model.errors import WorkbenchError
 from ..model.tomlio import read_source
 from .grading import grade
-from .keys import key_rows
+from .keys import key_rows, key_rows_many
 from .questions import DEFAULT_RTOL, normalize_id, parse_question, wrap_angle
 from .sheets import data_rows, key_values, leaked_values, visible_text
 
@@ -178,6 +178,7 @@ class Exercise:
     position: str = "phi = {pos:g} deg"
     discriminate: float | None = 0.05
     _cache: dict = field(default_factory=dict, repr=False, compare=False)
+    _first: dict = field(default_factory=dict, repr=False, compare=False)
 
     def __post_init__(self):
         if self.seed is None:
@@ -209,12 +210,18 @@ class Exercise:
         if sid in self._cache:
             return self._cache[sid]
         rng = _student_seed(self.seed, sid)
+        first = self._first.pop(sid, None)      # the first draw, solved by prepare
         last = None
         for attempt in range(1, self.max_tries + 1):
             params = {name: _draw(rng, name, self.ranges[name]) for name in sorted(self.ranges)}
-            raw = self._build(params)
             try:
-                rows = key_rows(raw, self.questions)
+                if attempt == 1 and first is not None:
+                    raw, rows = first
+                    if isinstance(rows, Exception):
+                        raise rows
+                else:
+                    raw = self._build(params)
+                    rows = key_rows(raw, self.questions)
             except (ValueError, ArithmeticError) as exc:     # WorkbenchError is a ValueError
                 last = str(exc)
                 continue
@@ -234,6 +241,30 @@ class Exercise:
         raise WorkbenchError(f"exercise {self.title!r}: no valid variant for student {sid!r} "
                              f"in {self.max_tries} draws (last: {last}); widen the ranges or "
                              "relax the check")
+
+    def prepare(self, students: Iterable[Any]) -> None:
+        """Draw the first variant of each student not drawn yet and solve them all
+        together (:func:`~kinetostatics.teaching.keys.key_rows_many`:
+        :func:`kinetostatics.solve_many` over the class): the variants are those drawn
+        one by one, with the same numbers; a student whose first draw is refused draws
+        again alone."""
+        todo = []
+        for s in students:
+            sid = str(s).strip()
+            if sid and sid not in self._cache and sid not in self._first and sid not in todo:
+                todo.append(sid)
+        if len(todo) < 2:
+            return
+        raws = []
+        for sid in todo:
+            rng = _student_seed(self.seed, sid)
+            raws.append(self._build({name: _draw(rng, name, self.ranges[name])
+                                     for name in sorted(self.ranges)}))
+        for sid, raw, rows in zip(todo, raws, key_rows_many(raws, self.questions),
+                                  strict=True):
+            if isinstance(rows, Exception) and not isinstance(rows, ValueError | ArithmeticError):
+                continue                # not a refusal of the draw: _variant raises it
+            self._first[sid] = (raw, rows)
 
     def _not_judged(self, rows: Mapping[str, tuple]) -> list[str]:
         """Questions whose value a ``discriminate`` error would not fail."""
@@ -274,6 +305,8 @@ class Exercise:
     def key(self, students: Iterable[Any]) -> pd.DataFrame:
         """The answer key of several students: one row per student and question, with
         ``expected, unit, kind, rtol, atol``."""
+        students = list(students)
+        self.prepare(students)
         rows = []
         for s in students:
             v = self._variant(s)
@@ -288,6 +321,8 @@ class Exercise:
 
     def variants(self, students: Iterable[Any]) -> pd.DataFrame:
         """One row per student: the drawn parameters (and the draw that was kept)."""
+        students = list(students)
+        self.prepare(students)
         rows = []
         for s in students:
             v = self._variant(s)

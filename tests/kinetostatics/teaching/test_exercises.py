@@ -248,3 +248,32 @@ def test_tolerances_and_overrides():
     assert math.isnan(E.to_float(None)) and E.to_float("12,5") == 12.5
     with pytest.raises(WorkbenchError, match="one student"):
         E.grade({"a": {"F": 1.0}, "b": {"F": 1.0}}, key)
+
+
+def test_first_draws_solved_together_give_the_same_variants(monkeypatch) -> None:
+    """Exercise.prepare solves the class's first draws with solve_many (stacked where
+    the scenes allow it); every variant, redraws included, is the one drawn alone."""
+    from kinetostatics.solver import many
+    from kinetostatics.teaching import keys
+
+    calls, alone = [], []
+    real, solo = many.solve_outcomes, many._alone
+    monkeypatch.setattr(many, "solve_outcomes", lambda items: calls.append(len(items))
+                        or real(items))
+    monkeypatch.setattr(many, "_alone", lambda sc: alone.append(len(calls)) or solo(sc))
+    ids = IDS[:12]
+    mine = E.Exercise(ks.example("four_bar"), {"bodies.crank.mass": (1.0, 2.0, 0.1),
+                                               "bodies.rocker.points.C.0": (0.19, 0.21)},
+                      ["Me@45", "F[B]@45", "Me_max"], seed=3, name="mine")
+    for ex in (mine, E.slider_crank_exercise(seed=4), E.rotor_exercise(seed=5)):
+        drawn = [ex._variant(s) for s in ids]
+        again = type(ex)(**{f: getattr(ex, f) for f in ("template", "ranges", "questions",
+                                                        "seed", "check", "name", "data")})
+        got = again.key(ids)
+        pd.testing.assert_frame_equal(got, ex.key(ids), check_exact=True)
+        for s, a in zip(ids, drawn, strict=True):
+            b = again._variant(s)
+            assert (a["attempt"], a["params"], a["scene"], a["rows"]) == \
+                (b["attempt"], b["params"], b["scene"], b["rows"])
+    assert calls[0] == 12 and 1 not in alone    # the first class: one stacked solve
+    assert keys.key_rows_many([], ["Me@45"]) == []
