@@ -245,7 +245,7 @@ class _Cut(Solution):
         kin, loads, reactions = cut(self.scene, self.structure, rows, dead)
         d = self.__dict__
         d.update(kin=kin, loads=loads, joint_reactions=reactions)
-        del d["_lazy"]
+        d.pop("_lazy", None)            # (another thread may have cut it too: the same)
         return d[name]
 
     def __getstate__(self) -> dict:

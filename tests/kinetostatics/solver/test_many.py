@@ -176,3 +176,20 @@ def test_a_bad_value_names_its_scene_and_field() -> None:
     msg = str(batch.value)
     assert msg == "scenes[7]: " + str(alone.value)
     assert "coupler" in msg and "mass" in msg and "\n" not in msg
+
+
+def test_stacked_solutions_pickle_copy_and_replace(alone_calls) -> None:
+    """A Solution cut lazily from a stack behaves as any Solution: pickled (a process
+    executor), copied, replaced; its arrays are cut when first read."""
+    import dataclasses
+    import pickle
+
+    scenes = variants("four_bar", 4, 0.05, seed=5)
+    sols = ks.solve_many(scenes)
+    assert alone_calls == [] and "kin" not in vars(sols[1])       # not cut yet
+    back = pickle.loads(pickle.dumps(sols[1]))
+    assert_same(back, ks.solve(scenes[1]))
+    assert_same(copy.copy(sols[2]), ks.solve(scenes[2]))
+    other = dataclasses.replace(sols[3], undefined_load=sols[3].undefined_load)
+    assert_same(other, ks.solve(scenes[3]))
+    assert isinstance(sols[0], ks.Solution) and not hasattr(sols[0], "no_such_name")
