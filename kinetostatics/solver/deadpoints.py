@@ -35,13 +35,14 @@ from collections.abc import Callable
 import numpy as np
 
 from ..model.scene import Scene
-from .continuity import open_rows
+from .continuity import open_rows, sweep_order
 from .kinematics import SINGULAR_WARN, Kinematics, solve_kinematics
 from .structure import Structure
 
 PROBES = 31        # interior positions per interval and round
 ROUNDS = 3         # zooms on the smallest value
 SCREEN = 0.5       # local minima of m below this are probed
+_min = np.fmin.reduce   # the smallest value, NaN left out (a NaN row is never probed)
 
 
 def _measure2(kin: Kinematics) -> np.ndarray:
@@ -164,11 +165,14 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     counts = np.asarray(counts, dtype=int)
     m = starts.size
     none, pairs = np.zeros(0, dtype=int), np.zeros((0, 2), dtype=int)
+    if not m2u.size or not _min(m2u) < SCREEN**2:     # nothing to probe (NaN is not)
+        return [(pairs, none, pairs) for _ in range(m)]
     seg = np.repeat(np.arange(m), counts)
-    order = _segment_order(positions, seg, starts)
+    one = m == 1
+    order = sweep_order(positions) if one else _segment_order(positions, seg, starts)
     m2 = m2u[order]
     pos = positions[order]
-    cand = _candidates(m2, starts, counts)
+    cand = _candidates(m2) if one else _candidates(m2, starts, counts)
     # beyond the ends: an end row that is a dip of m, probed over one spacing outside
     two = counts >= 2
     first, last = starts[two], (starts + counts - 1)[two]
