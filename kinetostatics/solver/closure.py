@@ -166,7 +166,9 @@ class DyadSolver:
         out = [None, None]
         if p1.kind == "rot" and p2.kind == "rot":
             # circle-circle (RRR, seed 000 ch. 5, eq. 5.1): Q = P1 + x e + k h J e
-            r1s, r2s = a1[0] ** 2 + a1[1] ** 2, a2[0] ** 2 + a2[1] ** 2
+            # x * x, not x ** 2: a Python float's ** 2 (C pow) is not always x * x
+            # rounded, and a stack's arrays square (kinetostatics.solve_many)
+            r1s, r2s = a1[0] * a1[0] + a1[1] * a1[1], a2[0] * a2[0] + a2[1] * a2[1]
             ex, ey = A.sub(p2.px, p1.px), A.sub(p2.py, p1.py)
             d2 = ex * ex + ey * ey
             inv = 1.0 / np.sqrt(d2)
@@ -199,7 +201,7 @@ class DyadSolver:
         ir, it = (0, 1) if p1.kind == "rot" else (1, 0)
         prr, pt = pr[ir], pr[it]
         ar = a1 if ir == 0 else a2
-        rs = ar[0] ** 2 + ar[1] ** 2
+        rs = ar[0] * ar[0] + ar[1] * ar[1]        # (x * x: as for r1s above)
         q0 = _trans_point(pt, self.q[it])
         wx, wy = A.sub(q0[0], prr.px), A.sub(q0[1], prr.py)
         b = A.add(A.mul(pt.ux, wx), A.mul(pt.uy, wy))

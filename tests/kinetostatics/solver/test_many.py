@@ -193,3 +193,16 @@ def test_stacked_solutions_pickle_copy_and_replace(alone_calls) -> None:
     other = dataclasses.replace(sols[3], undefined_load=sols[3].undefined_load)
     assert_same(other, ks.solve(scenes[3]))
     assert isinstance(sols[0], ks.Solution) and not hasattr(sols[0], "no_such_name")
+
+
+def test_a_length_whose_python_square_is_not_x_times_x(alone_calls) -> None:
+    """0.250015019 ** 2 (a Python float: C pow) differs from 0.250015019 * 0.250015019 in
+    the last bit, while a stack's arrays square: the closure squares by x * x, so the
+    stacked coupler gives the numbers of its scene alone."""
+    assert 0.250015019 ** 2 != 0.250015019 * 0.250015019
+    base = load_scene(ks.example("four_bar")).raw
+    odd = copy.deepcopy(base)
+    odd["bodies"][1]["points"]["C"] = [0.250015019, 0.0]
+    sols = ks.solve_many([base, odd])
+    assert alone_calls == []
+    assert_same(sols[1], ks.solve(odd))
