@@ -11,6 +11,15 @@ arrays stay moderate), then cuts the result into one
 :func:`~kinetostatics.solve` gives that scene alone: the same elementwise operations
 run on every row. A scene that cannot be stacked (joint friction, a mass model, a
 ``resist`` load), or that the stacked pass refuses, is solved alone.
+
+What costs per scene in a solve is done for all the scenes at once: dicts of one form
+are read together (:func:`~kinetostatics.model.batch.load_scenes`), the order of the
+positions is told in one pass, the assembly chosen per scene vectorised
+(:func:`~kinetostatics.solver.stack.assemblies`), the finite check made once on the
+stacked arrays, and the dead points of every scene screened in one probe solve
+(:func:`~kinetostatics.solver.deadpoints.dead_points_stacked`). Each scene's Solution
+holds its scene, structure, ``Me``/``Fe`` and flags from the start; its kinematics,
+loads and joint reactions are views of the stacked arrays, cut when first read.
 """
 
 from __future__ import annotations

@@ -10,9 +10,9 @@ alone, so the numbers are the same. Used by :func:`kinetostatics.solve_many`.
 What the solver decides once per scene is decided here per scene, vectorised: the
 assembly of every dyad at the scene's first row (from its ``[near]`` hints, as
 :func:`~kinetostatics.solver.kinematics.choose_assembly`). The dead points between rows
-are found for each scene's cut by
-:func:`~kinetostatics.solver.deadpoints.dead_points_between_rows` itself (rows in any
-order, intervals no motion crosses).
+are screened for every scene at once by
+:func:`~kinetostatics.solver.deadpoints.dead_points_stacked` (each scene's rows a
+segment, searched alone along increasing position, the probes of all in one solve).
 """
 
 from __future__ import annotations
