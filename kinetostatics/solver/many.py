@@ -173,9 +173,11 @@ def _solve_group(members: list, out: list) -> None:
     if len(members) == 1:
         out[members[0][0]] = _alone(members[0][1])
         return
+    stacker = None
     try:
         structure = analyse(members[0][1], assemble=False)
-        ks, ok = assemblies(Stacker([sc for _, sc in members]), structure)
+        stacker = Stacker([sc for _, sc in members])
+        ks, ok = assemblies(stacker, structure)
     except Exception:
         ok = np.zeros(len(members), dtype=bool)
     for (i, sc), good in zip(members, ok, strict=True):
@@ -189,14 +191,15 @@ def _solve_group(members: list, out: list) -> None:
     ks = ks[:, ok]
     scenes = [sc for _, sc in kept]
     try:
-        sols = _stacked(scenes, structure, ks)
+        sols = _stacked(scenes, structure, ks,
+                        stacker if len(kept) == len(members) else Stacker(scenes))
     except Exception:
         sols = [_alone(sc) for sc in scenes]
     for (i, _), s in zip(kept, sols, strict=True):
         out[i] = s
 
 
-def _stacked(scenes: list, structure, ks: np.ndarray) -> list[Solution]:
+def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker) -> list[Solution]:
     """The solve of :func:`kinetostatics.solve` on the stacked scenes, cut per scene: the
     dead points of every scene screened at once (:func:`dead_points_stacked`, the probes
     of all scenes in one solve), each scene's Solution a light view whose arrays are cut
@@ -204,7 +207,6 @@ def _stacked(scenes: list, structure, ks: np.ndarray) -> list[Solution]:
     counts = np.array([s.driver.positions.size for s in scenes])
     starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
     owner = np.repeat(np.arange(len(scenes)), counts)
-    stacker = Stacker(scenes)
     st = replace(structure, assembly=tuple(k[owner] for k in ks))
     positions = np.concatenate([s.driver.positions for s in scenes])
     big = stacker.scene(owner, positions)
