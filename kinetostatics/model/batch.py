@@ -141,6 +141,8 @@ class _Family:
         """The scene of ``d`` (its numbers finite and in range) as :func:`load_scene`
         builds it; None where a rule on a value may refuse it (read by load_scene)."""
         base = self.scene
+        if "format" in d and d["format"] != 1:      # (a decimal 1.0 may differ)
+            return None
         g = d.get("gravity")
         gravity = (float(g[0]), float(g[1])) if g is not None else (0.0, 0.0)
         ground = {str(k): (float(v[0]), float(v[1])) for k, v in d.get("ground", {}).items()}
@@ -188,7 +190,7 @@ class _Family:
             loads.append(Load(l0.body, l0.point, force, moment, resist, l0.when))
         near = {str(k): (float(v[0]), float(v[1])) for k, v in d.get("near", {}).items()}
         motion = dict(d["motion"]) if "motion" in d else None
-        scene = Scene(title=base.title, gravity=gravity, ground=ground, driver=driver,
+        scene = Scene(title=str(d.get("title", "")), gravity=gravity, ground=ground, driver=driver,
                       bodies=bodies, joints=joints, loads=tuple(loads), near=near,
                       motion=motion, balancing=d.get("balancing"), raw=dict(d),
                       units=Units())

@@ -84,9 +84,10 @@ def test_same_scenes_as_load_scene(name, monkeypatch) -> None:
 
 
 def test_another_form_and_other_sources() -> None:
-    ds = variants("four_bar", 3)
+    ds = variants("four_bar", 4)
     ds[1]["bodies"][0]["mass"] = 2          # a whole number where the first has a decimal
     ds[2]["title"] = "another"
+    ds[0]["title"], ds[3]["title"] = 1.5, 7.25      # a title written as a number: its text
     srcs = [*ds, ks.example("slider_crank"), load_scene(ks.example("shaper"))]
     for got, src in zip(load_scenes(srcs), srcs, strict=True):
         same(got, load_scene(src))
@@ -101,12 +102,13 @@ def test_another_form_and_other_sources() -> None:
     lambda d: d["driver"].__setitem__("speed", True),
     lambda d: d["driver"].__setitem__("count", 12.5),
     lambda d: d["loads"][0].__setitem__("moment", float("-inf")),
+    lambda d: d.__setitem__("format", 2.0),
 ])
 def test_a_bad_value_gives_load_scenes_error(change) -> None:
     ds = variants("four_bar", 4, seed=1)
-    ds[0]["driver"]["count"] = 361.0
-    for d in ds[1:]:
+    for d in ds:                        # decimals where whole numbers are meant
         d["driver"]["count"] = 361.0
+        d["format"] = 1.0
     change(ds[2])
     with pytest.raises(ks.SceneError) as alone:
         load_scene(ds[2])
