@@ -117,6 +117,11 @@ def _numbers(d: Any, t: Any, out: list) -> bool:
             if type(v2) is not float:
                 return False
             out.append(v)
+        elif tv is list and len(v) == 2 and type(v[0]) is float and type(v[1]) is float:
+            if type(v2) is not list or len(v2) != 2 or type(v2[0]) is not float \
+                    or type(v2[1]) is not float:        # a point [x, y], told at once
+                return False
+            out += v
         elif tv is dict or tv is list:
             if not _numbers(v, v2, out):
                 return False
