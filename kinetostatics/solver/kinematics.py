@@ -478,8 +478,14 @@ def solve_kinematics(scene: Scene, structure: Structure, positions=None,
         Refuse positions where a dyad cannot close or is exactly singular (the default);
         ``False`` probes such positions (between rows) without refusing.
     """
-    assembly = choose_assembly(scene, structure)
-    structure = replace(structure, assembly=assembly)
+    if len(structure.assembly) == len(structure.dyads):
+        assembly: tuple = structure.assembly
+    elif positions is None and strict:
+        # the sweep's own first row is the scene's: each dyad chooses its assembly there
+        # inside the one solve (solve_dyad with k = None), as choose_assembly would
+        assembly = (None,) * len(structure.dyads)
+    else:
+        assembly = choose_assembly(scene, structure)
     if positions is not None:
         scene = with_positions(scene, positions)
     motions: dict[str, BodyMotion] = {GROUND: ground_motion(),
@@ -488,4 +494,5 @@ def solve_kinematics(scene: Scene, structure: Structure, positions=None,
     with np.errstate(all="ignore") if not strict else nullcontext():
         for dyad, k in zip(structure.dyads, assembly, strict=True):
             kin.dyads.append(solve_dyad(scene, dyad, motions, k, strict))
+    kin.structure = replace(structure, assembly=tuple(d.k for d in kin.dyads))
     return kin
