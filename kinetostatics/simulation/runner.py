@@ -112,7 +112,8 @@ def plan(scene: Scene, *, dt: float | None, steps_per_revolution: int | None,
 def crosscheck(scene: Any, *, dt: float | None = None, steps_per_revolution: int | None = None,
                iterations: int | None = None, revolutions: float = 2.0,
                samples_per_revolution: int = 360, error_bias: float = 0.0,
-               fast: bool | None = None, ballast: bool = True) -> CrossCheck:
+               fast: bool | None = None, ballast: bool = True,
+               keep_lower: bool = True) -> CrossCheck:
     """Simulate a scene in pymunk and compare the reactions with kinetostatics.
 
     Parameters
@@ -141,10 +142,18 @@ def crosscheck(scene: Any, *, dt: float | None = None, steps_per_revolution: int
     fast : bool, optional
         Let the stepping loop call Chipmunk directly (see :func:`simulation.run`).
     ballast : bool
-        Build the driver's side heavy for the solver, the extra mass cancelled by a
-        force before every step (default; :mod:`~kinetostatics.simulation.ballast`):
-        the shaper settles at 60 iterations instead of 180 to 480. False: the scene's
-        masses as they are (the settings before the ballast).
+        Where a run diverges with the driver's constraint solved last, run it once more
+        with the driver's side heavy for the solver, the extra mass cancelled by a force
+        before every step (:mod:`~kinetostatics.simulation.ballast`), before solving
+        the driver's constraint first (default True: the shaper then settles at 60
+        iterations instead of 180 to 480). A run that converges without it is the run
+        it was before. False: no ballast (the settings before it).
+    keep_lower : bool
+        With automatic iterations, where doubling the count changed the readings by
+        less than ``SETTLED_CHANGE``, keep the lower count if its error is already within
+        ``LAG_TARGET`` in the same solver order (default; :func:`converged_iterations`).
+        False: the doubled count, as before (with ``ballast=False``: the previous
+        default settings, which ``crosscheck_speed`` times as its baseline).
 
     Returns
     -------
@@ -173,7 +182,7 @@ def crosscheck(scene: Any, *, dt: float | None = None, steps_per_revolution: int
                  samples_per_revolution=samples_per_revolution)
         if iterations is None:
             return converged_iterations(sc, p, error_bias=error_bias, fast=fast,
-                                        ballast=ballast)
+                                        ballast=ballast, keep_lower=keep_lower)
         return _crosscheck(sc, p, int(iterations), error_bias, fast, ballast)
 
     if not auto:
@@ -276,7 +285,8 @@ error, and more iterations would cost more than they bring."""
 
 
 def converged_iterations(sc: Scene, p: dict, *, error_bias: float = 0.0,
-                         fast: bool | None = None, ballast: bool = True) -> CrossCheck:
+                         fast: bool | None = None, ballast: bool = True,
+                         keep_lower: bool = True) -> CrossCheck:
     """Run with 30, 60, 120... iterations until doubling them changes no reading by more
     than ``SETTLED`` (a quarter) of the error against kinetostatics, and return the run
     before the last: the iterations then add little to the error it reports; or until
@@ -315,7 +325,7 @@ def converged_iterations(sc: Scene, p: dict, *, error_bias: float = 0.0,
                 "of the error"
             if change > max(SETTLED * cc.max_error, 1e-9):
                 keep = _lag_bounded(sc, p, prev, cc, change, tried, blown, error_bias, fast,
-                                    ballast)
+                                    ballast, keep_lower)
                 rule = (f"auto: doubling {prev.settings['iterations']} changed the readings "
                         f"by {change:.2g} of their scale (the solver's lag, falling as 1 / "
                         f"iterations); kept {keep.settings['iterations']}, whose lag is "
@@ -342,7 +352,8 @@ estimate puts at this fraction of a reading's scale."""
 
 def _lag_bounded(sc: Scene, p: dict, low: CrossCheck, high: CrossCheck, change: float,
                  tried: list, blown: list, error_bias: float,
-                 fast: bool | None, ballast: bool = True) -> CrossCheck:
+                 fast: bool | None, ballast: bool = True,
+                 keep_lower: bool = True) -> CrossCheck:
     """Between a count and its double, whose readings differ by ``change`` (the solver's
     lag), the count whose error the two runs put at ``LAG_TARGET``: the error taken as
     a + b / iterations through the two runs' errors (the lag falls as 1 / iterations).
@@ -353,13 +364,14 @@ def _lag_bounded(sc: Scene, p: dict, low: CrossCheck, high: CrossCheck, change: 
     120 and 240 iterations give 1.07e-4 and 5.4e-5; the count between them, 180, gives
     7.1e-5 at three quarters of the doubled count's cost.
 
-    The lower count is kept where its own error is already within ``LAG_TARGET`` and
-    both runs solved the constraints in the same order (the doubling bought nothing the
-    target asks for; measured: the slotted crank (TRT) at 3600 steps, 60 and 120
-    iterations, 5.3e-5 and 5.0e-5 without ballast, 3.6e-5 and 3.2e-5 with it)."""
+    With ``keep_lower``, the lower count is kept where its own error is already within
+    ``LAG_TARGET`` and both runs solved the constraints in the same order, with or both
+    without the ballast (the doubling bought nothing the target asks for, and the
+    steps rule may spend the work on finer steps instead; measured: the slotted crank
+    (TRT) at 3600 steps, 60 and 120 iterations, 5.3e-5 and 5.0e-5)."""
     k, k2 = low.settings["iterations"], high.settings["iterations"]
-    if low.max_error <= LAG_TARGET and \
-            low.settings["solver_order"] == high.settings["solver_order"]:
+    same = all(low.settings[k] == high.settings[k] for k in ("solver_order", "ballast"))
+    if keep_lower and same and low.max_error <= LAG_TARGET:
         return low
     b = k * k2 / (k2 - k) * (low.max_error - high.max_error)
     a = high.max_error - b / k2
@@ -423,26 +435,34 @@ def _crosscheck(sc: Scene, p: dict, iterations: int, error_bias: float,
         cc.notes.append(f"with the driver's constraint solved last the run diverged at "
                         f"{iterations} iterations; it was solved first (the driver's speed "
                         "is then held to the solver's residual)")
+    if model.ballast:
+        cc.notes.append(f"without the ballast the run diverged at {iterations} iterations; "
+                        "it was run with it")
     return cc
 
 
 def _stepped(sc: Scene, p: dict, iterations: int, error_bias: float, fast: bool | None,
              ballast: bool = True):
     """Build and run the model with the driver's constraint solved last (the driver's
-    speed exact at every step); if that diverges, once more with it solved first
-    (:func:`~kinetostatics.simulation.model.solver_order`); if that diverges too, the
-    first run's error is raised."""
-    try:
-        model = build_space(sc, dt=p["dt"], iterations=iterations, start=p["start"],
-                            error_bias=error_bias, ballast=ballast)
-        return model, run(model, p["steps"], p["every"], fast=fast)
-    except SimulationDiverged as exc:
+    speed exact at every step); if that diverges and ``ballast`` is allowed, once more
+    with the ballast (:mod:`~kinetostatics.simulation.ballast`, the driver's side heavy
+    for the solver); if that diverges too, with the driver's constraint solved first
+    and no ballast (:func:`~kinetostatics.simulation.model.solver_order`); if every
+    attempt diverges, the first run's error is raised. A scene that runs without the
+    ballast is simulated exactly as before it."""
+    attempts = [{"driver_first": False, "ballast": False}]
+    if ballast:
+        attempts.append({"driver_first": False, "ballast": True})
+    attempts.append({"driver_first": True, "ballast": False})
+    first = None
+    for how in attempts:
         try:
             model = build_space(sc, dt=p["dt"], iterations=iterations, start=p["start"],
-                                error_bias=error_bias, driver_first=True, ballast=ballast)
+                                error_bias=error_bias, **how)
             return model, run(model, p["steps"], p["every"], fast=fast)
-        except SimulationDiverged:
-            raise exc from None
+        except SimulationDiverged as exc:
+            first = first or exc
+    raise first
 
 
 def _crosscheck_summary(item: tuple) -> dict[str, Any]:
