@@ -370,8 +370,8 @@ def _lag_bounded(sc: Scene, p: dict, low: CrossCheck, high: CrossCheck, change: 
     steps rule may spend the work on finer steps instead; measured: the slotted crank
     (TRT) at 3600 steps, 60 and 120 iterations, 5.3e-5 and 5.0e-5)."""
     k, k2 = low.settings["iterations"], high.settings["iterations"]
-    same = all(low.settings[k] == high.settings[k] for k in ("solver_order", "ballast"))
-    if keep_lower and same and low.max_error <= LAG_TARGET:
+    if keep_lower and low.max_error <= LAG_TARGET and all(
+            low.settings.get(q) == high.settings.get(q) for q in ("solver_order", "ballast")):
         return low
     b = k * k2 / (k2 - k) * (low.max_error - high.max_error)
     a = high.max_error - b / k2

@@ -126,7 +126,8 @@ def study(scene: Any, *, steps: tuple[int, ...] | None = None,
           dts: tuple[float, ...] | None = None,
           iterations: tuple[int, ...] = STUDY_ITERATIONS, revolutions: float = 2.0,
           samples_per_revolution: int = 360, repeats: int = 1, case: str | None = None,
-          fast: bool | None = None, executor: Executor | str | None = None) -> Study:
+          fast: bool | None = None, executor: Executor | str | None = None,
+          ballast: bool = True) -> Study:
     """Sweep the time step and the iterations; wall time per revolution against error.
 
     Parameters
@@ -138,7 +139,7 @@ def study(scene: Any, *, steps: tuple[int, ...] | None = None,
         Time steps (s) to try instead.
     iterations : tuple of int
         Solver iterations to try (default 10 and 30).
-    revolutions, samples_per_revolution, fast
+    revolutions, samples_per_revolution, fast, ballast
         As in :func:`crosscheck`.
     repeats : int
         Runs per setting; the wall time is the smallest (the least disturbed).
@@ -169,7 +170,7 @@ def study(scene: Any, *, steps: tuple[int, ...] | None = None,
     n_rep = max(1, int(repeats))
     keys = [(int(it), kind, val) for it in iterations for kind, val in grid]
     settings = {"revolutions": revolutions, "samples_per_revolution": samples_per_revolution,
-                "fast": fast}
+                "fast": fast, "ballast": bool(ballast)}
     items = [(sc.raw, kind, val, it, settings) for it, kind, val in keys
              for _ in range(n_rep)]
     done = run_batch(_study_run, items, executor=executor)
