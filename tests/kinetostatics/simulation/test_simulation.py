@@ -323,7 +323,8 @@ def test_study_table_order_and_plots():
     t = st.table
     assert list(t.columns) == ["case", "dt", "steps_per_revolution", "iterations",
                                "ms_per_revolution", "max_error", "diverged", "drift",
-                               "order", "timing_noise"]
+                               "solver", "order", "timing_noise"]
+    assert set(t.solver) == {"driver last"}
     assert len(t) == 3 and not t.diverged.any()
     assert t.steps_per_revolution.tolist() == [500, 1000, 2000]
     assert st.order_points[10] == (3, 3, 0)
