@@ -31,8 +31,8 @@ from .stepper import PYMUNK_VERSION, run
 from .stepsize import first_guess_steps
 
 __all__ = ["ACCEPTABLE_ERROR", "AUTO_ITERATIONS", "BUDGET", "DEFAULT_STEPS_PER_REVOLUTION",
-           "MAX_AUTO_STEPS", "MAX_STEPS", "SETTLE_FRACTION", "TARGET_ERROR", "WORK_BUDGET",
-           "converged_iterations", "crosscheck", "crosscheck_many", "plan"]
+           "MAX_AUTO_STEPS", "MAX_STEPS", "SETTLE_FRACTION", "STEP_WORK", "TARGET_ERROR",
+           "WORK_BUDGET", "converged_iterations", "crosscheck", "crosscheck_many", "plan"]
 
 DEFAULT_STEPS_PER_REVOLUTION = 3600
 """Steps per revolution of a run given ``dt = None`` and no steps by a caller of
@@ -193,11 +193,11 @@ def crosscheck(scene: Any, *, dt: float | None = None, steps_per_revolution: int
     if cc.max_error > TARGET_ERROR:
         # the dt^2 law: aim at half the target; but where the error is already within
         # ACCEPTABLE_ERROR, not beyond the work budget (the cost grows as steps x
-        # iterations). The rule counts work, never the wall time: the same scene gets the
-        # same settings on a quiet machine and on a busy one.
+        # (iterations + a step's own work)). The rule counts work, never the wall time:
+        # the same scene gets the same settings on a quiet machine and on a busy one.
         want = n0 * math.sqrt(cc.max_error / (0.5 * TARGET_ERROR))
         if cc.max_error <= ACCEPTABLE_ERROR:
-            want = min(want, WORK_BUDGET / cc.settings["iterations"])
+            want = min(want, WORK_BUDGET / (cc.settings["iterations"] + STEP_WORK))
         n1 = int(min(MAX_AUTO_STEPS, 100 * math.ceil(want / 100.0)))
         if n1 > 1.1 * n0:
             tried.append(n1)
@@ -230,10 +230,19 @@ BUDGET = 0.05
 used to choose settings."""
 
 WORK_BUDGET = 400_000
-"""Steps x solver iterations per simulated revolution that the automatic rule spends on
-refining a run already within ``ACCEPTABLE_ERROR``: about ``BUDGET`` on this project's
-2-core machine (measured quiet: 1.0e-7 s per step-iteration for the four-bar, 1.4e-7 for
-the shaper)."""
+"""Steps x (solver iterations + ``STEP_WORK``) per simulated revolution that the
+automatic rule spends on refining a run already within ``ACCEPTABLE_ERROR``: about
+``BUDGET`` on this project's 2-core machine (measured quiet: 1.0e-7 s per
+step-iteration for the four-bar, 1.4e-7 for the shaper, at 30 to 180 iterations)."""
+
+STEP_WORK = 40
+"""A step's own work (the loads, the ballast, the readings, Chipmunk's fixed part), in
+solver iterations: measured in one process, 31 to 60 (about 5 microseconds a step
+against 0.12 per iteration; the four-bar 35, the slider-crank 31, the slotted lever with
+its ballast 60, the shaper with its ballast about 45). It counts where few iterations
+suffice: the shaper at 60 with the ballast refines from 3600 to 4000 steps per
+revolution (9.5e-6), not to 5600 (4.8e-6), at 0.55 of the previous defaults' time
+instead of 0.8 (docs/simulation.md, "Slow chains")."""
 
 ACCEPTABLE_ERROR = 1e-4
 """A first run within this error is refined towards ``TARGET_ERROR`` only as far as the
