@@ -53,6 +53,10 @@ def add_commands(sub) -> None:
                    help="run at this driver speed instead (rad/s or m/s)")
     c.add_argument("--error-bias", type=float, default=0.0,
                    help="joint error_bias (default 0; pymunk's own default is 0.9**60)")
+    c.add_argument("--no-ballast", action="store_true",
+                   help="never build the driver's side heavy for the solver (by default a "
+                        "run that diverges with the driver solved last is run once more "
+                        "with that ballast before the driver is solved first)")
     c.add_argument("--public", action="store_true",
                    help="only pymunk's public API in the stepping loop (slower)")
     c.add_argument("--json", action="store_true", help="print one JSON object")
@@ -118,7 +122,7 @@ def _cmd_crosscheck(args) -> int:
         its = _numbers(args.study_iterations, int, "--study-iterations")
         st = study(src, steps=steps, dts=dts, iterations=its, revolutions=args.revolutions,
                    samples_per_revolution=args.samples, repeats=args.repeats, fast=fast,
-                   executor="serial" if args.serial else None)
+                   executor="serial" if args.serial else None, ballast=not args.no_ballast)
         if args.plot:
             _save(_plot_study(st), args.plot)
         if args.json:
@@ -139,7 +143,7 @@ def _cmd_crosscheck(args) -> int:
     cc = crosscheck(src, dt=args.dt, steps_per_revolution=args.steps,
                     iterations=args.iterations, revolutions=args.revolutions,
                     samples_per_revolution=args.samples, error_bias=args.error_bias,
-                    fast=fast)
+                    fast=fast, ballast=not args.no_ballast)
     if args.rows:
         out = Path(args.rows)
         out.parent.mkdir(parents=True, exist_ok=True)

@@ -42,6 +42,7 @@ from typing import Any
 import pymunk
 
 from ..model.scene import GROUND, Scene, load_scene
+from .ballast import ballast_plan, describe, start_state
 from .errors import SimulationError
 from .friction import prepare_friction
 from .geometry import cog_on_line, first_value, joint_line, line_foot, local_point, pin_range
@@ -130,6 +131,9 @@ class SimModel:
     driver_first : bool
         The solver sweeps from the driver outwards instead of the scene's order with
         the driver last (:func:`solver_order`).
+    ballast : dict
+        Body name -> (extra mass, extra moment of inertia) the body is built with, its
+        effect cancelled by a force before every step (:mod:`.ballast`); empty without.
     """
 
     scene: Scene
@@ -153,6 +157,15 @@ class SimModel:
     _friction: list = field(default_factory=list, repr=False)
     driver_first: bool = False
     _boost: list = field(default_factory=lambda: [0], repr=False)   # steps left boosted
+    ballast: dict[str, tuple[float, float]] = field(default_factory=dict)
+    _ballast_state: dict = field(default_factory=dict, repr=False)
+
+    def built_mass(self, name: str) -> tuple[float, float]:
+        """Mass and moment of inertia of a moving body as pymunk has it (the scene's
+        plus its ballast; a body that only translates: infinite inertia)."""
+        b = self.scene.bodies[name]
+        dm, di = self.ballast.get(name, (0.0, 0.0))
+        return b.mass + dm, (math.inf if name in self.translating else b.inertia + di)
 
     @property
     def kind(self) -> str:
@@ -256,7 +269,7 @@ def solver_order(scene: Scene, infos: list[ConstraintInfo],
 
 def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
                 start: float | None = None, error_bias: float = 0.0,
-                driver_first: bool = False) -> SimModel:
+                driver_first: bool = False, ballast: bool = False) -> SimModel:
     """Build the pymunk model of a scene, on its exact kinematic state at ``start``.
 
     Prismatic joints: a ``GrooveJoint`` solves its two directions together and then
@@ -293,6 +306,10 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
     driver_first : bool
         Let the solver sweep the constraints from the driver outwards instead of the
         scene's order with the driver last (:func:`solver_order`).
+    ballast : bool
+        Build the driver's side heavy for the solver, the extra mass cancelled by a
+        force before every step (:mod:`.ballast`): far fewer iterations along a chain
+        whose driven end is light and far end heavy.
 
     Returns
     -------
@@ -317,13 +334,18 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
     space.damping = 1.0
     frozen = translating_bodies(sc, sweep)
     _check_bodies(sc, frozen)
-    bodies = _add_bodies(sc, space, reference_solution(sc, [p0]).kin, frozen, dt)
+    extra = ballast_plan(sc, frozen) if ballast else {}
+    bodies = _add_bodies(sc, space, reference_solution(sc, [p0]).kin, frozen, dt, extra)
     joints = _Joints(error_bias)
     _add_joints(sc, bodies, sweep, {GROUND} | frozen, joints)
     model = SimModel(sc, space, bodies, joints.infos, float(dt), int(iterations), p0,
                      d.speed, frozen, error_bias=float(error_bias),
                      accel_scale=point_acceleration(sc, sweep), notes=joints.notes,
-                     driver_first=bool(driver_first))
+                     driver_first=bool(driver_first), ballast=extra)
+    if extra:
+        model._ballast_state = start_state(model)
+        model.notes.append("ballast (solver mass on the driver's side, cancelled by a force "
+                           f"before every step): {describe(extra)}")
     _add_driver(model, joints)
     space.add(*solver_order(sc, joints.infos, driver_first))
     prepare_loads(model, sweep)
@@ -341,17 +363,19 @@ def _check_settings(dt: float, iterations: int, error_bias: float) -> None:
         raise SimulationError(f"error_bias = {error_bias!r}: give a fraction in [0, 1]")
 
 
-def _add_bodies(sc: Scene, space: pymunk.Space, kin0, frozen: set[str],
-                dt: float) -> dict[str, pymunk.Body]:
+def _add_bodies(sc: Scene, space: pymunk.Space, kin0, frozen: set[str], dt: float,
+                extra: dict[str, tuple[float, float]]) -> dict[str, pymunk.Body]:
     """The scene's bodies in the space, on the exact kinematic state ``kin0`` shifted by
-    the scheme's half step (a body that only translates with an infinite inertia)."""
+    the scheme's half step (a body that only translates with an infinite inertia; a
+    ballasted one with its ``extra`` mass and inertia)."""
     bodies: dict[str, pymunk.Body] = {GROUND: space.static_body}
     half = 0.5 * dt
     for name, b in sc.bodies.items():
         m = kin0.bodies[name].take(slice(1, 2))
         # a body that only translates cannot turn: an infinite moment of inertia keeps
         # it so with no constraint (its couples follow from its momentum balance)
-        body = pymunk.Body(b.mass, math.inf if name in frozen else b.inertia)
+        dm, di = extra.get(name, (0.0, 0.0))
+        body = pymunk.Body(b.mass + dm, math.inf if name in frozen else b.inertia + di)
         body.center_of_gravity = tuple(b.cog)
         gx, gy = (first_value(v) for v in m.point(b.cog))
         vx, vy = (first_value(v) for v in m.vel_at(gx, gy))

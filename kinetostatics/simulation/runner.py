@@ -31,8 +31,8 @@ from .stepper import PYMUNK_VERSION, run
 from .stepsize import first_guess_steps
 
 __all__ = ["ACCEPTABLE_ERROR", "AUTO_ITERATIONS", "BUDGET", "DEFAULT_STEPS_PER_REVOLUTION",
-           "MAX_AUTO_STEPS", "MAX_STEPS", "SETTLE_FRACTION", "TARGET_ERROR", "WORK_BUDGET",
-           "converged_iterations", "crosscheck", "crosscheck_many", "plan"]
+           "MAX_AUTO_STEPS", "MAX_STEPS", "SETTLE_FRACTION", "STEP_WORK", "TARGET_ERROR",
+           "WORK_BUDGET", "converged_iterations", "crosscheck", "crosscheck_many", "plan"]
 
 DEFAULT_STEPS_PER_REVOLUTION = 3600
 """Steps per revolution of a run given ``dt = None`` and no steps by a caller of
@@ -112,7 +112,8 @@ def plan(scene: Scene, *, dt: float | None, steps_per_revolution: int | None,
 def crosscheck(scene: Any, *, dt: float | None = None, steps_per_revolution: int | None = None,
                iterations: int | None = None, revolutions: float = 2.0,
                samples_per_revolution: int = 360, error_bias: float = 0.0,
-               fast: bool | None = None) -> CrossCheck:
+               fast: bool | None = None, ballast: bool = True,
+               keep_lower: bool = True) -> CrossCheck:
     """Simulate a scene in pymunk and compare the reactions with kinetostatics.
 
     Parameters
@@ -140,6 +141,19 @@ def crosscheck(scene: Any, *, dt: float | None = None, steps_per_revolution: int
         Joint ``error_bias`` (default 0; pymunk's default gives errors near 1e-3).
     fast : bool, optional
         Let the stepping loop call Chipmunk directly (see :func:`simulation.run`).
+    ballast : bool
+        Where a run diverges with the driver's constraint solved last, run it once more
+        with the driver's side heavy for the solver, the extra mass cancelled by a force
+        before every step (:mod:`~kinetostatics.simulation.ballast`), before solving
+        the driver's constraint first (default True: the shaper then settles at 60
+        iterations instead of 180 to 480). A run that converges without it is the run
+        it was before. False: no ballast (the settings before it).
+    keep_lower : bool
+        With automatic iterations, where doubling the count changed the readings by
+        less than ``SETTLED_CHANGE``, keep the lower count if its error is already within
+        ``LAG_TARGET`` in the same solver order (default; :func:`converged_iterations`).
+        False: the doubled count, as before (with ``ballast=False``: the previous
+        default settings, which ``crosscheck_speed`` times as its baseline).
 
     Returns
     -------
@@ -167,8 +181,9 @@ def crosscheck(scene: Any, *, dt: float | None = None, steps_per_revolution: int
         p = plan(sc, dt=dt, steps_per_revolution=n, revolutions=revolutions,
                  samples_per_revolution=samples_per_revolution)
         if iterations is None:
-            return converged_iterations(sc, p, error_bias=error_bias, fast=fast)
-        return _crosscheck(sc, p, int(iterations), error_bias, fast)
+            return converged_iterations(sc, p, error_bias=error_bias, fast=fast,
+                                        ballast=ballast, keep_lower=keep_lower)
+        return _crosscheck(sc, p, int(iterations), error_bias, fast, ballast)
 
     if not auto:
         return attempt(steps_per_revolution)
@@ -178,11 +193,11 @@ def crosscheck(scene: Any, *, dt: float | None = None, steps_per_revolution: int
     if cc.max_error > TARGET_ERROR:
         # the dt^2 law: aim at half the target; but where the error is already within
         # ACCEPTABLE_ERROR, not beyond the work budget (the cost grows as steps x
-        # iterations). The rule counts work, never the wall time: the same scene gets the
-        # same settings on a quiet machine and on a busy one.
+        # (iterations + a step's own work)). The rule counts work, never the wall time:
+        # the same scene gets the same settings on a quiet machine and on a busy one.
         want = n0 * math.sqrt(cc.max_error / (0.5 * TARGET_ERROR))
         if cc.max_error <= ACCEPTABLE_ERROR:
-            want = min(want, WORK_BUDGET / cc.settings["iterations"])
+            want = min(want, WORK_BUDGET / (cc.settings["iterations"] + STEP_WORK))
         n1 = int(min(MAX_AUTO_STEPS, 100 * math.ceil(want / 100.0)))
         if n1 > 1.1 * n0:
             tried.append(n1)
@@ -215,10 +230,19 @@ BUDGET = 0.05
 used to choose settings."""
 
 WORK_BUDGET = 400_000
-"""Steps x solver iterations per simulated revolution that the automatic rule spends on
-refining a run already within ``ACCEPTABLE_ERROR``: about ``BUDGET`` on this project's
-2-core machine (measured quiet: 1.0e-7 s per step-iteration for the four-bar, 1.4e-7 for
-the shaper)."""
+"""Steps x (solver iterations + ``STEP_WORK``) per simulated revolution that the
+automatic rule spends on refining a run already within ``ACCEPTABLE_ERROR``: about
+``BUDGET`` on this project's 2-core machine (measured quiet: 1.0e-7 s per
+step-iteration for the four-bar, 1.4e-7 for the shaper, at 30 to 180 iterations)."""
+
+STEP_WORK = 40
+"""A step's own work (the loads, the ballast, the readings, Chipmunk's fixed part), in
+solver iterations: measured in one process, 31 to 60 (about 5 microseconds a step
+against 0.12 per iteration; the four-bar 35, the slider-crank 31, the slotted lever with
+its ballast 60, the shaper with its ballast about 45). It counts where few iterations
+suffice: the shaper at 60 with the ballast refines from 3600 to 4000 steps per
+revolution (9.5e-6), not to 5600 (4.8e-6), at 0.55 of the previous defaults' time
+instead of 0.8 (docs/simulation.md, "Slow chains")."""
 
 ACCEPTABLE_ERROR = 1e-4
 """A first run within this error is refined towards ``TARGET_ERROR`` only as far as the
@@ -270,7 +294,8 @@ error, and more iterations would cost more than they bring."""
 
 
 def converged_iterations(sc: Scene, p: dict, *, error_bias: float = 0.0,
-                         fast: bool | None = None) -> CrossCheck:
+                         fast: bool | None = None, ballast: bool = True,
+                         keep_lower: bool = True) -> CrossCheck:
     """Run with 30, 60, 120... iterations until doubling them changes no reading by more
     than ``SETTLED`` (a quarter) of the error against kinetostatics, and return the run
     before the last: the iterations then add little to the error it reports; or until
@@ -297,7 +322,7 @@ def converged_iterations(sc: Scene, p: dict, *, error_bias: float = 0.0,
     for n in AUTO_ITERATIONS:
         tried.append(n)
         try:
-            cc = _crosscheck(sc, p, n, error_bias, fast)
+            cc = _crosscheck(sc, p, n, error_bias, fast, ballast)
         except SimulationDiverged as exc:
             blown.append(n)
             last_exc = exc
@@ -308,7 +333,8 @@ def converged_iterations(sc: Scene, p: dict, *, error_bias: float = 0.0,
             keep, rule = prev, "auto: doubling changes no reading by more than a quarter " \
                 "of the error"
             if change > max(SETTLED * cc.max_error, 1e-9):
-                keep = _lag_bounded(sc, p, prev, cc, change, tried, blown, error_bias, fast)
+                keep = _lag_bounded(sc, p, prev, cc, change, tried, blown, error_bias, fast,
+                                    ballast, keep_lower)
                 rule = (f"auto: doubling {prev.settings['iterations']} changed the readings "
                         f"by {change:.2g} of their scale (the solver's lag, falling as 1 / "
                         f"iterations); kept {keep.settings['iterations']}, whose lag is "
@@ -335,7 +361,8 @@ estimate puts at this fraction of a reading's scale."""
 
 def _lag_bounded(sc: Scene, p: dict, low: CrossCheck, high: CrossCheck, change: float,
                  tried: list, blown: list, error_bias: float,
-                 fast: bool | None) -> CrossCheck:
+                 fast: bool | None, ballast: bool = True,
+                 keep_lower: bool = True) -> CrossCheck:
     """Between a count and its double, whose readings differ by ``change`` (the solver's
     lag), the count whose error the two runs put at ``LAG_TARGET``: the error taken as
     a + b / iterations through the two runs' errors (the lag falls as 1 / iterations).
@@ -344,8 +371,17 @@ def _lag_bounded(sc: Scene, p: dict, low: CrossCheck, high: CrossCheck, change: 
     there made the slotted lever trade 60 iterations with the driver last for 30 with
     it first, and finer steps to make up for it). Measured on the shaper at 3600 steps:
     120 and 240 iterations give 1.07e-4 and 5.4e-5; the count between them, 180, gives
-    7.1e-5 at three quarters of the doubled count's cost."""
+    7.1e-5 at three quarters of the doubled count's cost.
+
+    With ``keep_lower``, the lower count is kept where its own error is already within
+    ``LAG_TARGET`` and both runs solved the constraints in the same order, with or both
+    without the ballast (the doubling bought nothing the target asks for, and the
+    steps rule may spend the work on finer steps instead; measured: the slotted crank
+    (TRT) at 3600 steps, 60 and 120 iterations, 5.3e-5 and 5.0e-5)."""
     k, k2 = low.settings["iterations"], high.settings["iterations"]
+    if keep_lower and low.max_error <= LAG_TARGET and all(
+            low.settings.get(q) == high.settings.get(q) for q in ("solver_order", "ballast")):
+        return low
     b = k * k2 / (k2 - k) * (low.max_error - high.max_error)
     a = high.max_error - b / k2
     if not (b > 0.0 and a < LAG_TARGET and change > 0.0):
@@ -355,7 +391,7 @@ def _lag_bounded(sc: Scene, p: dict, low: CrossCheck, high: CrossCheck, change: 
         return high
     tried.append(m)
     try:
-        mid = _crosscheck(sc, p, m, error_bias, fast)
+        mid = _crosscheck(sc, p, m, error_bias, fast, ballast)
     except SimulationDiverged:
         blown.append(m)
         return high
@@ -384,8 +420,8 @@ def _reading_change(a: CrossCheck, b: CrossCheck) -> float:
 
 
 def _crosscheck(sc: Scene, p: dict, iterations: int, error_bias: float,
-                fast: bool | None) -> CrossCheck:
-    model, rec = _stepped(sc, p, iterations, error_bias, fast)     # or SimulationDiverged
+                fast: bool | None, ballast: bool = True) -> CrossCheck:
+    model, rec = _stepped(sc, p, iterations, error_bias, fast, ballast)  # or SimulationDiverged
     ref = reference_solution(sc, rec.position)
     cc = compare(sc, model, rec, ref, compare_from=p["compare_from"])
     revs = p["duration"] / p["unit"]
@@ -402,30 +438,40 @@ def _crosscheck(sc: Scene, p: dict, iterations: int, error_bias: float,
         "wall": rec.wall, "full_turn": p["full"], "pymunk": PYMUNK_VERSION,
         "fast_path": rec.fast, "drift": rec.drift, "drift_bound": drift_bound(model),
         "solver_order": "driver first" if model.driver_first else "scene, driver last",
+        "ballast": {k: list(v) for k, v in model.ballast.items()},
     })
     if model.driver_first:
         cc.notes.append(f"with the driver's constraint solved last the run diverged at "
                         f"{iterations} iterations; it was solved first (the driver's speed "
                         "is then held to the solver's residual)")
+    if model.ballast:
+        cc.notes.append(f"without the ballast the run diverged at {iterations} iterations; "
+                        "it was run with it")
     return cc
 
 
-def _stepped(sc: Scene, p: dict, iterations: int, error_bias: float, fast: bool | None):
+def _stepped(sc: Scene, p: dict, iterations: int, error_bias: float, fast: bool | None,
+             ballast: bool = True):
     """Build and run the model with the driver's constraint solved last (the driver's
-    speed exact at every step); if that diverges, once more with it solved first
-    (:func:`~kinetostatics.simulation.model.solver_order`); if that diverges too, the
-    first run's error is raised."""
-    try:
-        model = build_space(sc, dt=p["dt"], iterations=iterations, start=p["start"],
-                            error_bias=error_bias)
-        return model, run(model, p["steps"], p["every"], fast=fast)
-    except SimulationDiverged as exc:
+    speed exact at every step); if that diverges and ``ballast`` is allowed, once more
+    with the ballast (:mod:`~kinetostatics.simulation.ballast`, the driver's side heavy
+    for the solver); if that diverges too, with the driver's constraint solved first
+    and no ballast (:func:`~kinetostatics.simulation.model.solver_order`); if every
+    attempt diverges, the first run's error is raised. A scene that runs without the
+    ballast is simulated exactly as before it."""
+    attempts = [{"driver_first": False, "ballast": False}]
+    if ballast:
+        attempts.append({"driver_first": False, "ballast": True})
+    attempts.append({"driver_first": True, "ballast": False})
+    first = None
+    for how in attempts:
         try:
             model = build_space(sc, dt=p["dt"], iterations=iterations, start=p["start"],
-                                error_bias=error_bias, driver_first=True)
+                                error_bias=error_bias, **how)
             return model, run(model, p["steps"], p["every"], fast=fast)
-        except SimulationDiverged:
-            raise exc from None
+        except SimulationDiverged as exc:
+            first = first or exc
+    raise first
 
 
 def _crosscheck_summary(item: tuple) -> dict[str, Any]:

@@ -94,8 +94,12 @@ def _momentum_change(model: SimModel, vel0, vel1, frc) -> np.ndarray:
     dt = model.dt
     names = model.moving
     K, nb = vel0.shape[0], len(names)
-    mass = np.array([sc.bodies[n].mass for n in names])
-    inert = np.array([sc.bodies[n].inertia for n in names])
+    # the masses pymunk has (with any ballast, whose cancelling force is in frc); a
+    # body that only translates: its scene inertia (w' - w is zero for it)
+    built = [model.built_mass(n) for n in names]
+    mass = np.array([m for m, _ in built])
+    inert = np.array([i if n not in model.translating else sc.bodies[n].inertia
+                      for n, (_, i) in zip(names, built, strict=True)])
     gvec = np.asarray(model.scene.gravity, dtype=float)
     rhs = np.empty((K, nb, 3))
     rhs[:, :, 0] = mass * (vel1[:, :, 0] - vel0[:, :, 0]) / dt - mass * gvec[0] - frc[:, :, 0]

@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 import pymunk
 
+from .ballast import ballast_function
 from .drift import check_run, diverged
 from .errors import SimulationError
 from .friction import friction_function
@@ -255,26 +256,38 @@ def _step_functions(model: SimModel, acc: BodyAccess):
     """``(apply_loads, step, unsure)``: the function that sets the loads before a step
     (None: gravity only), the step, and the flag of a nearly still ``resist`` point.
     With joint friction, the friction is set after the scene's loads and the
-    reactions are read after every step (:mod:`.friction`)."""
+    reactions are read after every step (:mod:`.friction`); with ballast, its
+    cancelling forces are added last (:mod:`.ballast`)."""
     fstep = acc.step
     apply_loads, unsure = loads_function(model, acc)
     rubbing = friction_function(model, acc, unsure)
-    if rubbing is None:
+    if rubbing is not None:
+        apply_friction, read_reactions = rubbing
+        scene_loads, plain_step = apply_loads, fstep
+
+        def loads_and_friction() -> None:
+            unsure[0] = False
+            if scene_loads is not None:
+                scene_loads()
+            apply_friction()
+
+        def step_and_read(h: float) -> None:
+            plain_step(h)
+            read_reactions()
+
+        apply_loads, fstep = loads_and_friction, step_and_read
+    add_ballast = ballast_function(model, acc)
+    if add_ballast is None:
         return apply_loads, fstep, unsure
-    apply_friction, read_reactions = rubbing
-    scene_loads, plain_step = apply_loads, fstep
+    if apply_loads is None:
+        return add_ballast, fstep, unsure
+    loads = apply_loads
 
-    def loads_and_friction() -> None:
-        unsure[0] = False
-        if scene_loads is not None:
-            scene_loads()
-        apply_friction()
+    def loads_and_ballast() -> None:
+        loads()
+        add_ballast()
 
-    def step_and_read(h: float) -> None:
-        plain_step(h)
-        read_reactions()
-
-    return loads_and_friction, step_and_read, unsure
+    return loads_and_ballast, fstep, unsure
 
 
 def _advancers(model: SimModel, apply_loads, fstep, schedule: list, ramp: list):

@@ -41,7 +41,9 @@ class Study:
         ``drift`` (m), ``order`` (the local order log(e1 / e2) / log(dt1 / dt2) against
         the previous converged, larger step with the same iterations) and
         ``timing_noise`` (the cost fell although the steps grew: the wall time was
-        disturbed, not a result). A diverged setting has no error, order or time
+        disturbed, not a result), ``solver``: the constraints' order and whether the
+        run fell back on the ballast ("driver last", "driver last, ballast", "driver
+        first"; "-" where it diverged). A diverged setting has no error, order or time
         (NaN): its numbers are not a result.
     order : dict
         Iterations -> the order fitted (least squares in log-log) on the converged
@@ -83,7 +85,7 @@ class Study:
                 f"{r.ms_per_revolution:.3g}" + (" (noise)" if r.timing_noise else ""),
                 "max error": "diverged" if r.diverged else f"{r.max_error:.3g}",
                 "order": "-" if r.diverged or r.order != r.order else f"{r.order:.2f}",
-                "drift (m)": f"{r.drift:.2g}"})
+                "drift (m)": f"{r.drift:.2g}", "solver": r.solver})
         return pd.DataFrame(rows)
 
     def best(self, threshold: float) -> dict[str, Any] | None:
@@ -126,7 +128,8 @@ def study(scene: Any, *, steps: tuple[int, ...] | None = None,
           dts: tuple[float, ...] | None = None,
           iterations: tuple[int, ...] = STUDY_ITERATIONS, revolutions: float = 2.0,
           samples_per_revolution: int = 360, repeats: int = 1, case: str | None = None,
-          fast: bool | None = None, executor: Executor | str | None = None) -> Study:
+          fast: bool | None = None, executor: Executor | str | None = None,
+          ballast: bool = True) -> Study:
     """Sweep the time step and the iterations; wall time per revolution against error.
 
     Parameters
@@ -138,7 +141,7 @@ def study(scene: Any, *, steps: tuple[int, ...] | None = None,
         Time steps (s) to try instead.
     iterations : tuple of int
         Solver iterations to try (default 10 and 30).
-    revolutions, samples_per_revolution, fast
+    revolutions, samples_per_revolution, fast, ballast
         As in :func:`crosscheck`.
     repeats : int
         Runs per setting; the wall time is the smallest (the least disturbed).
@@ -169,7 +172,7 @@ def study(scene: Any, *, steps: tuple[int, ...] | None = None,
     n_rep = max(1, int(repeats))
     keys = [(int(it), kind, val) for it in iterations for kind, val in grid]
     settings = {"revolutions": revolutions, "samples_per_revolution": samples_per_revolution,
-                "fast": fast}
+                "fast": fast, "ballast": bool(ballast)}
     items = [(sc.raw, kind, val, it, settings) for it, kind, val in keys
              for _ in range(n_rep)]
     done = run_batch(_study_run, items, executor=executor)
@@ -183,7 +186,8 @@ def study(scene: Any, *, steps: tuple[int, ...] | None = None,
                      "iterations": it,
                      "ms_per_revolution": math.nan if blown else 1e3 * best["wall"],
                      "max_error": math.nan if blown else best["max_error"],
-                     "diverged": blown, "drift": best["drift"]})
+                     "diverged": blown, "drift": best["drift"],
+                     "solver": best["solver"]})
     table = pd.DataFrame(rows)
     table["order"] = np.nan
     table["timing_noise"] = False
@@ -220,9 +224,11 @@ def _study_run(item: tuple) -> dict[str, Any]:
     except SimulationDiverged as exc:
         return {"dt": exc.dt, "steps_per_revolution": exc.steps_per_revolution,
                 "wall": math.inf, "max_error": math.nan, "diverged": True,
-                "drift": exc.drift}
+                "drift": exc.drift, "solver": "-"}
     s = cc.settings
     wall = s["seconds_per_revolution"] or s["seconds_per_sweep"]
     return {"dt": s["dt"], "steps_per_revolution": s["steps_per_revolution"],
             "wall": float(wall), "max_error": float(cc.max_error), "diverged": False,
-            "drift": float(cc.record.drift)}
+            "drift": float(cc.record.drift),
+            "solver": s["solver_order"].replace("scene, ", "")
+            + (", ballast" if s["ballast"] else "")}

@@ -49,9 +49,14 @@ def _finite(x) -> bool:
     return ok
 
 
+_ARRAY = np.ndarray
+
+
 def mul(a, b):
     """a * b; an exact scalar zero gives 0.0 without a pass over the other operand, unless
     that operand holds a NaN or an infinity (0 * NaN is NaN: never hidden)."""
+    if type(a) is _ARRAY and type(b) is _ARRAY:
+        return a * b
     if zero(a) or zero(b):
         if _finite(b if zero(a) else a):
             return 0.0
@@ -66,6 +71,8 @@ def mul(a, b):
 
 def add(a, b):
     """a + b."""
+    if type(a) is _ARRAY and type(b) is _ARRAY:
+        return a + b
     if zero(b):
         return a
     if zero(a):
@@ -75,6 +82,8 @@ def add(a, b):
 
 def sub(a, b):
     """a - b."""
+    if type(a) is _ARRAY and type(b) is _ARRAY:
+        return a - b
     if zero(b):
         return a
     if zero(a):

@@ -182,7 +182,7 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
     cs, ss, reach = _close(scene, dyad, solver, pr, k, strict)
     org = [body_origin(pr[i], cs[i], ss[i]) for i in range(2)]
     vs = _VelocitySystem(dyad, solver, pr, cs, org)
-    sin2 = _closeness2(vs, pr, reach, n)
+    sin2 = _closeness2(vs, pr, reach, n, solver if strict else None)
     sing = ~(sin2 > SINGULAR_WARN**2)
     exact = np.flatnonzero(~(sin2 > SINGULAR_FAIL**2)) if sing.any() else ()
     if strict and len(exact):
@@ -267,13 +267,32 @@ class _VelocitySystem:
         return _solve2(*self.a, r1, r2, self.det)
 
 
-def _closeness2(vs: _VelocitySystem, pr, reach, n: int):
+def _column_norm2(solver: DyadSolver, pr) -> float:
+    """|c1|^2 |c2|^2 of a revolute inner joint's velocity columns, a constant: a body
+    turning about its outer pivot P has c = J (X - P), and X, P are two points of that
+    body, so |c|^2 is their distance squared; a translating body has c = u, a unit vector.
+    (Valid where the dyad closes: X lies on both bodies.)"""
+    out = 1.0
+    for i, p in enumerate(pr):
+        if p.kind == "rot":
+            qx, qy = solver.q[i]
+            lx, ly = p.local
+            out *= (qx - lx) ** 2 + (qy - ly) ** 2
+    return out
+
+
+def _closeness2(vs: _VelocitySystem, pr, reach, n: int, solver: DyadSolver | None = None):
     """Step 3, the closeness to a dead centre: min(sin^2 tau, (pivot distance / size)^2),
     with |det| <= 1e-12 |c1| |c2| exactly singular (for a prismatic inner joint the same
-    test on the transmission measure of _inner_t_tau)."""
+    test on the transmission measure of _inner_t_tau). With ``solver`` (a sweep where the
+    dyad closes at every row) |c1| |c2| is the rigid bodies' constant; without it (probes
+    where the dyad may not close) it is measured row by row."""
     if vs.revolute:
         c1, c2 = vs.c1, vs.c2
-        norm2 = (c1[0] * c1[0] + c1[1] * c1[1]) * (c2[0] * c2[0] + c2[1] * c2[1])
+        if solver is not None:
+            norm2 = _column_norm2(solver, pr)
+        else:
+            norm2 = (c1[0] * c1[0] + c1[1] * c1[1]) * (c2[0] * c2[0] + c2[1] * c2[1])
         sin2 = A.full(vs.det * vs.det / norm2, n)
     else:
         sin2 = A.full(_inner_t_tau(pr, vs.ux, vs.uy)[0], n) ** 2
@@ -289,8 +308,11 @@ def _acceleration_rhs(vs: _VelocitySystem, pr, qd):
     ka = []
     for i, p in enumerate(pr):
         if p.kind == "rot":
+            # a_P - omega^2 (X - P), with X - P = (c_y, -c_x) from the column c = J (X - P)
+            # (the same differences, computed once)
+            cx, cy = vs.c1 if i == 0 else vs.c2
             w2_ = qd[i] * qd[i]
-            ka.append((A.sub(p.apx, w2_ * A.sub(xx, p.px)), A.sub(p.apy, w2_ * A.sub(xy, p.py))))
+            ka.append((A.sub(p.apx, w2_ * cy), A.add(p.apy, w2_ * cx)))
         else:
             kax, kay = p.known.acc_at(xx, xy)
             f = A.mul(2.0 * p.known.omega, qd[i])          # Coriolis 2 omega_K x v_rel
@@ -478,8 +500,14 @@ def solve_kinematics(scene: Scene, structure: Structure, positions=None,
         Refuse positions where a dyad cannot close or is exactly singular (the default);
         ``False`` probes such positions (between rows) without refusing.
     """
-    assembly = choose_assembly(scene, structure)
-    structure = replace(structure, assembly=assembly)
+    if len(structure.assembly) == len(structure.dyads):
+        assembly: tuple = structure.assembly
+    elif positions is None and strict:
+        # the sweep's own first row is the scene's: each dyad chooses its assembly there
+        # inside the one solve (solve_dyad with k = None), as choose_assembly would
+        assembly = (None,) * len(structure.dyads)
+    else:
+        assembly = choose_assembly(scene, structure)
     if positions is not None:
         scene = with_positions(scene, positions)
     motions: dict[str, BodyMotion] = {GROUND: ground_motion(),
@@ -488,4 +516,5 @@ def solve_kinematics(scene: Scene, structure: Structure, positions=None,
     with np.errstate(all="ignore") if not strict else nullcontext():
         for dyad, k in zip(structure.dyads, assembly, strict=True):
             kin.dyads.append(solve_dyad(scene, dyad, motions, k, strict))
+    kin.structure = replace(structure, assembly=tuple(d.k for d in kin.dyads))
     return kin

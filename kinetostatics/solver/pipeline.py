@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -16,6 +17,8 @@ from .kinematics import solve_kinematics
 from .loads import applied_loads, inertia_loads, resultants
 from .reactions import solve_reactions
 from .structure import analyse
+
+_sum = np.add.reduce
 
 
 def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> Solution:
@@ -61,9 +64,11 @@ def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> 
     if not allow_repeats:
         check_distinct(sc.driver.positions if positions is None else np.atleast_1d(
             np.asarray(positions, dtype=float)), "deg" if sc.driver.kind == "R" else "m")
-    structure = analyse(sc)
+    # the assemblies are chosen at the scene's first row by the solve itself
+    structure = analyse(sc, assemble=False)
     try:
         kin = solve_kinematics(sc, structure, positions)
+        structure = kin.structure
         kin.between, kin.ends, kin.unassembled = dead_points_between_rows(kin.scene, structure,
                                                                            kin)
         sol = _solve_loads(kin.scene, structure, kin)
@@ -98,18 +103,28 @@ def _check_finite(sol: Solution) -> None:
     mechanism) hold NaN in Me/Fe and the reactions by the contract: they are left out.
     """
     n = sol.positions.size
-    free = [np.asarray(getattr(b, f)) for b in sol.kin.bodies.values()
+    free = [getattr(b, f) for b in sol.kin.bodies.values()
             for f in ("cos", "sin", "omega", "alpha", "ox", "oy", "vx", "vy", "ax", "ay")]
-    free += [np.asarray(d.closeness2) for d in sol.kin.dyads]
-    loads = [np.asarray(sol.Me)]
+    free += [d.closeness2 for d in sol.kin.dyads]
+    loads = [sol.Me]
     for r in sol.joint_reactions.values():
-        loads += [np.asarray(v) for v in (r.fx, r.fy, r.N, r.M) if v is not None]
+        loads += [v for v in (r.fx, r.fy, r.N, r.M) if v is not None]
     locked = sol.self_locking     # rows where friction locks: Me and reactions are NaN
     if locked is not None and locked.any():
         loads = [np.where(locked, 0.0, np.broadcast_to(a, (n,))) for a in loads]
+    seen: set[int] = set()
     for a in free + loads:
-        if not np.isfinite(np.sum(a)):
-            bad = np.flatnonzero(~np.isfinite(np.broadcast_to(a, (n,))))
+        # one summing pass per array, each array once (a NaN or an infinity makes the sum
+        # non-finite); a sum that overflows with every value finite is looked at value by
+        # value
+        if isinstance(a, float | int):
+            if math.isfinite(a):
+                continue
+        elif id(a) in seen or math.isfinite(_sum(a, axis=None)):
+            seen.add(id(a))
+            continue
+        bad = np.flatnonzero(~np.isfinite(np.broadcast_to(a, (n,))))
+        if bad.size:
             unit = "deg" if sol.scene.driver.kind == "R" else "m"
             raise AssemblyError(
                 "the solution overflows (numbers too large or a degenerate geometry) at "

@@ -153,9 +153,12 @@ def _solve_dyad(scene: Scene, dm: DyadMotion, store: _Store, out: dict) -> None:
     if inner.kind == "R":
         # eqs 2.17, 2.22, 2.26 in vector form: c1 . R = Q1, c2 . R = -Q2,
         # R: force on body 2 from body 1 at X
-        det = A.sub(A.mul(c1[0], c2[1]), A.mul(c1[1], c2[0]))
-        rx = A.add(A.mul(q1, c2[1]), A.mul(q2, c1[1])) / det
-        ry = -A.add(A.mul(c1[0], q2), A.mul(c2[0], q1)) / det
+        # det = c1 x c2 is minus the velocity system's determinant (its columns are c1,
+        # -c2): the same products, so -dm.det is exactly c1x c2y - c1y c2x
+        ndet = dm.det
+        rx = A.add(A.mul(q1, c2[1]), A.mul(q2, c1[1])) / ndet
+        rx = np.negative(rx, out=rx) if isinstance(rx, np.ndarray) else -rx
+        ry = A.add(A.mul(c1[0], q2), A.mul(c2[0], q1)) / ndet
         a1 = store.motions[b1].rotate(*dm.inner_local[0])
         a2 = store.motions[b2].rotate(*dm.inner_local[1])
         store.add(b1, rx, ry, *a1, sign=-1.0)
