@@ -228,7 +228,7 @@ def student_notebook(exercise, student: str, variant: Mapping):
 _CSS = ("body{font-family:sans-serif;max-width:46em;margin:2em auto;line-height:1.4}"
         "table{border-collapse:collapse;margin:0.5em 0}"
         "td,th{border:1px solid #999;padding:0.2em 0.6em;text-align:left}"
-        "td.v{text-align:right;font-family:monospace}")
+        "td.v{text-align:right;font-family:monospace}img{max-width:100%}")
 
 
 def handout_html(exercise, student: str, variant: Mapping, picture: str | None = None) -> str:
@@ -236,9 +236,11 @@ def handout_html(exercise, student: str, variant: Mapping, picture: str | None =
     picture of the student's mechanism when ``picture`` (a ``data:`` URI) is given, the
     questions with units and tolerances, the tolerance rule)."""
     e = html.escape
+    # the picture's markup holds no number: the page without it (what the variant's
+    # leak check reads, visible_text) shows every number the page with it shows
     fig = "" if not picture else (
-        "<h2>Your mechanism</h2>\n<p><img style='max-width:100%' alt='your mechanism at "
-        f"its first position, with its dimensions' src='{picture}'></p>\n")
+        "<h2>Your mechanism</h2>\n<p><img alt='your mechanism at its first position, "
+        f"with its dimensions' src='{picture}'></p>\n")
     data = "".join(f"<tr><td>{e(d['symbol'])}</td><td class='v'>{e(format_value(d['value']))}"
                    f"</td><td>{e(d['unit'])}</td><td>{e(d['meaning'])}</td></tr>"
                    for d in data_rows(exercise, variant))

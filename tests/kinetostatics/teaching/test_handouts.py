@@ -55,3 +55,18 @@ def test_forty_texts_then_no_picture(monkeypatch) -> None:
     assert len(seen) == len(set(seen)) == 40
     pixels = {_pixels(base64.b64decode(b)).tobytes() for b in seen}
     assert len(pixels) == 1
+
+
+def test_the_picture_adds_no_number_to_the_page() -> None:
+    """The leak check of a variant reads the handout without its picture: the picture's
+    markup must show no number the page does not (a Me_max of 100.04 once leaked
+    through ``max-width:100%``; seed 8839582624553955206, slotted lever, 2026-026)."""
+    from kinetostatics.teaching.sheets import _NUM, handout_html
+
+    ex = exercise("slotted_lever", 8839582624553955206)
+    v = ex.variant("2026-026")
+    bare = handout_html(ex, "2026-026", v)
+    with_picture = handout_html(ex, "2026-026", v, "data:image/png;base64,AAAA")
+    extra = with_picture.replace("data:image/png;base64,AAAA", "")
+    assert set(_NUM.findall(extra)) <= set(_NUM.findall(bare))
+    assert "img{max-width:100%}" in bare
