@@ -289,6 +289,8 @@ class Solution:
 
         def angle() -> pd.Series:
             self.angles                     # noqa: B018 (the angles, laid out block by block)
+            if "_angle_column" not in self.__dict__:
+                self.__dict__["_angle_column"] = shared(self.__dict__["_angle_whole"])
             return self.__dict__["_angle_column"]
 
         return LongTable(self.positions, {"body": names}, ("angle", "omega", "alpha"), chunk,
@@ -309,7 +311,7 @@ class Solution:
         for i, b in enumerate(self.scene.bodies):
             whole[i * n:(i + 1) * n] = found.pop(b)
             out[b] = whole[i * n:(i + 1) * n]
-        self.__dict__["_angle_column"] = shared(whole)
+        self.__dict__["_angle_whole"] = whole
         return out
 
     @cached_property
