@@ -10,6 +10,7 @@ import json
 import sys
 import warnings
 from pathlib import Path
+from typing import NoReturn
 
 from . import scene_path
 from .model.errors import WorkbenchError
@@ -37,6 +38,16 @@ def _cmd_solve(args) -> int:
     if args.json or not args.out:
         print(json.dumps(summary, indent=2))
     return 0
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """An argument parser whose every mistake is one line ``error: ...`` on stderr and
+    exit code 2, without argparse's usage lines (the parser class of both CLIs and of
+    all their subcommands)."""
+
+    def error(self, message: str) -> NoReturn:
+        print(f"error: {' '.join(message.split())} (see {self.prog} --help)", file=sys.stderr)
+        raise SystemExit(2)
 
 
 def dpi_argument(text: str) -> float:
@@ -125,9 +136,9 @@ CORE_COMMANDS = ("solve", "demo", "structure", "bench", "motion", "cam")
 
 
 def build_parser(extras: bool = True) -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="python -m kinetostatics",
-                                description="Kinetostatics of planar mechanisms.")
-    sub = p.add_subparsers(dest="command", required=True)
+    p = OneLineParser(prog="python -m kinetostatics",
+                      description="Kinetostatics of planar mechanisms.")
+    sub = p.add_subparsers(dest="command", required=True, parser_class=OneLineParser)
     s = sub.add_parser("solve", help="solve a scene; write the tables as CSV",
                        epilog=SOLVE_COST, formatter_class=argparse.RawDescriptionHelpFormatter)
     s.add_argument("scene", help="scene file (.toml)")
