@@ -40,6 +40,39 @@ def categorical(names: list[str], n: int) -> pd.Categorical:
     return pd.Categorical.from_codes(np.repeat(codes, n), categories=cats)
 
 
+class Labels:
+    """A text column as its distinct texts and a code per row: what
+    :func:`kinetostatics.csvtext.format_column` formats fastest (each text once, as a
+    categorical), without pandas; ``objects()`` gives the column as an array of its
+    texts (as a DataFrame takes it)."""
+
+    def __init__(self, texts: list[str], codes: np.ndarray):
+        self.categories = list(texts)
+        self.codes = np.asarray(codes)
+
+    def __len__(self) -> int:
+        return self.codes.shape[0]
+
+    def __getitem__(self, rows) -> Labels:
+        return Labels(self.categories, self.codes[rows])
+
+    def objects(self) -> np.ndarray:
+        """The column as an array of objects (one text per row)."""
+        table = np.empty(len(self.categories), dtype=object)
+        table[:] = self.categories
+        return table[self.codes]
+
+    @staticmethod
+    def concat(parts: list[Labels]) -> Labels:
+        """Columns one after another."""
+        texts: dict[str, int] = {}
+        codes = []
+        for p in parts:
+            remap = np.array([texts.setdefault(t, len(texts)) for t in p.categories] or [0])
+            codes.append(remap[p.codes])
+        return Labels(list(texts), np.concatenate(codes) if codes else np.zeros(0, np.intp))
+
+
 def shared(values: np.ndarray) -> pd.Series:
     """``values`` as a column that several tables may hold without a copy.
 

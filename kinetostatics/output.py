@@ -36,20 +36,23 @@ CSV_RATE = 60e6
 WARN_ROWS = 1_000_000           # a longer table is announced with its size and time
 
 
-class _Repeats:
-    """Formatted chunks of a column that repeats from block to block (``position``)."""
+class Repeats:
+    """Formatted chunks of a column that repeats from block to block and from table to
+    table (``position``): each chunk's values and fields by its offset and separator,
+    used again only where the values have the same bits. One ``Repeats`` may serve every
+    table written from one solution (:meth:`kinetostatics.Solution.write`)."""
 
     def __init__(self):
-        self.seen: dict[int, tuple[np.ndarray, tuple]] = {}
+        self.seen: dict[tuple[int, str], tuple[np.ndarray, tuple]] = {}
 
-    def get(self, offset: int, values: np.ndarray):
-        hit = self.seen.get(offset)
+    def get(self, offset: int, values: np.ndarray, sep: str = ","):
+        hit = self.seen.get((offset, sep))
         if hit is not None and _same_bits(hit[0], values):
             return hit[1]
         return None
 
-    def put(self, offset: int, values: np.ndarray, fields: tuple) -> None:
-        self.seen[offset] = (values.copy(), fields)
+    def put(self, offset: int, values: np.ndarray, fields: tuple, sep: str = ",") -> None:
+        self.seen[(offset, sep)] = (values.copy(), fields)
 
 
 def _same_bits(a: np.ndarray, b: np.ndarray) -> bool:
@@ -61,14 +64,14 @@ def _same_bits(a: np.ndarray, b: np.ndarray) -> bool:
     return bool((a == b).all())
 
 
-def _fields(col, sep: str, repeats: _Repeats | None = None,
+def _fields(col, sep: str, repeats: Repeats | None = None,
             offset: int = 0) -> tuple[np.ndarray, np.ndarray]:
     """One chunk of one column as CSV fields (``csvtext.format_column``), with the
     shortcuts for a repeated chunk and a chunk of one value."""
     if not isinstance(col, np.ndarray) or col.dtype.kind != "f":
         return csvtext.format_column(col, sep)
     if repeats is not None:
-        hit = repeats.get(offset, col)
+        hit = repeats.get(offset, col, sep)
         if hit is not None:
             return hit
     if col.size and _same_bits(col, col[:1]):
@@ -76,7 +79,7 @@ def _fields(col, sep: str, repeats: _Repeats | None = None,
     else:
         out = csvtext.format_floats(col, sep)
     if repeats is not None:
-        repeats.put(offset, col, out)
+        repeats.put(offset, col, out, sep)
     return out
 
 
@@ -89,7 +92,8 @@ def _chunks(rows: int, block: int | None) -> Iterator[tuple[int, int, int]]:
 
 
 def write_csv(df: pd.DataFrame | dict, path: str | Path, block: int | None = None,
-              announce: Callable[[str], None] | None = None) -> Path:
+              announce: Callable[[str], None] | None = None,
+              repeats: Repeats | None = None) -> Path:
     """Write a table as CSV: header, then one line per row, floats as ``'%.17g'``.
 
     Parameters
@@ -104,6 +108,9 @@ def write_csv(df: pd.DataFrame | dict, path: str | Path, block: int | None = Non
     announce : callable, optional
         Called with one line (size and time estimate) before a table of more than
         ``WARN_ROWS`` rows is written.
+    repeats : Repeats, optional
+        The formatted ``position`` chunks shared with the other tables of the same
+        solution (with ``block``).
     """
     if isinstance(df, dict):
         names = list(df)
@@ -115,7 +122,8 @@ def write_csv(df: pd.DataFrame | dict, path: str | Path, block: int | None = Non
             s = df[name]
             data.append(s.array if hasattr(s.dtype, "categories") else s.to_numpy())
     rows = len(data[0]) if data else 0
-    repeats = {i: _Repeats() for i, n in enumerate(names) if n == "position" and block}
+    shared = repeats if repeats is not None else Repeats()
+    repeats = {i: shared for i, n in enumerate(names) if n == "position" and block}
     seps = _separators(len(names))
 
     def text(span: tuple[int, int, int]) -> bytes:
@@ -133,15 +141,17 @@ def write_csv(df: pd.DataFrame | dict, path: str | Path, block: int | None = Non
 
 
 def write_long_csv(table: LongTable, path: str | Path,
-                   announce: Callable[[str], None] | None = None) -> Path:
+                   announce: Callable[[str], None] | None = None,
+                   repeats: Repeats | None = None) -> Path:
     """Write a long table as CSV straight from its definition, chunk by chunk: the same
-    text as ``write_csv(table.frame(), path)`` without the table ever being held."""
+    text as ``write_csv(table.frame(), path)`` without the table ever being held
+    (``repeats``: the formatted ``position`` chunks shared with other tables)."""
     names = table.columns
     seps = _separators(len(names))
     nl = len(table.labels)
     labels = [[csvtext.format_label(x, seps[1 + j]) for x in block_names]
               for j, block_names in enumerate(table.labels.values())]
-    repeats = _Repeats()
+    repeats = repeats if repeats is not None else Repeats()
 
     def text(span: tuple[int, slice]) -> bytes:
         i, part = span

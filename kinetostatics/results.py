@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .longtable import LongTable, TiledPositions, shared
+from .longtable import Labels, LongTable, TiledPositions, shared
 from .model.errors import WorkbenchError
 from .model.scene import GROUND, Scene
 from .solver.continuity import body_angles, sweep_order
@@ -39,24 +39,26 @@ def _column(value, n: int, dtype=float) -> np.ndarray:
     return np.array(np.broadcast_to(value, (n,)), dtype=dtype)
 
 
-def _text(value: str, n: int) -> np.ndarray:
-    """A column of ``n`` copies of one text (object dtype, as pandas holds text)."""
-    out = np.empty(n, dtype=object)
-    out[:] = value
-    return out
+def _text(value: str, n: int) -> Labels:
+    """A column of ``n`` copies of one text (the CSV writer formats it once; the
+    DataFrame holds it as objects, as pandas holds text)."""
+    return Labels([value], np.zeros(n, dtype=np.int8))
 
 
 def _concat(parts: list[dict], names: list[str]) -> dict:
     """The blocks of a table one after another (no block: empty columns)."""
     if not parts:
         return {c: np.empty(0, dtype=object) for c in names}
-    return {c: np.concatenate([p[c] for p in parts]) for c in names}
+    return {c: Labels.concat([p[c] for p in parts]) if isinstance(parts[0][c], Labels)
+            else np.concatenate([p[c] for p in parts]) for c in names}
 
 
 def _frame(columns: dict, copy: bool | None = None) -> pd.DataFrame:
-    """A table's columns as a DataFrame (pandas imported here, when a table is asked for)."""
+    """A table's columns as a DataFrame (pandas imported here, when a table is asked for;
+    text columns as objects)."""
     import pandas as pd
-    return pd.DataFrame(columns, copy=copy)
+    return pd.DataFrame({c: v.objects() if isinstance(v, Labels) else v
+                         for c, v in columns.items()}, copy=copy)
 
 
 @dataclass
@@ -551,28 +553,29 @@ class Solution:
         from the solver's arrays, never held whole. ``announce``
         (a callable taking one line) hears of every CSV table over 1e6 rows, with its
         size and time estimate (:func:`kinetostatics.output.write_csv`)."""
-        from .output import write_csv, write_long_csv, write_parquet
+        from .output import Repeats, write_csv, write_long_csv, write_parquet
         if fmt not in ("csv", "parquet"):
             raise WorkbenchError(f"format {fmt!r}: use csv or parquet")
         d = Path(directory)
         d.mkdir(parents=True, exist_ok=True)
         written = []
+        positions = Repeats()     # the position column, formatted once for every table
         for name in self.FILES:
             kept = name in self.__dict__
             if fmt == "csv" and name in self.LONG_TABLES and not kept:
                 # straight from the solver's arrays, chunk by chunk: never held whole
                 written.append(write_long_csv(self.long_table(name), d / f"{name}.csv",
-                                              announce))
+                                              announce, positions))
                 continue
             if fmt == "csv" and not kept:
                 # the short tables' columns, written without building a DataFrame
                 written.append(write_csv(self.columns(name), d / f"{name}.csv",
-                                         self.positions.size, announce))
+                                         self.positions.size, announce, positions))
                 continue
             table = getattr(self, name)
             if fmt == "csv":
                 written.append(write_csv(table, d / f"{name}.csv", self.positions.size,
-                                         announce))
+                                         announce, positions))
             else:
                 written.append(write_parquet(table, d / f"{name}.parquet"))
             del table
