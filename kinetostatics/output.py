@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable, Iterator
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -30,6 +29,8 @@ if TYPE_CHECKING:
 
 CHUNK = 16_384          # rows formatted at a time (the arrays stay in the CPU caches)
 THREADS = 2
+THREADED = 200_000      # fields in a table written by the threads (fewer: no threads)
+BATCH = 16_384          # float fields formatted in one call (several columns of a chunk)
 # CSV written per second (bytes) for the time estimate of the warning, measured with
 # `python -m kinetostatics bench --tables` on the 2-core development machine
 CSV_RATE = 60e6
@@ -68,18 +69,43 @@ def _fields(col, sep: str, repeats: Repeats | None = None,
             offset: int = 0) -> tuple[np.ndarray, np.ndarray]:
     """One chunk of one column as CSV fields (``csvtext.format_column``), with the
     shortcuts for a repeated chunk and a chunk of one value."""
-    if not isinstance(col, np.ndarray) or col.dtype.kind != "f":
-        return csvtext.format_column(col, sep)
-    if repeats is not None:
-        hit = repeats.get(offset, col, sep)
+    return _fields_of([col], [sep], [repeats], offset)[0]
+
+
+def _fields_of(cols: list, seps: list[str], repeats: list[Repeats | None],
+               offset: int = 0) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Chunks of columns (one length) as CSV fields: a repeated chunk taken again, a
+    chunk of one value formatted once, the other float chunks formatted together (one
+    call of ``csvtext.format_floats`` for up to ``BATCH`` values: a small table costs a
+    few calls, not one per column and block)."""
+    out: list = [None] * len(cols)
+    pending = []
+    for i, (col, sep, rep) in enumerate(zip(cols, seps, repeats, strict=True)):
+        if not isinstance(col, np.ndarray) or col.dtype.kind != "f":
+            out[i] = csvtext.format_column(col, sep)
+            continue
+        hit = rep.get(offset, col, sep) if rep is not None else None
         if hit is not None:
-            return hit
-    if col.size and _same_bits(col, col[:1]):
-        out = _repeat(csvtext.format_floats(col[:1], sep), col.size)
+            out[i] = hit
+        elif col.size and _same_bits(col, col[:1]):
+            out[i] = _repeat(csvtext.format_floats(col[:1], sep), col.size)
+        else:
+            pending.append(i)
+    m = cols[pending[0]].size if pending else 0
+    if len(pending) > 1 and m * len(pending) <= BATCH:
+        chars, length = csvtext.format_floats(np.concatenate([cols[i] for i in pending]))
+        rows = np.arange(m)
+        for k, i in enumerate(pending):
+            ch, ln = chars[k * m:(k + 1) * m], length[k * m:(k + 1) * m]
+            if seps[i] != ",":          # the separator is each field's last character
+                ch[rows, ln.astype(np.intp) - 1] = ord(seps[i])
+            out[i] = (ch, ln)
     else:
-        out = csvtext.format_floats(col, sep)
-    if repeats is not None:
-        repeats.put(offset, col, out, sep)
+        for i in pending:
+            out[i] = csvtext.format_floats(cols[i], seps[i])
+    for i in pending:
+        if repeats[i] is not None:
+            repeats[i].put(offset, cols[i], out[i], seps[i])
     return out
 
 
@@ -128,8 +154,9 @@ def write_csv(df: pd.DataFrame | dict, path: str | Path, block: int | None = Non
 
     def text(span: tuple[int, int, int]) -> bytes:
         start, stop, offset = span
-        return csvtext.rows_text([_fields(d[start:stop], seps[i], repeats.get(i), offset)
-                                  for i, d in enumerate(data)])
+        return csvtext.rows_text(_fields_of([d[start:stop] for d in data], seps,
+                                            [repeats.get(i) for i in range(len(data))],
+                                            offset))
 
     def per_row() -> float:
         sample = np.linspace(0, rows - 1, 4096).astype(np.intp)
@@ -157,15 +184,13 @@ def write_long_csv(table: LongTable, path: str | Path,
         i, part = span
         m = part.stop - part.start
         values = table.chunk(i, part)
-        fields = [_fields(np.asarray(table.positions[part], dtype=float), seps[0], repeats,
-                          part.start)]
-        fields += [_repeat(labels[j][i], m) for j in range(nl)]
-        for k, c in enumerate(table.floats):
-            v = values[c]
-            sep = seps[1 + nl + k]
-            fields.append(_repeat(csvtext.format_floats(np.array([v], dtype=float), sep), m)
-                          if np.ndim(v) == 0 else _fields(np.asarray(v, dtype=float), sep))
-        return csvtext.rows_text(fields)
+        cols = [np.asarray(table.positions[part], dtype=float)]
+        cols += [np.broadcast_to(np.asarray(values[c], dtype=float), (m,))
+                 for c in table.floats]
+        fields = _fields_of(cols, [seps[0], *seps[1 + nl:]],
+                            [repeats] + [None] * len(table.floats), part.start)
+        return csvtext.rows_text(fields[:1] + [_repeat(labels[j][i], m) for j in range(nl)]
+                                 + fields[1:])
 
     def per_row() -> float:
         parts = [(i, slice(0, min(512, table.n))) for i in range(table.blocks)]
@@ -200,7 +225,8 @@ def _write_lines(path: Path, names: list[str], spans: list, text: Callable[..., 
             announce(f"{path.name}: {rows:,} rows, about {size / 1e6:,.0f} MB of CSV and "
                      f"{size / CSV_RATE:.0f} s to write (--format parquet is smaller and "
                      "faster)")
-        if THREADS > 1 and len(spans) > 1:
+        if THREADS > 1 and len(spans) > 1 and rows * len(names) >= THREADED:
+            from concurrent.futures import ThreadPoolExecutor
             with ThreadPoolExecutor(THREADS) as pool:
                 window = 4 * THREADS
                 for i in range(0, len(spans), window):
