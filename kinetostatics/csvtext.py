@@ -105,6 +105,7 @@ def _layouts() -> tuple[np.ndarray, np.ndarray]:
 
 
 _LAYOUT, _LENGTH = _layouts()
+_OFFSETS = np.arange(1 << 16) * _SRC       # where each value's source bytes start
 
 
 _THOUSAND = np.arange(1000)
@@ -200,8 +201,9 @@ def format_floats(x: np.ndarray, sep: str = ",") -> tuple[np.ndarray, np.ndarray
 
     Returns
     -------
-    chars : ndarray of uint8, shape (n, WIDTH)
-        Each value's text and separator, left-aligned (then filler).
+    chars : ndarray of uint8, shape (n, w)
+        Each value's text and separator, left-aligned, then zero bytes (``w`` at most
+        ``WIDTH``: the longest field's length).
     length : ndarray of uint8, shape (n,)
         Characters of each field, the separator included.
     """
@@ -223,11 +225,14 @@ def format_floats(x: np.ndarray, sep: str = ",") -> tuple[np.ndarray, np.ndarray
     src, nsig = _sources(d, e, sep)
     form = np.where((e < -4) | (e >= 17), np.where(np.abs(e) >= 100, 22, 21), e + 4)
     key = (np.signbit(x) * _FORMS + form) * 17 + nsig - 1
-    where = _LAYOUT[key]
-    where += (np.arange(n) * _SRC)[:, None]
-    chars = src.ravel().take(where).astype(np.uint8, copy=False)
     length = _LENGTH[key]
-    for i in np.flatnonzero(slow):
+    slow = np.flatnonzero(slow)
+    # only as wide as the longest field (Python's text of a slow value: up to WIDTH)
+    w = WIDTH if slow.size or not n else int(length.max())
+    where = _LAYOUT[:, :w][key]
+    where += (_OFFSETS[:n] if n <= _OFFSETS.size else np.arange(n) * _SRC)[:, None]
+    chars = src.ravel().take(where).astype(np.uint8, copy=False)
+    for i in slow:
         v = x[i]
         text = (b"" if v != v else (b"%.17g" % v)) + sep.encode()
         chars[i] = 0
