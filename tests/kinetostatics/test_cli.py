@@ -182,5 +182,6 @@ def test_bench_tables_quick():
     r = run("bench", "--tables", "--quick", "--repeat", "1")
     assert r.returncode == 0, r.stderr
     for word in ("solve_s", "kinematics_s", "long_tables_over_solve", "csv_MB_per_s",
-                 "peak_MB", "cli_out_s", "best", "median"):
+                 "peak_MB", "cli_out_s", "best", "median", "start-up", "over_numpy",
+                 "import balance", "balance solve rotor_two_plane"):
         assert word in r.stdout, word
