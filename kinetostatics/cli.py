@@ -17,7 +17,7 @@ from .model.errors import WorkbenchError
 
 
 def _cmd_solve(args) -> int:
-    from .output import summary_with_units, write_summary
+    from .output import summary_with_units
     from .solver.pipeline import solve
     if args.out and args.format == "parquet":
         from .output import parquet_available
@@ -27,9 +27,8 @@ def _cmd_solve(args) -> int:
     if args.out:
         def announce(line: str) -> None:
             print(f"warning: {line}", file=sys.stderr, flush=True)
-        for p in sol.write(args.out, args.format, announce):
-            if p.name == "summary.json":        # the scene's [units] repeated there too
-                write_summary(p, summary)
+        # summary.json repeats the scene's [units] too
+        for p in sol.write(args.out, args.format, announce, summary):
             print(p)
     if args.plot:
         from .plot.cli import write_pictures

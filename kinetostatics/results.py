@@ -546,13 +546,16 @@ class Solution:
         """Write every table as CSV (17 significant digits) and ``summary.json``."""
         return self.write(directory, "csv")
 
-    def write(self, directory: str | Path, fmt: str = "csv", announce=None) -> list[Path]:
+    def write(self, directory: str | Path, fmt: str = "csv", announce=None,
+              summary: dict | None = None) -> list[Path]:
         """Write every table (``fmt``: ``"csv"``, 17 significant digits, or
         ``"parquet"``) and ``summary.json``. A table built only for writing is
         dropped once written, and a long table not built yet is written as CSV straight
         from the solver's arrays, never held whole. ``announce``
         (a callable taking one line) hears of every CSV table over 1e6 rows, with its
-        size and time estimate (:func:`kinetostatics.output.write_csv`)."""
+        size and time estimate (:func:`kinetostatics.output.write_csv`). ``summary``:
+        the content of ``summary.json`` when it is not :meth:`summary` (the command
+        line's, with the scene's ``[units]``)."""
         from .output import Repeats, write_csv, write_long_csv, write_parquet
         if fmt not in ("csv", "parquet"):
             raise WorkbenchError(f"format {fmt!r}: use csv or parquet")
@@ -582,7 +585,8 @@ class Solution:
             if not kept:
                 del self.__dict__[name]
         path = d / "summary.json"
-        path.write_text(json.dumps(self.summary(), indent=2) + "\n")
+        path.write_text(json.dumps(self.summary() if summary is None else summary,
+                                   indent=2) + "\n")
         written.append(path)
         return written
 
