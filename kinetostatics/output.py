@@ -2,7 +2,8 @@
 
 CSV text comes from :mod:`kinetostatics.csvtext` (numpy, whole columns at a time):
 the same text as pandas' ``to_csv(index=False, float_format="%.17g")``, written in
-chunks of rows by two threads (numpy releases the interpreter lock while it works).
+chunks of rows by two threads when a core is free (numpy releases the interpreter lock
+while it works).
 Two shortcuts keep long tables fast: a long table repeats its ``position`` column once
 per block (joint, point, body), so each chunk of positions is formatted once and
 reused; and a chunk of a column holding one value (a fixed pivot, the zero couple of a
@@ -13,6 +14,7 @@ the dtypes, categoricals included, and every bit of every float.
 from __future__ import annotations
 
 import json
+import os
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -28,7 +30,7 @@ if TYPE_CHECKING:
     import pandas as pd
 
 CHUNK = 16_384          # rows formatted at a time (the arrays stay in the CPU caches)
-THREADS = 2
+THREADS = 2             # writer threads when a core is free (see _threads)
 THREADED = 200_000      # fields in a table written by the threads (fewer: no threads)
 BATCH = 16_384          # float fields formatted in one call (several columns of a chunk)
 # CSV written per second (bytes) for the time estimate of the warning, measured with
@@ -200,6 +202,17 @@ def write_long_csv(table: LongTable, path: str | Path,
                         table.n * table.blocks, per_row, announce)
 
 
+def _threads() -> int:
+    """``THREADS`` when the load average leaves a core free, else 1: with no core free
+    the threads only take turns, and their many hand-overs of the interpreter lock cost
+    about 30 % more CPU (measured at 1e5 positions on the 2-core development machine)."""
+    try:
+        free = (os.cpu_count() or 1) - os.getloadavg()[0]
+    except (AttributeError, OSError):       # no load average on this system
+        return THREADS
+    return THREADS if free > 0.5 else 1
+
+
 def _separators(columns: int) -> list[str]:
     return [","] * (columns - 1) + ["\n"]
 
@@ -225,10 +238,11 @@ def _write_lines(path: Path, names: list[str], spans: list, text: Callable[..., 
             announce(f"{path.name}: {rows:,} rows, about {size / 1e6:,.0f} MB of CSV and "
                      f"{size / CSV_RATE:.0f} s to write (--format parquet is smaller and "
                      "faster)")
-        if THREADS > 1 and len(spans) > 1 and rows * len(names) >= THREADED:
+        threads = _threads()
+        if threads > 1 and len(spans) > 1 and rows * len(names) >= THREADED:
             from concurrent.futures import ThreadPoolExecutor
-            with ThreadPoolExecutor(THREADS) as pool:
-                window = 4 * THREADS
+            with ThreadPoolExecutor(threads) as pool:
+                window = 4 * threads
                 for i in range(0, len(spans), window):
                     for chunk in pool.map(text, spans[i:i + window]):
                         fh.write(chunk)

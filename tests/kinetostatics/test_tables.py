@@ -228,9 +228,11 @@ def test_released_loads_come_back_bit_for_bit(monkeypatch):
                                       check_exact=True)
 
 
-def test_long_sweep_written_as_pandas_writes_it(tmp_path):
-    """Many chunks per block, the writer's threads, the position formatted once for
-    every table: still pandas' bytes."""
+@pytest.mark.parametrize("load", [0.0, 99.0])
+def test_long_sweep_written_as_pandas_writes_it(tmp_path, monkeypatch, load):
+    """Many chunks per block, the position formatted once for every table, with the
+    writer's threads (a core free) or without (a busy machine): still pandas' bytes."""
+    monkeypatch.setattr(output.os, "getloadavg", lambda: (load, load, load))
     scene = ks.load_scene(ks.example("slider_crank"))
     sol = ks.solve(scene, np.linspace(0.0, 359.99, 40_001))
     for path in sol.write(tmp_path):
