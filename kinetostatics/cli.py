@@ -123,10 +123,10 @@ What count costs: every position is one row of driver.csv and frame.csv, one row
 joint of reactions.csv, per named point and cog of kinematics.csv, per body of
 bodies.csv and per dyad of dyads.csv. The bundled four_bar (4 joints, 11 points,
 3 bodies) writes about 2.2 kB of CSV per position. Measured on the 2-core development
-machine: count = 1e5 writes 220 MB in about 3 s; count = 1e6 writes 2.2 GB in 25-35 s
-(about 24 s of CPU) with 0.9 GB of memory. A table of more than 1e6 rows is announced
-on stderr with its size and time. --format parquet writes about 3x less, in about half
-the time, and keeps the dtypes."""
+machine (busy): count = 1e5 writes 220 MB in about 2 s (1.4-1.7 s of CPU, the whole
+command); count = 1e6 writes 2.2 GB in about 15 s (14 s of CPU) with 0.6 GB of memory.
+A table of more than 1e6 rows is announced on stderr with its size and time.
+--format parquet writes about 3x less and keeps the dtypes."""
 
 
 # the commands of this module: their parser is built without the teaching package's

@@ -34,8 +34,9 @@ THREADS = 2             # writer threads when a core is free (see _threads)
 THREADED = 200_000      # fields in a table written by the threads (fewer: no threads)
 BATCH = 16_384          # float fields formatted in one call (several columns of a chunk)
 # CSV written per second (bytes) for the time estimate of the warning, measured with
-# `python -m kinetostatics bench --tables` on the 2-core development machine
-CSV_RATE = 60e6
+# `python -m kinetostatics bench --tables` and `solve --out` (1e6 positions: 2.2 GB in
+# about 15 s) on the 2-core development machine, busy; a little under it
+CSV_RATE = 120e6
 WARN_ROWS = 1_000_000           # a longer table is announced with its size and time
 
 
