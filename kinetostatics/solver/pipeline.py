@@ -76,6 +76,7 @@ def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> 
         raise AssemblyError(f"the scene's numbers overflow ({exc}); check its dimensions "
                             "and masses") from None
     _check_finite(sol)
+    sol.release_loads()     # recomputed when asked for: no table needs them (memory)
     return sol
 
 
