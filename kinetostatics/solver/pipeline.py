@@ -89,8 +89,12 @@ def _solve_loads(sc, structure, kin) -> Solution:
         return Solution(sc, structure, kin, loads + fl, reactions, drive,
                         np.broadcast_to(undefined, (kin.n,)) | at_rest, self_locking=locking)
     acc = resultants(loads, sc.bodies, kin.n)
+    # the loads are let go before the reactions are solved (a lower peak of memory: at
+    # large sizes fresh pages cost more than the arithmetic); Solution.loads computes them
+    # again, with the same numbers, when asked for
+    del loads, inertia, applied
     reactions, drive = solve_reactions(kin, acc)
-    return Solution(sc, structure, kin, loads, reactions, drive, undefined)
+    return Solution(sc, structure, kin, None, reactions, drive, undefined)
 
 
 def _check_finite(sol: Solution) -> None:
