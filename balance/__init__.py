@@ -33,38 +33,31 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from .api import example_path, examples, solve, solve_results
-from .errors import BalanceError, BalanceWarning
-from .field.influence import (
-    InfluenceResult,
-    influence_balance,
-    influence_coefficients,
-    influence_single_plane,
-    influence_two_plane,
-    trim_balance,
-)
-from .field.influence_stats import NoiseModel
-from .field.iso import (
-    GRADES,
-    IsoAllocation,
-    IsoCheck,
-    IsoTolerances,
-    iso_allocate,
-    iso_check,
-    iso_permissible_unbalance,
-    iso_tolerances,
-    kgm_to_gmm,
-    to_bearing_planes,
-)
-from .field.weights import Combined, Split, combine_weights, split_correction
-from .resonance.methods import ResonanceResult, four_run, parallelogram, trial_runs
-from .rotor.design import Correction, CorrectionPlane, RotorResult, Unbalance, balance_rotor
-from .rotor.static_device import StaticDeviceResult, static_device
-from .scene import BalanceScene, load_scene
-from .uncertainty import Interval
-from .units import Units
-
 if TYPE_CHECKING:
+    from .api import example_path, examples, solve, solve_results
+    from .errors import BalanceError, BalanceWarning
+    from .field.influence import (
+        InfluenceResult,
+        influence_balance,
+        influence_coefficients,
+        influence_single_plane,
+        influence_two_plane,
+        trim_balance,
+    )
+    from .field.influence_stats import NoiseModel
+    from .field.iso import (
+        GRADES,
+        IsoAllocation,
+        IsoCheck,
+        IsoTolerances,
+        iso_allocate,
+        iso_check,
+        iso_permissible_unbalance,
+        iso_tolerances,
+        kgm_to_gmm,
+        to_bearing_planes,
+    )
+    from .field.weights import Combined, Split, combine_weights, split_correction
     from .machine import BalancingMachine, CoastDown, coast_down_study, pivot_reaction
     from .mechanism import (
         CounterRotatingPair,
@@ -77,6 +70,59 @@ if TYPE_CHECKING:
         shaking_force,
         solve_mechanism_balancing,
     )
+    from .resonance.methods import ResonanceResult, four_run, parallelogram, trial_runs
+    from .rotor.design import Correction, CorrectionPlane, RotorResult, Unbalance, balance_rotor
+    from .rotor.static_device import StaticDeviceResult, static_device
+    from .scene import BalanceScene, load_scene
+    from .uncertainty import Interval
+    from .units import Units
+
+# Every public name is imported when first asked for (PEP 562), so that ``import balance``
+# costs less than ``import numpy``: each method's module (and numpy) loads with its first use.
+_LAZY = {
+    "example_path": "api",
+    "examples": "api",
+    "solve": "api",
+    "solve_results": "api",
+    "BalanceError": "errors",
+    "BalanceWarning": "errors",
+    "InfluenceResult": "field.influence",
+    "influence_balance": "field.influence",
+    "influence_coefficients": "field.influence",
+    "influence_single_plane": "field.influence",
+    "influence_two_plane": "field.influence",
+    "trim_balance": "field.influence",
+    "NoiseModel": "field.influence_stats",
+    "GRADES": "field.iso",
+    "IsoAllocation": "field.iso",
+    "IsoCheck": "field.iso",
+    "IsoTolerances": "field.iso",
+    "iso_allocate": "field.iso",
+    "iso_check": "field.iso",
+    "iso_permissible_unbalance": "field.iso",
+    "iso_tolerances": "field.iso",
+    "kgm_to_gmm": "field.iso",
+    "to_bearing_planes": "field.iso",
+    "Combined": "field.weights",
+    "Split": "field.weights",
+    "combine_weights": "field.weights",
+    "split_correction": "field.weights",
+    "ResonanceResult": "resonance.methods",
+    "four_run": "resonance.methods",
+    "parallelogram": "resonance.methods",
+    "trial_runs": "resonance.methods",
+    "Correction": "rotor.design",
+    "CorrectionPlane": "rotor.design",
+    "RotorResult": "rotor.design",
+    "Unbalance": "rotor.design",
+    "balance_rotor": "rotor.design",
+    "StaticDeviceResult": "rotor.static_device",
+    "static_device": "rotor.static_device",
+    "BalanceScene": "scene",
+    "load_scene": "scene",
+    "Interval": "uncertainty",
+    "Units": "units",
+}
 
 __all__ = [
     "GRADES",
@@ -146,17 +192,30 @@ _MECHANISM = ("CounterRotatingPair", "Counterweight", "MechanismBalancing", "bal
 
 
 def __getattr__(name: str):
-    """The virtual balancing machine (``balance.BalancingMachine``, ``CoastDown``,
-    ``pivot_reaction``, ``coast_down_study``: pymunk) and the static balancing of
-    mechanisms (``solve_mechanism_balancing``, ...: pandas), imported on first use."""
+    """Every public name, imported on first use (the virtual balancing machine
+    ``BalancingMachine``, ``CoastDown``, ``pivot_reaction``, ``coast_down_study`` load
+    pymunk; the static balancing of mechanisms ``solve_mechanism_balancing``, ... pandas
+    and the kinetostatic solver); a subpackage asked for as an attribute is imported."""
+    import importlib
+
     if name in _MACHINE:
-        from . import machine
-
-        return getattr(machine, name)
-    if name in _MECHANISM:
-        from . import mechanism
-
-        value = getattr(mechanism, name)
+        where = "machine"
+    elif name in _MECHANISM:
+        where = "mechanism"
+    else:
+        where = _LAZY.get(name)
+    if where is None:
+        try:   # a subpackage (balance.field, .rotor, ...) asked for as an attribute
+            return importlib.import_module(f"{__name__}.{name}")
+        except ModuleNotFoundError as exc:
+            if exc.name != f"{__name__}.{name}":
+                raise
+        raise AttributeError(f"module 'balance' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{where}"), name)
+    if name not in _MACHINE:
         globals()[name] = value
-        return value
-    raise AttributeError(f"module 'balance' has no attribute {name!r}")
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

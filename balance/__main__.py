@@ -12,27 +12,22 @@ import argparse
 import json
 import sys
 import warnings
-from typing import Any, NoReturn
+from typing import Any
 
-from kinetostatics.cli import dpi_argument
+from kinetostatics.cli import OneLineParser, dpi_argument
 
 from .api import example_path, examples, results_to_dict, solve_results
 from .errors import WorkbenchError
+from .report.document import json_default
 from .report.text import result_warnings, summary_text
 from .scene import SCENES
 from .units import SI
 
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> NoReturn:  # one line, exit 2, no usage dump
-        print(f"error: {message} (see python -m balance --help)", file=sys.stderr)
-        raise SystemExit(2)
-
-
 def _parser() -> argparse.ArgumentParser:
-    p = _Parser(prog="python -m balance",
-                description="Rotor and resonance balancing (seed 002 ch. 3).")
-    sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    p = OneLineParser(prog="python -m balance",
+                      description="Rotor and resonance balancing (seed 002 ch. 3).")
+    sub = p.add_subparsers(dest="command", required=True, parser_class=OneLineParser)
     s = sub.add_parser("solve", help="solve a balancing scene")
     s.add_argument("scene", help="a scene .toml file, or the name of a bundled example")
     s.add_argument("--json", action="store_true", help="print the result dict as JSON")
@@ -57,7 +52,7 @@ def main(argv: list[str] | None = None) -> int:
             results = solve_results(args.scene)
             out = results_to_dict(results)
         if args.json:
-            text = json.dumps(out, indent=2, allow_nan=False, default=_json_default)
+            text = json.dumps(out, indent=2, allow_nan=False, default=json_default)
         else:
             speed = "rotor" in results and results["rotor"].speed_rpm is not None
             text = summary_text(out, speed) + _units_line(out)
@@ -100,17 +95,6 @@ def _units_line(out: dict[str, Any]) -> str:
 
 def _one_line(exc: object) -> str:
     return " ".join(str(exc).split())
-
-
-def _json_default(x: Any) -> Any:
-    """numpy scalars and arrays (e.g. from balance.mechanism) as plain JSON values."""
-    import numpy as np
-
-    if isinstance(x, np.generic):
-        return x.item()
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    raise TypeError(f"{type(x).__name__} is not JSON serialisable")
 
 
 if __name__ == "__main__":

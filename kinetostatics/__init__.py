@@ -35,9 +35,9 @@ from .model.errors import (
     UnitWarning,
     WorkbenchError,
 )
-from .model.examples import cam_examples, example, examples, scene_path
 
 if TYPE_CHECKING:
+    from .model.examples import cam_examples, example, examples, scene_path
     from .model.scene import Scene, load_scene
     from .motion.scene import simulate_motion
     from .results import Solution
@@ -50,6 +50,8 @@ if TYPE_CHECKING:
 # more than ``import numpy``: pandas, matplotlib, scipy and pymunk load with the first
 # table, picture, motion or cross-check that needs them.
 _LAZY = {
+    "cam_examples": "model.examples", "example": "model.examples",
+    "examples": "model.examples", "scene_path": "model.examples",
     "Scene": "model.scene", "load_scene": "model.scene",
     "simulate_motion": "motion.scene", "Solution": "results",
     "Kinematics": "solver.kinematics", "solve_kinematics": "solver.kinematics",

@@ -15,7 +15,10 @@ may be shared, so a single run says little.
   ``python -m balance solve rotor_two_plane`` and ``python -m kinetostatics solve
   four_bar --out DIR`` in fresh processes, wall time against ``import numpy``;
 * ``tables``: ``python -m kinetostatics solve --out`` at 1e5 positions (wall) and the
-  peak memory of a process holding the 1e6-position solution and every table.
+  peak memory of a process holding the 1e6-position solution and every table;
+* ``crosscheck``: the pymunk cross-check of the shaper and the slotted lever, seconds
+  per simulated revolution with its automatic settings against the previous defaults,
+  with the largest error of each (:func:`bench_crosscheck`).
 """
 
 from __future__ import annotations
@@ -184,6 +187,16 @@ def bench_tables() -> list[dict]:
     return rows
 
 
+def bench_crosscheck(repeat: int = 3) -> list[dict]:
+    """The pymunk cross-check's automatic settings (ballast, lag rule) against the
+    previous defaults, seconds per simulated revolution timed side by side, with each
+    one's largest error (:func:`kinetostatics.simulation.crosscheck_speed`)."""
+    from .simulation import crosscheck_speed
+    keys = ("measure", "size", "seconds_best", "baseline_best", "ratio_best", "ratio_median",
+            "error")
+    return [{k: r[k] for k in keys} for r in crosscheck_speed(repeat=repeat)]
+
+
 def run_speed(quick: bool = False, reference: str | None = None) -> pd.DataFrame:
     """Every ratio of this module, printed as one table (``quick``: small sizes)."""
     ref = reference or find_reference()
@@ -195,6 +208,7 @@ def run_speed(quick: bool = False, reference: str | None = None) -> pd.DataFrame
     rows += bench_start(3 if quick else 7)
     if not quick:
         rows += bench_tables()
+        rows += bench_crosscheck()
     df = pd.DataFrame(rows)
     pd.set_option("display.width", 160)
     print(f"\n== speed: ratios to baselines timed side by side ({os.cpu_count()} cores) ==")

@@ -21,6 +21,12 @@ process (so that its peak memory is its own):
   own ``format(v, ".17g")`` value by value, in CPU time, on ``positions`` random values
   (measured: about 10 M values/s against 4-5 M/s, one core of a loaded machine).
 
+Start-up (:func:`measure_startup`): fresh processes of ``python -c "import numpy"``
+(the baseline), ``import kinetostatics``, ``import balance``, ``python -m balance solve
+rotor_two_plane`` and ``python -m kinetostatics solve four_bar --out DIR`` (default
+positions), taken in turn ``repeat`` times; the best and median wall times and the
+best over the best of ``import numpy``.
+
 The machine may be shared: every size runs ``repeat`` times and the best and the
 median of each column are printed; on a busy machine the CPU times are the steadier
 measure.
@@ -138,6 +144,33 @@ def measure_cli(n: int, folder: str) -> dict:
             "cli_peak_MB": int(r.stderr.strip().splitlines()[-1]) / 1024}
 
 
+STARTUP = {
+    "import numpy": ["-c", "import numpy"],
+    "import kinetostatics": ["-c", "import kinetostatics"],
+    "import balance": ["-c", "import balance"],
+    "balance solve rotor_two_plane": ["-m", "balance", "solve", "rotor_two_plane"],
+    "kinetostatics solve four_bar --out": ["-m", "kinetostatics", "solve", "four_bar",
+                                           "--out", "{out}"],
+}
+
+
+def measure_startup(repeat: int = 7) -> pd.DataFrame:
+    """Wall time of fresh processes (:data:`STARTUP`), each command in turn ``repeat``
+    times: ``best_s``, ``median_s`` and ``over_numpy`` (best over the best of ``import
+    numpy``, measured in the same rounds)."""
+    times: dict[str, list[float]] = {k: [] for k in STARTUP}
+    for _ in range(repeat):
+        for name, args in STARTUP.items():
+            with tempfile.TemporaryDirectory() as tmp:
+                t = time.perf_counter()
+                subprocess.run([sys.executable, *(a.format(out=tmp) for a in args)],
+                               capture_output=True, check=True)
+                times[name].append(time.perf_counter() - t)
+    numpy_best = min(times["import numpy"])
+    return pd.DataFrame([{"command": k, "best_s": min(v), "median_s": float(np.median(v)),
+                          "over_numpy": min(v) / numpy_best} for k, v in times.items()])
+
+
 def run_table_bench(quick: bool = False, repeat: int = 3,
                     sizes: tuple[int, ...] | None = None) -> pd.DataFrame:
     """Run every size ``repeat`` times; print and return the best and median rows."""
@@ -162,4 +195,9 @@ def run_table_bench(quick: bool = False, repeat: int = 3,
     print(f"== result tables (four-bar; {repeat} runs per size, "
           f"{os.cpu_count()} cores) ==")
     print(out.T.to_string(header=False, float_format=lambda x: f"{x:.4g}"))
+    rounds = 1 if quick else 7
+    start = measure_startup(rounds)
+    print(f"== start-up (fresh processes, best and median of {rounds}, "
+          f"{os.cpu_count()} cores) ==")
+    print(start.to_string(index=False, float_format=lambda x: f"{x:.3f}"))
     return out

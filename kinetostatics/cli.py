@@ -10,13 +10,14 @@ import json
 import sys
 import warnings
 from pathlib import Path
+from typing import NoReturn
 
 from . import scene_path
 from .model.errors import WorkbenchError
 
 
 def _cmd_solve(args) -> int:
-    from .output import summary_with_units, write_summary
+    from .output import summary_with_units
     from .solver.pipeline import solve
     if args.out and args.format == "parquet":
         from .output import parquet_available
@@ -26,9 +27,8 @@ def _cmd_solve(args) -> int:
     if args.out:
         def announce(line: str) -> None:
             print(f"warning: {line}", file=sys.stderr, flush=True)
-        for p in sol.write(args.out, args.format, announce):
-            if p.name == "summary.json":        # the scene's [units] repeated there too
-                write_summary(p, summary)
+        # summary.json repeats the scene's [units] too
+        for p in sol.write(args.out, args.format, announce, summary):
             print(p)
     if args.plot:
         from .plot.cli import write_pictures
@@ -37,6 +37,16 @@ def _cmd_solve(args) -> int:
     if args.json or not args.out:
         print(json.dumps(summary, indent=2))
     return 0
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """An argument parser whose every mistake is one line ``error: ...`` on stderr and
+    exit code 2, without argparse's usage lines (the parser class of both CLIs and of
+    all their subcommands)."""
+
+    def error(self, message: str) -> NoReturn:
+        print(f"error: {' '.join(message.split())} (see {self.prog} --help)", file=sys.stderr)
+        raise SystemExit(2)
 
 
 def dpi_argument(text: str) -> float:
@@ -113,10 +123,10 @@ What count costs: every position is one row of driver.csv and frame.csv, one row
 joint of reactions.csv, per named point and cog of kinematics.csv, per body of
 bodies.csv and per dyad of dyads.csv. The bundled four_bar (4 joints, 11 points,
 3 bodies) writes about 2.2 kB of CSV per position. Measured on the 2-core development
-machine: count = 1e5 writes 220 MB in about 3 s; count = 1e6 writes 2.2 GB in 25-35 s
-(about 24 s of CPU) with 0.9 GB of memory. A table of more than 1e6 rows is announced
-on stderr with its size and time. --format parquet writes about 3x less, in about half
-the time, and keeps the dtypes."""
+machine (busy): count = 1e5 writes 220 MB in about 2 s (1.4-1.7 s of CPU, the whole
+command); count = 1e6 writes 2.2 GB in about 15 s (14 s of CPU) with 0.6 GB of memory.
+A table of more than 1e6 rows is announced on stderr with its size and time.
+--format parquet writes about 3x less and keeps the dtypes."""
 
 
 # the commands of this module: their parser is built without the teaching package's
@@ -125,9 +135,9 @@ CORE_COMMANDS = ("solve", "demo", "structure", "bench", "motion", "cam")
 
 
 def build_parser(extras: bool = True) -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="python -m kinetostatics",
-                                description="Kinetostatics of planar mechanisms.")
-    sub = p.add_subparsers(dest="command", required=True)
+    p = OneLineParser(prog="python -m kinetostatics",
+                      description="Kinetostatics of planar mechanisms.")
+    sub = p.add_subparsers(dest="command", required=True, parser_class=OneLineParser)
     s = sub.add_parser("solve", help="solve a scene; write the tables as CSV",
                        epilog=SOLVE_COST, formatter_class=argparse.RawDescriptionHelpFormatter)
     s.add_argument("scene", help="scene file (.toml)")

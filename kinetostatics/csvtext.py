@@ -25,8 +25,6 @@ quoted only when it holds a comma, a quote or a line break (pandas' defaults).
 
 from __future__ import annotations
 
-from fractions import Fraction
-
 import numpy as np
 
 WIDTH = 25              # the longest '%.17g' text, -1.2345678901234567e-308, and a separator
@@ -36,20 +34,40 @@ _SPLIT = 134217729.0    # 2^27 + 1, Veltkamp's splitter for a double
 
 # 10^k = _HI[k] + _LO[k] (double-double), k = -_K .. _K
 _K = _RANGE + 20
-_HI = np.array([float(Fraction(10) ** k) for k in range(-_K, _K + 1)])
-_LO = np.array([float(Fraction(10) ** k - Fraction(h))
-                for k, h in zip(range(-_K, _K + 1), _HI, strict=True)])
+
+
+def _powers_of_ten() -> tuple[np.ndarray, np.ndarray]:
+    """10^k rounded to the nearest double, and the rest rounded: exact rational arithmetic
+    in Python integers (int / int is correctly rounded; int -> float too)."""
+    hi, lo = [], []
+    for k in range(-_K, _K + 1):
+        if k >= 0:
+            h = float(10 ** k)
+            hi.append(h)
+            lo.append(float(10 ** k - int(h)))
+        else:
+            m = 10 ** -k
+            h = 1 / m
+            num, den = h.as_integer_ratio()          # h = num / den, den a power of 2
+            hi.append(h)
+            lo.append((den - num * m) / (m * den))   # 1/m - h
+    return np.array(hi), np.array(lo)
+
+
+_HI, _LO = _powers_of_ten()
 _D_MIN = 10 ** 16       # 17 digits: 10^16 <= D < 10^17
 
-# A value's characters are gathered from seven 4-byte words: six groups of three digits
+# A value's characters are gathered from eight 4-byte words: six groups of three digits
 # (the first group's leading digit is always 0) each followed by a filler byte that
 # carries one of the constant characters (the last one the separator after the field),
-# then the exponent's three digits and sign.
+# the exponent's three digits and sign, and a zero word: the room of a field after its
+# text is zero bytes (never a character of a CSV field), see :func:`rows_text`.
 _ZERO = 0
 _DIGIT = (1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, 16, 17, 18, 20, 21, 22)   # digits 0..16
 _DOT, _MINUS, _E, _SEP = 7, 11, 15, 23
 _E100, _E10, _E1, _ESIGN = 24, 25, 26, 27
-_SRC = 28
+_PAD = 28               # a zero byte (the eighth word is zero): a field's room after its text
+_SRC = 32
 _FORMS = 23             # E = -4 .. 16 in fixed notation, scientific with 2 or 3 exponent digits
 
 
@@ -74,7 +92,7 @@ def _template(neg: int, form: int, nsig: int) -> list[int]:
 
 def _layouts() -> tuple[np.ndarray, np.ndarray]:
     keys = 2 * _FORMS * 17
-    layout = np.full((keys, WIDTH), _ZERO, dtype=np.intp)
+    layout = np.full((keys, WIDTH), _PAD, dtype=np.intp)
     length = np.zeros(keys, dtype=np.uint8)
     for neg in range(2):
         for form in range(_FORMS):
@@ -87,17 +105,27 @@ def _layouts() -> tuple[np.ndarray, np.ndarray]:
 
 
 _LAYOUT, _LENGTH = _layouts()
+_OFFSETS = np.arange(1 << 16) * _SRC       # where each value's source bytes start
 
 
-def _words(filler: str, texts) -> np.ndarray:
-    return np.frombuffer(b"".join((t + filler).encode() for t in texts), dtype=np.uint32)
+_THOUSAND = np.arange(1000)
+_DIGITS3 = (48 + np.stack([_THOUSAND // 100, _THOUSAND // 10 % 10, _THOUSAND % 10],
+                          axis=1)).astype(np.uint8)
 
 
-_TRIPLE = {f: _words(f, (f"{i:03d}" for i in range(1000))) for f in "0.-e,\n"}
-_EXPONENT = _words("", (f"{i:03d}{s}" for s in "+-" for i in range(1000)))
+def _words(last: np.ndarray) -> np.ndarray:
+    """Words of the three digits of 0..999 followed by the byte(s) ``last``."""
+    out = np.empty((last.shape[0], 4), dtype=np.uint8)
+    out[:, :3] = np.tile(_DIGITS3, (last.shape[0] // 1000, 1))
+    out[:, 3] = last
+    return out.view(np.uint32).ravel()
+
+
+_TRIPLE = {f: _words(np.full(1000, ord(f), dtype=np.uint8)) for f in "0.-e,\n"}
+_EXPONENT = _words(np.repeat(np.frombuffer(b"+-", dtype=np.uint8), 1000))
 # trailing zero digits of a three-digit group
-_TRAILING = np.array([3 if i == 0 else len(str(i)) - len(str(i).rstrip("0")) for i in
-                      range(1000)], dtype=np.int64)
+_TRAILING = np.where(_THOUSAND == 0, 3, (_THOUSAND % 10 == 0).astype(np.int64)
+                     + (_THOUSAND % 100 == 0))
 
 
 def _two_product(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -152,11 +180,17 @@ def _sources(d: np.ndarray, e: np.ndarray, sep: str) -> tuple[np.ndarray, np.nda
     for i, (g, filler) in enumerate(zip(groups, "0.-e0" + sep, strict=True)):
         words[:, i] = _TRIPLE[filler].take(g)
     words[:, 6] = _EXPONENT.take(np.minimum(np.abs(e), 999) + 1000 * (e < 0))
-    trailing = np.zeros(d.size, dtype=np.int64)
-    zero = np.ones(d.size, dtype=bool)
-    for g in groups[::-1]:
-        trailing += np.where(zero, _TRAILING.take(g), 0)
-        zero &= g == 0
+    words[:, 7] = 0
+    # trailing zero digits of D: of its last group, and past that (a last group of 000,
+    # rare but for round numbers) of the groups before it
+    trailing = _TRAILING.take(groups[5])
+    more = np.flatnonzero(groups[5] == 0)
+    if more.size:
+        zero = np.ones(more.size, dtype=bool)
+        for g in groups[4::-1]:
+            gm = g[more]
+            trailing[more] += np.where(zero, _TRAILING.take(gm), 0)
+            zero &= gm == 0
     nsig = np.where(d == 0, 1, 17 - trailing)
     return words.view(np.uint8).reshape(d.size, _SRC), nsig
 
@@ -167,8 +201,9 @@ def format_floats(x: np.ndarray, sep: str = ",") -> tuple[np.ndarray, np.ndarray
 
     Returns
     -------
-    chars : ndarray of uint8, shape (n, WIDTH)
-        Each value's text and separator, left-aligned (then filler).
+    chars : ndarray of uint8, shape (n, w)
+        Each value's text and separator, left-aligned, then zero bytes (``w`` at most
+        ``WIDTH``: the longest field's length).
     length : ndarray of uint8, shape (n,)
         Characters of each field, the separator included.
     """
@@ -176,23 +211,31 @@ def format_floats(x: np.ndarray, sep: str = ",") -> tuple[np.ndarray, np.ndarray
     n = x.size
     a = np.abs(x)
     fast = (a >= 10.0 ** -_RANGE) & (a <= 10.0 ** _RANGE)
-    d = np.zeros(n, dtype=np.int64)
-    e = np.zeros(n, dtype=np.int64)
-    idx = np.flatnonzero(fast)
-    df, ef, unsure = _digits(a[idx])
-    d[idx], e[idx] = df, ef
-    slow = ~fast & (a != 0.0)                      # NaN, inf and the far ranges
-    slow[idx[unsure]] = True
+    if fast.all():                                 # the usual case: no gather, no scatter
+        d, e, unsure = _digits(a)
+        slow = unsure
+    else:
+        d = np.zeros(n, dtype=np.int64)
+        e = np.zeros(n, dtype=np.int64)
+        idx = np.flatnonzero(fast)
+        df, ef, unsure = _digits(a[idx])
+        d[idx], e[idx] = df, ef
+        slow = ~fast & (a != 0.0)                  # NaN, inf and the far ranges
+        slow[idx[unsure]] = True
     src, nsig = _sources(d, e, sep)
     form = np.where((e < -4) | (e >= 17), np.where(np.abs(e) >= 100, 22, 21), e + 4)
     key = (np.signbit(x) * _FORMS + form) * 17 + nsig - 1
-    where = _LAYOUT[key]
-    where += (np.arange(n) * _SRC)[:, None]
-    chars = src.ravel().take(where).astype(np.uint8, copy=False)
     length = _LENGTH[key]
-    for i in np.flatnonzero(slow):
+    slow = np.flatnonzero(slow)
+    # only as wide as the longest field (Python's text of a slow value: up to WIDTH)
+    w = WIDTH if slow.size or not n else int(length.max())
+    where = _LAYOUT[:, :w][key]
+    where += (_OFFSETS[:n] if n <= _OFFSETS.size else np.arange(n) * _SRC)[:, None]
+    chars = src.ravel().take(where).astype(np.uint8, copy=False)
+    for i in slow:
         v = x[i]
         text = (b"" if v != v else (b"%.17g" % v)) + sep.encode()
+        chars[i] = 0
         chars[i, :len(text)] = np.frombuffer(text, dtype=np.uint8)
         length[i] = len(text)
     return chars, length
@@ -253,16 +296,25 @@ _COLUMNS = np.arange(256, dtype=np.uint8)
 
 def rows_text(fields: list[tuple[np.ndarray, np.ndarray]]) -> bytes:
     """CSV lines from the columns' fields (each with its separator: ``,`` and, in the
-    last column, ``\\n``): the fields side by side, then the characters within each
-    field's length in row order."""
-    mats, keeps = [], []
+    last column, ``\\n``): the fields side by side, then their characters in row order.
+
+    The fields' room after their text is zero bytes (:func:`format_floats`,
+    :func:`format_column`), so the characters are the bytes that are not zero; should a
+    field hold a zero byte itself (a label with a NUL character), the count tells, and
+    each field's length is used instead."""
+    mats = []
+    expected = 0
     for chars, length in fields:
         w = int(length.max()) if length.size else 0
         mats.append(chars[:, :w])
-        keeps.append(_COLUMNS[None, :w] < length[:, None])
-    # np.compress lets other threads run while it works (boolean indexing does not)
-    return np.compress(np.concatenate(keeps, axis=1).ravel(),
-                       np.concatenate(mats, axis=1).ravel()).tobytes()
+        expected += int(length.sum())
+    flat = np.concatenate(mats, axis=1).ravel()
+    text = flat[flat != 0]
+    if text.size == expected:
+        return text.tobytes()
+    keeps = [_COLUMNS[None, :m.shape[1]] < length[:, None]
+             for m, (_, length) in zip(mats, fields, strict=True)]
+    return flat[np.concatenate(keeps, axis=1).ravel()].tobytes()
 
 
 def header_text(names: list[str]) -> bytes:

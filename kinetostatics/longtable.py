@@ -6,12 +6,20 @@ of a block from the solver's arrays. The same definition gives the pandas table
 (:meth:`LongTable.frame`: every column allocated once and filled in place, the name
 columns categorical) and the CSV file written chunk by chunk without the table ever
 being held (:func:`kinetostatics.output.write_long_csv`), so both give the same values.
+
+Memory (at 1e6 positions a long table holds hundreds of MB): columns several tables
+have in common are held once (:func:`shared`: the ``position`` column of every long
+table is a view of one tiled array, see :class:`TiledPositions`), and a float column
+holding one value on every row (the ``N``, ``M`` and ``offset`` of a mechanism of
+revolute joints only) is a read-only view of that one number (:func:`constant`).
+pandas' copy-on-write keeps them apart: a table written to copies its column first, so
+the other tables never see the change.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -20,6 +28,7 @@ if TYPE_CHECKING:
 import numpy as np
 
 CHUNK = 32_768          # positions computed at a time: the temporaries stay in the CPU caches
+CONSTANTS_KEPT = 256    # distinct (value, length) pairs of constant columns held at most
 
 
 def categorical(names: list[str], n: int) -> pd.Categorical:
@@ -29,6 +38,107 @@ def categorical(names: list[str], n: int) -> pd.Categorical:
     kind = np.int8 if len(cats) < 127 else np.int16 if len(cats) < 32767 else np.int32
     codes = np.array([cats.index(x) for x in names], dtype=kind)
     return pd.Categorical.from_codes(np.repeat(codes, n), categories=cats)
+
+
+class Labels:
+    """A text column as its distinct texts and a code per row: what
+    :func:`kinetostatics.csvtext.format_column` formats fastest (each text once, as a
+    categorical), without pandas; ``objects()`` gives the column as an array of its
+    texts (as a DataFrame takes it)."""
+
+    def __init__(self, texts: list[str], codes: np.ndarray):
+        self.categories = list(texts)
+        self.codes = np.asarray(codes)
+
+    def __len__(self) -> int:
+        return self.codes.shape[0]
+
+    def __getitem__(self, rows) -> Labels:
+        return Labels(self.categories, self.codes[rows])
+
+    def objects(self) -> np.ndarray:
+        """The column as an array of objects (one text per row)."""
+        table = np.empty(len(self.categories), dtype=object)
+        table[:] = self.categories
+        return table[self.codes]
+
+    @staticmethod
+    def concat(parts: list[Labels]) -> Labels:
+        """Columns one after another."""
+        texts: dict[str, int] = {}
+        codes = []
+        for p in parts:
+            remap = np.array([texts.setdefault(t, len(texts)) for t in p.categories] or [0])
+            codes.append(remap[p.codes])
+        return Labels(list(texts), np.concatenate(codes) if codes else np.zeros(0, np.intp))
+
+
+def shared(values: np.ndarray) -> pd.Series:
+    """``values`` as a column that several tables may hold without a copy.
+
+    Each table takes a view of the returned Series (``s.iloc[a:b]`` or ``s`` itself);
+    while the Series lives (the caller keeps it), pandas knows the views share their
+    data and copies a column before writing to it, so writing to one table never
+    changes another (nor ``values``)."""
+    import pandas as pd
+    return pd.Series(values, copy=False)
+
+
+_CONSTANTS: dict[tuple[int, int], pd.Series] = {}
+
+
+def constant(value: float, rows: int) -> pd.Series | np.ndarray:
+    """A float column of ``rows`` copies of ``value``: a read-only view of one number
+    (8 bytes for any length; -0.0 and NaN keep their bits).
+
+    The Series are kept for the life of the process (at most ``CONSTANTS_KEPT`` of them,
+    a few hundred bytes each: past that a column of its own is returned), so that pandas
+    always sees the view as shared and copies the column before a write to it."""
+    bits = int(np.float64(value).view(np.int64))
+    key = (bits, rows)
+    hit = _CONSTANTS.get(key)
+    if hit is not None:
+        return hit
+    if len(_CONSTANTS) >= CONSTANTS_KEPT:
+        return np.full(rows, np.float64(value))
+    hit = _CONSTANTS[key] = shared(np.broadcast_to(np.float64(value), (rows,)))
+    return hit
+
+
+class TiledPositions:
+    """The ``position`` column of the long tables: the sweep repeated block after block,
+    held once for every table of one solution.
+
+    One array of room for the longest table is reserved at first use, and blocks are
+    filled only as a table asks for them (the reserved memory of blocks never filled
+    is not touched, so it takes no room); a table of ``k`` blocks takes a view of the
+    first ``k`` (:func:`shared`)."""
+
+    def __init__(self, positions: np.ndarray, most: int):
+        self.positions = np.asarray(positions, dtype=float)
+        self.n = self.positions.size
+        self.most = max(int(most), 1)
+        self._buffer: np.ndarray | None = None
+        self._series: pd.Series | None = None
+        self._filled = 0
+
+    def column(self, blocks: int) -> pd.Series | np.ndarray:
+        """``np.tile(positions, blocks)``, a view of the shared array where it fits."""
+        if blocks > self.most:
+            return np.tile(self.positions, blocks)
+        if self._buffer is None:
+            self._buffer = np.empty(self.n * self.most)
+            self._series = shared(self._buffer)
+        n = self.n
+        for i in range(self._filled, blocks):
+            self._buffer[i * n:(i + 1) * n] = self.positions
+        self._filled = max(self._filled, blocks)
+        return self._series.iloc[:n * blocks]
+
+
+def _same(a: float, b: float) -> bool:
+    """The same bits (NaN equals NaN, -0.0 differs from 0.0)."""
+    return bool(np.float64(a).view(np.int64) == np.float64(b).view(np.int64))
 
 
 @dataclass
@@ -46,12 +156,22 @@ class LongTable:
     chunk : callable
         ``chunk(i, part)`` -> ``{column: values}`` for the positions ``part`` (a slice)
         of block ``i``; a value may be a scalar (the same on every row).
+    tiled : TiledPositions, optional
+        The ``position`` column shared with the other tables of the same solution
+        (default: a column of this table's own).
+    whole : dict, optional
+        Float column -> a callable giving that column whole (all blocks, in row order),
+        for a column the solution already holds in that layout (:meth:`frame` then takes
+        it as it is instead of filling it from the chunks; the chunks still give it for
+        the CSV writer).
     """
 
     positions: np.ndarray
     labels: dict[str, list[str]]
     floats: tuple[str, ...]
     chunk: Callable[[int, slice], dict]
+    tiled: TiledPositions | None = None
+    whole: dict[str, Callable[[], object]] = field(default_factory=dict)
 
     @property
     def n(self) -> int:
@@ -72,15 +192,37 @@ class LongTable:
                 yield i, slice(s, min(s + size, self.n))
 
     def frame(self) -> pd.DataFrame:
-        """The table as a DataFrame: each float column allocated once, filled in place."""
+        """The table as a DataFrame: each float column allocated once and filled in
+        place; a column of one value on every row held as that one value
+        (:func:`constant`), the ``position`` column shared (``tiled``)."""
         import pandas as pd
         n, k = self.n, self.blocks
-        out = {c: np.empty(n * k) for c in self.floats}
+        out: dict[str, np.ndarray] = {}
+        same: dict[str, float] = {}      # columns of one value on every row so far
         for i, part in self.parts():
             rows = slice(i * n + part.start, i * n + part.stop)
             for c, v in self.chunk(i, part).items():
+                if c in self.whole:
+                    continue
+                if c not in out:
+                    if np.ndim(v) == 0 and (rows.start == 0 or _same(same[c], v)):
+                        same[c] = float(v)
+                        continue
+                    out[c] = np.empty(n * k)
+                    if c in same:
+                        out[c][:rows.start] = same.pop(c)
                 out[c][rows] = v
-        cols = {"position": np.tile(np.asarray(self.positions, dtype=float), k)}
+        cols: dict[str, object] = {
+            "position": self.tiled.column(k) if self.tiled is not None
+            else np.tile(np.asarray(self.positions, dtype=float), k)}
         cols.update({c: categorical(names, n) for c, names in self.labels.items()})
-        cols.update(out)
+        for c in self.floats:
+            if c in self.whole:
+                cols[c] = self.whole[c]()
+            elif c in out:
+                cols[c] = out[c]
+            elif c in same:
+                cols[c] = constant(same[c], n * k)
+            else:                                   # no rows
+                cols[c] = np.empty(0)
         return pd.DataFrame(cols, copy=False)

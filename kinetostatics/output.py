@@ -2,7 +2,8 @@
 
 CSV text comes from :mod:`kinetostatics.csvtext` (numpy, whole columns at a time):
 the same text as pandas' ``to_csv(index=False, float_format="%.17g")``, written in
-chunks of rows by two threads (numpy releases the interpreter lock while it works).
+chunks of rows by two threads when a core is free (numpy releases the interpreter lock
+while it works).
 Two shortcuts keep long tables fast: a long table repeats its ``position`` column once
 per block (joint, point, body), so each chunk of positions is formatted once and
 reused; and a chunk of a column holding one value (a fixed pivot, the zero couple of a
@@ -13,8 +14,8 @@ the dtypes, categoricals included, and every bit of every float.
 from __future__ import annotations
 
 import json
+import os
 from collections.abc import Callable, Iterator
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -29,27 +30,33 @@ if TYPE_CHECKING:
     import pandas as pd
 
 CHUNK = 16_384          # rows formatted at a time (the arrays stay in the CPU caches)
-THREADS = 2
+THREADS = 2             # writer threads when a core is free (see _threads)
+THREADED = 200_000      # fields in a table written by the threads (fewer: no threads)
+BATCH = 16_384          # float fields formatted in one call (several columns of a chunk)
 # CSV written per second (bytes) for the time estimate of the warning, measured with
-# `python -m kinetostatics bench --tables` on the 2-core development machine
-CSV_RATE = 60e6
+# `python -m kinetostatics bench --tables` and `solve --out` (1e6 positions: 2.2 GB in
+# about 15 s) on the 2-core development machine, busy; a little under it
+CSV_RATE = 120e6
 WARN_ROWS = 1_000_000           # a longer table is announced with its size and time
 
 
-class _Repeats:
-    """Formatted chunks of a column that repeats from block to block (``position``)."""
+class Repeats:
+    """Formatted chunks of a column that repeats from block to block and from table to
+    table (``position``): each chunk's values and fields by its offset and separator,
+    used again only where the values have the same bits. One ``Repeats`` may serve every
+    table written from one solution (:meth:`kinetostatics.Solution.write`)."""
 
     def __init__(self):
-        self.seen: dict[int, tuple[np.ndarray, tuple]] = {}
+        self.seen: dict[tuple[int, str], tuple[np.ndarray, tuple]] = {}
 
-    def get(self, offset: int, values: np.ndarray):
-        hit = self.seen.get(offset)
+    def get(self, offset: int, values: np.ndarray, sep: str = ","):
+        hit = self.seen.get((offset, sep))
         if hit is not None and _same_bits(hit[0], values):
             return hit[1]
         return None
 
-    def put(self, offset: int, values: np.ndarray, fields: tuple) -> None:
-        self.seen[offset] = (values.copy(), fields)
+    def put(self, offset: int, values: np.ndarray, fields: tuple, sep: str = ",") -> None:
+        self.seen[(offset, sep)] = (values.copy(), fields)
 
 
 def _same_bits(a: np.ndarray, b: np.ndarray) -> bool:
@@ -61,22 +68,47 @@ def _same_bits(a: np.ndarray, b: np.ndarray) -> bool:
     return bool((a == b).all())
 
 
-def _fields(col, sep: str, repeats: _Repeats | None = None,
+def _fields(col, sep: str, repeats: Repeats | None = None,
             offset: int = 0) -> tuple[np.ndarray, np.ndarray]:
     """One chunk of one column as CSV fields (``csvtext.format_column``), with the
     shortcuts for a repeated chunk and a chunk of one value."""
-    if not isinstance(col, np.ndarray) or col.dtype.kind != "f":
-        return csvtext.format_column(col, sep)
-    if repeats is not None:
-        hit = repeats.get(offset, col)
+    return _fields_of([col], [sep], [repeats], offset)[0]
+
+
+def _fields_of(cols: list, seps: list[str], repeats: list[Repeats | None],
+               offset: int = 0) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Chunks of columns (one length) as CSV fields: a repeated chunk taken again, a
+    chunk of one value formatted once, the other float chunks formatted together (one
+    call of ``csvtext.format_floats`` for up to ``BATCH`` values: a small table costs a
+    few calls, not one per column and block)."""
+    out: list = [None] * len(cols)
+    pending = []
+    for i, (col, sep, rep) in enumerate(zip(cols, seps, repeats, strict=True)):
+        if not isinstance(col, np.ndarray) or col.dtype.kind != "f":
+            out[i] = csvtext.format_column(col, sep)
+            continue
+        hit = rep.get(offset, col, sep) if rep is not None else None
         if hit is not None:
-            return hit
-    if col.size and _same_bits(col, col[:1]):
-        out = _repeat(csvtext.format_floats(col[:1], sep), col.size)
+            out[i] = hit
+        elif col.size and _same_bits(col, col[:1]):
+            out[i] = _repeat(csvtext.format_floats(col[:1], sep), col.size)
+        else:
+            pending.append(i)
+    m = cols[pending[0]].size if pending else 0
+    if len(pending) > 1 and m * len(pending) <= BATCH:
+        chars, length = csvtext.format_floats(np.concatenate([cols[i] for i in pending]))
+        rows = np.arange(m)
+        for k, i in enumerate(pending):
+            ch, ln = chars[k * m:(k + 1) * m], length[k * m:(k + 1) * m]
+            if seps[i] != ",":          # the separator is each field's last character
+                ch[rows, ln.astype(np.intp) - 1] = ord(seps[i])
+            out[i] = (ch, ln)
     else:
-        out = csvtext.format_floats(col, sep)
-    if repeats is not None:
-        repeats.put(offset, col, out)
+        for i in pending:
+            out[i] = csvtext.format_floats(cols[i], seps[i])
+    for i in pending:
+        if repeats[i] is not None:
+            repeats[i].put(offset, cols[i], out[i], seps[i])
     return out
 
 
@@ -89,7 +121,8 @@ def _chunks(rows: int, block: int | None) -> Iterator[tuple[int, int, int]]:
 
 
 def write_csv(df: pd.DataFrame | dict, path: str | Path, block: int | None = None,
-              announce: Callable[[str], None] | None = None) -> Path:
+              announce: Callable[[str], None] | None = None,
+              repeats: Repeats | None = None) -> Path:
     """Write a table as CSV: header, then one line per row, floats as ``'%.17g'``.
 
     Parameters
@@ -104,6 +137,9 @@ def write_csv(df: pd.DataFrame | dict, path: str | Path, block: int | None = Non
     announce : callable, optional
         Called with one line (size and time estimate) before a table of more than
         ``WARN_ROWS`` rows is written.
+    repeats : Repeats, optional
+        The formatted ``position`` chunks shared with the other tables of the same
+        solution (with ``block``).
     """
     if isinstance(df, dict):
         names = list(df)
@@ -115,13 +151,15 @@ def write_csv(df: pd.DataFrame | dict, path: str | Path, block: int | None = Non
             s = df[name]
             data.append(s.array if hasattr(s.dtype, "categories") else s.to_numpy())
     rows = len(data[0]) if data else 0
-    repeats = {i: _Repeats() for i, n in enumerate(names) if n == "position" and block}
+    shared = repeats if repeats is not None else Repeats()
+    repeats = {i: shared for i, n in enumerate(names) if n == "position" and block}
     seps = _separators(len(names))
 
     def text(span: tuple[int, int, int]) -> bytes:
         start, stop, offset = span
-        return csvtext.rows_text([_fields(d[start:stop], seps[i], repeats.get(i), offset)
-                                  for i, d in enumerate(data)])
+        return csvtext.rows_text(_fields_of([d[start:stop] for d in data], seps,
+                                            [repeats.get(i) for i in range(len(data))],
+                                            offset))
 
     def per_row() -> float:
         sample = np.linspace(0, rows - 1, 4096).astype(np.intp)
@@ -133,29 +171,29 @@ def write_csv(df: pd.DataFrame | dict, path: str | Path, block: int | None = Non
 
 
 def write_long_csv(table: LongTable, path: str | Path,
-                   announce: Callable[[str], None] | None = None) -> Path:
+                   announce: Callable[[str], None] | None = None,
+                   repeats: Repeats | None = None) -> Path:
     """Write a long table as CSV straight from its definition, chunk by chunk: the same
-    text as ``write_csv(table.frame(), path)`` without the table ever being held."""
+    text as ``write_csv(table.frame(), path)`` without the table ever being held
+    (``repeats``: the formatted ``position`` chunks shared with other tables)."""
     names = table.columns
     seps = _separators(len(names))
     nl = len(table.labels)
     labels = [[csvtext.format_label(x, seps[1 + j]) for x in block_names]
               for j, block_names in enumerate(table.labels.values())]
-    repeats = _Repeats()
+    repeats = repeats if repeats is not None else Repeats()
 
     def text(span: tuple[int, slice]) -> bytes:
         i, part = span
         m = part.stop - part.start
         values = table.chunk(i, part)
-        fields = [_fields(np.asarray(table.positions[part], dtype=float), seps[0], repeats,
-                          part.start)]
-        fields += [_repeat(labels[j][i], m) for j in range(nl)]
-        for k, c in enumerate(table.floats):
-            v = values[c]
-            sep = seps[1 + nl + k]
-            fields.append(_repeat(csvtext.format_floats(np.array([v], dtype=float), sep), m)
-                          if np.ndim(v) == 0 else _fields(np.asarray(v, dtype=float), sep))
-        return csvtext.rows_text(fields)
+        cols = [np.asarray(table.positions[part], dtype=float)]
+        cols += [np.broadcast_to(np.asarray(values[c], dtype=float), (m,))
+                 for c in table.floats]
+        fields = _fields_of(cols, [seps[0], *seps[1 + nl:]],
+                            [repeats] + [None] * len(table.floats), part.start)
+        return csvtext.rows_text(fields[:1] + [_repeat(labels[j][i], m) for j in range(nl)]
+                                 + fields[1:])
 
     def per_row() -> float:
         parts = [(i, slice(0, min(512, table.n))) for i in range(table.blocks)]
@@ -163,6 +201,17 @@ def write_long_csv(table: LongTable, path: str | Path,
 
     return _write_lines(Path(path), names, list(table.parts(CHUNK)), text,
                         table.n * table.blocks, per_row, announce)
+
+
+def _threads() -> int:
+    """``THREADS`` when the load average leaves a core free, else 1: with no core free
+    the threads only take turns, and their many hand-overs of the interpreter lock cost
+    about 30 % more CPU (measured at 1e5 positions on the 2-core development machine)."""
+    try:
+        free = (os.cpu_count() or 1) - os.getloadavg()[0]
+    except (AttributeError, OSError):       # no load average on this system
+        return THREADS
+    return THREADS if free > 0.5 else 1
 
 
 def _separators(columns: int) -> list[str]:
@@ -190,9 +239,11 @@ def _write_lines(path: Path, names: list[str], spans: list, text: Callable[..., 
             announce(f"{path.name}: {rows:,} rows, about {size / 1e6:,.0f} MB of CSV and "
                      f"{size / CSV_RATE:.0f} s to write (--format parquet is smaller and "
                      "faster)")
-        if THREADS > 1 and len(spans) > 1:
-            with ThreadPoolExecutor(THREADS) as pool:
-                window = 4 * THREADS
+        threads = _threads()
+        if threads > 1 and len(spans) > 1 and rows * len(names) >= THREADED:
+            from concurrent.futures import ThreadPoolExecutor
+            with ThreadPoolExecutor(threads) as pool:
+                window = 4 * threads
                 for i in range(0, len(spans), window):
                     for chunk in pool.map(text, spans[i:i + window]):
                         fh.write(chunk)

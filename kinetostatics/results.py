@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .longtable import LongTable
+from .longtable import Labels, LongTable, TiledPositions, shared
 from .model.errors import WorkbenchError
 from .model.scene import GROUND, Scene
 from .solver.continuity import body_angles, sweep_order
@@ -39,24 +39,26 @@ def _column(value, n: int, dtype=float) -> np.ndarray:
     return np.array(np.broadcast_to(value, (n,)), dtype=dtype)
 
 
-def _text(value: str, n: int) -> np.ndarray:
-    """A column of ``n`` copies of one text (object dtype, as pandas holds text)."""
-    out = np.empty(n, dtype=object)
-    out[:] = value
-    return out
+def _text(value: str, n: int) -> Labels:
+    """A column of ``n`` copies of one text (the CSV writer formats it once; the
+    DataFrame holds it as objects, as pandas holds text)."""
+    return Labels([value], np.zeros(n, dtype=np.int8))
 
 
 def _concat(parts: list[dict], names: list[str]) -> dict:
     """The blocks of a table one after another (no block: empty columns)."""
     if not parts:
         return {c: np.empty(0, dtype=object) for c in names}
-    return {c: np.concatenate([p[c] for p in parts]) for c in names}
+    return {c: Labels.concat([p[c] for p in parts]) if isinstance(parts[0][c], Labels)
+            else np.concatenate([p[c] for p in parts]) for c in names}
 
 
 def _frame(columns: dict, copy: bool | None = None) -> pd.DataFrame:
-    """A table's columns as a DataFrame (pandas imported here, when a table is asked for)."""
+    """A table's columns as a DataFrame (pandas imported here, when a table is asked for;
+    text columns as objects)."""
     import pandas as pd
-    return pd.DataFrame(columns, copy=copy)
+    return pd.DataFrame({c: v.objects() if isinstance(v, Labels) else v
+                         for c, v in columns.items()}, copy=copy)
 
 
 @dataclass
@@ -68,7 +70,10 @@ class Solution:
     scene, structure, kin
         The checked scene, its structure (driver + dyads) and the motion arrays.
     loads : list of PointLoad
-        Applied loads, gravity and inertia loads.
+        Applied loads, gravity and inertia loads (with joint friction, the friction loads
+        too). Without friction the solve lets them go (:meth:`release_loads`: no table
+        of the contract needs them) and they are computed again, with the same numbers,
+        when first asked for.
     joint_reactions : dict
         Per joint, the reaction arrays (:class:`~kinetostatics.solver.reactions.JointReaction`).
     drive : DriverReaction
@@ -91,6 +96,28 @@ class Solution:
     self_locking: np.ndarray | None = None
 
     # -- arrays -----------------------------------------------------------------
+    def release_loads(self) -> None:
+        """Let the loads go, to be computed again from the kinematics when next asked
+        for (:func:`~kinetostatics.solver.loads.applied_loads` and
+        :func:`~kinetostatics.solver.loads.inertia_loads`, as the solve computes them):
+        at 1e6 positions they hold about 120 MB that no contract table needs. With joint
+        friction they are kept (the friction loads come from the friction solve)."""
+        from .solver.friction import has_friction
+        if not has_friction(self.scene):
+            self.__dict__["_loads"] = None
+
+    def _get_loads(self) -> list[PointLoad]:
+        loads = self.__dict__.get("_loads")
+        if loads is None:
+            from .solver.loads import applied_loads, inertia_loads
+            inertia = inertia_loads(self.scene, self.kin)
+            applied, _ = applied_loads(self.scene, self.kin)
+            loads = self.__dict__["_loads"] = applied + inertia   # the order of the solve
+        return loads
+
+    def _set_loads(self, value: list[PointLoad] | None) -> None:
+        self.__dict__["_loads"] = value
+
     @property
     def positions(self) -> np.ndarray:
         return self.kin.positions
@@ -117,7 +144,15 @@ class Solution:
     def driver(self) -> pd.DataFrame:
         """``position, Me`` (or ``Fe``), ``singular``, ``undefined_load`` (and, with joint
         friction, ``self_locking``)."""
-        return _frame(self.columns("driver"), copy=False)
+        cols = self.columns("driver")
+        cols["position"] = self._tiled.column(1)        # shared with the long tables
+        value = self.drive.value
+        if isinstance(value, np.ndarray) and value.shape == self.positions.shape \
+                and value.dtype == np.float64:
+            # the solver's own array, held once (pandas copies it before a write)
+            cols[self.driver_quantity] = self.__dict__.setdefault("_drive_column",
+                                                                  shared(value))
+        return _frame(cols, copy=False)
 
     def columns(self, table: str) -> dict:
         """The columns of a short table (``driver``, ``dyads``, ``sliders``, ``frame``) as
@@ -161,6 +196,13 @@ class Solution:
 
     LONG_TABLES = ("reactions", "kinematics", "bodies")
 
+    @cached_property
+    def _tiled(self) -> TiledPositions:
+        """The ``position`` column of the long tables, held once for all of them."""
+        points = sum(1 for _ in self._points())
+        return TiledPositions(self.positions,
+                              max(len(self.scene.joints), points, len(self.scene.bodies)))
+
     def long_table(self, name: str) -> LongTable:
         """The definition of a long table (``reactions``, ``kinematics``, ``bodies``):
         block names and how to compute any chunk of positions from the solver's arrays
@@ -171,32 +213,56 @@ class Solution:
     def _reactions_long(self) -> LongTable:
         n = self.positions.size
         joints = list(self.scene.joints)
-        forces: dict[int, tuple] = {}
+        largest: dict[int, float] = {}     # per prismatic joint: the largest |N|
 
         def chunk(i: int, part: slice) -> dict:
             r = self.joint_reactions[joints[i]]
-            if i not in forces:         # the block's (Fx, Fy), N, M and largest |N|
-                nn = mm = big = None
-                if r.N is not None:
-                    nn = np.broadcast_to(np.asarray(r.N, dtype=float), (n,))
-                    mm = np.broadcast_to(np.asarray(r.M, dtype=float), (n,))
-                    big = np.abs(nn).max() if n else 0.0
-                forces[i] = (*self.reaction(joints[i]), nn, mm, big)
-            fx, fy, nn, mm, big = forces[i]
-            fx, fy = fx[part], fy[part]
+            # r.force(n), one chunk at a time (the same numbers: negation is exact)
+            fx = np.broadcast_to(r.fx, (n,))[part]
+            fy = np.broadcast_to(r.fy, (n,))[part]
+            if r.sign <= 0:
+                fx, fy = -fx, -fy
             out = {"Fx": fx, "Fy": fy, "F": np.hypot(fx, fy)}
-            if nn is None:
+            if r.N is None:
                 return {**out, "N": 0.0, "M": 0.0, "offset": np.nan}
-            nn, mm = nn[part], mm[part]
+            nn = np.broadcast_to(np.asarray(r.N, dtype=float), (n,))
+            if i not in largest:
+                largest[i] = np.abs(nn).max() if n else 0.0
+            nn = nn[part]
+            mm = np.broadcast_to(np.asarray(r.M, dtype=float), (n,))[part]
             with np.errstate(divide="ignore", invalid="ignore"):
-                off = np.where(np.abs(nn) > OFFSET_EMPTY * big, mm / nn, np.nan)
+                off = np.where(np.abs(nn) > OFFSET_EMPTY * largest[i], mm / nn, np.nan)
             return {**out, "N": nn, "M": mm, "offset": off}
 
         return LongTable(self.positions,
                          {"joint": joints,
                           "on": [self.joint_reactions[j].on for j in joints],
                           "by": [self.joint_reactions[j].by for j in joints]},
-                         ("Fx", "Fy", "F", "N", "M", "offset"), chunk)
+                         ("Fx", "Fy", "F", "N", "M", "offset"), chunk, self._tiled,
+                         {"Fx": lambda: self._force_columns()[0],
+                          "Fy": lambda: self._force_columns()[1]})
+
+    def _force_columns(self) -> tuple[pd.Series, pd.Series]:
+        """The ``reactions`` table's ``Fx`` and ``Fy`` columns, held once with the joint
+        reactions: each joint's force on its ``on`` body (``JointReaction.force``) is
+        laid into its block of the column, and the joint's ``fx, fy`` become views of
+        that block, its ``sign`` folded in (``sign = 1``: the same numbers, negation
+        being exact)."""
+        hit = self.__dict__.get("_forces_shared")
+        if hit is None:
+            n = self.positions.size
+            reactions = [self.joint_reactions[j] for j in self.scene.joints]
+            fx_all, fy_all = np.empty(n * len(reactions)), np.empty(n * len(reactions))
+            for i, r in enumerate(reactions):
+                block = slice(i * n, (i + 1) * n)
+                for value, out in ((r.fx, fx_all[block]), (r.fy, fy_all[block])):
+                    if r.sign > 0:
+                        out[:] = np.broadcast_to(value, (n,))
+                    else:
+                        np.negative(np.broadcast_to(value, (n,)), out=out)
+                r.fx, r.fy, r.sign = fx_all[block], fy_all[block], 1.0
+            hit = self.__dict__["_forces_shared"] = (shared(fx_all), shared(fy_all))
+        return hit
 
     def _kinematics_long(self) -> LongTable:
         points = list(self._points())
@@ -211,7 +277,7 @@ class Solution:
 
         return LongTable(self.positions, {"body": [b for b, _, _ in points],
                                           "point": [p for _, p, _ in points]},
-                         ("x", "y", "vx", "vy", "ax", "ay"), chunk)
+                         ("x", "y", "vx", "vy", "ax", "ay"), chunk, self._tiled)
 
     def _bodies_long(self) -> LongTable:
         n = self.positions.size
@@ -223,14 +289,32 @@ class Solution:
                     "omega": np.broadcast_to(m.omega, (n,))[part],
                     "alpha": np.broadcast_to(m.alpha, (n,))[part]}
 
-        return LongTable(self.positions, {"body": names}, ("angle", "omega", "alpha"), chunk)
+        def angle() -> pd.Series:
+            self.angles                     # noqa: B018 (the angles, laid out block by block)
+            if "_angle_column" not in self.__dict__:
+                self.__dict__["_angle_column"] = shared(self.__dict__["_angle_whole"])
+            return self.__dict__["_angle_column"]
+
+        return LongTable(self.positions, {"body": names}, ("angle", "omega", "alpha"), chunk,
+                         self._tiled, {"angle": angle})
 
     @cached_property
     def angles(self) -> dict[str, np.ndarray]:
         """Every body's angle (deg) per row: continuous along increasing driver position
         and following the true motion between rows, however far apart
-        (:func:`kinetostatics.solver.continuity.body_angles`)."""
-        return body_angles(self.kin)
+        (:func:`kinetostatics.solver.continuity.body_angles`).
+
+        The arrays are views of one array laid out as the ``bodies`` table's ``angle``
+        column (body after body, in the scene's order), which that table shares."""
+        found = body_angles(self.kin)
+        n = self.positions.size
+        whole = np.empty(n * len(self.scene.bodies))
+        out = {}
+        for i, b in enumerate(self.scene.bodies):
+            whole[i * n:(i + 1) * n] = found.pop(b)
+            out[b] = whole[i * n:(i + 1) * n]
+        self.__dict__["_angle_whole"] = whole
+        return out
 
     @cached_property
     def order(self) -> np.ndarray:
@@ -462,41 +546,52 @@ class Solution:
         """Write every table as CSV (17 significant digits) and ``summary.json``."""
         return self.write(directory, "csv")
 
-    def write(self, directory: str | Path, fmt: str = "csv", announce=None) -> list[Path]:
+    def write(self, directory: str | Path, fmt: str = "csv", announce=None,
+              summary: dict | None = None) -> list[Path]:
         """Write every table (``fmt``: ``"csv"``, 17 significant digits, or
         ``"parquet"``) and ``summary.json``. A table built only for writing is
         dropped once written, and a long table not built yet is written as CSV straight
         from the solver's arrays, never held whole. ``announce``
         (a callable taking one line) hears of every CSV table over 1e6 rows, with its
-        size and time estimate (:func:`kinetostatics.output.write_csv`)."""
-        from .output import write_csv, write_long_csv, write_parquet
+        size and time estimate (:func:`kinetostatics.output.write_csv`). ``summary``:
+        the content of ``summary.json`` when it is not :meth:`summary` (the command
+        line's, with the scene's ``[units]``)."""
+        from .output import Repeats, write_csv, write_long_csv, write_parquet
         if fmt not in ("csv", "parquet"):
             raise WorkbenchError(f"format {fmt!r}: use csv or parquet")
         d = Path(directory)
         d.mkdir(parents=True, exist_ok=True)
         written = []
+        positions = Repeats()     # the position column, formatted once for every table
         for name in self.FILES:
             kept = name in self.__dict__
             if fmt == "csv" and name in self.LONG_TABLES and not kept:
                 # straight from the solver's arrays, chunk by chunk: never held whole
                 written.append(write_long_csv(self.long_table(name), d / f"{name}.csv",
-                                              announce))
+                                              announce, positions))
                 continue
             if fmt == "csv" and not kept:
                 # the short tables' columns, written without building a DataFrame
                 written.append(write_csv(self.columns(name), d / f"{name}.csv",
-                                         self.positions.size, announce))
+                                         self.positions.size, announce, positions))
                 continue
             table = getattr(self, name)
             if fmt == "csv":
                 written.append(write_csv(table, d / f"{name}.csv", self.positions.size,
-                                         announce))
+                                         announce, positions))
             else:
                 written.append(write_parquet(table, d / f"{name}.parquet"))
             del table
             if not kept:
                 del self.__dict__[name]
         path = d / "summary.json"
-        path.write_text(json.dumps(self.summary(), indent=2) + "\n")
+        path.write_text(json.dumps(self.summary() if summary is None else summary,
+                                   indent=2) + "\n")
         written.append(path)
         return written
+
+
+# ``Solution.loads`` is a dataclass field whose value may be let go and computed again
+# (see Solution.release_loads): the field's attribute is a property over ``_loads``.
+Solution.loads = property(Solution._get_loads, Solution._set_loads,
+                          doc="Applied, gravity and inertia loads (and friction loads).")

@@ -29,7 +29,8 @@ from ..errors import BalanceError
 from .pdf import write_pdf
 from .text import result_warnings, summary_text, unit_text
 
-__all__ = ["influence_figure", "iso_figure", "report_figures", "report_scene", "write_report"]
+__all__ = ["influence_figure", "iso_figure", "json_default", "report_figures", "report_scene",
+           "write_report"]
 
 
 def influence_figure(result: Any, *, mass_unit: str = "", vib_unit: str = ""):
@@ -293,7 +294,7 @@ def _html(lines: list[str], warns: list[str], figs: list, source: str,
             parts.append(f"<figure><img alt=\"{esc(caption)}\" src=\"data:image/png;base64,"
                          f"{_png(fig, dpi)}\"><figcaption>{esc(caption)}</figcaption></figure>")
     parts += ["<h2>Results as JSON</h2>",
-              f"<pre>{esc(json.dumps(out, indent=1, allow_nan=False, default=_plain))}</pre>",
+              f"<pre>{esc(json.dumps(out, indent=1, allow_nan=False, default=json_default))}</pre>",
               "</body></html>"]
     return "\n".join(parts)
 
@@ -306,7 +307,10 @@ def _iso_line(out: dict[str, Any]) -> str | None:
                                      if out["iso"]["check"]["ok"] else "NOT within tolerance")
 
 
-def _plain(x: Any) -> Any:
+def json_default(x: Any) -> Any:
+    """numpy scalars and arrays (e.g. from :mod:`balance.mechanism`) as plain JSON values:
+    the ``default`` of ``json.dumps`` for a result dict (the report's JSON section and
+    ``python -m balance solve --json``)."""
     if isinstance(x, np.generic):
         return x.item()
     if isinstance(x, np.ndarray):

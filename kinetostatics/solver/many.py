@@ -18,8 +18,9 @@ positions is told in one pass, the assembly chosen per scene vectorised
 (:func:`~kinetostatics.solver.stack.assemblies`), the finite check made once on the
 stacked arrays, and the dead points of every scene screened in one probe solve
 (:func:`~kinetostatics.solver.deadpoints.dead_points_stacked`). Each scene's Solution
-holds its scene, structure, ``Me``/``Fe`` and flags from the start; its kinematics,
-loads and joint reactions are views of the stacked arrays, cut when first read.
+holds its scene, structure, ``Me``/``Fe`` and flags from the start; its kinematics and
+joint reactions are views of the stacked arrays, cut when first read; its loads, as a
+solve's, are computed again from its kinematics when asked for.
 """
 
 from __future__ import annotations
@@ -245,17 +246,19 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker) -> list[
 
 class _Cut(Solution):
     """One scene's :class:`~kinetostatics.results.Solution` cut from a stacked solve: its
-    kinematics, loads and joint reactions (views of the stacked arrays) are cut when
-    first read; everything else is the scene's own from the start."""
+    kinematics and joint reactions (views of the stacked arrays) are cut when first read;
+    its loads are computed from its kinematics when asked for, as a solve's are
+    (:meth:`~kinetostatics.results.Solution.release_loads`); everything else is the
+    scene's own from the start."""
 
     def __getattr__(self, name: str):
         lazy = self.__dict__.get("_lazy")
-        if lazy is None or name not in ("kin", "loads", "joint_reactions"):
+        if lazy is None or name not in ("kin", "joint_reactions"):
             raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
         cut, rows, dead = lazy
-        kin, loads, reactions = cut(self.scene, self.structure, rows, dead)
+        kin, reactions = cut(self.scene, self.structure, rows, dead)
         d = self.__dict__
-        d.update(kin=kin, loads=loads, joint_reactions=reactions)
+        d.update(kin=kin, joint_reactions=reactions)
         d.pop("_lazy", None)            # (another thread may have cut it too: the same)
         return d[name]
 
@@ -300,8 +303,8 @@ def _per_row(v, total: int) -> bool:
 
 
 def _splitter(sol: Solution):
-    """A function (scene, structure, rows, dead points) -> that scene's kinematics, loads
-    and joint reactions, cutting the rows of every array of the stacked ``sol``."""
+    """A function (scene, structure, rows, dead points) -> that scene's kinematics and
+    joint reactions, cutting the rows of every array of the stacked ``sol``."""
     total = sol.positions.size
     motions = []
     for name, m in sol.kin.bodies.items():
@@ -311,7 +314,6 @@ def _splitter(sol: Solution):
     known = {id(m): name for name, m in sol.kin.bodies.items()}
     dyads = [(_Template(dm, total), [(_Template(p, total), known[id(p.known)])
                                      for p in dm.params]) for dm in sol.kin.dyads]
-    loads = [_Template(ld, total) for ld in sol.loads]
     reactions = [(name, _Template(r, total)) for name, r in sol.joint_reactions.items()]
 
     def cut(scene, structure, rows: slice, dead: tuple) -> tuple:
@@ -327,6 +329,6 @@ def _splitter(sol: Solution):
         # the dead points between rows, and the intervals no motion crosses, found per
         # scene along increasing driver position exactly as solve finds them
         kin.between, kin.ends, kin.unassembled = dead
-        return (kin, [t.cut(rows) for t in loads],
+        return (kin,
                 {name: t.cut(rows) for name, t in reactions})
     return cut

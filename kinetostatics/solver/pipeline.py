@@ -76,6 +76,7 @@ def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> 
         raise AssemblyError(f"the scene's numbers overflow ({exc}); check its dimensions "
                             "and masses") from None
     _check_finite(sol)
+    sol.release_loads()     # recomputed when asked for: no table needs them (memory)
     return sol
 
 
@@ -88,8 +89,12 @@ def _solve_loads(sc, structure, kin) -> Solution:
         return Solution(sc, structure, kin, loads + fl, reactions, drive,
                         np.broadcast_to(undefined, (kin.n,)) | at_rest, self_locking=locking)
     acc = resultants(loads, sc.bodies, kin.n)
+    # the loads are let go before the reactions are solved (a lower peak of memory: at
+    # large sizes fresh pages cost more than the arithmetic); Solution.loads computes them
+    # again, with the same numbers, when asked for
+    del loads, inertia, applied
     reactions, drive = solve_reactions(kin, acc)
-    return Solution(sc, structure, kin, loads, reactions, drive, undefined)
+    return Solution(sc, structure, kin, None, reactions, drive, undefined)
 
 
 def _check_finite(sol: Solution) -> None:

@@ -67,6 +67,21 @@ def test_bad_scene_exit_2_one_line(tmp_path, text, word):
     assert len(r.stderr.strip().splitlines()) == 1
 
 
+@pytest.mark.parametrize("package,args", [
+    ("kinetostatics", ["solve", "four_bar", "--dpi", "x"]),
+    ("kinetostatics", ["solve", "four_bar", "--no-such-option"]),
+    ("kinetostatics", ["no-such-command"]),
+    ("balance", ["solve", "rotor_two_plane", "--dpi", "x"]),
+])
+def test_bad_option_is_one_error_line(package, args):
+    """argparse's mistakes too: one ``error:`` line (no usage lines above it), exit 2."""
+    r = subprocess.run([sys.executable, "-m", package, *args], capture_output=True,
+                       text=True, cwd=ROOT, timeout=300)
+    assert r.returncode == 2
+    assert r.stderr.startswith("error: ") and r.stderr.count("\n") == 1, r.stderr
+    assert "--help" in r.stderr
+
+
 def test_missing_file_exit_2():
     r = run("solve", "no/such/scene.toml")
     assert r.returncode == 2 and r.stderr.startswith("error:")
@@ -167,5 +182,6 @@ def test_bench_tables_quick():
     r = run("bench", "--tables", "--quick", "--repeat", "1")
     assert r.returncode == 0, r.stderr
     for word in ("solve_s", "kinematics_s", "long_tables_over_solve", "csv_MB_per_s",
-                 "peak_MB", "cli_out_s", "best", "median"):
+                 "peak_MB", "cli_out_s", "best", "median", "start-up", "over_numpy",
+                 "import balance", "balance solve rotor_two_plane"):
         assert word in r.stdout, word

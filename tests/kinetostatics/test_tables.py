@@ -179,3 +179,72 @@ def test_table_benchmark_reports_its_fields(tmp_path, monkeypatch):
     monkeypatch.setattr(output, "write_parquet", broken)
     with pytest.raises(ValueError, match="a bug in the writer"):
         measure_tables(1_000, str(tmp_path))
+
+
+# ------------------------------------------------------------------ memory
+def test_tables_share_columns_but_never_see_each_others_writes():
+    """At 1e6 positions the tables are most of the memory: the long tables hold one
+    ``position`` column, ``reactions`` shares Fx/Fy with the joint reactions, ``bodies``
+    its angles with ``Solution.angles``, ``driver`` Me with the solve, and a column of one
+    value (N, M, offset of pins) is that one number. A write to any table copies the
+    column first: the other tables and the solution keep their numbers."""
+    sol = ks.solve(OWN_CASES / "four_bar.toml")
+    n = sol.positions.size
+    r, k, b, d = sol.reactions, sol.kinematics, sol.bodies, sol.driver
+    assert np.shares_memory(r.position.to_numpy(), k.position.to_numpy())
+    assert np.shares_memory(b.angle.to_numpy(), sol.angles[next(iter(sol.scene.bodies))])
+    assert r.N.to_numpy().strides == (0,)            # all pins: N = 0 held once
+    joint = next(iter(sol.scene.joints))
+    fx0 = sol.reaction(joint)[0].copy()
+    angle0 = {name: a.copy() for name, a in sol.angles.items()}
+    me0, pos0 = np.array(sol.Me), k.position.to_numpy().copy()
+    for table, col in ((r, "position"), (r, "Fx"), (r, "N"), (r, "offset"), (b, "angle"),
+                       (d, "Me"), (d, "position")):
+        table.loc[0, col] = 12345.0                   # no read-only error
+        assert table.loc[0, col] == 12345.0
+    assert same_bits(k.position, pos0) and same_bits(b.position, np.tile(sol.positions, 3))
+    assert same_bits(sol.reaction(joint)[0], fx0) and same_bits(sol.Me, me0)
+    assert all(same_bits(sol.angles[name], a) for name, a in angle0.items())
+    assert (ks.solve(OWN_CASES / "four_bar.toml").reactions.N == 0).all()   # the shared 0
+    assert same_bits(r.N.to_numpy()[1:], np.zeros(4 * n - 1))
+
+
+def test_released_loads_come_back_bit_for_bit(monkeypatch):
+    """The solve lets the loads go (no table of the contract needs them); asked for, they
+    are computed again with exactly the numbers the solve used, as are the tables made
+    from them."""
+    scene = OWN_CASES / "slider_crank.toml"
+    released = ks.solve(scene)
+    assert released.__dict__["_loads"] is None
+    monkeypatch.setattr(ks.Solution, "release_loads", lambda self: None)
+    kept = ks.solve(scene)
+    assert len(released.loads) == len(kept.loads)
+    for a, b in zip(released.loads, kept.loads, strict=True):
+        assert (a.body, a.kind, a.label) == (b.body, b.kind, b.label)
+        for f in ("rx", "ry", "fx", "fy", "m"):
+            assert same_bits(np.ravel(getattr(a, f)), np.ravel(getattr(b, f))), f
+    for name in ("powers", "reduced", "frame"):
+        pd.testing.assert_frame_equal(getattr(released, name), getattr(kept, name),
+                                      check_exact=True)
+
+
+@pytest.mark.parametrize("load", [0.0, 99.0])
+def test_long_sweep_written_as_pandas_writes_it(tmp_path, monkeypatch, load):
+    """Many chunks per block, the position formatted once for every table, with the
+    writer's threads (a core free) or without (a busy machine): still pandas' bytes."""
+    monkeypatch.setattr(output.os, "getloadavg", lambda: (load, load, load))
+    scene = ks.load_scene(ks.example("slider_crank"))
+    sol = ks.solve(scene, np.linspace(0.0, 359.99, 40_001))
+    for path in sol.write(tmp_path):
+        if path.suffix == ".csv":
+            expected = getattr(sol, path.stem).to_csv(index=False, float_format="%.17g")
+            assert path.read_bytes() == expected.encode(), path.name
+
+
+def test_rows_text_keeps_a_label_with_a_nul():
+    """The row text is each field's characters: a NUL in a label is kept (the zero bytes
+    after a field's text are not characters)."""
+    values = np.array([1.5, -0.0, np.nan])
+    fields = [csvtext.format_column(np.array(["a\x00b", "c", "d"], dtype=object), ","),
+              csvtext.format_floats(values, "\n")]
+    assert csvtext.rows_text(fields) == b"a\x00b,1.5\nc,-0\nd,\n"
