@@ -407,7 +407,8 @@ def _refuse_coincident_pivots(scene: Scene, dyad: Dyad, reach: np.ndarray) -> No
 def _choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver,
                    motions: dict[str, BodyMotion]) -> int:
     """The assembly k = +-1 whose hinted points lie closest at the first row."""
-    first = {name: m.take(slice(0, 1)) for name, m in motions.items()}
+    known = {j.other(b) for b, j in zip(dyad.bodies, dyad.outer, strict=True)}
+    first = {name: motions[name].take(slice(0, 1)) for name in known}   # what dyad_param reads
     pr = (dyad_param(scene, dyad, 0, first), dyad_param(scene, dyad, 1, first))
     reach = solver.pivot_distance(pr)
     if reach is not None:
