@@ -21,7 +21,7 @@ from matplotlib.text import Annotation, Text
 from matplotlib.transforms import Bbox
 
 from .collide import drawn_paths
-from .style import figure_boxes, text_extent
+from .style import figure_boxes, lay_out, text_extent
 
 __all__ = ["declutter", "settle"]
 
@@ -212,21 +212,20 @@ def settle(fig) -> None:
     that the saved figure is the one measured.
     """
     axes = [ax for ax in fig.axes if getattr(ax, "_clear_labels", None) is not None]
-    fig.canvas.draw()
-    r = fig.canvas.get_renderer()
+    r = lay_out(fig)
     for ax in fig.axes:
         _legend_off_data(ax, r)
     for ax in axes:
         declutter(ax, ax._clear_labels, rounds=1, remember=False)
-    fig.canvas.draw()
+    lay_out(fig)
     for _ in range(3):
         if not any([_thin_ticks(ax, r) for ax in fig.axes]):
             break
-        fig.canvas.draw()
+        lay_out(fig)
     for ax in fig.axes:
         _fix_best(ax, r)
     if fig.get_layout_engine() is not None:
-        fig.canvas.draw()
+        lay_out(fig)
         fig.set_layout_engine("none")
     for ax in axes:
         declutter(ax, ax._clear_labels, rounds=1, remember=False)
@@ -266,8 +265,7 @@ def declutter(ax: Axes, texts: Sequence[Text], rounds: int = 1,
     scale = fig.dpi / 72.0
     missing: list[Text] = []
     for _ in range(rounds):
-        fig.canvas.draw()
-        r = fig.canvas.get_renderer()
+        r = lay_out(fig)
         room = _Room(ax, movable, r)
         missing = [t for t in movable if not _place_one(t, room, r, scale)]
     if missing:

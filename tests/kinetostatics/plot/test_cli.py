@@ -7,6 +7,7 @@ import matplotlib.pyplot as plt
 import pytest
 
 from kinetostatics.cli import main
+from kinetostatics.plot import cli as plot_cli
 
 
 @pytest.fixture(autouse=True)
@@ -31,10 +32,18 @@ def test_solve_plot_writes_the_pictures(tmp_path, capsys):
     assert '"title"' in printed          # the summary still follows
 
 
-def test_solve_plot_default_position_and_errors(tmp_path, capsys):
+def test_solve_plot_default_position_and_errors(tmp_path, capsys, monkeypatch):
+    # no --plot-at: the default position (where |Me| is largest) is write_pictures'
+    # choice; the pictures it draws there are checked by test_demo_scene (same call)
+    calls = []
+    real = plot_cli.write_pictures
+    monkeypatch.setattr(plot_cli, "write_pictures",
+                        lambda sol, out, positions=None, dpi=150:
+                        calls.append((positions, dpi)) or [])
     assert main(["solve", "four_bar", "--plot", str(tmp_path)]) == 0
-    assert any(p.name.startswith("free_body_") for p in tmp_path.glob("*.png"))
+    assert calls == [(None, 150)]
     capsys.readouterr()
+    monkeypatch.setattr(plot_cli, "write_pictures", real)
     assert main(["solve", "four_bar", "--plot", str(tmp_path), "--plot-at", "400"]) == 2
     err = capsys.readouterr().err
     assert err.startswith("error: --plot-at 400: outside the sweep [0, 360] deg")
@@ -44,15 +53,22 @@ def test_solve_plot_default_position_and_errors(tmp_path, capsys):
     assert "is a file, not a folder" in capsys.readouterr().err
 
 
-def test_demo_scene(tmp_path, capsys):
+def test_demo_scene(tmp_path, capsys, monkeypatch):
     assert main(["demo", "slotted_lever", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert out.startswith("Crank and slotted lever")
     assert " deg\n" in out and "max |F| =" in out and " N at " in out
     assert (tmp_path / "overview.png").exists() and (tmp_path / "reactions.csv").exists()
-    # the old form still works
+    # the pictures at the default position (where |Me| is largest)
+    assert any(p.name.startswith("free_body_") for p in tmp_path.glob("*.png"))
+    # the old form still works (its pictures are the same code as above: not drawn again,
+    # a sliding driver's figures are drawn in test_pictures and test_collisions)
+    drawn = []
+    monkeypatch.setattr(plot_cli, "write_pictures",
+                        lambda sol, out, positions=None, dpi=150: drawn.append(out) or [])
     assert main(["demo", "--example", "sliding_driver", "--out", str(tmp_path / "s")]) == 0
     assert " m\n" in capsys.readouterr().out           # a sliding driver's position unit
+    assert drawn == [tmp_path / "s"] and (tmp_path / "s" / "reactions.csv").exists()
 
 
 def test_demo_of_a_cam_scene_points_to_the_cam_command(tmp_path, capsys):

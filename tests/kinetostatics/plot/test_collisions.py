@@ -1,9 +1,12 @@
 """Issue 22: the command line's pictures for the lecture room. On every picture type
 (overview, Me, polar diagrams, mechanism with loads, velocity and acceleration plans,
 instantaneous centres, free-body diagrams with their force polygons) of every bundled
-scene of the demo, at three positions: no label over another label, a link, a curve, a
-marker or an arrow, no legend over data (measured on the drawn figure); 150 dpi and no
-font under 10 pt.
+scene of the demo, each at one position (another place of the cycle per scene): no label
+over another label, a link, a curve, a marker or an arrow, no legend over data (measured
+on the drawn figure); 150 dpi and no font under 10 pt.
+
+The figures are drawn once per session (``lecture_figures`` in conftest.py) and shared
+with the other picture tests.
 
 Before the work of issue 22 the same measure found 1730 collisions in 132 of the 150
 figures (docs/pictures-collisions.md).
@@ -15,13 +18,12 @@ import matplotlib.pyplot as plt
 import pytest
 from matplotlib.text import Text
 
-import kinetostatics as ks
 from kinetostatics import plot as kp
-from kinetostatics.plot.cli import cli_figures, write_pictures
-from kinetostatics.plot.style import SMALLEST_FONT
+from kinetostatics.plot import cli as plot_cli
+from kinetostatics.plot.cli import write_pictures
+from kinetostatics.plot.style import SMALLEST_FONT, lay_out
 
-SCENES = ["four_bar", "slider_crank", "slotted_lever", "scotch_yoke", "sliding_driver",
-          "shaper"]
+from .conftest import PICTURE_SCENES
 
 
 @pytest.fixture(autouse=True)
@@ -30,25 +32,15 @@ def _close():
     plt.close("all")
 
 
-def _positions(sol, which: int = 1) -> list[float]:
-    """One row of the sweep per scene, each scene at another place of its cycle (an
-    eighth, the middle, five sixths): every picture type of every scene at one position
-    costs about 20 s of CPU per scene on this machine, three positions a minute."""
-    n = sol.positions.size
-    return [float(sol.positions[(n // 7, n // 2, (5 * n) // 6)[which % 3]])]
-
-
-@pytest.mark.parametrize("which, name", list(enumerate(SCENES)))
-def test_no_collisions_on_any_cli_picture(which, name):
-    sol = ks.solve(ks.example(name))
+@pytest.mark.parametrize("name", PICTURE_SCENES)
+def test_no_collisions_on_any_cli_picture(name, lecture_figures):
+    _sol, _pos, figs = lecture_figures(name)
     bad = {}
     with kp.lecture_style():
-        figs = cli_figures(sol, _positions(sol, which))
         for stem, fig in figs.items():
             hits = kp.collisions(fig)
             if hits:
                 bad[stem] = hits
-            plt.close(fig)
     assert not bad, bad
 
 
@@ -76,29 +68,34 @@ def test_declutter_and_settle_clear_a_crowded_drawing():
 
 
 def _smallest_font(fig) -> float:
-    fig.canvas.draw()
+    lay_out(fig)
     sizes = [t.get_fontsize() for t in fig.findobj(Text)
              if t.get_visible() and t.get_text().strip()]
     return min(sizes)
 
 
-# one scene: the size rule is the style's, the same for every scene (each draws for a minute)
+# one scene: the size rule is the style's, the same for every scene
 @pytest.mark.parametrize("name", ["scotch_yoke"])
-def test_cli_pictures_lecture_size(name, tmp_path):
+def test_cli_pictures_lecture_size(name, lecture_figures, tmp_path, monkeypatch):
     """Every file of ``solve --plot`` is written at 150 dpi (``--dpi`` for more) and no
     text of its figure is under 10 pt."""
-    sol = ks.solve(ks.example(name))
+    sol, pos, figs = lecture_figures(name)
     with kp.lecture_style():
-        for stem, fig in cli_figures(sol, _positions(sol)[:1]).items():
+        for stem, fig in figs.items():
             assert fig.dpi == 150, stem
             assert _smallest_font(fig) >= SMALLEST_FONT, stem
-            plt.close(fig)
-    paths = write_pictures(sol, tmp_path, _positions(sol)[:1])
+    # the files: write_pictures saves the figures it is given (the same drawing as
+    # above; the command line's tests draw them afresh through ``main``)
+    monkeypatch.setattr(plot_cli, "cli_figures", lambda s, p=None: dict(figs))
+    paths = write_pictures(sol, tmp_path, [pos])
+    assert len(paths) == len(figs)
     from PIL import Image
     for p in paths:
         with Image.open(p) as im:
             assert round(im.info["dpi"][0]) == 150, p.name
-    paths = write_pictures(sol, tmp_path / "big", _positions(sol)[:1], dpi=220)
+    # --dpi: one figure is enough (each file costs a full drawing)
+    monkeypatch.setattr(plot_cli, "cli_figures", lambda s, p=None: {"driver": figs["driver"]})
+    paths = write_pictures(sol, tmp_path / "big", [pos], dpi=220)
     with Image.open(paths[0]) as im:
         assert round(im.info["dpi"][0]) == 220
 

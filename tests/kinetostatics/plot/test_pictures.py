@@ -19,6 +19,8 @@ from kinetostatics.model.errors import WorkbenchError
 from kinetostatics.model.examples import cam_examples, example
 from kinetostatics.plot.cli import cli_figures
 
+from .conftest import PICTURE_SCENES
+
 NAMES = ks.examples()
 
 
@@ -65,25 +67,35 @@ def test_declutter_separates_labels():
     assert not kp.overlapping_texts(fig)
 
 
-@pytest.mark.parametrize("name", [n for n in NAMES if n != "four_bar_motion"])  # = four_bar
-def test_every_new_picture_is_clear(name, sols):
+@pytest.mark.parametrize("name", PICTURE_SCENES)
+def test_every_new_picture_is_drawn(name, lecture_figures):
     """Every figure of ``solve --plot`` (overview, Me, polar diagrams, mechanism with
-    loads, plans, instantaneous centres, free-body diagrams with their polygons) and the
-    force polygons alone: no overlaps."""
+    loads, plans, instantaneous centres, free-body diagrams with their polygons) is a
+    Figure. Drawn once per session in the command line's lecture style and shared:
+    test_collisions measures the same figures (no overlap, no label on a line, no legend
+    on data), the force polygons alone are checked in test_plot."""
+    sol, pos, figs = lecture_figures(name)
+    tag = f"{pos:g}{'deg' if sol.scene.driver.kind == 'R' else 'm'}".replace(
+        "-", "m").replace(".", "p")
+    expect = {"overview", "driver", *(f"polar_{j}" for j in sol.scene.joints),
+              f"mechanism_{tag}", f"velocity_plan_{tag}", f"acceleration_plan_{tag}",
+              f"instant_centres_{tag}",
+              *(f"free_body_{tag}_dyad{d}" for d in range(len(sol.kin.dyads) + 1))}
+    assert set(figs) == expect
+    for stem, fig in figs.items():
+        assert isinstance(fig, Figure), stem
+
+
+# the default style (no lecture_style: what a script calling the pictures gets), on one
+# scene of each driver kind; the command line's style is measured on every scene
+@pytest.mark.parametrize("name", ["four_bar", "sliding_driver"])
+def test_every_new_picture_is_clear_in_the_default_style(name, sols):
     sol = sols[name]
     pos = float(sol.positions[len(sol.positions) // 7])
-    figs = cli_figures(sol, [pos])
-    assert {"overview", "driver", f"mechanism_{pos:g}deg" if sol.scene.driver.kind == "R"
-            else "overview"} <= set(figs)
-    for stem, fig in figs.items():
+    for stem, fig in cli_figures(sol, [pos]).items():
         assert isinstance(fig, Figure), stem
         clear(fig)
         plt.close(fig)
-    for d in range(len(sol.kin.dyads) + 1):
-        ax = kp.force_polygon(sol, d, pos)
-        assert isinstance(ax, Axes)
-        clear(ax.figure)
-        plt.close("all")
 
 
 def _arrows(ax: Axes, color: str) -> list[tuple[np.ndarray, np.ndarray]]:

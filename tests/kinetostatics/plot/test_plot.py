@@ -61,6 +61,8 @@ def test_every_picture_of_every_scene(name, sols):
         _labelled(ax)
         assert ax.get_xlabel() == "Fx [N]"
         assert "closing error |ΣF| = " in ax.get_title()
+        hits = kp.overlapping_texts(ax.figure)      # no two labels overlap
+        assert not hits, (d, hits)
         plt.close("all")
     for f in (kp.velocity_plan, kp.acceleration_plan):
         ax = f(sol, pos)
