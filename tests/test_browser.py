@@ -34,6 +34,8 @@ FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-
          "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 SHEETS = ["02_four_bar_kinetostatics.ipynb", "13_motion_flywheel.ipynb"]
 RUN_ALL = 600_000      # ms: stops a hung kernel only (a full run took 20-65 s, load 1-17)
+RUN_TRY = 240_000      # ms: one "Run All" that has not finished by then is given again once
+                       # (under load a Run All given as the kernel connected was seen lost)
 UPDATE = 300_000       # ms: one slider update (1.5-15 s measured)
 WIDGET_ERRORS = re.compile(r"Error displaying widget|model not found|Could not find model|"
                            r"Class \S+ not found|Failed to (create|load|render)|No such model",
@@ -114,17 +116,34 @@ def browser(lab):
         b.close()
 
 
+ALL_RAN = """() => {
+    const p = [...document.querySelectorAll('.jp-CodeCell .jp-InputPrompt')];
+    return p.length > 0 && p.every(e => /\\[\\d+\\]/.test(e.textContent));
+}"""
+KERNEL_IDLE = """() => {
+    const e = document.querySelector('.jp-Notebook-ExecutionIndicator');
+    return e !== null && e.getAttribute('data-status') === 'idle';
+}"""
+
+
 def _run_all(page) -> None:
-    """Run every cell from the Run menu and wait until none is pending."""
+    """Run every cell from the Run menu once the kernel is idle, and wait until none is
+    pending; a Run All that has not finished within RUN_TRY is given once more (the
+    kernel's cells then run again, with the same values)."""
+    from playwright.sync_api import TimeoutError as PlaywrightTimeout
     page.locator(".jp-Notebook .jp-Cell").first.wait_for(timeout=RUN_ALL)
-    page.locator(".jp-Notebook").click(position={"x": 5, "y": 5})
-    page.get_by_role("menuitem", name="Run", exact=True).click()
-    page.get_by_role("menuitem", name=re.compile(r"^Run All Cells")).click()
-    page.wait_for_function(
-        """() => {
-            const p = [...document.querySelectorAll('.jp-CodeCell .jp-InputPrompt')];
-            return p.length > 0 && p.every(e => /\\[\\d+\\]/.test(e.textContent));
-        }""", timeout=RUN_ALL)
+    page.wait_for_function(KERNEL_IDLE, timeout=RUN_ALL)
+    for wait in (RUN_TRY, RUN_ALL):
+        page.locator(".jp-Notebook").click(position={"x": 5, "y": 5})
+        page.get_by_role("menuitem", name="Run", exact=True).click()
+        page.get_by_role("menuitem", name=re.compile(r"^Run All Cells")).click()
+        try:
+            page.wait_for_function(ALL_RAN, timeout=wait)
+            return
+        except PlaywrightTimeout:
+            if wait == RUN_ALL:
+                raise
+            page.wait_for_function(KERNEL_IDLE, timeout=RUN_ALL)
 
 
 def _run_code(page, code: str) -> str:
