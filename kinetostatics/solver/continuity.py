@@ -58,8 +58,9 @@ def sweep_order(positions: np.ndarray) -> np.ndarray:
 def check_distinct(positions: np.ndarray, unit: str) -> None:
     """Refuse a sweep that lists a driver position twice (one line, :class:`SceneError`)."""
     pos = np.asarray(positions, dtype=float)
-    order = sweep_order(pos)
-    p = pos[order]
+    if pos.size < 2 or bool(np.all(pos[1:] > pos[:-1])):
+        return                  # strictly increasing: each position once
+    p = pos[np.argsort(pos, kind="stable")]
     same = np.flatnonzero(p[1:] == p[:-1])
     if same.size:
         rows = sorted(np.flatnonzero(pos == p[same[0]]).tolist())
