@@ -13,7 +13,7 @@ from matplotlib.patches import Arc, FancyArrowPatch
 from matplotlib.path import Path
 from matplotlib.text import Annotation, Text
 
-from .style import overlapping_texts, text_extent
+from .style import drawn_extent, overlapping_texts
 
 __all__ = ["collisions", "drawn_paths", "label_boxes"]
 
@@ -70,10 +70,8 @@ def label_boxes(ax: Axes, renderer) -> list[tuple[Text, object]]:
     (annotations and ``ax.text`` labels; titles and tick labels are outside the data)."""
     out = []
     for t in ax.texts:
-        if not t.get_visible() or not t.get_text().strip():
-            continue
-        bb = text_extent(t, renderer)
-        if bb.width > 0 and bb.height > 0:
+        bb = drawn_extent(t, renderer)
+        if bb is not None:
             out.append((t, bb))
     return out
 

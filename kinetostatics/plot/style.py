@@ -12,7 +12,7 @@ from matplotlib.figure import Figure
 from matplotlib.legend import Legend
 from matplotlib.text import Annotation, Text
 
-__all__ = ["LECTURE", "PROJECTOR", "SMALLEST_FONT", "figure_boxes", "lay_out",
+__all__ = ["LECTURE", "PROJECTOR", "SMALLEST_FONT", "drawn_extent", "figure_boxes", "lay_out",
            "lecture_style", "overlapping_texts", "projector", "text_extent"]
 
 #: The smallest font of a picture, in points at the figure's printed size.
@@ -121,6 +121,15 @@ def text_extent(t: Text, renderer):
     return Text.get_window_extent(t, renderer)
 
 
+def drawn_extent(t: Text, renderer):
+    """The extent of a visible text with letters in it (:func:`text_extent`), or None for
+    a hidden, blank or empty one."""
+    if not t.get_visible() or not t.get_text().strip():
+        return None
+    bb = text_extent(t, renderer)
+    return bb if bb.width > 0 and bb.height > 0 else None
+
+
 def figure_boxes(fig: Figure, renderer) -> list[tuple[Text | Legend, object]]:
     """(text, window extent) of every drawn, non-empty text of the figure; a legend
     counts as one box (its entries are laid out by matplotlib and never collide)."""
@@ -131,12 +140,10 @@ def figure_boxes(fig: Figure, renderer) -> list[tuple[Text | Legend, object]]:
         if lg.get_visible():
             out.append((lg, lg.get_window_extent(renderer)))
     for t in fig.findobj(Text):
-        if id(t) in inside or not t.get_visible() or not t.get_text().strip():
+        if id(t) in inside or (t.axes is not None and not t.axes.get_visible()):
             continue
-        if t.axes is not None and not t.axes.get_visible():
-            continue
-        bb = text_extent(t, renderer)
-        if bb.width > 0 and bb.height > 0:
+        bb = drawn_extent(t, renderer)
+        if bb is not None:
             out.append((t, bb))
     return out
 

@@ -54,6 +54,14 @@ def at(d: dict, positions) -> dict:
     return d
 
 
+def a_few_rows(d: dict, data) -> dict:
+    """The scene at 2 to 9 of its own rows, drawn by hypothesis (in increasing order)."""
+    pos = sweep(d)
+    idx = sorted(data.draw(st.lists(st.integers(0, pos.size - 1), min_size=2, max_size=9,
+                                    unique=True), label="indices"))
+    return at(d, pos[idx])
+
+
 def numbers(sol, table: str) -> np.ndarray:
     """A table's numeric columns (NaN-free offsets: 0 where empty), rows as listed."""
     t = getattr(sol, table).select_dtypes("number").astype(float)
@@ -214,10 +222,7 @@ def mirrored(d: dict) -> dict:
 @given(data=st.data())
 def test_the_mirror_image_gives_mirrored_results(path, data) -> None:
     d = raw(path)
-    pos = sweep(d)
-    idx = sorted(data.draw(st.lists(st.integers(0, pos.size - 1), min_size=2, max_size=9,
-                                    unique=True), label="indices"))
-    d = at(d, pos[idx])
+    d = a_few_rows(d, data)
     d["driver"]["speed"] = data.draw(st.floats(-50.0, 50.0).filter(lambda w: abs(w) > 0.1))
     d["driver"]["acceleration"] = data.draw(st.floats(-100.0, 100.0))
     sol, mir = ks.solve(d), ks.solve(mirrored(d))
@@ -258,10 +263,7 @@ def with_friction(d: dict, mu: float) -> dict:
 @given(data=st.data())
 def test_speed_to_zero_is_continuous_with_rest(path, data) -> None:
     d = raw(path)
-    pos = sweep(d)
-    idx = sorted(data.draw(st.lists(st.integers(0, pos.size - 1), min_size=2, max_size=9,
-                                    unique=True), label="indices"))
-    d = at(d, pos[idx])
+    d = a_few_rows(d, data)
     # a resist load (or one on the working stroke only) has no direction at rest
     # (scene-format: flagged, zero): leave them out
     d["loads"] = [ld for ld in d.get("loads", []) if "resist" not in ld and "when" not in ld]
@@ -296,10 +298,7 @@ def test_speed_to_zero_is_continuous_with_rest(path, data) -> None:
 @given(data=st.data())
 def test_masses_times_k_scale_forces_by_k(path, data) -> None:
     d = raw(path)
-    pos = sweep(d)
-    idx = sorted(data.draw(st.lists(st.integers(0, pos.size - 1), min_size=2, max_size=9,
-                                    unique=True), label="indices"))
-    d = at(d, pos[idx])
+    d = a_few_rows(d, data)
     mu = data.draw(st.sampled_from([0.0, 0.1]), label="mu")
     if mu:
         d = with_friction(d, mu)
