@@ -212,5 +212,7 @@ def run_speed(quick: bool = False, reference: str | None = None) -> pd.DataFrame
     df = pd.DataFrame(rows)
     pd.set_option("display.width", 160)
     print(f"\n== speed: ratios to baselines timed side by side ({os.cpu_count()} cores) ==")
-    print(df.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
+    # a cell that does not apply to its row (no error for a start-up time, no ratio for
+    # the peak memory) is shown as "-", not as a number
+    print(df.to_string(index=False, na_rep="-", float_format=lambda x: f"{x:.4g}"))
     return df
