@@ -7,9 +7,10 @@ from typing import Any
 
 import numpy as np
 
-from ..model.errors import AssemblyError
+from ..model.errors import AssemblyError, WorkbenchError
 from ..model.scene import load_scene
 from ..results import Solution
+from .blocks import Unblockable, blockable, solve_blocks
 from .continuity import check_distinct
 from .deadpoints import dead_points_between_rows
 from .friction import has_friction, solve_with_friction
@@ -66,17 +67,37 @@ def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> 
             np.asarray(positions, dtype=float)), "deg" if sc.driver.kind == "R" else "m")
     # the assemblies are chosen at the scene's first row by the solve itself
     structure = analyse(sc, assemble=False)
+    pos = sc.driver.positions if positions is None else np.atleast_1d(
+        np.asarray(positions, dtype=float))
+    sol = None
+    if blockable(sc, pos.size):
+        try:
+            sol = solve_blocks(sc, structure, pos, _solve_block)
+        except (Unblockable, WorkbenchError, OverflowError, ZeroDivisionError):
+            sol = None      # solved in one pass below: its message names every row
     try:
-        kin = solve_kinematics(sc, structure, positions)
-        structure = kin.structure
-        kin.between, kin.ends, kin.unassembled = dead_points_between_rows(kin.scene, structure,
-                                                                           kin)
-        sol = _solve_loads(kin.scene, structure, kin)
+        if sol is None:
+            kin = solve_kinematics(sc, structure, positions)
+            kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
+                kin.scene, kin.structure, kin)
+            sol = _solve_loads(kin.scene, kin.structure, kin)
+            _check_finite(sol)
+        else:
+            kin = sol.kin
+            kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
+                kin.scene, sol.structure, kin)
     except (OverflowError, ZeroDivisionError) as exc:
         raise AssemblyError(f"the scene's numbers overflow ({exc}); check its dimensions "
                             "and masses") from None
-    _check_finite(sol)
     sol.release_loads()     # recomputed when asked for: no table needs them (memory)
+    return sol
+
+
+def _solve_block(sc, structure, kin) -> Solution:
+    """One block of rows (:func:`~kinetostatics.solver.blocks.solve_blocks`): loads and
+    reactions from its kinematics, checked finite."""
+    sol = _solve_loads(sc, structure, kin)
+    _check_finite(sol)
     return sol
 
 
