@@ -52,6 +52,16 @@ class Param:
     by: object = 0.0
 
 
+def take_rows(p: Param, index) -> Param:
+    """The parameter at some rows only (scalars stay scalars; ``known`` stays the whole
+    sweep's motion: the closure does not read it)."""
+    out = Param(p.kind, p.known, p.local)
+    for f in ("px", "py", "vpx", "vpy", "apx", "apy", "c", "s", "ux", "uy", "bx", "by"):
+        v = getattr(p, f)
+        setattr(out, f, v[index] if type(v) is np.ndarray and v.ndim else v)
+    return out
+
+
 def known_point(scene: Scene, bname: str, motion: BodyMotion, pname: str):
     """Position, velocity and acceleration of a named point of a known body."""
     if bname == GROUND:

@@ -32,7 +32,7 @@ import numpy as np
 from ..model.errors import AssemblyError
 from ..model.scene import GROUND, Scene
 from . import arith as A
-from .closure import DyadSolver, Param, body_origin, dyad_param
+from .closure import DyadSolver, Param, body_origin, dyad_param, take_rows
 from .driver import BodyMotion, driver_motion, ground_motion
 
 if TYPE_CHECKING:
@@ -178,7 +178,7 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
     solver = DyadSolver(scene, dyad)
     pr = (dyad_param(scene, dyad, 0, motions), dyad_param(scene, dyad, 1, motions))
     if k is None or solver.branches == 1:
-        k = _choose_branch(scene, dyad, solver, motions) if solver.branches == 2 else 1
+        k = _choose_branch(scene, dyad, solver, pr) if solver.branches == 2 else 1
     cs, ss, reach = _close(scene, dyad, solver, pr, k, strict)
     org = [body_origin(pr[i], cs[i], ss[i]) for i in range(2)]
     vs = _VelocitySystem(dyad, solver, pr, cs, org)
@@ -404,31 +404,30 @@ def _refuse_coincident_pivots(scene: Scene, dyad: Dyad, reach: np.ndarray) -> No
             "undefined there: leave those positions out of the sweep")
 
 
-def _choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver,
-                   motions: dict[str, BodyMotion]) -> int:
-    """The assembly k = +-1 whose hinted points lie closest at the first row."""
-    known = {j.other(b) for b, j in zip(dyad.bodies, dyad.outer, strict=True)}
-    first = {name: motions[name].take(slice(0, 1)) for name in known}   # what dyad_param reads
-    pr = (dyad_param(scene, dyad, 0, first), dyad_param(scene, dyad, 1, first))
+def _choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver, pr) -> int:
+    """The assembly k = +-1 whose hinted points lie closest at the first row (both
+    assemblies closed at once: the first row twice, with k = 1 and k = -1)."""
+    two = np.zeros(2, dtype=np.intp)
+    pr = (take_rows(pr[0], two), take_rows(pr[1], two))
     reach = solver.pivot_distance(pr)
     if reach is not None:
-        _refuse_coincident_pivots(scene, dyad, A.full(reach / scene.size, 1))
-    cands = {}
-    for k in (1, -1):
-        cs, ss, gap = solver.positions(pr, k)
-        if gap is not None and float(np.ravel(gap)[0]) > 1e-9 * scene.size:
-            raise AssemblyError(
-                f"dyad {dyad.label} cannot be assembled at the first driver position "
-                f"{_fmt_positions(scene, np.array([0]))}: the links do not reach by "
-                f"{float(np.ravel(gap)[0]):.4g} m; change the lengths, the ground points or "
-                "the sweep's start")
-        cands[k] = (cs, [body_origin(pr[i], cs[i], ss[i]) for i in range(2)])
+        _refuse_coincident_pivots(scene, dyad, A.full(reach / scene.size, 2)[:1])
+    cs, ss, gap = solver.positions(pr, np.array([1.0, -1.0]))
+    if gap is not None and float(np.ravel(gap)[0]) > 1e-9 * scene.size:
+        raise AssemblyError(
+            f"dyad {dyad.label} cannot be assembled at the first driver position "
+            f"{_fmt_positions(scene, np.array([0]))}: the links do not reach by "
+            f"{float(np.ravel(gap)[0]):.4g} m; change the lengths, the ground points or "
+            "the sweep's start")
+    org = [body_origin(pr[i], cs[i], ss[i]) for i in range(2)]
+    row = {1: 0, -1: 1}
 
     def where(k, b, loc):
         i = dyad.bodies.index(b)
-        (c, s), (ox, oy) = cands[k][0][i], cands[k][1][i]
-        return (float(np.ravel(ox + c * loc[0] - s * loc[1])[0]),
-                float(np.ravel(oy + s * loc[0] + c * loc[1])[0]))
+        (c, s), (ox, oy) = cs[i], org[i]
+        r = row[k]
+        return (float(np.ravel(A.full(ox + c * loc[0] - s * loc[1], 2))[r]),
+                float(np.ravel(A.full(oy + s * loc[0] + c * loc[1], 2))[r]))
     hints = _hint_points(scene, dyad)
     if hints:
         dist = {k: sum((where(k, b, loc)[0] - t[0]) ** 2 + (where(k, b, loc)[1] - t[1]) ** 2
