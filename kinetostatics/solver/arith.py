@@ -52,16 +52,35 @@ def _finite(x) -> bool:
 _ARRAY = np.ndarray
 
 
+def _times_zero(other, a, b):
+    """a * b where the operand other than ``other`` is an exact zero."""
+    if _finite(other):
+        return 0.0
+    with np.errstate(invalid="ignore"):
+        return a * b
+
+
+# The three operations below are the solver's hottest Python: each dispatches on the
+# exact types first (an array with an array, an array with a Python number), the cases
+# that make up nearly every call, and leaves the rest to the general rules of zero().
+
 def mul(a, b):
     """a * b; an exact scalar zero gives 0.0 without a pass over the other operand, unless
     that operand holds a NaN or an infinity (0 * NaN is NaN: never hidden)."""
-    if type(a) is _ARRAY and type(b) is _ARRAY:
-        return a * b
-    if zero(a) or zero(b):
-        if _finite(b if zero(a) else a):
-            return 0.0
-        with np.errstate(invalid="ignore"):
+    ta, tb = type(a), type(b)
+    if ta is _ARRAY:
+        if tb is _ARRAY:
             return a * b
+        if tb is float or tb is int:
+            if b == 0:
+                return _times_zero(a, a, b)
+            return a if b == 1 else a * b
+    elif tb is _ARRAY and (ta is float or ta is int):
+        if a == 0:
+            return _times_zero(b, a, b)
+        return b if a == 1 else a * b
+    if zero(a) or zero(b):
+        return _times_zero(b if zero(a) else a, a, b)
     if isinstance(a, float | int) and a == 1:
         return b
     if isinstance(b, float | int) and b == 1:
@@ -71,8 +90,14 @@ def mul(a, b):
 
 def add(a, b):
     """a + b."""
-    if type(a) is _ARRAY and type(b) is _ARRAY:
-        return a + b
+    ta, tb = type(a), type(b)
+    if ta is _ARRAY:
+        if tb is _ARRAY:
+            return a + b
+        if tb is float or tb is int:
+            return a if b == 0 else a + b
+    elif tb is _ARRAY and (ta is float or ta is int):
+        return b if a == 0 else a + b
     if zero(b):
         return a
     if zero(a):
@@ -82,8 +107,14 @@ def add(a, b):
 
 def sub(a, b):
     """a - b."""
-    if type(a) is _ARRAY and type(b) is _ARRAY:
-        return a - b
+    ta, tb = type(a), type(b)
+    if ta is _ARRAY:
+        if tb is _ARRAY:
+            return a - b
+        if tb is float or tb is int:
+            return a if b == 0 else a - b
+    elif tb is _ARRAY and (ta is float or ta is int):
+        return -b if a == 0 else a - b
     if zero(b):
         return a
     if zero(a):
@@ -132,5 +163,8 @@ def scalar(x):
 
 
 def full(x, n: int) -> np.ndarray:
-    """x as a float array of n values over the positions (a scalar is broadcast, read-only)."""
+    """x as a float array of n values over the positions (a scalar is broadcast, read-only;
+    a float array of n values is x itself)."""
+    if type(x) is _ARRAY and x.shape == (n,) and x.dtype == np.float64:
+        return x
     return np.broadcast_to(np.asarray(x, dtype=float), (n,))

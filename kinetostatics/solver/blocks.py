@@ -169,28 +169,45 @@ def _same(a, b) -> bool:
         return False
 
 
-def solve_blocks(scene: Scene, structure, positions: np.ndarray, solve_block,
+def solve_blocks(total: int, part, solve_block, scene: Scene | None = None,
+                 structure=None, positions: np.ndarray | None = None,
                  block: int | None = None) -> Solution:
-    """The Solution of ``scene`` over ``positions``, solved ``block`` rows at a time.
+    """The Solution over ``total`` rows, solved ``block`` rows at a time.
 
-    ``solve_block(scene, structure, kin)`` gives a block's Solution from its kinematics
-    (the loads and reactions, checked finite). Raises :class:`Unblockable` when the
-    blocks disagree in layout, and whatever the solver raises for a block.
+    Parameters
+    ----------
+    total : int
+        Rows of the whole sweep.
+    part : callable
+        ``part(rows, structure) -> (scene, structure)``: the scene and structure of the
+        rows ``rows`` (a slice), given the structure the previous block solved with (its
+        assemblies chosen; the first block gets ``structure``).
+    solve_block : callable
+        ``solve_block(scene, structure, kin)``: a block's Solution from its kinematics
+        (the loads and reactions, checked finite).
+    scene, structure
+        The whole sweep's scene and structure, held by the Solution; ``structure`` None:
+        the last block's.
+    positions : ndarray, optional
+        The whole sweep's driver positions (default: the scene's).
+
+    Raises
+    ------
+    Unblockable
+        The blocks disagree in layout.
+    WorkbenchError
+        Whatever the solver raises for a block.
     """
-    total = positions.size
     block = block or BLOCK_ROWS
-    own = positions is scene.driver.positions
-    full = scene if own else with_positions(scene, positions)
-    if len(structure.assembly) != len(structure.dyads) and not own:
-        structure = replace(structure, assembly=choose_assembly(scene, structure))
     arrays = _Arrays(total)
     gathers = None
+    solved = structure
     for start in range(0, total, block):
         rows = slice(start, min(start + block, total))
-        part = with_positions(scene, positions[rows])
-        kin = solve_kinematics(part, structure)
-        structure = kin.structure           # the first block chose the assembly
-        sol = solve_block(part, structure, kin)
+        sc, st = part(rows, solved)
+        kin = solve_kinematics(sc, st)
+        solved = kin.structure              # the first block chose the assembly
+        sol = solve_block(sc, solved, kin)
         n = rows.stop - rows.start
         if gathers is None:
             _layout(sol, n, arrays)         # a first look: which arrays
@@ -198,18 +215,35 @@ def solve_blocks(scene: Scene, structure, positions: np.ndarray, solve_block,
             gathers = _layout(sol, n, arrays)
         else:
             _put(gathers, sol, rows, n)
+    if structure is None or len(structure.assembly) != len(structure.dyads):
+        structure = solved
     bodies_g, dyads_g, reactions_g, drive_g, undefined = gathers
     bodies = {name: g.build() for name, g in bodies_g.items()}
-    known = {id(m): name for name, m in zip(bodies_g, (g.obj for g in bodies_g.values()),
-                                            strict=True)}
+    known = {id(g.obj): name for name, g in bodies_g.items()}
     dyads = []
     for d, (g, params) in enumerate(dyads_g):
         pr = tuple(pg.build(known=bodies[known[id(pg.obj.known)]]) for pg in params)
         dyads.append(g.build(dyad=structure.dyads[d], params=pr, n=total, _tau=None))
-    kin = Kinematics(full, structure, full.driver.positions, bodies, dyads)
+    if positions is None:
+        positions = scene.driver.positions
+    kin = Kinematics(scene, structure, positions, bodies, dyads)
     reactions = {name: g.build() for name, g in reactions_g.items()}
-    return Solution(full, structure, kin, None, reactions, drive_g.build(),
+    return Solution(scene, structure, kin, None, reactions, drive_g.build(),
                     undefined.values["undefined"])
+
+
+def blocks_of_sweep(scene: Scene, structure, positions: np.ndarray):
+    """The whole sweep's scene, its structure and the ``part`` of :func:`solve_blocks`
+    for ``scene`` at ``positions`` (each dyad's assembly chosen at the scene's own
+    first row: in the first block when ``positions`` are the scene's)."""
+    own = positions is scene.driver.positions
+    full = scene if own else with_positions(scene, positions)
+    if len(structure.assembly) != len(structure.dyads) and not own:
+        structure = replace(structure, assembly=choose_assembly(scene, structure))
+
+    def part(rows: slice, st):
+        return with_positions(scene, positions[rows]), st
+    return full, structure, part
 
 
 class _Undefined:

@@ -424,10 +424,9 @@ def _choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver, pr) -> int:
 
     def where(k, b, loc):
         i = dyad.bodies.index(b)
-        (c, s), (ox, oy) = cs[i], org[i]
         r = row[k]
-        return (float(np.ravel(A.full(ox + c * loc[0] - s * loc[1], 2))[r]),
-                float(np.ravel(A.full(oy + s * loc[0] + c * loc[1], 2))[r]))
+        (c, s), (ox, oy) = (_at(v, r) for v in cs[i]), (_at(v, r) for v in org[i])
+        return ox + c * loc[0] - s * loc[1], oy + s * loc[0] + c * loc[1]
     hints = _hint_points(scene, dyad)
     if hints:
         dist = {k: sum((where(k, b, loc)[0] - t[0]) ** 2 + (where(k, b, loc)[1] - t[1]) ** 2
@@ -453,6 +452,11 @@ def _choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver, pr) -> int:
         f"dyad {dyad.label} has two assemblies at the first driver position{hinted}: point "
         f"{b}.{pname} at ({p1[0]:.4g}, {p1[1]:.4g}) or ({p2[0]:.4g}, {p2[1]:.4g}); add a hint "
         f"for the one you mean, e.g. [near] {key} = [{p1[0]:.4g}, {p1[1]:.4g}]")
+
+
+def _at(v, row: int) -> float:
+    """A value at one row, as a Python float (the same double the array holds)."""
+    return float(v[row]) if np.ndim(v) else float(v)
 
 
 def with_positions(scene: Scene, positions) -> Scene:

@@ -36,10 +36,11 @@ import numpy as np
 from ..model.batch import load_scenes
 from ..model.errors import WorkbenchError
 from ..results import Solution
+from . import blocks
 from .deadpoints import _measure2, dead_points_stacked
 from .driver import BodyMotion
 from .kinematics import Kinematics, solve_kinematics
-from .pipeline import _check_finite, _solve_loads, check_distinct, solve
+from .pipeline import _solve_block, check_distinct, solve
 from .reactions import DriverReaction
 from .stack import Rows, Stacker, assemblies, signature
 from .structure import analyse
@@ -210,10 +211,19 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker) -> list[
     owner = np.repeat(np.arange(len(scenes)), counts)
     st = replace(structure, assembly=tuple(k[owner] for k in ks))
     positions = np.concatenate([s.driver.positions for s in scenes])
-    big = stacker.scene(owner, positions)
-    kin = solve_kinematics(big, st)
-    sol = _solve_loads(big, st, kin)
-    _check_finite(sol)
+    if positions.size >= 2 * blocks.BLOCK_ROWS:
+        # in blocks of rows (cache-sized); the stacked Solution is only cut per scene,
+        # so it needs no stacked scene of its own
+        def part(rows: slice, _):
+            who = owner[rows]
+            return (stacker.scene(who, positions[rows]),
+                    replace(structure, assembly=tuple(k[who] for k in ks)))
+        sol = blocks.solve_blocks(positions.size, part, _solve_block, None, st, positions)
+    else:
+        big = stacker.scene(owner, positions)
+        kin = solve_kinematics(big, st)
+        sol = _solve_block(big, st, kin)
+    kin = sol.kin
 
     def at(where: np.ndarray, who: np.ndarray) -> Kinematics:
         probe = replace(structure, assembly=tuple(k[who] for k in ks))

@@ -10,7 +10,7 @@ import numpy as np
 from ..model.errors import AssemblyError, WorkbenchError
 from ..model.scene import load_scene
 from ..results import Solution
-from .blocks import Unblockable, blockable, solve_blocks
+from .blocks import Unblockable, blockable, blocks_of_sweep, solve_blocks
 from .continuity import check_distinct
 from .deadpoints import dead_points_between_rows
 from .friction import has_friction, solve_with_friction
@@ -72,7 +72,8 @@ def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> 
     sol = None
     if blockable(sc, pos.size):
         try:
-            sol = solve_blocks(sc, structure, pos, _solve_block)
+            full, st, part = blocks_of_sweep(sc, structure, pos)
+            sol = solve_blocks(pos.size, part, _solve_block, full, st)
         except (Unblockable, WorkbenchError, OverflowError, ZeroDivisionError):
             sol = None      # solved in one pass below: its message names every row
     try:
