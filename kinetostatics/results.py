@@ -32,11 +32,20 @@ if TYPE_CHECKING:
     import pandas as pd
 
 OFFSET_EMPTY = 1e-12     # offset = M / N is left empty where |N| <= 1e-12 max|N|
+SHARE_ROWS = 262_144     # from this many rows on, the driver table shares its columns
 
 
 def _column(value, n: int, dtype=float) -> np.ndarray:
     """A table column of its own (a copy: the table never shares the solver's arrays)."""
     return np.array(np.broadcast_to(value, (n,)), dtype=dtype)
+
+
+def _own(value, n: int, dtype=np.float64) -> np.ndarray:
+    """:func:`_column` by the shortest road: an array of ``n`` values of ``dtype`` already
+    is copied as it is (the same values, bit for bit)."""
+    if type(value) is np.ndarray and value.shape == (n,) and value.dtype == dtype:
+        return value.copy()
+    return _column(value, n, dtype)
 
 
 def _text(value: str, n: int) -> Labels:
@@ -59,6 +68,33 @@ def _frame(columns: dict, copy: bool | None = None) -> pd.DataFrame:
     import pandas as pd
     return pd.DataFrame({c: v.objects() if isinstance(v, Labels) else v
                          for c, v in columns.items()}, copy=copy)
+
+
+_COLUMN_NAMES: dict[tuple[str, ...], pd.Index] = {}
+
+
+def _own_frame(columns: dict[str, np.ndarray], n: int) -> pd.DataFrame:
+    """A DataFrame of 1-D numpy columns of ``n`` rows that nothing else holds (copies
+    made for this table), taken as they are: one block per column, as
+    ``pd.DataFrame(columns, copy=False)`` lays them out, built without the constructor's
+    checks and inference (a fifth of its time on a short table).
+
+    pandas' block API (:func:`pandas.api.internals.create_dataframe_from_blocks`, pandas
+    3) takes the arrays as they are; where it is missing, the constructor does. The
+    column labels are made once per set of names and each table gets its own copy of
+    them (an Index's ``name`` can be set in place)."""
+    import pandas as pd
+    try:
+        from pandas.api.internals import create_dataframe_from_blocks
+    except ImportError:                                     # pandas < 3
+        return pd.DataFrame(columns, copy=False)
+    names = tuple(columns)
+    labels = _COLUMN_NAMES.get(names)
+    if labels is None:
+        labels = _COLUMN_NAMES[names] = pd.Index(list(names))
+    blocks = [(v.reshape(1, n), np.array([i])) for i, v in enumerate(columns.values())]
+    return create_dataframe_from_blocks(blocks, index=pd.RangeIndex(n),
+                                        columns=labels.copy())
 
 
 @dataclass
@@ -144,7 +180,12 @@ class Solution:
     def driver(self) -> pd.DataFrame:
         """``position, Me`` (or ``Fe``), ``singular``, ``undefined_load`` (and, with joint
         friction, ``self_locking``)."""
-        cols = self.columns("driver")
+        n = self.positions.size
+        if n < SHARE_ROWS:
+            # a short sweep: columns of its own (copies cost less than the shared Series
+            # pandas needs to know a column is shared, and nothing can see a write to them)
+            return _own_frame(self._driver_columns(), n)
+        cols = self._driver_columns(shared_columns=True)
         cols["position"] = self._tiled.column(1)        # shared with the long tables
         value = self.drive.value
         if isinstance(value, np.ndarray) and value.shape == self.positions.shape \
@@ -152,21 +193,32 @@ class Solution:
             # the solver's own array, held once (pandas copies it before a write)
             cols[self.driver_quantity] = self.__dict__.setdefault("_drive_column",
                                                                   shared(value))
-        return _frame(cols, copy=False)
+        else:
+            cols[self.driver_quantity] = _column(self.Me, n)
+        return _frame({c: cols[c] for c in self._driver_names()}, copy=False)
 
     def columns(self, table: str) -> dict:
         """The columns of a short table (``driver``, ``dyads``, ``sliders``, ``frame``) as
         arrays by name, without pandas (the CSV writer takes them as they are)."""
         return getattr(self, f"_{table}_columns")()
 
-    def _driver_columns(self) -> dict:
+    def _driver_names(self) -> list[str]:
+        """The ``driver`` table's columns, in order."""
+        names = ["position", self.driver_quantity, "singular", "undefined_load"]
+        return names if self.self_locking is None else [*names, "self_locking"]
+
+    def _driver_columns(self, shared_columns: bool = False) -> dict:
+        """The ``driver`` table's columns, each an array of its own (a copy: writing to it
+        never changes the solution). ``shared_columns``: without ``position`` and the
+        driving effort, which the caller takes shared (no copy made only to be
+        replaced)."""
         n = self.positions.size
-        cols = {"position": self.positions.astype(float),
-                self.driver_quantity: _column(self.Me, n),
-                "singular": _column(self.singular, n, bool),
-                "undefined_load": _column(self.undefined_load, n, bool)}
+        cols = {} if shared_columns else {"position": _own(self.positions, n),
+                                          self.driver_quantity: _own(self.Me, n)}
+        cols["singular"] = _own(self.singular, n, np.bool_)
+        cols["undefined_load"] = _own(self.undefined_load, n, np.bool_)
         if self.self_locking is not None:
-            cols["self_locking"] = _column(self.self_locking, n, bool)
+            cols["self_locking"] = _own(self.self_locking, n, np.bool_)
         return cols
 
     @cached_property

@@ -209,6 +209,46 @@ def test_tables_share_columns_but_never_see_each_others_writes():
     assert same_bits(r.N.to_numpy()[1:], np.zeros(4 * n - 1))
 
 
+@pytest.mark.parametrize("share_rows", [0, 10**9], ids=["shared", "own"])
+@pytest.mark.parametrize("case", ["four_bar", "slider_crank"])
+def test_driver_table_either_way_is_the_same_and_keeps_writes_to_itself(monkeypatch, case,
+                                                                        share_rows):
+    """The driver table of a short sweep holds columns of its own (built from the block
+    API), of a long one columns shared with the solve and the long tables: the same
+    table either way (values, dtypes, labels, index, one block per column), and a write
+    to it changes neither the solution, nor the long tables, nor a second look at it."""
+    from kinetostatics import results
+    expected = ks.solve(OWN_CASES / f"{case}.toml").driver.copy(deep=True)
+    monkeypatch.setattr(results, "SHARE_ROWS", share_rows)
+    sol = ks.solve(OWN_CASES / f"{case}.toml")
+    d = sol.driver
+    pd.testing.assert_frame_equal(d, expected, check_exact=True)
+    assert list(d.columns) == CONTRACT["driver"][:1] + [sol.driver_quantity] + \
+        CONTRACT["driver"][2:]
+    assert isinstance(d.index, pd.RangeIndex) and d.index.equals(pd.RangeIndex(len(d)))
+    assert [b.dtype for b in d._mgr.blocks] == list(d.dtypes)      # one block per column
+    k = sol.kinematics
+    shares = [np.shares_memory(d.position.to_numpy(), k.position.to_numpy()),
+              np.shares_memory(d[sol.driver_quantity].to_numpy(), sol.drive.value)]
+    assert shares == ([False, False] if share_rows > len(d) else [True, True])
+    me0, pos0, kpos0 = np.array(sol.Me), sol.positions.copy(), k.position.to_numpy().copy()
+    sing0, undef0 = sol.singular.copy(), np.array(sol.undefined_load)
+    q = sol.driver_quantity
+    d.loc[0, q] = 12345.0
+    d.loc[1, "position"] = -1.0
+    d.loc[2, "singular"] = not sing0[2]
+    d.loc[3, "undefined_load"] = not undef0[3]
+    col = d["position"]                  # a column taken out and written to: a copy of it
+    col.iloc[4] = 99.0
+    assert d.loc[0, q] == 12345.0 and d.loc[1, "position"] == -1.0 and d.position[4] != 99.0
+    assert sol.driver is d                                     # kept, with the writes
+    assert same_bits(sol.Me, me0) and same_bits(sol.positions, pos0)
+    assert same_bits(k.position, kpos0)
+    assert (sol.singular == sing0).all() and (np.asarray(sol.undefined_load) == undef0).all()
+    d.columns.name = "renamed"                  # the labels are this table's own
+    assert ks.solve(OWN_CASES / f"{case}.toml").driver.columns.name is None
+
+
 def test_released_loads_come_back_bit_for_bit(monkeypatch):
     """The solve lets the loads go (no table of the contract needs them); asked for, they
     are computed again with exactly the numbers the solve used, as are the tables made
