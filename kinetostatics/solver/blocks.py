@@ -81,7 +81,7 @@ class Gather:
             else:
                 self.values[f] = v
 
-    def put(self, obj, rows: slice, n: int, seen: dict[int, object]) -> None:
+    def put(self, obj, rows: slice, n: int, seen: dict) -> None:
         """Copy block ``obj``'s arrays into ``rows`` of the gathered ones (``seen``: the
         block's arrays already copied, by identity, with where they went)."""
         for f, which in self.plan:
@@ -146,11 +146,15 @@ class _Arrays:
                 self.dest[k] = np.empty(self.total, dtype=v.dtype)
 
 
-def _copy(v, dest: np.ndarray, rows: slice, n: int, seen: dict[int, object]) -> None:
+def _copy(v, dest: np.ndarray, rows: slice, n: int, seen: dict) -> None:
     if not _per_row(v, n) or v.dtype != dest.dtype:
         raise Unblockable("layout")
     where = seen.get(id(v))
     if where is None:
+        # (an array of the first block held twice is one gathered array: in this block
+        # too it must be one array, not two that would be written over each other)
+        if seen.setdefault(("to", id(dest)), v) is not v:
+            raise Unblockable("aliasing")
         seen[id(v)] = dest
         dest[rows] = v
     elif where is not dest:
@@ -268,7 +272,7 @@ def _layout(sol: Solution, n: int, arrays: _Arrays) -> tuple:
 
 def _put(gathers: tuple, sol: Solution, rows: slice, n: int) -> None:
     bodies, dyads, reactions, drive, undefined = gathers
-    seen: dict[int, object] = {}
+    seen: dict = {}
     if list(bodies) != list(sol.kin.bodies) or list(reactions) != list(sol.joint_reactions):
         raise Unblockable("bodies")
     for name, g in bodies.items():
