@@ -222,7 +222,7 @@ def solve_blocks(total: int, part, solve_block, scene: Scene | None = None,
     if structure is None or len(structure.assembly) != len(structure.dyads):
         structure = solved
     bodies_g, dyads_g, reactions_g, drive_g, undefined = gathers
-    bodies = {name: g.build() for name, g in bodies_g.items()}
+    bodies = {name: g.build(_origin_arm=None) for name, g in bodies_g.items()}
     known = {id(g.obj): name for name, g in bodies_g.items()}
     dyads = []
     for d, (g, params) in enumerate(dyads_g):
@@ -260,7 +260,8 @@ class _Undefined:
 
 
 def _layout(sol: Solution, n: int, arrays: _Arrays) -> tuple:
-    bodies = {name: Gather(m, n, arrays) for name, m in sol.kin.bodies.items()}
+    bodies = {name: Gather(m, n, arrays, skip=("_origin_arm",))
+              for name, m in sol.kin.bodies.items()}
     dyads = [(Gather(dm, n, arrays, skip=("params", "dyad")),
               [Gather(p, n, arrays, skip=("known",)) for p in dm.params])
              for dm in sol.kin.dyads]

@@ -19,10 +19,12 @@ class BodyMotion:
     origin. Any of them may be a scalar (a fixed pivot, a constant speed); ``theta``
     (rad) is computed when first asked for unless given."""
 
-    __slots__ = ("cos", "sin", "omega", "alpha", "ox", "oy", "vx", "vy", "ax", "ay", "_theta")
+    FIELDS = ("cos", "sin", "omega", "alpha", "ox", "oy", "vx", "vy", "ax", "ay")
+    __slots__ = (*FIELDS, "_theta", "_origin_arm")
 
     def __init__(self, theta, cos, sin, omega, alpha, ox, oy, vx, vy, ax, ay):
         self._theta = theta
+        self._origin_arm = None
         self.cos, self.sin = cos, sin
         self.omega, self.alpha = omega, alpha
         self.ox, self.oy, self.vx, self.vy, self.ax, self.ay = ox, oy, vx, vy, ax, ay
@@ -35,7 +37,13 @@ class BodyMotion:
 
     def rotate(self, lx: float, ly: float):
         """A local vector turned into global axes: R(theta) l (the lever arm from the
-        origin of a local point)."""
+        origin of a local point). The arm of the origin itself, asked for by most
+        loads and joints, is worked out once."""
+        if type(lx) is float and type(ly) is float and lx == 0.0 and ly == 0.0:
+            arm = self._origin_arm
+            if arm is None:
+                arm = self._origin_arm = A.rotate(self.cos, self.sin, lx, ly)
+            return arm
         return A.rotate(self.cos, self.sin, lx, ly)
 
     def point(self, local: tuple[float, float]):
@@ -67,7 +75,7 @@ class BodyMotion:
         def t(a):
             return a[index] if np.ndim(a) else a
         th = None if self._theta is None else t(self._theta)
-        return BodyMotion(th, *(t(getattr(self, f)) for f in self.__slots__[:-1]))
+        return BodyMotion(th, *(t(getattr(self, f)) for f in self.FIELDS))
 
 
 def ground_motion() -> BodyMotion:

@@ -318,7 +318,7 @@ def _splitter(sol: Solution):
     total = sol.positions.size
     motions = []
     for name, m in sol.kin.bodies.items():
-        values = [getattr(m, f) for f in ("_theta", *BodyMotion.__slots__[:-1])]
+        values = [getattr(m, f) for f in ("_theta", *BodyMotion.FIELDS)]
         motions.append((name, [(np.asarray(v), True) if _per_row(v, total) else (v, False)
                                for v in values]))
     known = {id(m): name for name, m in sol.kin.bodies.items()}
