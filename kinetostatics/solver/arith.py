@@ -6,6 +6,8 @@ scalars: the ground's, a fixed pivot's, a constant speed's, a local coordinate t
 these helpers return the other operand instead. Results are bit-identical to the plain
 expressions (x + 0.0 == x, x * 1.0 == x, x * 0.0 == 0.0 for finite x); a NaN or an
 infinity multiplied by an exact zero stays NaN, so the solver's final check sees it.
+(One exception, :func:`rotate` of the zero vector: its cos and sin are a body's, which
+the final check sees themselves.)
 """
 
 from __future__ import annotations
@@ -19,9 +21,11 @@ import numpy as np
 def zero(x) -> bool:
     """True for a Python or numpy scalar equal to 0 (never for an array)."""
     t = type(x)
+    if t is float:
+        return x == 0.0
     if t is np.ndarray:
         return False
-    if t is float or t is int:
+    if t is int:
         return x == 0
     return isinstance(x, float | int) and x == 0
 
@@ -37,6 +41,8 @@ def _finite(x) -> bool:
     """True when x (a scalar or an array) holds no NaN or infinity; each long array is
     summed once (remembered by identity while it lives: below ``_REMEMBER`` values a
     second sum costs less than remembering)."""
+    if type(x) is float:
+        return math.isfinite(x)
     if not isinstance(x, np.ndarray):
         return bool(np.isfinite(x))
     if x.size < _REMEMBER:
@@ -128,17 +134,23 @@ def cross(ax, ay, bx, by):
 
 
 def rotate(c, s, lx: float, ly: float):
-    """R(theta) (lx, ly) with c = cos theta, s = sin theta; lx, ly are scalars."""
-    if zero(ly):
+    """R(theta) (lx, ly) with c = cos theta, s = sin theta; lx, ly are scalars.
+
+    The zero vector gives (0.0, 0.0) without a look at c and s: in the solver they are
+    always a body's cos and sin, which its final check reads (a NaN there is refused
+    all the same)."""
+    if type(lx) is float and type(ly) is float and lx == 0.0 and ly == 0.0:
+        return 0.0, 0.0
+    if ly == 0.0 if type(ly) is float else zero(ly):
         return mul(c, lx), mul(s, lx)
-    if zero(lx):
+    if lx == 0.0 if type(lx) is float else zero(lx):
         return mul(-ly, s), mul(c, ly)
     return c * lx - s * ly, s * lx + c * ly
 
 
 def iadd(acc, x, sign: float = 1.0) -> None:
     """acc += sign * x, in place (acc: an owned float array; x: array or scalar)."""
-    if zero(x):
+    if type(x) is not _ARRAY and zero(x):
         return
     if sign > 0:
         np.add(acc, x, out=acc)

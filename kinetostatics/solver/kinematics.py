@@ -341,7 +341,11 @@ def _body_motion(p: Param, cs, org, qd, qdd) -> BodyMotion:
     c, sn = cs
     ox, oy = org
     kb = p.known
-    if p.kind == "rot":
+    if p.kind == "rot" and p.local == (0.0, 0.0):
+        # the body's origin is its pivot P: it moves as P
+        om, al = qd, qdd
+        vx, vy, ax_, ay_ = p.vpx, p.vpy, p.apx, p.apy
+    elif p.kind == "rot":
         om, al = qd, qdd
         rax, ray = A.rotate(c, sn, -p.local[0], -p.local[1])   # o - P = -R a
         w2_ = om * om
