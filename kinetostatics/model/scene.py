@@ -20,6 +20,7 @@ from .errors import SceneError
 from .examples import SCENES
 from .scene_units import check_unit_slips, to_contract_units
 from .tomlio import (
+    MAX_MAGNITUDE,
     as_float,
     as_int,
     as_list,
@@ -273,12 +274,64 @@ def _ground(table: Any) -> dict[str, tuple[float, float]]:
     return {str(k): plain_vec2(v) or as_vec2(v, f"ground.{k}") for k, v in table.items()}
 
 
+_BODY_PLAIN = frozenset(BODY_KEYS) - {"mass_model"}
+
+
+def _plain_nonnegative(value: Any) -> float | None:
+    """``as_float(value, ..., nonnegative=True)`` of a Python float or int that passes,
+    else None (the long way then names what is wrong)."""
+    if type(value) in (float, int) and 0.0 <= value <= MAX_MAGNITUDE:
+        return float(value)         # (compared before float(): a huge int never raises here)
+    return None
+
+
+def _plain_body(item: Any, bodies: dict) -> Body | None:
+    """The :class:`Body` of a body written the usual way (a text name, numbers, pairs of
+    floats, no mass model), every rule of :func:`_bodies` met, told without building a
+    message; else None, and :func:`_bodies` checks the item the long way and names what
+    is wrong. It accepts only what the long way accepts, and gives the same Body."""
+    if type(item) is not dict or not item.keys() <= _BODY_PLAIN:
+        return None
+    name = item.get("name")
+    if type(name) is not str or not name.strip() or name == GROUND or name in bodies:
+        return None
+    mass = _plain_nonnegative(item.get("mass", 0.0))
+    if mass is None:
+        return None
+    inertia = _plain_nonnegative(item.get("inertia", 0.0))
+    if inertia is None:
+        return None
+    cog = None
+    if "cog" in item:
+        cog = plain_vec2(item["cog"])
+        if cog is None:
+            return None
+    if mass > 0.0 and cog is None:
+        return None
+    pts = item.get("points", {})
+    if type(pts) is not dict:
+        return None
+    points = {}
+    for pname, pval in pts.items():
+        if type(pname) is not str or pname == "cog":
+            return None
+        xy = plain_vec2(pval)
+        if xy is None:
+            return None
+        points[pname] = xy
+    return Body(name, mass, inertia, cog, points, None)
+
+
 def _bodies(items: Any) -> dict[str, Body]:
     items = as_list(items, "[[bodies]]")
     if not items:
         raise SceneError("[[bodies]] is empty: a mechanism needs at least the driver body")
     bodies: dict[str, Body] = {}
     for i, item in enumerate(items):
+        plain = _plain_body(item, bodies)
+        if plain is not None:
+            bodies[plain.name] = plain
+            continue
         where = f"bodies[{i}]"
         item = check_keys(item, BODY_KEYS, where, required=("name",))
         name = as_str(item["name"], f"{where}.name")
@@ -378,10 +431,65 @@ def _friction(table: Any, where: str, kind: str) -> Friction:
                     as_float(t.get("length", 0.0), f"{where}.friction.length", nonnegative=True))
 
 
+_R_PLAIN = frozenset(JOINT_KEYS_R) - {"friction"}
+_T_PLAIN = frozenset(JOINT_KEYS_T) - {"friction"}
+
+
+def _plain_joint(item: Any, bodies: dict, ground: dict, joints: dict) -> Joint | None:
+    """The :class:`Joint` of a joint written the usual way (texts for its name, bodies
+    and points, a float ``line_angle``, known keys, no friction), every rule of
+    :func:`_joints` met, told without building a message; else None, and
+    :func:`_joints` checks the item the long way and names what is wrong. It accepts
+    only what the long way accepts, and gives the same Joint."""
+    if type(item) is not dict:
+        return None
+    kind, name = item.get("kind"), item.get("name")
+    if (type(kind) is not str or type(name) is not str or not name.strip()
+            or name in joints):
+        return None
+    angle = 0.0
+    if kind == "R":
+        pair = item.get("bodies")
+        if not item.keys() <= _R_PLAIN or type(pair) is not list or len(pair) != 2:
+            return None
+        pts = item.get("points", [name, name])
+        if type(pts) is not list or len(pts) != 2:
+            return None
+        b0, b1 = pair
+        p0, p1 = pts
+    elif kind == "T":
+        if not item.keys() <= _T_PLAIN:
+            return None
+        b0, b1 = item.get("guide"), item.get("slider")
+        p0, p1 = item.get("line_point"), item.get("slider_point")
+        if "line_angle" in item:
+            angle = item["line_angle"]
+            if type(angle) not in (float, int) or not -MAX_MAGNITUDE <= angle <= MAX_MAGNITUDE:
+                return None         # (compared before float(): a huge int never raises here)
+            angle = float(angle)
+    else:
+        return None
+    if (type(b0) is not str or type(b1) is not str or type(p0) is not str
+            or type(p1) is not str or b0 == b1
+            or not (b0.strip() and b1.strip() and p0.strip() and p1.strip())):
+        return None
+    for b, p in ((b0, p0), (b1, p1)):
+        if b == GROUND:
+            if p not in ground:
+                return None
+        elif b not in bodies or (p not in bodies[b].points and p != "cog"):
+            return None
+    return Joint(name, kind, (b0, b1), (p0, p1), angle, None)
+
+
 def _joints(items: Any, bodies: dict, ground: dict) -> dict[str, Joint]:
     items = as_list(items, "[[joints]]")
     joints: dict[str, Joint] = {}
     for i, item in enumerate(items):
+        plain = _plain_joint(item, bodies, ground, joints)
+        if plain is not None:
+            joints[plain.name] = plain
+            continue
         where = f"joints[{i}]"
         if not isinstance(item, dict):
             raise SceneError(f"{where} must be a table")
@@ -493,10 +601,38 @@ def _sweep(start: float, stop: float, count: int) -> np.ndarray:
     return done.copy()
 
 
+_FORCE_PLAIN = frozenset(("body", "point", "force"))
+
+
+def _plain_force(item: Any, bodies: dict) -> Load | None:
+    """The :class:`Load` of a force written the usual way (``body``, ``point`` and a pair
+    of floats ``force``, nothing else), every rule of :func:`_loads` met, told without
+    building a message; else None, and :func:`_loads` checks the item the long way and
+    names what is wrong. It accepts only what the long way accepts, and gives the same
+    Load."""
+    if type(item) is not dict or item.keys() != _FORCE_PLAIN:
+        return None
+    body, point = item["body"], item["point"]
+    if (type(body) is not str or type(point) is not str or body not in bodies
+            or not body.strip() or not point.strip()):
+        return None
+    force = plain_vec2(item["force"])
+    if force is None:
+        return None
+    b = bodies[body]
+    if point not in b.points and (point != "cog" or b.cog is None):
+        return None
+    return Load(body, point, force, 0.0, None, "always")
+
+
 def _loads(items: Any, bodies: dict) -> tuple[Load, ...]:
     items = as_list(items, "[[loads]]")
     loads = []
     for i, item in enumerate(items):
+        plain = _plain_force(item, bodies)
+        if plain is not None:
+            loads.append(plain)
+            continue
         where = f"loads[{i}]"
         item = check_keys(item, LOAD_KEYS, where, required=("body",))
         body = _body_exists(item["body"], bodies, f"{where}.body")

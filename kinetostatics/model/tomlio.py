@@ -92,9 +92,22 @@ def suggest(name: str, known: Iterable[str]) -> str:
     return f" (did you mean {close[0]!r}?)" if close else ""
 
 
+_KNOWN_KEYS: dict[tuple, frozenset] = {}     # allowed keys -> as a set, for check_keys
+
+
 def check_keys(table: Any, allowed: Iterable[str], where: str,
                required: Iterable[str] = ()) -> dict:
     """Check that ``table`` is a mapping with only ``allowed`` keys and all ``required`` ones."""
+    if type(table) is dict and type(allowed) is tuple:
+        # the common case (a plain table, the keys a constant tuple), told by one set
+        # comparison; anything else goes the long way below, which names what is wrong
+        known = _KNOWN_KEYS.get(allowed)
+        if known is None:
+            if len(_KNOWN_KEYS) >= 64:          # tuples built from a user's keys too
+                _KNOWN_KEYS.clear()
+            known = _KNOWN_KEYS[allowed] = frozenset(allowed)
+        if table.keys() <= known and all(k in table for k in required):
+            return dict(table)
     if not isinstance(table, Mapping):
         raise SceneError(f"{where} must be a table, not {_typename(table)}")
     allowed = list(allowed)

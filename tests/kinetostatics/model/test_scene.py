@@ -268,6 +268,100 @@ def test_fuzz_mutated_scenes(ops, base):
     assert np.isfinite(r.select_dtypes("number").to_numpy()).all()
 
 
+def _outcome(d):
+    """What load_scene makes of ``d``: the scene with the types of its values, or the
+    error, and the warnings' texts."""
+    import warnings
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            sc = ks.load_scene(d)
+        except Exception as exc:                    # noqa: BLE001 (any outcome compared)
+            got = (type(exc).__name__, str(exc))
+        else:
+            values = [*sc.bodies.values(), *sc.joints.values(), *sc.loads]
+            got = (repr(sc), repr(sc.raw), sc.driver.positions.tobytes(),
+                   [[type(v).__name__ for v in vars(x).values()] for x in values],
+                   [type(c).__name__ for b in sc.bodies.values()
+                    for xy in (*b.points.values(), b.cog or ()) for c in xy])
+    return got, [str(w.message) for w in caught]
+
+
+_PLAIN_WAYS = ("_plain_body", "_plain_joint", "_plain_force")
+
+
+@pytest.mark.parametrize("name", ks.examples())
+def test_plain_items_read_as_the_long_way_reads_them(name):
+    """The short road for bodies, joints and forces written the usual way gives the same
+    Scene, value types included, as the long check of every item (the bundled scenes)."""
+    from unittest import mock
+    d = tomllib.loads(open(ks.example(name)).read())
+    fast = _outcome(copy.deepcopy(d))
+    with mock.patch.multiple("kinetostatics.model.scene",
+                             **{f: lambda *a: None for f in _PLAIN_WAYS}):
+        assert _outcome(copy.deepcopy(d)) == fast
+
+
+def _edit(path, value):
+    def edit(d):
+        parent = d
+        for k in path[:-1]:
+            parent = parent[k]
+        if value is KeyError:
+            del parent[path[-1]]
+        else:
+            parent[path[-1]] = value
+        return d
+    return edit
+
+
+# values next to the usual ones: the short road must take them exactly as the long way
+# does (an int read as a float, -0.0 kept, a tuple or numpy number left to the long way)
+_EDITS = [
+    (path, value)
+    for path in (("bodies", 0, "mass"), ("bodies", 1, "inertia"), ("bodies", 0, "cog"),
+                 ("bodies", 0, "points", "B"), ("bodies", 0, "name"), ("bodies", 2, "points"),
+                 ("joints", 1, "bodies"), ("joints", 1, "points"), ("joints", 1, "name"),
+                 ("joints", 0, "kind"), ("loads", 0, "body"), ("loads", 0, "point"),
+                 ("loads", 0, "force"))
+    for value in (KeyError, 2, 0, -0.0, -1.0, 1e13, 10**400, float("nan"), np.float64(0.5),
+                  True, "", " ", "cog", "ground", "crank", "B", "C", [0.1, 0], [0.1, 0.2],
+                  (0.1, 0.2), ["crank", "coupler"], ["ground", "crank"], ("crank", "coupler"),
+                  ["B", "B"], ["B", "cog"], {}, {"B": [0.0, 0.0]}, {"cog": [0.0, 0.0]},
+                  {1: [0.0, 0.0]}, None)]
+
+
+@pytest.mark.parametrize("base", ["four_bar", "slider_crank"])
+def test_plain_items_take_the_edge_values_as_the_long_way(base):
+    """Values next to the usual ones, item by item: the same outcome either way."""
+    from unittest import mock
+    for path, value in _EDITS + [(("joints", 3, "line_angle"), v)
+                                 for v in (KeyError, 0, 90, -0.0, 1e12, 10**12 + 1, 10**400,
+                                           float("inf"), np.float64(1.0), "0", True)]:
+        d = four_bar() if base == "four_bar" else slider_crank()
+        try:
+            d = _edit(path, value)(d)
+        except (KeyError, IndexError, TypeError):
+            continue                            # no such item in this scene
+        fast = _outcome(copy.deepcopy(d))
+        with mock.patch.multiple("kinetostatics.model.scene",
+                                 **{f: lambda *a: None for f in _PLAIN_WAYS}):
+            assert _outcome(copy.deepcopy(d)) == fast, (path, value)
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(ops=_mutations(), base=st.sampled_from(["four_bar", "slider_crank"]))
+def test_fuzz_plain_items_accept_and_refuse_as_the_long_way(ops, base):
+    """Mutated scenes: the short road accepts only what the long way accepts, builds the
+    same values, and leaves every refusal (message and order) to the long way."""
+    from unittest import mock
+    d = _apply(copy.deepcopy(four_bar() if base == "four_bar" else slider_crank()), ops)
+    fast = _outcome(copy.deepcopy(d))
+    with mock.patch.multiple("kinetostatics.model.scene",
+                             **{f: lambda *a: None for f in _PLAIN_WAYS}):
+        assert _outcome(copy.deepcopy(d)) == fast
+
+
 @settings(max_examples=60, deadline=None)
 @given(text=st.text(max_size=200))
 def test_fuzz_toml_text(text):
