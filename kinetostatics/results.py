@@ -164,8 +164,16 @@ class Solution:
 
     @property
     def Me(self) -> np.ndarray:
-        """Equilibrating moment (crank) or force (sliding driver) over the sweep."""
-        return np.broadcast_to(self.drive.value, self.positions.shape)
+        """Equilibrating moment (crank) or force (sliding driver) over the sweep (a
+        read-only view of the solver's array)."""
+        value, shape = self.drive.value, self.positions.shape
+        if type(value) is np.ndarray and value.shape == shape:
+            # what np.broadcast_to gives for an array of the shape already, for a tenth
+            # of its cost (the solve and the driver table both ask for it)
+            view = value.view()
+            view.flags.writeable = False
+            return view
+        return np.broadcast_to(value, shape)
 
     @property
     def singular(self) -> np.ndarray:
@@ -214,7 +222,7 @@ class Solution:
         replaced)."""
         n = self.positions.size
         cols = {} if shared_columns else {"position": _own(self.positions, n),
-                                          self.driver_quantity: _own(self.Me, n)}
+                                          self.driver_quantity: _own(self.drive.value, n)}
         cols["singular"] = _own(self.singular, n, np.bool_)
         cols["undefined_load"] = _own(self.undefined_load, n, np.bool_)
         if self.self_locking is not None:

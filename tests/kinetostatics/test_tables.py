@@ -244,6 +244,8 @@ def test_driver_table_either_way_is_the_same_and_keeps_writes_to_itself(monkeypa
     assert sol.driver is d                                     # kept, with the writes
     assert same_bits(sol.Me, me0) and same_bits(sol.positions, pos0)
     assert same_bits(k.position, kpos0)
+    with pytest.raises(ValueError, match="read-only"):    # the solver's array, kept safe
+        sol.Me[0] = 1.0
     assert (sol.singular == sing0).all() and (np.asarray(sol.undefined_load) == undef0).all()
     d.columns.name = "renamed"                  # the labels are this table's own
     assert ks.solve(OWN_CASES / f"{case}.toml").driver.columns.name is None
