@@ -290,10 +290,10 @@ def _all_near(scene: Scene, joint_pts: dict, pts: list) -> bool:
         my += y
     mx, my = mx / n, my / n
     hypot = math.hypot
-    size = scale = 0.0
-    for x, y in pts:
-        size = max(size, hypot(x - mx, y - my))
-        scale = max(scale, abs(x), abs(y))
+    # the largest distance from the mean and the largest coordinate (finite numbers:
+    # the same maxima, taken at once)
+    size = max([hypot(x - mx, y - my) for x, y in pts])
+    scale = max([abs(c) for xy in pts for c in xy])
     if not size > 1e-6 * scale:     # rounding could weigh here: the exact test decides
         return False
     limit = 100.0 * size * (1.0 - 1e-6)     # a margin for the rounding of mean and size
@@ -304,7 +304,10 @@ def _all_near(scene: Scene, joint_pts: dict, pts: list) -> bool:
         named = list(body.points.values())
         if body.cog is not None:
             named.append(body.cog)
-        for x, y in named:
+        for p in named:
+            if p in ref:            # a joint's own point: at distance 0 (limit > 0)
+                continue
+            x, y = p
             for q in ref:
                 if hypot(x - q[0], y - q[1]) <= limit:
                     break
