@@ -162,7 +162,9 @@ class DyadSolver:
     def positions(self, pr: tuple[Param, Param], k: int):
         """Per body (cos, sin) and the displacement s of a translating body, for assembly
         k, and the gap (m, > 0 where the dyad cannot close) or None when it closes
-        everywhere."""
+        everywhere. Sets ``reach``: :meth:`pivot_distance` of ``pr``, as the closure
+        computed it on the way (the same numbers), or None."""
+        self.reach = None
         with np.errstate(divide="ignore", invalid="ignore"):
             if self.dyad.inner.kind == "R":
                 return self._inner_r(pr, k)
@@ -181,7 +183,8 @@ class DyadSolver:
             r1s, r2s = a1[0] * a1[0] + a1[1] * a1[1], a2[0] * a2[0] + a2[1] * a2[1]
             ex, ey = A.sub(p2.px, p1.px), A.sub(p2.py, p1.py)
             d2 = ex * ex + ey * ey
-            inv = 1.0 / np.sqrt(d2)
+            self.reach = np.sqrt(d2)
+            inv = 1.0 / self.reach
             x = (d2 + (r1s - r2s)) * (0.5 * inv)
             h2 = r1s - x * x
             gap = None
@@ -242,7 +245,7 @@ class DyadSolver:
             vy_ = sb * asx + cb * asy - (l_loc[1] - pg.local[1])
             c = cb * vy_ - sb * vx_
             dx, dy = A.sub(ps.px, pg.px), A.sub(ps.py, pg.py)
-            dn = np.sqrt(dx * dx + dy * dy)
+            dn = self.reach = np.sqrt(dx * dx + dy * dy)
             y = -c / dn
             gap = None
             if np.max(np.abs(y)) > 1.0 or not np.all(np.isfinite(y)):

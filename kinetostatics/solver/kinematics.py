@@ -150,9 +150,13 @@ def _columns(pr: Param, xx, xy):
     return (pr.ux, pr.uy), pr.known.vel_at(xx, xy), 0.0
 
 
-def _solve2(a11, a12, a21, a22, r1, r2, det):
-    """Cramer's rule for [[a11, a12], [a21, a22]] x = [r1, r2]."""
-    return (A.sub(A.mul(r1, a22), A.mul(a12, r2)) / det,
+def _solve2(a11, b12, a21, b22, r1, r2, det):
+    """Cramer's rule for [[a11, -b12], [a21, -b22]] x = [r1, r2].
+
+    The second column is given negated (the velocity system's is -c2): the negations
+    are never formed, and the numbers are exactly those of the plain rule, since
+    r1 (-b22) - (-b12) r2 = b12 r2 - r1 b22 in floating point too."""
+    return (A.sub(A.mul(b12, r2), A.mul(r1, b22)) / det,
             A.sub(A.mul(a11, r2), A.mul(r1, a21)) / det)
 
 
@@ -208,7 +212,7 @@ def _close(scene: Scene, dyad: Dyad, solver: DyadSolver, pr, k, strict: bool):
     rows where the links do not reach or the pivots coincide."""
     n = scene.driver.positions.size
     cs, ss, gap = solver.positions(pr, k)
-    reach = solver.pivot_distance(pr)
+    reach = solver.reach            # the pivot distance, as the closure computed it
     if reach is not None:
         reach = A.full(reach / scene.size, n)
         if strict:
@@ -241,8 +245,9 @@ class _VelocitySystem:
         rx, ry = A.rotate(cs[ib][0], cs[ib][1], *loc)
         xx, xy = A.add(org[ib][0], rx), A.add(org[ib][1], ry)
         (c1, k1, w1), (c2, k2, w2) = _columns(pr[0], xx, xy), _columns(pr[1], xx, xy)
+        # the system's matrix is [[a11, -b12], [a21, -b22]] (:func:`_solve2`)
         if inner.kind == "R":
-            a11, a12, a21, a22 = c1[0], -c2[0], c1[1], -c2[1]
+            a11, b12, a21, b22 = c1[0], c2[0], c1[1], c2[1]
             r1, r2 = A.sub(k2[0], k1[0]), A.sub(k2[1], k1[1])
             nx = ny = None
             ux = uy = None
@@ -251,16 +256,17 @@ class _VelocitySystem:
             ux, uy = A.rotate(cs[ig][0], cs[ig][1], np.cos(solver.beta), np.sin(solver.beta))
             nx, ny = -uy, ux
             om0 = [0.0 if p.kind == "rot" else p.known.omega for p in pr]
-            a11, a12, r1 = w1, -w2, A.sub(om0[1], om0[0])
+            a11, b12, r1 = w1, w2, A.sub(om0[1], om0[0])
             a21 = A.add(A.mul(nx, c1[0]), A.mul(ny, c1[1]))
-            a22 = -A.add(A.mul(nx, c2[0]), A.mul(ny, c2[1]))
+            b22 = A.add(A.mul(nx, c2[0]), A.mul(ny, c2[1]))
             r2 = A.add(A.mul(nx, A.sub(k2[0], k1[0])), A.mul(ny, A.sub(k2[1], k1[1])))
         self.xx, self.xy = xx, xy
         self.c1, self.c2, self.k1, self.k2 = c1, c2, k1, k2
-        self.a = (a11, a12, a21, a22)
+        self.a = (a11, b12, a21, b22)
         self.r1, self.r2 = r1, r2
         self.ux, self.uy, self.nx, self.ny = ux, uy, nx, ny
-        self.det = A.sub(A.mul(a11, a22), A.mul(a12, a21))
+        # a11 a22 - a12 a21 with a12 = -b12, a22 = -b22 (the same numbers, exactly)
+        self.det = A.sub(A.mul(b12, a21), A.mul(a11, b22))
 
     def solve(self, r1, r2):
         """qdot (or qddot) for the right-hand side (r1, r2), Cramer's rule."""
