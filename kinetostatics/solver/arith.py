@@ -128,6 +128,14 @@ def sub(a, b):
     return a - b
 
 
+def sub_mul(a, s, x):
+    """a - s x; with a an exact zero, s a Python number and x an array, (-s) x: one pass
+    instead of two, the same numbers (-(s x) is (-s) x exactly, signed zeros too)."""
+    if type(x) is _ARRAY and (type(s) is float or type(s) is int) and s != 0 and zero(a):
+        return mul(-s, x)
+    return sub(a, mul(s, x))
+
+
 def cross(ax, ay, bx, by):
     """z component of (ax, ay) x (bx, by)."""
     return sub(mul(ax, by), mul(ay, bx))

@@ -53,14 +53,14 @@ class BodyMotion:
 
     def vel_arm(self, rx, ry):
         """Velocity of the body point at the arm (rx, ry) from the origin: v_O + omega k x r."""
-        return A.sub(self.vx, A.mul(self.omega, ry)), A.add(self.vy, A.mul(self.omega, rx))
+        return A.sub_mul(self.vx, self.omega, ry), A.add(self.vy, A.mul(self.omega, rx))
 
     def acc_arm(self, rx, ry):
         """Acceleration of the body point at the arm r: a_O + eps k x r - omega^2 r
         (seed 001 eq. 9)."""
         w2 = A.mul(self.omega, self.omega)
-        return (A.sub(A.sub(self.ax, A.mul(self.alpha, ry)), A.mul(w2, rx)),
-                A.sub(A.add(self.ay, A.mul(self.alpha, rx)), A.mul(w2, ry)))
+        return (A.sub_mul(A.sub_mul(self.ax, self.alpha, ry), w2, rx),
+                A.sub_mul(A.add(self.ay, A.mul(self.alpha, rx)), w2, ry))
 
     def vel_at(self, x, y):
         """Velocity of the body's point that is at the global position (x, y)."""
