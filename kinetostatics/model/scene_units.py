@@ -199,8 +199,7 @@ def check_unit_slips(scene: Scene, units: Units) -> None:
     pos = drv.positions
     if drv.kind == "R" and units.angle == "deg":
         typed = _typed_positions(scene)
-        if angle_slip(typed, "deg") or (pos.size > 1 and abs(
-                float(_max(pos) - _min(pos)) - 2.0 * math.pi) <= 0.01 * 2.0 * math.pi):
+        if angle_slip(typed, "deg") or (pos.size > 1 and _spans_a_turn(pos)):
             shown = ", ".join(f"{v:g}" for v in typed[:4]) + (", ..." if len(typed) > 4 else "")
             _warn(f"driver positions [{shown}] look like radians (all within 2 pi, with "
                   "fractional values) but angles are in degrees (a full turn is 360); write "
@@ -218,6 +217,21 @@ def check_unit_slips(scene: Scene, units: Units) -> None:
     if scene.motion is not None:
         _motion_slips(scene.motion, units)
     _far_points(scene, units)
+
+
+def _spans_a_turn(pos: np.ndarray) -> bool:
+    """True when the positions span 2 pi within 1 % (max - min: radians typed in a
+    degree field).
+
+    The span is at least the distance between the first and the last position (the
+    largest is not below either, the smallest not above), and rounding keeps that order;
+    so a sweep whose ends lie farther apart than 2 pi by more than 1 % (every sweep in
+    degrees over more than about 6.35 deg, a full turn's 360 among them) is told by its
+    two ends, without the two passes over the array."""
+    turn = 2.0 * math.pi
+    if abs(float(pos[-1]) - float(pos[0])) - turn > 0.01 * turn:
+        return False
+    return abs(float(_max(pos) - _min(pos)) - turn) <= 0.01 * turn
 
 
 def _typed_positions(scene: Scene) -> list[float]:

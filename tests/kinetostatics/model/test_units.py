@@ -215,3 +215,31 @@ def test_a_cam_stroke_angle_in_radians_warns() -> None:
     d["cam"]["follower"]["stroke_angle"] = 0.3491     # 20 deg typed in radians
     msgs = _all_warnings(load_cam_scene, d)
     assert len(msgs) == 1 and "radians" in msgs[0]
+
+
+def test_a_turn_is_told_by_the_ends_as_by_the_whole_span() -> None:
+    """The sweep-spans-2-pi test looks at the two ends first; it answers as the span
+    (max - min) does, at the 1 % line, for sweeps in any order and with a NaN."""
+    import numpy as np
+
+    from kinetostatics.model.scene_units import _spans_a_turn
+
+    def by_span(pos):
+        return abs(float(np.max(pos) - np.min(pos)) - 2.0 * math.pi) <= 0.01 * 2.0 * math.pi
+
+    rng = np.random.default_rng(7)
+    turn = 2.0 * math.pi
+    widths = [turn, turn * 1.01, turn * 0.99, np.nextafter(turn * 1.01, 0.0),
+              np.nextafter(turn * 1.01, 10.0), 360.0, 6.3, 6.4, 1.0]
+    told = 0
+    for _ in range(3000):
+        w, c = rng.choice(widths), rng.choice([0.0, -3.0, 1e3, rng.normal() * 10])
+        k = int(rng.integers(2, 9))
+        kind = rng.integers(3)
+        pos = (np.linspace(c, c + w * rng.choice([1.0, -1.0]), k) if kind == 0
+               else c + rng.random(k) * w if kind == 1 else np.array([c, c + w])[::-1])
+        if rng.random() < 0.02:
+            pos[rng.integers(pos.size)] = np.nan
+        assert _spans_a_turn(pos) == by_span(pos), pos
+        told += by_span(pos)
+    assert 0 < told < 3000
