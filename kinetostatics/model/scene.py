@@ -536,7 +536,44 @@ def _joints(items: Any, bodies: dict, ground: dict) -> dict[str, Joint]:
     return joints
 
 
+_DRIVER_PLAIN = frozenset(("body", "joint", "speed", "acceleration", "start", "stop", "count"))
+
+
+def _plain_float(value: Any) -> float | None:
+    """``as_float(value, ...)`` of a Python float or int that passes, else None (the
+    long way then names what is wrong)."""
+    if type(value) in (float, int) and -MAX_MAGNITUDE <= value <= MAX_MAGNITUDE:
+        return float(value)         # (compared before float(): a huge int never raises here)
+    return None
+
+
+def _plain_driver(table: Any, bodies: dict, joints: dict) -> Driver | None:
+    """The :class:`Driver` of a sweep written the usual way (texts for the body and the
+    joint, numbers for speed, acceleration, start and stop, a whole count), every rule
+    of :func:`_driver` met, told without building a message; else None, and
+    :func:`_driver` checks the table the long way and names what is wrong. It accepts
+    only what the long way accepts, and gives the same Driver."""
+    if type(table) is not dict or not table.keys() <= _DRIVER_PLAIN:
+        return None
+    body, jname, count = table.get("body"), table.get("joint"), table.get("count")
+    # a name among the bodies (joints) is a checked one: a non-blank text, not "ground"
+    if (type(body) is not str or type(jname) is not str or body not in bodies
+            or jname not in joints or set(joints[jname].bodies) != {body, GROUND}
+            or type(count) is not int or not 1 <= count <= MAX_COUNT):
+        return None
+    speed = _plain_float(table.get("speed"))
+    acc = _plain_float(table.get("acceleration", 0.0))
+    start = _plain_float(table.get("start"))
+    stop = _plain_float(table.get("stop"))
+    if speed is None or acc is None or start is None or stop is None:
+        return None
+    return Driver(body, jname, joints[jname].kind, speed, acc, _sweep(start, stop, count))
+
+
 def _driver(table: Any, bodies: dict, joints: dict) -> Driver:
+    plain = _plain_driver(table, bodies, joints)
+    if plain is not None:
+        return plain
     t = check_keys(table, DRIVER_KEYS, "[driver]", required=("body", "joint"))
     body = _body_exists(t["body"], bodies, "driver.body")
     if body == GROUND:

@@ -287,7 +287,7 @@ def _outcome(d):
     return got, [str(w.message) for w in caught]
 
 
-_PLAIN_WAYS = ("_plain_body", "_plain_joint", "_plain_force")
+_PLAIN_WAYS = ("_plain_body", "_plain_joint", "_plain_force", "_plain_driver")
 
 
 @pytest.mark.parametrize("name", ks.examples())
@@ -323,9 +323,12 @@ _EDITS = [
                  ("bodies", 0, "points", "B"), ("bodies", 0, "name"), ("bodies", 2, "points"),
                  ("joints", 1, "bodies"), ("joints", 1, "points"), ("joints", 1, "name"),
                  ("joints", 0, "kind"), ("loads", 0, "body"), ("loads", 0, "point"),
-                 ("loads", 0, "force"))
-    for value in (KeyError, 2, 0, -0.0, -1.0, 1e13, 10**400, float("nan"), np.float64(0.5),
-                  True, "", " ", "cog", "ground", "crank", "B", "C", [0.1, 0], [0.1, 0.2],
+                 ("loads", 0, "force"), ("driver", "body"), ("driver", "joint"),
+                 ("driver", "speed"), ("driver", "start"), ("driver", "stop"),
+                 ("driver", "count"), ("driver", "acceleration"), ("driver", "speed_rpm"))
+    for value in (KeyError, 2, 0, 13.0, 10**7 + 1, -0.0, -1.0, 1e13, 10**400, float("nan"),
+                  np.float64(0.5), True, "", " ", "cog", "ground", "crank", "B", "C",
+                  [0.1, 0], [0.1, 0.2],
                   (0.1, 0.2), ["crank", "coupler"], ["ground", "crank"], ("crank", "coupler"),
                   ["B", "B"], ["B", "cog"], {}, {"B": [0.0, 0.0]}, {"cog": [0.0, 0.0]},
                   {1: [0.0, 0.0]}, None)]
