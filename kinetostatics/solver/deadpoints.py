@@ -55,28 +55,44 @@ def _measure2(kin: Kinematics) -> np.ndarray:
 
 def _candidates(m2: np.ndarray, starts: np.ndarray | None = None,
                 counts: np.ndarray | None = None) -> np.ndarray:
-    """Intervals i (rows i, i + 1) next to a local minimum of m over the rows; with
-    ``starts`` and ``counts``, over each segment of rows alone (many scenes' sweeps one
-    after another, :func:`dead_points_stacked`): no interval joins two segments."""
+    """Intervals i (rows i, i + 1) next to a local minimum of m over the rows, in
+    increasing order; with ``starts`` and ``counts``, over each segment of rows alone
+    (many scenes' sweeps one after another, :func:`dead_points_stacked`): no interval
+    joins two segments.
+
+    Only the rows below the screen (``m < SCREEN``, a few in a hundred) can start a probe,
+    so only they are compared with their neighbours: one pass over all the rows instead
+    of a dozen (the comparisons, row by row, are the same)."""
     n = m2.size
+    none = np.zeros(0, dtype=int)
+    if n < 2:
+        return none
     if starts is None:
         starts, counts = np.zeros(1, dtype=int), np.array([n])
-    if n < 2:
-        return np.zeros(0, dtype=int)
-    left = np.concatenate([[np.inf], m2[:-1]])
-    right = np.concatenate([m2[1:], [np.inf]])
-    left[starts] = np.inf
-    right[starts + counts - 1] = np.inf
+    rows = np.flatnonzero(m2 < SCREEN**2)       # (NaN is not below: never probed)
+    if rows.size == 0:
+        return none
+    seg = np.searchsorted(starts, rows, side="right") - 1   # the segment holding each
+    first = rows == starts[seg]
+    last = rows == starts[seg] + counts[seg] - 1
+    v = m2[rows]
+    left = m2[np.maximum(rows - 1, 0)]
+    right = m2[np.minimum(rows + 1, n - 1)]
+    left[first] = np.inf            # a segment's end has no neighbour beyond it
+    right[last] = np.inf
     # a real dip (not rounding jitter on a constant measure), small enough to matter
     shrink = 1.0 - 1e-9
-    dip = (((m2 < left * shrink) & (m2 <= right))
-           | ((m2 <= left) & (m2 < right * shrink)))
-    rows = np.flatnonzero(dip & (m2 < SCREEN**2))
-    out = np.unique(np.concatenate([rows - 1, rows]))
-    out = out[(out >= 0) & (out < n - 1)]
-    last = np.zeros(n, dtype=bool)          # the last row of a segment starts no interval
-    last[starts + counts - 1] = True
-    return out[~last[out]]
+    dip = (((v < left * shrink) & (v <= right))
+           | ((v <= left) & (v < right * shrink)))
+    # the intervals on either side of each dip: (r - 1, r) unless r starts a segment,
+    # (r, r + 1) unless r ends one; as rows increase, r0 - 1, r0, r1 - 1, r1, ... never
+    # decrease, so a repeat is always next to its twin
+    both = np.stack([rows[dip] - 1, rows[dip]], axis=1).ravel()
+    ok = np.stack([~first[dip], ~last[dip]], axis=1).ravel()
+    both = both[ok]
+    if both.size < 2:
+        return both
+    return both[np.concatenate([[True], both[1:] != both[:-1]])]
 
 
 def _probe(at: Callable[[np.ndarray, np.ndarray], Kinematics], lo: np.ndarray,
@@ -167,11 +183,12 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     none, pairs = np.zeros(0, dtype=int), np.zeros((0, 2), dtype=int)
     if not m2u.size or not _min(m2u) < SCREEN**2:     # nothing to probe (NaN is not)
         return [(pairs, none, pairs) for _ in range(m)]
-    seg = np.repeat(np.arange(m), counts)
     one = m == 1
-    order = sweep_order(positions) if one else _segment_order(positions, seg, starts)
-    m2 = m2u[order]
-    pos = positions[order]
+    # the rows in increasing position (None: as they are, the usual case: then no
+    # array over all the rows is taken in another order)
+    order = _segment_order(positions, starts)
+    m2 = m2u if order is None else m2u[order]
+    pos = positions if order is None else positions[order]
     cand = _candidates(m2) if one else _candidates(m2, starts, counts)
     # beyond the ends: an end row that is a dip of m, probed over one spacing outside
     two = counts >= 2
@@ -184,49 +201,64 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     k = cand.size
     lo = np.concatenate([pos[cand], lo_f[use_f], lo_l[use_l]])
     hi = np.concatenate([pos[cand + 1], hi_f[use_f], hi_l[use_l]])
-    owner = np.concatenate([seg[cand], segs[use_f], segs[use_l]])
+    owner = np.concatenate([_segment_of(cand, starts), segs[use_f], segs[use_l]])
     if lo.size == 0:
         return [(pairs, none, pairs) for _ in range(m)]
     best, open_ = _probe(at, lo, hi, owner)
     ends_m2 = np.minimum(m2[cand], m2[cand + 1])
     dead = (best[:k] <= SINGULAR_WARN**2) & (best[:k] < ends_m2) & ~open_[:k]
     kf = int(use_f.sum())
-    edge_f = np.full(m, -1)
-    edge_l = np.full(m, -1)
     bf, bl = best[k:k + kf], best[k + kf:]
     rf, rl = first[use_f], last[use_l]
     hit_f = (bf <= SINGULAR_WARN**2) & (bf < m2[rf])
     hit_l = (bl <= SINGULAR_WARN**2) & (bl < m2[rl])
-    edge_f[segs[use_f][hit_f]] = order[rf[hit_f]]
-    edge_l[segs[use_l][hit_l]] = order[rl[hit_l]]
-    between = _per_segment(cand[dead], order, seg, starts, m)
-    gaps = _per_segment(cand[open_[:k]], order, seg, starts, m)
-    out = []
-    for s in range(m):
-        edge = [e - starts[s] for e in (edge_f[s], edge_l[s]) if e >= 0]
-        out.append((between[s], np.array(edge, dtype=int) if edge else none, gaps[s]))
+    # per segment, its end rows near a dead point outside, in its own row numbers
+    edges: dict[int, list[int]] = {}
+    for s, r in zip(segs[use_f][hit_f].tolist(), rf[hit_f].tolist(), strict=True):
+        edges.setdefault(s, []).append(r)
+    for s, r in zip(segs[use_l][hit_l].tolist(), rl[hit_l].tolist(), strict=True):
+        edges.setdefault(s, []).append(r)
+    between = _per_segment(cand[dead], order, starts, m)
+    gaps = _per_segment(cand[open_[:k]], order, starts, m)
+    out = [(b, none, g) for b, g in zip(between, gaps, strict=True)]
+    for s, rs in edges.items():
+        rows = rs if order is None else order[rs].tolist()
+        out[s] = (out[s][0], np.array(rows, dtype=int) - int(starts[s]), out[s][2])
     return out
 
 
-def _segment_order(positions: np.ndarray, seg: np.ndarray, starts: np.ndarray) -> np.ndarray:
+def _segment_of(rows: np.ndarray, starts: np.ndarray) -> np.ndarray:
+    """The segment holding each row (segments one after another from ``starts``; an
+    empty segment holds none)."""
+    return np.searchsorted(starts, rows, side="right") - 1
+
+
+def _segment_order(positions: np.ndarray, starts: np.ndarray) -> np.ndarray | None:
     """The rows in increasing driver position within each segment (each segment's
-    :func:`~.continuity.sweep_order`; the identity where every sweep increases)."""
+    :func:`~.continuity.sweep_order`), or None where every sweep increases (the rows
+    as they are)."""
     n = positions.size
     up = positions[1:] > positions[:-1]
     up[starts[1:][starts[1:] > 0] - 1] = True         # no order across segments
     if n < 2 or bool(up.all()):
-        return np.arange(n)
+        return None
+    if starts.size == 1:
+        return sweep_order(positions)
+    seg = np.repeat(np.arange(starts.size), np.diff(np.append(starts, n)))
     return np.lexsort((positions, seg))
 
 
-def _per_segment(intervals: np.ndarray, order: np.ndarray, seg: np.ndarray,
-                 starts: np.ndarray, m: int) -> list[np.ndarray]:
+def _per_segment(intervals: np.ndarray, order: np.ndarray | None, starts: np.ndarray,
+                 m: int) -> list[np.ndarray]:
     """Intervals (global rows in increasing position) as (k, 2) row pairs per segment,
-    in each segment's own row numbers."""
+    in each segment's own row numbers (``order`` None: the rows as they are)."""
     if intervals.size == 0:
         empty = np.zeros((0, 2), dtype=int)
         return [empty] * m
-    owner = seg[intervals]
-    pairs = np.stack([order[intervals], order[intervals + 1]], axis=1) - starts[owner, None]
+    owner = _segment_of(intervals, starts)
+    if order is None:
+        pairs = np.stack([intervals, intervals + 1], axis=1) - starts[owner, None]
+    else:
+        pairs = np.stack([order[intervals], order[intervals + 1]], axis=1) - starts[owner, None]
     cuts = np.searchsorted(owner, np.arange(m + 1))
     return [pairs[cuts[s]:cuts[s + 1]] for s in range(m)]

@@ -4,19 +4,21 @@ Every exercise checks many variants of one mechanism, and a design study sweeps
 hundreds; solved one by one, each pays the solver's cost per scene (reading, structure,
 assembly, a few hundred small array operations). :func:`solve_many` groups the scenes
 by structure (:func:`~kinetostatics.solver.stack.signature`) and solves each group as
-one scene over all its rows (:mod:`~kinetostatics.solver.stack`), in chunks of about
-``CHUNK_ROWS`` rows (the solver's cost per pass is spread over many scenes while the
-arrays stay moderate), then cuts the result into one
-:class:`~kinetostatics.results.Solution` per scene. Each holds exactly the numbers
-:func:`~kinetostatics.solve` gives that scene alone: the same elementwise operations
-run on every row. A scene that cannot be stacked (joint friction, a mass model, a
-``resist`` load), or that the stacked pass refuses, is solved alone.
+one scene over all its rows (:mod:`~kinetostatics.solver.stack`; groups of at most about
+``CHUNK_ROWS`` rows), a run of whole scenes of about ``RUN_ROWS`` rows at a time (the
+solver's cost per pass is spread over many scenes while its arrays stay in the cache),
+and cuts each run's result into one :class:`~kinetostatics.results.Solution` per scene
+(no array over all the rows is gathered: a scene's rows lie in one run). Each holds
+exactly the numbers :func:`~kinetostatics.solve` gives that scene alone: the same
+elementwise operations run on every row. A scene that cannot be stacked (joint
+friction, a mass model, a ``resist`` load), or whose run the stacked pass refuses, is
+solved alone.
 
 What costs per scene in a solve is done for all the scenes at once: dicts of one form
 are read together (:func:`~kinetostatics.model.batch.load_scenes`), the order of the
 positions is told in one pass, the assembly chosen per scene vectorised
-(:func:`~kinetostatics.solver.stack.assemblies`), the finite check made once on the
-stacked arrays, and the dead points of every scene screened in one probe solve
+(:func:`~kinetostatics.solver.stack.assemblies`), the finite check made once per run,
+and the dead points of every scene screened in one probe solve
 (:func:`~kinetostatics.solver.deadpoints.dead_points_stacked`). Each scene's Solution
 holds its scene, structure, ``Me``/``Fe`` and flags from the start; its kinematics and
 joint reactions are views of the stacked arrays, cut when first read; its loads, as a
@@ -45,7 +47,8 @@ from .reactions import DriverReaction
 from .stack import Rows, Stacker, assemblies, signature
 from .structure import analyse
 
-CHUNK_ROWS = 65_536     # rows solved at a time (positions x scenes; measured best of 4e3-4e5)
+RUN_ROWS = 16_384       # rows of whole scenes solved at a time (as blocks.BLOCK_ROWS: cache)
+CHUNK_ROWS = 1_048_576  # rows per group (one Stacker, one dead-point screen for all)
 
 
 def solve_many(scenes: Iterable[Any], *, executor: Executor | None = None,
@@ -201,57 +204,110 @@ def _solve_group(members: list, out: list) -> None:
         out[i] = s
 
 
-def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker) -> list[Solution]:
-    """The solve of :func:`kinetostatics.solve` on the stacked scenes, cut per scene: the
-    dead points of every scene screened at once (:func:`dead_points_stacked`, the probes
-    of all scenes in one solve), each scene's Solution a light view whose arrays are cut
-    from the stacked ones when first read."""
+def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker
+             ) -> list[Solution | Exception]:
+    """The solve of :func:`kinetostatics.solve` on the stacked scenes, cut per scene.
+
+    The rows are solved in runs of whole scenes of about ``blocks.BLOCK_ROWS`` rows (as
+    :mod:`~kinetostatics.solver.blocks` does, the arrays of a run stay in the cache), and
+    each scene's Solution is cut from its run's arrays: no array over all the rows is
+    gathered. A run the solver refuses is solved scene by scene. The dead points of every
+    scene are screened at once (:func:`dead_points_stacked`, the probes of all scenes in
+    one solve); each scene's Solution is a light view whose arrays are cut from its
+    run's when first read.
+    """
     counts = np.array([s.driver.positions.size for s in scenes])
-    starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
-    owner = np.repeat(np.arange(len(scenes)), counts)
-    st = replace(structure, assembly=tuple(k[owner] for k in ks))
+    starts = np.cumsum(counts) - counts
     positions = np.concatenate([s.driver.positions for s in scenes])
-    if positions.size >= 2 * blocks.BLOCK_ROWS:
-        # in blocks of rows (cache-sized); the stacked Solution is only cut per scene,
-        # so it needs no stacked scene of its own
-        def part(rows: slice, _):
-            who = owner[rows]
-            return (stacker.scene(who, positions[rows]),
-                    replace(structure, assembly=tuple(k[who] for k in ks)))
-        sol = blocks.solve_blocks(positions.size, part, _solve_block, None, st, positions)
-    else:
-        big = stacker.scene(owner, positions)
-        kin = solve_kinematics(big, st)
-        sol = _solve_block(big, st, kin)
-    kin = sol.kin
+    bounds = _runs(starts, counts, RUN_ROWS)
+    m2 = np.empty(positions.size)
+    out: list[Any] = [None] * len(scenes)
+    alone: list[int] = []
+    structures: dict[tuple, Any] = {}
+    for lo, hi in zip(bounds[:-1].tolist(), bounds[1:].tolist(), strict=True):
+        a = int(starts[lo])
+        b = int(starts[hi - 1] + counts[hi - 1])
+        try:
+            sol = _solve_run(stacker, structure, ks, lo, hi, counts[lo:hi], positions[a:b])
+        except Exception:
+            alone.extend(range(lo, hi))
+            m2[a:b] = np.inf        # solved alone: nothing of it to probe here
+            continue
+        m2[a:b] = _measure2(sol.kin)
+        # the scenes' Solutions made now, while the run is at hand: the run's own
+        # arrays (its stacked scene's numbers, what no cut keeps) are let go before the
+        # next run is solved, which then reuses their memory
+        _cut_run(sol, scenes, ks, starts, counts, lo, hi, a, structure, structures, out)
+        del sol
 
     def at(where: np.ndarray, who: np.ndarray) -> Kinematics:
         probe = replace(structure, assembly=tuple(k[who] for k in ks))
         return solve_kinematics(stacker.scene(who, where), probe, strict=False)
-    dead = dead_points_stacked(_measure2(kin), positions, starts, counts, at)
+    dead = dead_points_stacked(m2, positions, starts, counts, at)
+    for j in alone:
+        out[j] = _alone(scenes[j])
+    for j, one in enumerate(out):
+        if isinstance(one, _Cut):
+            cut, rows, _ = one.__dict__["_lazy"]
+            one.__dict__["_lazy"] = (cut, rows, dead[j])
+    return out
+
+
+def _cut_run(sol: Solution, scenes: list, ks: np.ndarray, starts: np.ndarray,
+             counts: np.ndarray, lo: int, hi: int, a: int, structure,
+             structures: dict, out: list) -> None:
+    """The Solutions of scenes ``lo`` to ``hi - 1`` into ``out``, cut lazily from their
+    run's ``sol`` (whose first row is the stack's row ``a``); their dead points are
+    filled in once screened. ``structures``: one Structure per assembly, shared."""
     cut = _splitter(sol)
+    n_run = sol.positions.size
     drive = np.asarray(sol.drive.value)
-    drive_rows = _per_row(drive, positions.size)
+    drive_rows = _per_row(drive, n_run)
     undefined = np.asarray(sol.undefined_load)
-    undefined_rows = _per_row(undefined, positions.size)
+    undefined_rows = _per_row(undefined, n_run)
     kind = sol.drive.kind
-    structures: dict[tuple, Any] = {}
-    out = []
-    for j, (sc, a, n) in enumerate(zip(scenes, starts.tolist(), counts.tolist(),
-                                       strict=True)):
-        assembly = tuple(int(k[j]) for k in ks)
-        sj = structures.get(assembly)
+    assemblies = ks[:, lo:hi].T.tolist()
+    r0s = (starts[lo:hi] - a).tolist()
+    for j, assembly, r0, n in zip(range(lo, hi), assemblies, r0s, counts[lo:hi].tolist(),
+                                  strict=True):
+        key = tuple(assembly)
+        sj = structures.get(key)
         if sj is None:
-            sj = structures[assembly] = replace(structure, assembly=assembly)
-        rows = slice(a, a + n)
+            sj = structures[key] = replace(structure, assembly=key)
+        rows = slice(r0, r0 + n)
         one = object.__new__(_Cut)
         one.__dict__.update(
-            scene=sc, structure=sj, self_locking=None,
+            scene=scenes[j], structure=sj, self_locking=None,
             drive=DriverReaction(kind, drive[rows] if drive_rows else drive),
             undefined_load=undefined[rows] if undefined_rows else undefined,
-            _lazy=(cut, rows, dead[j]))
-        out.append(one)
-    return out
+            _lazy=(cut, rows, None))
+        out[j] = one
+
+
+def _runs(starts: np.ndarray, counts: np.ndarray, size: int) -> np.ndarray:
+    """Runs of whole scenes of about ``size`` rows: the scene numbers where each run
+    begins, and the number of scenes last (a scene joins the run its first row falls
+    in, so a run holds at most ``size`` rows plus its last scene's)."""
+    run = starts // size
+    return np.concatenate([[0], np.flatnonzero(run[1:] != run[:-1]) + 1, [counts.size]])
+
+
+def _solve_run(stacker: Stacker, structure, ks: np.ndarray, lo: int, hi: int,
+               counts: np.ndarray, positions: np.ndarray) -> Solution:
+    """The stacked Solution of scenes ``lo`` to ``hi - 1`` (``counts`` rows each, at
+    ``positions``), each dyad in its scene's assembly; a run too long for the cache (a
+    long sweep) in blocks, gathered (:func:`~kinetostatics.solver.blocks.solve_blocks`)."""
+    st = replace(structure, assembly=tuple(np.repeat(k[lo:hi], counts) for k in ks))
+    if positions.size >= 2 * blocks.BLOCK_ROWS:
+        owner = np.repeat(np.arange(lo, hi), counts)
+
+        def part(rows: slice, _):
+            who = owner[rows]
+            return (stacker.scene(who, positions[rows]),
+                    replace(structure, assembly=tuple(k[who] for k in ks)))
+        return blocks.solve_blocks(positions.size, part, _solve_block, None, st, positions)
+    sc = stacker.runs(lo, hi, counts, positions)
+    return _solve_block(sc, st, solve_kinematics(sc, st))
 
 
 class _Cut(Solution):

@@ -96,11 +96,23 @@ class Stacker:
     def scene(self, owner: np.ndarray, positions: np.ndarray) -> Scene:
         """The stacked scene: row i is scene ``owner[i]`` at driver position
         ``positions[i]``."""
+        return self._build(lambda x: x[owner], positions)
+
+    def runs(self, lo: int, hi: int, counts: np.ndarray, positions: np.ndarray) -> Scene:
+        """The stacked scene of scenes ``lo`` to ``hi - 1`` one after another, scene
+        ``lo + j`` over ``counts[j]`` rows at driver positions ``positions`` (the same
+        scene as :meth:`scene` with ``owner = np.repeat(np.arange(lo, hi), counts)``:
+        each scene's numbers repeated, a few times quicker than taken row by row)."""
+        return self._build(lambda x: np.repeat(x[lo:hi], counts), positions)
+
+    def _build(self, expand, positions: np.ndarray) -> Scene:
+        """The stacked scene whose per-scene arrays x become ``expand(x)`` over the rows
+        (numbers all the scenes share stay numbers)."""
         def at(x):
-            return x[owner] if isinstance(x, np.ndarray) else x
+            return expand(x) if isinstance(x, np.ndarray) else x
 
         def tested(x):      # a mass or inertia: the solver tests its value (Rows)
-            return x[owner].view(Rows) if isinstance(x, np.ndarray) else x
+            return expand(x).view(Rows) if isinstance(x, np.ndarray) else x
 
         def pair(p):
             return (at(p[0]), at(p[1]))

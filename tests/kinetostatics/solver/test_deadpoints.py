@@ -148,3 +148,48 @@ def test_coincident_pivots_at_the_first_row_are_named() -> None:
     d["bodies"][0]["points"]["B"] = [0.30, 0.0]
     with pytest.raises(AssemblyError, match=r"'B' and 'D' coincide at driver position\(s\) 0 deg"):
         ks.solve(d)
+
+
+def _candidates_reference(m2: np.ndarray, starts: np.ndarray, counts: np.ndarray
+                          ) -> np.ndarray:
+    """The screen of :func:`~kinetostatics.solver.deadpoints._candidates` over every row
+    (its first form): each row against its neighbours in the segment."""
+    n = m2.size
+    if n < 2:
+        return np.zeros(0, dtype=int)
+    left = np.concatenate([[np.inf], m2[:-1]])
+    right = np.concatenate([m2[1:], [np.inf]])
+    left[starts] = np.inf
+    right[starts + counts - 1] = np.inf
+    shrink = 1.0 - 1e-9
+    dip = (((m2 < left * shrink) & (m2 <= right))
+           | ((m2 <= left) & (m2 < right * shrink)))
+    rows = np.flatnonzero(dip & (m2 < 0.25))
+    out = np.unique(np.concatenate([rows - 1, rows]))
+    out = out[(out >= 0) & (out < n - 1)]
+    last = np.zeros(n, dtype=bool)
+    last[starts + counts - 1] = True
+    return out[~last[out]]
+
+
+def test_candidate_intervals_as_every_row_compared() -> None:
+    """The screen compares only the rows below it with their neighbours; it finds the
+    intervals of comparing every row (segments of any length, empty ones, ties, values
+    within rounding of each other, NaN and infinities, one segment or many)."""
+    from kinetostatics.solver.deadpoints import SCREEN, _candidates
+
+    assert SCREEN**2 == 0.25
+    rng = np.random.default_rng(5)
+    pool = np.array([0.0, 0.1, 0.1 * (1 - 1e-10), 0.1 * (1 - 2e-9), 0.2, 0.3, 0.6,
+                     np.nan, np.inf])
+    for _ in range(3000):
+        counts = rng.integers(0, 8, rng.integers(1, 6))
+        counts[-1] = max(counts[-1], 1)
+        starts = np.cumsum(counts) - counts
+        n = int(counts.sum())
+        m2 = rng.choice(pool, n) if rng.random() < 0.6 else rng.random(n) * 0.6
+        got = _candidates(m2, starts, counts)
+        np.testing.assert_array_equal(got, _candidates_reference(m2, starts, counts))
+        assert got.dtype == np.int64
+        whole = (np.zeros(1, dtype=int), np.array([n]))
+        np.testing.assert_array_equal(_candidates(m2), _candidates_reference(m2, *whole))

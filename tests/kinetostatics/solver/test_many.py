@@ -206,3 +206,59 @@ def test_a_length_whose_python_square_is_not_x_times_x(alone_calls) -> None:
     sols = ks.solve_many([base, odd])
     assert alone_calls == []
     assert_same(sols[1], ks.solve(odd))
+
+
+def test_runs_of_whole_scenes_and_long_runs_in_blocks(alone_calls, monkeypatch) -> None:
+    """The stack is solved in runs of whole scenes, each Solution cut from its run (runs
+    of a few rows here, a run past two blocks solved in blocks and gathered); a run the
+    solver refuses is solved scene by scene, the other runs stay stacked."""
+    from kinetostatics.solver import blocks
+
+    monkeypatch.setattr(many, "RUN_ROWS", 40)
+    monkeypatch.setattr(blocks, "BLOCK_ROWS", 64)
+    scenes = variants("four_bar", 9, 0.05, seed=6)
+    for i, (d, count) in enumerate(zip(scenes, (30, 30, 200, 10, 361, 5, 13, 90, 2),
+                                       strict=True)):
+        d["title"] = f"v{i}"
+        d["driver"].update(start=3.0 * i, stop=3.0 * i + 360.0, count=count)
+    # first rows 0, 30, 60, 260, 270, 631, 636, 649, 739: runs of the rows 0-39, 40-79,
+    # 240-279 (371 rows: in blocks), 600-639, 640-679 and 720-759
+    assert many._runs(*_rows(scenes), 40).tolist() == [0, 2, 3, 5, 7, 8, 9]
+    sols = ks.solve_many(scenes)
+    assert alone_calls == []
+    for s, d in zip(sols, scenes, strict=True):
+        assert_same(s, ks.solve(d))
+    # scene 6: its first row closes, later rows do not (the rocker cannot reach)
+    scenes[6]["bodies"][2]["points"]["C"] = [0.06, 0.0]
+    with pytest.raises(AssemblyError) as alone:
+        ks.solve(scenes[6])
+    outcomes = many.solve_outcomes(scenes)
+    assert alone_calls == ["v5", "v6"]        # its run only
+    assert str(outcomes[6]) == str(alone.value)
+    for i, (s, d) in enumerate(zip(outcomes, scenes, strict=True)):
+        if i != 6:
+            assert_same(s, ks.solve(d))
+
+
+def _rows(scenes: list[dict]) -> tuple[np.ndarray, np.ndarray]:
+    counts = np.array([d["driver"]["count"] for d in scenes])
+    return np.cumsum(counts) - counts, counts
+
+
+def test_dead_points_of_stacked_sweeps_in_any_order(alone_calls) -> None:
+    """Dead points between rows and beyond the ends, per scene, where the stacked rows
+    are not in increasing position (each scene's own order followed)."""
+    rng = np.random.default_rng(11)
+    scenes = [change_point_four_bar(0.1, 0.3, 0.2, 100.3, 361),
+              change_point_four_bar(0.1, 0.3, 0.2, 0.0, 37),
+              change_point_four_bar(0.11, 0.3, 0.2, 50.3, 181)]
+    for d in scenes[:2]:
+        drv = d["driver"]
+        pos = np.linspace(drv["start"], drv["stop"], drv["count"])[:-1]
+        d["driver"] = {k: v for k, v in drv.items() if k not in ("start", "stop", "count")}
+        d["driver"]["positions"] = [float(p) for p in rng.permutation(pos)]
+    sols = ks.solve_many(scenes)
+    assert alone_calls == []
+    assert sols[0].summary()["dead_points_between_rows"] == [[359.3, 360.3]]
+    for s, d in zip(sols, scenes, strict=True):
+        assert_same(s, ks.solve(d))
