@@ -53,9 +53,9 @@ class DyadMotion:
     k: int
     xx: object
     xy: object
-    c1: tuple
-    c2: tuple
-    det: object
+    _c1: tuple | None
+    _c2: tuple | None
+    _det: object
     n: int
     singular: np.ndarray | None = None  # |sin tau| <= 1e-3: near a dead centre
     closeness2: np.ndarray | None = None  # min(sin^2 tau, (pivot distance / size)^2)
@@ -64,6 +64,43 @@ class DyadMotion:
     nx: object = None                   # prismatic inner joint: left normal of the line
     ny: object = None
     _tau: tuple | None = None
+
+    # The velocity system's columns and determinant serve the solve (the reactions);
+    # after it they are let go (release) and worked out again, with the same numbers,
+    # when asked for (the transmission angle): at large sizes they are five arrays over
+    # the rows that no table holds.
+    @property
+    def c1(self) -> tuple:
+        if self._c1 is None:
+            self._restore()
+        return self._c1
+
+    @property
+    def c2(self) -> tuple:
+        if self._c2 is None:
+            self._restore()
+        return self._c2
+
+    @property
+    def det(self):
+        if self._det is None:
+            self._restore()
+        return self._det
+
+    def _restore(self) -> None:
+        p1, p2 = self.params
+        c1, c2 = _column(p1, self.xx, self.xy), _column(p2, self.xx, self.xy)
+        w1, w2 = (1.0 if p.kind == "rot" else 0.0 for p in self.params)
+        self._det = _matrix(self.nx is None, c1, c2, w1, w2, self.nx, self.ny)[1]
+        self._c1, self._c2 = c1, c2
+
+    def release(self) -> None:
+        """Let go of what only the solve needs: the velocity system's columns and
+        determinant (worked out again when asked for) and the outer pivots' velocity
+        and acceleration (``Param.vpx`` ... ``apy``, None after)."""
+        self._c1 = self._c2 = self._det = None
+        for p in self.params:
+            p.vpx = p.vpy = p.apx = p.apy = None
 
     def _compute_tau(self):
         if self._tau is None:
@@ -116,6 +153,11 @@ class Kinematics:
     def n(self) -> int:
         return self.positions.size
 
+    def release(self) -> None:
+        """Let go of what only the solve needs (:meth:`DyadMotion.release`)."""
+        for d in self.dyads:
+            d.release()
+
     @property
     def singular(self) -> np.ndarray:
         """Rows near a dead centre of some dyad (contract: |det| <= 1e-3 |c1||c2|)."""
@@ -141,13 +183,33 @@ def _fmt_positions(scene: Scene, rows: np.ndarray, values: np.ndarray | None = N
     return ", ".join(items) + more
 
 
-def _columns(pr: Param, xx, xy):
-    """Velocity of the body's point at X per unit of its unknown (the column c_i), the
-    known part k_i of that velocity, and the weight of the unknown in the body's
-    angular velocity (1 for rot, 0 for trans)."""
+def _column(pr: Param, xx, xy) -> tuple:
+    """Velocity of the body's point at X per unit of its unknown (the column c_i)."""
     if pr.kind == "rot":
-        return (A.sub(pr.py, xy), A.sub(xx, pr.px)), (pr.vpx, pr.vpy), 1.0
-    return (pr.ux, pr.uy), pr.known.vel_at(xx, xy), 0.0
+        return A.sub(pr.py, xy), A.sub(xx, pr.px)
+    return pr.ux, pr.uy
+
+
+def _columns(pr: Param, xx, xy):
+    """The column c_i (:func:`_column`), the known part k_i of that velocity, and the
+    weight of the unknown in the body's angular velocity (1 for rot, 0 for trans)."""
+    if pr.kind == "rot":
+        return _column(pr, xx, xy), (pr.vpx, pr.vpy), 1.0
+    return _column(pr, xx, xy), pr.known.vel_at(xx, xy), 0.0
+
+
+def _matrix(revolute: bool, c1, c2, w1, w2, nx, ny):
+    """The velocity system's matrix [[a11, -b12], [a21, -b22]] as (a11, b12, a21, b22)
+    (:func:`_solve2`) and its determinant, from the columns (and, for a prismatic inner
+    joint, the line's normal n and the angular weights w)."""
+    if revolute:
+        a11, b12, a21, b22 = c1[0], c2[0], c1[1], c2[1]
+    else:
+        a11, b12 = w1, w2
+        a21 = A.add(A.mul(nx, c1[0]), A.mul(ny, c1[1]))
+        b22 = A.add(A.mul(nx, c2[0]), A.mul(ny, c2[1]))
+    # a11 a22 - a12 a21 with a12 = -b12, a22 = -b22 (the same numbers, exactly)
+    return (a11, b12, a21, b22), A.sub(A.mul(b12, a21), A.mul(a11, b22))
 
 
 def _solve2(a11, b12, a21, b22, r1, r2, det):
@@ -245,9 +307,7 @@ class _VelocitySystem:
         rx, ry = A.rotate(cs[ib][0], cs[ib][1], *loc)
         xx, xy = A.add(org[ib][0], rx), A.add(org[ib][1], ry)
         (c1, k1, w1), (c2, k2, w2) = _columns(pr[0], xx, xy), _columns(pr[1], xx, xy)
-        # the system's matrix is [[a11, -b12], [a21, -b22]] (:func:`_solve2`)
         if inner.kind == "R":
-            a11, b12, a21, b22 = c1[0], c2[0], c1[1], c2[1]
             r1, r2 = A.sub(k2[0], k1[0]), A.sub(k2[1], k1[1])
             nx = ny = None
             ux = uy = None
@@ -256,17 +316,13 @@ class _VelocitySystem:
             ux, uy = A.rotate(cs[ig][0], cs[ig][1], np.cos(solver.beta), np.sin(solver.beta))
             nx, ny = -uy, ux
             om0 = [0.0 if p.kind == "rot" else p.known.omega for p in pr]
-            a11, b12, r1 = w1, w2, A.sub(om0[1], om0[0])
-            a21 = A.add(A.mul(nx, c1[0]), A.mul(ny, c1[1]))
-            b22 = A.add(A.mul(nx, c2[0]), A.mul(ny, c2[1]))
+            r1 = A.sub(om0[1], om0[0])
             r2 = A.add(A.mul(nx, A.sub(k2[0], k1[0])), A.mul(ny, A.sub(k2[1], k1[1])))
+        self.a, self.det = _matrix(inner.kind == "R", c1, c2, w1, w2, nx, ny)
         self.xx, self.xy = xx, xy
         self.c1, self.c2, self.k1, self.k2 = c1, c2, k1, k2
-        self.a = (a11, b12, a21, b22)
         self.r1, self.r2 = r1, r2
         self.ux, self.uy, self.nx, self.ny = ux, uy, nx, ny
-        # a11 a22 - a12 a21 with a12 = -b12, a22 = -b22 (the same numbers, exactly)
-        self.det = A.sub(A.mul(b12, a21), A.mul(a11, b22))
 
     def solve(self, r1, r2):
         """qdot (or qddot) for the right-hand side (r1, r2), Cramer's rule."""

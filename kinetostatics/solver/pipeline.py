@@ -91,6 +91,7 @@ def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> 
         raise AssemblyError(f"the scene's numbers overflow ({exc}); check its dimensions "
                             "and masses") from None
     sol.release_loads()     # recomputed when asked for: no table needs them (memory)
+    sol.kin.release()       # what only the solve needed (the same, recomputed if asked)
     return sol
 
 
@@ -99,6 +100,7 @@ def _solve_block(sc, structure, kin) -> Solution:
     reactions from its kinematics, checked finite."""
     sol = _solve_loads(sc, structure, kin)
     _check_finite(sol)
+    kin.release()           # not gathered: the solve alone needed it
     return sol
 
 
