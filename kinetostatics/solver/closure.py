@@ -11,6 +11,7 @@ prismatic one.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -126,7 +127,7 @@ class DyadSolver:
                 if outer.kind != "R":
                     continue
                 ax, ay = self.b[i].local(outer.point_on(dyad.bodies[i]))
-                if np.any(np.hypot(qx - ax, qy - ay) <= 1e-12 * scene.size):
+                if np.any(_length(qx - ax, qy - ay) <= 1e-12 * scene.size):
                     raise AssemblyError(
                         f"body {dyad.bodies[i]!r}: its joint points for {outer.name!r} and "
                         f"{inner.name!r} coincide; a dyad link needs a length")
@@ -188,7 +189,7 @@ class DyadSolver:
             x = (d2 + (r1s - r2s)) * (0.5 * inv)
             h2 = r1s - x * x
             gap = None
-            if np.min(h2) < 0.0 or not np.all(np.isfinite(h2)):
+            if _least(h2) < 0.0 or not _all_finite(h2):
                 d = np.sqrt(d2)
                 r1, r2 = np.sqrt(r1s), np.sqrt(r2s)
                 # (coincident pivots, d = 0: the circles are concentric, |r1 - r2| apart)
@@ -220,7 +221,7 @@ class DyadSolver:
         b = A.add(A.mul(pt.ux, wx), A.mul(pt.uy, wy))
         disc = b * b - (wx * wx + wy * wy) + rs
         gap = None
-        if np.min(disc) < 0.0:
+        if _least(disc) < 0.0:
             gap = np.abs(A.sub(A.mul(pt.ux, wy), A.mul(pt.uy, wx))) - np.sqrt(rs)
         s = k * np.sqrt(np.maximum(disc, 0.0)) - b
         out[ir] = _rot_angle(A.add(wx, A.mul(s, pt.ux)), A.add(wy, A.mul(s, pt.uy)), ar, rs)
@@ -282,6 +283,24 @@ class DyadSolver:
             out[i_s] = (ps.c, ps.s)
             ss[i_s] = s
         return out, tuple(ss), None
+
+
+def _length(x, y):
+    """hypot(x, y) of numbers (math's, without numpy's overhead) or arrays (numpy's)."""
+    if type(x) is float and type(y) is float:
+        return math.hypot(x, y)
+    return np.hypot(x, y)
+
+
+def _least(x) -> float:
+    """The smallest value of an array (a number as it is): the ndarray method, without
+    np.min's dispatch."""
+    return x.min() if type(x) is np.ndarray else np.min(x)
+
+
+def _all_finite(x) -> bool:
+    """No NaN and no infinity in x (an array or a number)."""
+    return bool(np.isfinite(x).all()) if type(x) is np.ndarray else bool(np.all(np.isfinite(x)))
 
 
 def body_origin(pr: Param, cs, s):
