@@ -31,6 +31,7 @@ inside an interval there is no motion between its rows: the nearest value is kep
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
@@ -53,6 +54,39 @@ def sweep_order(positions: np.ndarray) -> np.ndarray:
     if pos.size < 2 or bool(np.all(pos[1:] > pos[:-1])):
         return np.arange(pos.size)
     return np.argsort(pos, kind="stable")
+
+
+def given_positions(positions) -> np.ndarray:
+    """The driver positions given to a solve (``solve(scene, positions)``) as a float
+    array, checked as the scene's own ``driver.positions`` are: at least one, each a
+    finite number (one line, :class:`SceneError`, naming the first bad entry)."""
+    try:
+        arr = np.asarray(positions)
+    except ValueError:          # ragged nesting
+        arr = None
+    # (numpy reads true/false among numbers as 1/0: a list is looked at item by item)
+    mixed = isinstance(positions, list | tuple) and any(
+        isinstance(v, bool | np.bool_) for v in positions)
+    if mixed or arr is None or arr.dtype.kind not in "iuf" or arr.ndim > 1:
+        if isinstance(positions, np.ndarray):
+            raise SceneError(f"positions must be numbers in one list, not an array of "
+                             f"{positions.dtype} with shape {positions.shape}")
+        items = list(positions) if isinstance(positions, Iterable) else [positions]
+        for i, v in enumerate(items):
+            if isinstance(v, bool | np.bool_) or not isinstance(v, int | float | np.number):
+                raise SceneError(f"positions[{i}] must be a number, not {_kind_of(v)}")
+    pos = np.atleast_1d(arr.astype(float, copy=False))
+    if pos.size == 0:
+        raise SceneError("positions is empty; list at least one position")
+    bad = np.flatnonzero(~np.isfinite(pos))
+    if bad.size:
+        raise SceneError(f"positions[{bad[0]}] must be a finite number, not {pos[bad[0]]:g}")
+    return pos
+
+
+def _kind_of(v) -> str:
+    return {str: "a string", list: "a list", tuple: "a list", dict: "a table",
+            bool: "true/false"}.get(type(v), f"a {type(v).__name__}")
 
 
 def check_distinct(positions: np.ndarray, unit: str) -> None:

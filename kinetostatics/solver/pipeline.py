@@ -11,7 +11,7 @@ from ..model.errors import AssemblyError, WorkbenchError
 from ..model.scene import load_scene
 from ..results import Solution
 from .blocks import Unblockable, blockable, blocks_of_sweep, solve_blocks
-from .continuity import check_distinct
+from .continuity import check_distinct, given_positions
 from .deadpoints import dead_points_between_rows
 from .friction import has_friction, solve_with_friction
 from .kinematics import solve_kinematics
@@ -62,13 +62,14 @@ def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> 
     True
     """
     sc = load_scene(scene)
+    if positions is not None:
+        positions = given_positions(positions)
     if not allow_repeats:
-        check_distinct(sc.driver.positions if positions is None else np.atleast_1d(
-            np.asarray(positions, dtype=float)), "deg" if sc.driver.kind == "R" else "m")
+        check_distinct(sc.driver.positions if positions is None else positions,
+                       "deg" if sc.driver.kind == "R" else "m")
     # the assemblies are chosen at the scene's first row by the solve itself
     structure = analyse(sc, assemble=False)
-    pos = sc.driver.positions if positions is None else np.atleast_1d(
-        np.asarray(positions, dtype=float))
+    pos = sc.driver.positions if positions is None else positions
     sol = None
     if blockable(sc, pos.size):
         try:

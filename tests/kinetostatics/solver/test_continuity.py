@@ -92,6 +92,33 @@ def test_a_repeated_position_is_refused(positions) -> None:
         ks.solve(double_crank([0.0]), positions=positions)
 
 
+@pytest.mark.parametrize(("positions", "message"), [
+    ([], r"^positions is empty; list at least one position$"),
+    (np.zeros(0), r"^positions is empty"),
+    ([0.0, float("nan")], r"^positions\[1\] must be a finite number, not nan$"),
+    (np.array([10.0, np.inf]), r"^positions\[1\] must be a finite number, not inf$"),
+    ([10.0, "20"], r"^positions\[1\] must be a number, not a string$"),
+    ([True, 20.0], r"^positions\[0\] must be a number, not true/false$"),
+    ([10.0, [20.0, 30.0]], r"^positions\[1\] must be a number, not a list$"),
+    ([[10.0], [20.0]], r"^positions\[0\] must be a number, not a list$"),
+    (np.array([[10.0, 20.0]]), r"^positions must be numbers in one list"),
+])
+def test_bad_positions_given_to_solve_are_refused_in_one_line(positions, message) -> None:
+    """What the scene's own driver.positions refuses, the positions given to solve
+    refuse too (a SceneError naming the entry), never a numpy error or a misleading
+    assembly message."""
+    with pytest.raises(SceneError, match=message):
+        ks.solve(double_crank(), positions=positions)
+
+
+def test_positions_given_as_any_sequence_of_numbers() -> None:
+    ref = ks.solve(double_crank(), positions=[0.0, 10.0, 20.0]).driver
+    for given in ((0, 10, 20), np.array([0, 10, 20]), range(0, 30, 10),
+                  [np.float64(0.0), 10, np.float32(20.0)]):
+        got = ks.solve(double_crank(), positions=given).driver
+        np.testing.assert_array_equal(got.to_numpy(), ref.to_numpy())
+
+
 def test_start_equal_to_stop_with_several_rows_is_refused() -> None:
     d = double_crank()
     d["driver"].update(start=40.0, stop=40.0, count=3)
