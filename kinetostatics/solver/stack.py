@@ -17,7 +17,10 @@ segment, searched alone along increasing position, the probes of all in one solv
 
 from __future__ import annotations
 
+import struct
 from dataclasses import replace
+from itertools import chain
+from operator import attrgetter, itemgetter
 
 import numpy as np
 
@@ -38,28 +41,64 @@ class Rows(np.ndarray):
         return bool(self.view(np.ndarray).all())
 
 
+_mass, _inertia, _cog, _points = (attrgetter(f) for f in ("mass", "inertia", "cog", "points"))
+_size = attrgetter("size")
+
+
+def _col(v: np.ndarray, first):
+    """One parameter over the scenes (``v``, as floats): ``first`` (the first scene's
+    number itself) when every scene has the same bits, else the array."""
+    bits = v.view(np.int64)
+    if (bits == bits[0]).all():
+        return first
+    return v
+
+
+def _pair(pairs, m: int, first: tuple) -> tuple:
+    """A point's (x, y) over the ``m`` scenes, from an iterable of their pairs (as
+    :func:`_col`, each coordinate)."""
+    xy = np.fromiter(chain.from_iterable(pairs), float, 2 * m).reshape(m, 2)
+    return (_col(np.ascontiguousarray(xy[:, 0]), first[0]),
+            _col(np.ascontiguousarray(xy[:, 1]), first[1]))
+
+
 def signature(scene: Scene):
     """What scenes must share to be stacked (structure, joints, driver, loads, gravity,
     hints' names, the tests on the masses), or None for a scene solved alone: joint
     friction (solved per scene by iteration), a mass model, a ``resist`` load or one
-    acting ``when = "resisting"`` (their thresholds take the maximum over the sweep)."""
-    if any(j.friction is not None for j in scene.joints.values()):
-        return None
-    if any(b.mass_model is not None for b in scene.bodies.values()):
-        return None
-    if any(ld.resist is not None or ld.when != "always" for ld in scene.loads):
-        return None
+    acting ``when = "resisting"`` (their thresholds take the maximum over the sweep).
+
+    The numbers the stack takes from its first scene (line angles, forces, moments, the
+    driver's speed and acceleration, gravity) are compared by their bits (packed: a
+    -0.0 is not a 0.0, whose products could differ in sign), in one pass per part."""
+    nums: list = []
+    joints = []
+    for j in scene.joints.values():
+        if j.friction is not None:
+            return None
+        joints.append((j.name, j.kind, j.bodies, j.points))
+        nums.append(j.line_angle)
+    bodies = []
+    for b in scene.bodies.values():
+        if b.mass_model is not None:
+            return None
+        m = b.mass
+        bodies.append((b.name, tuple(b.points), b.cog is None, m == 0.0, m > 0.0,
+                       b.inertia == 0.0))
+    loads = []
+    for ld in scene.loads:
+        if ld.resist is not None or ld.when != "always":
+            return None
+        f = ld.force
+        loads.append((ld.body, ld.point, f is None))
+        if f is not None:
+            nums += (f[0], f[1])
+        nums.append(ld.moment)
     drv = scene.driver
-    bodies = tuple([(b.name, tuple(b.points), b.cog is None, b.mass == 0.0, b.mass > 0.0,
-                     b.inertia == 0.0) for b in scene.bodies.values()])
-    joints = tuple([(j.name, j.kind, j.bodies, j.points, float(j.line_angle))
-                    for j in scene.joints.values()])
-    loads = tuple([(ld.body, ld.point, None if ld.force is None else
-                    (float(ld.force[0]), float(ld.force[1])), float(ld.moment))
-                   for ld in scene.loads])
     g = scene.gravity
-    return (drv.body, drv.joint, drv.kind, float(drv.speed), float(drv.acceleration), bodies,
-            tuple(scene.ground), joints, loads, float(g[0]), float(g[1]), tuple(scene.near))
+    nums += (drv.speed, drv.acceleration, g[0], g[1])
+    return (drv.body, drv.joint, drv.kind, tuple(bodies), tuple(scene.ground), tuple(joints),
+            tuple(loads), tuple(scene.near), struct.pack(f"{len(nums)}d", *nums))
 
 
 class Stacker:
@@ -69,29 +108,24 @@ class Stacker:
         self.scenes = scenes
         s0 = scenes[0]
         self.base = s0
-        self.ground = {p: (self._col([s.ground[p][0] for s in scenes]),
-                           self._col([s.ground[p][1] for s in scenes])) for p in s0.ground}
+        m = len(scenes)
+        # each parameter read for all the scenes by C-level iteration (map, fromiter):
+        # a few times quicker than a list comprehension per coordinate
+        grounds = [s.ground for s in scenes]
+        self.ground = {p: _pair(map(itemgetter(p), grounds), m, v)
+                       for p, v in s0.ground.items()}
         self.bodies = {}
         for name, b in s0.bodies.items():
-            bs = [s.bodies[name] for s in scenes]
-            cog = None if b.cog is None else (self._col([x.cog[0] for x in bs]),
-                                              self._col([x.cog[1] for x in bs]))
-            pts = {p: (self._col([x.points[p][0] for x in bs]),
-                       self._col([x.points[p][1] for x in bs])) for p in b.points}
-            self.bodies[name] = (self._col([x.mass for x in bs]),
-                                 self._col([x.inertia for x in bs]), cog, pts)
-        self.near = {k: (self._col([s.near[k][0] for s in scenes]),
-                         self._col([s.near[k][1] for s in scenes])) for k in s0.near}
-        self.size = self._col([s.size for s in scenes])
-
-    @staticmethod
-    def _col(values: list[float]):
-        """One parameter over the scenes: the number itself when every scene has the
-        same bits, else an array over the scenes."""
-        v = np.asarray(values, dtype=float)
-        if (v.view(np.int64) == v.view(np.int64)[0]).all():
-            return values[0]
-        return v
+            bs = list(map(itemgetter(name), [s.bodies for s in scenes]))
+            cog = None if b.cog is None else _pair(map(_cog, bs), m, b.cog)
+            points = list(map(_points, bs))
+            pts = {p: _pair(map(itemgetter(p), points), m, v) for p, v in b.points.items()}
+            self.bodies[name] = (_col(np.fromiter(map(_mass, bs), float, m), b.mass),
+                                 _col(np.fromiter(map(_inertia, bs), float, m), b.inertia),
+                                 cog, pts)
+        nears = [s.near for s in scenes]
+        self.near = {k: _pair(map(itemgetter(k), nears), m, v) for k, v in s0.near.items()}
+        self.size = _col(np.fromiter(map(_size, scenes), float, m), s0.size)
 
     def scene(self, owner: np.ndarray, positions: np.ndarray) -> Scene:
         """The stacked scene: row i is scene ``owner[i]`` at driver position

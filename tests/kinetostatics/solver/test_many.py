@@ -262,3 +262,23 @@ def test_dead_points_of_stacked_sweeps_in_any_order(alone_calls) -> None:
     assert sols[0].summary()["dead_points_between_rows"] == [[359.3, 360.3]]
     for s, d in zip(sols, scenes, strict=True):
         assert_same(s, ks.solve(d))
+
+
+def test_signature_tells_numbers_by_their_bits(alone_calls) -> None:
+    """The numbers a stack takes from its first scene (gravity, forces, moments, line
+    angles, the driver's speed) must have the same bits in every scene: a -0.0 is not
+    stacked with a 0.0 (their products differ in sign); the same numbers stack."""
+    from kinetostatics.solver.stack import signature
+
+    base = load_scene(ks.example("four_bar")).raw
+    flipped = copy.deepcopy(base)
+    flipped["gravity"] = [-0.0, base["gravity"][1]] if "gravity" in base else [-0.0, -9.81]
+    plain = copy.deepcopy(base)
+    plain["gravity"] = [0.0, flipped["gravity"][1]]
+    a, b = load_scene(plain), load_scene(flipped)
+    assert signature(a) != signature(b)
+    assert signature(a) == signature(load_scene(copy.deepcopy(plain)))
+    sols = ks.solve_many([plain, flipped, plain])
+    for s, d in zip(sols, [plain, flipped, plain], strict=True):
+        assert_same(s, ks.solve(d))
+    assert alone_calls == [load_scene(flipped).title]     # a group of its own, of one
