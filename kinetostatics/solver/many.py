@@ -149,19 +149,18 @@ def solve_outcomes(items: list[Any]) -> list[Solution | Exception]:
 def _increasing(scenes: list) -> np.ndarray:
     """Per scene, whether its driver positions strictly increase (then none repeats:
     :func:`~kinetostatics.solver.continuity.check_distinct` has nothing to refuse), told
-    for all the scenes in one pass."""
+    for all the scenes in one pass (only the rows not above their predecessor, about one
+    per scene, are then placed in their scenes)."""
     if not scenes:
         return np.zeros(0, dtype=bool)
     pos = [s.driver.positions for s in scenes]
     counts = np.array([p.size for p in pos])
-    allp = np.concatenate(pos).astype(float, copy=False)
-    down = np.zeros(allp.size, dtype=bool)          # row i not above row i - 1
-    down[1:] = ~(allp[1:] > allp[:-1])
     starts = np.cumsum(counts) - counts
-    down[starts[counts > 0]] = False                # each scene's first row
-    seg = np.repeat(np.arange(len(scenes)), counts)
+    allp = np.concatenate(pos).astype(float, copy=False)
+    down = np.flatnonzero(~(allp[1:] > allp[:-1])) + 1     # row not above row - 1
+    seg = np.searchsorted(starts, down, side="right") - 1   # the scene holding it
     ok = np.ones(len(scenes), dtype=bool)
-    ok[seg[down]] = False
+    ok[seg[down != starts[seg]]] = False                    # (a scene's first row: no)
     return ok
 
 
@@ -208,13 +207,13 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker
              ) -> list[Solution | Exception]:
     """The solve of :func:`kinetostatics.solve` on the stacked scenes, cut per scene.
 
-    The rows are solved in runs of whole scenes of about ``blocks.BLOCK_ROWS`` rows (as
+    The rows are solved in runs of whole scenes of about ``RUN_ROWS`` rows (as
     :mod:`~kinetostatics.solver.blocks` does, the arrays of a run stay in the cache), and
     each scene's Solution is cut from its run's arrays: no array over all the rows is
-    gathered. A run the solver refuses is solved scene by scene. The dead points of every
-    scene are screened at once (:func:`dead_points_stacked`, the probes of all scenes in
-    one solve); each scene's Solution is a light view whose arrays are cut from its
-    run's when first read.
+    gathered (a copy of every kept array, and fresh pages for it). A run the solver
+    refuses is solved scene by scene. The dead points of every scene are screened at once
+    (:func:`dead_points_stacked`, the probes of all scenes in one solve); each scene's
+    Solution is a light view whose arrays are cut from its run's when first read.
     """
     counts = np.array([s.driver.positions.size for s in scenes])
     starts = np.cumsum(counts) - counts

@@ -282,3 +282,17 @@ def test_signature_tells_numbers_by_their_bits(alone_calls) -> None:
     for s, d in zip(sols, [plain, flipped, plain], strict=True):
         assert_same(s, ks.solve(d))
     assert alone_calls == [load_scene(flipped).title]     # a group of its own, of one
+
+
+def test_increasing_told_for_all_scenes_at_once() -> None:
+    """Whether each scene's positions strictly increase, as told scene by scene (empty
+    and one-row sweeps, repeats, NaN, a scene starting below the last one's end)."""
+    from types import SimpleNamespace
+
+    rng = np.random.default_rng(8)
+    for _ in range(500):
+        pos = [rng.choice([0.0, 1.0, 2.0, 3.0, np.nan], n) if rng.random() < 0.5
+               else np.sort(rng.random(n)) for n in rng.integers(0, 6, rng.integers(1, 6))]
+        scenes = [SimpleNamespace(driver=SimpleNamespace(positions=p)) for p in pos]
+        want = [bool(np.all(p[1:] > p[:-1])) for p in pos]
+        assert many._increasing(scenes).tolist() == want
