@@ -10,14 +10,13 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass, field
-from functools import cached_property
 from typing import Any
 
 import numpy as np
 
 from .errors import SceneError
 from .examples import SCENES
+from .scene_types import GROUND, Body, Driver, Friction, Joint, Load, MassModel, Scene
 from .scene_units import check_unit_slips, to_contract_units
 from .tomlio import (
     MAX_MAGNITUDE,
@@ -31,9 +30,7 @@ from .tomlio import (
     read_source,
     suggest,
 )
-from .units import Units
 
-GROUND = "ground"
 MAX_COUNT = 10_000_000
 TOP_KEYS = ("title", "format", "units", "gravity", "ground", "driver", "bodies", "joints", "loads",
             "near", "motion", "balancing")
@@ -46,183 +43,6 @@ JOINT_KEYS_T = ("name", "kind", "guide", "slider", "line_point", "line_angle", "
 LOAD_KEYS = ("body", "point", "force", "moment", "resist", "when")
 LOAD_WHEN = ("always", "resisting")
 MOTION_KEYS = ("motor", "motor_table", "flywheel", "omega0", "cycles", "target_delta")
-
-
-@dataclass(frozen=True)
-class MassModel:
-    """How a body's inertia loads are modelled (seed 002 s. 2.2).
-
-    ``kind`` is ``"static"`` (two points, eqs 2.9-2.11) or ``"dynamic"`` (one given
-    point and its conjugate, eqs 2.12-2.15); ``points`` names the body points.
-    """
-
-    kind: str
-    points: tuple[str, ...]
-
-
-@dataclass(frozen=True)
-class Friction:
-    """Friction in a joint (seed 002 s. 2.4): coefficient ``mu`` and pin ``radius`` (m).
-
-    For a revolute joint the friction-circle radius is rho = radius * mu (eq. 2.62);
-    for a prismatic joint ``length`` is the slider's bearing length (optional: the
-    normal reaction and its couple are then carried by its two ends, eqs 2.63-2.65).
-    """
-
-    mu: float
-    radius: float = 0.0
-    length: float = 0.0
-
-
-@dataclass(frozen=True)
-class Body:
-    """A rigid moving body: mass (kg), moment of inertia about its cog (kg m^2), local points."""
-
-    name: str
-    mass: float = 0.0
-    inertia: float = 0.0
-    cog: tuple[float, float] | None = None
-    points: dict[str, tuple[float, float]] = field(default_factory=dict)
-    mass_model: MassModel | None = None
-
-    def local(self, point: str) -> tuple[float, float]:
-        """Local coordinates of a named point (``"cog"`` names the centre of mass)."""
-        if point == "cog":
-            return self.cog if self.cog is not None else (0.0, 0.0)
-        return self.points[point]
-
-
-@dataclass(frozen=True)
-class Joint:
-    """A revolute (``R``) or prismatic (``T``) joint between two bodies.
-
-    For ``R``: ``bodies`` and the names of the coinciding ``points`` on each.
-    For ``T``: ``bodies = (guide, slider)``; the guide carries the line through
-    ``line_point`` at ``line_angle`` (deg, guide's local frame); ``slider_point`` of the
-    slider stays on it and the slider's angle is the guide's plus ``line_angle``.
-    """
-
-    name: str
-    kind: str
-    bodies: tuple[str, str]
-    points: tuple[str, str]
-    line_angle: float = 0.0
-    friction: Friction | None = None
-
-    @property
-    def guide(self) -> str:
-        return self.bodies[0]
-
-    @property
-    def slider(self) -> str:
-        return self.bodies[1]
-
-    @property
-    def beta(self) -> float:
-        """The line angle in radians: the model works in radians, the scene file and the
-        tables in degrees; this is where a joint's angle is converted."""
-        return math.radians(self.line_angle)
-
-    def other(self, body: str) -> str:
-        """The body at the other side of the joint."""
-        return self.bodies[1] if self.bodies[0] == body else self.bodies[0]
-
-    def point_on(self, body: str) -> str:
-        """The name of the joint's point on ``body``."""
-        return self.points[0] if self.bodies[0] == body else self.points[1]
-
-    @property
-    def on_by(self) -> tuple[str, str]:
-        """(on, by) of the reactions table: the moving body for a ground joint, else the
-        second body listed (the slider for a prismatic joint)."""
-        a, b = self.bodies
-        if a == GROUND:
-            return b, a
-        if b == GROUND:
-            return a, b
-        return b, a
-
-
-@dataclass(frozen=True)
-class Driver:
-    """The driving element: a crank (``kind = "R"``) or a slider on a guide (``"T"``).
-
-    ``positions`` are in deg (R) or m (T); ``speed`` in rad/s or m/s; ``acceleration``
-    in rad/s^2 or m/s^2. Each row is a snapshot at the same speed and acceleration.
-    """
-
-    body: str
-    joint: str
-    kind: str
-    speed: float
-    acceleration: float
-    positions: np.ndarray
-
-    @property
-    def angles(self) -> np.ndarray:
-        """A crank's positions in radians (the file and the tables give degrees; this is
-        where they are converted)."""
-        return np.deg2rad(self.positions)
-
-
-@dataclass(frozen=True)
-class Load:
-    """A constant external load on a body: a force at a point and/or a moment.
-
-    ``resist`` (N) is a force of that magnitude opposite to the point's velocity.
-    ``when = "resisting"`` (an extension, docs/scene-extensions.md) applies the constant
-    ``force`` only at positions where it opposes the point's motion (its power is
-    negative): a technological resistance that acts on the working stroke only, such as
-    a shaper's cutting force.
-    """
-
-    body: str
-    point: str | None
-    force: tuple[float, float] | None = None
-    moment: float = 0.0
-    resist: float | None = None
-    when: str = "always"
-
-
-@dataclass(frozen=True)
-class Scene:
-    """A checked mechanism scene (``scene-format.md`` section 1).
-
-    Every number is in the contract's units (SI; degrees for the driver's positions and
-    ``line_angle``), whatever units the file named: ``raw`` is the mapping as read,
-    rewritten into those units (:mod:`kinetostatics.model.scene_units`), and ``units``
-    the file's ``[units]`` (for the output, which repeats them).
-    """
-
-    title: str
-    gravity: tuple[float, float]
-    ground: dict[str, tuple[float, float]]
-    driver: Driver
-    bodies: dict[str, Body]
-    joints: dict[str, Joint]
-    loads: tuple[Load, ...]
-    near: dict[str, tuple[float, float]]
-    motion: dict[str, Any] | None = None
-    balancing: dict[str, Any] | None = None
-    raw: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
-    units: Units = field(default_factory=Units, compare=False)
-
-    @cached_property
-    def size(self) -> float:
-        """The mechanism's size (m): the largest distance of a named point (ground points and
-        every body's local points) from its frame's origin, at least 1e-3 m.
-
-        Every length tolerance of the solver, the simulation and the balancing is measured
-        against it, so a scene scaled by any factor is judged alike.
-        """
-        return max([1e-3] + [math.hypot(*p) for p in self.ground.values()]
-                   + [math.hypot(*p) for b in self.bodies.values() for p in b.points.values()])
-
-    def point_names(self, body: str) -> list[str]:
-        """Named points of a body (ground: the ``[ground]`` table)."""
-        if body == GROUND:
-            return list(self.ground)
-        return list(self.bodies[body].points)
 
 
 def load_scene(source: Any) -> Scene:
