@@ -14,6 +14,12 @@ holding one value on every row (the ``N``, ``M`` and ``offset`` of a mechanism o
 revolute joints only) is a read-only view of that one number (:func:`constant`).
 pandas' copy-on-write keeps them apart: a table written to copies its column first, so
 the other tables never see the change.
+
+The short tables (``driver``, ``dyads``, ``sliders``, ``frame``: one row per position or
+per position and dyad) are built from columns of their own (:func:`table_column`,
+:func:`own_column`, :func:`text_column`, :func:`concat_blocks`) laid into a DataFrame
+(:func:`columns_frame`; :func:`own_frame` for plain numpy columns, which it takes as
+they are).
 """
 
 from __future__ import annotations
@@ -29,6 +35,14 @@ import numpy as np
 
 CHUNK = 32_768          # positions computed at a time: the temporaries stay in the CPU caches
 CONSTANTS_KEPT = 256    # distinct (value, length) pairs of constant columns held at most
+# From this many rows on, Solution.driver shares its columns (position with the long
+# tables, Me with the solve) instead of copying them. Copies cost less time at every size
+# (2001 rows: 61 against 250 us; 262145: 486 against 861 us) but hold 16 bytes a row
+# twice (1e6 rows with every table: the peak must stay under 1.2 GB); and the shared
+# path's one large buffer, freed with the solution, raises glibc's trim threshold, so a
+# loop of solves at 2e5 rows reuses its pages (34 against 42 ms a solve measured): the
+# copies are kept to sizes where neither weighs.
+SHARE_ROWS = 65_536
 
 
 def categorical(names: list[str], n: int) -> pd.Categorical:
@@ -226,3 +240,66 @@ class LongTable:
             else:                                   # no rows
                 cols[c] = np.empty(0)
         return pd.DataFrame(cols, copy=False)
+
+
+# -- short tables: columns of their own, laid into a DataFrame -----------------------
+def table_column(value: object, n: int, dtype: type = float) -> np.ndarray:
+    """A table column of its own (a copy: the table never shares the solver's arrays)."""
+    return np.array(np.broadcast_to(value, (n,)), dtype=dtype)
+
+
+def own_column(value: object, n: int, dtype: type = np.float64) -> np.ndarray:
+    """:func:`table_column` by the shortest road: an array of ``n`` values of ``dtype``
+    already is copied as it is (the same values, bit for bit)."""
+    if type(value) is np.ndarray and value.shape == (n,) and value.dtype == dtype:
+        return value.copy()
+    return table_column(value, n, dtype)
+
+
+def text_column(value: str, n: int) -> Labels:
+    """A column of ``n`` copies of one text (the CSV writer formats it once; the
+    DataFrame holds it as objects, as pandas holds text)."""
+    return Labels([value], np.zeros(n, dtype=np.int8))
+
+
+def concat_blocks(parts: list[dict], names: list[str]) -> dict:
+    """The blocks of a table one after another (no block: empty columns)."""
+    if not parts:
+        return {c: np.empty(0, dtype=object) for c in names}
+    return {c: Labels.concat([p[c] for p in parts]) if isinstance(parts[0][c], Labels)
+            else np.concatenate([p[c] for p in parts]) for c in names}
+
+
+def columns_frame(columns: dict, copy: bool | None = None) -> pd.DataFrame:
+    """A table's columns as a DataFrame (pandas imported here, when a table is asked for;
+    text columns as objects)."""
+    import pandas as pd
+    return pd.DataFrame({c: v.objects() if isinstance(v, Labels) else v
+                         for c, v in columns.items()}, copy=copy)
+
+
+_LABELS: dict[tuple[str, ...], pd.Index] = {}
+
+
+def own_frame(columns: dict[str, np.ndarray], n: int) -> pd.DataFrame:
+    """A DataFrame of 1-D numpy columns of ``n`` rows that nothing else holds (copies
+    made for this table), taken as they are: one block per column, as
+    ``pd.DataFrame(columns, copy=False)`` lays them out, built without the constructor's
+    checks and inference (13 against 58 us for the driver's four columns at 2001 rows).
+
+    pandas' block API (:func:`pandas.api.internals.create_dataframe_from_blocks`, pandas
+    3) takes the arrays as they are; where it is missing, the constructor does. The
+    column labels are made once per set of names and each table gets its own copy of
+    them (an Index's ``name`` can be set in place)."""
+    import pandas as pd
+    try:
+        from pandas.api.internals import create_dataframe_from_blocks
+    except ImportError:                                     # pandas < 3
+        return pd.DataFrame(columns, copy=False)
+    names = tuple(columns)
+    labels = _LABELS.get(names)
+    if labels is None:
+        labels = _LABELS[names] = pd.Index(list(names))
+    blocks = [(v.reshape(1, n), np.array([i])) for i, v in enumerate(columns.values())]
+    return create_dataframe_from_blocks(blocks, index=pd.RangeIndex(n),
+                                        columns=labels.copy())

@@ -19,7 +19,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .longtable import Labels, LongTable, TiledPositions, shared
+from . import longtable as tables
+from .longtable import LongTable, TiledPositions, shared
 from .model.errors import WorkbenchError
 from .model.scene import GROUND, Scene
 from .solver.continuity import body_angles, sweep_order
@@ -32,76 +33,6 @@ if TYPE_CHECKING:
     import pandas as pd
 
 OFFSET_EMPTY = 1e-12     # offset = M / N is left empty where |N| <= 1e-12 max|N|
-# From this many rows on, the driver table shares its columns (position with the long
-# tables, Me with the solve) instead of copying them. Copies cost less time at every size
-# (2001 rows: 61 against 250 us; 262145: 486 against 861 us) but hold 16 bytes a row
-# twice (1e6 rows with every table: the peak must stay under 1.2 GB); and the shared
-# path's one large buffer, freed with the solution, raises glibc's trim threshold, so a
-# loop of solves at 2e5 rows reuses its pages (34 against 42 ms a solve measured): the
-# copies are kept to sizes where neither weighs.
-SHARE_ROWS = 65_536
-
-
-def _column(value, n: int, dtype=float) -> np.ndarray:
-    """A table column of its own (a copy: the table never shares the solver's arrays)."""
-    return np.array(np.broadcast_to(value, (n,)), dtype=dtype)
-
-
-def _own(value, n: int, dtype=np.float64) -> np.ndarray:
-    """:func:`_column` by the shortest road: an array of ``n`` values of ``dtype`` already
-    is copied as it is (the same values, bit for bit)."""
-    if type(value) is np.ndarray and value.shape == (n,) and value.dtype == dtype:
-        return value.copy()
-    return _column(value, n, dtype)
-
-
-def _text(value: str, n: int) -> Labels:
-    """A column of ``n`` copies of one text (the CSV writer formats it once; the
-    DataFrame holds it as objects, as pandas holds text)."""
-    return Labels([value], np.zeros(n, dtype=np.int8))
-
-
-def _concat(parts: list[dict], names: list[str]) -> dict:
-    """The blocks of a table one after another (no block: empty columns)."""
-    if not parts:
-        return {c: np.empty(0, dtype=object) for c in names}
-    return {c: Labels.concat([p[c] for p in parts]) if isinstance(parts[0][c], Labels)
-            else np.concatenate([p[c] for p in parts]) for c in names}
-
-
-def _frame(columns: dict, copy: bool | None = None) -> pd.DataFrame:
-    """A table's columns as a DataFrame (pandas imported here, when a table is asked for;
-    text columns as objects)."""
-    import pandas as pd
-    return pd.DataFrame({c: v.objects() if isinstance(v, Labels) else v
-                         for c, v in columns.items()}, copy=copy)
-
-
-_COLUMN_NAMES: dict[tuple[str, ...], pd.Index] = {}
-
-
-def _own_frame(columns: dict[str, np.ndarray], n: int) -> pd.DataFrame:
-    """A DataFrame of 1-D numpy columns of ``n`` rows that nothing else holds (copies
-    made for this table), taken as they are: one block per column, as
-    ``pd.DataFrame(columns, copy=False)`` lays them out, built without the constructor's
-    checks and inference (a fifth of its time on a short table).
-
-    pandas' block API (:func:`pandas.api.internals.create_dataframe_from_blocks`, pandas
-    3) takes the arrays as they are; where it is missing, the constructor does. The
-    column labels are made once per set of names and each table gets its own copy of
-    them (an Index's ``name`` can be set in place)."""
-    import pandas as pd
-    try:
-        from pandas.api.internals import create_dataframe_from_blocks
-    except ImportError:                                     # pandas < 3
-        return pd.DataFrame(columns, copy=False)
-    names = tuple(columns)
-    labels = _COLUMN_NAMES.get(names)
-    if labels is None:
-        labels = _COLUMN_NAMES[names] = pd.Index(list(names))
-    blocks = [(v.reshape(1, n), np.array([i])) for i, v in enumerate(columns.values())]
-    return create_dataframe_from_blocks(blocks, index=pd.RangeIndex(n),
-                                        columns=labels.copy())
 
 
 @dataclass
@@ -196,10 +127,10 @@ class Solution:
         """``position, Me`` (or ``Fe``), ``singular``, ``undefined_load`` (and, with joint
         friction, ``self_locking``)."""
         n = self.positions.size
-        if n < SHARE_ROWS:
+        if n < tables.SHARE_ROWS:
             # a short sweep: columns of its own (copies cost less than the shared Series
             # pandas needs to know a column is shared, and nothing can see a write to them)
-            return _own_frame(self._driver_columns(), n)
+            return tables.own_frame(self._driver_columns(), n)
         cols = self._driver_columns(shared_columns=True)
         cols["position"] = self._tiled.column(1)        # shared with the long tables
         value = self.drive.value
@@ -209,8 +140,8 @@ class Solution:
             cols[self.driver_quantity] = self.__dict__.setdefault("_drive_column",
                                                                   shared(value))
         else:
-            cols[self.driver_quantity] = _column(self.Me, n)
-        return _frame({c: cols[c] for c in self._driver_names()}, copy=False)
+            cols[self.driver_quantity] = tables.table_column(self.Me, n)
+        return tables.columns_frame({c: cols[c] for c in self._driver_names()}, copy=False)
 
     def columns(self, table: str) -> dict:
         """The columns of a short table (``driver``, ``dyads``, ``sliders``, ``frame``) as
@@ -228,12 +159,13 @@ class Solution:
         driving effort, which the caller takes shared (no copy made only to be
         replaced)."""
         n = self.positions.size
-        cols = {} if shared_columns else {"position": _own(self.positions, n),
-                                          self.driver_quantity: _own(self.drive.value, n)}
-        cols["singular"] = _own(self.singular, n, np.bool_)
-        cols["undefined_load"] = _own(self.undefined_load, n, np.bool_)
+        own = tables.own_column
+        cols = {} if shared_columns else {"position": own(self.positions, n),
+                                          self.driver_quantity: own(self.drive.value, n)}
+        cols["singular"] = own(self.singular, n, np.bool_)
+        cols["undefined_load"] = own(self.undefined_load, n, np.bool_)
         if self.self_locking is not None:
-            cols["self_locking"] = _own(self.self_locking, n, np.bool_)
+            cols["self_locking"] = own(self.self_locking, n, np.bool_)
         return cols
 
     @cached_property
@@ -402,7 +334,7 @@ class Solution:
         ``transmission_angle_min``, the pictures and the exercises use it. ``tau`` keeps the
         oriented angle; ``singular`` is the dyad's own flag (|sin tau| or its pivot
         distance over the mechanism's size at most 1e-3)."""
-        return _frame(self._dyads_columns())
+        return tables.columns_frame(self._dyads_columns())
 
     def _dyads_columns(self) -> dict:
         parts = []
@@ -411,20 +343,20 @@ class Solution:
             tau = np.rad2deg(np.arctan2(np.abs(dm.sin_tau), dm.cos_tau))
             parts.append({
                 "position": self.positions, "dyad": np.full(n, dm.dyad.index + 1),
-                "kind": _text(dm.dyad.kind, n),
-                "bodies": _text(f"{dm.dyad.bodies[0]}-{dm.dyad.bodies[1]}", n),
+                "kind": tables.text_column(dm.dyad.kind, n),
+                "bodies": tables.text_column(f"{dm.dyad.bodies[0]}-{dm.dyad.bodies[1]}", n),
                 "transmission_angle": dm.transmission_angle, "tau": tau,
                 "sin_tau": np.abs(dm.sin_tau),
                 "singular": np.broadcast_to(dm.singular, self.positions.shape)})
-        return _concat(parts, ["position", "dyad", "kind", "bodies", "transmission_angle",
-                               "tau", "sin_tau", "singular"])
+        return tables.concat_blocks(parts, ["position", "dyad", "kind", "bodies",
+                                            "transmission_angle", "tau", "sin_tau", "singular"])
 
     @cached_property
     def sliders(self) -> pd.DataFrame:
         """Relative motion in every prismatic joint: ``s`` (m, slider point from the line
         point along the line), ``ds`` (m/s) and ``dds`` (m/s^2) seen from the guide (the
         relative acceleration, without the Coriolis term 2 omega x v_rel)."""
-        return _frame(self._sliders_columns())
+        return tables.columns_frame(self._sliders_columns())
 
     def _sliders_columns(self) -> dict:
         n = self.positions.size
@@ -448,17 +380,17 @@ class Solution:
             rel = (ux * (sx - lx) + uy * (sy - ly))
             ds = ux * (vsx - vgx) + uy * (vsy - vgy)
             dds = ux * (asx - agx) + uy * (asy - agy)
-            parts.append({"position": self.positions, "joint": _text(name, n),
+            parts.append({"position": self.positions, "joint": tables.text_column(name, n),
                           "s": np.broadcast_to(rel, (n,)), "ds": np.broadcast_to(ds, (n,)),
                           "dds": np.broadcast_to(dds, (n,))})
-        return _concat(parts, ["position", "joint", "s", "ds", "dds"])
+        return tables.concat_blocks(parts, ["position", "joint", "s", "ds", "dds"])
 
     @cached_property
     def frame(self) -> pd.DataFrame:
         """Force and moment the mechanism transmits to its frame (shaking force and
         moment): the ground joints' reactions on the ground, the driver's reaction
         (-Me on the frame) included; moment about the global origin."""
-        return _frame(self._frame_columns())
+        return tables.columns_frame(self._frame_columns())
 
     def _frame_columns(self) -> dict:
         n = self.positions.size

@@ -217,9 +217,9 @@ def test_driver_table_either_way_is_the_same_and_keeps_writes_to_itself(monkeypa
     API), of a long one columns shared with the solve and the long tables: the same
     table either way (values, dtypes, labels, index, one block per column), and a write
     to it changes neither the solution, nor the long tables, nor a second look at it."""
-    from kinetostatics import results
+    from kinetostatics import longtable
     expected = ks.solve(OWN_CASES / f"{case}.toml").driver.copy(deep=True)
-    monkeypatch.setattr(results, "SHARE_ROWS", share_rows)
+    monkeypatch.setattr(longtable, "SHARE_ROWS", share_rows)
     sol = ks.solve(OWN_CASES / f"{case}.toml")
     d = sol.driver
     pd.testing.assert_frame_equal(d, expected, check_exact=True)
