@@ -92,8 +92,10 @@ def driver_motion(scene: Scene) -> BodyMotion:
     body = scene.bodies[drv.body]
     w, eps = float(drv.speed), float(drv.acceleration)
     if drv.kind == "R":
-        th = drv.angles
-        c, s = np.cos(th), np.sin(th)
+        trig = scene.__dict__.get("driver_trig")    # (a stack's run: worked out per sweep)
+        th, c, s = trig if trig is not None else (drv.angles, None, None)
+        if trig is None:
+            c, s = np.cos(th), np.sin(th)
         px, py = scene.ground[joint.point_on(GROUND)]
         rax, ray = A.rotate(c, s, *body.local(joint.point_on(drv.body)))   # o = P - R a
         w2 = w * w

@@ -137,7 +137,27 @@ class Stacker:
         ``lo + j`` over ``counts[j]`` rows at driver positions ``positions`` (the same
         scene as :meth:`scene` with ``owner = np.repeat(np.arange(lo, hi), counts)``:
         each scene's numbers repeated, a few times quicker than taken row by row)."""
-        return self._build(lambda x: np.repeat(x[lo:hi], counts), positions)
+        sc = self._build(lambda x: np.repeat(x[lo:hi], counts), positions)
+        if sc.driver.kind == "R":
+            sc.__dict__["driver_trig"] = self._trig(lo, hi)
+        return sc
+
+    def _trig(self, lo: int, hi: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """A crank's angles, their cos and sin over the run of scenes ``lo`` to
+        ``hi - 1``, worked out once per distinct sweep (variants of one mechanism mostly
+        share theirs) and laid one after another: the same numbers, elementwise, as over
+        the run's rows (:func:`~kinetostatics.solver.driver.driver_motion`)."""
+        done: dict[bytes, tuple] = {}
+        parts = []
+        for sc in self.scenes[lo:hi]:
+            pos = sc.driver.positions
+            key = pos.tobytes()
+            hit = done.get(key)
+            if hit is None:
+                th = sc.driver.angles
+                hit = done[key] = (th, np.cos(th), np.sin(th))
+            parts.append(hit)
+        return tuple(np.concatenate(x) for x in zip(*parts, strict=True))
 
     def _build(self, expand, positions: np.ndarray) -> Scene:
         """The stacked scene whose per-scene arrays x become ``expand(x)`` over the rows
