@@ -23,6 +23,7 @@ from . import longtable as tables
 from .longtable import LongTable, TiledPositions, shared
 from .model.errors import WorkbenchError
 from .model.scene import GROUND, Scene
+from .solver import arith as A
 from .solver.continuity import body_angles, sweep_order
 from .solver.kinematics import Kinematics
 from .solver.loads import PointLoad
@@ -269,9 +270,11 @@ class Solution:
         def chunk(i: int, part: slice) -> dict:
             b, _, loc = points[i]
             m = self.kin.bodies[b].take(part)
-            x, y = m.point(loc)
-            vx, vy = m.vel_at(x, y)
-            ax, ay = m.acc_at(x, y)
+            # the arm itself, not (origin + arm) - origin: no rounding, whether the origin
+            rx, ry = m.rotate(*loc)     # is a number or an array (a stack's rows)
+            x, y = A.add(m.ox, rx), A.add(m.oy, ry)
+            vx, vy = m.vel_arm(rx, ry)
+            ax, ay = m.acc_arm(rx, ry)
             return {"x": x, "y": y, "vx": vx, "vy": vy, "ax": ax, "ay": ay}
 
         return LongTable(self.positions, {"body": [b for b, _, _ in points],

@@ -21,9 +21,15 @@ TABLES = ("driver", "reactions", "kinematics", "bodies", "dyads", "sliders", "fr
 
 
 def assert_same(got: ks.Solution, want: ks.Solution) -> None:
-    """Every table bit for bit (check_exact), the summary, the assemblies and the flags."""
+    """Every table bit for bit (check_exact, and the sign of each zero: a -0.0 is
+    written "-0" in a CSV), the summary, the assemblies and the flags."""
     for t in TABLES:
-        pd.testing.assert_frame_equal(getattr(got, t), getattr(want, t), check_exact=True)
+        a, b = getattr(got, t), getattr(want, t)
+        pd.testing.assert_frame_equal(a, b, check_exact=True)
+        for c in a.columns:
+            if a[c].dtype == np.float64:
+                np.testing.assert_array_equal(np.signbit(a[c].to_numpy()),
+                                              np.signbit(b[c].to_numpy()), err_msg=f"{t}.{c}")
     assert got.summary() == want.summary()
     assert got.structure.assembly == want.structure.assembly
     assert got.scene is not None and got.scene.title == want.scene.title
