@@ -14,8 +14,8 @@ elementwise operations run on every row. A scene that cannot be stacked (joint
 friction, a mass model, a ``resist`` load), or whose run the stacked pass refuses, is
 solved alone.
 
-What costs per scene in a solve is done for all the scenes at once: dicts of one form
-are read together (:func:`~kinetostatics.model.batch.load_scenes`), the order of the
+What costs per scene in a solve is done for all the scenes at once (each scene is read
+by :func:`~kinetostatics.model.scene.load_scene`, as solve reads it): the order of the
 positions is told in one pass, the assembly chosen per scene vectorised
 (:func:`~kinetostatics.solver.stack.assemblies`), the finite check made once per run,
 and the dead points of every scene screened in one probe solve
@@ -35,8 +35,8 @@ from typing import Any
 
 import numpy as np
 
-from ..model.batch import load_scenes
 from ..model.errors import WorkbenchError
+from ..model.scene import load_scene
 from ..results import Solution
 from . import blocks
 from .deadpoints import _measure2, dead_points_stacked
@@ -114,11 +114,11 @@ def solve_outcomes(items: list[Any]) -> list[Solution | Exception]:
     (a top-level function: the task an executor runs)."""
     out: list[Any] = [None] * len(items)
     loaded: list[tuple[int, Any]] = []
-    for i, sc in enumerate(load_scenes(items)):     # dicts of one form read at once
-        if isinstance(sc, Exception):   # solve would raise it for this scene
-            out[i] = sc
-        else:
-            loaded.append((i, sc))
+    for i, src in enumerate(items):
+        try:
+            loaded.append((i, load_scene(src)))
+        except Exception as exc:        # solve would raise it for this scene
+            out[i] = exc
     groups: dict[Any, list] = {}
     for (i, sc), plain in zip(loaded, _increasing([sc for _, sc in loaded]), strict=True):
         try:
