@@ -173,3 +173,25 @@ def test_random_slotted_levers(r, h, e, beta):
     d["driver"]["count"] = 2001
     sol = ks.solve(d)
     run_all_checks(sol)
+
+
+@pytest.mark.parametrize("name", ["four_bar", "slider_crank", "shaper", "slotted_lever",
+                                  "sliding_driver", "scotch_yoke"])
+def test_what_the_solve_lets_go_comes_back_the_same(name):
+    """After the solve each dyad lets go of its velocity system's columns and determinant
+    (and its outer pivots' velocity and acceleration); asked for again (the transmission
+    angle, the dyads table), they are worked out with exactly the numbers the solve had."""
+    from kinetostatics.model.scene import load_scene
+    from kinetostatics.solver.kinematics import solve_kinematics
+    from kinetostatics.solver.structure import analyse
+    sc = load_scene(ks.example(name))
+    held = solve_kinematics(sc, analyse(sc))             # nothing let go
+    sol = ks.solve(sc)
+    for kept, dm in zip(held.dyads, sol.kin.dyads, strict=True):
+        assert dm._c1 is None and dm._det is None        # let go by the solve
+        assert all(p.vpx is None and p.apy is None for p in dm.params)
+        for a, b in ((kept.c1, dm.c1), (kept.c2, dm.c2), ((kept.det,), (dm.det,)),
+                     ((kept.sin_tau, kept.cos_tau), (dm.sin_tau, dm.cos_tau))):
+            for x, y in zip(a, b, strict=True):
+                np.testing.assert_array_equal(np.broadcast_to(x, (sol.positions.size,)),
+                                              np.broadcast_to(y, (sol.positions.size,)))
