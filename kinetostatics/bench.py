@@ -64,6 +64,27 @@ def fourbar_scene(count: int, speed: float = 20.0, p: dict = FB) -> dict:
     return d
 
 
+def slider_crank_reference_scene(count: int, p: dict) -> dict:
+    """The baseline's slider-crank (``SC`` of ``reference_fourbar.py``: r, l, masses,
+    inertias, speed ``w2``, cogs at mid-link and on the piston pin, no gravity, no load)
+    as a scene dict over ``count`` positions of a turn: the bundled ``slider_crank``
+    with those numbers."""
+    d = _bundled("slider_crank")
+    d["title"] = "slider-crank (benchmark)"
+    d["gravity"] = [0.0, 0.0]
+    d["driver"].update(speed=float(p["w2"]), start=0.0, stop=360.0, count=int(count))
+    shape = {"crank": (p["r"], "m2", p["I2"], "A", "B"), "rod": (p["l"], "m3", p["I3"], "B", "C")}
+    for body in d["bodies"]:
+        if body["name"] in shape:
+            length, m, inertia, start, end = shape[body["name"]]
+            body.update(mass=p[m], inertia=inertia, cog=[length / 2, 0.0],
+                        points={start: [0.0, 0.0], end: [length, 0.0]})
+        else:                                           # the piston: a point mass
+            body.update(mass=p["m4"], inertia=0.0, cog=[0.0, 0.0])
+    d["loads"] = []
+    return d
+
+
 def slider_crank_scene(count: int) -> dict:
     """The bundled centred slider-crank (r = 0.150 m, l = 0.350 m, 1500 rpm, seed 004)
     with ``count`` positions over a turn."""
@@ -220,7 +241,8 @@ def bench_reactions(n: int = 1_000_000, repeat: int = 3) -> pd.DataFrame:
                           "positions_per_s": n / t, "max_rel_error_vs_matrix": err}])
 
 
-def _load_reference(path: str | Path):
+def load_reference(path: str | Path):
+    """The hand-written baseline module (``reference_fourbar.py``) loaded from ``path``."""
     spec = importlib.util.spec_from_file_location("reference_fourbar", path)
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
@@ -241,7 +263,7 @@ def find_reference() -> Path | None:
 def bench_against_reference(path: str | Path, n: int = 200_001, repeat: int = 7) -> pd.DataFrame:
     """The baseline's ``fourbar_kin`` / ``fourbar_dyad`` and the workbench on the same
     four-bar, side by side in one process (alternating runs, best of ``repeat``)."""
-    ref = _load_reference(path)
+    ref = load_reference(path)
     scene = fourbar_scene(n)
     th = np.deg2rad(np.linspace(0.0, 360.0, n))
     sc = load_scene(scene)

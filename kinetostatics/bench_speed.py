@@ -5,8 +5,9 @@ one process where they can share one), best and median of several runs: the mach
 may be shared, so a single run says little.
 
 * ``reference``: :func:`kinetostatics.solve` plus its ``driver`` table against the
-  hand-written closed form ``fourbar_dyad`` of ``reference_fourbar.py`` on the same
-  four-bar, at 2001, 2e5 and 1e6 positions, with the largest difference of Me;
+  hand-written closed forms ``fourbar_dyad`` and ``slider_dyad`` of
+  ``reference_fourbar.py`` on the same four-bar and slider-crank, at 2001, 2e5 and 1e6
+  positions, with the largest difference of Me;
 * ``many``: :func:`kinetostatics.solve_many` on 1000 variants of the bundled four-bar
   (361 positions; every length, ground point and mass within +-10 %) against a loop of
   ``solve``, given as Scene objects and as dicts: the speed-up (the loop's time over
@@ -37,7 +38,7 @@ from collections.abc import Callable
 import numpy as np
 import pandas as pd
 
-from .bench import find_reference, fourbar_scene
+from .bench import find_reference, fourbar_scene, slider_crank_reference_scene
 
 
 def side_by_side(jobs: dict[str, Callable[[], object]], repeat: int) -> dict[str, list]:
@@ -61,9 +62,9 @@ def _row(what: str, n, times: dict, job: str, base: str, **extra) -> dict:
 
 def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001)) -> list[dict]:
     """solve(scene).driver against ``fourbar_dyad`` of the hand-written baseline."""
-    from .bench import _load_reference
+    from .bench import load_reference
     from .solver.pipeline import solve
-    ref = _load_reference(path)
+    ref = load_reference(path)
     rows = []
     for n in sizes:
         scene = fourbar_scene(n)
@@ -74,6 +75,19 @@ def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001)) -> list[dict]:
         me = ref.fourbar_dyad(th, 20.0)["Me"]
         err = float(np.abs(solve(scene).Me - me).max() / np.abs(me).max())
         rows.append(_row("solve(scene).driver / hand-written fourbar_dyad", n, times,
+                         "solve", "reference", error=err))
+    # the baseline's other mechanism: far fewer operations by hand (a centred slider-crank
+    # in closed form), the same general solve
+    w2 = ref.SC["w2"]
+    for n in sizes:
+        scene = slider_crank_reference_scene(n, ref.SC)
+        th = np.deg2rad(np.linspace(0.0, 360.0, n))
+        repeat = 25 if n < 10_000 else 7 if n < 500_000 else 3
+        times = side_by_side({"reference": lambda th=th: ref.slider_dyad(th, w2),
+                              "solve": lambda s=scene: solve(s).driver}, repeat)
+        me = ref.slider_dyad(th, w2)["Me"]
+        err = float(np.abs(solve(scene).Me - me).max() / np.abs(me).max())
+        rows.append(_row("solve(scene).driver / hand-written slider_dyad", n, times,
                          "solve", "reference", error=err))
     return rows
 

@@ -1,0 +1,42 @@
+"""The benchmark's scenes are the hand-written baseline's mechanisms (the speed ratios of
+``python -m kinetostatics bench`` compare like with like)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from kinetostatics.bench import (
+    find_reference,
+    fourbar_scene,
+    load_reference,
+    slider_crank_reference_scene,
+)
+from kinetostatics.solver.pipeline import solve
+
+
+@pytest.fixture(scope="module")
+def ref():
+    path = find_reference()
+    if path is None:
+        pytest.skip("../shared/bench/reference_fourbar.py is not here")
+    return load_reference(path)
+
+
+def test_the_slider_crank_scene_is_the_baselines(ref) -> None:
+    th = np.deg2rad(np.linspace(0.0, 360.0, 721))
+    want = ref.slider_dyad(th, ref.SC["w2"])
+    sol = solve(slider_crank_reference_scene(721, ref.SC))
+    scale = np.abs(want["Me"]).max()
+    assert np.abs(sol.Me - want["Me"]).max() <= 2e-15 * scale      # measured 4.8e-16
+    fx, fy = sol.reaction("B")          # on the rod from the crank: the baseline's F23
+    f = np.abs(want["FB"][0]).max()
+    assert np.abs(fx - want["FB"][0]).max() <= 2e-15 * f            # measured 3.4e-16
+    assert np.abs(fy - want["FB"][1]).max() <= 2e-15 * np.abs(want["FB"][1]).max()
+
+
+def test_the_four_bar_scene_is_the_baselines(ref) -> None:
+    th = np.deg2rad(np.linspace(0.0, 360.0, 721))
+    want = ref.fourbar_dyad(th, 20.0)
+    sol = solve(fourbar_scene(721))
+    assert np.abs(sol.Me - want["Me"]).max() <= 5e-15 * np.abs(want["Me"]).max()
