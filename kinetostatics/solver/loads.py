@@ -154,7 +154,7 @@ def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.nd
             vx, vy = m.vel_arm(rx, ry)
             vx, vy = np.broadcast_to(vx, (n,)), np.broadcast_to(vy, (n,))
             speed = np.hypot(vx, vy)
-            top = max(speed.max() if n else 0.0, vscale)
+            top = _top(speed, scene, vscale)
             still = speed <= RESIST_STILL * top
             undefined |= still
             with np.errstate(divide="ignore", invalid="ignore"):
@@ -166,7 +166,7 @@ def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.nd
             fx, fy = float(load.force[0]), float(load.force[1])
             vx, vy = m.vel_arm(rx, ry)
             power = np.broadcast_to(fx * vx + fy * vy, (n,))
-            top = max(np.abs(power).max() if n else 0.0, math.hypot(fx, fy) * vscale)
+            top = _top(np.abs(power), scene, math.hypot(fx, fy) * vscale)
             still = np.abs(power) <= RESIST_STILL * top
             undefined |= still
             on = (power < 0.0) & ~still
@@ -178,6 +178,17 @@ def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.nd
         out.append(PointLoad(load.body, "applied", rx, ry, fx, fy, load.moment,
                              f"load {i} at {load.point}"))
     return out, undefined
+
+
+def _top(x: np.ndarray, scene: Scene, floor):
+    """The largest of ``x`` over the sweep, at least ``floor``; over each scene's own
+    rows for a run of stacked scenes (``scene.__dict__["segments"]``: the rows of each,
+    one after another, :meth:`~kinetostatics.solver.stack.Stacker.runs`), per row."""
+    segments = scene.__dict__.get("segments")
+    if segments is None:
+        return max(x.max() if x.size else 0.0, floor)
+    starts = np.cumsum(segments) - segments
+    return np.maximum(np.repeat(np.maximum.reduceat(x, starts), segments), floor)
 
 
 def resultants(loads: list[PointLoad], names, n: int) -> dict[str, list]:

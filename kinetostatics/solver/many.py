@@ -11,8 +11,8 @@ and cuts each run's result into one :class:`~kinetostatics.results.Solution` per
 (no array over all the rows is gathered: a scene's rows lie in one run). Each holds
 exactly the numbers :func:`~kinetostatics.solve` gives that scene alone: the same
 elementwise operations run on every row. A scene that cannot be stacked (joint
-friction, a mass model, a ``resist`` load), or whose run the stacked pass refuses, is
-solved alone.
+friction, a mass model), or whose run the stacked pass refuses, is solved alone; a
+``resist`` or ``when = "resisting"`` load takes its threshold from each scene's own rows.
 
 What costs per scene in a solve is done for all the scenes at once (each scene is read
 by :func:`~kinetostatics.model.scene.load_scene`, as solve reads it): the order of the
@@ -295,9 +295,11 @@ def _solve_run(stacker: Stacker, structure, ks: np.ndarray, lo: int, hi: int,
                counts: np.ndarray, positions: np.ndarray) -> Solution:
     """The stacked Solution of scenes ``lo`` to ``hi - 1`` (``counts`` rows each, at
     ``positions``), each dyad in its scene's assembly; a run too long for the cache (a
-    long sweep) in blocks, gathered (:func:`~kinetostatics.solver.blocks.solve_blocks`)."""
+    long sweep) in blocks, gathered (:func:`~kinetostatics.solver.blocks.solve_blocks`),
+    unless a load's threshold is its sweep's maximum (``resist``, ``when = "resisting"``:
+    then in one pass, each scene's maximum over its own rows)."""
     st = replace(structure, assembly=tuple(np.repeat(k[lo:hi], counts) for k in ks))
-    if positions.size >= 2 * blocks.BLOCK_ROWS:
+    if blocks.blockable(stacker.base, positions.size):    # (not a sweep's maxima)
         owner = np.repeat(np.arange(lo, hi), counts)
 
         def part(rows: slice, _):

@@ -65,12 +65,14 @@ def _pair(pairs, m: int, first: tuple) -> tuple:
 def signature(scene: Scene):
     """What scenes must share to be stacked (structure, joints, driver, loads, gravity,
     hints' names, the tests on the masses), or None for a scene solved alone: joint
-    friction (solved per scene by iteration), a mass model, a ``resist`` load or one
-    acting ``when = "resisting"`` (their thresholds take the maximum over the sweep).
+    friction (solved per scene by iteration) or a mass model. (A ``resist`` load or one
+    acting ``when = "resisting"`` takes its threshold from each scene's own rows: the
+    run's ``segments``, :meth:`Stacker.runs`.)
 
-    The numbers the stack takes from its first scene (line angles, forces, moments, the
-    driver's speed and acceleration, gravity) are compared by their bits (packed: a
-    -0.0 is not a 0.0, whose products could differ in sign), in one pass per part."""
+    The numbers the stack takes from its first scene (line angles, forces, resist
+    forces, moments, the driver's speed and acceleration, gravity) are compared by their
+    bits (packed: a -0.0 is not a 0.0, whose products could differ in sign), in one pass
+    per part."""
     nums: list = []
     joints = []
     for j in scene.joints.values():
@@ -87,12 +89,12 @@ def signature(scene: Scene):
                        b.inertia == 0.0))
     loads = []
     for ld in scene.loads:
-        if ld.resist is not None or ld.when != "always":
-            return None
         f = ld.force
-        loads.append((ld.body, ld.point, f is None))
+        loads.append((ld.body, ld.point, f is None, ld.resist is None, ld.when))
         if f is not None:
             nums += (f[0], f[1])
+        if ld.resist is not None:
+            nums.append(ld.resist)
         nums.append(ld.moment)
     drv = scene.driver
     g = scene.gravity
@@ -138,6 +140,7 @@ class Stacker:
         scene as :meth:`scene` with ``owner = np.repeat(np.arange(lo, hi), counts)``:
         each scene's numbers repeated, a few times quicker than taken row by row)."""
         sc = self._build(lambda x: np.repeat(x[lo:hi], counts), positions)
+        sc.__dict__["segments"] = counts    # each scene's rows (a sweep's maxima per scene)
         if sc.driver.kind == "R":
             sc.__dict__["driver_trig"] = self._trig(lo, hi)
         return sc

@@ -82,6 +82,35 @@ def test_variants_stacked_equal_solve_alone(name, alone_calls) -> None:
         assert_same(s, ks.solve(d))
 
 
+@pytest.mark.parametrize("name", ["slider_crank", "shaper"])
+def test_resist_and_resisting_loads_stack(name, alone_calls) -> None:
+    """A ``resist`` load (the slider-crank's piston) and a force ``when = "resisting"``
+    (the shaper's cut) take their thresholds from each scene's own sweep: stacked, with
+    every table, flag and summary of each scene's own solve."""
+    scenes = variants(name, 8, 0.05, seed=4)
+    sols = ks.solve_many(scenes)
+    assert alone_calls == []
+    for s, d in zip(sols, scenes, strict=True):
+        alone = ks.solve(d)
+        assert_same(s, alone)
+        np.testing.assert_array_equal(s.undefined_load, alone.undefined_load)
+
+
+def test_a_sweeps_maximum_is_each_scenes_own() -> None:
+    """loads._top over a run of stacked scenes: each scene's largest value over its own
+    rows (at least the floor, which may differ per row), repeated over its rows."""
+    from types import SimpleNamespace
+
+    from kinetostatics.solver import loads
+    x = np.array([1.0, 5.0, 2.0, 0.5, 0.25, 9.0, 3.0, 1.0])
+    counts = np.array([3, 2, 3])
+    run = SimpleNamespace(segments=counts)
+    floor = np.repeat([0.0, 1.0, 4.0], counts)
+    np.testing.assert_array_equal(loads._top(x, run, floor),
+                                  np.repeat([5.0, 1.0, 9.0], counts))
+    assert loads._top(x, SimpleNamespace(), 2.0) == 9.0     # one scene: the sweep's
+
+
 def test_both_assemblies_in_one_stack(alone_calls) -> None:
     """Open and crossed four-bars (the hint above or below) stacked together."""
     scenes = variants("four_bar", 6, 0.05, seed=1)
