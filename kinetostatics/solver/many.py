@@ -319,18 +319,24 @@ class _Cut(Solution):
     scene's own from the start."""
 
     def __getattr__(self, name: str):
-        lazy = self.__dict__.get("_lazy")
-        if lazy is None or name not in ("kin", "joint_reactions"):
+        if name not in ("kin", "joint_reactions") or "_lazy" not in self.__dict__:
             raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+        self._cut()
+        return self.__dict__[name]
+
+    def _cut(self) -> None:
+        """Cut the kinematics and joint reactions from the stack, if not done yet."""
+        d = self.__dict__
+        lazy = d.get("_lazy")
+        if lazy is None:
+            return
         cut, rows, dead = lazy
         kin, reactions = cut(self.scene, self.structure, rows, dead)
-        d = self.__dict__
         d.update(kin=kin, joint_reactions=reactions)
         d.pop("_lazy", None)            # (another thread may have cut it too: the same)
-        return d[name]
 
     def __getstate__(self) -> dict:
-        self.kin        # noqa: B018 (cut now: the state holds arrays, not the stack's cutter)
+        self._cut()                     # the state holds arrays, not the stack's cutter
         return dict(self.__dict__)
 
 
