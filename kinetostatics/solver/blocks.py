@@ -65,10 +65,10 @@ class Gather:
         self.obj = obj
         self.cls = type(obj)
         fields = obj.__slots__ if hasattr(obj, "__slots__") else tuple(vars(obj))
-        self.fields = [f for f in fields if f not in skip]
+        fields = [f for f in fields if f not in skip]
         self.plan = []          # (field, None | tuple of which are per-row, ...)
         self.values = {}
-        for f in self.fields:
+        for f in fields:
             v = getattr(obj, f)
             if _per_row(v, n):
                 self.plan.append((f, None))
@@ -80,6 +80,8 @@ class Gather:
                                        for x, w in zip(v, which, strict=True))
             else:
                 self.values[f] = v
+        planned = {f for f, _ in self.plan}
+        self.rest = [f for f in fields if f not in planned]     # kept as they are
 
     def put(self, obj, rows: slice, n: int, seen: dict) -> None:
         """Copy block ``obj``'s arrays into ``rows`` of the gathered ones (``seen``: the
@@ -96,9 +98,7 @@ class Gather:
                     _copy(x, dest, rows, n, seen)
                 elif _per_row(x, n) or not _same(x, dest):
                     raise Unblockable(f)
-        for f in self.fields:
-            if f not in self.values or any(f == p[0] for p in self.plan):
-                continue
+        for f in self.rest:
             if _per_row(getattr(obj, f), n):
                 raise Unblockable(f)
 
