@@ -145,26 +145,18 @@ class DyadSolver:
     def p_kind(self, i: int) -> str:
         return "rot" if self.dyad.outer[i].kind == "R" else "trans"
 
-    def pivot_distance(self, pr: tuple[Param, Param]):
-        """The variable length the closure divides by, or None.
-
-        With both outer joints revolute (RRR, RTR) the closure divides by the distance of
-        the two outer pivots P1 P2 (RRR: the circles' centre distance, seed 000 eq. 5.1;
-        RTR: the distance from the guide's pivot to the slider's, seed 000 ch. 6-7): where it
-        vanishes the dyad's angles are undefined (a slotted lever whose block passes through
-        its pivot). The other kinds divide by link lengths (constant) or by the velocity
-        system's determinant (the transmission measure)."""
-        p1, p2 = pr
-        if p1.kind != "rot" or p2.kind != "rot":
-            return None
-        dx, dy = A.sub(p2.px, p1.px), A.sub(p2.py, p1.py)
-        return np.sqrt(A.add(A.mul(dx, dx), A.mul(dy, dy)))
-
     def positions(self, pr: tuple[Param, Param], k: int):
         """Per body (cos, sin) and the displacement s of a translating body, for assembly
         k, and the gap (m, > 0 where the dyad cannot close) or None when it closes
-        everywhere. Sets ``reach``: :meth:`pivot_distance` of ``pr``, as the closure
-        computed it on the way (the same numbers), or None."""
+        everywhere.
+
+        Sets ``reach``: the variable length the closure divides by, or None. With both
+        outer joints revolute (RRR, RTR) the closure divides by the distance of the two
+        outer pivots P1 P2 (RRR: the circles' centre distance, seed 000 eq. 5.1; RTR: the
+        distance from the guide's pivot to the slider's, seed 000 ch. 6-7): where it
+        vanishes the dyad's angles are undefined (a slotted lever whose block passes
+        through its pivot). The other kinds divide by link lengths (constant) or by the
+        velocity system's determinant (the transmission measure)."""
         self.reach = None
         with np.errstate(divide="ignore", invalid="ignore"):
             if self.dyad.inner.kind == "R":

@@ -274,7 +274,7 @@ def _close(scene: Scene, dyad: Dyad, solver: DyadSolver, pr, k, strict: bool):
     rows where the links do not reach or the pivots coincide."""
     n = scene.driver.positions.size
     cs, ss, gap = solver.positions(pr, k)
-    reach = solver.reach            # the pivot distance, as the closure computed it
+    reach = solver.reach            # the pivots' distance (or None)
     if reach is not None:
         reach = A.full(reach / scene.size, n)
         if strict:
@@ -475,10 +475,9 @@ def _choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver, pr) -> int:
     assemblies closed at once: the first row twice, with k = 1 and k = -1)."""
     two = np.zeros(2, dtype=np.intp)
     pr = (take_rows(pr[0], two), take_rows(pr[1], two))
-    reach = solver.pivot_distance(pr)
-    if reach is not None:
-        _refuse_coincident_pivots(scene, dyad, A.full(reach / scene.size, 2)[:1])
     cs, ss, gap = solver.positions(pr, np.array([1.0, -1.0]))
+    if solver.reach is not None:
+        _refuse_coincident_pivots(scene, dyad, A.full(solver.reach / scene.size, 2)[:1])
     if gap is not None and float(np.ravel(gap)[0]) > 1e-9 * scene.size:
         raise AssemblyError(
             f"dyad {dyad.label} cannot be assembled at the first driver position "

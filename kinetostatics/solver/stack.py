@@ -213,12 +213,11 @@ def _branch(first: Scene, dyad, solver: DyadSolver, motions, size, ok) -> np.nda
     """The assembly whose hinted points lie closest, per scene (``ok`` cleared where the
     first row cannot close or no hint settles it)."""
     pr = (dyad_param(first, dyad, 0, motions), dyad_param(first, dyad, 1, motions))
-    reach = solver.pivot_distance(pr)
-    if reach is not None:
-        ok &= np.broadcast_to(reach / first.size, ok.shape) > SINGULAR_FAIL
     cands = {}
     for k in (1, -1):
         cs, ss, gap = solver.positions(pr, k)
+        if k == 1 and solver.reach is not None:     # (the pivots' distance: either k)
+            ok &= np.broadcast_to(solver.reach / first.size, ok.shape) > SINGULAR_FAIL
         if gap is not None:
             ok &= ~(np.broadcast_to(gap, ok.shape) > 1e-9 * size)
         cands[k] = (cs, [body_origin(pr[i], cs[i], ss[i]) for i in range(2)])
