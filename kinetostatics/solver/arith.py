@@ -17,6 +17,8 @@ import weakref
 
 import numpy as np
 
+from .trap import _TRAPPED
+
 
 def zero(x) -> bool:
     """True for a Python or numpy scalar equal to 0 (never for an array)."""
@@ -59,8 +61,10 @@ _ARRAY = np.ndarray
 
 
 def _times_zero(other, a, b):
-    """a * b where the operand other than ``other`` is an exact zero."""
-    if _finite(other):
+    """a * b where the operand other than ``other`` is an exact zero (0.0 without a look
+    at ``other`` inside a trapped solve: a NaN there would have touched the trap,
+    :mod:`~kinetostatics.solver.trap`)."""
+    if _TRAPPED.get() or _finite(other):
         return 0.0
     with np.errstate(invalid="ignore"):
         return a * b

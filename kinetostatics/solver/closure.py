@@ -21,6 +21,7 @@ from ..model.errors import AssemblyError
 from ..model.scene import GROUND, Scene
 from . import arith as A
 from .driver import BodyMotion
+from .trap import active, quiet
 
 if TYPE_CHECKING:
     from .structure import Dyad
@@ -158,7 +159,7 @@ class DyadSolver:
         through its pivot). The other kinds divide by link lengths (constant) or by the
         velocity system's determinant (the transmission measure)."""
         self.reach = None
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with quiet():
             if self.dyad.inner.kind == "R":
                 return self._inner_r(pr, k)
             return self._inner_t(pr, k)
@@ -181,7 +182,8 @@ class DyadSolver:
             x = (d2 + (r1s - r2s)) * (0.5 * inv)
             h2 = r1s - x * x
             gap = None
-            if _least(h2) < 0.0 or not _all_finite(h2):
+            # (a NaN in h2 touches the trap of a trapped solve: looked for otherwise)
+            if _least(h2) < 0.0 or not (active() or _all_finite(h2)):
                 d = np.sqrt(d2)
                 r1, r2 = np.sqrt(r1s), np.sqrt(r2s)
                 # (coincident pivots, d = 0: the circles are concentric, |r1 - r2| apart)

@@ -157,9 +157,11 @@ def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.nd
             top = _top(speed, scene, vscale)
             still = speed <= RESIST_STILL * top
             undefined |= still
-            with np.errstate(divide="ignore", invalid="ignore"):
-                fx = np.where(still, 0.0, -load.resist * vx / speed)
-                fy = np.where(still, 0.0, -load.resist * vy / speed)
+            # (divided by 1 where the point stands still, not by 0: no 0/0 to ignore,
+            # the same numbers elsewhere)
+            moving = np.where(still, 1.0, speed)
+            fx = np.where(still, 0.0, -load.resist * vx / moving)
+            fy = np.where(still, 0.0, -load.resist * vy / moving)
         elif load.force is not None and load.when == "resisting":
             # on the working stroke only: the force acts where its power is negative;
             # where the point stands still (|power| <= 1e-9 of its top) it is undefined

@@ -17,7 +17,8 @@ friction, a mass model), or whose run the stacked pass refuses, is solved alone;
 What costs per scene in a solve is done for all the scenes at once (each scene is read
 by :func:`~kinetostatics.model.scene.load_scene`, as solve reads it): the order of the
 positions is told in one pass, the assembly chosen per scene vectorised
-(:func:`~kinetostatics.solver.stack.assemblies`), the finite check made once per run,
+(:func:`~kinetostatics.solver.stack.assemblies`), the finite check left to the
+floating-point trap per run (:mod:`~kinetostatics.solver.trap`),
 and the dead points of every scene screened in one probe solve
 (:func:`~kinetostatics.solver.deadpoints.dead_points_stacked`). Each scene's Solution
 holds its scene, structure, ``Me``/``Fe`` and flags from the start; its kinematics and
@@ -46,6 +47,7 @@ from .pipeline import _solve_block, check_distinct, solve
 from .reactions import DriverReaction
 from .stack import Rows, Stacker, assemblies, signature
 from .structure import analyse
+from .trap import FloatTrap, positions_tame, trapped
 
 RUN_ROWS = 16_384       # rows of whole scenes solved at a time (as blocks.BLOCK_ROWS: cache)
 CHUNK_ROWS = 1_048_576  # rows per group (one Stacker, one dead-point screen for all)
@@ -223,11 +225,13 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker
     out: list[Any] = [None] * len(scenes)
     alone: list[int] = []
     structures: dict[tuple, Any] = {}
+    trusty = stacker.tame() and positions_tame(positions)
     for lo, hi in zip(bounds[:-1].tolist(), bounds[1:].tolist(), strict=True):
         a = int(starts[lo])
         b = int(starts[hi - 1] + counts[hi - 1])
         try:
-            sol = _solve_run(stacker, structure, ks, lo, hi, counts[lo:hi], positions[a:b])
+            sol = _trapped_run(trusty, stacker, structure, ks, lo, hi, counts[lo:hi],
+                               positions[a:b])
         except Exception:
             alone.extend(range(lo, hi))
             m2[a:b] = np.inf        # solved alone: nothing of it to probe here
@@ -247,8 +251,8 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker
         out[j] = _alone(scenes[j])
     for j, one in enumerate(out):
         if isinstance(one, _Cut):
-            cut, rows, _ = one.__dict__["_lazy"]
-            one.__dict__["_lazy"] = (cut, rows, dead[j])
+            cut, rows, _, run = one.__dict__["_lazy"]
+            one.__dict__["_lazy"] = (cut, rows, dead[j], run)
     return out
 
 
@@ -261,10 +265,9 @@ def _cut_run(sol: Solution, scenes: list, ks: np.ndarray, starts: np.ndarray,
     cut = _splitter(sol)
     n_run = sol.positions.size
     drive = np.asarray(sol.drive.value)
-    drive_rows = _per_row(drive, n_run)
     undefined = np.asarray(sol.undefined_load)
-    undefined_rows = _per_row(undefined, n_run)
-    kind = sol.drive.kind
+    run = (sol.drive.kind, drive, _per_row(drive, n_run), undefined,
+           _per_row(undefined, n_run))
     assemblies = ks[:, lo:hi].T.tolist()
     r0s = (starts[lo:hi] - a).tolist()
     for j, assembly, r0, n in zip(range(lo, hi), assemblies, r0s, counts[lo:hi].tolist(),
@@ -273,13 +276,9 @@ def _cut_run(sol: Solution, scenes: list, ks: np.ndarray, starts: np.ndarray,
         sj = structures.get(key)
         if sj is None:
             sj = structures[key] = replace(structure, assembly=key)
-        rows = slice(r0, r0 + n)
         one = object.__new__(_Cut)
-        one.__dict__.update(
-            scene=scenes[j], structure=sj, self_locking=None,
-            drive=DriverReaction(kind, drive[rows] if drive_rows else drive),
-            undefined_load=undefined[rows] if undefined_rows else undefined,
-            _lazy=(cut, rows, None))
+        one.__dict__.update(scene=scenes[j], structure=sj, self_locking=None,
+                            _lazy=(cut, slice(r0, r0 + n), None, run))
         out[j] = one
 
 
@@ -289,6 +288,22 @@ def _runs(starts: np.ndarray, counts: np.ndarray, size: int) -> np.ndarray:
     in, so a run holds at most ``size`` rows plus its last scene's)."""
     run = starts // size
     return np.concatenate([[0], np.flatnonzero(run[1:] != run[:-1]) + 1, [counts.size]])
+
+
+def _trapped_run(trusty: bool, *args) -> Solution:
+    """:func:`_solve_run` with the finite checks left to the floating-point trap
+    (:mod:`~kinetostatics.solver.trap`) where the stack's numbers are tame; checked
+    (solved again) if the trap is touched."""
+    if trusty:
+        trap = FloatTrap()
+        try:
+            with trapped(trap):
+                sol = _solve_run(*args)
+            if not trap.hit:
+                return sol
+        except Exception:       # (the checked solve below decides)
+            pass
+    return _solve_run(*args)
 
 
 def _solve_run(stacker: Stacker, structure, ks: np.ndarray, lo: int, hi: int,
@@ -313,24 +328,37 @@ def _solve_run(stacker: Stacker, structure, ks: np.ndarray, lo: int, hi: int,
 
 class _Cut(Solution):
     """One scene's :class:`~kinetostatics.results.Solution` cut from a stacked solve: its
-    kinematics and joint reactions (views of the stacked arrays) are cut when first read;
+    kinematics, joint reactions, ``Me``/``Fe`` and flags (views of the stacked arrays)
+    are cut when first read;
     its loads are computed from its kinematics when asked for, as a solve's are
     (:meth:`~kinetostatics.results.Solution.release_loads`); everything else is the
     scene's own from the start."""
 
     def __getattr__(self, name: str):
-        if name not in ("kin", "joint_reactions") or "_lazy" not in self.__dict__:
+        lazy = self.__dict__.get("_lazy")
+        if lazy is None or name not in ("kin", "joint_reactions", "drive", "undefined_load"):
             raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
-        self._cut()
+        if name in ("drive", "undefined_load"):
+            # Me/Fe and the flags: views of the run's arrays (the same for every thread)
+            rows = lazy[1]
+            kind, drive, drive_rows, undefined, undefined_rows = lazy[3]
+            self.__dict__.update(
+                drive=DriverReaction(kind, drive[rows] if drive_rows else drive),
+                undefined_load=undefined[rows] if undefined_rows else undefined)
+        else:
+            self._cut()
         return self.__dict__[name]
 
     def _cut(self) -> None:
-        """Cut the kinematics and joint reactions from the stack, if not done yet."""
+        """Cut the kinematics and joint reactions (and Me/Fe and the flags) from the
+        stack, if not done yet."""
         d = self.__dict__
         lazy = d.get("_lazy")
         if lazy is None:
             return
-        cut, rows, dead = lazy
+        if "drive" not in d:
+            self.__getattr__("drive")
+        cut, rows, dead, _ = lazy
         kin, reactions = cut(self.scene, self.structure, rows, dead)
         d.update(kin=kin, joint_reactions=reactions)
         d.pop("_lazy", None)            # (another thread may have cut it too: the same)

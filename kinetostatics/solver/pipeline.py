@@ -18,6 +18,7 @@ from .kinematics import solve_kinematics
 from .loads import applied_loads, inertia_loads, resultants
 from .reactions import solve_reactions
 from .structure import analyse
+from .trap import FloatTrap, active, tame, trapped
 
 _sum = np.add.reduce
 
@@ -71,6 +72,50 @@ def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> 
     structure = analyse(sc, assemble=False)
     pos = sc.driver.positions if positions is None else positions
     sol = None
+    if tame(sc, pos) and not has_friction(sc):
+        sol = _trapped(sc, structure, pos, positions)
+    if sol is None:
+        sol = _checked(sc, structure, pos, positions)
+    sol.release_loads()     # recomputed when asked for: no table needs them (memory)
+    sol.kin.release()       # what only the solve needed (the same, recomputed if asked)
+    return sol
+
+
+def _trapped(sc, structure, pos: np.ndarray, positions) -> Solution | None:
+    """The solve with the finite checks left to the floating-point trap
+    (:mod:`~kinetostatics.solver.trap`): its Solution when the trap stayed untouched,
+    else None (the caller solves again, checked: the same numbers, and its refusals).
+    The dead points between rows are screened outside the trap, as the checked solve
+    screens them (their probes may meet singular rows on purpose)."""
+    trap = FloatTrap()
+    try:
+        if blockable(sc, pos.size):
+            with trapped(trap):
+                full, st, part = blocks_of_sweep(sc, structure, pos)
+                sol = solve_blocks(pos.size, part, _solve_block, full, st)
+            if trap.hit:
+                return None
+            kin = sol.kin
+            kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
+                kin.scene, sol.structure, kin)
+            return sol
+        with trapped(trap):
+            kin = solve_kinematics(sc, structure, positions)
+        if trap.hit:
+            return None
+        kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
+            kin.scene, kin.structure, kin)
+        with trapped(trap):
+            sol = _solve_loads(kin.scene, kin.structure, kin)
+        return None if trap.hit else sol
+    except Exception:       # (refused, or a block layout: the checked solve decides)
+        return None
+
+
+def _checked(sc, structure, pos: np.ndarray, positions) -> Solution:
+    """The solve with every finite check made by looking at the numbers (a pass per
+    kept array): one refusal names the first row that is not finite."""
+    sol = None
     if blockable(sc, pos.size):
         try:
             full, st, part = blocks_of_sweep(sc, structure, pos)
@@ -91,8 +136,6 @@ def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> 
     except (OverflowError, ZeroDivisionError) as exc:
         raise AssemblyError(f"the scene's numbers overflow ({exc}); check its dimensions "
                             "and masses") from None
-    sol.release_loads()     # recomputed when asked for: no table needs them (memory)
-    sol.kin.release()       # what only the solve needed (the same, recomputed if asked)
     return sol
 
 
@@ -100,7 +143,8 @@ def _solve_block(sc, structure, kin) -> Solution:
     """One block of rows (:func:`~kinetostatics.solver.blocks.solve_blocks`): loads and
     reactions from its kinematics, checked finite."""
     sol = _solve_loads(sc, structure, kin)
-    _check_finite(sol)
+    if not active():        # (a trapped solve: its trap stands for the check)
+        _check_finite(sol)
     kin.release()           # not gathered: the solve alone needed it
     return sol
 

@@ -29,6 +29,7 @@ from .closure import DyadSolver, body_origin, dyad_param
 from .driver import driver_motion, ground_motion
 from .kinematics import SINGULAR_FAIL, _hint_points, solve_dyad
 from .structure import Structure
+from .trap import tame, tame_values
 
 
 class Rows(np.ndarray):
@@ -128,6 +129,18 @@ class Stacker:
         nears = [s.near for s in scenes]
         self.near = {k: _pair(map(itemgetter(k), nears), m, v) for k, v in s0.near.items()}
         self.size = _col(np.fromiter(map(_size, scenes), float, m), s0.size)
+
+    def tame(self) -> bool:
+        """Whether every scene of the stack is :func:`~kinetostatics.solver.trap.tame`
+        (the numbers they share are the first scene's; the others told per array; the
+        driver positions by the caller, as stacked)."""
+        if not tame(self.base):
+            return False
+        nums: list = [*chain.from_iterable(self.ground.values()),
+                      *chain.from_iterable(self.near.values())]
+        for m, inertia, cog, pts in self.bodies.values():
+            nums += (m, inertia, *(cog or ()), *chain.from_iterable(pts.values()))
+        return tame_values([x for x in nums if isinstance(x, np.ndarray)])
 
     def scene(self, owner: np.ndarray, positions: np.ndarray) -> Scene:
         """The stacked scene: row i is scene ``owner[i]`` at driver position
