@@ -476,7 +476,7 @@ def _choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver, pr) -> int:
     two = np.zeros(2, dtype=np.intp)
     pr = (take_rows(pr[0], two), take_rows(pr[1], two))
     cs, ss, gap = solver.positions(pr, np.array([1.0, -1.0]))
-    if solver.reach is not None:
+    if solver.reach is not None and not _at(solver.reach / scene.size, 0) > SINGULAR_FAIL:
         _refuse_coincident_pivots(scene, dyad, A.full(solver.reach / scene.size, 2)[:1])
     if gap is not None and float(np.ravel(gap)[0]) > 1e-9 * scene.size:
         raise AssemblyError(
@@ -485,17 +485,19 @@ def _choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver, pr) -> int:
             f"{float(np.ravel(gap)[0]):.4g} m; change the lengths, the ground points or "
             "the sweep's start")
     org = [body_origin(pr[i], cs[i], ss[i]) for i in range(2)]
-    row = {1: 0, -1: 1}
+    # each body's cos, sin and origin in either assembly, as floats (read once)
+    frames = {k: [[_at(v, r) for v in (*cs[i], *org[i])] for i in range(2)]
+              for k, r in ((1, 0), (-1, 1))}
 
     def where(k, b, loc):
-        i = dyad.bodies.index(b)
-        r = row[k]
-        (c, s), (ox, oy) = (_at(v, r) for v in cs[i]), (_at(v, r) for v in org[i])
+        c, s, ox, oy = frames[k][dyad.bodies.index(b)]
         return ox + c * loc[0] - s * loc[1], oy + s * loc[0] + c * loc[1]
+
+    def off2(p, t):
+        return (p[0] - t[0]) ** 2 + (p[1] - t[1]) ** 2
     hints = _hint_points(scene, dyad)
     if hints:
-        dist = {k: sum((where(k, b, loc)[0] - t[0]) ** 2 + (where(k, b, loc)[1] - t[1]) ** 2
-                       for _, b, loc, t in hints) for k in (1, -1)}
+        dist = {k: sum(off2(where(k, b, loc), t) for _, b, loc, t in hints) for k in (1, -1)}
         if abs(dist[1] - dist[-1]) > 1e-12 * scene.size ** 2:
             return 1 if dist[1] < dist[-1] else -1
     # no hint settles it: name the point that tells the two assemblies apart best
@@ -521,7 +523,7 @@ def _choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver, pr) -> int:
 
 def _at(v, row: int) -> float:
     """A value at one row, as a Python float (the same double the array holds)."""
-    return float(v[row]) if np.ndim(v) else float(v)
+    return float(v[row]) if isinstance(v, np.ndarray) and v.ndim else float(v)
 
 
 def with_positions(scene: Scene, positions) -> Scene:
