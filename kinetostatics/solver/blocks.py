@@ -175,8 +175,10 @@ def _same(a, b) -> bool:
 
 def solve_blocks(total: int, part, solve_block, scene: Scene | None = None,
                  structure=None, positions: np.ndarray | None = None,
-                 block: int | None = None) -> Solution:
-    """The Solution over ``total`` rows, solved ``block`` rows at a time.
+                 block: int | None = None, lean: bool = False) -> Solution | Sweep:
+    """The Solution over ``total`` rows, solved ``block`` rows at a time (``lean``: only
+    the driver table's arrays and the dyads' closeness to a dead centre, a
+    :class:`Sweep`).
 
     Parameters
     ----------
@@ -213,14 +215,20 @@ def solve_blocks(total: int, part, solve_block, scene: Scene | None = None,
         solved = kin.structure              # the first block chose the assembly
         sol = solve_block(sc, solved, kin)
         n = rows.stop - rows.start
+        layout, put = (_lean_layout, _lean_put) if lean else (_layout, _put)
         if gathers is None:
-            _layout(sol, n, arrays)         # a first look: which arrays
+            layout(sol, n, arrays)          # a first look: which arrays
             arrays.allocate()
-            gathers = _layout(sol, n, arrays)
+            gathers = layout(sol, n, arrays)
         else:
-            _put(gathers, sol, rows, n)
+            put(gathers, sol, rows, n)
     if structure is None or len(structure.assembly) != len(structure.dyads):
         structure = solved
+    if lean:
+        drive_g, undefined_g, flags_g = gathers
+        return Sweep(structure, drive_g.build(), undefined_g.values["undefined"],
+                     [g.values["closeness2"] for g in flags_g],
+                     [g.values["singular"] for g in flags_g])
     bodies_g, dyads_g, reactions_g, drive_g, undefined = gathers
     bodies = {name: g.build(_origin_arm=None) for name, g in bodies_g.items()}
     known = {id(g.obj): name for name, g in bodies_g.items()}
@@ -259,6 +267,102 @@ class _Undefined:
         self.undefined = value
 
 
+class _Flags:
+    """A dyad's closeness to a dead centre and its singular rows, as an object (gathered
+    like the others)."""
+
+    __slots__ = ("closeness2", "singular")
+
+    def __init__(self, dm):
+        self.closeness2, self.singular = dm.closeness2, dm.singular
+
+
+class Sweep:
+    """What a lean solve in blocks keeps of a long sweep: the structure it solved with,
+    ``Me``/``Fe`` and the undefined-load rows (the driver table), and each dyad's
+    closeness to a dead centre and singular rows (its dead points and flags)."""
+
+    def __init__(self, structure, drive: DriverReaction, undefined, closeness2: list,
+                 singular: list):
+        self.structure, self.drive, self.undefined = structure, drive, undefined
+        self.closeness2, self.singular = closeness2, singular
+
+
+class LeanSolution(Solution):
+    """The Solution of a long sweep solved in blocks that holds, of the solver's arrays,
+    only what the driver table and the dead points need: ``Me``/``Fe``, the
+    undefined-load rows and each dyad's closeness to a dead centre and singular rows
+    (at 1e6 rows about 4 arrays instead of about 26: 30 MB instead of 200 MB gathered,
+    written and faulted in). Its kinematics and joint reactions, which every other table
+    reads, are solved again when first read, in the same blocks with the same
+    assemblies: the same numbers, bit for bit."""
+
+    def __init__(self, scene: Scene, sweep: Sweep, positions: np.ndarray, dead: tuple,
+                 again):
+        self.__dict__.update(scene=scene, structure=sweep.structure, self_locking=None,
+                             drive=sweep.drive, undefined_load=sweep.undefined,
+                             _positions=positions, _flags=sweep.singular, _dead=dead,
+                             _again=again)
+
+    def __getattr__(self, name: str):
+        if name not in ("kin", "joint_reactions") or "_again" not in self.__dict__:
+            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+        self._solve_again()
+        return self.__dict__[name]
+
+    def _solve_again(self) -> None:
+        """The kinematics and joint reactions, solved again (if not done yet)."""
+        d = self.__dict__
+        again = d.get("_again")
+        if again is None:
+            return
+        sol = again()
+        kin = sol.kin
+        kin.between, kin.ends, kin.unassembled = d["_dead"]
+        kin.release()
+        # from now on the full solve's arrays (the same numbers): the lean ones go
+        d.update(kin=kin, joint_reactions=sol.joint_reactions, drive=sol.drive,
+                 undefined_load=sol.undefined_load)
+        d.pop("_again", None)           # (another thread may have done it too: the same)
+
+    def __getstate__(self) -> dict:
+        self._solve_again()             # the state holds arrays, not the solver's closure
+        return dict(self.__dict__)
+
+    @property
+    def positions(self) -> np.ndarray:
+        return self.__dict__["_positions"]
+
+    @property
+    def singular(self) -> np.ndarray:
+        """As :attr:`Kinematics.singular`, from the kept rows of each dyad."""
+        if "kin" in self.__dict__:
+            return self.kin.singular
+        between, ends, _ = self.__dict__["_dead"]
+        out = np.zeros(self.positions.size, dtype=bool)
+        for flags in self.__dict__["_flags"]:
+            out |= flags
+        out[between.ravel()] = True
+        out[ends] = True
+        return out
+
+
+def _lean_layout(sol: Solution, n: int, arrays: _Arrays) -> tuple:
+    return (Gather(sol.drive, n, arrays), Gather(_Undefined(sol.undefined_load), n, arrays),
+            [Gather(_Flags(dm), n, arrays) for dm in sol.kin.dyads])
+
+
+def _lean_put(gathers: tuple, sol: Solution, rows: slice, n: int) -> None:
+    drive, undefined, flags = gathers
+    if len(flags) != len(sol.kin.dyads):
+        raise Unblockable("dyads")
+    seen: dict = {}
+    drive.put(sol.drive, rows, n, seen)
+    undefined.put(_Undefined(sol.undefined_load), rows, n, seen)
+    for g, dm in zip(flags, sol.kin.dyads, strict=True):
+        g.put(_Flags(dm), rows, n, seen)
+
+
 def _layout(sol: Solution, n: int, arrays: _Arrays) -> tuple:
     bodies = {name: Gather(m, n, arrays, skip=("_origin_arm",))
               for name, m in sol.kin.bodies.items()}
@@ -288,5 +392,5 @@ def _put(gathers: tuple, sol: Solution, rows: slice, n: int) -> None:
     undefined.put(_Undefined(sol.undefined_load), rows, n, seen)
 
 
-__all__ = ["BLOCK_ROWS", "BodyMotion", "DriverReaction", "Gather", "Unblockable",
-           "blockable", "solve_blocks"]
+__all__ = ["BLOCK_ROWS", "BodyMotion", "DriverReaction", "Gather", "LeanSolution", "Sweep",
+           "Unblockable", "blockable", "solve_blocks"]

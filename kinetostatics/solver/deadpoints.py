@@ -47,9 +47,14 @@ _min = np.fmin.reduce   # the smallest value, NaN left out (a NaN row is never p
 
 def _measure2(kin: Kinematics) -> np.ndarray:
     """m^2 per row: the smallest closeness to a dead centre over the dyads."""
-    m2 = np.full(kin.n, np.inf)
-    for d in kin.dyads:
-        np.minimum(m2, np.broadcast_to(d.closeness2, (kin.n,)), out=m2)
+    return measure2([d.closeness2 for d in kin.dyads], kin.n)
+
+
+def measure2(closeness2: list, n: int) -> np.ndarray:
+    """m^2 per row of ``n`` rows: the smallest of the dyads' ``closeness2``."""
+    m2 = np.full(n, np.inf)
+    for c in closeness2:
+        np.minimum(m2, np.broadcast_to(c, (n,)), out=m2)
     return m2
 
 
@@ -143,11 +148,17 @@ def dead_points_between_rows(scene: Scene, structure: Structure, kin: Kinematics
         (k, 2) rows (i, j) as in ``between`` where some dyad cannot close at a position
         probed between them: the two rows are not joined by any motion of the mechanism.
     """
+    return dead_points_of_sweep(scene, structure, kin.positions, _measure2(kin))
+
+
+def dead_points_of_sweep(scene: Scene, structure: Structure, positions: np.ndarray,
+                         m2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`dead_points_between_rows` of a sweep at ``positions`` whose closeness to a
+    dead centre is ``m2`` (:func:`measure2`) per row."""
     def at(positions: np.ndarray, owner: np.ndarray) -> Kinematics:
         return solve_kinematics(scene, structure, positions=positions, strict=False)
-    n = kin.n
-    return dead_points_stacked(_measure2(kin), np.asarray(kin.positions, dtype=float),
-                               np.zeros(1, dtype=int), np.array([n]), at)[0]
+    return dead_points_stacked(m2, np.asarray(positions, dtype=float),
+                               np.zeros(1, dtype=int), np.array([m2.size]), at)[0]
 
 
 def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarray,

@@ -10,9 +10,9 @@ import numpy as np
 from ..model.errors import AssemblyError, WorkbenchError
 from ..model.scene import load_scene
 from ..results import Solution
-from .blocks import Unblockable, blockable, blocks_of_sweep, solve_blocks
+from .blocks import LeanSolution, Sweep, Unblockable, blockable, blocks_of_sweep, solve_blocks
 from .continuity import check_distinct, given_positions
-from .deadpoints import dead_points_between_rows
+from .deadpoints import dead_points_between_rows, dead_points_of_sweep, measure2
 from .friction import has_friction, solve_with_friction
 from .kinematics import solve_kinematics
 from .loads import applied_loads, inertia_loads, resultants
@@ -77,7 +77,8 @@ def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> 
     if sol is None:
         sol = _checked(sc, structure, pos, positions)
     sol.release_loads()     # recomputed when asked for: no table needs them (memory)
-    sol.kin.release()       # what only the solve needed (the same, recomputed if asked)
+    if "kin" in sol.__dict__:   # (a lean long sweep: released when solved again)
+        sol.kin.release()   # what only the solve needed (the same, recomputed if asked)
     return sol
 
 
@@ -91,14 +92,8 @@ def _trapped(sc, structure, pos: np.ndarray, positions) -> Solution | None:
     try:
         if blockable(sc, pos.size):
             with trapped(trap):
-                full, st, part = blocks_of_sweep(sc, structure, pos)
-                sol = solve_blocks(pos.size, part, _solve_block, full, st)
-            if trap.hit:
-                return None
-            kin = sol.kin
-            kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
-                kin.scene, sol.structure, kin)
-            return sol
+                long = _long_sweep(sc, structure, pos, trapped_road=True)
+            return None if trap.hit else _lean(*long)
         with trapped(trap):
             kin = solve_kinematics(sc, structure, positions)
         if trap.hit:
@@ -115,28 +110,52 @@ def _trapped(sc, structure, pos: np.ndarray, positions) -> Solution | None:
 def _checked(sc, structure, pos: np.ndarray, positions) -> Solution:
     """The solve with every finite check made by looking at the numbers (a pass per
     kept array): one refusal names the first row that is not finite."""
-    sol = None
+    long = None
     if blockable(sc, pos.size):
         try:
-            full, st, part = blocks_of_sweep(sc, structure, pos)
-            sol = solve_blocks(pos.size, part, _solve_block, full, st)
+            long = _long_sweep(sc, structure, pos, trapped_road=False)
         except (Unblockable, WorkbenchError, OverflowError, ZeroDivisionError):
-            sol = None      # solved in one pass below: its message names every row
+            long = None     # solved in one pass below: its message names every row
     try:
-        if sol is None:
+        if long is None:
             kin = solve_kinematics(sc, structure, positions)
             kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
                 kin.scene, kin.structure, kin)
             sol = _solve_loads(kin.scene, kin.structure, kin)
             _check_finite(sol)
         else:
-            kin = sol.kin
-            kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
-                kin.scene, sol.structure, kin)
+            sol = _lean(*long)
     except (OverflowError, ZeroDivisionError) as exc:
         raise AssemblyError(f"the scene's numbers overflow ({exc}); check its dimensions "
                             "and masses") from None
     return sol
+
+
+def _long_sweep(sc, structure, pos: np.ndarray, trapped_road: bool) -> tuple:
+    """A long sweep solved in blocks, lean (:class:`~kinetostatics.solver.blocks.Sweep`:
+    the driver table's arrays and the dyads' closeness to a dead centre), with the
+    function that solves it again in full (the same blocks and assemblies: the same
+    numbers), on the same road, when another table asks."""
+    full, st, part = blocks_of_sweep(sc, structure, pos)
+    sweep = solve_blocks(pos.size, part, _solve_block, full, st, lean=True)
+
+    def again() -> Solution:
+        if trapped_road:
+            trap = FloatTrap()
+            with trapped(trap):
+                sol = solve_blocks(pos.size, part, _solve_block, full, sweep.structure)
+            if not trap.hit:        # (it was not the first time: the same numbers)
+                return sol
+        return solve_blocks(pos.size, part, _solve_block, full, sweep.structure)
+    return full, sweep, again
+
+
+def _lean(full, sweep: Sweep, again) -> Solution:
+    """The long sweep's Solution, its dead points screened (as on its kinematics)."""
+    positions = full.driver.positions
+    dead = dead_points_of_sweep(full, sweep.structure, positions,
+                                measure2(sweep.closeness2, positions.size))
+    return LeanSolution(full, sweep, positions, dead, again)
 
 
 def _solve_block(sc, structure, kin) -> Solution:

@@ -178,3 +178,48 @@ def test_solve_many_in_blocks_gives_each_scene_its_solve(monkeypatch) -> None:
     sols = ks.solve_many(dicts)
     for a, s in zip(alone, sols, strict=True):
         assert_same(a, tables(s))
+
+
+def test_a_long_sweep_keeps_its_driver_table_and_solves_again_for_the_rest(
+        monkeypatch) -> None:
+    """A long sweep in blocks keeps Me, the flags and the dyads' closeness only: its
+    driver table needs no second solve; the first other table solves the blocks again
+    (once), with the same numbers as the one pass, bit for bit."""
+    calls = []
+    real = pl.solve_blocks
+
+    def counted(*a, **k):
+        calls.append(k.get("lean", False))
+        return real(*a, **k)
+    monkeypatch.setattr(pl, "solve_blocks", counted)
+    monkeypatch.setattr(blocks, "BLOCK_ROWS", 7)
+    # the slider-crank with the crank as long as the rod: dead centres at 90 and 270 deg,
+    # between rows of this sweep (flagged singular from the dead points)
+    sc = load_scene(ks.example("slider_crank"))
+    d = {k: v for k, v in sc.raw.items() if k != "motion"}
+    d["bodies"] = [dict(b, points=dict(b["points"])) for b in d["bodies"]]
+    d["bodies"][0]["points"]["B"] = [0.35, 0.0]
+    d["loads"] = []
+    positions = np.linspace(0.0, 359.0, 97)
+    sol = pl.solve(d, positions)
+    assert isinstance(sol, blocks.LeanSolution) and "kin" not in sol.__dict__
+    driver = sol.driver
+    assert calls == [True]
+    ref = one_pass(monkeypatch, d, positions)
+    pd.testing.assert_frame_equal(driver, ref.driver, check_exact=True)
+    np.testing.assert_array_equal(sol.singular, ref.singular)
+    assert sol.singular.any() and len(sol.__dict__["_dead"][0])     # (dead points)
+    assert_same(tables(ref), tables(sol))
+    assert calls == [True, False]       # solved again once, in full
+    np.testing.assert_array_equal(sol.kin.between, ref.kin.between)
+    np.testing.assert_array_equal(sol.singular, sol.kin.singular)
+
+
+def test_a_lean_solution_pickles_whole(monkeypatch) -> None:
+    import pickle
+    monkeypatch.setattr(blocks, "BLOCK_ROWS", 7)
+    sol = pl.solve(ks.example("four_bar"))
+    assert "kin" not in sol.__dict__
+    back = pickle.loads(pickle.dumps(sol))
+    assert "_again" not in back.__dict__
+    assert_same(tables(sol), tables(back))
