@@ -123,7 +123,11 @@ class DyadSolver:
         self.slider_first = False
         if inner.kind == "R":
             self.q = [self.b[i].local(inner.point_on(dyad.bodies[i])) for i in range(2)]
-            for i, (qx, qy) in enumerate(self.q):
+            # (a run of stacked scenes, kinetostatics.solve_many: each scene's links were
+            # measured once, when its assembly was chosen, stack.assemblies; not again
+            # row by row)
+            run = "segments" in scene.__dict__
+            for i, (qx, qy) in enumerate([] if run else self.q):
                 outer = dyad.outer[i]
                 if outer.kind != "R":
                     continue

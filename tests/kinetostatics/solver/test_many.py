@@ -173,6 +173,21 @@ def test_first_refused_scene_raises_as_solve_does() -> None:
     assert ks.solve_many([]) == []
 
 
+def test_a_link_without_length_in_a_stack_is_refused_as_solve_does() -> None:
+    """A coupler whose joint points coincide is measured once per scene when the stack
+    chooses its assemblies (not again row by row in the runs): refused as by solve."""
+    good = variants("four_bar", 3, 0.05, seed=4)
+    bad = copy.deepcopy(good[1])
+    coupler = next(b for b in bad["bodies"] if b["name"] == "coupler")
+    coupler["points"]["C"] = list(coupler["points"]["B"])
+    with pytest.raises(AssemblyError) as alone:
+        ks.solve(bad)
+    assert "needs a length" in str(alone.value)
+    with pytest.raises(AssemblyError) as together:
+        ks.solve_many([good[0], bad, good[1], good[2]])
+    assert str(together.value) == "scenes[1]: " + str(alone.value)
+
+
 def test_positions_in_any_order_and_repeats_as_solve(alone_calls) -> None:
     """Stacked scenes whose positions come in any order give solve's rows, angles and
     summary (continuity and dead points along increasing position); a repeated position
