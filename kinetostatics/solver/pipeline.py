@@ -138,15 +138,16 @@ def _long_sweep(sc, structure, pos: np.ndarray, trapped_road: bool) -> tuple:
     numbers), on the same road, when another table asks."""
     full, st, part = blocks_of_sweep(sc, structure, pos)
     sweep = solve_blocks(pos.size, part, _solve_block, full, st, lean=True)
+    solved = sweep.structure        # (the closure holds this, not the sweep's arrays)
 
     def again() -> Solution:
         if trapped_road:
             trap = FloatTrap()
             with trapped(trap):
-                sol = solve_blocks(pos.size, part, _solve_block, full, sweep.structure)
+                sol = solve_blocks(pos.size, part, _solve_block, full, solved)
             if not trap.hit:        # (it was not the first time: the same numbers)
                 return sol
-        return solve_blocks(pos.size, part, _solve_block, full, sweep.structure)
+        return solve_blocks(pos.size, part, _solve_block, full, solved)
     return full, sweep, again
 
 
