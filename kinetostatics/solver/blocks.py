@@ -297,12 +297,19 @@ class LeanSolution(Solution):
     reads, are solved again when first read, in the same blocks with the same
     assemblies: the same numbers, bit for bit."""
 
-    def __init__(self, scene: Scene, sweep: Sweep, positions: np.ndarray, dead: tuple,
-                 again):
-        self.__dict__.update(scene=scene, structure=sweep.structure, self_locking=None,
-                             drive=sweep.drive, undefined_load=sweep.undefined,
-                             _positions=positions, _flags=sweep.singular, _dead=dead,
-                             _again=again)
+    @classmethod
+    def of(cls, scene: Scene, sweep: Sweep, positions: np.ndarray, dead: tuple,
+           again) -> LeanSolution:
+        """The lean Solution of ``sweep`` (``again()``: the full solve of the same
+        blocks). Made without the dataclass' constructor, which
+        :func:`dataclasses.replace` and a copy still use (they read ``kin``: solved
+        again)."""
+        new = object.__new__(cls)
+        new.__dict__.update(scene=scene, structure=sweep.structure, self_locking=None,
+                            drive=sweep.drive, undefined_load=sweep.undefined,
+                            _positions=positions, _flags=sweep.singular, _dead=dead,
+                            _again=again)
+        return new
 
     def __getattr__(self, name: str):
         if name not in ("kin", "joint_reactions") or "_again" not in self.__dict__:
@@ -331,7 +338,8 @@ class LeanSolution(Solution):
 
     @property
     def positions(self) -> np.ndarray:
-        return self.__dict__["_positions"]
+        d = self.__dict__
+        return d["_positions"] if "_positions" in d else self.kin.positions
 
     @property
     def singular(self) -> np.ndarray:

@@ -156,7 +156,7 @@ def _lean(full, sweep: Sweep, again) -> Solution:
     positions = full.driver.positions
     dead = dead_points_of_sweep(full, sweep.structure, positions,
                                 measure2(sweep.closeness2, positions.size))
-    return LeanSolution(full, sweep, positions, dead, again)
+    return LeanSolution.of(full, sweep, positions, dead, again)
 
 
 def _solve_block(sc, structure, kin) -> Solution:

@@ -215,11 +215,22 @@ def test_a_long_sweep_keeps_its_driver_table_and_solves_again_for_the_rest(
     np.testing.assert_array_equal(sol.singular, sol.kin.singular)
 
 
-def test_a_lean_solution_pickles_whole(monkeypatch) -> None:
+def test_a_lean_solution_pickles_copies_and_replaces_whole(monkeypatch) -> None:
+    """As any Solution: pickled (a process executor), copied, replaced."""
+    import copy
+    import dataclasses
     import pickle
     monkeypatch.setattr(blocks, "BLOCK_ROWS", 7)
-    sol = pl.solve(ks.example("four_bar"))
-    assert "kin" not in sol.__dict__
-    back = pickle.loads(pickle.dumps(sol))
+    ref = tables(one_pass(monkeypatch, ks.example("four_bar")))
+
+    def lean():
+        sol = pl.solve(ks.example("four_bar"))
+        assert "kin" not in sol.__dict__
+        return sol
+    back = pickle.loads(pickle.dumps(lean()))
     assert "_again" not in back.__dict__
-    assert_same(tables(sol), tables(back))
+    assert_same(ref, tables(back))
+    assert_same(ref, tables(copy.copy(lean())))
+    sol = lean()
+    other = dataclasses.replace(sol, undefined_load=sol.undefined_load)
+    assert_same(ref, tables(other))
