@@ -7,7 +7,9 @@ rows. What it saves is memory traffic: a pass over 2e5 rows makes each of its fe
 hundred intermediate arrays 1.6 MB, beyond the L2 cache, and each fresh one costs
 page faults; a block of ``BLOCK_ROWS`` rows keeps them in cache and reuses the same
 memory. Only the arrays the :class:`~kinetostatics.results.Solution` keeps are
-gathered into arrays over the whole sweep (:class:`Gather`).
+gathered into arrays over the whole sweep (:class:`Gather`); a solve keeps first only
+what the driver table and the dead points need (``lean``: a :class:`LeanSolution`),
+and solves the blocks again, gathering every kept array, when another table asks.
 
 What is not elementwise is done once over the whole sweep, as before: the assembly is
 chosen at the sweep's first row (in the first block), the dead points between rows are
