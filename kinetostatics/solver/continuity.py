@@ -92,7 +92,7 @@ def _kind_of(v) -> str:
 def check_distinct(positions: np.ndarray, unit: str) -> None:
     """Refuse a sweep that lists a driver position twice (one line, :class:`SceneError`)."""
     pos = np.asarray(positions, dtype=float)
-    if pos.size < 2 or bool(np.all(pos[1:] > pos[:-1])):
+    if pos.size < 2 or bool((pos[1:] > pos[:-1]).all()):
         return                  # strictly increasing: each position once
     p = pos[np.argsort(pos, kind="stable")]
     same = np.flatnonzero(p[1:] == p[:-1])

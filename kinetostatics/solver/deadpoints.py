@@ -155,6 +155,10 @@ def dead_points_of_sweep(scene: Scene, structure: Structure, positions: np.ndarr
                          m2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """:func:`dead_points_between_rows` of a sweep at ``positions`` whose closeness to a
     dead centre is ``m2`` (:func:`measure2`) per row."""
+    if not m2.size or not _min(m2) < SCREEN**2:      # nothing to probe (the usual case)
+        pairs = np.zeros((0, 2), dtype=int)
+        return pairs, np.zeros(0, dtype=int), pairs
+
     def at(positions: np.ndarray, owner: np.ndarray) -> Kinematics:
         return solve_kinematics(scene, structure, positions=positions, strict=False)
     return dead_points_stacked(m2, np.asarray(positions, dtype=float),

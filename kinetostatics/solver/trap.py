@@ -131,9 +131,8 @@ def _scene_tame(scene) -> bool:
     drv = scene.driver
     nums += (drv.speed, drv.acceleration)
     try:
-        mags = [abs(float(x)) for x in nums]
+        nonzero = [a for a in map(abs, map(float, nums)) if a]
     except (TypeError, ValueError):
         return False
-    nonzero = [a for a in mags if a]
     return not nonzero or (max(nonzero) <= TAME and min(nonzero) >= 1.0 / TAME)
 
