@@ -18,7 +18,7 @@ from .kinematics import solve_kinematics
 from .loads import applied_loads, inertia_loads, resultants
 from .reactions import solve_reactions
 from .structure import analyse
-from .trap import FloatTrap, active, tame, trapped
+from .trap import FloatTrap, active, first_trapped, tame, trapped
 
 _sum = np.add.reduce
 
@@ -141,13 +141,8 @@ def _long_sweep(sc, structure, pos: np.ndarray, trapped_road: bool) -> tuple:
     solved = sweep.structure        # (the closure holds this, not the sweep's arrays)
 
     def again() -> Solution:
-        if trapped_road:
-            trap = FloatTrap()
-            with trapped(trap):
-                sol = solve_blocks(pos.size, part, _solve_block, full, solved)
-            if not trap.hit:        # (it was not the first time: the same numbers)
-                return sol
-        return solve_blocks(pos.size, part, _solve_block, full, solved)
+        args = (pos.size, part, _solve_block, full, solved)
+        return first_trapped(solve_blocks, *args) if trapped_road else solve_blocks(*args)
     return full, sweep, again
 
 

@@ -59,6 +59,21 @@ def trapped(trap: FloatTrap | None = None) -> Iterator[FloatTrap]:
         _TRAPPED.reset(token)
 
 
+def first_trapped(solve, *args):
+    """``solve(*args)`` in a trap of its own; done again with every check (outside any
+    trap) if the trap was touched or the trapped pass raised (the checked pass decides
+    what to raise)."""
+    trap = FloatTrap()
+    try:
+        with trapped(trap):
+            out = solve(*args)
+        if not trap.hit:
+            return out
+    except Exception:
+        pass
+    return solve(*args)
+
+
 def active() -> bool:
     """True inside :func:`trapped`: the finite checks may be left to the trap."""
     return _TRAPPED.get()

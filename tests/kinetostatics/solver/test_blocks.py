@@ -39,6 +39,12 @@ def tables(sol) -> dict:
     return out
 
 
+def sweeps(sc) -> tuple:
+    """The scene's own sweep (None) and the same range at 61 rows in decreasing order."""
+    pos = sc.driver.positions
+    return None, (np.linspace(pos.max(), pos.min(), 61) if pos.size > 1 else None)
+
+
 def assert_same(a: dict, b: dict) -> None:
     for k, x in a.items():
         y = b[k]
@@ -74,10 +80,7 @@ def in_blocks(monkeypatch, scene, positions=None, rows: int = 7, expect: bool = 
 @pytest.mark.parametrize("path", FILES, ids=IDS)
 def test_blocks_give_the_one_pass_tables_bit_for_bit(path, monkeypatch) -> None:
     sc = load_scene(path)
-    pos = sc.driver.positions
-    # the scene's sweep, and the same range at 61 rows given in decreasing order
-    many = np.linspace(pos.max(), pos.min(), 61) if pos.size > 1 else None
-    for positions in (None, many):
+    for positions in sweeps(sc):
         try:
             ref = one_pass(monkeypatch, sc, positions)
         except ks.WorkbenchError as exc:

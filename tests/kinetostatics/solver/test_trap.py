@@ -20,12 +20,7 @@ from kinetostatics.solver import blocks, trap
 from kinetostatics.solver import pipeline as pl
 from kinetostatics.solver.many import solve_many
 from kinetostatics.solver.stack import Stacker
-from tests.helpers import OWN_CASES, SCENES
-from tests.kinetostatics.solver.test_blocks import assert_same, tables
-
-FILES = (sorted(OWN_CASES.glob("*.toml")) + sorted(SCENES.glob("*.toml"))
-         + [ks.example(n) for n in ks.examples()])
-IDS = [p.stem for p in FILES]
+from tests.kinetostatics.solver.test_blocks import FILES, IDS, assert_same, sweeps, tables
 
 
 def checked(monkeypatch, scene, positions=None):
@@ -45,9 +40,7 @@ def outcome(f):
 @pytest.mark.parametrize("path", FILES, ids=IDS)
 def test_trapped_solve_gives_the_checked_tables_bit_for_bit(path, monkeypatch) -> None:
     sc = load_scene(path)
-    pos = sc.driver.positions
-    many = np.linspace(pos.max(), pos.min(), 61) if pos.size > 1 else None
-    for positions in (None, many):
+    for positions in sweeps(sc):
         ref = outcome(lambda p=positions: checked(monkeypatch, sc, p))
         got = outcome(lambda p=positions: pl.solve(sc, p))
         if isinstance(ref, str):
