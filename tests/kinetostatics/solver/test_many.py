@@ -290,6 +290,33 @@ def test_runs_of_whole_scenes_and_long_runs_in_blocks(alone_calls, monkeypatch) 
             assert_same(s, ks.solve(d))
 
 
+def test_runs_are_lean_and_solved_again_once_when_read(alone_calls, monkeypatch) -> None:
+    """A run keeps only Me/Fe and the flags of its scenes: its kinematics and joint
+    reactions are solved again (once for all its scenes) when one scene's are first
+    read, with the same numbers; a run no table reads is not solved again."""
+    monkeypatch.setattr(many, "RUN_ROWS", 543)
+    solved = []
+    run = many._solve_run
+
+    def spy(stacker, structure, ks_, lo, hi, *rest):
+        solved.append((lo, hi))
+        return run(stacker, structure, ks_, lo, hi, *rest)
+    monkeypatch.setattr(many, "_solve_run", spy)
+    scenes = variants("four_bar", 6, 0.05, seed=8)
+    for d in scenes:
+        d["driver"]["count"] = 181          # runs of scenes 0-2, 3-5
+    sols = ks.solve_many(scenes)
+    assert solved == [(0, 3), (3, 6)] and alone_calls == []
+    assert all("kin" not in s.__dict__ for s in sols)
+    alone = [ks.solve(d) for d in scenes]
+    for i in (0, 1, 2):                       # the first run only, solved again once
+        np.testing.assert_array_equal(sols[i].drive.value, alone[i].drive.value)
+        assert_same(sols[i], alone[i])
+    assert solved == [(0, 3), (3, 6), (0, 3)]
+    np.testing.assert_array_equal(sols[4].drive.value, alone[4].drive.value)
+    assert "kin" not in sols[4].__dict__ and solved[-1] == (0, 3)
+
+
 def _rows(scenes: list[dict]) -> tuple[np.ndarray, np.ndarray]:
     counts = np.array([d["driver"]["count"] for d in scenes])
     return np.cumsum(counts) - counts, counts
