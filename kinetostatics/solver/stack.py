@@ -155,14 +155,23 @@ class Stacker:
         sc = self._build(lambda x: np.repeat(x[lo:hi], counts), positions)
         sc.__dict__["segments"] = counts    # each scene's rows (a sweep's maxima per scene)
         if sc.driver.kind == "R":
-            sc.__dict__["driver_trig"] = self._trig(lo, hi)
+            sc.__dict__["driver_trig"] = self._trig(lo, hi, positions)
         return sc
 
-    def _trig(self, lo: int, hi: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def _trig(self, lo: int, hi: int, positions: np.ndarray
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """A crank's angles, their cos and sin over the run of scenes ``lo`` to
-        ``hi - 1``, worked out once per distinct sweep (variants of one mechanism mostly
-        share theirs) and laid one after another: the same numbers, elementwise, as over
-        the run's rows (:func:`~kinetostatics.solver.driver.driver_motion`)."""
+        ``hi - 1`` (at ``positions``), worked out once per distinct sweep (variants of
+        one mechanism mostly share theirs: a run whose scenes all sweep as the first
+        scene, bit for bit, is told in one comparison) and laid one after another: the
+        same numbers, elementwise, as over the run's rows
+        (:func:`~kinetostatics.solver.driver.driver_motion`)."""
+        p0 = self.base.driver.positions
+        n = p0.size
+        if n and positions.size == n * (hi - lo):       # each scene at the first's sweep?
+            bits = positions.view(np.int64).reshape(hi - lo, n)
+            if (bits == p0.view(np.int64)).all():
+                return tuple(np.tile(x, hi - lo) for x in self._trig0())
         done: dict[bytes, tuple] = {}
         parts = []
         for sc in self.scenes[lo:hi]:
@@ -174,6 +183,14 @@ class Stacker:
                 hit = done[key] = (th, np.cos(th), np.sin(th))
             parts.append(hit)
         return tuple(np.concatenate(x) for x in zip(*parts, strict=True))
+
+    def _trig0(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The first scene's crank angles, their cos and sin (worked out once)."""
+        got = self.__dict__.get("trig0")
+        if got is None:
+            th = self.base.driver.angles
+            got = self.__dict__["trig0"] = (th, np.cos(th), np.sin(th))
+        return got
 
     def _build(self, expand, positions: np.ndarray) -> Scene:
         """The stacked scene whose per-scene arrays x become ``expand(x)`` over the rows
