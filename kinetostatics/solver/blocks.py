@@ -348,13 +348,21 @@ class LeanSolution(Solution):
         """As :attr:`Kinematics.singular`, from the kept rows of each dyad."""
         if "kin" in self.__dict__:
             return self.kin.singular
-        between, ends, _ = self.__dict__["_dead"]
-        out = np.zeros(self.positions.size, dtype=bool)
-        for flags in self.__dict__["_flags"]:
-            out |= flags
-        out[between.ravel()] = True
-        out[ends] = True
-        return out
+        return singular_rows(self.positions.size, self.__dict__["_flags"],
+                             self.__dict__["_dead"])
+
+
+def singular_rows(n: int, flags: list, dead: tuple) -> np.ndarray:
+    """:attr:`Kinematics.singular <kinetostatics.solver.kinematics.Kinematics.singular>`
+    from each dyad's singular rows (``flags``) and the dead points between and beyond
+    the rows (``dead``: between, ends, unassembled), without the kinematics."""
+    between, ends, _ = dead
+    out = np.zeros(n, dtype=bool)
+    for f in flags:
+        out |= f
+    out[between.ravel()] = True
+    out[ends] = True
+    return out
 
 
 def _lean_layout(sol: Solution, n: int, arrays: _Arrays) -> tuple:

@@ -307,7 +307,8 @@ def _cut_run(sol: Solution, again: _Run, scenes: list, ks: np.ndarray,
     drive = np.asarray(sol.drive.value)
     undefined = np.asarray(sol.undefined_load)
     run = (sol.drive.kind, drive, _per_row(drive, n_run), undefined,
-           _per_row(undefined, n_run))
+           _per_row(undefined, n_run),
+           [(f, _per_row(f, n_run)) for f in (np.asarray(dm.singular) for dm in sol.kin.dyads)])
     assemblies = ks[:, lo:hi].T.tolist()
     r0s = (starts[lo:hi] - a).tolist()
     for j, assembly, r0, n in zip(range(lo, hi), assemblies, r0s, counts[lo:hi].tolist(),
@@ -372,13 +373,30 @@ class _Cut(Solution):
         if name in ("drive", "undefined_load"):
             # Me/Fe and the flags: views of the run's arrays (the same for every thread)
             rows = lazy[1]
-            kind, drive, drive_rows, undefined, undefined_rows = lazy[3]
+            kind, drive, drive_rows, undefined, undefined_rows, _ = lazy[3]
             self.__dict__.update(
                 drive=DriverReaction(kind, drive[rows] if drive_rows else drive),
                 undefined_load=undefined[rows] if undefined_rows else undefined)
         else:
             self._cut()
         return self.__dict__[name]
+
+    @property
+    def positions(self) -> np.ndarray:
+        d = self.__dict__
+        return d["kin"].positions if "kin" in d else self.scene.driver.positions
+
+    @property
+    def singular(self) -> np.ndarray:
+        """As :attr:`Kinematics.singular`, from the run's flags while not cut (the driver
+        table reads it: no need to solve the run again)."""
+        d = self.__dict__
+        lazy = d.get("_lazy")
+        if "kin" in d or lazy is None:
+            return self.kin.singular
+        rows, run = lazy[1], lazy[3]
+        return blocks.singular_rows(rows.stop - rows.start,
+                                    [f[rows] if cut else f for f, cut in run[5]], lazy[2])
 
     def _cut(self) -> None:
         """Cut the kinematics and joint reactions (and Me/Fe and the flags) from the
