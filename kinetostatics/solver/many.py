@@ -40,6 +40,7 @@ from collections.abc import Iterable, Iterator
 from concurrent.futures import Executor
 from contextlib import contextmanager
 from dataclasses import replace
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -137,7 +138,9 @@ def _solve_many(items: list, executor: Executor | None, batch: int | None
     else:
         size = batch or max(32, math.ceil(len(items) / 25))
         parts = [items[i:i + size] for i in range(0, len(items), size)]
-        out = [r for part in executor.map(solve_outcomes, parts) for r in part]
+        # (each Solution is sent back whole, pickled: its runs kept, not solved again)
+        out = [r for part in executor.map(partial(solve_outcomes, lean=False), parts)
+               for r in part]
     for i, r in enumerate(out):
         if isinstance(r, WorkbenchError):
             raise type(r)(f"scenes[{i}]: {r}") from None    # which scene, in one line
@@ -146,9 +149,13 @@ def _solve_many(items: list, executor: Executor | None, batch: int | None
     return out
 
 
-def solve_outcomes(items: list[Any]) -> list[Solution | Exception]:
+def solve_outcomes(items: list[Any], *, lean: bool = True) -> list[Solution | Exception]:
     """Per scene, its Solution or the exception :func:`~kinetostatics.solve` raises for it
-    (a top-level function: the task an executor runs)."""
+    (a top-level function: the task an executor runs). ``lean``: each run of stacked
+    scenes keeps only Me/Fe and the flags, and is solved again when a scene's kinematics
+    or joint reactions are first read (:class:`_Run`); False keeps every run's arrays,
+    for a caller that reads every table (an answer key) or sends the Solutions
+    elsewhere (pickled whole)."""
     out: list[Any] = [None] * len(items)
     loaded: list[tuple[int, Any]] = []
     for i, src in enumerate(items):
@@ -176,10 +183,10 @@ def solve_outcomes(items: list[Any]) -> list[Solution | Exception]:
             chunk.append(m)
             rows += m[1].driver.positions.size
             if rows >= CHUNK_ROWS:
-                _solve_group(chunk, out)
+                _solve_group(chunk, out, lean)
                 chunk, rows = [], 0
         if chunk:
-            _solve_group(chunk, out)
+            _solve_group(chunk, out, lean)
     return out
 
 
@@ -208,7 +215,7 @@ def _alone(sc) -> Solution | Exception:
         return exc
 
 
-def _solve_group(members: list, out: list) -> None:
+def _solve_group(members: list, out: list, lean: bool) -> None:
     """Solve scenes of one signature stacked; any scene the stacked pass cannot vouch
     for (or all of them, if it refuses) is solved alone."""
     if len(members) == 1:
@@ -233,14 +240,14 @@ def _solve_group(members: list, out: list) -> None:
     scenes = [sc for _, sc in kept]
     try:
         sols = _stacked(scenes, structure, ks,
-                        stacker if len(kept) == len(members) else Stacker(scenes))
+                        stacker if len(kept) == len(members) else Stacker(scenes), lean)
     except Exception:
         sols = [_alone(sc) for sc in scenes]
     for (i, _), s in zip(kept, sols, strict=True):
         out[i] = s
 
 
-def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker
+def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bool
              ) -> list[Solution | Exception]:
     """The solve of :func:`kinetostatics.solve` on the stacked scenes, cut per scene.
 
@@ -273,11 +280,12 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker
             m2[a:b] = np.inf        # solved alone: nothing of it to probe here
             continue
         m2[a:b] = _measure2(sol.kin)
-        # the scenes' Solutions keep of the run only Me/Fe and the flags; its other
-        # arrays are let go before the next run is solved (which then reuses their
+        # lean, the scenes' Solutions keep of the run only Me/Fe and the flags; its
+        # other arrays are let go before the next run is solved (which then reuses their
         # memory), and solved again when a scene's kinematics are first read
-        again = _Run(_trapped_run, (trusty, stacker, structure, ks, lo, hi, counts[lo:hi],
-                                    positions[a:b]))
+        again = (_Run(_trapped_run, (trusty, stacker, structure, ks, lo, hi,
+                                     counts[lo:hi], positions[a:b]))
+                 if lean else _Run(None, (), _splitter(sol)))
         _cut_run(sol, again, scenes, ks, starts, counts, lo, hi, a, structure, structures,
                  out)
         del sol
@@ -423,11 +431,11 @@ class _Run:
     rows and assemblies, so the same numbers bit for bit) when the kinematics or joint
     reactions of one of its scenes are first read, and then cut for each of them."""
 
-    def __init__(self, solve, args: tuple):
+    def __init__(self, solve, args: tuple, cut=None):
         self.solve = solve
         self.args = args
         self.lock = threading.Lock()
-        self.cut = None
+        self.cut = cut          # (given: the run kept whole, never solved again)
 
     def cutter(self):
         """The run's :func:`_splitter` (solving the run again, once)."""

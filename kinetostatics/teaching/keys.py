@@ -367,7 +367,9 @@ def _vouched_many(raws: list[dict]) -> list:
         flags.append(_flag(caught))
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        sols = solve_outcomes([sc for sc in loaded if not isinstance(sc, Exception)])
+        # (every key reads the summary, so every table: the runs kept whole)
+        sols = solve_outcomes([sc for sc in loaded if not isinstance(sc, Exception)],
+                              lean=False)
     if _flag(caught) is not None:
         return [_outcome(_vouched, solve, raw) for raw in raws]
     it = iter(sols)

@@ -317,6 +317,13 @@ def test_runs_are_lean_and_solved_again_once_when_read(alone_calls, monkeypatch)
     np.testing.assert_array_equal(sols[4].drive.value, alone[4].drive.value)
     pd.testing.assert_frame_equal(sols[4].driver, alone[4].driver, check_exact=True)
     assert "kin" not in sols[4].__dict__ and len(solved) == 3    # the driver table: lean
+    # kept whole (an answer key, an executor's task): each run solved once, every table
+    # cut from it
+    del solved[:]
+    kept = many.solve_outcomes(scenes, lean=False)
+    for s, a in zip(kept, alone, strict=True):
+        assert_same(s, a)
+    assert solved == [(0, 3), (3, 6)]
 
 
 def _rows(scenes: list[dict]) -> tuple[np.ndarray, np.ndarray]:

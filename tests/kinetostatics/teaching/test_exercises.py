@@ -258,8 +258,8 @@ def test_first_draws_solved_together_give_the_same_variants(monkeypatch) -> None
 
     calls, alone = [], []
     real, solo = many.solve_outcomes, many._alone
-    monkeypatch.setattr(many, "solve_outcomes", lambda items: calls.append(len(items))
-                        or real(items))
+    monkeypatch.setattr(many, "solve_outcomes", lambda items, **kw: calls.append(len(items))
+                        or real(items, **kw))
     monkeypatch.setattr(many, "_alone", lambda sc: alone.append(len(calls)) or solo(sc))
     ids = IDS[:12]
     mine = E.Exercise(ks.example("four_bar"), {"bodies.crank.mass": (1.0, 2.0, 0.1),
