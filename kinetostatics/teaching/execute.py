@@ -99,6 +99,26 @@ def _failed_cell(run, nb) -> str:
     return "a cell raised an error"
 
 
+KERNEL_STARTS = 3      # a kernel that dies before it answers is started again, twice
+
+
+def _execute(client) -> None:
+    """Run ``client()``'s notebook; a kernel that dies before it replies to its first
+    request (no cell has run: the machine's hiccup, not the notebook's fault; seen now
+    and then in this project's tests, two kernels starting at a time on a 2-core
+    machine, which graded the notebook as broken) is started again, up to
+    ``KERNEL_STARTS`` times in all."""
+    for attempt in range(1, KERNEL_STARTS + 1):
+        try:
+            # the kernel's own stderr (its start-up chatter) is not the teacher's business;
+            # what the cells print comes back through the notebook's outputs
+            client().execute(env=_env(), stderr=subprocess.DEVNULL)
+            return
+        except RuntimeError as exc:
+            if "before replying to kernel_info" not in str(exc) or attempt == KERNEL_STARTS:
+                raise
+
+
 class NotebookRunError(SubmissionError):
     """The notebook did not run to its end: a cell raised, ran too long, or the kernel
     died (its saved answers may still be read)."""
@@ -150,13 +170,11 @@ def run_notebook(nb, timeout: float = 60.0, kernel: str = "python3"
 
     orig = [*nb.cells]
     with tempfile.TemporaryDirectory(prefix="ks-grade-") as tmp:
-        client = NotebookClient(run, timeout=max(1, math.ceil(timeout)), kernel_name=kernel,
-                                allow_errors=False, resources={"metadata": {"path": tmp}},
-                                on_cell_start=on_start)
         try:
-            # the kernel's own stderr (its start-up chatter) is not the teacher's business;
-            # what the cells print comes back through the notebook's outputs
-            client.execute(env=_env(), stderr=subprocess.DEVNULL)
+            _execute(lambda: NotebookClient(
+                run, timeout=max(1, math.ceil(timeout)), kernel_name=kernel,
+                allow_errors=False, resources={"metadata": {"path": tmp}},
+                on_cell_start=on_start))
         except CellTimeoutError:
             # run.cells[k] is the student's cell k (the guard cell is run.cells[0])
             k = started[0]

@@ -138,6 +138,32 @@ def test_executed_notebooks(kind, classes, tmp_path):
     assert (rep.graded.set_index("student").loc[IDS[1], "source"] == str(typed)).all()
 
 
+def test_a_kernel_that_dies_at_start_is_started_again(monkeypatch) -> None:
+    """A kernel that dies before its first reply (no cell run) is started again; a
+    notebook whose kernels keep dying is reported, not retried for ever."""
+    import nbclient
+
+    from kinetostatics.teaching import execute
+
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(
+        "student_id = 's1'\nanswers = {'Me@30': 1.5}")])
+    real, starts = nbclient.NotebookClient.execute, []
+
+    def flaky(self, **kw):
+        starts.append(1)
+        if len(starts) < 3:
+            raise RuntimeError("Kernel died before replying to kernel_info")
+        return real(self, **kw)
+    monkeypatch.setattr(nbclient.NotebookClient, "execute", flaky)
+    assert execute.run_notebook(nb, timeout=60) == ("s1", {"Me@30": 1.5})
+    assert len(starts) == 3
+    del starts[:]
+    monkeypatch.setattr(execute, "KERNEL_STARTS", 2)
+    with pytest.raises(RuntimeError, match="kernel_info"):
+        execute.run_notebook(nb, timeout=60)
+    assert len(starts) == 2
+
+
 def test_broken_notebooks_do_not_stop_the_class(classes, tmp_path):
     d = classes["four_bar"]
     key = _key(d)
