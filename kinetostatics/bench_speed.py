@@ -7,7 +7,8 @@ may be shared, so a single run says little.
 * ``reference``: :func:`kinetostatics.solve` plus its ``driver`` table against the
   hand-written closed forms ``fourbar_dyad`` and ``slider_dyad`` of
   ``reference_fourbar.py`` on the same four-bar and slider-crank, at 2001, 2e5 and 1e6
-  positions, with the largest difference of Me;
+  positions, with the largest difference of Me (2001 positions also in batches of
+  calls, as :mod:`timeit` times);
 * ``many``: :func:`kinetostatics.solve_many` on 1000 variants of the bundled four-bar
   (361 positions; every length, ground point and mass within +-10 %) against a loop of
   ``solve``, given as Scene objects and as dicts: the speed-up (the loop's time over
@@ -41,15 +42,27 @@ import pandas as pd
 from .bench import find_reference, fourbar_scene, slider_crank_reference_scene
 
 
-def side_by_side(jobs: dict[str, Callable[[], object]], repeat: int) -> dict[str, list]:
-    """Seconds of each job over ``repeat`` alternating rounds."""
+def side_by_side(jobs: dict[str, Callable[[], object]], repeat: int,
+                 batch: int = 1) -> dict[str, list]:
+    """Seconds of each job over ``repeat`` alternating rounds, the garbage collected
+    before each. ``batch`` > 1: each round times that many calls in a row with the
+    collector paused, as :mod:`timeit` does, and gives the time per call (a warm loop:
+    what a call costs when it follows others, its code and data in the caches)."""
     times: dict[str, list] = {k: [] for k in jobs}
     for _ in range(repeat):
         for k, f in jobs.items():
             gc.collect()
-            t = time.perf_counter()
-            f()
-            times[k].append(time.perf_counter() - t)
+            was = gc.isenabled()
+            if batch > 1:
+                gc.disable()
+            try:
+                t = time.perf_counter()
+                for _ in range(batch):
+                    f()
+                times[k].append((time.perf_counter() - t) / batch)
+            finally:
+                if was:
+                    gc.enable()
     return times
 
 
@@ -76,6 +89,9 @@ def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001)) -> list[dict]:
         err = float(np.abs(solve(scene).Me - me).max() / np.abs(me).max())
         rows.append(_row("solve(scene).driver / hand-written fourbar_dyad", n, times,
                          "solve", "reference", error=err))
+        rows += _warm(n, "solve(scene).driver / hand-written fourbar_dyad",
+                      {"reference": lambda th=th: ref.fourbar_dyad(th, 20.0),
+                       "solve": lambda s=scene: solve(s).driver}, err)
     # the baseline's other mechanism: far fewer operations by hand (a centred slider-crank
     # in closed form), the same general solve
     w2 = ref.SC["w2"]
@@ -89,7 +105,26 @@ def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001)) -> list[dict]:
         err = float(np.abs(solve(scene).Me - me).max() / np.abs(me).max())
         rows.append(_row("solve(scene).driver / hand-written slider_dyad", n, times,
                          "solve", "reference", error=err))
+        rows += _warm(n, "solve(scene).driver / hand-written slider_dyad",
+                      {"reference": lambda th=th: ref.slider_dyad(th, w2),
+                       "solve": lambda s=scene: solve(s).driver}, err)
     return rows
+
+
+WARM_BATCH = 20     # calls per round for the small sizes' warm row
+
+
+def _warm(n: int, what: str, jobs: dict, err: float) -> list[dict]:
+    """A small size timed again in batches of ``WARM_BATCH`` calls (timeit's way)
+    beside the single calls after a garbage collection: both rows are given. (Measured
+    2026-11-27 for the four-bar at 2001 positions: 3.9-4.0x either way; 3.2-3.5x when
+    each is timed in a long loop of its own, not alternating: the solver's far larger
+    code, a few hundred small Python and numpy calls, then stays in the caches.)"""
+    if n >= 10_000:
+        return []
+    times = side_by_side(jobs, 15, batch=WARM_BATCH)
+    return [_row(f"{what} (warm, batches of {WARM_BATCH} calls)", n, times, "solve",
+                 "reference", error=err)]
 
 
 def four_bar_variants(count: int = 1000, spread: float = 0.10, seed: int = 0) -> list[dict]:

@@ -58,3 +58,30 @@ def test_the_slider_crank_scene_without_the_baseline_file() -> None:
         # measured 2.2e-16 (x), 2.8e-16 (v), 3.4e-16 (a)
         assert np.abs(piston[col].to_numpy() - want[key]).max() <= 2e-15 * scale
     assert checks.virtual_power(sol) <= 2e-15                        # measured 3.9e-16
+
+
+def test_side_by_side_in_warm_batches() -> None:
+    """Each round times ``batch`` calls with the collector paused (timeit's way) and
+    gives the time per call; the collector runs again after; a small size gets its
+    warm row, a large one none (no time is asserted: speed lives in the bench)."""
+    import gc
+
+    from kinetostatics import bench_speed as B
+
+    calls = {"a": 0, "b": 0}
+    seen = []
+
+    def job(k):
+        def f():
+            calls[k] += 1
+            seen.append(gc.isenabled())
+        return f
+    times = B.side_by_side({"a": job("a"), "b": job("b")}, 2, batch=3)
+    assert calls == {"a": 6, "b": 6} and [len(v) for v in times.values()] == [2, 2]
+    assert not any(seen) and gc.isenabled()
+    seen.clear()
+    B.side_by_side({"a": job("a")}, 1)
+    assert seen == [True]                   # one call a round: the collector left on
+    rows = B._warm(2001, "x / y", {"reference": job("a"), "solve": job("b")}, 0.0)
+    assert [r["measure"] for r in rows] == [f"x / y (warm, batches of {B.WARM_BATCH} calls)"]
+    assert B._warm(200_001, "x / y", {"reference": job("a"), "solve": job("b")}, 0.0) == []
