@@ -60,13 +60,18 @@ def test_the_slider_crank_scene_without_the_baseline_file() -> None:
     assert checks.virtual_power(sol) <= 2e-15                        # measured 3.9e-16
 
 
-def test_side_by_side_in_warm_batches() -> None:
+def test_side_by_side_in_warm_batches(monkeypatch) -> None:
     """Each round times ``batch`` calls with the collector paused (timeit's way) and
     gives the time per call; the collector runs again after; a small size gets its
     warm row, a large one none (no time is asserted: speed lives in the bench)."""
     import gc
 
     from kinetostatics import bench_speed as B
+
+    # (a full collection before each round costs about 0.8 s in the test suite's
+    # process, which holds every module and fixture: counted here, not made)
+    collected = []
+    monkeypatch.setattr(gc, "collect", lambda *a: collected.append(1) or 0)
 
     calls = {"a": 0, "b": 0}
     seen = []
@@ -78,6 +83,7 @@ def test_side_by_side_in_warm_batches() -> None:
         return f
     times = B.side_by_side({"a": job("a"), "b": job("b")}, 2, batch=3)
     assert calls == {"a": 6, "b": 6} and [len(v) for v in times.values()] == [2, 2]
+    assert len(collected) == 4                # before each job's round
     assert not any(seen) and gc.isenabled()
     seen.clear()
     B.side_by_side({"a": job("a")}, 1)
