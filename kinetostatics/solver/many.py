@@ -27,8 +27,8 @@ reactions are solved again, for all its scenes at once, when one scene's are fir
 (the same rows and assemblies: the same numbers), as a long sweep's are
 (:class:`~kinetostatics.solver.blocks.LeanSolution`). Keeping every run's arrays cost
 about as much as the solve that made them (measured for 1000 four-bars of 361 rows:
-about 290 MB of fresh pages; 75-150 ms a call, against 60-75 ms lean). Its loads, as a solve's, are
-computed again from its kinematics when asked for.
+about 290 MB of fresh pages; 75-150 ms a call, against 60-75 ms lean). Its loads, as a
+solve's, are computed again from its kinematics when asked for.
 """
 
 from __future__ import annotations

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import struct
 from dataclasses import replace
+from functools import cached_property
 from itertools import chain
 from operator import attrgetter, itemgetter
 
@@ -171,7 +172,7 @@ class Stacker:
         if n and positions.size == n * (hi - lo):       # each scene at the first's sweep?
             bits = positions.view(np.int64).reshape(hi - lo, n)
             if (bits == p0.view(np.int64)).all():
-                return tuple(np.tile(x, hi - lo) for x in self._trig0())
+                return tuple(np.tile(x, hi - lo) for x in self._trig0)
         done: dict[bytes, tuple] = {}
         parts = []
         for sc in self.scenes[lo:hi]:
@@ -184,13 +185,11 @@ class Stacker:
             parts.append(hit)
         return tuple(np.concatenate(x) for x in zip(*parts, strict=True))
 
+    @cached_property
     def _trig0(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The first scene's crank angles, their cos and sin (worked out once)."""
-        got = self.__dict__.get("trig0")
-        if got is None:
-            th = self.base.driver.angles
-            got = self.__dict__["trig0"] = (th, np.cos(th), np.sin(th))
-        return got
+        """The first scene's crank angles, their cos and sin."""
+        th = self.base.driver.angles
+        return th, np.cos(th), np.sin(th)
 
     def _build(self, expand, positions: np.ndarray) -> Scene:
         """The stacked scene whose per-scene arrays x become ``expand(x)`` over the rows
