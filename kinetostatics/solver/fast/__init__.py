@@ -9,6 +9,7 @@ scenes). Importing this package never imports numba: it is loaded on the first c
 qualifies (:func:`~kinetostatics.solver.fast.choice.wanted`).
 """
 
-from .choice import PATHS, path_setting, use, wanted
+from .choice import AUTO_ROWS, PATHS, path_setting, use, wanted
+from .solve import solve_compiled
 
-__all__ = ["PATHS", "path_setting", "use", "wanted"]
+__all__ = ["AUTO_ROWS", "PATHS", "path_setting", "solve_compiled", "use", "wanted"]

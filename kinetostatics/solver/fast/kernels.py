@@ -12,15 +12,14 @@ then solves on the numpy path, whose message names the rows.
 Rules (measured on a prototype): ``error_model="numpy"`` (a division by zero gives an
 infinity, as numpy's, counted), sin and cos in a pass of their own, no ``fastmath`` (the
 numbers stay IEEE), no ``prange`` (the executors spread scenes over processes).
-A dyad's kind is a literal argument (:data:`~kinetostatics.solver.fast.layout.KINDS`):
-one compiled kernel per kind, its other kinds' branches folded away.
+A dyad's kernels have one entry point per kind (:data:`MOTION`, :data:`REACTIONS`): the
+kind a constant in each, its other kinds' branches folded away.
 """
 
 from __future__ import annotations
 
 import math
 
-import numba
 from numba import njit
 
 from .layout import (
@@ -110,6 +109,10 @@ SINGULAR_FAIL2 = 1e-24      # (1e-12)^2
 SINGULAR_FAIL = 1e-12
 
 jit = njit(cache=True, error_model="numpy", nogil=True)
+# the helpers and a dyad's kernel body, inlined where they are called (a call that
+# passes arrays costs atomic reference counts per row; inlined, they are pruned), a
+# dyad's body into each kind's entry point with its kind a constant
+body = njit(error_model="numpy", nogil=True, inline="always")
 
 
 @jit
@@ -181,7 +184,7 @@ def _rot_angle(dx, dy, lx, ly, r2):
     return dx * (lx / r2) + dy * (ly / r2), dy * (lx / r2) - dx * (ly / r2)
 
 
-@jit
+@body
 def _param(rot, k, j, g, r, base):
     """A dyad body's parameter through its outer joint (the numpy path's ``dyad_param``):
     rot, the known body's point P with its velocity and acceleration; trans, the body's
@@ -205,14 +208,14 @@ def _param(rot, k, j, g, r, base):
     return c, s, ux, uy, px - (c * bx - s * by), py - (s * bx + c * by)
 
 
-@jit
+@body
 def _vel_at(k, j, x, y):
     """Velocity of the known body's point at the global (x, y)."""
     om = k[OM, j]
     return k[VX, j] - om * (y - k[OY, j]), k[VY, j] + om * (x - k[OX, j])
 
 
-@jit
+@body
 def _acc_at(k, j, x, y):
     """Acceleration of the known body's point at (x, y) (seed 001 eq. 9)."""
     rx, ry = x - k[OX, j], y - k[OY, j]
@@ -221,7 +224,7 @@ def _acc_at(k, j, x, y):
     return (k[AX, j] - al * ry) - w2 * rx, (k[AY, j] + al * rx) - w2 * ry
 
 
-@jit
+@body
 def _close_r(kind, p1, p2, g, r, k):
     """A revolute inner joint closed (the numpy path's ``DyadSolver._inner_r``): each
     body's (cos, sin), the displacements, the reach and the gap (> 0: cannot close)."""
@@ -282,7 +285,7 @@ def _close_r(kind, p1, p2, g, r, k):
     return pt[0], pt[1], cr, sr, s, 0.0, -1.0, gap
 
 
-@jit
+@body
 def _close_t(kind, p1, p2, g, r, k, th):
     """A prismatic inner joint closed (``DyadSolver._inner_t``): RTR from the angle
     ``th`` of the guide (worked out in a pass before, with its cos and sin), RTT and TTR
@@ -328,7 +331,7 @@ def _close_t(kind, p1, p2, g, r, k, th):
     return cg, sg, cs_, ss_, s if rots else 0.0, s if not rots else 0.0
 
 
-@jit
+@body
 def _rtr_angle(p1, p2, g, r, k):
     """RTR (seed 000 ch. 6-7): the guide's angle, sin(delta - theta_g - beta) = -c/|D|,
     the pivots' distance |D| and the gap."""
@@ -346,7 +349,7 @@ def _rtr_angle(p1, p2, g, r, k):
     return math.atan2(dy, dx) - g[I_BETA, r] + side, dn, gap
 
 
-@jit
+@body
 def _origin(rot, p, c, s, lx, ly, q):
     """A dyad body's origin (``body_origin``): P - R a (rot) or b + s u (trans)."""
     if rot:
@@ -354,7 +357,7 @@ def _origin(rot, p, c, s, lx, ly, q):
     return p[4] + q * p[2], p[5] + q * p[3]
 
 
-@jit
+@body
 def _column(rot, p, k1, j, xx, xy):
     """The column c_i of the velocity system, the known part k_i of the velocity of the
     body's point at X and the angular weight w_i."""
@@ -364,7 +367,7 @@ def _column(rot, p, k1, j, xx, xy):
     return p[2], p[3], kx, ky, 0.0
 
 
-@jit
+@body
 def _body(rot, p, kb, j, c, s, lx, ly, ox, oy, qd, qdd, m, jo):
     """A dyad body's motion from its unknown's rate and acceleration (``_body_motion``)."""
     m[C, jo], m[S, jo], m[OX, jo], m[OY, jo] = c, s, ox, oy
@@ -387,14 +390,13 @@ def _body(rot, p, kb, j, c, s, lx, ly, ox, oy, qd, qdd, m, jo):
     m[AY, jo] = (aky + qdd * p[3]) + f * p[2]
 
 
-@jit
-def dyad_motion(kind, lo, hi, off, g, gs, k1, k2, m1, m2, d):
+@body
+def _dyad_motion(kind, lo, hi, off, g, gs, k1, k2, m1, m2, d):
     """Positions, velocities and accelerations of a dyad of kind ``kind`` (seed 000
     ch. 5-12, the numpy path's ``solve_dyad``): its bodies' motions into ``m1``, ``m2``
     and its data (closing point, velocity system, closeness to a dead centre, parameters)
     into ``d``. Counts the rows that are not finite, cannot close, or are exactly
     singular."""
-    numba.literally(kind)
     rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
     rtr = rot1 and rot2 and not inner_r
     if rtr:     # the guide's angle, then its sin and cos in a pass of their own
@@ -418,7 +420,7 @@ def dyad_motion(kind, lo, hi, off, g, gs, k1, k2, m1, m2, d):
 D_TH = 11       # (RTR: the guide's angle, held in a row that is written later)
 
 
-@jit
+@body
 def _dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d):
     size = g[SIZE, r]
     kk = g[ASSEMBLY, r]
@@ -606,7 +608,7 @@ def swept_loads(lo, hi, off, g, gs, nload, m, acc, undefined, stats):
 
 
 # -- reactions (seed 002 s. 2.3) ----------------------------------------------------------
-@jit
+@body
 def _add(acc, j, fx, fy, rx, ry, mm, sign):
     """acc += sign (F, r x F + M) on a body's resultants."""
     acc[0, j] += sign * fx
@@ -614,7 +616,7 @@ def _add(acc, j, fx, fy, rx, ry, mm, sign):
     acc[2, j] += sign * ((rx * fy - ry * fx) + mm)
 
 
-@jit
+@body
 def _generalised(rot, m, a, d, g, j, r, t):
     """The generalised force of a dyad body's loads along its freedom: the moment about
     its outer pivot P (rot) or the force along its outer guide u (trans)."""
@@ -625,14 +627,13 @@ def _generalised(rot, m, a, d, g, j, r, t):
     return a[0, j] * d[10 + 4 * t, j] + a[1, j] * d[11 + 4 * t, j]
 
 
-@jit
-def dyad_reactions(kind, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+@body
+def _dyad_reactions(kind, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
     """A dyad's joint reactions (seed 002 s. 2.3.1, eqs 2.16-2.43 in vector form, the
     numpy path's ``_solve_dyad``): the inner joint's from the two bodies' equations along
     their freedoms (a 2 x 2 system with the velocity system's columns), each outer
     joint's from its body's remaining equations; the outer reactions load the known
     bodies (``ak1``, ``ak2``) with opposite sign."""
-    numba.literally(kind)
     rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
     bad = 0
     for i in range(lo, hi):
@@ -753,5 +754,82 @@ def slider_reaction(lo, hi, off, g, gs, m, a, out):
     return bad
 
 
-__all__ = ["body_loads", "swept_loads", "crank_motion", "crank_reaction", "dyad_motion", "dyad_reactions",
+# one compiled kernel per dyad kind (the kind's code: layout.KINDS), motion and reactions
+@jit
+def rrr_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(7, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+
+
+@jit
+def rrt_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(5, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+
+
+@jit
+def trr_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(6, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+
+
+@jit
+def trt_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(4, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+
+
+@jit
+def rtr_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(3, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+
+
+@jit
+def rtt_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(1, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+
+
+@jit
+def ttr_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(2, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+
+
+@jit
+def rrr_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(7, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def rrt_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(5, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def trr_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(6, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def trt_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(4, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def rtr_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(3, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def rtt_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(1, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def ttr_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(2, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+MOTION = {"RRR": rrr_motion, "RRT": rrt_motion, "TRR": trr_motion, "TRT": trt_motion,
+          "RTR": rtr_motion, "RTT": rtt_motion, "TTR": ttr_motion}
+REACTIONS = {"RRR": rrr_reactions, "RRT": rrt_reactions, "TRR": trr_reactions,
+             "TRT": trt_reactions, "RTR": rtr_reactions, "RTT": rtt_reactions,
+             "TTR": ttr_reactions}
+
+__all__ = ["MOTION", "REACTIONS", "body_loads", "swept_loads", "crank_motion", "crank_reaction",
            "slider_motion", "slider_reaction"]
