@@ -23,13 +23,12 @@ from ..blocks import BLOCK_ROWS, Sweep
 from ..closure import Param
 from ..driver import BodyMotion, ground_motion
 from ..kinematics import SINGULAR_WARN, DyadMotion, Kinematics
+from ..loads import RESIST_STILL
 from ..reactions import DriverReaction, _record
 from . import layout as L
-from ..loads import RESIST_STILL
 from .geometry import (
     body_loads_geometry,
     driver_geometry,
-    dyad_code,
     dyad_geometry,
     swept_loads_geometry,
 )
@@ -51,7 +50,7 @@ class Plan:
         self.crank = drv.kind == "R"
         self.speed, self.accel = float(drv.speed), float(drv.acceleration)
         self.driver = driver_geometry(scene)
-        self.dyads = [(dyad_code(d), *dyad_geometry(scene, d, k), d)
+        self.dyads = [(*dyad_geometry(scene, d, k), d)
                       for d, k in zip(structure.dyads, ks, strict=True)]
         self.bodies = list(scene.bodies)
         self.loads = {b: body_loads_geometry(scene, b) for b in self.bodies}
@@ -107,7 +106,7 @@ class Plan:
         g, gs = self.driver
         motion = k.crank_motion if self.crank else k.slider_motion
         bad = motion(x, lo, hi, off, g, gs, self.speed, self.accel, m[dname])
-        for (code, g, gs, dyad), d in zip(self.dyads, buf["d"], strict=True):
+        for (g, gs, dyad), d in zip(self.dyads, buf["d"], strict=True):
             (b1, b2), (j1, j2) = dyad.bodies, dyad.outer
             bad += k.MOTION[dyad.kind](lo, hi, off, g, gs, m[j1.other(b1)], m[j2.other(b2)],
                                  m[b1], m[b2], d)
@@ -117,7 +116,7 @@ class Plan:
         for b, (g, gs, floors) in self.swept.items():
             bad += k.swept_loads(lo, hi, off, g, gs, len(floors), m[b], a[b], buf["u"],
                                  self.stats[b])
-        for (code, g, gs, dyad), d, r in zip(self.dyads[::-1], buf["d"][::-1],
+        for (g, gs, dyad), d, r in zip(self.dyads[::-1], buf["d"][::-1],
                                              buf["r"][::-1], strict=True):
             (b1, b2), (j1, j2) = dyad.bodies, dyad.outer
             k1, k2 = j1.other(b1), j2.other(b2)
@@ -193,12 +192,12 @@ def _solution(plan: Plan, positions: np.ndarray, buf: dict) -> Solution:
     """The Solution over the rows of ``buf`` (arrays over the whole sweep), every array a
     view of the kernels' output."""
     scene, n = plan.scene, positions.size
-    m, a = buf["m"], buf["a"]
+    m = buf["m"]
     drv = scene.driver
     bodies = {GROUND: ground_motion(), drv.body: BodyMotion(drv.angles if drv.kind == "R"
                                                             else None, *m[drv.body])}
     dyads = []
-    for (_, g, gs, dyad), d in zip(plan.dyads, buf["d"], strict=True):
+    for (g, gs, dyad), d in zip(plan.dyads, buf["d"], strict=True):
         for b in dyad.bodies:
             bodies[b] = BodyMotion(None, *m[b])
         pr = tuple(_param(scene, dyad, i, bodies[dyad.outer[i].other(dyad.bodies[i])],
@@ -228,7 +227,7 @@ def _reactions(plan: Plan, buf: dict) -> dict:
     joint then its outer ones; the driver's joint last)."""
     scene, a = plan.scene, buf["a"]
     out: dict = {}
-    for (_, _, _, dyad), d, r in zip(plan.dyads[::-1], buf["d"][::-1], buf["r"][::-1],
+    for (_, _, dyad), d, r in zip(plan.dyads[::-1], buf["d"][::-1], buf["r"][::-1],
                                      strict=True):
         inner = dyad.inner
         if inner.kind == "R":

@@ -80,11 +80,6 @@ def driver_geometry(scene: Scene) -> tuple[np.ndarray, int]:
                  L.T_RUY: ruy, L.T_ON: on, L.T_SX: sx, L.T_SY: sy}, L.DRIVER_GEOMETRY)
 
 
-def dyad_code(dyad) -> int:
-    """The dyad's kind code (:data:`~kinetostatics.solver.fast.layout.KINDS`)."""
-    return L.KINDS[dyad.kind]
-
-
 def dyad_geometry(scene: Scene, dyad, k) -> tuple[np.ndarray, int]:
     """A dyad's geometry: its outer joints' parameters (``dyad_param``), its inner
     joint (``DyadSolver``), the mechanism's size, the closeness constant and the

@@ -93,7 +93,6 @@ from .layout import (
     T_SIGN,
     T_SX,
     T_SY,
-    T_TH,
     T_UX,
     T_UY,
     VX,
