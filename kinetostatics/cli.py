@@ -165,7 +165,8 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
     t.set_defaults(func=_cmd_structure)
     b = sub.add_parser("bench", help="positions per second and error against closed forms")
     b.add_argument("--quick", action="store_true", help="small sizes only")
-    b.add_argument("--reference", help="path of reference_fourbar.py to time side by side")
+    b.add_argument("--reference", help="a baseline module to time side by side "
+                   "(default: the bundled kinetostatics/bench/reference.py)")
     b.add_argument("--tables", action="store_true", help="time the result tables and the "
                    "CSV writer (four-bar at 1e4, 1e5, 1e6 positions) with peak memory")
     b.add_argument("--repeat", type=int, default=3, help="runs per size for --tables "
