@@ -6,7 +6,7 @@ may be shared, so a single run says little.
 
 * ``reference``: :func:`kinetostatics.solve` plus its ``driver`` table against the
   hand-written closed forms ``fourbar_dyad`` and ``slider_dyad`` of
-  ``reference_fourbar.py`` on the same four-bar and slider-crank, at 2001, 2e5 and 1e6
+  :mod:`kinetostatics.bench.reference` on the same four-bar and slider-crank, at 2001, 2e5 and 1e6
   positions, with the largest difference of Me (2001 positions also in batches of
   calls, as :mod:`timeit` times);
 * ``many``: :func:`kinetostatics.solve_many` on 1000 variants of the bundled four-bar
@@ -248,11 +248,8 @@ def bench_crosscheck(repeat: int = 3) -> list[dict]:
 
 def run_speed(quick: bool = False, reference: str | None = None) -> pd.DataFrame:
     """Every ratio of this module, printed as one table (``quick``: small sizes)."""
-    ref = reference or find_reference()
-    rows = []
-    if ref:
-        rows += bench_reference(str(ref), (2_001, 20_001) if quick else
-                                (2_001, 200_001, 1_000_001))
+    rows = bench_reference(str(reference or find_reference()),
+                           (2_001, 20_001) if quick else (2_001, 200_001, 1_000_001))
     rows += bench_many(100 if quick else 1000)
     rows += bench_start(3 if quick else 7)
     if not quick:
