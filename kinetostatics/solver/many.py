@@ -51,6 +51,8 @@ from ..results import Solution
 from . import blocks
 from .deadpoints import _measure2, dead_points_stacked
 from .driver import BodyMotion
+from .fast import solve_run_compiled, wanted
+from .fast.geometry import not_covered
 from .kinematics import Kinematics, solve_kinematics
 from .pipeline import _solve_block, check_distinct, solve
 from .reactions import DriverReaction
@@ -269,12 +271,14 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     alone: list[int] = []
     structures: dict[tuple, Any] = {}
     trusty = stacker.tame() and positions_tame(positions)
+    # the compiled path for the whole group when wanted (numba loaded here, once)
+    compiled = not_covered(stacker.base) is None and wanted(positions.size) is not None
     for lo, hi in zip(bounds[:-1].tolist(), bounds[1:].tolist(), strict=True):
         a = int(starts[lo])
         b = int(starts[hi - 1] + counts[hi - 1])
         try:
             sol = _trapped_run(trusty, stacker, structure, ks, lo, hi, counts[lo:hi],
-                               positions[a:b])
+                               positions[a:b], compiled)
         except Exception:
             alone.extend(range(lo, hi))
             m2[a:b] = np.inf        # solved alone: nothing of it to probe here
@@ -284,7 +288,7 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
         # other arrays are let go before the next run is solved (which then reuses their
         # memory), and solved again when a scene's kinematics are first read
         again = (_Run(_trapped_run, (trusty, stacker, structure, ks, lo, hi,
-                                     counts[lo:hi], positions[a:b]))
+                                     counts[lo:hi], positions[a:b], compiled))
                  if lean else _Run(None, (), _splitter(sol)))
         _cut_run(sol, again, scenes, ks, starts, counts, lo, hi, a, structure, structures,
                  out)
@@ -327,7 +331,7 @@ def _cut_run(sol: Solution, again: _Run, scenes: list, ks: np.ndarray,
             sj = structures[key] = replace(structure, assembly=key)
         one = object.__new__(_Cut)
         one.__dict__.update(scene=scenes[j], structure=sj, self_locking=None,
-                            _lazy=(again, slice(r0, r0 + n), None, run))
+                            _lazy=(again, slice(r0, r0 + n), None, run), path=sol.path)
         out[j] = one
 
 
@@ -347,13 +351,20 @@ def _trapped_run(trusty: bool, *args) -> Solution:
 
 
 def _solve_run(stacker: Stacker, structure, ks: np.ndarray, lo: int, hi: int,
-               counts: np.ndarray, positions: np.ndarray) -> Solution:
+               counts: np.ndarray, positions: np.ndarray, compiled: bool = False
+               ) -> Solution:
     """The stacked Solution of scenes ``lo`` to ``hi - 1`` (``counts`` rows each, at
     ``positions``), each dyad in its scene's assembly; a run too long for the cache (a
     long sweep) in blocks, gathered (:func:`~kinetostatics.solver.blocks.solve_blocks`),
     unless a load's threshold is its sweep's maximum (``resist``, ``when = "resisting"``:
-    then in one pass, each scene's maximum over its own rows)."""
+    then in one pass, each scene's maximum over its own rows). ``compiled``: on the
+    compiled path (:mod:`~kinetostatics.solver.fast`) unless a kernel meets a row the
+    numpy path must judge."""
     st = replace(structure, assembly=tuple(np.repeat(k[lo:hi], counts) for k in ks))
+    if compiled:
+        sol = solve_run_compiled(stacker.runs(lo, hi, counts, positions), st)
+        if sol is not None:
+            return sol
     if blocks.blockable(stacker.base, positions.size):    # (not a sweep's maxima)
         owner = np.repeat(np.arange(lo, hi), counts)
 
