@@ -103,12 +103,21 @@ class Plan:
         k, m, a = self.k, buf["m"], buf["a"]
         dname = self.scene.driver.body
         g, gs = self.driver
+        if self.crank:      # (cos and sin in a pass of their own: numpy's, vectorised)
+            np.cos(x[lo:hi], out=m[dname][L.C, lo - off:hi - off])
+            np.sin(x[lo:hi], out=m[dname][L.S, lo - off:hi - off])
         motion = k.crank_motion if self.crank else k.slider_motion
         bad = motion(x, lo, hi, off, g, gs, self.speed, self.accel, m[dname])
         for (g, gs, dyad), d in zip(self.dyads, buf["d"], strict=True):
             (b1, b2), (j1, j2) = dyad.bodies, dyad.outer
-            bad += k.MOTION[dyad.kind](lo, hi, off, g, gs, m[j1.other(b1)], m[j2.other(b2)],
-                                 m[b1], m[b2], d)
+            args = (lo, hi, off, g, gs, m[j1.other(b1)], m[j2.other(b2)], m[b1], m[b2], d)
+            kernel = k.MOTION[dyad.kind]
+            if dyad.kind == "RTR":      # the guide's angle, then its cos and sin
+                kernel(0, *args)
+                th = d[L.D_TH, lo - off:hi - off]
+                np.cos(th, out=d[L.C1X, lo - off:hi - off])
+                np.sin(th, out=d[L.C1Y, lo - off:hi - off])
+            bad += kernel(1, *args)
         for b, (g, gs, npoint) in self.loads.items():
             bad += k.body_loads(lo, hi, off, g, gs, npoint, m[b], a[b])
         buf["u"][lo - off:hi - off] = False

@@ -118,6 +118,13 @@ def dyad_geometry(scene: Scene, dyad, k) -> tuple[np.ndarray, int]:
             if joint.kind == "R":
                 norm2 = norm2 * ((q[i][0] - local[i][0]) ** 2 + (q[i][1] - local[i][1]) ** 2)
         v[L.NORM2] = norm2
+        for i, (wx, wy) in enumerate(((L.W1X, L.W1Y), (L.W2X, L.W2Y))):
+            if dyad.outer[i].kind != "R":
+                continue
+            # (x * x, not x ** 2: as the numpy path's DyadSolver._inner_r)
+            ax, ay = q[i][0] - local[i][0], q[i][1] - local[i][1]
+            r2 = ax * ax + ay * ay
+            v[wx], v[wy] = ax / r2, ay / r2
         return pack(v, L.DYAD_GEOMETRY)
     sfirst = inner.slider == dyad.bodies[0]
     i_s, i_g = (0, 1) if sfirst else (1, 0)

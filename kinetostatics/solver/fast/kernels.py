@@ -36,6 +36,7 @@ from .layout import (
     D_LY,
     D_PX,
     D_PY,
+    D_TH,
     DET,
     I_BETA,
     I_CB,
@@ -97,6 +98,10 @@ from .layout import (
     T_UY,
     VX,
     VY,
+    W1X,
+    W1Y,
+    W2X,
+    W2Y,
     XX,
     XY,
     C,
@@ -128,11 +133,8 @@ def _bad(*values) -> int:
 def crank_motion(theta, lo, hi, off, g, gs, w, eps, m):
     """A crank turning about its ground joint P: o = P - R a, v_o = omega k x (o - P),
     a_o = eps k x (o - P) - omega^2 (o - P) (seed 000 ch. 4; the numpy path's
-    ``driver_motion``)."""
-    for i in range(lo, hi):             # sin and cos: a pass of their own
-        j = i - off
-        m[C, j] = math.cos(theta[i])
-        m[S, j] = math.sin(theta[i])
+    ``driver_motion``). Its cos and sin (rows C, S of ``m``) are worked out before, in a
+    pass of their own (numpy's, vectorised: the numpy path's numbers)."""
     w2 = w * w
     bad = 0
     for i in range(lo, hi):
@@ -178,9 +180,10 @@ def slider_motion(pos, lo, hi, off, g, gs, w, eps, m):
 
 # -- a dyad's kinematics (seed 000 ch. 5-12) ---------------------------------------------
 @jit
-def _rot_angle(dx, dy, lx, ly, r2):
-    """cos, sin of the angle that turns the local vector (lx, ly) onto (dx, dy)."""
-    return dx * (lx / r2) + dy * (ly / r2), dy * (lx / r2) - dx * (ly / r2)
+def _rot_angle(dx, dy, wx, wy):
+    """cos, sin of the angle that turns the local vector l onto (dx, dy) (|d| = |l|),
+    given (wx, wy) = l / |l|^2."""
+    return dx * wx + dy * wy, dy * wx - dx * wy
 
 
 @body
@@ -249,8 +252,8 @@ def _close_r(kind, p1, p2, g, r, k):
         kh = (k * inv) * math.sqrt(max(h2, 0.0))
         xi = x * inv
         tx, ty = xi * ex - kh * ey, xi * ey + kh * ex
-        c1, s1 = _rot_angle(tx, ty, a1x, a1y, r1s)
-        c2, s2 = _rot_angle((p1[0] + tx) - p2[0], (p1[1] + ty) - p2[1], a2x, a2y, r2s)
+        c1, s1 = _rot_angle(tx, ty, g[W1X, r], g[W1Y, r])
+        c2, s2 = _rot_angle((p1[0] + tx) - p2[0], (p1[1] + ty) - p2[1], g[W2X, r], g[W2Y, r])
         return c1, s1, c2, s2, 0.0, 0.0, reach, gap
     if not rot1 and not rot2:
         # line-line (TRT, seed 000 ch. 10): Q01 + s1 u1 = Q02 + s2 u2
@@ -278,7 +281,8 @@ def _close_r(kind, p1, p2, g, r, k):
     if not disc >= 0.0:
         gap = abs(ux * wy - uy * wx) - math.sqrt(rs)
     s = k * math.sqrt(max(disc, 0.0)) - b
-    cr, sr = _rot_angle(wx + s * ux, wy + s * uy, arx, ary, rs)
+    cr, sr = _rot_angle(wx + s * ux, wy + s * uy, g[W1X, r] if rot1 else g[W2X, r],
+                        g[W1Y, r] if rot1 else g[W2Y, r])
     if rot1:
         return cr, sr, pt[0], pt[1], 0.0, s, -1.0, gap
     return pt[0], pt[1], cr, sr, s, 0.0, -1.0, gap
@@ -390,33 +394,31 @@ def _body(rot, p, kb, j, c, s, lx, ly, ox, oy, qd, qdd, m, jo):
 
 
 @body
-def _dyad_motion(kind, lo, hi, off, g, gs, k1, k2, m1, m2, d):
+def _dyad_motion(kind, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
     """Positions, velocities and accelerations of a dyad of kind ``kind`` (seed 000
     ch. 5-12, the numpy path's ``solve_dyad``): its bodies' motions into ``m1``, ``m2``
     and its data (closing point, velocity system, closeness to a dead centre, parameters)
     into ``d``. Counts the rows that are not finite, cannot close, or are exactly
-    singular."""
+    singular. ``stage`` 0: RTR's guide angle only (nothing for the other kinds); 1: the
+    rest."""
     rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
     rtr = rot1 and rot2 and not inner_r
-    if rtr:     # the guide's angle, then its sin and cos in a pass of their own
+    if stage == 0:
+        if not rtr:
+            return 0
+        # RTR, stage 0: the guide's angle (row D_TH), its cos and sin then worked out by
+        # the caller in a pass of their own (rows C1X, C1Y) before stage 1
         for i in range(lo, hi):
             j, r = i - off, i * gs
             p1 = _param(True, k1, j, g, r, 0)
             p2 = _param(True, k2, j, g, r, PARAM)
             d[D_TH, j], d[CL2, j], d[XX, j] = _rtr_angle(p1, p2, g, r, g[ASSEMBLY, r])
-        for i in range(lo, hi):
-            j = i - off
-            th = d[D_TH, j]
-            d[C1X, j] = math.cos(th)
-            d[C1Y, j] = math.sin(th)
+        return 0
     bad = 0
     for i in range(lo, hi):
         j, r = i - off, i * gs
         bad += _dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d)
     return bad
-
-
-D_TH = 11       # (RTR: the guide's angle, held in a row that is written later)
 
 
 @body
@@ -755,38 +757,38 @@ def slider_reaction(lo, hi, off, g, gs, m, a, out):
 
 # one compiled kernel per dyad kind (the kind's code: layout.KINDS), motion and reactions
 @jit
-def rrr_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
-    return _dyad_motion(7, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+def rrr_motion(stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(7, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d)
 
 
 @jit
-def rrt_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
-    return _dyad_motion(5, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+def rrt_motion(stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(5, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d)
 
 
 @jit
-def trr_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
-    return _dyad_motion(6, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+def trr_motion(stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(6, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d)
 
 
 @jit
-def trt_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
-    return _dyad_motion(4, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+def trt_motion(stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(4, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d)
 
 
 @jit
-def rtr_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
-    return _dyad_motion(3, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+def rtr_motion(stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(3, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d)
 
 
 @jit
-def rtt_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
-    return _dyad_motion(1, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+def rtt_motion(stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(1, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d)
 
 
 @jit
-def ttr_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
-    return _dyad_motion(2, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+def ttr_motion(stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(2, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d)
 
 
 @jit

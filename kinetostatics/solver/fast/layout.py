@@ -35,7 +35,10 @@ SIZE, NORM2, ASSEMBLY = 25, 26, 27
 # an outer prismatic joint's slider point (reactions): where it is (0 the ground, 1 the
 # dyad body, 2 the known body) and its local (or ground) coordinates, per outer joint
 O_WHERE, O_X, O_Y = 28, 29, 30          # + 3 i
-DYAD_GEOMETRY = 34
+# a revolute inner joint: each body's (q - p) / |q - p|^2, the closure's constant factors
+# (the numpy path's ``_rot_angle``: lx / r2 and ly / r2, worked out once)
+W1X, W1Y, W2X, W2Y = 34, 35, 36, 37
+DYAD_GEOMETRY = 38
 
 # a dyad's solved data: the closing point X, the velocity system's columns and
 # determinant, the prismatic inner joint's normal, the closeness to a dead centre, and per
@@ -43,6 +46,7 @@ DYAD_GEOMETRY = 34
 XX, XY, C1X, C1Y, C2X, C2Y, DET, NX, NY, CL2 = range(10)
 D_PA, D_PB, D_PC, D_PD = range(4)       # + 10 + 4 i
 DYAD_OUT = 18
+D_TH = 11   # RTR: the guide's angle, held before its row is written (parameter 1's P_y)
 
 # a dyad's reactions: the inner joint's (on body 2, or on the slider: Fx, Fy, N, M) and
 # per outer prismatic joint (rows 4 + 6 i ...) Fx, Fy, N, M and the slider point
