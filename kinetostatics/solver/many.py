@@ -51,7 +51,7 @@ from ..results import Solution
 from . import blocks
 from .deadpoints import _measure2, dead_points_stacked
 from .driver import BodyMotion
-from .fast import solve_run_compiled, wanted
+from .fast import solve_run_compiled, stack_left_alone, wanted
 from .fast.geometry import not_covered
 from .kinematics import Kinematics, solve_kinematics
 from .pipeline import _solve_block, check_distinct, solve
@@ -222,6 +222,11 @@ def _solve_group(members: list, out: list, lean: bool) -> None:
     for (or all of them, if it refuses) is solved alone."""
     if len(members) == 1:
         out[members[0][0]] = _alone(members[0][1])
+        return
+    rows = sum(sc.driver.positions.size for _, sc in members)
+    if stack_left_alone(members[0][1], rows):   # (the compiled path: each scene's own)
+        for i, sc in members:
+            out[i] = _alone(sc)
         return
     stacker = None
     try:

@@ -10,7 +10,7 @@ qualifies (:func:`~kinetostatics.solver.fast.choice.wanted`).
 """
 
 from .choice import AUTO_ROWS, PATHS, path_setting, use, wanted
-from .solve import solve_compiled, solve_run_compiled
+from .solve import solve_compiled, solve_run_compiled, stack_left_alone
 
-__all__ = ["AUTO_ROWS", "PATHS", "path_setting", "solve_compiled", "solve_run_compiled", "use",
-           "wanted"]
+__all__ = ["AUTO_ROWS", "PATHS", "path_setting", "solve_compiled", "solve_run_compiled",
+           "stack_left_alone", "use", "wanted"]

@@ -24,12 +24,12 @@ def not_covered(scene: Scene) -> str | None:
     ``when = "resisting"`` in a stack of scenes (their thresholds are each scene's own)."""
     if any(j.friction is not None for j in scene.joints.values()):
         return "joint friction"
-    if "segments" in scene.__dict__ and any(_swept(ld) for ld in scene.loads):
+    if "segments" in scene.__dict__ and any(swept_load(ld) for ld in scene.loads):
         return "a resist or when = \"resisting\" load in a stack of scenes"
     return None
 
 
-def _swept(ld) -> bool:
+def swept_load(ld) -> bool:
     """A load whose rows are told by the whole sweep (its top speed or power)."""
     return ld.resist is not None or (ld.force is not None and ld.when == "resisting")
 
@@ -167,7 +167,7 @@ def body_loads_geometry(scene: Scene, name: str) -> tuple[np.ndarray, int, int]:
         if ld.body != name:
             continue
         m0 = m0 + ld.moment
-        if ld.point is not None and ld.force is not None and not _swept(ld):
+        if ld.point is not None and ld.force is not None and not swept_load(ld):
             points.append((*body.local(ld.point), float(ld.force[0]), float(ld.force[1]), 0.0))
     v: dict[int, object] = {L.L_I: inertia, L.L_M0: m0}
     for q, p in enumerate(points):
@@ -186,7 +186,7 @@ def swept_loads_geometry(scene: Scene, name: str) -> tuple[np.ndarray, int, list
     v: dict[int, object] = {}
     floors = []
     for ld in scene.loads:
-        if ld.body != name or ld.point is None or not _swept(ld):
+        if ld.body != name or ld.point is None or not swept_load(ld):
             continue
         b = 7 * len(floors)
         v[b], v[b + 1] = scene.bodies[name].local(ld.point)

@@ -13,7 +13,7 @@ from ..deadpoints import dead_points_between_rows, dead_points_of_sweep, measure
 from ..kinematics import choose_assembly, with_positions
 from .choice import wanted
 from .compose import Plan, Refused, solve_full, solve_lean
-from .geometry import not_covered
+from .geometry import not_covered, swept_load
 
 
 def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
@@ -47,6 +47,8 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
             kin = sol.kin
             kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
                 full, structure, kin)
+            sol.release_loads()     # as the numpy path's solve: worked out again if asked
+            kin.release()
     except Refused:
         return None
     sol.path = "fast"       # (a LeanSolution's: its full solve's is set by _solution)
@@ -69,3 +71,12 @@ def solve_run_compiled(scene: Scene, structure) -> Solution | None:
         return solve_full(Plan(kernels, scene, structure, structure.assembly), positions)
     except Refused:
         return None
+
+
+def stack_left_alone(scene: Scene, rows: int) -> bool:
+    """Whether scenes like ``scene`` (a stack of ``rows`` rows in all) are solved one by
+    one rather than stacked: the compiled path is wanted and covers each scene alone but
+    not their stack (a ``resist`` or ``when = "resisting"`` load), so that each scene of
+    solve_many is, bit for bit, its solve."""
+    alone = not_covered(scene) is None and "segments" not in scene.__dict__
+    return alone and any(map(swept_load, scene.loads)) and wanted(rows) is not None

@@ -21,6 +21,9 @@ from kinetostatics.solver import blocks
 from kinetostatics.solver import pipeline as pl
 from tests.helpers import OWN_CASES, SCENES
 
+# the numpy path's own workings (its blocks, its traps): whatever KINETOSTATICS_PATH says
+pytestmark = pytest.mark.usefixtures("numpy_path")
+
 FILES = (sorted(OWN_CASES.glob("*.toml")) + sorted(SCENES.glob("*.toml"))
          + [ks.example(n) for n in ks.examples()])
 IDS = [p.stem for p in FILES]

@@ -177,7 +177,7 @@ def test_random_slotted_levers(r, h, e, beta):
 
 @pytest.mark.parametrize("name", ["four_bar", "slider_crank", "shaper", "slotted_lever",
                                   "sliding_driver", "scotch_yoke"])
-def test_what_the_solve_lets_go_comes_back_the_same(name):
+def test_what_the_solve_lets_go_comes_back_the_same(name, numpy_path):
     """After the solve each dyad lets go of its velocity system's columns and determinant
     (and its outer pivots' velocity and acceleration); asked for again (the transmission
     angle, the dyads table), they are worked out with exactly the numbers the solve had."""

@@ -22,6 +22,9 @@ from kinetostatics.solver.many import solve_many
 from kinetostatics.solver.stack import Stacker
 from tests.kinetostatics.solver.test_blocks import FILES, IDS, assert_same, sweeps, tables
 
+# the numpy path's own workings (its blocks, its traps): whatever KINETOSTATICS_PATH says
+pytestmark = pytest.mark.usefixtures("numpy_path")
+
 
 def checked(monkeypatch, scene, positions=None):
     """The solve with the trap never tried."""
