@@ -238,3 +238,14 @@ def test_no_writable_cache_folder_solves_on_numpy_with_one_warning(tmp_path) -> 
                   " 'numba' in sys.modules)",
                   KINETOSTATICS_PATH="fast", NUMBA_CACHE_DIR=str(locked / "sub"))
     assert out.stdout.strip() == "['numpy', 'numpy', 'numpy'] 1 False"
+
+
+def test_without_numba_every_setting_solves_on_numpy(path, monkeypatch) -> None:
+    from kinetostatics.solver.fast import loader
+    monkeypatch.setattr(loader, "installed", lambda: False)
+    monkeypatch.setitem(loader._STATE, "kernels", None)
+    monkeypatch.setitem(choice._OPTION, "told", None)
+    path("fast")
+    with pytest.warns(RuntimeWarning, match="numba is not installed") as seen:
+        paths = [solve(ks.example("four_bar")).path for _ in range(3)]
+    assert paths == ["numpy"] * 3 and len(seen) == 1
