@@ -25,6 +25,8 @@ from typing import Any
 
 import numpy as np
 
+from kinetostatics.model.outputs import atomic_file
+
 from ..errors import BalanceError
 from .pdf import write_pdf
 from .text import result_warnings, summary_text, unit_text
@@ -236,12 +238,12 @@ def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
     warns = [f"{w}: {m}" for w, m in result_warnings(out)]
     figs = report_figures(results, out)
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        if suffix == ".pdf":
-            write_pdf(path, datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"), source,
-                      lines, _iso_line(out), warns, figs, dpi)
-        else:
-            path.write_text(_html(lines, warns, figs, source, out, dpi), encoding="utf-8")
+        with atomic_file(path) as tmp:          # the whole report, or the earlier one kept
+            if suffix == ".pdf":
+                write_pdf(tmp, datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"), source,
+                          lines, _iso_line(out), warns, figs, dpi)
+            else:
+                tmp.write_text(_html(lines, warns, figs, source, out, dpi), encoding="utf-8")
     except OSError as exc:
         raise BalanceError(f"--report {path}: cannot write the file ({exc.strerror})") from exc
     return path

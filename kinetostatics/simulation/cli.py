@@ -19,6 +19,8 @@ import json
 import math
 from pathlib import Path
 
+from ..model.outputs import atomic_file
+
 __all__ = ["add_commands"]
 
 
@@ -145,9 +147,8 @@ def _cmd_crosscheck(args) -> int:
                     samples_per_revolution=args.samples, error_bias=args.error_bias,
                     fast=fast, ballast=not args.no_ballast)
     if args.rows:
-        out = Path(args.rows)
-        out.parent.mkdir(parents=True, exist_ok=True)
-        cc.wide().to_csv(out, index=False, float_format="%.17g")
+        with atomic_file(args.rows) as tmp:     # the whole table, or the earlier one kept
+            cc.wide().to_csv(tmp, index=False, float_format="%.17g")
     if args.plot:
         from .plots import plot_comparison
         _save(plot_comparison(cc), args.plot)
@@ -177,9 +178,8 @@ def _plot_study(st):
 def _save(fig, path: str) -> None:
     import matplotlib
     matplotlib.use("Agg")
-    out = Path(path)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=110)
+    with atomic_file(path) as tmp:
+        fig.savefig(tmp, dpi=110, format=Path(path).suffix.lstrip(".").lower() or None)
 
 
 def _clean(obj):
