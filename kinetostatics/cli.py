@@ -9,8 +9,6 @@ import argparse
 import json
 import sys
 import warnings
-from pathlib import Path
-from typing import NoReturn
 
 from . import scene_path
 from .model.errors import WorkbenchError
