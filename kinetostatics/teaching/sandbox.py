@@ -39,8 +39,8 @@ from pathlib import Path
 
 from ..model.errors import WorkbenchError
 
-__all__ = ["INSTALL_HINT", "UNSANDBOXED_HINT", "Limits", "Sandbox", "SandboxUnavailable", "find_bwrap",
-           "sandbox_or_refuse"]
+__all__ = ["INSTALL_HINT", "UNSANDBOXED_HINT", "Limits", "Sandbox", "SandboxUnavailable",
+           "exit_reason", "find_bwrap", "sandbox_or_refuse"]
 
 UNSANDBOXED_HINT = ("grade with --unsandboxed (the notebooks then run as you, with no "
                     "isolation)")

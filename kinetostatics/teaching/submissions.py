@@ -24,6 +24,7 @@ from typing import Any
 from ..model.errors import WorkbenchError
 from .answers import read_answers, saved_answers
 from .execute import NotebookRunError, SubmissionError, run_notebook
+from .sandbox import Sandbox
 
 __all__ = ["ON_ERROR", "read_one", "read_submission"]
 
@@ -38,9 +39,10 @@ def _computed_flag(computed: list[str], how: str) -> str:
 
 
 def read_submission(p: Path, execute: bool = True, timeout: float = 60.0,
-                    on_error: str = "saved") -> list[dict]:
+                    on_error: str = "saved", sandbox: Sandbox | None = None) -> list[dict]:
     """The parts of one submission file: ``[{ids, answers, flags}]`` (a form may hold
-    many students; a notebook is one).
+    many students; a notebook is one). A notebook runs in ``sandbox`` (None: as the
+    grader's user, no isolation).
 
     Raises
     ------
@@ -83,7 +85,7 @@ def read_submission(p: Path, execute: bool = True, timeout: float = 60.0,
             flags.append(_computed_flag(computed, "read as saved (not run)"))
         return [{"ids": ids, "answers": literal, "flags": flags}]
     try:
-        run_id, answers = run_notebook(nb, timeout=timeout)
+        run_id, answers = run_notebook(nb, timeout=timeout, sandbox=sandbox)
     except NotebookRunError as exc:
         why = f"did not run: {exc.args[0]}"
         if on_error == "zero":
@@ -110,24 +112,29 @@ def read_one(task: tuple) -> dict[str, Any]:
     Parameters
     ----------
     task : tuple
-        ``(path, execute, timeout, on_error)`` (plain data: any executor can run it).
+        ``(path, execute, timeout, on_error[, sandbox])`` (plain data: any executor
+        can run it; the sandbox a notebook runs in, None or left out: no isolation).
 
     Returns
     -------
     dict
-        ``file, mtime, parts`` (None when broken), ``reason`` (why broken) and ``ids``
-        (the ids a broken file carries).
+        ``file, mtime, parts`` (None when broken), ``reason`` (why broken), ``ids``
+        (the ids a broken file carries) and ``sandbox`` (what a notebook ran in:
+        ``"bubblewrap"``, ``"none (--unsandboxed)"``, ``""`` when nothing ran).
     """
-    path, execute, timeout, on_error = task
+    path, execute, timeout, on_error, sandbox = (*task, None)[:5]
     p = Path(path)
     try:
         mtime = os.stat(p).st_mtime
     except OSError:
         mtime = float("nan")
+    ran = execute and p.suffix.lower() == ".ipynb"
     out: dict[str, Any] = {"file": str(p), "mtime": mtime, "parts": None, "reason": "",
-                           "ids": []}
+                           "ids": [], "sandbox": "" if not ran else (
+                               "bubblewrap" if sandbox is not None else
+                               "none (--unsandboxed)")}
     try:
-        out["parts"] = read_submission(p, execute, timeout, on_error)
+        out["parts"] = read_submission(p, execute, timeout, on_error, sandbox)
     except SubmissionError as exc:
         out["reason"] = str(exc.args[0])
         out["ids"] = list(exc.args[1]) if len(exc.args) > 1 else []
