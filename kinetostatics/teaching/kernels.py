@@ -10,6 +10,7 @@ cells print and display, and stops the kernel when the count passes the limit.
 
 from __future__ import annotations
 
+import atexit
 import math
 import os
 import signal
@@ -135,5 +136,7 @@ class GradingClient(NotebookClient):
         return None if proc is None else proc.poll()
 
     def close(self) -> None:
-        """Make sure nothing of the kernel is left."""
+        """Make sure nothing of the kernel is left (and nbclient's exit hook, which
+        cannot clean a kernel that never started, is not called at exit)."""
         self.kill()
+        atexit.unregister(self._cleanup_kernel)
