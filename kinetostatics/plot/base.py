@@ -16,6 +16,7 @@ from matplotlib.ticker import MaxNLocator, MultipleLocator
 
 from ..model.scene import GROUND
 from ..results import Solution
+from .notation import reading
 
 LOAD_COLORS = {"applied": "tab:blue", "gravity": "tab:brown", "inertia": "tab:purple"}
 REACTION_COLOR = "tab:red"
@@ -87,8 +88,8 @@ def global_point(sol: Solution, body: str, point: str, row: int) -> tuple[float,
 
 
 def magnitude_text(x: float) -> str:
-    """A magnitude for a legend: 31770 rather than 3.177e+04."""
-    return f"{x:.0f}" if 1e3 <= abs(x) < 1e7 else f"{x:.4g}"
+    """A magnitude for a legend: 31770 rather than 3.177e+04, never in e-notation."""
+    return f"{x:.0f}" if 1e3 <= abs(x) < 1e7 else reading(x)
 
 
 def math_name(name: str) -> str:

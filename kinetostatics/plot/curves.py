@@ -27,7 +27,7 @@ from .base import (
     vector_axes,
 )
 from .mechanism import draw_mechanism
-from .notation import direction_text, gloss, number, titled
+from .notation import direction_text, number, reading, titled
 from .place import declutter, settle
 
 __all__ = [
@@ -71,9 +71,8 @@ def plot_driver(sol: Solution, ax: Axes | None = None) -> Axes:
     cycle_axis(ax, sol)
     ax.set_ylabel("equilibrating moment Me [N m]" if q == "Me"
                   else "equilibrating force Fe [N]")
-    ax.set_title(f"{q} over the cycle\n"
-                 f"{titled('balancing moment' if q == 'Me' else 'balancing force')}",
-                 fontsize=11)
+    ax.set_title(f"{titled('equilibrating moment' if q == 'Me' else 'equilibrating force')} "
+                 f"{q} over the cycle", fontsize=11)
     ax.grid(True, alpha=0.3)
     legend_outside(ax)
     return ax
@@ -149,13 +148,13 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
         step = float(sol.positions[rows[1]] - sol.positions[rows[0]]) if len(rows) > 1 else 0.0
         unit = "°" if sol.scene.driver.kind == "R" else " m"
         ax.plot([], [], ".", color="0.3",
-                label=f"k: position {float(sol.positions[0]):g}{unit} + k·{step:.4g}{unit}")
+                label=f"k: position {float(sol.positions[0]):g}{unit} + k·{reading(step)}{unit}")
     ax.set_aspect("equal", adjustable="datalim")
     vector_axes(ax)
     ax.set_xlabel("Fx [N]")
     ax.set_ylabel("Fy [N]")
-    ax.set_title(f"polar diagram of the joint reactions\n({gloss('polar diagram')}; "
-                 "dot: first position)", fontsize=11)
+    ax.set_title(f"{titled('polar diagram')} of the joint reactions\n(dot: first position)",
+                 fontsize=11)
     ax.grid(True, alpha=0.3)
     legend_outside(ax)
     declutter(ax, texts)

@@ -24,6 +24,7 @@ from .base import (
     row_index,
     trace_points,
 )
+from .notation import reading, round_scale
 from .place import declutter
 
 __all__ = ["animate", "draw_body", "draw_mechanism"]
@@ -179,7 +180,8 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
     handles = []
     if arrows:
         fmax = max(np.hypot(a[3], a[4]) for a in arrows) or 1.0
-        sc = force_scale or 0.25 * size / fmax
+        # a round scale (1, 2 or 5 x 10^k m per N): the arrow legend reads round numbers
+        sc = force_scale or round_scale(0.25 * size / fmax)
         for lab, x, y, fx, fy, col in arrows:
             tip = (x + sc * fx, y + sc * fy)
             ax.annotate("", tip, (x, y),
@@ -198,7 +200,8 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
                       if any(a[5] == c for a in arrows)]
         handles = [Line2D([], [], color=c, lw=1.5, label=k) for k, c in kinds]
         ref = 10.0 ** np.floor(np.log10(0.1 * size))
-        handles.append(Line2D([], [], ls="none", label=f"arrows: {ref:g} m ≙ {ref / sc:.3g} N"))
+        handles.append(Line2D([], [], ls="none",
+                              label=f"arrows: {ref:g} m ≙ {reading(ref / sc)} N"))
     ax.set_aspect("equal", adjustable="datalim")
     ax.margins(0.08)
     ax.autoscale_view()
