@@ -18,10 +18,10 @@ from kinetostatics.cli import OneLineParser, dpi_argument
 
 from .api import example_path, examples, results_to_dict, solve_results
 from .errors import WorkbenchError
+from .model.scene import SCENES
+from .model.units import SI
 from .report.document import json_default
 from .report.text import result_warnings, summary_text
-from .scene import SCENES
-from .units import SI
 
 
 def _parser() -> argparse.ArgumentParser:

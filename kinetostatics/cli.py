@@ -17,10 +17,10 @@ from .model.errors import WorkbenchError
 
 
 def _cmd_solve(args) -> int:
-    from .output import summary_with_units
+    from .results.output import summary_with_units
     from .solver.pipeline import solve
     if args.out and args.format == "parquet":
-        from .output import parquet_available
+        from .results.output import parquet_available
         parquet_available()
     sol = solve(scene_path(args.scene))
     summary = summary_with_units(sol.summary(), sol.scene.units)
@@ -93,7 +93,7 @@ def _cmd_motion(args) -> int:
 
 def _cmd_cam(args) -> int:
     from .cams import solve_cam
-    from .output import summary_with_units, write_summary
+    from .results.output import summary_with_units, write_summary
     res = solve_cam(scene_path(args.scene))
     summary = summary_with_units(res.summary, res.scene.units)
     if args.out:
@@ -108,11 +108,11 @@ def _cmd_cam(args) -> int:
 
 def _cmd_bench(args) -> int:
     if args.tables:
-        from .bench_tables import run_table_bench
+        from .bench.tables import run_table_bench
         run_table_bench(quick=args.quick, repeat=args.repeat)
         return 0
-    from .bench import run_bench
-    from .bench_speed import run_speed
+    from .bench.accuracy import run_bench
+    from .bench.speed import run_speed
     run_bench(quick=args.quick, reference=args.reference)
     run_speed(quick=args.quick, reference=args.reference)
     return 0

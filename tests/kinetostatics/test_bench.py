@@ -66,7 +66,7 @@ def test_side_by_side_in_warm_batches(monkeypatch) -> None:
     warm row, a large one none (no time is asserted: speed lives in the bench)."""
     import gc
 
-    from kinetostatics import bench_speed as B
+    from kinetostatics.bench import speed as B
 
     # (a full collection before each round costs about 0.8 s in the test suite's
     # process, which holds every module and fixture: counted here, not made)

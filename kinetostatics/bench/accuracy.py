@@ -26,10 +26,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .model.scene import load_scene
-from .solver.kinematics import solve_kinematics
-from .solver.pipeline import solve
-from .solver.structure import analyse
+from ..model.scene import load_scene
+from ..solver.kinematics import solve_kinematics
+from ..solver.pipeline import solve
+from ..solver.structure import analyse
 
 # the baseline's four-bar: a = 0.1, b = 0.25, c = 0.2, d = 0.3, cogs at mid-links,
 # 500 N down at C on the rocker, no gravity
@@ -39,8 +39,8 @@ SC = {"r": 0.150, "l": 0.350, "rpm": 1500.0}      # the bundled slider_crank
 
 
 def _bundled(name: str) -> dict:
-    from .model.examples import example
-    from .model.scene import load_scene
+    from ..model.examples import example
+    from ..model.scene import load_scene
     return copy.deepcopy(load_scene(example(name)).raw)
 
 
@@ -251,7 +251,7 @@ def load_reference(path: str | Path):
 
 def find_reference() -> Path | None:
     """``../shared/bench/reference_fourbar.py`` beside the working folder or the package."""
-    here = Path(__file__).resolve().parents[1]
+    here = Path(__file__).resolve().parents[2]
     for base in (Path.cwd(), here):
         for cand in (base.parent / "shared" / "bench" / "reference_fourbar.py",
                      base / "shared" / "bench" / "reference_fourbar.py"):
@@ -295,7 +295,7 @@ def bench_against_reference(path: str | Path, n: int = 200_001, repeat: int = 7)
 
 def run_bench(quick: bool = False, reference: str | None = None) -> dict[str, pd.DataFrame]:
     """Run the benchmarks and print their tables (the ratios to baselines follow from
-    :func:`kinetostatics.bench_speed.run_speed`)."""
+    :func:`kinetostatics.bench.speed.run_speed`)."""
     sizes = (1_000, 10_000) if quick else (1_000, 100_000, 1_000_000)
     out = {"kinematics": bench_kinematics(sizes)}
     out["reactions"] = bench_reactions(10_000 if quick else 1_000_000)
