@@ -48,6 +48,16 @@ def position_text(sol: Solution, i: int) -> str:
     return f"φ = {p:g}°" if sol.scene.driver.kind == "R" else f"s = {p:g} m"
 
 
+#: What a picture of forces says at a row flagged singular, instead of drawing them.
+SINGULAR_NOTE = "singular row (at or near a dead point): the forces are not drawn"
+
+
+def singular_row(sol: Solution, i: int) -> bool:
+    """Row ``i`` is flagged singular (at or near a dead point): its forces and Me have
+    no value a picture can vouch for."""
+    return bool(np.asarray(sol.singular)[i])
+
+
 def vector_axes(ax: Axes) -> None:
     """Few ticks, large numbers as powers of ten: legible tick labels on vector diagrams."""
     for a in (ax.xaxis, ax.yaxis):

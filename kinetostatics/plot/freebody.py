@@ -20,19 +20,21 @@ from ..results import Solution
 from .base import (
     LOAD_COLORS,
     REACTION_COLOR,
+    SINGULAR_NOTE,
     at_row,
     body_colors,
     global_point,
     magnitude_text,
-    math_name,
     position_text,
     row_index,
+    singular_row,
     vector_axes,
 )
 from .mechanism import draw_body
 from .notation import (
     couple_subscript,
     force_symbol,
+    load_symbol,
     reading,
     round_scale,
     signed_text,
@@ -43,14 +45,6 @@ from .polygons import find_dyad, force_on, force_polygon
 
 __all__ = ["dyad_free_body", "free_body_forces"]
 
-# the symbols of the force polygon: F_body, G_body, F^i_body, F^f_body
-_SHORT = {"applied": "F_{{\\mathrm{{{b}}}}}", "gravity": "G_{{\\mathrm{{{b}}}}}",
-          "inertia": "F^{{i}}_{{\\mathrm{{{b}}}}}", "friction": "F^{{f}}_{{\\mathrm{{{b}}}}}"}
-
-
-def _load_symbol(kind: str, body: str) -> str:
-    """The symbol of a load as the force polygon writes it (mathtext)."""
-    return "$" + _SHORT.get(kind, _SHORT["applied"]).format(b=math_name(body)) + "$"
 
 
 def free_body_forces(sol: Solution, dyad, position: float | None = None, *,
@@ -89,7 +83,7 @@ def free_body_forces(sol: Solution, dyad, position: float | None = None, *,
         if fx == 0.0 and fy == 0.0 and m == 0.0:
             continue
         x, y = ld.position(sol.kin)
-        sym = _load_symbol(ld.kind, ld.body)
+        sym = load_symbol(ld.kind, ld.body)
         out.append({"label": sym, "symbol": sym, "body": ld.body,
                     "kind": ld.kind, "x": at_row(x, i, n), "y": at_row(y, i, n),
                     "fx": fx, "fy": fy, "m": m})
@@ -174,7 +168,8 @@ def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
     pts = []
     for b in bodies:
         pts += draw_body(ax, sol, b, i, colors[names.index(b) % len(colors)], texts, named)
-    forces = free_body_forces(sol, dyad, row=i)
+    singular = singular_row(sol, i)     # no force to vouch for: said, not drawn
+    forces = [] if singular else free_body_forces(sol, dyad, row=i)
     pts = np.array(pts + [(f["x"], f["y"]) for f in forces])
     size = float(np.ptp(pts, axis=0).max()) or 1.0
     fmax = max((np.hypot(f["fx"], f["fy"]) for f in forces), default=0.0) or 1.0
@@ -236,7 +231,8 @@ def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
     what = f"dyad {d.index + 1} {d.kind} ({', '.join(d.bodies)})" if d is not None else \
         f"driver {bodies[0]}"
     ax.set_title(f"{titled('free-body diagram')}\n{what} at {position_text(sol, i)}\n"
-                 f"arrows: {ref:g} m ≙ {reading(ref / sc)} N", fontsize=10)
+                 + (SINGULAR_NOTE if singular else
+                    f"arrows: {ref:g} m ≙ {reading(ref / sc)} N"), fontsize=10)
     force_polygon(sol, 0 if d is None else d.index + 1, row=i, ax=ax2)
     declutter(ax, texts)
     settle(fig)

@@ -13,7 +13,7 @@ import numpy as np
 
 __all__ = ["GLOSS", "POLE", "direction_text", "gloss", "notation_problems", "number",
            "reading", "round_scale", "signed_text", "titled", "force_symbol",
-           "couple_subscript"]
+           "couple_subscript", "load_symbol"]
 
 #: The pole of the velocity and of the acceleration plan (fixed points sit on it).
 POLE = "o"
@@ -70,6 +70,14 @@ def couple_subscript(joint: str) -> str:
     if not joint:
         return ""
     return "_{\\mathrm{" + joint.replace("_", r"\_").replace("$", "") + "}}"
+
+
+def load_symbol(kind: str, body: str) -> str:
+    """A load as the free-body diagrams, the mechanism and the polygons write it
+    (mathtext): the applied force $F_{\\mathrm{body}}$, the weight $G_{\\mathrm{body}}$,
+    the inertia force $F^{i}_{\\mathrm{body}}$, friction $F^{f}_{\\mathrm{body}}$."""
+    head = {"gravity": "G", "inertia": "F^{i}", "friction": "F^{f}"}.get(kind, "F")
+    return f"${head}{couple_subscript(body)}$"
 
 
 def reading(x: float, digits: int = 4) -> str:

@@ -15,6 +15,7 @@ from ..solver.structure import Dyad
 from .base import (
     LOAD_COLORS,
     REACTION_COLOR,
+    SINGULAR_NOTE,
     at_row,
     axes_or_new,
     global_point,
@@ -24,6 +25,7 @@ from .base import (
     place_labels,
     position_text,
     row_index,
+    singular_row,
     vector_axes,
 )
 from .notation import direction_text, force_symbol, signed_text, titled
@@ -211,6 +213,14 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
     d = find_dyad(sol, dyad)
     ax = axes_or_new(ax, figsize=(7.5, 5.0))
     i = row_index(sol, position, row)
+    if singular_row(sol, i):        # no force to vouch for: said, not drawn
+        ax.set(xticks=[], yticks=[])
+        for side in ax.spines.values():
+            side.set_visible(False)
+        ax.text(0.5, 0.5, f"{titled('force polygon')} at {position_text(sol, i)}:\n"
+                + SINGULAR_NOTE.replace(": ", ":\n"), ha="center", va="center",
+                transform=ax.transAxes, color="tab:red")
+        return ax
     forces, split = polygon_forces(sol, d, i, components)
     big = max((np.hypot(*f[1]) for f in forces), default=1.0) or 1.0
     chain = _chain(forces, d, split, big)
