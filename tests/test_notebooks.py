@@ -54,9 +54,9 @@ def _install_audit():
                       "notation": a.notation, "problems": a.problems})
 
     def before_show():
-        n = ip.execution_count
+        code = ip.user_ns["_ih"][-1].strip().splitlines() or [""]
         for k in plt.get_fignums():
-            measure(f"cell [{n}] figure {k}", plt.figure(k))
+            measure(f"cell {code[0][:60]!r} figure {k}", plt.figure(k))
 
     ip.events.register("post_execute", before_show)
     return found, measure

@@ -21,6 +21,7 @@ from .base import (
     axes_or_new,
     body_colors,
     global_point,
+    legend_outside,
     position_text,
     row_index,
     singular_row,
@@ -306,7 +307,7 @@ def animate(sol: Solution, frames: int = 24, *, ax: Axes | None = None,
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=10, loc="best")
+    legend_outside(ax, fontsize=10)     # never over the moving links
     update(0)
     return FuncAnimation(fig, update, frames=len(rows), interval=interval, blit=False)
 
