@@ -26,6 +26,8 @@ from typing import Any
 import numpy as np
 
 from kinetostatics.model.outputs import atomic_file
+from kinetostatics.plot.notation import reading
+from kinetostatics.plot.place import settle
 
 from ..errors import BalanceError
 from .pdf import write_pdf
@@ -142,7 +144,8 @@ def iso_figure(iso: dict[str, Any]):
                    c=["tab:green" if o else "tab:red" for o in ok], label="residual")
     ax.set_xticks(x, names)
     ax.set_ylabel(f"unbalance ({iso['unbalance_unit']})")
-    ax.set_title(f"ISO 21940-11, G {iso['grade']:g}: U_per = {iso['U_per']:.4g} "
+    ax.set_title(f"ISO 21940-11, G {iso['grade']:g}: $U_{{\\mathrm{{per}}}}$ = "
+                 f"{reading(iso['U_per'])} "
                  f"{iso['unbalance_unit']}", fontsize=10)
     ax.legend(fontsize=10)
     ax.grid(True, axis="y", color="0.9")
@@ -183,6 +186,8 @@ def report_figures(results: dict[str, Any], out: dict[str, Any]) -> list[tuple[s
     if "iso" in out:
         figs.append(("ISO 21940-11: tolerances (bars) and residuals (dots)",
                      iso_figure(out["iso"])))
+    for _caption, fig in figs:
+        settle(fig)             # labels clear of the vectors, on the final layout
     return figs
 
 
