@@ -23,6 +23,7 @@ from functools import partial
 import numpy as np
 
 from ..solver.many import solve_outcomes
+from .screen import loaded
 from .section import DesignSpec
 
 
@@ -77,30 +78,36 @@ def evaluate(spec: DesignSpec, X: np.ndarray, executor: Executor | None = None,
 
 
 def evaluate_rows(spec: DesignSpec, X: np.ndarray) -> Evaluation:
-    """:func:`evaluate` in this process (a top-level function: an executor's task)."""
+    """:func:`evaluate` in this process (a top-level function: an executor's task). The
+    designs the screen (:func:`~kinetostatics.design.screen.screen`) sets aside are not
+    solved; the others are, in one call."""
     n = len(X)
     designs = [spec.scene_dict(x) for x in X]
     turns = [spec.turn_dict(d) for d in designs]
-    extra = [t for t in turns if t is not None]
-    outcomes = solve_outcomes(designs + extra)
-    turn_out = iter(outcomes[n:])
+    dicts = designs + [t for t in turns if t is not None]
+    scenes, why = loaded(dicts)
+    go = [i for i, (s, w) in enumerate(zip(scenes, why, strict=True))
+          if w is None and not isinstance(s, Exception)]
+    outcomes: list = [w if w is not None else s for s, w in zip(scenes, why, strict=True)]
+    for i, sol in zip(go, solve_outcomes([scenes[i] for i in go]), strict=True):
+        outcomes[i] = sol
+    turn_of = iter(range(n, len(dicts)))
     values = np.full((n, len(spec.objectives)), np.nan)
     limits = np.full((n, len(spec.constraints)), np.nan)
     feasible = np.zeros(n, dtype=bool)
     solved = np.zeros(n, dtype=bool)
     reasons: list[str | None] = [None] * n
-    for i, (sol, turn) in enumerate(zip(outcomes[:n], turns, strict=True)):
-        why = unvouched(sol)
-        if why is None and turn is not None:
-            why = unvouched(next(turn_out))
-            why = None if why is None else f"full_turn: {why}"
-        elif turn is not None:
-            next(turn_out)
-        if why is None:
+    for i, turn in enumerate(turns):
+        t = None if turn is None else next(turn_of)
+        why_i = unvouched(outcomes[i])
+        if why_i is None and t is not None:
+            why_t = unvouched(outcomes[t])
+            why_i = None if why_t is None else f"full_turn: {why_t}"
+        if why_i is None:
             solved[i] = True
-            why = _judge(spec, sol, i, values, limits)
-        reasons[i] = why
-        feasible[i] = why is None
+            why_i = _judge(spec, outcomes[i], i, values, limits)
+        reasons[i] = why_i
+        feasible[i] = why_i is None
     return Evaluation(values, limits, solved, feasible, reasons)
 
 
@@ -121,8 +128,10 @@ def _judge(spec: DesignSpec, sol, i: int, values: np.ndarray, limits: np.ndarray
 
 
 def unvouched(sol) -> str | None:
-    """Why a solve's outcome (a Solution, or the error the solver raised) cannot be
-    vouched for over its whole sweep, or None."""
+    """Why a solve's outcome (a Solution, the error the solver raised, or the screen's
+    reason) cannot be vouched for over its whole sweep, or None."""
+    if isinstance(sol, str):        # (set aside by the screen)
+        return sol
     if isinstance(sol, Exception):
         return reason_of(sol)
     if len(sol.kin.between):

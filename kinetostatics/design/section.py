@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 
 from ..model.errors import WorkbenchError
+from ..model.examples import SCENES
 from ..model.scene import Scene, load_scene
 from ..model.tomlio import check_keys, read_source
 from . import paths
@@ -126,7 +127,7 @@ def read_design(source: Any, *, seed: int | None = None, population: int | None 
                 generations: int | None = None) -> DesignSpec:
     """The checked ``[design]`` section of a scene (path, TOML text or dict); ``seed``,
     ``population`` and ``generations`` given here replace the section's."""
-    raw = copy.deepcopy(read_source(source))
+    raw = copy.deepcopy(read_source(source, bundled=SCENES))
     if "design" not in raw:
         raise DesignError("the scene has no [design] section; add one (docs/design.md): "
                           "objectives, constraints and [design.variables]")
