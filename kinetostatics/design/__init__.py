@@ -17,6 +17,8 @@ over its whole sweep is infeasible, never penalised nor cut short::
 
 from __future__ import annotations
 
+import sys
+import types
 from typing import TYPE_CHECKING
 
 from .errors import DesignError, MissingExtra
@@ -52,3 +54,16 @@ def __getattr__(name: str):
     value = getattr(importlib.import_module(f"{__name__}.{where}"), name)
     globals()[name] = value
     return value
+
+
+class _Package(types.ModuleType):
+    """This package, callable as :func:`design` (``ks.design(scene)``): importing a
+    subpackage binds its name on the parent package, so ``kinetostatics.design`` is this
+    package once imported, and calling it runs the search."""
+
+    def __call__(self, *args, **kwargs):
+        from .result import design
+        return design(*args, **kwargs)
+
+
+sys.modules[__name__].__class__ = _Package
