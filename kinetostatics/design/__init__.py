@@ -24,19 +24,19 @@ from typing import TYPE_CHECKING
 from .errors import DesignError, MissingExtra
 
 if TYPE_CHECKING:
-    from .evaluate import Evaluation, evaluate
+    from .judging import Evaluation, evaluate
+    from .optimiser import hypervolume, normalisation, random_search, search
     from .plots import draw_design, plot_front
     from .result import DesignResult, design
-    from .search import hypervolume, normalisation, random_search, search
     from .section import DesignSpec, read_design
     from .tomltext import toml_text
 
 # imported when first asked for (PEP 562): the command line's parser imports this
 # package's cli, which must not load pandas and matplotlib
-_LAZY = {"Evaluation": "evaluate", "evaluate": "evaluate", "draw_design": "plots",
+_LAZY = {"Evaluation": "judging", "evaluate": "judging", "draw_design": "plots",
          "plot_front": "plots", "DesignResult": "result", "design": "result",
-         "hypervolume": "search", "normalisation": "search", "random_search": "search",
-         "search": "search", "DesignSpec": "section", "read_design": "section",
+         "hypervolume": "optimiser", "normalisation": "optimiser", "random_search": "optimiser",
+         "search": "optimiser", "DesignSpec": "section", "read_design": "section",
          "toml_text": "tomltext"}
 
 __all__ = ["DesignError", "DesignResult", "DesignSpec", "Evaluation", "MissingExtra",

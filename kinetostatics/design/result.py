@@ -14,8 +14,8 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .evaluate import Evaluation, evaluate, minimised
-from .search import Archive, hypervolume, no_feasible, normalisation, search
+from .judging import Evaluation, evaluate, minimised
+from .optimiser import Archive, hypervolume, no_feasible, normalisation, search
 from .section import DesignSpec, read_design
 
 

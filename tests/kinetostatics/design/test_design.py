@@ -16,7 +16,7 @@ import pytest
 
 import kinetostatics as ks
 from kinetostatics.design import hypervolume, random_search, toml_text
-from kinetostatics.design.evaluate import unvouched
+from kinetostatics.design.judging import unvouched
 
 from .fourbar import four_bar
 

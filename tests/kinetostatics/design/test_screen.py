@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from kinetostatics.design.evaluate import evaluate, unvouched
+from kinetostatics.design.judging import evaluate, unvouched
 from kinetostatics.design.screen import loaded
 from kinetostatics.design.section import read_design
 from kinetostatics.solver.many import solve_outcomes

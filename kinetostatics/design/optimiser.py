@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .errors import DesignError, MissingExtra
-from .evaluate import Evaluation, evaluate, excess, minimised
+from .judging import Evaluation, evaluate, excess, minimised
 from .section import DesignSpec
 
 REFERENCE = 1.1     # the hypervolume's reference point, in normalised objectives
