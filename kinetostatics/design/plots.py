@@ -44,32 +44,38 @@ def plot_front(result, ax: Axes | None = None, chosen: int | None = None) -> Axe
     return ax
 
 
-def draw_design(result, i: int, fig: Figure | None = None) -> Figure:
+def draw_design(result, i: int, fig: Figure | None = None, *, front: bool = False,
+                own=None) -> Figure:
     """Design ``i`` of the front: its mechanism at the row of its largest |Me| (|Fe|),
-    and its Me over the sweep beside the scene's own design's."""
+    and its Me over the sweep beside the scene's own design's (``own``: that design's
+    Solution, solved here when not given); with ``front``, the front first, design
+    ``i`` circled."""
     from ..plot.mechanism import draw_mechanism
     from ..solver.pipeline import solve
     if fig is None:
-        fig = Figure(figsize=(11, 4.4), layout="constrained")
+        fig = Figure(figsize=(15.5 if front else 11, 4.4), layout="constrained")
         FigureCanvasAgg(fig)        # a canvas that renders (no pyplot)
     else:
         fig.clear()
-    a, b = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.1, 1]})
+    axes = fig.subplots(1, 3 if front else 2,
+                        gridspec_kw={"width_ratios": [1, 1.1, 1] if front else [1.1, 1]})
+    if front:
+        plot_front(result, axes[0], chosen=i)
+    a, b = axes[-2:]
     sol = result.solve(i)
     q = sol.driver_quantity
     me = np.asarray(sol.Me)
-    row = int(np.argmax(np.abs(me)))
-    draw_mechanism(sol, row=row, ax=a)
+    draw_mechanism(sol, row=int(np.argmax(np.abs(me))), ax=a)
     a.set_title(f"design {i}: at the peak of |{q}|")
-    unit = "deg" if sol.scene.driver.kind == "R" else "m"
     order = sol.order
     b.plot(sol.positions[order], me[order], color="C3", lw=2, label=f"design {i}")
-    if result.bundled.solved[0]:
+    if own is None and result.bundled.solved[0]:
         own = solve(result.spec.scene)
+    if own is not None:
         b.plot(own.positions[own.order], np.asarray(own.Me)[own.order], color="C1", lw=1.2,
                ls="--", label="the scene's own design")
     b.axhline(0.0, color="0.5", lw=0.6)
-    b.set_xlabel(f"driver position [{unit}]")
+    b.set_xlabel(f"driver position [{'deg' if sol.scene.driver.kind == 'R' else 'm'}]")
     b.set_ylabel(f"{q} [{'N m' if q == 'Me' else 'N'}]")
     b.grid(True, alpha=0.3)
     b.legend(loc="best", fontsize=9)
