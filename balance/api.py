@@ -8,11 +8,11 @@ from typing import Any
 
 from .errors import BalanceError
 from .field.scene import solve_field
+from .model.scene import SCENES, BalanceScene, ResonanceSpec, load_scene
+from .model.slips import check_corrections
 from .resonance.methods import ResonanceResult, parallelogram, trial_runs
 from .rotor.design import balance_rotor
 from .rotor.static_device import static_device
-from .scene import SCENES, BalanceScene, ResonanceSpec, load_scene
-from .slips import check_corrections
 
 __all__ = ["example_path", "examples", "results_to_dict", "solve", "solve_results"]
 
@@ -41,7 +41,7 @@ def solve_results(scene: Any) -> dict[str, Any]:
     Parameters
     ----------
     scene : pathlib.Path, str, dict or BalanceScene
-        See :func:`balance.scene.load_scene`.
+        See :func:`balance.model.scene.load_scene`.
 
     Returns
     -------

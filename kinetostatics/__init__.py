@@ -69,6 +69,45 @@ __all__ = [
 ]
 
 
+# modules moved into subpackages: their old names import the new module with a
+# DeprecationWarning, for one release
+_MOVED = {"output": "results.output", "csvtext": "results.csvtext",
+          "longtable": "results.longtable", "bench_speed": "bench.speed",
+          "bench_tables": "bench.tables"}
+
+
+class _MovedModules:
+    """Import finder of the moved modules' old names (``kinetostatics.output``, ...)."""
+
+    @staticmethod
+    def find_spec(fullname: str, path=None, target=None):
+        package, _, name = fullname.rpartition(".")
+        if package != __name__ or name not in _MOVED:
+            return None
+        from importlib.util import spec_from_loader
+        return spec_from_loader(fullname, _MovedModules)
+
+    @staticmethod
+    def create_module(spec):
+        import importlib
+        import warnings
+
+        new = f"{__name__}.{_MOVED[spec.name.rpartition('.')[2]]}"
+        warnings.warn(f"{spec.name} is now {new}; the old name goes in the next release",
+                      DeprecationWarning, stacklevel=2)
+        module = importlib.import_module(new)
+        spec.loader_state = module.__spec__      # put back in exec_module
+        return module
+
+    @staticmethod
+    def exec_module(module) -> None:
+        module.__spec__ = module.__spec__.loader_state
+
+
+if not any(f is _MovedModules for f in __import__("sys").meta_path):
+    __import__("sys").meta_path.insert(0, _MovedModules)
+
+
 def __getattr__(name: str):
     """The public names of the solver, the results and the motion, imported on first use."""
     where = _LAZY.get(name)

@@ -114,7 +114,7 @@ def to_contract_units(raw: dict) -> tuple[dict, Units]:
 def convert_mechanism(raw: dict, units: Units) -> dict:
     """A copy of a mechanism scene's mapping (without ``[units]``) with the numbers written in
     ``units`` rewritten in the contract's units; keys it does not know are left as they are
-    (a balancing scene's sections: :mod:`balance.scene_units` converts those). In the
+    (a balancing scene's sections: :mod:`balance.model.scene_units` converts those). In the
     default units, ``raw`` itself is returned."""
     if units.is_default:
         return raw

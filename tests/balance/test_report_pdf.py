@@ -12,8 +12,8 @@ from matplotlib.backends import backend_pdf
 from matplotlib.legend import Legend
 from matplotlib.text import Text
 
+from balance.model.scene import SCENES
 from balance.report import report_figures, report_scene
-from balance.scene import SCENES
 
 matplotlib.use("Agg")
 

@@ -174,7 +174,7 @@ def test_any_block_size_gives_the_same_numbers(rows, count, start) -> None:
 def test_solve_many_in_blocks_gives_each_scene_its_solve(monkeypatch) -> None:
     """The stacked pass of solve_many cut into blocks: each scene's tables are its
     solve's, bit for bit."""
-    from kinetostatics.bench_speed import four_bar_variants
+    from kinetostatics.bench.speed import four_bar_variants
     dicts = four_bar_variants(12, seed=3)
     alone = [tables(ks.solve(d)) for d in dicts]
     monkeypatch.setattr(blocks, "BLOCK_ROWS", 100)

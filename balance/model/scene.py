@@ -4,9 +4,9 @@
 text or a dict. Sections: ``[rotor]`` (with ``[[rotor.unbalance]]`` and one or two
 ``[[rotor.planes]]``), ``[static_test]``, ``[[resonance_test]]``; ``title`` and
 ``format = 1`` may stand at the top; ``[units]`` names the units of every section
-(:mod:`balance.scene_units` rewrites the scene once, here); the field-balancing sections
+(:mod:`balance.model.scene_units` rewrites the scene once, here); the field-balancing sections
 ``[[influence]]``, ``[iso]``, ``[[split]]`` and ``[[combine]]`` are read by
-:mod:`balance.field.scene`. A mechanism scene's keys (section 1) are let
+:mod:`balance.model.field_scene`. A mechanism scene's keys (section 1) are let
 through unchecked (``kinetostatics`` checks them), so that its ``[balancing]``
 section can be dispatched; every other unknown key is refused with the nearest
 known key suggested.
@@ -29,8 +29,8 @@ from kinetostatics.model.errors import SceneError
 from kinetostatics.model.examples import BundledScenes
 from kinetostatics.model.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source
 
-from .field.scene import FIELD_SECTIONS, FieldScene, parse_field
-from .rotor.design import CorrectionPlane, Unbalance
+from ..rotor.design import CorrectionPlane, Unbalance
+from .field_scene import FIELD_SECTIONS, FieldScene, parse_field
 from .scene_units import to_contract_units
 from .slips import check_slips
 from .units import Units
@@ -103,7 +103,7 @@ class ResonanceSpec:
 @dataclass(frozen=True)
 class BalanceScene:
     """A checked balancing scene; ``raw`` keeps the mapping as read, rewritten into its
-    solvers' units (:mod:`balance.scene_units`); ``units`` is the file's ``[units]``."""
+    solvers' units (:mod:`balance.model.scene_units`); ``units`` is the file's ``[units]``."""
 
     title: str = ""
     rotor: RotorSpec | None = None

@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Any
 
 from kinetostatics.model.units import angle_slip, ratio_slip
 
-from .errors import BalanceWarning
+from ..errors import BalanceWarning
 
 if TYPE_CHECKING:
     from .scene import BalanceScene

@@ -19,16 +19,16 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..model.errors import WorkbenchError
+from ..model.scene import GROUND, Scene
+from ..solver import arith as A
+from ..solver.continuity import body_angles, sweep_order
+from ..solver.kinematics import Kinematics
+from ..solver.loads import PointLoad
+from ..solver.reactions import DriverReaction, JointReaction
+from ..solver.structure import Structure
 from . import longtable as tables
 from .longtable import LongTable, TiledPositions, shared
-from .model.errors import WorkbenchError
-from .model.scene import GROUND, Scene
-from .solver import arith as A
-from .solver.continuity import body_angles, sweep_order
-from .solver.kinematics import Kinematics
-from .solver.loads import PointLoad
-from .solver.reactions import DriverReaction, JointReaction
-from .solver.structure import Structure
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -77,14 +77,14 @@ class Solution:
         :func:`~kinetostatics.solver.loads.inertia_loads`, as the solve computes them):
         at 1e6 positions they hold about 120 MB that no contract table needs. With joint
         friction they are kept (the friction loads come from the friction solve)."""
-        from .solver.friction import has_friction
+        from ..solver.friction import has_friction
         if not has_friction(self.scene):
             self.__dict__["_loads"] = None
 
     def _get_loads(self) -> list[PointLoad]:
         loads = self.__dict__.get("_loads")
         if loads is None:
-            from .solver.loads import applied_loads, inertia_loads
+            from ..solver.loads import applied_loads, inertia_loads
             inertia = inertia_loads(self.scene, self.kin)
             applied, _ = applied_loads(self.scene, self.kin)
             loads = self.__dict__["_loads"] = applied + inertia   # the order of the solve
@@ -206,7 +206,7 @@ class Solution:
     def long_table(self, name: str) -> LongTable:
         """The definition of a long table (``reactions``, ``kinematics``, ``bodies``):
         block names and how to compute any chunk of positions from the solver's arrays
-        (:mod:`kinetostatics.longtable`)."""
+        (:mod:`kinetostatics.results.longtable`)."""
         return {"reactions": self._reactions_long, "kinematics": self._kinematics_long,
                 "bodies": self._bodies_long}[name]()
 
@@ -467,7 +467,7 @@ class Solution:
         """The power balance per position: ``P_driver, P_applied, P_gravity, P_inertia,
         P_friction`` (W), adding up to zero (see
         :func:`kinetostatics.solver.reduction.power_table`)."""
-        from .solver.reduction import power_table
+        from ..solver.reduction import power_table
         return power_table(self)
 
     @cached_property
@@ -479,7 +479,7 @@ class Solution:
         per unit driver speed, ``M_red_friction`` the same for friction, ``M_red_inertia``
         = -(I_red eps + 1/2 dI_red/dphi omega^2) (eq. 2.73; the three add up to -Me),
         ``I_red`` = sum (m v_G^2 + I_G omega^2) at unit driver speed."""
-        from .solver.reduction import reduced_table
+        from ..solver.reduction import reduced_table
         return reduced_table(self)
 
     # -- summary and files ------------------------------------------------------
@@ -555,7 +555,7 @@ class Solution:
         dropped once written, and a long table not built yet is written as CSV straight
         from the solver's arrays, never held whole. ``announce``
         (a callable taking one line) hears of every CSV table over 1e6 rows, with its
-        size and time estimate (:func:`kinetostatics.output.write_csv`). ``summary``:
+        size and time estimate (:func:`kinetostatics.results.output.write_csv`). ``summary``:
         the content of ``summary.json`` when it is not :meth:`summary` (the command
         line's, with the scene's ``[units]``)."""
         from .output import Repeats, write_csv, write_long_csv, write_parquet

@@ -6,7 +6,7 @@ may be shared, so a single run says little.
 
 * ``reference``: :func:`kinetostatics.solve` plus its ``driver`` table against the
   hand-written closed forms ``fourbar_dyad`` and ``slider_dyad`` of
-  ``reference_fourbar.py`` on the same four-bar and slider-crank, at 2001, 2e5 and 1e6
+  :mod:`kinetostatics.bench.reference` on the same four-bar and slider-crank, at 2001, 2e5 and 1e6
   positions, with the largest difference of Me (2001 positions also in batches of
   calls, as :mod:`timeit` times);
 * ``many``: :func:`kinetostatics.solve_many` on 1000 variants of the bundled four-bar
@@ -39,7 +39,7 @@ from collections.abc import Callable
 import numpy as np
 import pandas as pd
 
-from .bench import find_reference, fourbar_scene, slider_crank_reference_scene
+from .accuracy import find_reference, fourbar_scene, slider_crank_reference_scene
 
 
 def side_by_side(jobs: dict[str, Callable[[], object]], repeat: int,
@@ -75,8 +75,8 @@ def _row(what: str, n, times: dict, job: str, base: str, **extra) -> dict:
 
 def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001)) -> list[dict]:
     """solve(scene).driver against ``fourbar_dyad`` of the hand-written baseline."""
-    from .bench import load_reference
-    from .solver.pipeline import solve
+    from ..solver.pipeline import solve
+    from .accuracy import load_reference
     ref = load_reference(path)
     rows = []
     for n in sizes:
@@ -130,9 +130,9 @@ def _warm(n: int, what: str, jobs: dict, err: float) -> list[dict]:
 def four_bar_variants(count: int = 1000, spread: float = 0.10, seed: int = 0) -> list[dict]:
     """``count`` variants of the bundled four-bar that assemble: every local point,
     ground point, mass and inertia scaled within 1 +- spread."""
-    from .model.examples import example
-    from .model.scene import load_scene
-    from .solver.pipeline import solve
+    from ..model.examples import example
+    from ..model.scene import load_scene
+    from ..solver.pipeline import solve
     base = load_scene(example("four_bar")).raw
     rng = np.random.default_rng(seed)
     out: list[dict] = []
@@ -159,9 +159,9 @@ def bench_many(count: int = 1000, repeat: int = 3) -> list[dict]:
     per-scene arrays of solve_many's Solutions are cut from the stacked ones when first
     read: that cost counted too). ``error``: the largest difference of any table of
     solve_many against solve alone, over the first 50 scenes (0: the same numbers)."""
-    from .model.scene import load_scene
-    from .solver.many import solve_many
-    from .solver.pipeline import solve
+    from ..model.scene import load_scene
+    from ..solver.many import solve_many
+    from ..solver.pipeline import solve
 
     def largest_difference(sols: list, items: list) -> float:
         err = 0.0
@@ -219,7 +219,7 @@ def bench_start(repeat: int = 7) -> list[dict]:
 def bench_tables() -> list[dict]:
     """solve --out at 1e5 positions (wall, fresh processes, best of 3, against import
     numpy) and the peak memory at 1e6 positions with every table held."""
-    from .bench_tables import _fresh, measure_cli
+    from .tables import _fresh, measure_cli
     py = sys.executable
     cli, numpy_t = [], []
     for _ in range(3):
@@ -240,7 +240,7 @@ def bench_crosscheck(repeat: int = 3) -> list[dict]:
     """The pymunk cross-check's automatic settings (ballast, lag rule) against the
     previous defaults, seconds per simulated revolution timed side by side, with each
     one's largest error (:func:`kinetostatics.simulation.crosscheck_speed`)."""
-    from .simulation import crosscheck_speed
+    from ..simulation import crosscheck_speed
     keys = ("measure", "size", "seconds_best", "baseline_best", "ratio_best", "ratio_median",
             "error")
     return [{k: r[k] for k in keys} for r in crosscheck_speed(repeat=repeat)]
@@ -248,11 +248,8 @@ def bench_crosscheck(repeat: int = 3) -> list[dict]:
 
 def run_speed(quick: bool = False, reference: str | None = None) -> pd.DataFrame:
     """Every ratio of this module, printed as one table (``quick``: small sizes)."""
-    ref = reference or find_reference()
-    rows = []
-    if ref:
-        rows += bench_reference(str(ref), (2_001, 20_001) if quick else
-                                (2_001, 200_001, 1_000_001))
+    rows = bench_reference(str(reference or find_reference()),
+                           (2_001, 20_001) if quick else (2_001, 200_001, 1_000_001))
     rows += bench_many(100 if quick else 1000)
     rows += bench_start(3 if quick else 7)
     if not quick:
