@@ -8,7 +8,7 @@ from pathlib import Path
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from ..output import write_summary
+from ..results.output import write_summary
 from .plots import draw_design, plot_front
 from .tomltext import toml_text
 
