@@ -37,6 +37,7 @@ from .model.errors import (
 )
 
 if TYPE_CHECKING:
+    from .design.result import design
     from .model.examples import cam_examples, example, examples, scene_path
     from .model.scene import Scene, load_scene
     from .motion.scene import simulate_motion
@@ -57,13 +58,14 @@ _LAZY = {
     "Kinematics": "solver.kinematics", "solve_kinematics": "solver.kinematics",
     "solve": "solver.pipeline", "solve_many": "solver.many",
     "Dyad": "solver.structure", "Structure": "solver.structure", "analyse": "solver.structure",
+    "design": "design.result",
 }
 
 __all__ = [
     "AssemblyError", "Dyad", "Kinematics", "Scene", "SceneError", "SelfLockingError",
     "Solution", "Structure", "StructureError", "UnitWarning", "WorkbenchError", "analyse",
-    "cam_examples", "example", "examples", "load_scene", "scene_path", "simulate_motion",
-    "solve", "solve_kinematics", "solve_many",
+    "cam_examples", "design", "example", "examples", "load_scene", "scene_path",
+    "simulate_motion", "solve", "solve_kinematics", "solve_many",
 ]
 
 

@@ -122,7 +122,7 @@ A table of more than 1e6 rows is announced on stderr with its size and time.
 
 # the commands of this module: their parser is built without the teaching package's
 # (which loads pandas and matplotlib), so that ``solve`` starts quickly
-CORE_COMMANDS = ("solve", "demo", "structure", "bench", "motion", "cam")
+CORE_COMMANDS = ("solve", "demo", "structure", "bench", "motion", "cam", "design")
 
 
 def build_parser(extras: bool = True) -> argparse.ArgumentParser:
@@ -172,6 +172,8 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
     c.add_argument("scene")
     c.add_argument("--out", help="folder for motion.csv, geometry.csv, forces.csv, summary.json")
     c.set_defaults(func=_cmd_cam)
+    from .design.cli import add_command as add_design_command
+    add_design_command(sub)
     if extras:
         _extra_commands(sub)
         from .teaching.cli import add_commands as add_exercise_commands

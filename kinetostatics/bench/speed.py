@@ -252,6 +252,8 @@ def run_speed(quick: bool = False, reference: str | None = None) -> pd.DataFrame
                            (2_001, 20_001) if quick else (2_001, 200_001, 1_000_001))
     rows += bench_many(100 if quick else 1000)
     rows += bench_start(3 if quick else 7)
+    from .design import bench_design
+    rows += bench_design(100, 3) if quick else bench_design()
     if not quick:
         rows += bench_tables()
         rows += bench_crosscheck()

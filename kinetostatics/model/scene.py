@@ -34,7 +34,7 @@ from .tomlio import (
 
 MAX_COUNT = 10_000_000
 TOP_KEYS = ("title", "format", "units", "gravity", "ground", "driver", "bodies", "joints", "loads",
-            "near", "motion", "balancing")
+            "near", "motion", "balancing", "design")
 DRIVER_KEYS = ("body", "joint", "speed", "speed_rpm", "acceleration", "start", "stop",
                "count", "positions")
 BODY_KEYS = ("name", "mass", "inertia", "cog", "points", "mass_model")
