@@ -15,7 +15,7 @@ import json
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
@@ -59,6 +59,9 @@ class Solution:
         With joint friction: rows where no finite driving effort moves the mechanism
         (friction locks it; Me/Fe and the reactions are NaN there and stay out of the
         summary); None without friction.
+    path : str
+        Which solve path made the arrays: ``"numpy"`` (the reference) or ``"fast"``
+        (the compiled kernels, :mod:`kinetostatics.solver.fast`).
     """
 
     scene: Scene
@@ -69,6 +72,7 @@ class Solution:
     drive: DriverReaction
     undefined_load: np.ndarray
     self_locking: np.ndarray | None = None
+    path: ClassVar[str] = "numpy"       # (set on the instance by the compiled path)
 
     # -- arrays -----------------------------------------------------------------
     def release_loads(self) -> None:
