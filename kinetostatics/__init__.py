@@ -41,9 +41,8 @@ if TYPE_CHECKING:
     from .model.scene import Scene, load_scene
     from .motion.scene import simulate_motion
     from .results import Solution
+    from .results.solving import solve, solve_many
     from .solver.kinematics import Kinematics, solve_kinematics
-    from .solver.many import solve_many
-    from .solver.pipeline import solve
     from .solver.structure import Dyad, Structure, analyse
 
 # Imported when first asked for (PEP 562), so that ``import kinetostatics`` costs little
@@ -55,7 +54,7 @@ _LAZY = {
     "Scene": "model.scene", "load_scene": "model.scene",
     "simulate_motion": "motion.scene", "Solution": "results",
     "Kinematics": "solver.kinematics", "solve_kinematics": "solver.kinematics",
-    "solve": "solver.pipeline", "solve_many": "solver.many",
+    "solve": "results.solving", "solve_many": "results.solving",
     "Dyad": "solver.structure", "Structure": "solver.structure", "analyse": "solver.structure",
 }
 

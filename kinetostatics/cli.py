@@ -17,8 +17,8 @@ from .text.cli import OneLineParser, dpi_argument, print_warning
 
 
 def _cmd_solve(args) -> int:
+    from .results import solve
     from .results.output import summary_with_units
-    from .solver.pipeline import solve
     if args.out and args.format == "parquet":
         from .results.output import parquet_available
         parquet_available()
