@@ -27,6 +27,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from .common.lazy import lazy_names
 from .model.errors import (
     AssemblyError,
     SceneError,
@@ -105,24 +106,4 @@ if not any(f is _MovedModules for f in __import__("sys").meta_path):
     __import__("sys").meta_path.insert(0, _MovedModules)
 
 
-def __getattr__(name: str):
-    """The public names of the solver, the results and the motion, imported on first use."""
-    where = _LAZY.get(name)
-    if where is None:
-        import importlib
-
-        try:   # a subpackage (kinetostatics.plot, .cams, ...) asked for as an attribute
-            return importlib.import_module(f"{__name__}.{name}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"{__name__}.{name}":
-                raise
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    import importlib
-
-    value = getattr(importlib.import_module(f"{__name__}.{where}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_names(__name__, _LAZY, globals(), __all__)

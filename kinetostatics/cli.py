@@ -12,8 +12,8 @@ import warnings
 from pathlib import Path
 
 from . import scene_path
+from .common.cli import OneLineParser, dpi_argument, print_warning
 from .model.errors import WorkbenchError
-from .text.cli import OneLineParser, dpi_argument, print_warning
 
 
 def _cmd_solve(args) -> int:
