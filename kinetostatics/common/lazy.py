@@ -52,3 +52,19 @@ def lazy_names(package: str, names: dict[str, str], namespace: dict,
 def group(names: Container[str] | Iterable[str], where: str) -> dict[str, str]:
     """``{name: where}`` for every name of ``names`` (names from one module)."""
     return dict.fromkeys(names, where)
+
+
+def moved_names(module: str, moved: dict[str, tuple[str, str]]) -> Callable:
+    """The ``__getattr__`` of ``module`` whose names ``moved`` (old name -> (module,
+    name) where it lives now) answer for one more release, with a DeprecationWarning."""
+
+    def __getattr__(name: str):
+        if name not in moved:
+            raise AttributeError(f"module {module!r} has no attribute {name!r}")
+        import warnings
+
+        where, new = moved[name]
+        warnings.warn(f"{module}.{name} is now {where}.{new}; the old name goes in the next "
+                      "release", DeprecationWarning, stacklevel=2)
+        return getattr(importlib.import_module(where), new)
+    return __getattr__

@@ -45,6 +45,7 @@ from typing import Any
 
 import numpy as np
 
+from ..common.lazy import moved_names
 from ..model.errors import WorkbenchError
 from ..model.scene import load_scene
 from . import blocks
@@ -467,16 +468,6 @@ def _splitter(sol: Solved):
     return cut
 
 
-def __getattr__(name: str):
-    # ``kinetostatics.solver.many.solve_many``, deprecated: the public one is
-    # kinetostatics.solve_many (results wraps the arrays); the package root, not
-    # results, is imported here (it stands above every subpackage)
-    if name == "solve_many":
-        import warnings
-
-        from .. import solve_many
-        warnings.warn("kinetostatics.solver.many.solve_many is now kinetostatics.solve_many"
-                      " (the solver's own is solve_all); the old name goes in the next "
-                      "release", DeprecationWarning, stacklevel=2)
-        return solve_many
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+# kinetostatics.solver.many.solve_many, deprecated: the public one is
+# kinetostatics.solve_many (the results wrap the arrays)
+__getattr__ = moved_names(__name__, {"solve_many": ("kinetostatics", "solve_many")})

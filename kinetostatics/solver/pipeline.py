@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from ..common.lazy import moved_names
 from ..model.errors import AssemblyError, WorkbenchError
 from ..model.scene import load_scene
 from .blocks import Kept, LeanSolved, Unblockable, blockable, blocks_of_sweep, solve_blocks
@@ -37,17 +38,9 @@ _sum = np.add.reduce
 
 def solve_arrays(scene: Any, positions: Any = None, *,
                  allow_repeats: bool = False) -> Solved | LeanSolved:
-    """The arrays of :func:`kinetostatics.solve` (which takes the same arguments and
-    wraps them in a :class:`~kinetostatics.results.Solution`): kinematics, reactions in
-    every joint and the equilibrating moment over the sweep.
-
-    Raises
-    ------
-    SceneError, StructureError, AssemblyError
-        One-line messages for a bad scene (a position listed twice included), a chain
-        that is not driver + dyads, a mechanism that cannot be assembled or is exactly
-        singular somewhere.
-    """
+    """The arrays of :func:`kinetostatics.solve`, which takes the same arguments, raises
+    the same errors and wraps the arrays in a :class:`~kinetostatics.results.Solution`:
+    kinematics, reactions in every joint and the equilibrating moment over the sweep."""
     return Sweep(scene, positions, allow_repeats).solve()
 
 
@@ -250,16 +243,7 @@ def _trapped(sc, structure, pos: np.ndarray, positions) -> Solved | LeanSolved |
     return sweep.trapped()
 
 
-def __getattr__(name: str):
-    # ``kinetostatics.solver.pipeline.solve``, deprecated: the public solve is
-    # kinetostatics.solve (results wraps the arrays); the package root, not results, is
-    # imported here (it stands above every subpackage: no import runs upward)
-    if name == "solve":
-        import warnings
-
-        from .. import solve
-        warnings.warn("kinetostatics.solver.pipeline.solve is now kinetostatics.solve "
-                      "(the solver's own road is solve_arrays); the old name goes in the "
-                      "next release", DeprecationWarning, stacklevel=2)
-        return solve
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+# kinetostatics.solver.pipeline.solve, deprecated: the public solve is
+# kinetostatics.solve (the results wrap the arrays); the package root stands above every
+# subpackage, so no import runs upward
+__getattr__ = moved_names(__name__, {"solve": ("kinetostatics", "solve")})
