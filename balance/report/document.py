@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from kinetostatics.common.jsontext import json_default
 from kinetostatics.model.outputs import atomic_file
 from kinetostatics.plot.notation import reading
 from kinetostatics.plot.place import settle
@@ -312,14 +313,3 @@ def _iso_line(out: dict[str, Any]) -> str | None:
         return None
     return "ISO 21940-11 check: " + ("the residual unbalance is within tolerance"
                                      if out["iso"]["check"]["ok"] else "NOT within tolerance")
-
-
-def json_default(x: Any) -> Any:
-    """numpy scalars and arrays (e.g. from :mod:`balance.mechanism`) as plain JSON values:
-    the ``default`` of ``json.dumps`` for a result dict (the report's JSON section and
-    ``python -m balance solve --json``)."""
-    if isinstance(x, np.generic):
-        return x.item()
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    raise TypeError(f"{type(x).__name__} is not JSON serialisable")

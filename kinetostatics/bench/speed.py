@@ -75,7 +75,7 @@ def _row(what: str, n, times: dict, job: str, base: str, **extra) -> dict:
 
 def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001)) -> list[dict]:
     """solve(scene).driver against ``fourbar_dyad`` of the hand-written baseline."""
-    from ..solver.pipeline import solve
+    from ..results import solve
     from .accuracy import load_reference
     ref = load_reference(path)
     rows = []
@@ -132,7 +132,7 @@ def four_bar_variants(count: int = 1000, spread: float = 0.10, seed: int = 0) ->
     ground point, mass and inertia scaled within 1 +- spread."""
     from ..model.examples import example
     from ..model.scene import load_scene
-    from ..solver.pipeline import solve
+    from ..results import solve
     base = load_scene(example("four_bar")).raw
     rng = np.random.default_rng(seed)
     out: list[dict] = []
@@ -160,8 +160,7 @@ def bench_many(count: int = 1000, repeat: int = 3) -> list[dict]:
     read: that cost counted too). ``error``: the largest difference of any table of
     solve_many against solve alone, over the first 50 scenes (0: the same numbers)."""
     from ..model.scene import load_scene
-    from ..solver.many import solve_many
-    from ..solver.pipeline import solve
+    from ..results import solve, solve_many
 
     def largest_difference(sols: list, items: list) -> float:
         err = 0.0

@@ -133,7 +133,7 @@ def run_demo(args) -> int:
     import matplotlib
     matplotlib.use("Agg")
     from ..model.examples import scene_path
-    from ..solver.pipeline import solve
+    from ..results import solve
     path = scene_path(args.scene or args.example)
     _refuse_cam_scene(path)
     sol = solve(path)
