@@ -34,7 +34,7 @@ def _error(msg: str) -> Exception:
 
 def add_commands(sub) -> None:
     """Add the ``crosscheck`` subcommand to an argparse subparsers object."""
-    from ..cli import dpi_argument  # the --dpi of every command that draws
+    from ..common.cli import dpi_argument  # the --dpi of every command that draws
     c = sub.add_parser(
         "crosscheck", help="simulate a scene in pymunk and compare with kinetostatics",
         description="Simulate a mechanism scene in pymunk at its driver's constant speed "
