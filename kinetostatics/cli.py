@@ -9,7 +9,6 @@ import argparse
 import json
 import sys
 import warnings
-from pathlib import Path
 
 from . import scene_path
 from .model.errors import WorkbenchError
@@ -17,6 +16,13 @@ from .text.cli import OneLineParser, dpi_argument, print_warning
 
 
 def _cmd_solve(args) -> int:
+    from .model.outputs import failure_noted
+    from .results import Solution
+    with failure_noted(args.out, Solution.OUTPUT_KIND, "solve"):
+        return _solve(args)
+
+
+def _solve(args) -> int:
     from .results.output import summary_with_units
     from .solver.pipeline import solve
     if args.out and args.format == "parquet":
@@ -64,23 +70,29 @@ def _cmd_motion(args) -> int:
             print(f"scene units: {res.units.describe()} (the numbers above are SI: rad/s, "
                   "s, kg m^2)")
         if args.out:
-            Path(args.out).parent.mkdir(parents=True, exist_ok=True)
-            res.motion.to_csv(args.out, index=False, float_format="%.17g")
+            from .model.outputs import atomic_file
+            with atomic_file(args.out) as tmp:
+                res.motion.to_csv(tmp, index=False, float_format="%.17g")
             print(f"wrote {args.out}")
     return 0
 
 
+CAM_FILES = ("motion.csv", "geometry.csv", "forces.csv", "summary.json")
+
+
 def _cmd_cam(args) -> int:
     from .cams import solve_cam
+    from .model.outputs import failure_noted, staged_folder
     from .results.output import summary_with_units, write_summary
-    res = solve_cam(scene_path(args.scene))
-    summary = summary_with_units(res.summary, res.scene.units)
-    if args.out:
-        out = Path(args.out)
-        out.mkdir(parents=True, exist_ok=True)
-        for name in ("motion", "geometry", "forces"):
-            getattr(res, name).to_csv(out / f"{name}.csv", index=False, float_format="%.17g")
-        write_summary(out / "summary.json", summary)
+    with failure_noted(args.out, CAM_FILES, "cam run"):
+        res = solve_cam(scene_path(args.scene))
+        summary = summary_with_units(res.summary, res.scene.units)
+        if args.out:
+            with staged_folder(args.out, CAM_FILES) as stage:
+                for name in ("motion", "geometry", "forces"):
+                    getattr(res, name).to_csv(stage.file(f"{name}.csv"), index=False,
+                                              float_format="%.17g")
+                write_summary(stage.file("summary.json"), summary)
     print(json.dumps(summary, indent=2))
     return 0
 

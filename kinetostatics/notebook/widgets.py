@@ -38,6 +38,7 @@ import pandas as pd
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from ..plot.place import settle
 from .limits import Limit
 
 __all__ = ["Explorer", "Slider", "format_number"]
@@ -252,7 +253,9 @@ class Explorer:
         try:
             result = self._compute(**self.values)
             self.figure.clear()         # after compute: the picture holds one update
+            self.figure.set_layout_engine("constrained")
             self._draw(result, self.figure, **self.values)
+            settle(self.figure)         # labels and legends clear of the drawing
             self.numbers = dict(self._numbers(result, **self.values))
             self.result, self.error = result, None
         except ValueError as exc:      # WorkbenchError and BalanceError are ValueErrors

@@ -13,6 +13,7 @@ from ..results import Solution
 from .blocks import LeanSolution, Sweep, Unblockable, blockable, blocks_of_sweep, solve_blocks
 from .continuity import check_distinct, given_positions
 from .deadpoints import dead_points_between_rows, dead_points_of_sweep, measure2
+from .fast import solve_compiled
 from .friction import has_friction, solve_with_friction
 from .kinematics import solve_kinematics
 from .loads import applied_loads, inertia_loads, resultants
@@ -71,7 +72,10 @@ def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> 
     # the assemblies are chosen at the scene's first row by the solve itself
     structure = analyse(sc, assemble=False)
     pos = sc.driver.positions if positions is None else positions
-    sol = None
+    # the compiled path, when wanted for this many rows and the scene is covered
+    sol = solve_compiled(sc, structure, pos, positions is not None)
+    if sol is not None:
+        return sol
     if tame(sc, pos) and not has_friction(sc):
         sol = _trapped(sc, structure, pos, positions)
     if sol is None:

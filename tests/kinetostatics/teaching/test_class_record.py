@@ -150,7 +150,12 @@ def test_unit_slips_are_named_and_credited_as_told(klass, tmp_path):
     assert s.passed.all() and (s.points == 1.0).all(), s
     assert s.set_index("question").loc["Me@60", "note"].startswith("read '")
     summary = pd.read_csv(tmp_path / "grades_students.csv", dtype={"student": str})
-    assert summary.set_index("student").loc["Ana", "unit slips"] == 4
+    # a flipped sign is a sign slip, named apart from the unit slips (issue 33)
+    assert a.loc["N[C-slide]@60", "status"] == "sign slip"
+    assert summary.set_index("student").loc["Ana", "unit slips"] == 3
+    assert summary.set_index("student").loc["Ana", "sign slips"] == 1
+    fl = summary.set_index("student").loc["Ana", "flags"]
+    assert "unit slip: " in fl and "sign slip: N[C-slide]@60" in fl
     # the default: named, no credit
     rep = T.grade_class(d, [tmp_path / "subs"], execute=False)
     a = rep.graded[rep.graded.student == "Ana"].set_index("question")
@@ -191,7 +196,9 @@ def test_copies_and_the_record(klass, tmp_path):
     assert flags["maria"] == "same answers as 'ion' (another variant)"
     assert flags["c1"] == "same answers as 'c2' (another variant)"
     assert flags["c2"] == "same answers as 'c1' (another variant)"
-    assert flags["zoë"] == "" and flags["bogdan"] == ""
+    assert flags["zoë"] == ""
+    assert flags["bogdan"] == (f"2 submissions: kept {new} (newest by modification time, "
+                               f"{flags['bogdan'].rsplit(', ', 1)[1]}")
     assert "!! COPY? ion: copy? 8 of 8 answers are the key of 'maria'" in out
     assert "!! COPY? c1: same answers as 'c2'" in out
     # every file read is on record
@@ -207,10 +214,16 @@ def test_copies_and_the_record(klass, tmp_path):
     # one summary row per student; the LMS file
     summary = pd.read_csv(tmp_path / "grades_students.csv", dtype={"student": str},
                           keep_default_na=False)
-    assert summary.student.tolist() == IDS
+    # one row per student, then one per unknown id or unreadable file (issue 33)
+    assert summary.student.tolist()[:8] == IDS
+    tail = summary.iloc[8:].set_index("student")
+    assert sorted(tail.index) == ["", "zoe.x"]
+    assert tail.loc["zoe.x", "flags"].startswith("unknown id: not in the class list")
+    assert tail.loc["", "flags"].startswith("broken, not graded (no known id)")
     assert list(summary.columns[:4]) == ["student", "score %", "points", "total"]
     s = summary.set_index("student")
-    assert s.loc["maria", "score %"] == 100.0 and s.loc["bogdan", "score %"] == 0.0
+    assert float(s.loc["maria", "score %"]) == 100.0
+    assert float(s.loc["bogdan", "score %"]) == 0.0
     assert s.loc["Ana", "source"] == "" and "copy?" in s.loc["ion", "flags"]
     moodle = pd.read_csv(tmp_path / "moodle.csv", dtype=str)
     assert list(moodle.columns) == ["ID number", "slider_crank"]
