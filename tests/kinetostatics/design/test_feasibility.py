@@ -47,3 +47,17 @@ def test_an_executor_gives_the_same_numbers():
         parts = evaluate(spec, X, pool, parts=4)
     assert np.array_equal(one.values, parts.values, equal_nan=True)
     assert one.reasons == parts.reasons and (one.feasible == parts.feasible).all()
+
+
+def test_a_second_run_replaces_the_first_whole(tmp_path):
+    raw = tomllib.loads(ks.scene_path("four_bar_design").read_text())
+    raw["design"]["constraints"] = ["transmission_min >= 45", "full_turn"]
+    a = ks.design(raw, population=12, generations=3, seed=2)
+    b = ks.design(raw, population=12, generations=2, seed=3)
+    assert len(a.front) != len(b.front)
+    a.write(tmp_path)
+    b.write(tmp_path)
+    names = sorted(p.name for p in (tmp_path / "designs").iterdir())
+    assert names == [s.split("/")[1] for s in b.front.scene]
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "compromise.png", "designs", "front.csv", "front.png", "summary.json"]
