@@ -15,8 +15,10 @@ concentration s. 2.2), :mod:`~kinetostatics.transmission` (gears s. 2.3.3, effic
 s. 4.3), :mod:`~kinetostatics.solver`
 (structure, kinematics, loads, friction s. 2.4, reactions, reduction s. 2.5, dead points),
 :mod:`~kinetostatics.motion` and :func:`simulate_motion` (motion under forces, ch. 4),
-:mod:`~kinetostatics.cams` (ch. 1), :mod:`~kinetostatics.teaching` (exercises for a class
-and grading), :mod:`~kinetostatics.plot` (pictures), :mod:`~kinetostatics.notebook` (the
+:mod:`~kinetostatics.cams` (ch. 1), :mod:`~kinetostatics.design` and :func:`design` (a
+search over a scene's dimensions with forces, its ``[design]`` section; pymoo),
+:mod:`~kinetostatics.teaching` (exercises for a class and grading),
+:mod:`~kinetostatics.plot` (pictures), :mod:`~kinetostatics.notebook` (the
 sheets' interactive cells). The pymunk cross-check is :mod:`kinetostatics.simulation`
 (``crosscheck``, ``study``; its names load pymunk lazily, so ``import kinetostatics`` does
 not). The scene model (reading, checking, exceptions, bundled scenes) is

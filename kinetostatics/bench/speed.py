@@ -13,6 +13,9 @@ may be shared, so a single run says little.
   (361 positions; every length, ground point and mass within +-10 %) against a loop of
   ``solve``, given as Scene objects and as dicts: the speed-up (the loop's time over
   solve_many's), with the largest difference of any table (0: the same numbers);
+* ``design``: :func:`kinetostatics.design` on the bundled ``four_bar_design`` (1000
+  designs, 10 generations, 361 rows) against ``solve_many`` of as many four-bars: its
+  kinetostatic rows per second (:func:`bench_design`; needs pymoo);
 * ``start``: ``import kinetostatics``, ``import balance`` and the commands
   ``python -m balance solve rotor_two_plane`` and ``python -m kinetostatics solve
   four_bar --out DIR`` in fresh processes, wall time against ``import numpy``;
@@ -189,6 +192,30 @@ def bench_many(count: int = 1000, repeat: int = 3) -> list[dict]:
     return rows
 
 
+def bench_design(population: int = 1000, generations: int = 10, repeat: int = 2
+                 ) -> list[dict]:
+    """``design`` on the bundled four_bar_design (``population`` x ``generations`` x 361
+    rows, seed 1, nothing written) against ``solve_many`` of as many scenes of that
+    mechanism as dicts (its variants within +-10 %: the bare stacked solve, no screen,
+    no optimiser): the seconds of each, their ratio, and ``design``'s rows per second.
+    Needs pymoo (the ``[design]`` extra); without it, no row."""
+    try:
+        import pymoo  # noqa: F401
+    except ImportError:
+        return []
+    from ..design.result import design
+    from ..solver.many import solve_many
+    dicts = four_bar_variants(population)
+    times = side_by_side({
+        "design": lambda: design("four_bar_design", population=population,
+                                 generations=generations, seed=1),
+        "many": lambda: [solve_many(dicts) for _ in range(generations)]}, repeat)
+    rows = population * generations * 361
+    return [_row("design: rows per second (NSGA-II, one stacked solve a generation)",
+                 f"{population} x {generations} x 361", times, "design", "many",
+                 rows_per_second=rows / min(times["design"]))]
+
+
 def _wall(args: list[str], env: dict) -> float:
     t = time.perf_counter()
     subprocess.run(args, env=env, check=True, stdout=subprocess.DEVNULL,
@@ -251,7 +278,6 @@ def run_speed(quick: bool = False, reference: str | None = None) -> pd.DataFrame
                            (2_001, 20_001) if quick else (2_001, 200_001, 1_000_001))
     rows += bench_many(100 if quick else 1000)
     rows += bench_start(3 if quick else 7)
-    from .design import bench_design
     rows += bench_design(100, 3) if quick else bench_design()
     if not quick:
         rows += bench_tables()

@@ -31,12 +31,29 @@ def add_command(sub) -> None:
 def run(args) -> int:
     from ..model.errors import SceneError
     from ..model.examples import scene_path
-    from .result import design
+    from ..model.outputs import failure_noted
+    from .output import DESIGN_FILES
     if args.jobs < 1:
         raise SceneError(f"--jobs = {args.jobs}: give a whole number >= 1")
     t0 = time.perf_counter()
     progress = None if args.quiet else _progress
-    path = scene_path(args.scene)
+    with failure_noted(args.out, DESIGN_FILES, "design run"):
+        res = _search(args, scene_path(args.scene), progress)
+        if progress is not None and sys.stderr.isatty():
+            print(file=sys.stderr)
+        written = res.write(args.out)
+    for p in written:
+        print(p)
+    s = res.summary
+    print(f"{s['front_size']} designs on the front of {s['evaluations']} evaluated "
+          f"({s['infeasible']} infeasible), hypervolume {s['hypervolume']['value']:.4g}; "
+          f"{time.perf_counter() - t0:.1f} s")
+    return 0
+
+
+def _search(args, path, progress):
+    """The search of the command's scene (through ``--jobs`` processes)."""
+    from .result import design
     if args.jobs > 1:
         with ProcessPoolExecutor(args.jobs) as pool:
             res = design(path, population=args.population, generations=args.generations,
@@ -45,15 +62,7 @@ def run(args) -> int:
     else:
         res = design(path, population=args.population, generations=args.generations,
                      seed=args.seed, progress=progress)
-    if progress is not None and sys.stderr.isatty():
-        print(file=sys.stderr)
-    for p in res.write(args.out):
-        print(p)
-    s = res.summary
-    print(f"{s['front_size']} designs on the front of {s['evaluations']} evaluated "
-          f"({s['infeasible']} infeasible), hypervolume {s['hypervolume']['value']:.4g}; "
-          f"{time.perf_counter() - t0:.1f} s")
-    return 0
+    return res
 
 
 def _progress(generation: int, evaluations: int, front: int) -> None:

@@ -87,9 +87,9 @@ def evaluate_rows(spec: DesignSpec, X: np.ndarray) -> Evaluation:
     designs the screen (:func:`~kinetostatics.design.screen.screen`) sets aside are not
     solved; the others are, in one call."""
     n = len(X)
-    designs = [spec.scene_dict(x) for x in X]
-    turns = [spec.turn_dict(d) for d in designs]
-    dicts = designs + [t for t in turns if t is not None]
+    made = [spec.design_scene(x) for x in X]
+    turns = [spec.turn_dict(d) for d, _ in made]
+    dicts = [s for _, s in made] + [t for t in turns if t is not None]
     scenes, why = loaded(dicts)
     go = [i for i, (s, w) in enumerate(zip(scenes, why, strict=True))
           if w is None and not isinstance(s, Exception)]

@@ -74,9 +74,9 @@ def screen(scenes: list[Scene]) -> list[str | None]:
     return out
 
 
-def loaded(dicts: list[dict]) -> tuple[list, list[str | None]]:
-    """Each scene loaded (or the error the loader raises for it), and the screen's
-    reasons for those loaded."""
+def loaded(dicts: list) -> tuple[list, list[str | None]]:
+    """Each scene (a dict, or a Scene already made) loaded (or the error the loader
+    raises for it), and the screen's reasons for those loaded."""
     scenes: list = []
     for d in dicts:
         try:

@@ -26,6 +26,7 @@ import copy
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -96,12 +97,33 @@ class DesignSpec:
 
     def scene_dict(self, x: np.ndarray) -> dict:
         """The design ``x``'s scene (a dict of the TOML, without ``[design]``)."""
+        return paths.with_values(self.raw, *self._values(x))
+
+    def _values(self, x: np.ndarray) -> tuple[list[Path], list[float]]:
+        """The paths the design ``x`` sets (variables, then followers) and their values."""
         values = [float(v) for v in x]
         chosen = list(self.variables)
         for path, i, ratio in self.follow:
             chosen.append(path)
             values.append(values[i] * ratio)
-        return paths.with_values(self.raw, chosen, values)
+        return chosen, values
+
+    def design_scene(self, x: np.ndarray) -> tuple[dict, Scene]:
+        """The design ``x``'s scene as a dict and as the Scene ``load_scene`` gives for
+        it (:func:`~kinetostatics.design.scenes.scene_maker`)."""
+        chosen, values = self._values(x)
+        design = paths.with_values(self.raw, chosen, values)
+        return design, self._maker(design, values)
+
+    def __getstate__(self) -> dict:
+        state = dict(self.__dict__)
+        state.pop("_maker", None)       # (a closure: made again where it is needed)
+        return state
+
+    @cached_property
+    def _maker(self):
+        from .scenes import scene_maker
+        return scene_maker(self.scene, self.raw, self._values(self.bundled)[0])
 
     def turn_dict(self, design: dict) -> dict | None:
         """For ``full_turn`` with a sweep shorter than a turn: the design's scene over a

@@ -1,6 +1,6 @@
 """The bench's design row."""
 
-from kinetostatics.bench.design import bench_design
+from kinetostatics.bench.speed import bench_design
 
 
 def test_bench_design_row():

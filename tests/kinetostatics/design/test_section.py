@@ -8,6 +8,8 @@ import tomllib
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 import kinetostatics as ks
 from kinetostatics.design import DesignError, read_design, toml_text
@@ -119,3 +121,14 @@ def test_missing_extra_one_line(monkeypatch):
     monkeypatch.setitem(sys.modules, "pymoo", None)
     with pytest.raises(DesignError, match=r"pip install -e '\.\[design\]'"):
         ks.design("four_bar_design", population=4, generations=1)
+
+
+@given(st.lists(st.floats(allow_nan=False, width=64), min_size=1, max_size=6),
+       st.text(min_size=1, max_size=8))
+def test_toml_text_keeps_every_float(values, name):
+    """Every float (subnormals, -0.0, infinities) reads back with the same bits."""
+    raw = {"title": name, "ground": {"a.b": values[:2]},
+           "bodies": [{"name": name, "points": {"P": values}}]}
+    back = tomllib.loads(toml_text(raw))
+    got = back["bodies"][0]["points"]["P"]
+    assert np.array(got).tobytes() == np.array(values).tobytes() and back["title"] == name
