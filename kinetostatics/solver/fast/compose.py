@@ -70,31 +70,30 @@ class Plan:
 
     def buffers(self, width: int) -> dict:
         """Arrays for ``width`` rows: each body's motion and load resultants, each dyad's
-        data and reactions, the driver's reaction (the ground's motion: constant).
-
-        All are rows of one slab whose rows lie an odd number of cache lines apart: rows a
-        power of two bytes apart (a block of 16384 rows) would all fall in the same few
-        sets of the processor's caches, and a kernel reads and writes some 60 of them at
-        once (measured: 5-10x slower)."""
-        stride = -(-width // 8) * 8
-        if (stride // 8) % 2 == 0:
-            stride += 8
+        data and reactions, the driver's reaction (the ground's motion: constant): rows
+        of one slab, its rows padded (:func:`~kinetostatics.solver.fast.layout.padded_width`)."""
+        stride = L.padded_width(width)
         sizes = ([("m", b, L.MOTION) for b in (GROUND, *self.bodies)]
                  + [("a", b, 3) for b in (GROUND, *self.bodies)]
                  + [("d", i, L.DYAD_OUT) for i in range(len(self.dyads))]
                  + [("r", i, L.REACTIONS) for i in range(len(self.dyads))] + [("drv", 0, 7)])
-        slab = np.zeros((sum(k for _, _, k in sizes), stride))
+        # (np.empty: memory a freed slab leaves is reused without faulting in fresh
+        # zeroed pages; only what a kernel may leave unwritten is zeroed)
+        slab = np.empty((sum(k for _, _, k in sizes), stride))
         out: dict = {"m": {}, "a": {}, "d": [], "r": [], "u": np.zeros(width, dtype=bool)}
         row = 0
         for part, key, k in sizes:
             block = slab[row:row + k]
             row += k
+            if part in ("d", "r", "drv"):
+                block[:] = 0.0
             if part == "drv":
                 out["drv"] = block
             elif isinstance(out[part], dict):
                 out[part][key] = block
             else:
                 out[part].append(block)
+        out["m"][GROUND][:] = 0.0
         out["m"][GROUND][L.C] = 1.0
         return out
 
@@ -218,8 +217,11 @@ def _solution(plan: Plan, positions: np.ndarray, buf: dict) -> Solved:
     kin = Kinematics(scene, structure, positions, bodies, dyads)
     reactions = _reactions(plan, buf)
     r = buf["drv"]
-    return Solved(scene, structure, kin, None, reactions, DriverReaction(drv.kind, r[0]),
-                    buf["u"])
+    # (Me/Fe copied out: a stacked run's scenes keep it, not the slab it lies in)
+    sol = Solved(scene, structure, kin, None, reactions,
+                 DriverReaction(drv.kind, r[0].copy()), buf["u"])
+    sol.path = "fast"
+    return sol
 
 
 def _reactions(plan: Plan, buf: dict) -> dict:

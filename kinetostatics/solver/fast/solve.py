@@ -49,5 +49,23 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
                 full, structure, kin)
     except Refused:
         return None
-    sol.path = "fast"
+    sol.path = "fast"       # (a LeanSolved's: its full solve's is set by _solution)
     return sol
+
+
+def solve_run_compiled(scene: Scene, structure) -> Solved | None:
+    """A run of stacked scenes (:meth:`~kinetostatics.solver.stack.Stacker.runs`, each
+    dyad's assembly an array over the rows) on the compiled path, or None (as
+    :func:`solve_compiled`; the caller asks :func:`~kinetostatics.solver.fast.choice.wanted`
+    once for the whole group first). Every row is the row its scene gives alone on the
+    compiled path, bit for bit: the same kernels, each number the scene's own."""
+    if not_covered(scene) is not None:
+        return None
+    positions = scene.driver.positions
+    kernels = wanted(positions.size)
+    if kernels is None:
+        return None
+    try:
+        return solve_full(Plan(kernels, scene, structure, structure.assembly), positions)
+    except Refused:
+        return None
