@@ -80,7 +80,8 @@ def test_every_new_picture_is_drawn(name, lecture_figures):
     expect = {"overview", "driver", *(f"polar_{j}" for j in sol.scene.joints),
               f"mechanism_{tag}", f"velocity_plan_{tag}", f"acceleration_plan_{tag}",
               f"instant_centres_{tag}",
-              *(f"free_body_{tag}_dyad{d}" for d in range(len(sol.kin.dyads) + 1))}
+              f"free_body_{tag}_driver",
+              *(f"free_body_{tag}_dyad{d}" for d in range(1, len(sol.kin.dyads) + 1))}
     assert set(figs) == expect
     for stem, fig in figs.items():
         assert isinstance(fig, Figure), stem
