@@ -207,7 +207,7 @@ def test_free_body_diagram_draws_the_forces(sols):
         assert any(abs(cross(e / np.hypot(*e), v / np.hypot(*v))) < 1e-9 and
                    np.dot(e, v) > 0 for v in drawn), e
     labels = " ".join(t.get_text() for t in fbd.texts)
-    assert "Mi" in labels and "F[B] crank→coupler" in labels
+    assert "$F_{\\mathrm{B}}$" in labels and "crank→coupler" in labels
 
 
 @pytest.mark.parametrize("name", ["four_bar", "slider_crank", "shaper"])
