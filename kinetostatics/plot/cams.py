@@ -221,8 +221,8 @@ def draw_cam(res, angle: float = 0.0, ax: Axes | None = None) -> Axes:
     ax.set_ylabel("y [m]")
     ax.grid(True, alpha=0.3)
     tau = float(g["tau"].iloc[k])
-    ax.set_title(f"{sc.title or 'cam'}\nat φ = {ang[k]:g}°: {rise}, transmission angle "
-                 f"τ = {tau:.3g}°", fontsize=10)
+    ax.set_title(f"{sc.title or 'cam'}\nat φ = {ang[k]:g}°: {rise}, τ = {reading(tau, 3)}°",
+                 fontsize=10)
     legend_outside(ax)
     return ax
 

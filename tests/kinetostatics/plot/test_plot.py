@@ -11,9 +11,9 @@ from matplotlib.figure import Figure
 
 import kinetostatics as ks
 from kinetostatics import plot as kp
-from kinetostatics.plot.notation import reading
 from kinetostatics.model.errors import WorkbenchError
 from kinetostatics.plot import polygon_forces
+from kinetostatics.plot.notation import reading
 from tests.helpers import SCENES
 
 SCENE_PATHS = [ks.example(n) for n in ks.examples()] + sorted(SCENES.glob("*.toml"))
