@@ -32,7 +32,7 @@ from kinetostatics.plot.place import settle
 
 from ..errors import BalanceError
 from .pdf import write_pdf
-from .text import result_warnings, summary_text, unit_text
+from .text import noise_lines, result_warnings, summary_text, unit_text
 
 __all__ = ["influence_figure", "iso_figure", "json_default", "report_figures", "report_scene",
            "write_report"]
@@ -240,7 +240,7 @@ def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
     source = ""
     if scene is not None and Path(str(scene)).is_file():
         source = Path(str(scene)).read_text(encoding="utf-8")
-    lines = _textsummary_text(results, out)
+    lines = _textsummary_text(results, out) + noise_lines(results, out)
     warns = [f"{w}: {m}" for w, m in result_warnings(out)]
     figs = report_figures(results, out)
     try:
