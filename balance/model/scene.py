@@ -28,7 +28,15 @@ from typing import Any
 from kinetostatics.model.errors import SceneError
 from kinetostatics.model.examples import BundledScenes
 from kinetostatics.model.slips import emit, read_checks
-from kinetostatics.model.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source
+from kinetostatics.model.tomlio import (
+    MIN_MAGNITUDE,
+    as_float,
+    as_int,
+    as_list,
+    as_str,
+    check_keys,
+    read_source,
+)
 
 from ..errors import BalanceWarning
 from ..rotor.design import CorrectionPlane, Unbalance
@@ -225,7 +233,7 @@ def _static(table: Any) -> StaticTestSpec:
                                  positive=True),
         comparison_radius=as_float(t["comparison_radius"], "static_test.comparison_radius",
                                    positive=True),
-        alpha=as_float(t["alpha"], "static_test.alpha"),
+        alpha=as_float(t["alpha"], "static_test.alpha", smallest=MIN_MAGNITUDE),
         correction_radius=as_float(t["correction_radius"], "static_test.correction_radius",
                                    positive=True),
     )
@@ -242,7 +250,7 @@ def _resonance(item: Any, i: int) -> ResonanceSpec:
         trial_radius=as_float(t["trial_radius"], f"{w}.trial_radius", positive=True),
         correction_radius=as_float(t["correction_radius"], f"{w}.correction_radius",
                                    positive=True),
-        A1=as_float(t["A1"], f"{w}.A1", nonnegative=True),
+        A1=as_float(t["A1"], f"{w}.A1", nonnegative=True, smallest=MIN_MAGNITUDE),
         dA=as_float(t["dA"], f"{w}.dA", nonnegative=True) if "dA" in t else None,
         **_noise(t, w),
     )
@@ -255,14 +263,16 @@ def _resonance(item: Any, i: int) -> ResonanceSpec:
             rw = f"{w}.runs[{k}]"
             r = check_keys(run, RUN_KEYS, rw, required=RUN_KEYS)
             runs.append((as_float(r["angle"], f"{rw}.angle"),
-                         as_float(r["A"], f"{rw}.A", positive=True)))
+                         as_float(r["A"], f"{rw}.A", positive=True, smallest=MIN_MAGNITUDE)))
         return ResonanceSpec(runs=tuple(runs), **common)
     for key in ("A2", "A3"):
         if key not in t:
             raise SceneError(f"{w}: missing required key {key!r} (or give runs = "
                              "[{angle = .., A = ..}, ...] instead of A2 and A3)")
-    return ResonanceSpec(A2=as_float(t["A2"], f"{w}.A2", positive=True),
-                         A3=as_float(t["A3"], f"{w}.A3", positive=True), **common)
+    return ResonanceSpec(A2=as_float(t["A2"], f"{w}.A2", positive=True,
+                                       smallest=MIN_MAGNITUDE),
+                         A3=as_float(t["A3"], f"{w}.A3", positive=True,
+                                       smallest=MIN_MAGNITUDE), **common)
 
 
 def _noise(t: dict, w: str) -> dict[str, float]:
