@@ -15,6 +15,9 @@ may be shared, so a single run says little.
   ``solve``, on each path (the compiled one also against the numpy path's loop),
   given as Scene objects and as dicts: the speed-up (the loop's time over
   solve_many's), with the largest difference of any table (0: the same numbers);
+* ``design``: :func:`kinetostatics.design` on the bundled ``four_bar_design`` (1000
+  designs, 10 generations, 361 rows) against ``solve_many`` of as many four-bars: its
+  kinetostatic rows per second (:func:`bench_design`; needs pymoo);
 * ``start``: ``import kinetostatics``, ``import balance`` and the commands
   ``python -m balance solve rotor_two_plane`` and ``python -m kinetostatics solve
   four_bar --out DIR`` in fresh processes, wall time against ``import numpy``;
@@ -98,7 +101,7 @@ def on_path(path: str, job: Callable[[], object]) -> Callable[[], object]:
 def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001)) -> list[dict]:
     """solve(scene).driver on each solve path against ``fourbar_dyad`` (and
     ``slider_dyad``) of the hand-written baseline, all timed side by side in one run."""
-    from ..solver.pipeline import solve
+    from ..results import solve
     from .accuracy import load_reference
     ref = load_reference(path)
     w2 = ref.SC["w2"]
@@ -149,7 +152,7 @@ def four_bar_variants(count: int = 1000, spread: float = 0.10, seed: int = 0) ->
     ground point, mass and inertia scaled within 1 +- spread."""
     from ..model.examples import example
     from ..model.scene import load_scene
-    from ..solver.pipeline import solve
+    from ..results import solve
     base = load_scene(example("four_bar")).raw
     rng = np.random.default_rng(seed)
     out: list[dict] = []
@@ -177,8 +180,7 @@ def bench_many(count: int = 1000, repeat: int = 3) -> list[dict]:
     read: that cost counted too). ``error``: the largest difference of any table of
     solve_many against solve alone, over the first 50 scenes (0: the same numbers)."""
     from ..model.scene import load_scene
-    from ..solver.many import solve_many
-    from ..solver.pipeline import solve
+    from ..results import solve, solve_many
 
     def largest_difference(sols: list, items: list) -> float:
         err = 0.0
@@ -215,6 +217,30 @@ def bench_many(count: int = 1000, repeat: int = 3) -> list[dict]:
         rows.append(_row("speed-up: loop of solve / solve_many (dicts, each driver table)",
                          f"{count} x 361", times, "loop", "many", path=p))
     return rows
+
+
+def bench_design(population: int = 1000, generations: int = 10, repeat: int = 2
+                 ) -> list[dict]:
+    """``design`` on the bundled four_bar_design (``population`` x ``generations`` x 361
+    rows, seed 1, nothing written) against ``solve_many`` of as many scenes of that
+    mechanism as dicts (its variants within +-10 %: the bare stacked solve, no screen,
+    no optimiser): the seconds of each, their ratio, and ``design``'s rows per second.
+    Needs pymoo (the ``[design]`` extra); without it, no row."""
+    try:
+        import pymoo  # noqa: F401
+    except ImportError:
+        return []
+    from ..design.result import design
+    from ..solver.many import solve_many
+    dicts = four_bar_variants(population)
+    times = side_by_side({
+        "design": lambda: design("four_bar_design", population=population,
+                                 generations=generations, seed=1),
+        "many": lambda: [solve_many(dicts) for _ in range(generations)]}, repeat)
+    rows = population * generations * 361
+    return [_row("design: rows per second (NSGA-II, one stacked solve a generation)",
+                 f"{population} x {generations} x 361", times, "design", "many",
+                 rows_per_second=rows / min(times["design"]))]
 
 
 def _wall(args: list[str], env: dict) -> float:
@@ -279,6 +305,7 @@ def run_speed(quick: bool = False, reference: str | None = None) -> pd.DataFrame
                            (2_001, 20_001) if quick else (2_001, 200_001, 1_000_001))
     rows += bench_many(100 if quick else 1000)
     rows += bench_start(3 if quick else 7)
+    rows += bench_design(100, 3) if quick else bench_design()
     if not quick:
         rows += bench_tables()
         rows += bench_crosscheck()

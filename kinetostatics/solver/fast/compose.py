@@ -6,7 +6,7 @@ load resultants, each dyad's reactions in reverse order, the driver's Me/Fe (the
 path's :func:`~kinetostatics.solver.kinematics.solve_kinematics` then
 :func:`~kinetostatics.solver.reactions.solve_reactions`, row by row). A long sweep keeps
 only what the driver table and the dead points need, block by block in scratch arrays
-(:class:`~kinetostatics.solver.blocks.Sweep`); the full solve writes arrays over the
+(:class:`~kinetostatics.solver.blocks.Kept`); the full solve writes arrays over the
 whole sweep, wrapped without copies in the :class:`BodyMotion`, :class:`DyadMotion` and
 :class:`JointReaction` objects every table reads.
 """
@@ -18,13 +18,13 @@ from dataclasses import replace
 import numpy as np
 
 from ...model.scene import GROUND, Scene
-from ...results import Solution
-from ..blocks import BLOCK_ROWS, Sweep
+from ..blocks import BLOCK_ROWS, Kept
 from ..closure import Param
 from ..driver import BodyMotion, ground_motion
 from ..kinematics import SINGULAR_WARN, DyadMotion, Kinematics
 from ..loads import RESIST_STILL
 from ..reactions import DriverReaction, _record
+from ..solved import Solved
 from . import layout as L
 from .geometry import (
     body_loads_geometry,
@@ -143,8 +143,8 @@ def driver_input(scene: Scene) -> np.ndarray:
     return drv.angles if drv.kind == "R" else np.asarray(drv.positions, dtype=float)
 
 
-def solve_full(plan: Plan, positions: np.ndarray, block: int = BLOCK_ROWS) -> Solution:
-    """The whole sweep's Solution (every table's arrays), solved block by block into
+def solve_full(plan: Plan, positions: np.ndarray, block: int = BLOCK_ROWS) -> Solved:
+    """The whole sweep's Solved (every table's arrays), solved block by block into
     arrays over the whole sweep."""
     n = positions.size
     x = driver_input(plan.scene)
@@ -163,8 +163,8 @@ def _cut(buf: dict, n: int) -> dict:
             "drv": buf["drv"][:, :n], "u": buf["u"]}
 
 
-def solve_lean(plan: Plan, positions: np.ndarray, block: int = BLOCK_ROWS) -> Sweep:
-    """A long sweep's :class:`~kinetostatics.solver.blocks.Sweep`: Me/Fe and each dyad's
+def solve_lean(plan: Plan, positions: np.ndarray, block: int = BLOCK_ROWS) -> Kept:
+    """A long sweep's :class:`~kinetostatics.solver.blocks.Kept`: Me/Fe and each dyad's
     closeness to a dead centre, the rest of each block in scratch arrays."""
     n = positions.size
     x = driver_input(plan.scene)
@@ -182,7 +182,7 @@ def solve_lean(plan: Plan, positions: np.ndarray, block: int = BLOCK_ROWS) -> Sw
     plan.check_swept()
     kind = plan.scene.driver.kind
     singular = [~(c > SINGULAR_WARN**2) for c in close]
-    return Sweep(plan.structure, DriverReaction(kind, drive), undefined, close, singular)
+    return Kept(plan.structure, DriverReaction(kind, drive), undefined, close, singular)
 
 
 def _param(scene: Scene, dyad, i: int, known: BodyMotion, m: np.ndarray, d: np.ndarray
@@ -196,8 +196,8 @@ def _param(scene: Scene, dyad, i: int, known: BodyMotion, m: np.ndarray, d: np.n
                  by=d[b + 3])
 
 
-def _solution(plan: Plan, positions: np.ndarray, buf: dict) -> Solution:
-    """The Solution over the rows of ``buf`` (arrays over the whole sweep), every array a
+def _solution(plan: Plan, positions: np.ndarray, buf: dict) -> Solved:
+    """The Solved over the rows of ``buf`` (arrays over the whole sweep), every array a
     view of the kernels' output."""
     scene, n = plan.scene, positions.size
     m = buf["m"]
@@ -227,8 +227,8 @@ def _solution(plan: Plan, positions: np.ndarray, buf: dict) -> Solution:
     reactions = _reactions(plan, buf)
     r = buf["drv"]
     # (Me/Fe copied out: a stacked run's scenes keep it, not the slab it lies in)
-    sol = Solution(scene, structure, kin, None, reactions,
-                   DriverReaction(drv.kind, r[0].copy()), buf["u"])
+    sol = Solved(scene, structure, kin, None, reactions,
+                 DriverReaction(drv.kind, r[0].copy()), buf["u"])
     sol.path = "fast"
     return sol
 
