@@ -47,8 +47,7 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
             kin = sol.kin
             kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
                 full, structure, kin)
-            sol.release_loads()     # as the numpy path's solve: worked out again if asked
-            kin.release()
+            kin.release()           # as the numpy path's solve: worked out again if asked
     except Refused:
         return None
     sol.path = "fast"       # (a LeanSolved's: its full solve's is set by _solution)
