@@ -160,4 +160,6 @@ def _summary(spec: DesignSpec, archive: Archive, values: np.ndarray, bundled: Ev
             "reference_point": [1.1] * len(ideal)},
         "bundled_design": own,
         "units": {o["name"]: o["unit"] for o in objectives},
+        "variables_units": "as typed in the scene" + (
+            f" (its [units]: {spec.raw['units']})" if "units" in spec.raw else " (SI)"),
     }
