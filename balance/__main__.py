@@ -14,7 +14,7 @@ import sys
 import warnings
 from typing import Any
 
-from kinetostatics.text.cli import OneLineParser, dpi_argument, one_line
+from kinetostatics.common.cli import OneLineParser, dpi_argument, one_line
 
 from .api import example_path, examples, results_to_dict, solve_results
 from .errors import WorkbenchError

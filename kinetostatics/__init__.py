@@ -29,6 +29,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from .common.lazy import lazy_names
 from .model.errors import (
     AssemblyError,
     SceneError,
@@ -44,9 +45,8 @@ if TYPE_CHECKING:
     from .model.scene import Scene, load_scene
     from .motion.scene import simulate_motion
     from .results import Solution
+    from .results.solving import solve, solve_many
     from .solver.kinematics import Kinematics, solve_kinematics
-    from .solver.many import solve_many
-    from .solver.pipeline import solve
     from .solver.structure import Dyad, Structure, analyse
 
 # Imported when first asked for (PEP 562), so that ``import kinetostatics`` costs little
@@ -58,7 +58,7 @@ _LAZY = {
     "Scene": "model.scene", "load_scene": "model.scene",
     "simulate_motion": "motion.scene", "Solution": "results",
     "Kinematics": "solver.kinematics", "solve_kinematics": "solver.kinematics",
-    "solve": "solver.pipeline", "solve_many": "solver.many",
+    "solve": "results.solving", "solve_many": "results.solving",
     "Dyad": "solver.structure", "Structure": "solver.structure", "analyse": "solver.structure",
     "design": "design.result",
 }
@@ -110,24 +110,4 @@ if not any(f is _MovedModules for f in __import__("sys").meta_path):
     __import__("sys").meta_path.insert(0, _MovedModules)
 
 
-def __getattr__(name: str):
-    """The public names of the solver, the results and the motion, imported on first use."""
-    where = _LAZY.get(name)
-    if where is None:
-        import importlib
-
-        try:   # a subpackage (kinetostatics.plot, .cams, ...) asked for as an attribute
-            return importlib.import_module(f"{__name__}.{name}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"{__name__}.{name}":
-                raise
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    import importlib
-
-    value = getattr(importlib.import_module(f"{__name__}.{where}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_names(__name__, _LAZY, globals(), __all__)

@@ -11,8 +11,8 @@ import sys
 import warnings
 
 from . import scene_path
+from .common.cli import OneLineParser, dpi_argument, print_warning
 from .model.errors import WorkbenchError
-from .text.cli import OneLineParser, dpi_argument, print_warning
 
 
 def _cmd_solve(args) -> int:
@@ -23,8 +23,8 @@ def _cmd_solve(args) -> int:
 
 
 def _solve(args) -> int:
+    from .results import solve
     from .results.output import summary_with_units
-    from .solver.pipeline import solve
     if args.out and args.format == "parquet":
         from .results.output import parquet_available
         parquet_available()

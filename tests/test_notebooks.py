@@ -67,6 +67,36 @@ del _install_audit
 """
 AUDIT_REPORT = 'import json as _json; print("AUDITS " + _json.dumps(_AUDITS))'
 
+# run after a sheet, in its kernel: what its text promises about its own output
+SHEET_CHECKS = {
+    # 02: at every crank length of the slider no singular row is shown as a number:
+    # the extremes leave the rows out and say how many, the readout at a singular row
+    # says so (the change point at crank + frame = coupler + rocker: 0.15 m)
+    "02": """
+import numpy as _np
+_crank = explorer.slider("crank")
+_seen_singular = False
+for _c in _np.round(_np.arange(_crank.min, _crank.max + 1e-9, _crank.step), 4):
+    _n = explorer.set(crank=float(_c), phi=30.0)
+    if explorer.error is not None:
+        assert _c > limit, (_c, explorer.error)      # only past the Grashof limit
+        continue
+    _sol = explorer.result
+    _sing = _np.asarray(_sol.singular)
+    assert _n["rows near a dead point (left out)"] == int(_sing.sum()), (_c, _n)
+    _regular = _np.asarray(_sol.Me)[~_sing]
+    assert _n["Me max [N m]"] == _regular.max() and _n["Me min [N m]"] == _regular.min()
+    assert ("change point" in _n["turns fully (Grashof)"]) == bool(abs(_c - limit) < 1e-9)
+    if _sing.any():
+        _seen_singular = True
+        _at = float(_sol.positions[_sing][0])
+        _n = explorer.set(phi=_at)
+        assert _n["Me at φ [N m]"] == "singular (dead point)", (_c, _at, _n)
+        explorer.set(phi=30.0)
+assert _seen_singular, "the slider never reaches the change point"
+""",
+}
+
 # run after the sheet in the same kernel: move every slider of every Explorer
 _EXPLORER_CHECK = """
 from kinetostatics.notebook import Explorer as _Explorer
@@ -122,6 +152,8 @@ def run_sheet(path: Path) -> tuple[list, list[dict]]:
     nb.cells.insert(0, nbformat.v4.new_code_cell(AUDIT_HOOK))
     nb.cells.append(nbformat.v4.new_code_cell(
         _EXPLORER_CHECK.replace("{topic}", str(path.name[:2] in TOPIC_SHEETS))))
+    if path.name[:2] in SHEET_CHECKS:
+        nb.cells.append(nbformat.v4.new_code_cell(SHEET_CHECKS[path.name[:2]]))
     nb.cells.append(nbformat.v4.new_code_cell(AUDIT_REPORT))
     env = {"MPLBACKEND": "Agg", "PYTHONPATH": os.pathsep.join(
         [str(ROOT), *filter(None, [os.environ.get("PYTHONPATH")])])}

@@ -28,8 +28,8 @@ import numpy as np
 import pandas as pd
 
 from ..model.scene import load_scene
+from ..results import solve
 from ..solver.kinematics import solve_kinematics
-from ..solver.pipeline import solve
 from ..solver.structure import analyse
 
 # the baseline's four-bar: a = 0.1, b = 0.25, c = 0.2, d = 0.3, cogs at mid-links,

@@ -75,6 +75,17 @@ class Slider:
                              f"min={self.min}, max={self.max}, step={self.step}")
         self.check(self.value)
 
+    @property
+    def readout_format(self) -> str:
+        """The slider's readout with as many decimals as its step and its ends need
+        (0.125 shown as 0.125, never rounded to 0.13)."""
+        digits = 0
+        for v in (self.step, self.min, self.max, self.value):
+            text = f"{v:.10g}"
+            if "e" not in text and "." in text:
+                digits = max(digits, len(text.split(".")[1]))
+        return f".{min(digits, 6)}f"
+
     def check(self, value: float) -> float:
         """``value`` as a float, or a ``ValueError`` naming the slider when it is out of
         the slider's range or not finite."""
@@ -335,6 +346,7 @@ class Explorer:
         for s in self.sliders:
             c = w.FloatSlider(value=self.values[s.name], min=s.min, max=s.max, step=s.step,
                               description=s.label, continuous_update=False,
+                              readout_format=s.readout_format,
                               style={"description_width": "initial"},
                               layout=w.Layout(width="460px"))
 

@@ -88,6 +88,9 @@ def audit(fig: Figure, dpi: float | None = None) -> PictureAudit:
     PictureAudit
         The measures; ``.problems`` lists the breaches.
     """
+    if not hasattr(fig.canvas, "get_renderer"):     # a bare Figure(): an off-screen canvas
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        FigureCanvasAgg(fig)
     texts = figure_texts(fig)
     sizes = [t.get_fontsize() for t in fig.findobj(Text)
              if t.get_visible() and t.get_text().strip() and t.get_text() in texts]

@@ -14,6 +14,7 @@ from matplotlib.patches import Circle
 
 from ..model.errors import WorkbenchError
 from .base import axes_or_new, legend_outside, vector_axes
+from .collide import GUIDE
 from .notation import reading
 from .place import declutter
 
@@ -118,7 +119,7 @@ def plot_cam_motion(res) -> Figure:
     texts = []
     for b, seg in zip(bounds, law.segments, strict=True):
         for a in axs:
-            a.axvline(b, color="0.6", lw=0.8, ls=":")
+            a.axvline(b, color="0.6", lw=0.8, ls=":", gid=GUIDE)   # a faint guide
         name = seg.kind if seg.law is None else f"{seg.kind}\n{seg.law}"
         texts.append(axs[0].annotate(name, (b + 0.5 * math.degrees(seg.angle), 0.83),
                                      xycoords=("data", "axes fraction"), ha="center",
@@ -220,8 +221,8 @@ def draw_cam(res, angle: float = 0.0, ax: Axes | None = None) -> Axes:
     ax.set_ylabel("y [m]")
     ax.grid(True, alpha=0.3)
     tau = float(g["tau"].iloc[k])
-    ax.set_title(f"{sc.title or 'cam'}\nat φ = {ang[k]:g}°: {rise}, transmission angle "
-                 f"τ = {tau:.3g}°", fontsize=10)
+    ax.set_title(f"{sc.title or 'cam'}\nat φ = {ang[k]:g}°: {rise}, τ = {reading(tau, 3)}°",
+                 fontsize=10)
     legend_outside(ax)
     return ax
 

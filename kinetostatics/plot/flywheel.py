@@ -10,6 +10,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.ticker import MaxNLocator
 
 from ..model.errors import WorkbenchError
 from .base import axes_or_new
@@ -199,7 +200,9 @@ def plot_wittenbauer(data: pd.DataFrame, omega_mean: float | None = None,
         # the curve is small beside the construction: zoomed in an inset
         curve = ax.inset_axes([0.08, 0.5, 0.45, 0.42])
         curve.set_title("the curve, zoomed", fontsize=10)
-        curve.tick_params(labelsize=7)
+        curve.tick_params(labelsize=10)       # the lecture style's smallest text
+        for axis in (curve.xaxis, curve.yaxis):
+            axis.set_major_locator(MaxNLocator(nbins=3))
         curve.grid(True, alpha=0.3)
     for a in {ax, curve}:
         a.plot(i_r, de, lw=2, color="tab:blue", label="($I_r$(φ), ΔE(φ))" if a is ax else None)

@@ -132,11 +132,11 @@ def direction_text(v) -> str:
 
 
 # the words of the glossary's Romanian side (a picture shows none of them)
-_ROMANIAN = frozenset(w for v in GLOSS.values() for w in re.findall(r"[^\W\d_]+", v.lower())
+_ROMANIAN = (frozenset(w for v in GLOSS.values() for w in re.findall(r"[^\W\d_]+", v.lower())
                       if len(w) > 2) | {"cinetostatica", "patrulater", "echilibrarea",
                                          "manivela", "biela", "culisa", "reacțiunea",
                                          "forțele", "inerție", "volant", "cama", "tachet"
-                                         } - {"wittenbauer"}
+                                         }) - {"wittenbauer"}
 _DIACRITICS = re.compile("[ăâîșşțţĂÂÎȘŞȚŢ]")
 # a mathtext span (subscripts belong there)
 _MATH = re.compile(r"(?<!\\)\$.*?(?<!\\)\$")

@@ -271,8 +271,10 @@ def _frame(pl: _Plan) -> None:
     speed = f"ω = {drv.speed:g} rad/s" if drv.kind == "R" else f"v = {drv.speed:g} m/s"
     ax.set_title(f"{what}\nat {position_text(sol, pl.i)}, {speed}", fontsize=11)
     ax.grid(True, alpha=0.3)
-    ax.legend(handles=pl.handles, loc="upper center", bbox_to_anchor=(0.5, -0.1),
-              borderaxespad=0.0)      # below: the plan keeps the figure's width
+    # below the x label (3.4 font sizes under the Axes, whatever their size): the plan
+    # keeps the figure's width
+    ax.legend(handles=pl.handles, loc="upper center", bbox_to_anchor=(0.5, 0.0),
+              borderaxespad=3.4)
 
 
 def _plan(sol: Solution, position, row, ax, kind: str, cog: bool,

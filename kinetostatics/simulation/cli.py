@@ -19,6 +19,7 @@ import json
 import math
 from pathlib import Path
 
+from ..common.jsontext import plain
 from ..model.outputs import atomic_file
 
 __all__ = ["add_commands"]
@@ -33,7 +34,7 @@ def _error(msg: str) -> Exception:
 
 def add_commands(sub) -> None:
     """Add the ``crosscheck`` subcommand to an argparse subparsers object."""
-    from ..cli import dpi_argument  # the --dpi of every command that draws
+    from ..common.cli import dpi_argument  # the --dpi of every command that draws
     c = sub.add_parser(
         "crosscheck", help="simulate a scene in pymunk and compare with kinetostatics",
         description="Simulate a mechanism scene in pymunk at its driver's constant speed "
@@ -131,7 +132,7 @@ def _cmd_crosscheck(args) -> int:
         if args.plot:
             _save(lambda: _plot_study(st), args.plot, args.dpi)
         if args.json:
-            print(json.dumps(_clean(st.summary()), indent=2))
+            print(json.dumps(plain(st.summary(), finite=True), indent=2))
             return 0
         print(st.formatted().to_string(index=False))
         print(f"wall time: the best of {st.repeats} run(s) per setting"
@@ -156,7 +157,7 @@ def _cmd_crosscheck(args) -> int:
         from .plots import plot_comparison
         _save(lambda: plot_comparison(cc), args.plot, args.dpi)
     if args.json:
-        print(json.dumps(_clean(cc.summary()), indent=2))
+        print(json.dumps(plain(cc.summary(), finite=True), indent=2))
         return 0
     s = cc.settings
     per = s["seconds_per_revolution"] if s["seconds_per_revolution"] is not None \
@@ -189,16 +190,3 @@ def _save(draw, path: str, dpi: float = 150) -> None:
         with atomic_file(path) as tmp:
             fig.savefig(tmp, dpi=dpi, format=Path(path).suffix.lstrip(".").lower() or None)
 
-
-def _clean(obj):
-    """JSON-safe: numpy scalars to Python, non-finite floats to None."""
-    import numpy as np
-    if isinstance(obj, dict):
-        return {str(k): _clean(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_clean(v) for v in obj]
-    if isinstance(obj, np.generic):
-        obj = obj.item()
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    return obj

@@ -54,7 +54,7 @@ def plot_comparison(cc: CrossCheck, quantities: list[str] | None = None, *, ever
     nrow = -(-len(qs) // ncol)
     fig = Figure(figsize=(4.2 * ncol, 3.0 * nrow), layout="constrained")
     axes = fig.subplots(nrow, ncol, squeeze=False).ravel()
-    xlab = "driver angle (deg)" if cc.scene.driver.kind == "R" else "driver position (m)"
+    xlab = "crank angle φ (deg)" if cc.scene.driver.kind == "R" else "driver position s (m)"
     for ax, q in zip(axes, qs, strict=False):
         g = cc.rows[cc.rows.quantity == q]
         ax.plot(g.position, g.computed, "-", lw=1.2, color="C0", label="kinetostatics")
@@ -69,7 +69,9 @@ def plot_comparison(cc: CrossCheck, quantities: list[str] | None = None, *, ever
         ax.grid(alpha=0.3)
     for ax in axes[len(qs):]:
         ax.set_visible(False)
-    axes[0].legend(fontsize=10)
+    # one legend for all panels, below them: never over a curve
+    fig.legend(*axes[0].get_legend_handles_labels(), loc="outside lower center", ncol=2,
+               fontsize=10, frameon=False)
     fig.suptitle(f"{cc.scene.title}: pymunk (dt = {reading(cc.settings.get('dt', 0), 3)} s, "
                  f"{cc.settings.get('iterations')} iterations) against kinetostatics",
                  fontsize=10)

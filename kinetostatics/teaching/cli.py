@@ -129,6 +129,34 @@ def _cmd_generate(args) -> int:
     return 0
 
 
+def _problems(rep) -> list[str]:
+    """The console's ``!!`` lines: broken, unknown, conflicting, duplicated, flagged
+    and missing submissions."""
+    loud = []
+    for b in rep.broken:
+        who = f"{b['student']} graded 0" if b["student"] else "no known id: not graded"
+        loud.append(f"BROKEN  {b['file']}: {b['reason']} ({who})")
+    for u in rep.unknown:
+        loud.append(f"UNKNOWN student id {u['student']!r} in {u['file']}: not in the "
+                    "class list, not graded (on record in the grades)")
+    for c in rep.conflicts:
+        loud.append(f"ID CONFLICT in {c['file']}: ids {', '.join(map(repr, c['ids']))}; "
+                    f"graded as {c['graded_as']!r}")
+    for dup in rep.duplicates:
+        loud.append(f"DUPLICATE {dup['student']}: {' and '.join(dup['files'])}; kept "
+                    f"{dup['kept']} ({dup['why']})")
+    for s, fl in rep.flags.items():
+        for f in fl:
+            if f == "no submission" or f.endswith("(graded 0)") or " submissions: kept " in f:
+                continue                    # said above: MISSING, BROKEN, DUPLICATE
+            tag = "COPY?" if f.startswith(("copy?", "same answers")) else "FLAG"
+            loud.append(f"{tag} {s}: {f}")
+    if rep.missing:
+        loud.append(f"MISSING {len(rep.missing)} student(s) handed in nothing (graded 0): "
+                    f"{', '.join(rep.missing)}")
+    return loud
+
+
 def _cmd_grade(args) -> int:
     from ..model.errors import WorkbenchError
     from ..model.outputs import staged_folder
@@ -165,28 +193,7 @@ def _cmd_grade(args) -> int:
     n = len({x["file"] for x in rep.submissions} | {b["file"] for b in rep.broken})
     print(f"read {n} submission(s) in {dt:.1f} s (notebooks {how}; one that does not run "
           f"is graded {'0' if args.on_error == 'zero' else 'on its answers cell as saved'})")
-    loud = []
-    for b in rep.broken:
-        who = f"{b['student']} graded 0" if b["student"] else "no known id: not graded"
-        loud.append(f"BROKEN  {b['file']}: {b['reason']} ({who})")
-    for u in rep.unknown:
-        loud.append(f"UNKNOWN student id {u['student']!r} in {u['file']}: not in the "
-                    "class list, not graded (on record in the grades)")
-    for c in rep.conflicts:
-        loud.append(f"ID CONFLICT in {c['file']}: ids {', '.join(map(repr, c['ids']))}; "
-                    f"graded as {c['graded_as']!r}")
-    for dup in rep.duplicates:
-        loud.append(f"DUPLICATE {dup['student']}: {' and '.join(dup['files'])}; kept "
-                    f"{dup['kept']} ({dup['why']})")
-    for s, fl in rep.flags.items():
-        for f in fl:
-            if f == "no submission" or f.endswith("(graded 0)") or " submissions: kept " in f:
-                continue                    # said above: MISSING, BROKEN, DUPLICATE
-            tag = "COPY?" if f.startswith(("copy?", "same answers")) else "FLAG"
-            loud.append(f"{tag} {s}: {f}")
-    if rep.missing:
-        loud.append(f"MISSING {len(rep.missing)} student(s) handed in nothing (graded 0): "
-                    f"{', '.join(rep.missing)}")
+    loud = _problems(rep)
     for line in loud:
         print("!! " + line)
     sc = rep.scores

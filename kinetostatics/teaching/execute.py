@@ -119,9 +119,7 @@ def _run_in(run, tmp: str, timeout: float, kernel: str, sandbox: Sandbox | None,
         env = _env()
     else:
         limits = sandbox.limits
-        uid = sandbox.scratch_owner()
-        if uid is not None:
-            os.chown(tmp, uid, uid)
+        uid = sandbox.prepare(tmp)
         env = {"PATH": "/usr/bin:/bin"}        # bwrap's own; the kernel's is built anew
 
     def client():

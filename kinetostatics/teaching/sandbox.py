@@ -223,6 +223,20 @@ class Sandbox:
             env[k] = "1"
         return env
 
+    def prepare(self, scratch: str | Path) -> int | None:
+        """Make ``scratch`` the kernel's: owned by the kernel's user when grading as
+        root (returned, else None), with a copy of the grader's matplotlib font list
+        (else every kernel builds it again: 0.3 s). Returns the kernel's user id."""
+        uid = self.scratch_owner()
+        mpl = Path(scratch) / ".matplotlib"
+        mpl.mkdir(exist_ok=True)
+        for f in _font_lists():
+            shutil.copy(f, mpl / f.name)
+        if uid is not None:
+            for p in [Path(scratch), mpl, *mpl.iterdir()]:
+                os.chown(p, uid, uid)
+        return uid
+
     def scratch_owner(self) -> int | None:
         """The user id a kernel runs under when grading as root (a fresh one, so that
         no other process counts against its process limit), else None."""
@@ -244,6 +258,17 @@ class Sandbox:
         if res.returncode != 0:
             return (res.stderr.strip().splitlines() or [f"exit code {res.returncode}"])[-1]
         return ""
+
+
+@functools.lru_cache(maxsize=1)
+def _font_lists() -> tuple[Path, ...]:
+    """matplotlib's font lists of the grader's cache (none when it has no cache)."""
+    try:
+        import matplotlib
+
+        return tuple(Path(matplotlib.get_cachedir()).glob("fontlist-*.json"))
+    except (ImportError, OSError, RuntimeError):     # pragma: no cover - no matplotlib
+        return ()
 
 
 @functools.lru_cache(maxsize=8)

@@ -123,3 +123,22 @@ def test_report_figures_meet_the_picture_standard():
                     bad[f"{name}: {caption}"] = problems
                 plt.close(fig)
     assert not bad, bad
+
+
+def test_report_states_the_noise_its_intervals_assume():
+    """The report says which reading noise and confidence its intervals assume (the
+    default 1 % and 1 deg when the scene gives none) and what "not determined" means
+    (issue 33, item 8)."""
+    from balance.api import example_path, results_to_dict, solve_results
+    from balance.report.text import field_text, noise_lines
+    res = solve_results(str(example_path("resonance_example")))
+    lines = noise_lines(res, results_to_dict(res))
+    assert lines == ["resonance test 1: intervals at 95 % for readings with 1 % of each "
+                     "amplitude (1 sigma); an estimate is not determined when its interval "
+                     "leaves more than 25 % of the unbalance uncorrected (or spans more "
+                     "than 14.4 deg)"]
+    res = solve_results(str(example_path("influence_two_plane")))
+    text = "\n".join(field_text(results_to_dict(res)))
+    assert "intervals at 95 % for readings with 1 % of each amplitude (1 sigma), " \
+           "1 deg of phase" in text
+    assert "that reading noise moves the correction by up to 5.434 %" in text

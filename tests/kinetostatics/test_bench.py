@@ -12,7 +12,7 @@ from kinetostatics.bench import (
     load_reference,
     slider_crank_reference_scene,
 )
-from kinetostatics.solver.pipeline import solve
+from kinetostatics.results import solve
 
 
 @pytest.fixture(scope="module")

@@ -58,3 +58,23 @@ def test_moved_modules_answer_to_their_old_names_with_a_warning(old: str, new: s
             "assert [x.category for x in w] == [DeprecationWarning], w\n"
             f"assert 'kinetostatics.{new}' in str(w[0].message)\n")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+@pytest.mark.parametrize(("module", "name"), [("kinetostatics.solver.pipeline", "solve"),
+                                              ("kinetostatics.solver.many", "solve_many")])
+def test_the_solvers_old_public_names_warn_and_give_the_new(module: str, name: str) -> None:
+    """The solver gives arrays now; its old public solve and solve_many are the
+    package's (which wrap them in Solutions), with a DeprecationWarning."""
+    import importlib
+    import warnings
+
+    import kinetostatics as ks
+    mod = importlib.import_module(module)
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        got = getattr(mod, name)
+    assert got is getattr(ks, name)
+    assert [x.category for x in w] == [DeprecationWarning] and f"kinetostatics.{name}" in \
+        str(w[0].message)
+    with pytest.raises(AttributeError):
+        mod.no_such_name  # noqa: B018

@@ -10,6 +10,7 @@ qualifies (:func:`~kinetostatics.solver.fast.choice.wanted`).
 """
 
 from .choice import AUTO_ROWS, PATHS, path_setting, use, wanted
-from .solve import solve_compiled
+from .solve import solve_compiled, solve_run_compiled
 
-__all__ = ["AUTO_ROWS", "PATHS", "path_setting", "solve_compiled", "use", "wanted"]
+__all__ = ["AUTO_ROWS", "PATHS", "path_setting", "solve_compiled", "solve_run_compiled", "use",
+           "wanted"]

@@ -2,9 +2,10 @@
 test suite) and the rule for ``auto`` (no numba here).
 
 ``numpy``: always the numpy path. ``fast``: the compiled path for every call it covers
-(numba loaded on the first). ``auto`` (the default): the compiled path for a call (or a
-``solve_many`` group) of at least :data:`AUTO_ROWS` rows, and for every call once it is
-loaded in the process; a first small solve never imports numba. Without numba, or
+(numba loaded on the first). ``auto`` (the default): while :data:`AUTO_COMPILED` is off,
+the numpy path; on, the compiled path for a call (or a ``solve_many`` group) of at
+least :data:`AUTO_ROWS` rows, and for every call once it is loaded in the process; a
+first small solve never imports numba. Without numba, or
 without a writable cache folder, every setting solves on the numpy path.
 """
 
@@ -17,6 +18,12 @@ from . import loader
 
 PATHS = ("auto", "numpy", "fast")
 AUTO_ROWS = 20_000      # below, numba's import and first call (0.2-0.3 s) outweigh the gain
+# Whether ``auto`` takes the compiled path at all. Off: the kernels, row by row and not
+# vectorised, do not beat the numpy path yet (measured 2026-11-28 on the 2-core machine,
+# four-bar solve + driver table: 0.93x against numpy's 0.76x the hand form at 2e5 rows,
+# 0.33x against 0.29x at 1e6; solve_many of 1000 x 361 rows 1.6x numpy's time), so the
+# compiled path runs only when asked for (``fast``).
+AUTO_COMPILED = False
 _OPTION: dict[str, str | None] = {"path": None, "told": None}
 
 
@@ -49,7 +56,8 @@ def wanted(rows: int):
     setting = path_setting()
     if setting == "numpy":
         return None
-    if setting == "auto" and rows < AUTO_ROWS and not loader.loaded():
+    if setting == "auto" and (not AUTO_COMPILED
+                              or (rows < AUTO_ROWS and not loader.loaded())):
         return None
     if setting == "fast" and not loader.installed() and _OPTION["told"] != "numba":
         _OPTION["told"] = "numba"

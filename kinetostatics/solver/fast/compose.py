@@ -6,7 +6,7 @@ load resultants, each dyad's reactions in reverse order, the driver's Me/Fe (the
 path's :func:`~kinetostatics.solver.kinematics.solve_kinematics` then
 :func:`~kinetostatics.solver.reactions.solve_reactions`, row by row). A long sweep keeps
 only what the driver table and the dead points need, block by block in scratch arrays
-(:class:`~kinetostatics.solver.blocks.Sweep`); the full solve writes arrays over the
+(:class:`~kinetostatics.solver.blocks.Kept`); the full solve writes arrays over the
 whole sweep, wrapped without copies in the :class:`BodyMotion`, :class:`DyadMotion` and
 :class:`JointReaction` objects every table reads.
 """
@@ -18,13 +18,13 @@ from dataclasses import replace
 import numpy as np
 
 from ...model.scene import GROUND, Scene
-from ...results import Solution
-from ..blocks import BLOCK_ROWS, Sweep
+from ..blocks import BLOCK_ROWS, Kept
 from ..closure import Param
 from ..driver import BodyMotion, ground_motion
 from ..kinematics import SINGULAR_WARN, DyadMotion, Kinematics
 from ..loads import RESIST_STILL
 from ..reactions import DriverReaction, _record
+from ..solved import Solved
 from . import layout as L
 from .geometry import (
     body_loads_geometry,
@@ -70,31 +70,30 @@ class Plan:
 
     def buffers(self, width: int) -> dict:
         """Arrays for ``width`` rows: each body's motion and load resultants, each dyad's
-        data and reactions, the driver's reaction (the ground's motion: constant).
-
-        All are rows of one slab whose rows lie an odd number of cache lines apart: rows a
-        power of two bytes apart (a block of 16384 rows) would all fall in the same few
-        sets of the processor's caches, and a kernel reads and writes some 60 of them at
-        once (measured: 5-10x slower)."""
-        stride = -(-width // 8) * 8
-        if (stride // 8) % 2 == 0:
-            stride += 8
+        data and reactions, the driver's reaction (the ground's motion: constant): rows
+        of one slab, its rows padded (:func:`~kinetostatics.solver.fast.layout.padded_width`)."""
+        stride = L.padded_width(width)
         sizes = ([("m", b, L.MOTION) for b in (GROUND, *self.bodies)]
                  + [("a", b, 3) for b in (GROUND, *self.bodies)]
                  + [("d", i, L.DYAD_OUT) for i in range(len(self.dyads))]
                  + [("r", i, L.REACTIONS) for i in range(len(self.dyads))] + [("drv", 0, 7)])
-        slab = np.zeros((sum(k for _, _, k in sizes), stride))
+        # (np.empty: memory a freed slab leaves is reused without faulting in fresh
+        # zeroed pages; only what a kernel may leave unwritten is zeroed)
+        slab = np.empty((sum(k for _, _, k in sizes), stride))
         out: dict = {"m": {}, "a": {}, "d": [], "r": [], "u": np.zeros(width, dtype=bool)}
         row = 0
         for part, key, k in sizes:
             block = slab[row:row + k]
             row += k
+            if part in ("d", "r", "drv"):
+                block[:] = 0.0
             if part == "drv":
                 out["drv"] = block
             elif isinstance(out[part], dict):
                 out[part][key] = block
             else:
                 out[part].append(block)
+        out["m"][GROUND][:] = 0.0
         out["m"][GROUND][L.C] = 1.0
         return out
 
@@ -135,8 +134,8 @@ def driver_input(scene: Scene) -> np.ndarray:
     return drv.angles if drv.kind == "R" else np.asarray(drv.positions, dtype=float)
 
 
-def solve_full(plan: Plan, positions: np.ndarray, block: int = BLOCK_ROWS) -> Solution:
-    """The whole sweep's Solution (every table's arrays), solved block by block into
+def solve_full(plan: Plan, positions: np.ndarray, block: int = BLOCK_ROWS) -> Solved:
+    """The whole sweep's Solved (every table's arrays), solved block by block into
     arrays over the whole sweep."""
     n = positions.size
     x = driver_input(plan.scene)
@@ -155,8 +154,8 @@ def _cut(buf: dict, n: int) -> dict:
             "drv": buf["drv"][:, :n], "u": buf["u"]}
 
 
-def solve_lean(plan: Plan, positions: np.ndarray, block: int = BLOCK_ROWS) -> Sweep:
-    """A long sweep's :class:`~kinetostatics.solver.blocks.Sweep`: Me/Fe and each dyad's
+def solve_lean(plan: Plan, positions: np.ndarray, block: int = BLOCK_ROWS) -> Kept:
+    """A long sweep's :class:`~kinetostatics.solver.blocks.Kept`: Me/Fe and each dyad's
     closeness to a dead centre, the rest of each block in scratch arrays."""
     n = positions.size
     x = driver_input(plan.scene)
@@ -174,7 +173,7 @@ def solve_lean(plan: Plan, positions: np.ndarray, block: int = BLOCK_ROWS) -> Sw
     plan.check_swept()
     kind = plan.scene.driver.kind
     singular = [~(c > SINGULAR_WARN**2) for c in close]
-    return Sweep(plan.structure, DriverReaction(kind, drive), undefined, close, singular)
+    return Kept(plan.structure, DriverReaction(kind, drive), undefined, close, singular)
 
 
 def _param(scene: Scene, dyad, i: int, known: BodyMotion, m: np.ndarray, d: np.ndarray
@@ -188,8 +187,8 @@ def _param(scene: Scene, dyad, i: int, known: BodyMotion, m: np.ndarray, d: np.n
                  by=d[b + 3])
 
 
-def _solution(plan: Plan, positions: np.ndarray, buf: dict) -> Solution:
-    """The Solution over the rows of ``buf`` (arrays over the whole sweep), every array a
+def _solution(plan: Plan, positions: np.ndarray, buf: dict) -> Solved:
+    """The Solved over the rows of ``buf`` (arrays over the whole sweep), every array a
     view of the kernels' output."""
     scene, n = plan.scene, positions.size
     m = buf["m"]
@@ -218,8 +217,11 @@ def _solution(plan: Plan, positions: np.ndarray, buf: dict) -> Solution:
     kin = Kinematics(scene, structure, positions, bodies, dyads)
     reactions = _reactions(plan, buf)
     r = buf["drv"]
-    return Solution(scene, structure, kin, None, reactions, DriverReaction(drv.kind, r[0]),
-                    buf["u"])
+    # (Me/Fe copied out: a stacked run's scenes keep it, not the slab it lies in)
+    sol = Solved(scene, structure, kin, None, reactions,
+                 DriverReaction(drv.kind, r[0].copy()), buf["u"])
+    sol.path = "fast"
+    return sol
 
 
 def _reactions(plan: Plan, buf: dict) -> dict:

@@ -39,9 +39,9 @@ def pack(values: dict[int, object], k: int) -> tuple[np.ndarray, int]:
     rows not given are 0) and its stride over the rows."""
     n = max((v.shape[0] for v in values.values()
              if isinstance(v, np.ndarray) and v.ndim), default=0)
-    g = np.zeros((k, max(n, 1)))
+    g = np.zeros((k, L.padded_width(n) if n else 1))    # (rows padded: layout.padded_width)
     for row, v in values.items():
-        g[row] = v
+        g[row, :max(n, 1)] = v
     return g, 1 if n else 0
 
 

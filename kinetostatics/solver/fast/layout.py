@@ -63,3 +63,12 @@ DRIVER_GEOMETRY = 15
 # -m a joins it (the cog's mass, or a concentrated mass of the body's mass model)
 L_I, L_M0 = 0, 1
 L_POINT = 5
+
+
+def padded_width(width: int) -> int:
+    """A row length of at least ``width`` values whose rows lie an odd number of cache
+    lines (64 bytes) apart: rows a power of two bytes apart (a block of 16384 rows, a
+    run of 12288) fall in the same few sets of the processor's caches, and a kernel reads
+    and writes some 60 rows at once (measured: 5-20x slower)."""
+    stride = -(-width // 8) * 8
+    return stride + 8 if (stride // 8) % 2 == 0 else stride

@@ -7,17 +7,17 @@ from dataclasses import replace
 import numpy as np
 
 from ...model.scene import Scene
-from ...results import Solution
-from ..blocks import BLOCK_ROWS, LeanSolution
+from ..blocks import BLOCK_ROWS, LeanSolved
 from ..deadpoints import dead_points_between_rows, dead_points_of_sweep, measure2
 from ..kinematics import choose_assembly, with_positions
+from ..solved import Solved
 from .choice import wanted
 from .compose import Plan, Refused, solve_full, solve_lean
 from .geometry import not_covered
 
 
 def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
-                   ) -> Solution | None:
+                   ) -> Solved | None:
     """``scene`` at ``positions`` (``given``: not the scene's own) on the compiled path,
     or None: the path is off or not wanted for this many rows
     (:func:`~kinetostatics.solver.fast.choice.wanted`), the scene is not covered
@@ -36,12 +36,12 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
         if n >= 2 * BLOCK_ROWS:
             sweep = solve_lean(Plan(kernels, full, structure, structure.assembly), positions)
 
-            def again() -> Solution:
+            def again() -> Solved:
                 return solve_full(Plan(kernels, full, structure, structure.assembly),
                                   positions)
             dead = dead_points_of_sweep(full, structure, positions,
                                         measure2(sweep.closeness2, n))
-            sol = LeanSolution.of(full, sweep, positions, dead, again)
+            sol = LeanSolved(full, sweep, positions, dead, again)
         else:
             sol = solve_full(Plan(kernels, full, structure, structure.assembly), positions)
             kin = sol.kin
@@ -49,5 +49,23 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
                 full, structure, kin)
     except Refused:
         return None
-    sol.path = "fast"
+    sol.path = "fast"       # (a LeanSolved's: its full solve's is set by _solution)
     return sol
+
+
+def solve_run_compiled(scene: Scene, structure) -> Solved | None:
+    """A run of stacked scenes (:meth:`~kinetostatics.solver.stack.Stacker.runs`, each
+    dyad's assembly an array over the rows) on the compiled path, or None (as
+    :func:`solve_compiled`; the caller asks :func:`~kinetostatics.solver.fast.choice.wanted`
+    once for the whole group first). Every row is the row its scene gives alone on the
+    compiled path, bit for bit: the same kernels, each number the scene's own."""
+    if not_covered(scene) is not None:
+        return None
+    positions = scene.driver.positions
+    kernels = wanted(positions.size)
+    if kernels is None:
+        return None
+    try:
+        return solve_full(Plan(kernels, scene, structure, structure.assembly), positions)
+    except Refused:
+        return None

@@ -288,6 +288,57 @@ def test_saved_unrun_answers_cell_that_computes(klass, tmp_path):
     assert rep.broken and "computes Me@60" in rep.broken[0]["reason"]
 
 
+def test_saved_output_of_a_run_notebook_is_graded_without_running(klass, tmp_path):
+    """--no-execute: a computed answer counts as the saved output shows it (issue 33)."""
+    kz = _key(klass, "zoë")
+    p = _typed(klass, "zoë", {"Me@60": "sol.Me[60]", "Me_mean": kz["Me_mean"]},
+               tmp_path / "zoe.ipynb")
+    nb = nbformat.read(p, as_version=4)
+    cell = next(c for c in nb.cells if "answers" in c.metadata.get("tags", []))
+    cell.source += "\nanswers"
+    shown = {**{q: None for q in kz}, "Me@60": kz["Me@60"], "Me_mean": kz["Me_mean"]}
+    text = "{" + ", ".join(f"{q!r}: " + ("None" if v is None else f"np.float64({v!r})")
+                           for q, v in shown.items()) + "}"
+    cell.outputs = [nbformat.v4.new_output("execute_result", data={"text/plain": text},
+                                           execution_count=9)]
+    nbformat.write(nb, str(p))
+    rep = T.grade_class(klass["dir"], [p], execute=False)
+    sc = rep.scores.set_index("student")
+    assert sc.loc["zoë", "points"] == 2.0
+    assert rep.flags["zoë"] == ["read as saved (not run): Me@60 read from the saved output"]
+    g = rep.graded.set_index(["student", "question"])
+    assert g.loc[("zoë", "Me@60"), "answer"] == kz["Me@60"]
+
+
+def test_equal_times_are_named_not_resolved_silently(klass, tmp_path):
+    a = _typed(klass, "maria", _key(klass, "maria"), tmp_path / "a" / "maria.ipynb")
+    b = _typed(klass, "maria", {"Me@60": 1.0}, tmp_path / "b" / "maria.ipynb")
+    t = time.time() - 60
+    for f in (a, b):
+        os.utime(f, (t, t))
+    code, out, err = _run(["exercises", "grade", klass["dir"], a, b, "--no-execute",
+                           "--out", tmp_path / "grades.csv"])
+    assert code == 0 and not err
+    summary = pd.read_csv(tmp_path / "grades_students.csv", dtype={"student": str},
+                          keep_default_na=False).set_index("student")
+    flags = summary.loc["maria", "flags"]
+    assert f"2 submissions: kept {b}" in flags
+    assert f"{a} has the same time: kept the last by name, choose with --prefer" in flags
+    assert f"{a} has the same time" in next(ln for ln in out.splitlines() if "DUPLICATE" in ln)
+
+
+def test_percent_rounds_half_up_as_gradebooks_do():
+    from kinetostatics.teaching.gradebook import percent
+
+    assert round(6.25, 1) == 6.2                      # Python's rule: half to even
+    assert percent(1, 16) == 6.3 and percent(5, 8) == 62.5 and percent(3, 16) == 18.8
+    assert percent(0.5, 8) == 6.3 and percent(7, 7) == 100.0 and percent(0, 3) == 0.0
+    assert percent(1, 3) == 33.3 and percent(2, 3) == 66.7
+    g = pd.DataFrame({"student": ["a"] * 16, "question": [f"q{k}" for k in range(16)],
+                      "passed": [True] + [False] * 15})
+    assert T.class_table(g)["score %"].iloc[0] == 6.3
+
+
 # -------------------------------------------------------------- 7. executors
 class _Counting(Executor):
     """An executor that counts the tasks it hands to another."""

