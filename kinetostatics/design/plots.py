@@ -67,7 +67,7 @@ def draw_design(result, i: int, fig: Figure | None = None, *, front: bool = Fals
     Solution, solved here when not given); with ``front``, the front first, design
     ``i`` circled."""
     from ..plot.mechanism import draw_mechanism
-    from ..solver.pipeline import solve
+    from ..results import solve
     if fig is None:
         fig = Figure(figsize=(16.5 if front else 11.5, 5.0), layout="constrained")
         FigureCanvasAgg(fig)        # a canvas that renders (no pyplot)

@@ -76,7 +76,7 @@ class DesignResult:
 
     def solve(self, i: int):
         """The :func:`kinetostatics.solve` of design ``i`` of the front."""
-        from ..solver.pipeline import solve
+        from ..results import solve
         return solve(self.spec.scene_dict(self.X[i]))
 
     def write(self, out: str | Path, *, dpi: float = 150) -> list[Path]:
