@@ -231,7 +231,7 @@ def bench_design(population: int = 1000, generations: int = 10, repeat: int = 2
     except ImportError:
         return []
     from ..design.result import design
-    from ..solver.many import solve_many
+    from ..results import solve_many
     dicts = four_bar_variants(population)
     times = side_by_side({
         "design": lambda: design("four_bar_design", population=population,
@@ -305,7 +305,7 @@ def run_speed(quick: bool = False, reference: str | None = None) -> pd.DataFrame
                            (2_001, 20_001) if quick else (2_001, 200_001, 1_000_001))
     rows += bench_many(100 if quick else 1000)
     rows += bench_start(3 if quick else 7)
-    rows += bench_design(100, 3) if quick else bench_design()
+    rows += bench_design(50, 2, repeat=1) if quick else bench_design()
     if not quick:
         rows += bench_tables()
         rows += bench_crosscheck()

@@ -22,7 +22,7 @@ from functools import partial
 
 import numpy as np
 
-from ..solver.many import solve_outcomes
+from ..results.solving import solve_outcomes
 from .screen import loaded
 from .section import DesignSpec
 
@@ -69,7 +69,7 @@ class Evaluation:
 def evaluate(spec: DesignSpec, X: np.ndarray, executor: Executor | None = None,
              parts: int = 1) -> Evaluation:
     """Judge the designs ``X`` (one row per design, the variables in the section's
-    order): one :func:`~kinetostatics.solver.many.solve_outcomes` call (the stacked
+    order): one :func:`~kinetostatics.results.solving.solve_outcomes` call (the stacked
     solve of :func:`~kinetostatics.solve_many`, each design's outcome its Solution or
     the error ``solve`` raises for it) for the whole population, or, through
     ``executor``, one per part of ``parts`` (the numbers are the same: each design's

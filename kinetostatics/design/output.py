@@ -11,6 +11,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from ..model.outputs import staged_folder
+from ..plot.style import lecture_style
 from ..results.output import write_summary
 from .plots import draw_design, plot_front
 from .tomltext import toml_text
@@ -47,8 +48,9 @@ def _write_files(result, folder: Path, dpi: float) -> None:
                              "rule": "nearest the ideal point, the objectives normalised "
                                      "by the front's ideal and nadir"}
     write_summary(folder / "summary.json", summary)
-    fig = Figure(figsize=(6.4, 4.6), layout="constrained")
-    FigureCanvasAgg(fig)
-    plot_front(result, fig.add_subplot())
-    fig.savefig(folder / "front.png", dpi=dpi)
-    draw_design(result, result.compromise).savefig(folder / "compromise.png", dpi=dpi)
+    with lecture_style(dpi):        # the command line's pictures: 150 dpi, text >= 10 pt
+        fig = Figure(figsize=(7.2, 5.0), layout="constrained")
+        FigureCanvasAgg(fig)
+        plot_front(result, fig.add_subplot())
+        fig.savefig(folder / "front.png", dpi=dpi)
+        draw_design(result, result.compromise).savefig(folder / "compromise.png", dpi=dpi)

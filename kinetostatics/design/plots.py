@@ -11,10 +11,26 @@ from matplotlib.figure import Figure
 
 from ..plot.base import axes_or_new
 
+# the vocabulary's words as a picture writes them (docs/notation.md: subscripts in mathtext)
+WORDS = {"Me_peak": "peak of $|M_e|$", "Fe_peak": "peak of $|F_e|$", "Me_rms": "rms of $M_e$",
+         "Fe_rms": "rms of $F_e$", "reaction_peak": "largest joint reaction",
+         "transmission_min": "smallest transmission angle",
+         "frame_force_peak": "largest force on the frame", "stroke": "stroke of",
+         "path_error": "path error of"}
+
+
+def quantity_words(q) -> str:
+    """A quantity of the vocabulary in words (``stroke of coupler.P``)."""
+    if q.point is None:
+        return WORDS[q.kind]
+    spot = q.name.partition(":")[2].replace("_", " ")
+    return f"{WORDS[q.kind]} {spot}"
+
 
 def _label(result, k: int) -> str:
     o = result.spec.objectives[k]
-    return f"{o.quantity.name} [{o.quantity.unit}] ({'min' if o.sense > 0 else 'max'})"
+    return (f"{quantity_words(o.quantity)} [{o.quantity.unit}] "
+            f"({'min' if o.sense > 0 else 'max'})")
 
 
 def plot_front(result, ax: Axes | None = None, chosen: int | None = None) -> Axes:
@@ -39,7 +55,7 @@ def plot_front(result, ax: Axes | None = None, chosen: int | None = None) -> Axe
     ax.set_xlabel(_label(result, 0) if two else "design")
     ax.set_ylabel(_label(result, 1) if two else _label(result, 0))
     ax.grid(True, alpha=0.3)
-    ax.legend(loc="best", fontsize=9)
+    ax.legend(loc="best")
     ax.set_title(f"{result.spec.scene.title}: the front")
     return ax
 
@@ -51,9 +67,9 @@ def draw_design(result, i: int, fig: Figure | None = None, *, front: bool = Fals
     Solution, solved here when not given); with ``front``, the front first, design
     ``i`` circled."""
     from ..plot.mechanism import draw_mechanism
-    from ..solver.pipeline import solve
+    from ..results import solve
     if fig is None:
-        fig = Figure(figsize=(15.5 if front else 11, 4.4), layout="constrained")
+        fig = Figure(figsize=(16.5 if front else 11.5, 5.0), layout="constrained")
         FigureCanvasAgg(fig)        # a canvas that renders (no pyplot)
     else:
         fig.clear()
@@ -66,7 +82,7 @@ def draw_design(result, i: int, fig: Figure | None = None, *, front: bool = Fals
     q = sol.driver_quantity
     me = np.asarray(sol.Me)
     draw_mechanism(sol, row=int(np.argmax(np.abs(me))), ax=a)
-    a.set_title(f"design {i}: at the peak of |{q}|")
+    a.set_title(f"design {i}: at the peak of $|{q[0]}_{q[1]}|$")
     order = sol.order
     b.plot(sol.positions[order], me[order], color="C3", lw=2, label=f"design {i}")
     if own is None and result.bundled.solved[0]:
@@ -76,10 +92,10 @@ def draw_design(result, i: int, fig: Figure | None = None, *, front: bool = Fals
                ls="--", label="the scene's own design")
     b.axhline(0.0, color="0.5", lw=0.6)
     b.set_xlabel(f"driver position [{'deg' if sol.scene.driver.kind == 'R' else 'm'}]")
-    b.set_ylabel(f"{q} [{'N m' if q == 'Me' else 'N'}]")
+    b.set_ylabel(f"${q[0]}_{q[1]}$ [{'N m' if q == 'Me' else 'N'}]")
     b.grid(True, alpha=0.3)
-    b.legend(loc="best", fontsize=9)
-    names = ", ".join(f"{o.quantity.name} = {result.values[i, k]:.4g} {o.quantity.unit}"
-                      for k, o in enumerate(result.spec.objectives))
-    b.set_title(names, fontsize=9)
+    b.legend(loc="best")
+    b.set_title("\n".join(f"{quantity_words(o.quantity)} {result.values[i, k]:.4g} "
+                          f"{o.quantity.unit}" for k, o in enumerate(result.spec.objectives)),
+                fontsize=10)
     return fig

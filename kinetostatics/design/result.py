@@ -76,7 +76,7 @@ class DesignResult:
 
     def solve(self, i: int):
         """The :func:`kinetostatics.solve` of design ``i`` of the front."""
-        from ..solver.pipeline import solve
+        from ..results import solve
         return solve(self.spec.scene_dict(self.X[i]))
 
     def write(self, out: str | Path, *, dpi: float = 150) -> list[Path]:
@@ -160,4 +160,6 @@ def _summary(spec: DesignSpec, archive: Archive, values: np.ndarray, bundled: Ev
             "reference_point": [1.1] * len(ideal)},
         "bundled_design": own,
         "units": {o["name"]: o["unit"] for o in objectives},
+        "variables_units": "as typed in the scene" + (
+            f" (its [units]: {spec.raw['units']})" if "units" in spec.raw else " (SI)"),
     }

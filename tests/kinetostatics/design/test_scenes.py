@@ -59,3 +59,25 @@ def test_units_read_again():
     design, made = spec.design_scene(spec.bundled * 1.1)
     _same(made, load_scene(design))
     assert made.bodies["crank"].mass == pytest.approx(1.2)
+
+
+def test_a_scene_in_mm_gives_the_same_front():
+    """Bounds as typed in the scene's units; objectives in SI, whatever the units."""
+    raw = tomllib.loads(ks.scene_path("four_bar_design").read_text())
+    raw["design"]["constraints"] = ["transmission_min >= 45"]
+    mm = tomllib.loads(ks.scene_path("four_bar_design").read_text())
+    mm["design"] = {**raw["design"], "variables": {
+        k: [a * 1000, b * 1000] for k, (a, b) in raw["design"]["variables"].items()}}
+    mm["units"] = {"length": "mm"}
+    mm["gravity"] = [0.0, -9810.0]
+    for b in mm["bodies"]:
+        b["points"] = {k: [x * 1000, y * 1000] for k, (x, y) in b["points"].items()}
+        b["cog"] = [c * 1000 for c in b["cog"]]
+        b["inertia"] *= 1e6
+    for table in ("ground", "near"):
+        mm[table] = {k: [x * 1000, y * 1000] for k, (x, y) in mm[table].items()}
+    a = ks.design(raw, population=8, generations=2)
+    b = ks.design(mm, population=8, generations=2)
+    assert b.summary["variables_units"] == "as typed in the scene (its [units]: {'length': 'mm'})"
+    np.testing.assert_allclose(b.X, 1000 * a.X, rtol=1e-13)  # (measured: 2.2e-16)
+    np.testing.assert_allclose(b.values, a.values, rtol=1e-12)  # (measured: 4.4e-16)

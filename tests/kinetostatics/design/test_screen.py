@@ -8,7 +8,7 @@ import numpy as np
 from kinetostatics.design.judging import evaluate, unvouched
 from kinetostatics.design.screen import loaded
 from kinetostatics.design.section import read_design
-from kinetostatics.solver.many import solve_outcomes
+from kinetostatics.results.solving import solve_outcomes
 
 
 def test_screen_agrees_with_the_solve():
