@@ -305,11 +305,7 @@ def sandbox_or_refuse(limits: Limits | None = None, hide: Iterable[str | Path] =
     return sb
 
 
-_SIGNALS = {signal.SIGKILL: "killed (SIGKILL: the memory or the process limit, or the "
-                            "grader stopping it)",
-            signal.SIGXCPU: "killed: CPU time limit hit",
-            signal.SIGXFSZ: "killed: file size limit hit",
-            signal.SIGSEGV: "crashed (SIGSEGV)"}
+_SIGNALS = {signal.SIGKILL: "killed (SIGKILL)", signal.SIGSEGV: "crashed (SIGSEGV)"}
 
 
 def exit_reason(code: int | None, limits: Limits) -> str:
