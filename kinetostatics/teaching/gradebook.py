@@ -329,7 +329,7 @@ def _keep(entries: list[dict], prefer: list[Path], rep: ClassReport, extra: list
         (got if kept["answers"] is not None else failed)[sid] = kept
         flags.setdefault(sid, []).extend(kept["flags"])
         if kept["answers"] is None:
-            flags[sid].append(f"did not run: {kept['reason']} (graded 0)")
+            flags[sid].append(f"broken: {kept['reason']} (graded 0)")
     return got, failed, {s: f for s, f in flags.items() if f}
 
 
