@@ -193,6 +193,8 @@ class Sandbox:
         cmd += ["--proc", "/proc", "--dev", "/dev", "--perms", "1777", "--tmpfs", "/tmp"]
         for h in self.hide:
             p = Path(h).resolve()
+            if not p.exists():          # nothing to see, and nothing can be made there:
+                continue                # what the kernel sees of the roots is read-only
             if _under(p, roots) or any(r in p.parents for r in [Path("/usr")]):
                 cmd += (["--tmpfs", str(p)] if p.is_dir()
                         else ["--ro-bind", "/dev/null", str(p)])
