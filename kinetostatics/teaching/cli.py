@@ -160,6 +160,7 @@ def _problems(rep) -> list[str]:
 
 def _cmd_grade(args) -> int:
     from ..model.errors import WorkbenchError
+    from ..model.outputs import staged_folder
     from .classroom import grade_class
     from .lms import LMS, write_lms
     from .questions import TOLERANCE_RULE
@@ -208,10 +209,10 @@ def _cmd_grade(args) -> int:
         print(f"!! {len(loud)} problem(s) listed above (lines starting with !!)")
     if args.out:
         out = Path(args.out)
-        out.parent.mkdir(parents=True, exist_ok=True)
-        rep.graded.to_csv(out, index=False)
         summary = out.with_name(out.stem + "_students.csv")
-        sc.to_csv(summary, index=False)
+        with staged_folder(out.parent) as stage:      # both files, or neither
+            rep.graded.to_csv(stage.file(out.name), index=False)
+            sc.to_csv(stage.file(summary.name), index=False)
         print(f"wrote {out} ({len(rep.graded)} rows: one per student and question, one per "
               f"submission not graded) and {summary} ({len(sc)} rows: one per student, one "
               "per unknown id or unreadable file)")

@@ -94,7 +94,7 @@ def _mechanism_values(raw: dict, questions: Sequence[Question],
     """question -> (value, unit, kind, atol). ``solved``: ``_vouched(solve, s)`` (the
     Solution or the exception) of the scene and of its sweep with the asked positions
     added, by the scene's id, where already solved (:func:`key_rows_many`)."""
-    from ..solver.pipeline import solve
+    from ..results import solve
 
     done = solved.get(id(raw), (None, None)) if solved is not None else (None, None)
 
@@ -328,7 +328,7 @@ def answer_key(scene: Any, questions: Iterable[str]) -> dict[str, float]:
 def key_rows_many(raws: Sequence[dict], questions: Sequence[str]) -> list[dict | Exception]:
     """:func:`key_rows` of each scene, or the exception it raises, in order; the
     mechanism scenes (and their sweeps with the asked positions added) solved together
-    by :func:`~kinetostatics.solver.many.solve_outcomes`, each with exactly the numbers
+    by :func:`~kinetostatics.results.solving.solve_outcomes`, each with exactly the numbers
     and the refusals (an error, a warning) of its own solve."""
     qs = [parse_question(q) for q in questions]
     at = [q.pos for q in qs if q.pos is not None]
@@ -360,8 +360,7 @@ def _vouched_many(raws: list[dict]) -> list:
     together; a warning that the batch cannot pin on one scene sends each back to
     :func:`_vouched` alone."""
     from ..model.scene import load_scene
-    from ..solver.many import solve_outcomes
-    from ..solver.pipeline import solve
+    from ..results import solve, solve_outcomes
 
     flags: list[Any] = []
     loaded: list[Any] = []
