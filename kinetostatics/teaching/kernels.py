@@ -108,6 +108,7 @@ class GradingClient(NotebookClient):
                          allow_errors=False, shutdown_kernel="immediate",
                          on_cell_start=self._started, **kw)
         self.timeout_func = self._cell_timeout
+        self.manager = kw.get("km")             # nbclient forgets it once cleaned up
         self.limits = limits
         self.cell = 0
         self.whole = False
@@ -143,13 +144,14 @@ class GradingClient(NotebookClient):
         """What the kernel's process needs besides the usual: the read end of the
         sandbox's arguments' pipe, and nbclient's clean-up of a kernel manager it did
         not make (its channels and ZeroMQ contexts: 17 file descriptors a notebook)."""
-        pipe = getattr(self.km, "args_pipe", None)
+        pipe = getattr(self.manager, "args_pipe", None)
         return {"pass_fds": (pipe[0],), "cleanup_kc": True} if pipe else {}
 
     def kill(self) -> None:
         """Kill the kernel's process group at once (bwrap takes its sandbox along)."""
-        proc = getattr(self.km, "process", None) or getattr(
-            getattr(self.km, "provisioner", None), "process", None)
+        km = self.km or self.manager
+        proc = getattr(km, "process", None) or getattr(
+            getattr(km, "provisioner", None), "process", None)
         if proc is not None and proc.poll() is None:
             try:
                 os.killpg(proc.pid, signal.SIGKILL)
@@ -158,13 +160,13 @@ class GradingClient(NotebookClient):
 
     def exit_code(self) -> int | None:
         """The kernel process's exit code once it ended (bwrap: 128 + signal)."""
-        proc = getattr(self.km, "process", None)
+        proc = getattr(self.manager or self.km, "process", None)
         return None if proc is None else proc.poll()
 
     def close(self) -> None:
         """Make sure nothing of the kernel is left (and nbclient's exit hook, which
         cannot clean a kernel that never started, is not called at exit)."""
         self.kill()
-        if hasattr(self.km, "close_pipe"):
-            self.km.close_pipe()
+        if hasattr(self.manager, "close_pipe"):
+            self.manager.close_pipe()
         atexit.unregister(self._cleanup_kernel)
