@@ -118,19 +118,14 @@ def _under(p: Path, roots: Iterable[Path]) -> bool:
     return any(p == r or r in p.parents for r in roots)
 
 
+_PROJECT = Path(__file__).resolve().parents[2]
+"""The folder that holds the workbench's packages (kinetostatics, balance)."""
+
+
 def _env_roots() -> list[Path]:
-    """What a kernel must read: the Python environment, the workbench, the system."""
-    import kinetostatics
-
-    project = Path(kinetostatics.__file__).resolve().parents[1]
+    """What a kernel must read: the Python environment and the workbench."""
     roots = {Path(sys.prefix).resolve(), Path(sys.base_prefix).resolve(),
-             Path(sys.executable).resolve().parents[1], project}
-    try:
-        import balance
-
-        roots.add(Path(balance.__file__).resolve().parents[1])
-    except ImportError:                          # pragma: no cover - one package only
-        pass
+             Path(sys.executable).resolve().parents[1], _PROJECT}
     out: list[Path] = []
     for r in sorted(roots, key=lambda q: len(q.parts)):
         if not _under(r, out) and r != Path("/"):
@@ -211,9 +206,7 @@ class Sandbox:
     @staticmethod
     def environment(scratch: str, roots: list[Path]) -> dict[str, str]:
         """The kernel's whole environment."""
-        import kinetostatics
-
-        project = str(Path(kinetostatics.__file__).resolve().parents[1])
+        project = str(_PROJECT)
         env = {"PATH": os.pathsep.join([str(Path(sys.executable).parent), "/usr/local/bin",
                                         "/usr/bin", "/bin"]),
                "HOME": scratch, "TMPDIR": "/tmp", "PYTHONPATH": project,
