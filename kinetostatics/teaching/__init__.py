@@ -6,7 +6,9 @@ draws per student and the class set), ``answers`` (reading dicts, tables and not
 ``grading`` (answers against the key), ``slips`` (unit slips, answers with units),
 ``library`` (the ready exercises), ``sheets`` (what a student receives), ``handouts``
 (the handout's picture and PDF), ``execute`` (running a submitted notebook),
-``submissions`` (reading one submission), ``copies`` (answers of another variant),
+``sandbox`` (the bubblewrap sandbox a graded kernel runs in, and its limits),
+``kernels`` (the grader's side of a graded kernel), ``submissions`` (reading one
+submission), ``copies`` (answers of another variant),
 ``gradebook`` (grading a class folder), ``lms`` (gradebook imports), ``classroom``
 (the teacher's class folder) and ``cli`` (the ``exercises`` command).
 """
@@ -48,13 +50,15 @@ from .questions import (
     var_name,
     wrap_angle,
 )
+from .sandbox import Limits, Sandbox, SandboxUnavailable, sandbox_or_refuse
 from .slips import answer_value, slip_note
 from .variants import Exercise, ExerciseSet, generate
 
 __all__ = [
     "ANGLE_ATOL", "ANSWER_TAG", "ATOL_FRACTION", "DEFAULT_RTOL", "EXERCISES", "ClassReport",
     "generate_class", "grade_class", "read_class_list", "answer_value", "find_copies",
-    "lms_table", "saved_answers", "slip_note", "write_lms",
+    "lms_table", "saved_answers", "slip_note", "write_lms", "Limits", "Sandbox",
+    "SandboxUnavailable", "sandbox_or_refuse",
     "TOLERANCE_RULE", "answer_key", "AnswerSheet", "class_table", "Exercise", "exercise",
     "ExerciseSet", "fill_answer_cell", "four_bar_exercise", "generate", "grade",
     "list_exercises", "normalize_id", "notebook_answers", "read_answers", "record",

@@ -3,7 +3,8 @@
 ``python -m kinetostatics exercises list`` prints the library;
 ``exercises generate EXERCISE --students IDS.txt --out DIR [--seed S]`` writes a sealed
 class folder; ``exercises grade DIR SUBMISSIONS... [--out grades.csv]`` grades what
-came back and prints broken submissions, unknown ids and missing students loudly.
+came back (each notebook in its bubblewrap sandbox, ``--unsandboxed`` only where that
+cannot run) and prints broken submissions, unknown ids and missing students loudly.
 """
 
 from __future__ import annotations

@@ -95,8 +95,9 @@ def _execute(client, env: dict[str, str]) -> None:
             # the kernel's own output streams (its start-up chatter) are not the teacher's
             # business, nor is the grader's terminal the kernel's: what the cells print
             # comes back through the notebook's outputs
-            client().execute(env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                             stderr=subprocess.DEVNULL)
+            c = client()
+            c.execute(env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                      stderr=subprocess.DEVNULL, **c.launch_options())
             return
         except RuntimeError as exc:
             if "before replying to kernel_info" not in str(exc) or attempt == KERNEL_STARTS:
@@ -130,8 +131,8 @@ def _run_in(run, tmp: str, timeout: float, kernel: str, sandbox: Sandbox | None,
     try:
         _execute(client, env)
     finally:
-        if made:
-            made[-1].close()
+        for c in made:
+            c.close()
 
 
 def _stopped(made: list, nb, dead: bool = False) -> str:

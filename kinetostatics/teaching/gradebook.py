@@ -1,14 +1,18 @@
 """Grading a class folder: every submission on record, one summary row per student.
 
-:func:`grade_class` reads notebooks (run in a clean kernel first, see
-:mod:`~kinetostatics.teaching.submissions`), CSV answer forms and JSON dicts; it takes
+:func:`grade_class` reads notebooks (run first in a fresh kernel in a bubblewrap
+sandbox, see :mod:`~kinetostatics.teaching.sandbox`; without bubblewrap it refuses,
+unless the teacher says ``unsandboxed=True``), CSV answer forms and JSON dicts; it takes
 each submission's student id from the submission itself, matches ids after trimming,
 case-folding and Unicode normalisation, and keeps every file it read on record:
 unknown ids, broken files and the duplicates not graded each get a row in
 ``graded`` (with the reason), so nothing handed in is lost. When a student handed in
 several files, the one kept is the teacher's ``prefer`` choice, else the newest
-readable one by modification time. Unit slips, notebooks that did not run and copies
+readable one by modification time (files of the same time are named in the flags).
+Unit and sign slips, notebooks that did not run, copies, duplicates and broken files
 are flagged (``note``, ``flags``); broken submissions and missing students score 0.
+The per-student summary keeps every flag, with a row per unknown id; its percentages
+are rounded half up (:func:`percent`), as the learning platforms' gradebooks round.
 """
 
 from __future__ import annotations
@@ -329,7 +333,7 @@ def _keep(entries: list[dict], prefer: list[Path], rep: ClassReport, extra: list
         (got if kept["answers"] is not None else failed)[sid] = kept
         flags.setdefault(sid, []).extend(kept["flags"])
         if kept["answers"] is None:
-            flags[sid].append(f"did not run: {kept['reason']} (graded 0)")
+            flags[sid].append(f"broken: {kept['reason']} (graded 0)")
     return got, failed, {s: f for s, f in flags.items() if f}
 
 

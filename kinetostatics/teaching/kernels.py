@@ -36,11 +36,28 @@ class SandboxedKernelManager(AsyncKernelManager):
     scratch: str = ""
     uid: int | None = None
     process = None                          # the bwrap process, once started
+    args_pipe: tuple[int, int | None] | None = None
 
     def format_kernel_cmd(self, extra_arguments: list[str] | None = None) -> list[str]:
-        """The kernel spec's command, wrapped in bwrap."""
+        """The kernel spec's command, wrapped in bwrap; bwrap's options (the paths it
+        binds and covers, the environment) go through a pipe (``--args``), so that the
+        sandbox's ``/proc/1/cmdline`` shows none of them, only the kernel's command."""
         argv = super().format_kernel_cmd(extra_arguments)
-        return self.sandbox.command(argv, self.scratch, self.uid)
+        cmd = self.sandbox.command(argv, self.scratch, self.uid)
+        r, w = self.args_pipe
+        self.args_pipe = (r, None)          # the write end is closed here, never again
+        end = cmd.index("--")                # bwrap wants its command on its command line
+        with os.fdopen(w, "wb") as f:       # a few kB: the pipe holds them unread
+            f.write(b"".join(a.encode() + b"\0" for a in cmd[1:end]))
+        return [cmd[0], "--args", str(r), *cmd[end:]]
+
+    def close_pipe(self) -> None:
+        """Close the grader's end of the arguments' pipe (bwrap has read it)."""
+        if self.args_pipe is not None:
+            for fd in self.args_pipe:
+                if fd is not None:
+                    os.close(fd)
+            self.args_pipe = None
 
     def write_connection_file(self, **kwargs) -> None:
         """Write the connection file, readable by the kernel's own user."""
@@ -50,6 +67,7 @@ class SandboxedKernelManager(AsyncKernelManager):
 
     async def _async_post_start_kernel(self, **kw) -> None:
         self.process = self.provisioner.process
+        self.close_pipe()
         await super()._async_post_start_kernel(**kw)
 
     post_start_kernel = _async_post_start_kernel
@@ -73,6 +91,7 @@ def sandboxed_kernel(sandbox: Sandbox, scratch: str | Path, uid: int | None,
     km.connection_file = str(Path(scratch) / "kernel.json")
     km.sandbox, km.scratch, km.uid = sandbox, str(scratch), uid
     km.cache_ports = False
+    km.args_pipe = os.pipe()
     return km
 
 
@@ -89,6 +108,7 @@ class GradingClient(NotebookClient):
                          allow_errors=False, shutdown_kernel="immediate",
                          on_cell_start=self._started, **kw)
         self.timeout_func = self._cell_timeout
+        self.manager = kw.get("km")             # nbclient forgets it once cleaned up
         self.limits = limits
         self.cell = 0
         self.whole = False
@@ -120,10 +140,18 @@ class GradingClient(NotebookClient):
             return None
         return super().process_message(msg, cell, cell_index)
 
+    def launch_options(self) -> dict:
+        """What the kernel's process needs besides the usual: the read end of the
+        sandbox's arguments' pipe, and nbclient's clean-up of a kernel manager it did
+        not make (its channels and ZeroMQ contexts: 17 file descriptors a notebook)."""
+        pipe = getattr(self.manager, "args_pipe", None)
+        return {"pass_fds": (pipe[0],), "cleanup_kc": True} if pipe else {}
+
     def kill(self) -> None:
         """Kill the kernel's process group at once (bwrap takes its sandbox along)."""
-        proc = getattr(self.km, "process", None) or getattr(
-            getattr(self.km, "provisioner", None), "process", None)
+        km = self.km or self.manager
+        proc = getattr(km, "process", None) or getattr(
+            getattr(km, "provisioner", None), "process", None)
         if proc is not None and proc.poll() is None:
             try:
                 os.killpg(proc.pid, signal.SIGKILL)
@@ -132,11 +160,13 @@ class GradingClient(NotebookClient):
 
     def exit_code(self) -> int | None:
         """The kernel process's exit code once it ended (bwrap: 128 + signal)."""
-        proc = getattr(self.km, "process", None)
+        proc = getattr(self.manager or self.km, "process", None)
         return None if proc is None else proc.poll()
 
     def close(self) -> None:
         """Make sure nothing of the kernel is left (and nbclient's exit hook, which
         cannot clean a kernel that never started, is not called at exit)."""
         self.kill()
+        if hasattr(self.manager, "close_pipe"):
+            self.manager.close_pipe()
         atexit.unregister(self._cleanup_kernel)

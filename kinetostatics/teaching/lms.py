@@ -32,7 +32,8 @@ def lms_table(scores: pd.DataFrame, lms: str, assignment: str) -> pd.DataFrame:
     Parameters
     ----------
     scores : DataFrame
-        ``ClassReport.scores`` (``student`` and ``score %``).
+        ``ClassReport.scores`` (``student`` and ``score %``; rows without a score,
+        the unknown ids', are left out).
     lms : {"moodle", "canvas"}
         The platform.
     assignment : str
@@ -47,8 +48,9 @@ def lms_table(scores: pd.DataFrame, lms: str, assignment: str) -> pd.DataFrame:
     kind = str(lms).strip().lower()
     if kind not in LMS:
         raise WorkbenchError(f"--lms {lms!r}: give one of {', '.join(LMS)}")
+    scores = scores[scores["score %"].notna()]     # the rows of unknown ids: no grade
     ids = scores["student"].astype(str).tolist()
-    grade = [round(float(x), 1) for x in scores["score %"]]
+    grade = [round(float(x), 1) for x in scores["score %"]]   # already rounded half up
     if kind == "moodle":
         return pd.DataFrame({"ID number": ids, assignment: grade})
     return pd.DataFrame({"Student": ids, "ID": [""] * len(ids), "SIS User ID": ids,

@@ -118,19 +118,14 @@ def _under(p: Path, roots: Iterable[Path]) -> bool:
     return any(p == r or r in p.parents for r in roots)
 
 
+_PROJECT = Path(__file__).resolve().parents[2]
+"""The folder that holds the workbench's packages (kinetostatics, balance)."""
+
+
 def _env_roots() -> list[Path]:
-    """What a kernel must read: the Python environment, the workbench, the system."""
-    import kinetostatics
-
-    project = Path(kinetostatics.__file__).resolve().parents[1]
+    """What a kernel must read: the Python environment and the workbench."""
     roots = {Path(sys.prefix).resolve(), Path(sys.base_prefix).resolve(),
-             Path(sys.executable).resolve().parents[1], project}
-    try:
-        import balance
-
-        roots.add(Path(balance.__file__).resolve().parents[1])
-    except ImportError:                          # pragma: no cover - one package only
-        pass
+             Path(sys.executable).resolve().parents[1], _PROJECT}
     out: list[Path] = []
     for r in sorted(roots, key=lambda q: len(q.parts)):
         if not _under(r, out) and r != Path("/"):
@@ -193,6 +188,8 @@ class Sandbox:
         cmd += ["--proc", "/proc", "--dev", "/dev", "--perms", "1777", "--tmpfs", "/tmp"]
         for h in self.hide:
             p = Path(h).resolve()
+            if not p.exists():          # nothing to see, and nothing can be made there:
+                continue                # what the kernel sees of the roots is read-only
             if _under(p, roots) or any(r in p.parents for r in [Path("/usr")]):
                 cmd += (["--tmpfs", str(p)] if p.is_dir()
                         else ["--ro-bind", "/dev/null", str(p)])
@@ -209,9 +206,7 @@ class Sandbox:
     @staticmethod
     def environment(scratch: str, roots: list[Path]) -> dict[str, str]:
         """The kernel's whole environment."""
-        import kinetostatics
-
-        project = str(Path(kinetostatics.__file__).resolve().parents[1])
+        project = str(_PROJECT)
         env = {"PATH": os.pathsep.join([str(Path(sys.executable).parent), "/usr/local/bin",
                                         "/usr/bin", "/bin"]),
                "HOME": scratch, "TMPDIR": "/tmp", "PYTHONPATH": project,
@@ -305,11 +300,7 @@ def sandbox_or_refuse(limits: Limits | None = None, hide: Iterable[str | Path] =
     return sb
 
 
-_SIGNALS = {signal.SIGKILL: "killed (SIGKILL: the memory or the process limit, or the "
-                            "grader stopping it)",
-            signal.SIGXCPU: "killed: CPU time limit hit",
-            signal.SIGXFSZ: "killed: file size limit hit",
-            signal.SIGSEGV: "crashed (SIGSEGV)"}
+_SIGNALS = {signal.SIGKILL: "killed (SIGKILL)", signal.SIGSEGV: "crashed (SIGSEGV)"}
 
 
 def exit_reason(code: int | None, limits: Limits) -> str:

@@ -180,6 +180,10 @@ def test_copies_and_the_record(klass, tmp_path):
            subs / "zoe.ipynb")                            # honest and wrong: no flag
     (subs / "zoe.x.json").write_text(json.dumps({"student_id": "zoe.x",
                                                  "answers": _key(klass, "zoë")}))
+    torn_cell = nbformat.read(klass["dir"] / "students" / "Ștefan.ipynb", as_version=4)
+    torn_cell.cells = [c for c in torn_cell.cells
+                       if "answers" not in c.get("metadata", {}).get("tags", [])]
+    nbformat.write(torn_cell, str(subs / "stefan.ipynb"))      # known id, no answers cell
     (subs / "torn.ipynb").write_text('{"cells": [', encoding="utf-8")
     old = _typed(klass, "bogdan", _key(klass, "bogdan"), subs / "bogdan_v1.ipynb")
     new = _typed(klass, "bogdan", {"Me@60": 1.0}, subs / "bogdan_v2.ipynb")
@@ -225,6 +229,10 @@ def test_copies_and_the_record(klass, tmp_path):
     assert float(s.loc["maria", "score %"]) == 100.0
     assert float(s.loc["bogdan", "score %"]) == 0.0
     assert s.loc["Ana", "source"] == "" and "copy?" in s.loc["ion", "flags"]
+    # every flag kept (issue 33): nothing handed in, broken with a known id
+    assert s.loc["Ana", "flags"] == "no submission"
+    assert s.loc["Ștefan", "flags"].startswith("broken: no answer cell")
+    assert s.loc["Ștefan", "flags"].endswith("(graded 0)")
     moodle = pd.read_csv(tmp_path / "moodle.csv", dtype=str)
     assert list(moodle.columns) == ["ID number", "slider_crank"]
     assert moodle["ID number"].tolist() == IDS and moodle.slider_crank[3] == "100.0"

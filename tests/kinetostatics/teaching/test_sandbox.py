@@ -304,6 +304,49 @@ def test_no_background_process_outlives_its_notebook(hostile):
     assert _sleepers() == []
 
 
+@pytest.mark.slow
+@pytest.mark.parametrize("src, limits, says", [
+    ("while True:\n    pass", {"cpu_seconds": 2, "cell_seconds": 60},
+     "the kernel died in cell 2 ('while True:'): killed: CPU time limit of 2 s hit"),
+    ("open('big', 'wb').write(b'x' * (3 << 20))", {"file_mb": 1},
+     "raised OSError: [Errno 27] File too large"),
+    ("import time\ntime.sleep(30)", {"notebook_seconds": 3},
+     "the notebook ran longer than 3 s (the limit per notebook), in cell 2 ('import time')"),
+])
+def test_the_other_limits_name_themselves(src, limits, says):
+    if S.find_bwrap() is None and os.environ.get("CI") != "true":
+        pytest.skip("bubblewrap (bwrap) is not installed: apt-get install bubblewrap")
+    from kinetostatics.teaching.execute import NotebookRunError, run_notebook
+
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(c) for c in
+                                         ("x = 1", src, "answers = {'a': 1.0}")])
+    with pytest.raises(NotebookRunError) as got:
+        run_notebook(nb, sandbox=S.sandbox_or_refuse(S.Limits(**limits)))
+    assert says in str(got.value)
+
+
+@pytest.mark.slow
+def test_the_sandbox_shows_no_path_and_leaves_no_descriptor():
+    """bwrap's options (its binds and covers) reach it through a pipe: the sandbox's
+    process list shows only the kernel's command; and a class of hundreds run in one
+    process leaves no file descriptor behind per notebook (17 did, before)."""
+    if S.find_bwrap() is None and os.environ.get("CI") != "true":
+        pytest.skip("bubblewrap (bwrap) is not installed: apt-get install bubblewrap")
+    from kinetostatics.teaching.execute import run_notebook
+
+    src = ("import os\nanswers = {'ps': ' | '.join(open(f'/proc/{p}/cmdline').read() for p in "
+           "os.listdir('/proc') if p.isdigit())}")
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(src)])
+    sb = S.sandbox_or_refuse(hide=["/tmp"])
+    fds = []
+    for _ in range(3):
+        _, answers = run_notebook(nb, sandbox=sb)
+        fds.append(len(os.listdir("/proc/self/fd")))
+    assert "--ro-bind" not in answers["ps"] and "--setenv" not in answers["ps"]
+    assert "ipykernel_launcher" in answers["ps"]
+    assert fds[0] == fds[-1], fds
+
+
 # ------------------------------------------------------------------ fast checks
 def test_without_bwrap_grading_refuses_in_one_line(tmp_path, monkeypatch):
     d = tmp_path / "class"
