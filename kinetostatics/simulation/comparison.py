@@ -154,7 +154,7 @@ def compare(sc: Scene, model, rec: SimRecord, ref, *, compare_from: float) -> Cr
         np.asarray(ref.undefined_load[1:], dtype=bool) | rec.resist_unsure
     if ref.self_locking is not None:
         flagged |= np.asarray(ref.self_locking[1:], dtype=bool)
-    if model._friction:
+    if model.joint_friction:
         flagged |= near_reversals(sc, ref.kin, rec.time, rec.dt)
     used &= ~flagged
     if not used.any():
@@ -221,15 +221,15 @@ def compare(sc: Scene, model, rec: SimRecord, ref, *, compare_from: float) -> Cr
         if b.mass_model is not None:
             notes.append(f"body {name!r} has a {b.mass_model.kind} mass model: kinetostatics "
                          "uses it, the simulation uses the body's exact mass and inertia")
-    if model._friction:
-        notes.append("joint friction simulated (" + ", ".join(j[1] for j in model._friction)
+    if model.joint_friction:
+        notes.append("joint friction simulated (" + ", ".join(j[1] for j in model.joint_friction)
                      + "): couples rho |F| and forces mu |N| from the reactions of the steps "
                      "before, extrapolated; rows near a reversal of a joint's relative motion "
                      "are flagged")
     skipped = int(np.count_nonzero(flagged))
     if skipped:
         what = "singular / undefined_load / resist point nearly still" + (
-            " / self-locking / friction reversing" if model._friction else "")
+            " / self-locking / friction reversing" if model.joint_friction else "")
         notes.append(f"{skipped} of {n} rows flagged {what}: left out of the errors")
     rows = pd.concat(parts, ignore_index=True)
     return CrossCheck(sc, rec, ref, rows, errors, verr, {}, notes)

@@ -86,7 +86,7 @@ def prepare_friction(model: SimModel, sweep) -> None:
     sc = model.scene
     names = rubbing_joints(sc)
     if not names:
-        model._friction = []
+        model.joint_friction = []
         return
     start = reference_solution(sc, [model.start]).reactions
     out = []
@@ -106,7 +106,7 @@ def prepare_friction(model: SimModel, sweep) -> None:
             beta = j.beta
             out.append(("T", name, info.constraint, g, s, j.friction.mu, top, f0,
                         (sp, (math.cos(beta), math.sin(beta)))))
-    model._friction = out
+    model.joint_friction = out
 
 
 def friction_function(model: SimModel, acc: BodyAccess, unsure: list):
@@ -114,7 +114,7 @@ def friction_function(model: SimModel, acc: BodyAccess, unsure: list):
     to the bodies before a step (after the scene's loads are set; it sets ``unsure[0]``
     where a reading must be left out, module docstring), and one that reads the joints'
     reactions after the step."""
-    if not getattr(model, "_friction", None):
+    if not getattr(model, "joint_friction", None):
         return None
     dt = model.dt
     H = acc.handle
@@ -124,7 +124,7 @@ def friction_function(model: SimModel, acc: BodyAccess, unsure: list):
     cos, sin, copysign = math.cos, math.sin, math.copysign
     bodies = model.bodies
     joints = []
-    for kind, _name, con, a, b, coeff, top, f0, geo in model._friction:
+    for kind, _name, con, a, b, coeff, top, f0, geo in model.joint_friction:
         ha = None if a == GROUND else H(bodies[a])
         hb = None if b == GROUND else H(bodies[b])
         cogs = tuple((0.0, 0.0) if x == GROUND else tuple(bodies[x].center_of_gravity)
@@ -133,7 +133,7 @@ def friction_function(model: SimModel, acc: BodyAccess, unsure: list):
         joints.append((kind, acc.chandle(con), ha, hb, coeff, RESIST_UNSURE * top, cogs, geo,
                        [f0, f0, None, 0]))
     settle = [0]
-    boost = model._boost                 # steps left with more solver iterations
+    boost = model.boost                 # steps left with more solver iterations
 
     def ahead(h, cog):
         """A body's centre of mass and angle at the pose the step will reach (x + v dt)."""
