@@ -8,6 +8,7 @@ mistake here cannot hide in both.
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 
@@ -70,4 +71,41 @@ def four_bar(a: float, b: float, c: float, d: float, *,
             j["friction"] = dict(friction[j["name"]])
     scene["loads"] = list(loads) if loads is not None else []
     scene["near"] = {"C": list(near) if near is not None else [d, 10.0 * (a + b + c + d)]}
+    return scene
+
+
+def offset_slider_crank(r: float, rod: float, e: float, angle: float, *, start: float = 0.0,
+                        stop: float = 360.0, count: int = 2001,
+                        friction: dict | None = None) -> dict[str, Any]:
+    """An offset slider-crank (RRT) with an inclined guide: crank ``r`` about A = (0, 0),
+    rod ``rod``, the piston's pin C on the line through O at ``angle`` deg, O ``e`` from
+    A across the line; 300 N against the piston. ``friction``: joint name -> its
+    friction table."""
+    beta = math.radians(angle)
+    scene: dict[str, Any] = {
+        "gravity": [0.0, -9.81],
+        "ground": {"A": [0.0, 0.0], "O": [-e * math.sin(beta), e * math.cos(beta)]},
+        "driver": {"body": "crank", "joint": "A", "speed": 50.0, "start": start,
+                   "stop": stop, "count": count},
+        "bodies": [
+            {"name": "crank", "mass": 1.0, "inertia": 0.01, "cog": [r / 2, 0.0],
+             "points": {"A": [0.0, 0.0], "B": [r, 0.0]}},
+            {"name": "rod", "mass": 2.0, "inertia": 0.03, "cog": [rod / 3, 0.01],
+             "points": {"B": [0.0, 0.0], "C": [rod, 0.0]}},
+            {"name": "piston", "mass": 1.5, "inertia": 0.002, "cog": [0.02, 0.0],
+             "points": {"C": [0.0, 0.0]}},
+        ],
+        "joints": [
+            {"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
+            {"name": "B", "kind": "R", "bodies": ["crank", "rod"]},
+            {"name": "C", "kind": "R", "bodies": ["rod", "piston"]},
+            {"name": "C-slide", "kind": "T", "guide": "ground", "slider": "piston",
+             "line_point": "O", "line_angle": angle, "slider_point": "C"},
+        ],
+        "loads": [{"body": "piston", "point": "C", "force": [-300.0, 10.0]}],
+        "near": {"C": [rod * math.cos(beta), rod * math.sin(beta)]},
+    }
+    for j in scene["joints"]:
+        if friction and j["name"] in friction:
+            j["friction"] = dict(friction[j["name"]])
     return scene

@@ -170,32 +170,9 @@ def test_four_bar_in_other_units(a, b, c, d, m, load, units):
 
 
 def slider_crank(r, l, e, ang):
-    beta = math.radians(ang)
-    return {
-        "gravity": [0.0, -9.81],
-        "ground": {"A": [0.0, 0.0], "O": [-e * math.sin(beta), e * math.cos(beta)]},
-        "driver": {"body": "crank", "joint": "A", "speed": 50.0, "start": 10.0,
-                   "stop": 350.0, "count": 69},
-        "bodies": [
-            {"name": "crank", "mass": 1.0, "inertia": 0.01, "cog": [r / 2, 0.0],
-             "points": {"A": [0.0, 0.0], "B": [r, 0.0]}},
-            {"name": "rod", "mass": 2.0, "inertia": 0.03, "cog": [l / 3, 0.01],
-             "points": {"B": [0.0, 0.0], "C": [l, 0.0]}},
-            {"name": "piston", "mass": 1.5, "inertia": 0.002, "cog": [0.02, 0.0],
-             "points": {"C": [0.0, 0.0]}},
-        ],
-        "joints": [
-            {"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
-            {"name": "B", "kind": "R", "bodies": ["crank", "rod"]},
-            {"name": "C", "kind": "R", "bodies": ["rod", "piston"],
-             "friction": {"mu": 0.05, "radius": 0.008}},
-            {"name": "C-slide", "kind": "T", "guide": "ground", "slider": "piston",
-             "line_point": "O", "line_angle": ang, "slider_point": "C",
-             "friction": {"mu": 0.1, "length": 0.05}},
-        ],
-        "loads": [{"body": "piston", "point": "C", "force": [-300.0, 10.0]}],
-        "near": {"C": [l * math.cos(beta), l * math.sin(beta)]},
-    }
+    return scenes.offset_slider_crank(
+        r, l, e, ang, start=10.0, stop=350.0, count=69,
+        friction={"C": {"mu": 0.05, "radius": 0.008}, "C-slide": {"mu": 0.1, "length": 0.05}})
 
 
 @settings(max_examples=6, deadline=None, suppress_health_check=[HealthCheck.too_slow])

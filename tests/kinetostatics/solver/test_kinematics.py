@@ -110,30 +110,7 @@ def test_random_offset_slider_cranks(r, lam, e, ang):
     """RRT with an offset and an inclined guide line."""
     l = r / lam
     assume(abs(e) + r < 0.8 * l)
-    beta = np.deg2rad(ang)
-    d = {
-        "gravity": [0.0, -9.81],
-        "ground": {"A": [0.0, 0.0], "O": [-e * np.sin(beta), e * np.cos(beta)]},
-        "driver": {"body": "crank", "joint": "A", "speed": 50.0, "start": 0.0,
-                   "stop": 360.0, "count": 2001},
-        "bodies": [
-            {"name": "crank", "mass": 1.0, "inertia": 0.01, "cog": [r / 2, 0.0],
-             "points": {"A": [0.0, 0.0], "B": [r, 0.0]}},
-            {"name": "rod", "mass": 2.0, "inertia": 0.03, "cog": [l / 3, 0.01],
-             "points": {"B": [0.0, 0.0], "C": [l, 0.0]}},
-            {"name": "piston", "mass": 1.5, "inertia": 0.002, "cog": [0.02, 0.0],
-             "points": {"C": [0.0, 0.0]}},
-        ],
-        "joints": [
-            {"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
-            {"name": "B", "kind": "R", "bodies": ["crank", "rod"]},
-            {"name": "C", "kind": "R", "bodies": ["rod", "piston"]},
-            {"name": "C-slide", "kind": "T", "guide": "ground", "slider": "piston",
-             "line_point": "O", "line_angle": ang, "slider_point": "C"},
-        ],
-        "loads": [{"body": "piston", "point": "C", "force": [-300.0, 10.0]}],
-        "near": {"C": [l * np.cos(beta), l * np.sin(beta)]},
-    }
+    d = scenes.offset_slider_crank(r, l, e, ang)
     sol = ks.solve(d)
     run_all_checks(sol)
 
