@@ -407,3 +407,31 @@ def test_the_private_write_finder_finds_them(tmp_path: Path) -> None:
                       "pkg/c.py": "class C:\n    def f(self):\n        self._x = 1\n"})
     assert [b.split(": ")[1] for b in _private_writes(tmp_path, ("pkg",))] == \
         ["model._loads", "ax._cache", "ax._x"]
+
+
+def _private_imports(modules: dict[str, Path]) -> list[str]:
+    """Imports of a ``_private`` module or name from any other module."""
+    bad = []
+    for name, path in modules.items():
+        for mod, taken, line in _import_statements(name, path, modules):
+            if mod not in modules or mod == name:
+                continue
+            private_module = any(p.startswith("_") and not p.startswith("__")
+                                 for p in mod.split("."))
+            private_name = taken is not None and taken.startswith("_") \
+                and not taken.startswith("__")
+            if private_module or private_name:
+                bad.append(f"{name}:{line}: {mod}.{taken or ''}")
+    return bad
+
+
+def test_no_private_name_crosses_a_module() -> None:
+    """Stricter than across packages: no module imports another module's private name
+    (inside the solver too; a name two modules share is public)."""
+    assert _private_imports(_modules()) == []
+
+
+def test_the_private_import_finder_sees_siblings(tmp_path: Path) -> None:
+    modules = _plant(tmp_path, {"pkg/__init__.py": "", "pkg/a.py": "_x = 1\ny = 2\n",
+                                "pkg/b.py": "from .a import _x, y\n"})
+    assert _private_imports(modules) == ["pkg.b:1: pkg.a._x"]
