@@ -435,3 +435,49 @@ def test_the_private_import_finder_sees_siblings(tmp_path: Path) -> None:
     modules = _plant(tmp_path, {"pkg/__init__.py": "", "pkg/a.py": "_x = 1\ny = 2\n",
                                 "pkg/b.py": "from .a import _x, y\n"})
     assert _private_imports(modules) == ["pkg.b:1: pkg.a._x"]
+
+
+# -- radians inside ----------------------------------------------------------------------
+
+# degree conversions left in the solver, the simulation and the motion (counted in code:
+# degrees/radians/deg2rad/rad2deg calls and 180/pi products; 25 before this round): the
+# continuity of angles and the dead-centre measures work in degrees, the driver positions
+# and the motion's table columns are degrees at the edge; the messages' angles go through
+# kinetostatics.common.angles. The count may only fall.
+DEGREE_FLOORS = ("kinetostatics/solver", "kinetostatics/simulation", "kinetostatics/motion")
+MAX_DEGREE_CONVERSIONS = 19
+
+
+def _degree_conversions(root: Path = ROOT, floors: tuple[str, ...] = DEGREE_FLOORS
+                        ) -> list[str]:
+    names = {"degrees", "radians", "deg2rad", "rad2deg"}
+    out = []
+    for floor in floors:
+        for path in sorted((root / floor).rglob("*.py")):
+            for node in ast.walk(ast.parse(path.read_text())):
+                if isinstance(node, ast.Call):
+                    f = node.func
+                    called = f.attr if isinstance(f, ast.Attribute) else getattr(f, "id", None)
+                    if called in names:
+                        out.append(f"{path.relative_to(root).as_posix()}:{node.lineno}")
+                elif isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult | ast.Div):
+                    text = ast.unparse(node)
+                    inner = [ast.unparse(x) for x in (node.left, node.right)
+                             if isinstance(x, ast.BinOp)]
+                    if "180" in text and "pi" in text and \
+                            not any("180" in s and "pi" in s for s in inner):
+                        out.append(f"{path.relative_to(root).as_posix()}:{node.lineno}")
+    return out
+
+
+def test_few_degree_conversions_inside() -> None:
+    found = _degree_conversions()
+    assert len(found) <= MAX_DEGREE_CONVERSIONS, found
+
+
+def test_the_degree_counter_counts(tmp_path: Path) -> None:
+    _plant(tmp_path, {"pkg/__init__.py": "",
+                      "pkg/m.py": "import math\nimport numpy as np\nx = math.degrees(1.0)\n"
+                                  "y = np.deg2rad(2.0) * 3\nz = 2.0 * 180.0 / math.pi\n"
+                                  "w = 'math.radians(1)'  # math.radians(2)\n"})
+    assert len(_degree_conversions(tmp_path, ("pkg",))) == 3
