@@ -201,3 +201,283 @@ def test_a_private_import_across_packages_is_found(tmp_path: Path) -> None:
     assert len(bad) == 2, bad              # inside solver/ it is the package's own business
     assert any("motion/scene.py:1: pkg.solver._arith" in b for b in bad), bad
     assert any("motion/loads.py:1: pkg.solver.closure._hidden" in b for b in bad), bad
+
+
+# -- the floors: subpackages and top-level modules ---------------------------------------
+
+def _unit(name: str) -> str:
+    """The floor a module belongs to: its package's subpackage or top-level module
+    (``kinetostatics.solver.pipeline`` -> ``kinetostatics.solver``; ``balance.__main__``;
+    the package roots ``kinetostatics`` and ``balance`` are floors of their own)."""
+    return ".".join(name.split(".")[:2])
+
+
+def _unit_graph(modules: dict[str, Path]) -> tuple[dict[str, set[str]], dict]:
+    """Floor -> the floors its modules import at run time (at module level or inside
+    functions, every package ``__init__`` on the way counted), and one example import
+    per edge."""
+    graph: dict[str, set[str]] = {}
+    example: dict[tuple[str, str], str] = {}
+    for name, path in modules.items():
+        u = _unit(name)
+        graph.setdefault(u, set())
+        for m in _imports(name, path, modules):
+            v = _unit(m)
+            if v != u:
+                graph[u].add(v)
+                example.setdefault((u, v), f"{name} imports {m}")
+    return graph, example
+
+
+def _reach(graph: dict[str, set[str]], start: str) -> set[str]:
+    seen: set[str] = set()
+    todo = [start]
+    while todo:
+        for w in graph.get(todo.pop(), ()):
+            if w not in seen:
+                seen.add(w)
+                todo.append(w)
+    return seen
+
+
+def test_no_two_floors_import_each_other() -> None:
+    """Among the subpackages and top-level modules of both packages (kinetostatics.model,
+    .solver, .results, .teaching, ...; balance.field, balance.__main__, ...) no import
+    points back up: no two import each other, directly or through others, lazily or
+    not."""
+    graph, example = _unit_graph(_modules())
+    cycles = _cycles(graph)
+    assert cycles == [], [(c, [example[a, b] for a in c for b in c if (a, b) in example])
+                          for c in cycles]
+
+
+def test_the_solver_stands_below_the_results() -> None:
+    """The solver gives arrays; the results (Solution, tables, writers) wrap them."""
+    graph, example = _unit_graph(_modules())
+    assert "kinetostatics.results" not in _reach(graph, "kinetostatics.solver"), \
+        [e for (a, b), e in example.items() if a == "kinetostatics.solver"]
+    assert "kinetostatics.solver" in graph["kinetostatics.results"]
+
+
+def test_balance_never_reaches_teaching() -> None:
+    """kinetostatics.teaching is the top floor: it may use balance; nothing in balance
+    reaches it, even lazily (the balancing command line included)."""
+    graph, _ = _unit_graph(_modules())
+    for u in graph:
+        if u.split(".")[0] == "balance":
+            assert "kinetostatics.teaching" not in _reach(graph, u), u
+
+
+def test_a_floor_cycle_through_a_lazy_import_is_found(tmp_path: Path) -> None:
+    """The checker itself: a lazy import inside a function counts."""
+    modules = _plant(tmp_path, {
+        "pkg/__init__.py": "",
+        "pkg/cli.py": "def main():\n    from .teaching import grade\n",
+        "pkg/teaching/__init__.py": "from .grading import grade\n",
+        "pkg/teaching/grading.py": "from ..cli import main\ndef grade(): pass\n",
+    })
+    graph, _ = _unit_graph(modules)
+    assert _cycles(graph) == [["pkg.cli", "pkg.teaching"]]
+
+
+MAX_TOP_MODULES = 8
+
+
+def test_few_top_level_modules() -> None:
+    """kinetostatics/ holds subpackages; at most eight modules of its own."""
+    top = sorted(p.name for p in (ROOT / "kinetostatics").glob("*.py"))
+    assert len(top) <= MAX_TOP_MODULES, top
+
+
+# -- functions ------------------------------------------------------------------------
+
+MAX_FUNCTION_LINES = 80          # lines of code: docstring, blank lines and comments aside
+# functions still over it, each split by the helper who owns its package this round
+LONG_FUNCTIONS = {
+    "kinetostatics/teaching/keys.py:_mechanism_values",     # teaching (another helper)
+    "kinetostatics/teaching/gradebook.py:grade_class",      # teaching
+    "kinetostatics/teaching/grading.py:grade",              # teaching
+    "kinetostatics/cams/scene.py:load_cam_scene",           # cams (another helper)
+    "kinetostatics/plot/centres.py:plot_instant_centres",   # plot (another helper)
+    "kinetostatics/plot/mechanism.py:draw_mechanism",       # plot
+}
+
+
+def _code_lines(source: str, node: ast.AST) -> int:
+    """Lines of code of a function: lines holding a token other than a comment, its
+    docstring left out (nested functions count as its own lines)."""
+    import io
+    import tokenize
+
+    doc = None
+    body = node.body
+    if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant) \
+            and isinstance(body[0].value.value, str):
+        doc = (body[0].lineno, body[0].end_lineno)
+    skip = {tokenize.COMMENT, tokenize.NL, tokenize.NEWLINE, tokenize.INDENT,
+            tokenize.DEDENT, tokenize.ENDMARKER}
+    lines: set[int] = set()
+    for tok in tokenize.generate_tokens(io.StringIO(source).readline):
+        if tok.type in skip:
+            continue
+        for ln in range(tok.start[0], tok.end[0] + 1):
+            if node.lineno <= ln <= node.end_lineno and not (doc and doc[0] <= ln <= doc[1]):
+                lines.add(ln)
+    return len(lines)
+
+
+def _long_functions(root: Path = ROOT, packages: tuple[str, ...] = PACKAGES,
+                    limit: int = MAX_FUNCTION_LINES) -> dict[str, int]:
+    out = {}
+    for path in _modules(root, packages).values():
+        source = path.read_text()
+        for node in ast.walk(ast.parse(source)):
+            if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef):
+                n = _code_lines(source, node)
+                if n >= limit:
+                    out[f"{path.relative_to(root).as_posix()}:{node.name}"] = n
+    return out
+
+
+def test_no_long_function() -> None:
+    long = _long_functions()
+    assert set(long) <= LONG_FUNCTIONS, {k: v for k, v in long.items()
+                                         if k not in LONG_FUNCTIONS}
+
+
+def test_the_function_counter_counts_code_only(tmp_path: Path) -> None:
+    body = "\n".join(f"    x{i} = {i}  # a comment" for i in range(78))
+    _plant(tmp_path, {"pkg/__init__.py": "",
+                      "pkg/m.py": f'def f():\n    """Doc\n\n    more doc."""\n\n    # note\n'
+                                  f"{body}\n\n\ndef g():\n{body}\n    return x0\n"})
+    # f: its def and 78 lines (79: under the limit); g: 80
+    assert _long_functions(tmp_path, ("pkg",)) == {"pkg/m.py:g": 80}
+
+
+# -- private state ----------------------------------------------------------------------
+
+# writes of another object's private attributes still there, with the owner
+PRIVATE_WRITES = {
+    "kinetostatics/plot/place.py",      # matplotlib's Text and Axes (plot: another helper)
+}
+
+
+def _private_writes(root: Path = ROOT, packages: tuple[str, ...] = PACKAGES) -> list[str]:
+    """Assignments to ``obj._name`` (or ``obj.__dict__["_name"]``, ``setattr(obj,
+    "_name", ...)``) where obj is not ``self`` or ``cls``: private state written from
+    outside its class."""
+    bad = []
+    for path in _modules(root, packages).values():
+        rel = path.relative_to(root).as_posix()
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) \
+                    and node.func.id == "setattr" and len(node.args) >= 2 \
+                    and isinstance(node.args[1], ast.Constant):
+                targets = [(node.args[0], str(node.args[1].value))]
+            elif isinstance(node, ast.Assign | ast.AugAssign | ast.AnnAssign):
+                targets = []
+                for t in (node.targets if isinstance(node, ast.Assign) else [node.target]):
+                    for sub in ast.walk(t):
+                        if isinstance(sub, ast.Attribute):
+                            targets.append((sub.value, sub.attr))
+                        elif isinstance(sub, ast.Subscript) and \
+                                isinstance(sub.value, ast.Attribute) and \
+                                sub.value.attr == "__dict__" and \
+                                isinstance(sub.slice, ast.Constant):
+                            targets.append((sub.value.value, str(sub.slice.value)))
+            else:
+                continue
+            for owner, attr in targets:
+                if attr.startswith("_") and not attr.startswith("__") and \
+                        ast.unparse(owner) not in ("self", "cls"):
+                    bad.append(f"{rel}:{node.lineno}: {ast.unparse(owner)}.{attr}")
+    return bad
+
+
+def test_no_private_state_written_from_outside() -> None:
+    bad = [b for b in _private_writes() if b.split(":")[0] not in PRIVATE_WRITES]
+    assert bad == []
+
+
+def test_the_private_write_finder_finds_them(tmp_path: Path) -> None:
+    _plant(tmp_path, {"pkg/__init__.py": "",
+                      "pkg/m.py": "def f(model, ax):\n    model._loads = []\n"
+                                  "    ax.__dict__['_cache'] = 1\n    setattr(ax, '_x', 2)\n"
+                                  "    model.loads = []\n",
+                      "pkg/c.py": "class C:\n    def f(self):\n        self._x = 1\n"})
+    assert [b.split(": ")[1] for b in _private_writes(tmp_path, ("pkg",))] == \
+        ["model._loads", "ax._cache", "ax._x"]
+
+
+def _private_imports(modules: dict[str, Path]) -> list[str]:
+    """Imports of a ``_private`` module or name from any other module."""
+    bad = []
+    for name, path in modules.items():
+        for mod, taken, line in _import_statements(name, path, modules):
+            if mod not in modules or mod == name:
+                continue
+            private_module = any(p.startswith("_") and not p.startswith("__")
+                                 for p in mod.split("."))
+            private_name = taken is not None and taken.startswith("_") \
+                and not taken.startswith("__")
+            if private_module or private_name:
+                bad.append(f"{name}:{line}: {mod}.{taken or ''}")
+    return bad
+
+
+def test_no_private_name_crosses_a_module() -> None:
+    """Stricter than across packages: no module imports another module's private name
+    (inside the solver too; a name two modules share is public)."""
+    assert _private_imports(_modules()) == []
+
+
+def test_the_private_import_finder_sees_siblings(tmp_path: Path) -> None:
+    modules = _plant(tmp_path, {"pkg/__init__.py": "", "pkg/a.py": "_x = 1\ny = 2\n",
+                                "pkg/b.py": "from .a import _x, y\n"})
+    assert _private_imports(modules) == ["pkg.b:1: pkg.a._x"]
+
+
+# -- radians inside ----------------------------------------------------------------------
+
+# degree conversions left in the solver, the simulation and the motion (counted in code:
+# degrees/radians/deg2rad/rad2deg calls and 180/pi products; 25 before this round): the
+# continuity of angles and the dead-centre measures work in degrees, the driver positions
+# and the motion's table columns are degrees at the edge; the messages' angles go through
+# kinetostatics.common.angles. The count may only fall.
+DEGREE_FLOORS = ("kinetostatics/solver", "kinetostatics/simulation", "kinetostatics/motion")
+MAX_DEGREE_CONVERSIONS = 19
+
+
+def _degree_conversions(root: Path = ROOT, floors: tuple[str, ...] = DEGREE_FLOORS
+                        ) -> list[str]:
+    names = {"degrees", "radians", "deg2rad", "rad2deg"}
+    out = []
+    for floor in floors:
+        for path in sorted((root / floor).rglob("*.py")):
+            for node in ast.walk(ast.parse(path.read_text())):
+                if isinstance(node, ast.Call):
+                    f = node.func
+                    called = f.attr if isinstance(f, ast.Attribute) else getattr(f, "id", None)
+                    if called in names:
+                        out.append(f"{path.relative_to(root).as_posix()}:{node.lineno}")
+                elif isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult | ast.Div):
+                    text = ast.unparse(node)
+                    inner = [ast.unparse(x) for x in (node.left, node.right)
+                             if isinstance(x, ast.BinOp)]
+                    if "180" in text and "pi" in text and \
+                            not any("180" in s and "pi" in s for s in inner):
+                        out.append(f"{path.relative_to(root).as_posix()}:{node.lineno}")
+    return out
+
+
+def test_few_degree_conversions_inside() -> None:
+    found = _degree_conversions()
+    assert len(found) <= MAX_DEGREE_CONVERSIONS, found
+
+
+def test_the_degree_counter_counts(tmp_path: Path) -> None:
+    _plant(tmp_path, {"pkg/__init__.py": "",
+                      "pkg/m.py": "import math\nimport numpy as np\nx = math.degrees(1.0)\n"
+                                  "y = np.deg2rad(2.0) * 3\nz = 2.0 * 180.0 / math.pi\n"
+                                  "w = 'math.radians(1)'  # math.radians(2)\n"})
+    assert len(_degree_conversions(tmp_path, ("pkg",))) == 3

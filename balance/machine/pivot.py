@@ -124,32 +124,8 @@ def pivot_reaction(unbalances: Iterable[Any], speed: float, *, rotor_mass: float
 
     from kinetostatics.simulation import make_stepper
     us = as_unbalances(unbalances, "unbalances")
-    for name, v in (("rotor_mass", rotor_mass), ("rotor_inertia", rotor_inertia)):
-        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
-            raise BalanceError(f"pivot_reaction: {name} = {v!r}; give a positive number")
-    if not (isinstance(speed, (int, float)) and math.isfinite(speed) and speed != 0.0):
-        raise BalanceError(f"pivot_reaction: speed = {speed!r}; give a non-zero speed in rad/s")
-    if int(iterations) != iterations or iterations < 1:
-        raise BalanceError(f"pivot_reaction: iterations = {iterations!r}; give a whole "
-                           "number >= 1")
-    if not (math.isfinite(revolutions) and revolutions > 1.0):
-        raise BalanceError(f"pivot_reaction: revolutions = {revolutions!r}; give more than "
-                           "1 (the first is left out)")
-    w = float(speed)
-    period = 2.0 * math.pi / abs(w)
-    if dt is None:
-        n_rev = PIVOT_STEPS_PER_REVOLUTION if steps_per_revolution is None \
-            else steps_per_revolution
-        if int(n_rev) != n_rev or n_rev < 10:
-            raise BalanceError(f"pivot_reaction: steps_per_revolution = {n_rev!r}; give a "
-                               "whole number >= 10")
-        dt = period / n_rev
-    elif steps_per_revolution is not None:
-        raise BalanceError("pivot_reaction: give dt or steps_per_revolution, not both")
-    if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0.0) \
-            or abs(w) * dt > 0.05:
-        raise BalanceError(f"pivot_reaction: dt = {dt!r}; give a positive step with "
-                           "|speed| dt <= 0.05")
+    w, period, dt = _pivot_settings(rotor_mass, rotor_inertia, speed, dt,
+                                    steps_per_revolution, iterations, revolutions)
     U = sum((u.U for u in us), 0j)                                 # eq. 3.3
     if abs(U) == 0.0:
         raise BalanceError("pivot_reaction: the rotor is balanced (sum m r = 0): there is no "
@@ -201,3 +177,36 @@ def pivot_reaction(unbalances: Iterable[Any], speed: float, *, rotor_mass: float
                   "iterations": int(iterations), "revolutions": float(revolutions),
                   "rotor_mass": float(rotor_mass), "mass": float(m), "pymunk": pymunk.version},
         wall=wall)
+
+
+def _pivot_settings(rotor_mass, rotor_inertia, speed, dt, steps_per_revolution, iterations,
+                    revolutions) -> tuple[float, float, float]:
+    """:func:`pivot_reaction`'s arguments checked: the speed (rad/s), the period (s) and
+    the time step (s)."""
+    for name, v in (("rotor_mass", rotor_mass), ("rotor_inertia", rotor_inertia)):
+        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+            raise BalanceError(f"pivot_reaction: {name} = {v!r}; give a positive number")
+    if not (isinstance(speed, (int, float)) and math.isfinite(speed) and speed != 0.0):
+        raise BalanceError(f"pivot_reaction: speed = {speed!r}; give a non-zero speed in rad/s")
+    if int(iterations) != iterations or iterations < 1:
+        raise BalanceError(f"pivot_reaction: iterations = {iterations!r}; give a whole "
+                           "number >= 1")
+    if not (math.isfinite(revolutions) and revolutions > 1.0):
+        raise BalanceError(f"pivot_reaction: revolutions = {revolutions!r}; give more than "
+                           "1 (the first is left out)")
+    w = float(speed)
+    period = 2.0 * math.pi / abs(w)
+    if dt is None:
+        n_rev = PIVOT_STEPS_PER_REVOLUTION if steps_per_revolution is None \
+            else steps_per_revolution
+        if int(n_rev) != n_rev or n_rev < 10:
+            raise BalanceError(f"pivot_reaction: steps_per_revolution = {n_rev!r}; give a "
+                               "whole number >= 10")
+        dt = period / n_rev
+    elif steps_per_revolution is not None:
+        raise BalanceError("pivot_reaction: give dt or steps_per_revolution, not both")
+    if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0.0) \
+            or abs(w) * dt > 0.05:
+        raise BalanceError(f"pivot_reaction: dt = {dt!r}; give a positive step with "
+                           "|speed| dt <= 0.05")
+    return w, period, dt

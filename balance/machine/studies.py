@@ -4,6 +4,7 @@ the size of the trial mass (:func:`coast_down_study`)."""
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Iterable
 from concurrent.futures import Executor
 from dataclasses import replace
@@ -72,7 +73,6 @@ def coast_down_study(durations: Iterable[float | None] = (None, 10.0, 3.0, 1.0, 
         ``four_failed`` (seeds for which the method gave no result: no peak inside a
         run, or amplitudes no parallelogram joins), ``seeds``.
     """
-    import warnings
 
     import pandas as pd
     base = machine if machine is not None else BalancingMachine()
@@ -121,29 +121,8 @@ def coast_down_study(durations: Iterable[float | None] = (None, 10.0, 3.0, 1.0, 
                     out["ratio"].append(r1.amplitude / top)
                     fac = bm.mass_factor(sum(u.mass for u in us), tm) if corr else 1.0
                     A = {a: r.amplitude * fac for a, r in rk.items()}
-                    with warnings.catch_warnings():
-                        # the methods warn of ill-conditioned readings (the warnings
-                        # are in their results too); the study counts their errors
-                        warnings.simplefilter("ignore", BalanceWarning)
-                        try:
-                            res = parallelogram(r1.amplitude, A[0.0], A[180.0], tm,
-                                                trial_radius, correction_radius)
-                            mr = method_result(res, {}, us, [])
-                            out["three"].append(mr.unbalance_error)
-                            # the method cannot tell its two candidates apart
-                            out["three_angle"].append(min(mr.angle_error,
-                                                          mr.mirror_angle_error))
-                        except BalanceError:
-                            failed["three"] += 1
-                        try:
-                            res = trial_runs(r1.amplitude, [(a, A[a]) for a in (0.0, 120.0,
-                                                                                240.0)],
-                                             tm, trial_radius, correction_radius)
-                            mr = method_result(res, {}, us, [])
-                            out["four"].append(mr.unbalance_error)
-                            out["four_angle"].append(mr.angle_error)
-                        except BalanceError:
-                            failed["four"] += 1
+                    _recover(out, failed, r1.amplitude, A, tm, us, trial_radius,
+                             correction_radius)
 
                 def worst(v: list) -> float:
                     return float(max(v)) if v else float("nan")
@@ -160,3 +139,31 @@ def coast_down_study(durations: Iterable[float | None] = (None, 10.0, 3.0, 1.0, 
                     "three_failed": failed["three"], "four_failed": failed["four"],
                     "seeds": len(sds)})
     return pd.DataFrame(rows)
+
+
+def _recover(out: dict, failed: dict, a1: float, A: dict, tm: float, us: list,
+             trial_radius: float, correction_radius: float) -> None:
+    """The three-run (0 and 180 deg) and four-run (0, 120, 240 deg) methods on one
+    seed's amplitudes ``a1`` (the rotor as it is) and ``A`` (with the trial mass ``tm``
+    at each mark): their errors added to ``out``, a method that gives no result counted
+    in ``failed``."""
+    with warnings.catch_warnings():
+        # the methods warn of ill-conditioned readings (the warnings are in their
+        # results too); the study counts their errors
+        warnings.simplefilter("ignore", BalanceWarning)
+        try:
+            res = parallelogram(a1, A[0.0], A[180.0], tm, trial_radius, correction_radius)
+            mr = method_result(res, {}, us, [])
+            out["three"].append(mr.unbalance_error)
+            # the method cannot tell its two candidates apart
+            out["three_angle"].append(min(mr.angle_error, mr.mirror_angle_error))
+        except BalanceError:
+            failed["three"] += 1
+        try:
+            res = trial_runs(a1, [(a, A[a]) for a in (0.0, 120.0, 240.0)], tm,
+                             trial_radius, correction_radius)
+            mr = method_result(res, {}, us, [])
+            out["four"].append(mr.unbalance_error)
+            out["four_angle"].append(mr.angle_error)
+        except BalanceError:
+            failed["four"] += 1

@@ -272,7 +272,7 @@ def bench_start(repeat: int = 7) -> list[dict]:
 def bench_tables() -> list[dict]:
     """solve --out at 1e5 positions (wall, fresh processes, best of 3, against import
     numpy) and the peak memory at 1e6 positions with every table held."""
-    from .tables import _fresh, measure_cli
+    from .tables import fresh_run, measure_cli
     py = sys.executable
     cli, numpy_t = [], []
     for _ in range(3):
@@ -282,7 +282,7 @@ def bench_tables() -> list[dict]:
     rows = [_row("python -m kinetostatics solve four_bar --out DIR (wall)", 100_000,
                  {"cli": cli, "numpy": numpy_t}, "cli", "numpy")]
     with tempfile.TemporaryDirectory() as tmp:
-        peak = _fresh(1_000_000, tmp)["peak_MB"]
+        peak = fresh_run(1_000_000, tmp)["peak_MB"]
     rows.append({"measure": "peak memory with every table (MB)", "size": 1_000_000,
                  "seconds_best": math.nan, "baseline_best": math.nan,
                  "ratio_best": math.nan, "ratio_median": math.nan, "peak_MB": peak})

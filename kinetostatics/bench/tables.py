@@ -112,7 +112,7 @@ def measure_formatter(n: int) -> dict:
             "python_format_Mvalues_per_s": n / python / 1e6}
 
 
-def _fresh(n: int, out: str) -> dict:
+def fresh_run(n: int, out: str) -> dict:
     code = ("import json, sys; from kinetostatics.bench.tables import measure_tables; "
             f"print(json.dumps(measure_tables({n}, {out!r})))")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
@@ -179,7 +179,7 @@ def run_table_bench(quick: bool = False, repeat: int = 3,
     for n in sizes:
         for _ in range(repeat):
             with tempfile.TemporaryDirectory() as tmp:
-                row = _fresh(n, tmp)
+                row = fresh_run(n, tmp)
             with tempfile.TemporaryDirectory() as tmp:
                 row.update(measure_cli(n, tmp))
             runs.append(row)

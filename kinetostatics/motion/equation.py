@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from ..common.angles import degrees_text
 from ..model.errors import WorkbenchError
 
 TWO_PI = 2.0 * math.pi
@@ -72,7 +73,7 @@ def inertia_values(inertia: Inertia, phi: np.ndarray) -> tuple[np.ndarray, np.nd
         j = int(np.argmax(bad.ravel()))
         raise MotionError(f"the reduced moment of inertia must be positive and finite: I_r = "
                           f"{i_r.ravel()[j]!r} at driver angle "
-                          f"{math.degrees(float(np.ravel(phi)[j])):.6g} deg")
+                          f"{degrees_text(float(np.ravel(phi)[j]))} deg")
     return i_r, di_r
 
 
@@ -82,7 +83,7 @@ def moment_values(moment: Moment, phi: Any, omega: Any, t: Any) -> np.ndarray:
     if not np.all(np.isfinite(m)):
         j = int(np.argmax(~np.isfinite(m).ravel()))
         raise MotionError(f"the reduced moment is not finite at driver angle "
-                          f"{math.degrees(float(np.ravel(phi)[j % np.size(phi)])):.6g} deg")
+                          f"{degrees_text(float(np.ravel(phi)[j % np.size(phi)]))} deg")
     return m
 
 
@@ -98,8 +99,7 @@ def _position_moment(moment: Moment, phi: np.ndarray) -> np.ndarray:
 
 def where_text(phi: float, phi0: float, cycle: float) -> str:
     k = math.floor((phi - phi0) / cycle + 1e-12)
-    pos = math.degrees(phi0 + (phi - phi0) - k * cycle)
-    return f"cycle {k + 1} at driver angle {pos:.6g} deg"
+    return f"cycle {k + 1} at driver angle {degrees_text(phi0 + (phi - phi0) - k * cycle)} deg"
 
 
 def stall_error(phi: float, t: float | None, phi0: float, cycle: float) -> MotionError:

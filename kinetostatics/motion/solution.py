@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from ..common.angles import degrees_text
 from .equation import (
     TWO_PI,
     Inertia,
@@ -53,7 +54,7 @@ def scalar_moment(moment: Moment, p: float, w: float, t: float) -> float:
     x = r if isinstance(r, float) else float(np.asarray(r, dtype=float).item())
     if not math.isfinite(x):
         raise MotionError(f"the reduced moment is not finite at driver angle "
-                          f"{math.degrees(p):.6g} deg (omega = {w:.6g} rad/s)")
+                          f"{degrees_text(p)} deg (omega = {w:.6g} rad/s)")
     return x
 
 
@@ -110,8 +111,8 @@ class MotionSolution:
         lo, hi = self.phi[0], self.phi[-1]
         tol = 1e-9 * max(1.0, abs(hi))
         if phi.size and (np.min(phi) < lo - tol or np.max(phi) > hi + tol):
-            raise MotionError(f"driver angle outside the integrated span [{math.degrees(lo):.6g}"
-                              f", {math.degrees(hi):.6g}] deg")
+            raise MotionError(f"driver angle outside the integrated span [{degrees_text(lo)}"
+                              f", {degrees_text(hi)}] deg")
         n = self.phi.size - 1
         k = np.clip(np.searchsorted(self.phi, phi, side="right") - 1, 0, max(n - 1, 0))
         if n == 0:

@@ -8,9 +8,10 @@ until a simulation name is used.
 from __future__ import annotations
 
 import ast
-import importlib
 import re
 from pathlib import Path
+
+from ..common.lazy import lazy_names
 
 _NOT_EXPORTED = ("__init__", "cli")
 """The package itself, and the command line's module (``kinetostatics.cli`` imports it)."""
@@ -39,10 +40,5 @@ _HOME = _read_home()
 __all__ = sorted(_HOME)
 
 
-def __getattr__(name: str):
-    """Load a simulation name from its module on first use (PEP 562)."""
-    if name in _HOME:
-        value = getattr(importlib.import_module(f".{_HOME[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+# each name loaded from its module on first use (PEP 562)
+__getattr__, __dir__ = lazy_names(__name__, _HOME, globals(), __all__, subpackages=False)

@@ -122,7 +122,7 @@ def ballast_function(model: SimModel, acc: BodyAccess):
     set_f, set_t = acc.set_force, acc.set_torque
     items = []
     for name, (dm, di) in model.ballast.items():
-        items.append((acc.handle(model.bodies[name]), dm, di, model._ballast_state[name]))
+        items.append((acc.handle(model.bodies[name]), dm, di, model.ballast_state[name]))
 
     def add_ballast() -> None:
         for h, dm, di, st in items:

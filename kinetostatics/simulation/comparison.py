@@ -150,12 +150,7 @@ def compare(sc: Scene, model, rec: SimRecord, ref, *, compare_from: float) -> Cr
     """Build the comparison tables of a run (see :func:`crosscheck`)."""
     n = rec.time.size
     used = rec.time > compare_from * (1.0 + 1e-12)
-    flagged = np.asarray(ref.singular[1:], dtype=bool) | \
-        np.asarray(ref.undefined_load[1:], dtype=bool) | rec.resist_unsure
-    if ref.self_locking is not None:
-        flagged |= np.asarray(ref.self_locking[1:], dtype=bool)
-    if model._friction:
-        flagged |= near_reversals(sc, ref.kin, rec.time, rec.dt)
+    flagged = _flagged(sc, model, rec, ref)
     used &= ~flagged
     if not used.any():
         raise SimulationError(
@@ -213,7 +208,29 @@ def compare(sc: Scene, model, rec: SimRecord, ref, *, compare_from: float) -> Cr
     drive = np.asarray(ref.Me, dtype=float)[1:]
     add(f"|{q}|", rec.impulse["driver"], np.abs(drive), errors, True)
     add(q, rec.signed["driver"], drive, table=True)
-    notes.extend(model.notes)
+    notes.extend(_run_notes(sc, model, flagged))
+    rows = pd.concat(parts, ignore_index=True)
+    return CrossCheck(sc, rec, ref, rows, errors, verr, {}, notes)
+
+
+def _flagged(sc: Scene, model, rec: SimRecord, ref) -> np.ndarray:
+    """The simulated rows left out of the errors: singular, an undefined load, a resist
+    point nearly still, self-locking, or near a reversal of a joint's relative motion
+    (with joint friction)."""
+    flagged = np.asarray(ref.singular[1:], dtype=bool) | \
+        np.asarray(ref.undefined_load[1:], dtype=bool) | rec.resist_unsure
+    if ref.self_locking is not None:
+        flagged |= np.asarray(ref.self_locking[1:], dtype=bool)
+    if model.joint_friction:
+        flagged |= near_reversals(sc, ref.kin, rec.time, rec.dt)
+    return flagged
+
+
+def _run_notes(sc: Scene, model, flagged: np.ndarray) -> list[str]:
+    """What the run's notes say besides the joints': the model's notes, the bodies built
+    differently, the friction simulated, the rows left out."""
+    n = flagged.size
+    notes = list(model.notes)
     if model.translating:
         notes.append("bodies that only translate, built with an infinite moment of inertia: "
                      + ", ".join(sorted(model.translating)))
@@ -221,15 +238,14 @@ def compare(sc: Scene, model, rec: SimRecord, ref, *, compare_from: float) -> Cr
         if b.mass_model is not None:
             notes.append(f"body {name!r} has a {b.mass_model.kind} mass model: kinetostatics "
                          "uses it, the simulation uses the body's exact mass and inertia")
-    if model._friction:
-        notes.append("joint friction simulated (" + ", ".join(j[1] for j in model._friction)
+    if model.joint_friction:
+        notes.append("joint friction simulated (" + ", ".join(j[1] for j in model.joint_friction)
                      + "): couples rho |F| and forces mu |N| from the reactions of the steps "
                      "before, extrapolated; rows near a reversal of a joint's relative motion "
                      "are flagged")
     skipped = int(np.count_nonzero(flagged))
     if skipped:
         what = "singular / undefined_load / resist point nearly still" + (
-            " / self-locking / friction reversing" if model._friction else "")
+            " / self-locking / friction reversing" if model.joint_friction else "")
         notes.append(f"{skipped} of {n} rows flagged {what}: left out of the errors")
-    rows = pd.concat(parts, ignore_index=True)
-    return CrossCheck(sc, rec, ref, rows, errors, verr, {}, notes)
+    return notes

@@ -86,7 +86,7 @@ def prepare_friction(model: SimModel, sweep) -> None:
     sc = model.scene
     names = rubbing_joints(sc)
     if not names:
-        model._friction = []
+        model.joint_friction = []
         return
     start = reference_solution(sc, [model.start]).reactions
     out = []
@@ -106,7 +106,7 @@ def prepare_friction(model: SimModel, sweep) -> None:
             beta = j.beta
             out.append(("T", name, info.constraint, g, s, j.friction.mu, top, f0,
                         (sp, (math.cos(beta), math.sin(beta)))))
-    model._friction = out
+    model.joint_friction = out
 
 
 def friction_function(model: SimModel, acc: BodyAccess, unsure: list):
@@ -114,38 +114,16 @@ def friction_function(model: SimModel, acc: BodyAccess, unsure: list):
     to the bodies before a step (after the scene's loads are set; it sets ``unsure[0]``
     where a reading must be left out, module docstring), and one that reads the joints'
     reactions after the step."""
-    if not getattr(model, "_friction", None):
+    if not getattr(model, "joint_friction", None):
         return None
     dt = model.dt
-    H = acc.handle
-    get_a, get_w, get_v, get_p = acc.angle, acc.omega, acc.velocity, acc.position
-    get_f, get_t, set_f, set_t = acc.force, acc.torque, acc.set_force, acc.set_torque
-    get_i = acc.impulse
-    cos, sin, copysign = math.cos, math.sin, math.copysign
-    bodies = model.bodies
-    joints = []
-    for kind, _name, con, a, b, coeff, top, f0, geo in model._friction:
-        ha = None if a == GROUND else H(bodies[a])
-        hb = None if b == GROUND else H(bodies[b])
-        cogs = tuple((0.0, 0.0) if x == GROUND else tuple(bodies[x].center_of_gravity)
-                     for x in (a, b))
-        # state: [F_(n-1), F_n, last relative velocity, last sign]
-        joints.append((kind, acc.chandle(con), ha, hb, coeff, RESIST_UNSURE * top, cogs, geo,
-                       [f0, f0, None, 0]))
+    get_t, set_t, get_i = acc.torque, acc.set_torque, acc.impulse
+    copysign = math.copysign
+    joints = _friction_joints(model, acc)
     settle = [0]
-    boost = model._boost                 # steps left with more solver iterations
-
-    def ahead(h, cog):
-        """A body's centre of mass and angle at the pose the step will reach (x + v dt)."""
-        p, ang, v, w = get_p(h), get_a(h), get_v(h), get_w(h)
-        c, s = cos(ang), sin(ang)
-        return (p.x + c * cog[0] - s * cog[1] + v.x * dt,
-                p.y + s * cog[0] + c * cog[1] + v.y * dt, ang + w * dt, v, w)
-
-    def push(h, fx, fy, rx, ry):
-        f = get_f(h)
-        set_f(h, (f.x + fx, f.y + fy))
-        set_t(h, get_t(h) + rx * fy - ry * fx)
+    boost = model.boost                 # steps left with more solver iterations
+    relative = _relative_speed(acc, dt)
+    push = _push(acc)
 
     def apply_friction() -> None:
         flag = settle[0] > 0
@@ -153,31 +131,7 @@ def friction_function(model: SimModel, acc: BodyAccess, unsure: list):
             settle[0] -= 1
         for kind, _hc, ha, hb, coeff, still, cogs, geo, st in joints:
             fp = 2.0 * st[1] - st[0]                    # |F| or |N| extrapolated
-            if kind == "R":
-                rel = (0.0 if hb is None else get_w(hb)) - (0.0 if ha is None else get_w(ha))
-            else:
-                # the line, the slider point and the arms at the pose the step reaches:
-                # the loads act there (see kinetostatics.simulation.loads)
-                (sp, (ux0, uy0)) = geo
-                hs, hg = hb, ha                         # b: the slider, a: the guide
-                if hs is None:
-                    sx, sy, sxr, syr = sp[0], sp[1], 0.0, 0.0
-                    vsx = vsy = 0.0
-                else:
-                    cx, cy, ang, v, w = ahead(hs, cogs[1])
-                    lx, ly = sp[0] - cogs[1][0], sp[1] - cogs[1][1]
-                    sxr, syr = cos(ang) * lx - sin(ang) * ly, sin(ang) * lx + cos(ang) * ly
-                    sx, sy = cx + sxr, cy + syr
-                    vsx, vsy = v.x - w * syr, v.y + w * sxr
-                if hg is None:
-                    ux, uy, gxr, gyr = ux0, uy0, 0.0, 0.0
-                    vgx = vgy = 0.0
-                else:
-                    cx, cy, ang, v, w = ahead(hg, cogs[0])
-                    ux, uy = cos(ang) * ux0 - sin(ang) * uy0, sin(ang) * ux0 + cos(ang) * uy0
-                    gxr, gyr = sx - cx, sy - cy
-                    vgx, vgy = v.x - w * gyr, v.y + w * gxr
-                rel = ux * (vsx - vgx) + uy * (vsy - vgy)
+            rel, arms = relative(kind, ha, hb, cogs, geo)
             prev = st[2] if st[2] is not None else rel
             st[2] = rel
             pred = 1.5 * rel - 0.5 * prev
@@ -197,10 +151,11 @@ def friction_function(model: SimModel, acc: BodyAccess, unsure: list):
                     if ha is not None:
                         set_t(ha, get_t(ha) - load)
                 else:                                   # a force along the line at S
-                    if hs is not None:
-                        push(hs, load * ux, load * uy, sxr, syr)
-                    if hg is not None:
-                        push(hg, -load * ux, -load * uy, gxr, gyr)
+                    ux, uy, sxr, syr, gxr, gyr = arms
+                    if hb is not None:                  # b: the slider
+                        push(hb, load * ux, load * uy, sxr, syr)
+                    if ha is not None:                  # a: the guide
+                        push(ha, -load * ux, -load * uy, gxr, gyr)
         if flag:
             unsure[0] = True
 
@@ -210,6 +165,77 @@ def friction_function(model: SimModel, acc: BodyAccess, unsure: list):
             st[0], st[1] = st[1], abs(get_i(j[1])) / dt
 
     return apply_friction, read_after_step
+
+
+def _friction_joints(model: SimModel, acc: BodyAccess) -> list[tuple]:
+    """Per joint with friction: its kind, constraint and bodies' handles (None: the
+    ground), the friction coefficient, the relative speed under which a reading is
+    unsure, the bodies' centres of mass, the guide's geometry and the state ``[F_(n-1),
+    F_n, last relative velocity, last sign]``."""
+    H = acc.handle
+    bodies = model.bodies
+    joints = []
+    for kind, _name, con, a, b, coeff, top, f0, geo in model.joint_friction:
+        ha = None if a == GROUND else H(bodies[a])
+        hb = None if b == GROUND else H(bodies[b])
+        cogs = tuple((0.0, 0.0) if x == GROUND else tuple(bodies[x].center_of_gravity)
+                     for x in (a, b))
+        joints.append((kind, acc.chandle(con), ha, hb, coeff, RESIST_UNSURE * top, cogs, geo,
+                       [f0, f0, None, 0]))
+    return joints
+
+
+def _push(acc: BodyAccess):
+    """A function adding the force (fx, fy) at the arm (rx, ry) from a body's centre of
+    mass to the body's force and torque."""
+    get_f, get_t, set_f, set_t = acc.force, acc.torque, acc.set_force, acc.set_torque
+
+    def push(h, fx, fy, rx, ry):
+        f = get_f(h)
+        set_f(h, (f.x + fx, f.y + fy))
+        set_t(h, get_t(h) + rx * fy - ry * fx)
+    return push
+
+
+def _relative_speed(acc: BodyAccess, dt: float):
+    """A function giving a joint's relative speed (rad/s of b against a in a revolute
+    joint; m/s of the slider b along the guide a in a prismatic one) and, for a prismatic
+    joint, the line and the arms at the pose the step reaches (the loads act there: see
+    :mod:`kinetostatics.simulation.loads`)."""
+    get_a, get_w, get_v, get_p = acc.angle, acc.omega, acc.velocity, acc.position
+    cos, sin = math.cos, math.sin
+
+    def ahead(h, cog):
+        """A body's centre of mass and angle at the pose the step will reach (x + v dt)."""
+        p, ang, v, w = get_p(h), get_a(h), get_v(h), get_w(h)
+        c, s = cos(ang), sin(ang)
+        return (p.x + c * cog[0] - s * cog[1] + v.x * dt,
+                p.y + s * cog[0] + c * cog[1] + v.y * dt, ang + w * dt, v, w)
+
+    def relative(kind, ha, hb, cogs, geo):
+        if kind == "R":
+            return (0.0 if hb is None else get_w(hb)) - (0.0 if ha is None else get_w(ha)), None
+        (sp, (ux0, uy0)) = geo
+        hs, hg = hb, ha                         # b: the slider, a: the guide
+        if hs is None:
+            sx, sy, sxr, syr = sp[0], sp[1], 0.0, 0.0
+            vsx = vsy = 0.0
+        else:
+            cx, cy, ang, v, w = ahead(hs, cogs[1])
+            lx, ly = sp[0] - cogs[1][0], sp[1] - cogs[1][1]
+            sxr, syr = cos(ang) * lx - sin(ang) * ly, sin(ang) * lx + cos(ang) * ly
+            sx, sy = cx + sxr, cy + syr
+            vsx, vsy = v.x - w * syr, v.y + w * sxr
+        if hg is None:
+            ux, uy, gxr, gyr = ux0, uy0, 0.0, 0.0
+            vgx = vgy = 0.0
+        else:
+            cx, cy, ang, v, w = ahead(hg, cogs[0])
+            ux, uy = cos(ang) * ux0 - sin(ang) * uy0, sin(ang) * ux0 + cos(ang) * uy0
+            gxr, gyr = sx - cx, sy - cy
+            vgx, vgy = v.x - w * gyr, v.y + w * gxr
+        return ux * (vsx - vgx) + uy * (vsy - vgy), (ux, uy, sxr, syr, gxr, gyr)
+    return relative
 
 
 def near_reversals(scene, kin, times: np.ndarray, dt: float) -> np.ndarray:

@@ -68,8 +68,8 @@ def prepare_loads(model: SimModel, sweep) -> None:
         acc[1] += fy
         acc[2] += px * fy - py * fx
         acc[3] += -(py * fy + px * fx)
-    model._loads = [(model.bodies[name], *v) for name, v in per.items()]
-    model._resist = [(model.bodies[name], *rest) for name, *rest in resist]
+    model.body_loads = [(model.bodies[name], *v) for name, v in per.items()]
+    model.resist_loads = [(model.bodies[name], *rest) for name, *rest in resist]
 
 
 def _start_acc(model: SimModel) -> list[tuple[float, float, float]]:
@@ -77,7 +77,7 @@ def _start_acc(model: SimModel) -> list[tuple[float, float, float]]:
     sc = model.scene
     sol = reference_solution(sc, [model.start])
     out = []
-    for body, *_ in model._resist:
+    for body, *_ in model.resist_loads:
         name = next(n for n, b in model.bodies.items() if b is body)
         m = sol.kin.bodies[name].take(slice(1, 2))
         b = sc.bodies[name]
@@ -115,9 +115,9 @@ def _loads_by_body(model: SimModel) -> dict[int, dict]:
     """The loads grouped by body: its constant force and moment terms
     ``(fx, fy, A, B, M)`` and its ``resist`` points with their start accelerations."""
     per: dict[int, dict] = {}
-    for b, fx, fy, ca, cb, mm in model._loads:
+    for b, fx, fy, ca, cb, mm in model.body_loads:
         per[id(b)] = {"body": b, "const": (fx, fy, ca, cb, mm), "resist": []}
-    for (b, px, py, mag, top), (ax, ay, al) in zip(model._resist, _start_acc(model),
+    for (b, px, py, mag, top), (ax, ay, al) in zip(model.resist_loads, _start_acc(model),
                                                     strict=True):
         d = per.setdefault(id(b), {"body": b, "const": (0.0, 0.0, 0.0, 0.0, 0.0),
                                    "resist": []})
@@ -198,7 +198,7 @@ def _resist_loads(model: SimModel, acc: BodyAccess, h, const: tuple, arms: list,
     fx0, fy0, ca, cb, mm = const
     gated_on = [None] * len(arms)       # when = "resisting": on at the last step
     settle = [0]                        # steps left in a switch's transient
-    boost = model._boost                # steps left with more solver iterations
+    boost = model.boost                # steps left with more solver iterations
 
     def apply_resist() -> None:
         v = get_v(h)

@@ -134,6 +134,19 @@ class SimModel:
     ballast : dict
         Body name -> (extra mass, extra moment of inertia) the body is built with, its
         effect cancelled by a force before every step (:mod:`.ballast`); empty without.
+    slider_local : tuple
+        A sliding driver's point on its body, in the body's frame (m).
+    body_loads, resist_loads : list
+        The scene's loads as each step applies them, per body (filled by
+        :func:`~kinetostatics.simulation.loads.prepare_loads`).
+    joint_friction : list
+        The joints with friction and their constants (filled by
+        :func:`~kinetostatics.simulation.friction.prepare_friction`).
+    boost : list
+        ``[steps]``: steps left run with more solver iterations (set by the loads and
+        friction that reverse, read by the stepper).
+    ballast_state : dict
+        Per ballasted body, what its cancelling force needs from the step before.
     """
 
     scene: Scene
@@ -151,14 +164,14 @@ class SimModel:
     notes: list[str] = field(default_factory=list)
     actuator: pymunk.Body | None = None
     line: tuple[tuple[float, float], tuple[float, float]] | None = None   # driver line
-    _slider_local: tuple[float, float] = (0.0, 0.0)
-    _loads: list = field(default_factory=list, repr=False)
-    _resist: list = field(default_factory=list, repr=False)
-    _friction: list = field(default_factory=list, repr=False)
+    slider_local: tuple[float, float] = (0.0, 0.0)
+    body_loads: list = field(default_factory=list, repr=False)
+    resist_loads: list = field(default_factory=list, repr=False)
+    joint_friction: list = field(default_factory=list, repr=False)
     driver_first: bool = False
-    _boost: list = field(default_factory=lambda: [0], repr=False)   # steps left boosted
+    boost: list = field(default_factory=lambda: [0], repr=False)   # steps left boosted
     ballast: dict[str, tuple[float, float]] = field(default_factory=dict)
-    _ballast_state: dict = field(default_factory=dict, repr=False)
+    ballast_state: dict = field(default_factory=dict, repr=False)
 
     def built_mass(self, name: str) -> tuple[float, float]:
         """Mass and moment of inertia of a moving body as pymunk has it (the scene's
@@ -185,7 +198,7 @@ class SimModel:
         if d.kind == "R":
             return math.degrees(body.angle)
         (lx, ly), (ux, uy) = self.line
-        px, py = body.local_to_world(self._slider_local)
+        px, py = body.local_to_world(self.slider_local)
         return (px - lx) * ux + (py - ly) * uy
 
 
@@ -343,7 +356,7 @@ def build_space(scene: Any, *, dt: float, iterations: int = DEFAULT_ITERATIONS,
                      accel_scale=point_acceleration(sc, sweep), notes=joints.notes,
                      driver_first=bool(driver_first), ballast=extra)
     if extra:
-        model._ballast_state = start_state(model)
+        model.ballast_state = start_state(model)
         model.notes.append("ballast (solver mass on the driver's side, cancelled by a force "
                            f"before every step): {describe(extra)}")
     _add_driver(model, joints)
@@ -475,7 +488,7 @@ def _add_driver(model: SimModel, joints: _Joints) -> None:
     beta = j.beta
     ux, uy = math.cos(beta), math.sin(beta)
     sp = sc.bodies[d.body].local(j.points[1])
-    model._slider_local = sp
+    model.slider_local = sp
     model.line = (lp, (ux, uy))
     px, py = drv.local_to_world(sp)
     # a kinematic body moves at the constant speed along the line; a groove across

@@ -119,25 +119,11 @@ def _unknowns(model: SimModel, f: _Frame) -> list:
             ax_, ay_ = f.world(a, info.anchor_a)
             bx_, by_ = f.world(b, info.anchor_b)
             for ux, uy in ((1.0, 0.0), (0.0, 1.0)):
-                ent = []
-                if b in index:
-                    rx, ry = f.arm(b, bx_, by_)
-                    ent.append((index[b], ux, uy, rx * uy - ry * ux))
-                if a in index:
-                    rx, ry = f.arm(a, ax_, ay_)
-                    ent.append((index[a], -ux, -uy, -(rx * uy - ry * ux)))
-                cols.append(ent)
+                cols.append(_pair(index, f, a, (ax_, ay_), b, (bx_, by_), ux, uy))
         elif info.role in ("groove", "actuator"):
             nx, ny = f.rot(a, info.normal)
-            px, py = f.world(b, info.anchor_b)      # the pin (the force acts along n there)
-            ent = []
-            if b in index:
-                rx, ry = f.arm(b, px, py)
-                ent.append((index[b], nx, ny, rx * ny - ry * nx))
-            if a in index:
-                rx, ry = f.arm(a, px, py)
-                ent.append((index[a], -nx, -ny, -(rx * ny - ry * nx)))
-            cols.append(ent)
+            pin = f.world(b, info.anchor_b)         # the force acts along n there
+            cols.append(_pair(index, f, a, pin, b, pin, nx, ny))
         else:    # lock, motor, couple: a couple on b, the opposite on a
             ent = []
             if b in index:
@@ -237,3 +223,17 @@ def _signed_readings(model: SimModel, f: _Frame, lam: np.ndarray, mag) -> tuple[
         if sc.joints[name].kind == "T":
             signed[f"{name}:M"] = np.broadcast_to(signed.get(f"{name}:M", 0.0), (K,)).copy()
     return signed, check
+
+
+def _pair(index: dict, f, a, at_a: tuple, b, at_b: tuple, ux: float, uy: float) -> list:
+    """A constraint's column: the unit force (ux, uy) on body b at ``at_b`` and its
+    opposite on a at ``at_a``, as (unknown's index, fx, fy, moment about the body's
+    centre of mass) for each body that moves."""
+    ent = []
+    if b in index:
+        rx, ry = f.arm(b, *at_b)
+        ent.append((index[b], ux, uy, rx * uy - ry * ux))
+    if a in index:
+        rx, ry = f.arm(a, *at_a)
+        ent.append((index[a], -ux, -uy, -(rx * uy - ry * ux)))
+    return ent

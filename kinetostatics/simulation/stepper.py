@@ -295,7 +295,7 @@ def _advancers(model: SimModel, apply_loads, fstep, schedule: list, ramp: list):
     while a switch's boost lasts), ``warm(n)`` n steps of the warm-up ``schedule``."""
     dt = model.dt
     space = model.space
-    boost = model._boost
+    boost = model.boost
 
     def boosted() -> None:
         # a load or a friction switched: more iterations, falling back (switch_ramp)
@@ -342,7 +342,7 @@ def _stepping_loop(model: SimModel, acc: BodyAccess, apply_loads, fstep, unsure:
     get_f, get_t, get_i = acc.force, acc.torque, acc.impulse
     n_samples = steps // every
     schedule = [] if model.stepped else warmup_schedule(model.iterations)
-    boost = model._boost
+    boost = model.boost
     boost[0] = 0
     ramp = switch_ramp(model.iterations)
     advance, warm = _advancers(model, apply_loads, fstep, schedule, ramp)
@@ -454,7 +454,7 @@ def _driver_positions(model: SimModel, pose: np.ndarray) -> np.ndarray:
     if model.kind == "R":
         return np.degrees(th)
     (lx, ly), (ux, uy) = model.line
-    sx, sy = model._slider_local
+    sx, sy = model.slider_local
     px = pose[:, i, 0] + np.cos(th) * sx - np.sin(th) * sy
     py = pose[:, i, 1] + np.sin(th) * sx + np.cos(th) * sy
     return (px - lx) * ux + (py - ly) * uy

@@ -17,7 +17,7 @@ import weakref
 
 import numpy as np
 
-from .trap import _TRAPPED
+from .trap import TRAPPED
 
 
 def zero(x) -> bool:
@@ -64,7 +64,7 @@ def _times_zero(other, a, b):
     """a * b where the operand other than ``other`` is an exact zero (0.0 without a look
     at ``other`` inside a trapped solve: a NaN there would have touched the trap,
     :mod:`~kinetostatics.solver.trap`)."""
-    if _TRAPPED.get() or _finite(other):
+    if TRAPPED.get() or _finite(other):
         return 0.0
     with np.errstate(invalid="ignore"):
         return a * b

@@ -27,6 +27,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from ..common.lazy import moved_names
 from ..model.scene import Scene
 from .driver import BodyMotion
 from .kinematics import Kinematics, choose_assembly, solve_kinematics, with_positions
@@ -400,3 +401,9 @@ def _put(gathers: tuple, sol: Solved, rows: slice, n: int) -> None:
 
 __all__ = ["BLOCK_ROWS", "BodyMotion", "DriverReaction", "Gather", "Kept", "LeanSolved",
            "Unblockable", "blockable", "solve_blocks"]
+
+# deprecated names: a lean long sweep is now a Solution wrapping a LeanSolved (the results
+# wrap the solver's arrays; the package root stands above every subpackage), and the
+# arrays it keeps are a Kept
+__getattr__ = moved_names(__name__, {"LeanSolution": ("kinetostatics", "Solution"),
+                                     "Sweep": (__name__, "Kept")})

@@ -45,7 +45,7 @@ SCREEN = 0.5       # local minima of m below this are probed
 _min = np.fmin.reduce   # the smallest value, NaN left out (a NaN row is never probed)
 
 
-def _measure2(kin: Kinematics) -> np.ndarray:
+def kin_measure2(kin: Kinematics) -> np.ndarray:
     """m^2 per row: the smallest closeness to a dead centre over the dyads."""
     return measure2([d.closeness2 for d in kin.dyads], kin.n)
 
@@ -115,7 +115,7 @@ def _probe(at: Callable[[np.ndarray, np.ndarray], Kinematics], lo: np.ndarray,
     for _ in range(ROUNDS):
         grid = lo[:, None] + (hi - lo)[:, None] * t[None, :]
         probe = at(grid[:, 1:-1].ravel(), probe_owner)
-        pm2 = _measure2(probe).reshape(lo.size, PROBES)
+        pm2 = kin_measure2(probe).reshape(lo.size, PROBES)
         nan = np.isnan(pm2) | open_rows(probe).reshape(lo.size, PROBES)
         open_ |= nan.any(axis=1)
         pm2 = np.where(nan, np.inf, pm2)        # no closed form there: not a dead point
@@ -148,7 +148,7 @@ def dead_points_between_rows(scene: Scene, structure: Structure, kin: Kinematics
         (k, 2) rows (i, j) as in ``between`` where some dyad cannot close at a position
         probed between them: the two rows are not joined by any motion of the mechanism.
     """
-    return dead_points_of_sweep(scene, structure, kin.positions, _measure2(kin))
+    return dead_points_of_sweep(scene, structure, kin.positions, kin_measure2(kin))
 
 
 def dead_points_of_sweep(scene: Scene, structure: Structure, positions: np.ndarray,
@@ -177,7 +177,7 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     Parameters
     ----------
     m2u : numpy.ndarray
-        m^2 per row (:func:`_measure2`), rows in the sweeps' own order.
+        m^2 per row (:func:`kin_measure2`), rows in the sweeps' own order.
     positions : numpy.ndarray
         The driver position of each row.
     starts, counts : numpy.ndarray

@@ -297,6 +297,36 @@ def _arc_system(rows: Rows, idx: np.ndarray, y: np.ndarray
     return res, jac
 
 
+def _arc_step(rows: Rows, rid: np.ndarray, ya: np.ndarray, tprev: np.ndarray,
+              ds: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """One step of :func:`arc` along the branches of rows ``rid`` from ``ya``: the
+    tangent (oriented by the previous one, ``tprev``), the predictor ``ds`` along it and
+    Newton's corrector normal to it. Returns the new points, the tangents and the rows
+    whose step converged within reach."""
+    k = len(rows.specs)
+    _res, jac = _arc_system(rows, rid, ya)
+    rhs = np.zeros((k + 2, rid.size))
+    rhs[k + 1] = 1.0
+    tan, ok = _solve_batch(np.concatenate([jac, tprev[None]]), rhs)
+    tan /= np.maximum(np.linalg.norm(tan, axis=0), 1e-300)
+    pred = ya + ds * tan
+    yn = pred.copy()
+    conv = ok.copy()
+    for _ in range(8):
+        res, jn = _arc_system(rows, rid, yn)
+        big = np.concatenate([jn, tan[None]])
+        g = np.concatenate([res, (tan * (yn - pred)).sum(axis=0)[None]])
+        step, okn = _solve_batch(big, -g)
+        yn += step
+        conv &= okn
+        if np.abs(step).max() <= NEWTON_TOLERANCE:
+            break
+    res, _j = _arc_system(rows, rid, yn)
+    conv &= (np.abs(res).max(axis=0) <= 1e3 * NEWTON_TOLERANCE) & \
+        (np.abs(yn - ya).max(axis=0) <= 2.0 * ds)
+    return yn, tan, conv
+
+
 def arc(rows: Rows, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Follow the branch of rows idx from lambda = 0 by arc length (pseudo-arclength:
     a tangent predictor, a Newton corrector normal to it), through folds, until it
@@ -325,27 +355,8 @@ def arc(rows: Rows, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray
         a = np.flatnonzero(live)
         if a.size == 0:
             break
-        rid, ya = idx[a], y[:, a]
-        _res, jac = _arc_system(rows, rid, ya)
-        rhs = np.zeros((k + 2, a.size))
-        rhs[k + 1] = 1.0
-        tan, ok = _solve_batch(np.concatenate([jac, tprev[None, :, a]]), rhs)
-        tan /= np.maximum(np.linalg.norm(tan, axis=0), 1e-300)
-        pred = ya + ds[a] * tan
-        yn = pred.copy()
-        conv = ok.copy()
-        for _ in range(8):
-            res, jn = _arc_system(rows, rid, yn)
-            big = np.concatenate([jn, tan[None]])
-            g = np.concatenate([res, (tan * (yn - pred)).sum(axis=0)[None]])
-            step, okn = _solve_batch(big, -g)
-            yn += step
-            conv &= okn
-            if np.abs(step).max() <= NEWTON_TOLERANCE:
-                break
-        res, _j = _arc_system(rows, rid, yn)
-        conv &= (np.abs(res).max(axis=0) <= 1e3 * NEWTON_TOLERANCE) & \
-            (np.abs(yn - ya).max(axis=0) <= 2.0 * ds[a])
+        ya = y[:, a]
+        yn, tan, conv = _arc_step(rows, idx[a], ya, tprev[:, a], ds[a])
         good, bad = a[conv], a[~conv]
         ds[bad] /= 3.0
         stuck = bad[ds[bad] < MIN_STEP]     # a corner the path cannot turn: as a fold

@@ -440,7 +440,7 @@ def _inner_t_tau(pr, ux, uy):
     return A.sub(A.mul(ux, pt.uy), A.mul(uy, pt.ux)), A.add(A.mul(ux, pt.ux), A.mul(uy, pt.uy))
 
 
-def _hint_points(scene: Scene, dyad: Dyad):
+def hint_points(scene: Scene, dyad: Dyad):
     """Hints that concern the dyad: (hint name, body, local point, target)."""
     out = []
     for key, target in scene.near.items():
@@ -495,7 +495,7 @@ def _choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver, pr) -> int:
 
     def off2(p, t):
         return (p[0] - t[0]) ** 2 + (p[1] - t[1]) ** 2
-    hints = _hint_points(scene, dyad)
+    hints = hint_points(scene, dyad)
     if hints:
         dist = {k: sum(off2(where(k, b, loc), t) for _, b, loc, t in hints) for k in (1, -1)}
         if abs(dist[1] - dist[-1]) > 1e-12 * scene.size ** 2:

@@ -50,12 +50,12 @@ from ..model.errors import WorkbenchError
 from ..model.scene import load_scene
 from . import blocks
 from .blocks import LeanSolved
-from .deadpoints import _measure2, dead_points_stacked
+from .deadpoints import dead_points_stacked, kin_measure2
 from .driver import BodyMotion
 from .fast import solve_run_compiled, stack_left_alone, wanted
 from .fast.geometry import not_covered
 from .kinematics import Kinematics, solve_kinematics
-from .pipeline import _solve_block, check_distinct, solve_arrays
+from .pipeline import check_distinct, solve_arrays, solve_block
 from .reactions import DriverReaction
 from .solved import Solved
 from .stack import Rows, Stacker, assemblies, signature
@@ -247,7 +247,7 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
             alone.extend(range(lo, hi))
             m2[a:b] = np.inf        # solved alone: nothing of it to probe here
             continue
-        m2[a:b] = _measure2(sol.kin)
+        m2[a:b] = kin_measure2(sol.kin)
         # lean, the scenes' Solutions keep of the run only Me/Fe and the flags; its
         # other arrays are let go before the next run is solved (which then reuses their
         # memory), and solved again when a scene's kinematics are first read
@@ -335,9 +335,9 @@ def _solve_run(stacker: Stacker, structure, ks: np.ndarray, lo: int, hi: int,
             who = owner[rows]
             return (stacker.scene(who, positions[rows]),
                     replace(structure, assembly=tuple(k[who] for k in ks)))
-        return blocks.solve_blocks(positions.size, part, _solve_block, None, st, positions)
+        return blocks.solve_blocks(positions.size, part, solve_block, None, st, positions)
     sc = stacker.runs(lo, hi, counts, positions)
-    return _solve_block(sc, st, solve_kinematics(sc, st))
+    return solve_block(sc, st, solve_kinematics(sc, st))
 
 
 class CutSolved:

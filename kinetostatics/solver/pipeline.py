@@ -151,11 +151,11 @@ class Sweep:
         numbers), on the same road, when another table asks."""
         pos = self.positions
         full, st, part = blocks_of_sweep(self.scene, self.structure, pos)
-        kept = solve_blocks(pos.size, part, _solve_block, full, st, lean=True)
+        kept = solve_blocks(pos.size, part, solve_block, full, st, lean=True)
         solved = kept.structure     # (the closure holds this, not the kept arrays)
 
         def again() -> Solved:
-            args = (pos.size, part, _solve_block, full, solved)
+            args = (pos.size, part, solve_block, full, solved)
             return first_trapped(solve_blocks, *args) if trapped_road else solve_blocks(*args)
         return full, kept, again
 
@@ -168,7 +168,7 @@ def _lean(full, kept: Kept, again) -> LeanSolved:
     return LeanSolved(full, kept, positions, dead, again)
 
 
-def _solve_block(sc, structure, kin) -> Solved:
+def solve_block(sc, structure, kin) -> Solved:
     """One block of rows (:func:`~kinetostatics.solver.blocks.solve_blocks`): loads and
     reactions from its kinematics, checked finite."""
     sol = solve_rows(sc, structure, kin)

@@ -28,7 +28,7 @@ import numpy as np
 from ..model.scene import GROUND, Body, Scene
 from .closure import DyadSolver, body_origin, dyad_param
 from .driver import driver_motion, ground_motion
-from .kinematics import SINGULAR_FAIL, _hint_points, solve_dyad
+from .kinematics import SINGULAR_FAIL, hint_points, solve_dyad
 from .structure import Structure
 from .trap import tame, tame_values
 
@@ -256,7 +256,7 @@ def _branch(first: Scene, dyad, solver: DyadSolver, motions, size, ok) -> np.nda
         (c, s), (ox, oy) = cands[k][0][i], cands[k][1][i]
         return (np.broadcast_to(ox + c * loc[0] - s * loc[1], ok.shape),
                 np.broadcast_to(oy + s * loc[0] + c * loc[1], ok.shape))
-    hints = _hint_points(first, dyad)
+    hints = hint_points(first, dyad)
     if not hints:
         ok[:] = False
         return np.ones(ok.shape, dtype=int)

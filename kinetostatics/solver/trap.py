@@ -26,7 +26,8 @@ from contextlib import contextmanager, nullcontext
 
 import numpy as np
 
-_TRAPPED: contextvars.ContextVar[bool] = contextvars.ContextVar("trapped", default=False)
+# True inside trapped() (this thread and context): the finite checks left to the trap
+TRAPPED: contextvars.ContextVar[bool] = contextvars.ContextVar("trapped", default=False)
 
 TAME = 1e50     # |x| of every nonzero scene number within [1/TAME, TAME]: six factors
                 # of them multiply to at most 1e300 (finite) and at least 1e-300
@@ -51,12 +52,12 @@ def trapped(trap: FloatTrap | None = None) -> Iterator[FloatTrap]:
     (``trap``, or a new one; not warned), and in which :func:`active` is True (this
     thread and context only)."""
     trap = FloatTrap() if trap is None else trap
-    token = _TRAPPED.set(True)
+    token = TRAPPED.set(True)
     try:
         with np.errstate(over="call", divide="call", invalid="call", call=trap):
             yield trap
     finally:
-        _TRAPPED.reset(token)
+        TRAPPED.reset(token)
 
 
 def first_trapped(solve, *args):
@@ -76,14 +77,14 @@ def first_trapped(solve, *args):
 
 def active() -> bool:
     """True inside :func:`trapped`: the finite checks may be left to the trap."""
-    return _TRAPPED.get()
+    return TRAPPED.get()
 
 
 def quiet():
     """The errstate of an operation that may divide by zero or be invalid at a singular
     row (the solver finds such rows by their values): ignored in a checked solve; left to
     the trap in a trapped one (a touched trap sends the solve back to the checked road)."""
-    if _TRAPPED.get():
+    if TRAPPED.get():
         return nullcontext()
     return np.errstate(divide="ignore", invalid="ignore")
 

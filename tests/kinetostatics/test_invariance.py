@@ -27,6 +27,7 @@ from hypothesis import strategies as st
 
 import kinetostatics as ks
 from tests.helpers import OWN_CASES, SCENES
+from tests.kinetostatics import scenes
 
 FILES = sorted(OWN_CASES.glob("*.toml")) + sorted(SCENES.glob("*.toml")) + [
     ks.example("shaper")]
@@ -99,26 +100,8 @@ def test_permuted_positions_give_the_sorted_rows(path, data) -> None:
 
 def random_double_crank(g: float, a: float, b: float, c: float) -> dict:
     """A Grashof double crank (ground g the shortest link): every link turns fully."""
-    return {
-        "driver": {"body": "crank", "joint": "A", "speed": 10.0, "start": 0.0,
-                   "stop": 360.0, "count": 361},
-        "ground": {"A": [0.0, 0.0], "D": [g, 0.0]},
-        "bodies": [
-            {"name": "crank", "mass": 1.0, "inertia": 1e-3, "cog": [a / 3, 0.0],
-             "points": {"A": [0.0, 0.0], "B": [a, 0.0]}},
-            {"name": "coupler", "mass": 2.0, "inertia": 1e-2, "cog": [b / 2, 0.02],
-             "points": {"B": [0.0, 0.0], "C": [b, 0.0]}},
-            {"name": "rocker", "mass": 1.5, "inertia": 5e-3, "cog": [c / 3, 0.0],
-             "points": {"D": [0.0, 0.0], "C": [c, 0.0]}},
-        ],
-        "joints": [{"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
-                   {"name": "B", "kind": "R", "bodies": ["crank", "coupler"]},
-                   {"name": "C", "kind": "R", "bodies": ["coupler", "rocker"]},
-                   {"name": "D", "kind": "R", "bodies": ["ground", "rocker"]}],
-        "loads": [{"body": "rocker", "moment": -3.0}],
-        "near": {"C": [g, 10.0]},
-    }
-
+    return scenes.four_bar(a, b, c, g, cogs=([a / 3, 0.0], [b / 2, 0.02], [c / 3, 0.0]),
+                           loads=[{"body": "rocker", "moment": -3.0}], near=[g, 10.0])
 
 def random_whitworth(crank: float) -> dict:
     """The bundled slotted lever (RTR) with a crank longer than its pivots' distance

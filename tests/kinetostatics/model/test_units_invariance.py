@@ -22,6 +22,7 @@ from hypothesis import strategies as st
 import kinetostatics as ks
 from kinetostatics.cams import solve_cam
 from kinetostatics.motion.scene import simulate_motion
+from tests.kinetostatics import scenes
 
 # SI value of one unit, written out by hand (not read from kinetostatics.model.units)
 LENGTH = {"m": 1.0, "mm": 0.001, "cm": 0.01, "in": 0.0254}
@@ -148,31 +149,13 @@ TOL = 1e-12
 
 
 def four_bar(a, b, c, d, m, load):
-    return {
-        "gravity": [0.0, -9.81],
-        "ground": {"A": [0.0, 0.0], "D": [d, 0.0]},
-        "driver": {"body": "crank", "joint": "A", "speed": 17.0, "acceleration": 3.0,
-                   "start": 0.0, "stop": 360.0, "count": 73},
-        "bodies": [
-            {"name": "crank", "mass": m[0], "inertia": 0.002, "cog": [a / 3, 0.01],
-             "points": {"A": [0.0, 0.0], "B": [a, 0.0]}},
-            {"name": "coupler", "mass": m[1], "inertia": 0.01, "cog": [b / 2, 0.02],
-             "points": {"B": [0.0, 0.0], "C": [b, 0.0], "P": [b / 2, 0.05]}},
-            {"name": "rocker", "mass": m[2], "inertia": 0.008, "cog": [c / 2, 0.0],
-             "points": {"D": [0.0, 0.0], "C": [c, 0.0]}},
-        ],
-        "joints": [
-            {"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
-            {"name": "B", "kind": "R", "bodies": ["crank", "coupler"],
-             "friction": {"mu": 0.1, "radius": 0.01}},
-            {"name": "C", "kind": "R", "bodies": ["coupler", "rocker"]},
-            {"name": "D", "kind": "R", "bodies": ["ground", "rocker"]},
-        ],
-        "loads": [{"body": "coupler", "point": "P", "force": list(load), "moment": 2.0},
-                  {"body": "rocker", "point": "C", "resist": 30.0}],
-        "near": {"C": [d, 0.3]},
-    }
-
+    return scenes.four_bar(
+        a, b, c, d, masses=m, inertias=(0.002, 0.01, 0.008),
+        cogs=([a / 3, 0.01], [b / 2, 0.02], [c / 2, 0.0]), speed=17.0, acceleration=3.0,
+        count=73, gravity=[0.0, -9.81], coupler_point=[b / 2, 0.05],
+        loads=[{"body": "coupler", "point": "P", "force": list(load), "moment": 2.0},
+               {"body": "rocker", "point": "C", "resist": 30.0}],
+        near=[d, 0.3], friction={"B": {"mu": 0.1, "radius": 0.01}})
 
 @settings(max_examples=6, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(a=st.floats(0.04, 0.1), b=st.floats(0.2, 0.4), c=st.floats(0.2, 0.4),
@@ -187,32 +170,9 @@ def test_four_bar_in_other_units(a, b, c, d, m, load, units):
 
 
 def slider_crank(r, l, e, ang):
-    beta = math.radians(ang)
-    return {
-        "gravity": [0.0, -9.81],
-        "ground": {"A": [0.0, 0.0], "O": [-e * math.sin(beta), e * math.cos(beta)]},
-        "driver": {"body": "crank", "joint": "A", "speed": 50.0, "start": 10.0,
-                   "stop": 350.0, "count": 69},
-        "bodies": [
-            {"name": "crank", "mass": 1.0, "inertia": 0.01, "cog": [r / 2, 0.0],
-             "points": {"A": [0.0, 0.0], "B": [r, 0.0]}},
-            {"name": "rod", "mass": 2.0, "inertia": 0.03, "cog": [l / 3, 0.01],
-             "points": {"B": [0.0, 0.0], "C": [l, 0.0]}},
-            {"name": "piston", "mass": 1.5, "inertia": 0.002, "cog": [0.02, 0.0],
-             "points": {"C": [0.0, 0.0]}},
-        ],
-        "joints": [
-            {"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
-            {"name": "B", "kind": "R", "bodies": ["crank", "rod"]},
-            {"name": "C", "kind": "R", "bodies": ["rod", "piston"],
-             "friction": {"mu": 0.05, "radius": 0.008}},
-            {"name": "C-slide", "kind": "T", "guide": "ground", "slider": "piston",
-             "line_point": "O", "line_angle": ang, "slider_point": "C",
-             "friction": {"mu": 0.1, "length": 0.05}},
-        ],
-        "loads": [{"body": "piston", "point": "C", "force": [-300.0, 10.0]}],
-        "near": {"C": [l * math.cos(beta), l * math.sin(beta)]},
-    }
+    return scenes.offset_slider_crank(
+        r, l, e, ang, start=10.0, stop=350.0, count=69,
+        friction={"C": {"mu": 0.05, "radius": 0.008}, "C-slide": {"mu": 0.1, "length": 0.05}})
 
 
 @settings(max_examples=6, deadline=None, suppress_health_check=[HealthCheck.too_slow])

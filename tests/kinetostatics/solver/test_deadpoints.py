@@ -14,6 +14,7 @@ import kinetostatics as ks
 from kinetostatics.model.errors import AssemblyError
 from kinetostatics.solver import arith as A
 from kinetostatics.solver.pipeline import _check_finite
+from tests.kinetostatics import scenes
 
 
 def slotted_lever(crank: float, start: float = 0.0, count: int = 361) -> dict:
@@ -30,26 +31,10 @@ def change_point_four_bar(a: float, b: float, c: float, start: float, count: int
     """A four-bar with a + b = c + d (crank a < rocker c < coupler b, ground d = a + b - c):
     its change point (all four pivots on a line) is at crank angle 0 deg."""
     d = a + b - c
-    return {
-        "driver": {"body": "crank", "joint": "A", "speed": 10.0, "start": start,
-                   "stop": start + 360.0, "count": count},
-        "ground": {"A": [0.0, 0.0], "D": [d, 0.0]},
-        "bodies": [
-            {"name": "crank", "mass": 1.0, "inertia": 1e-3, "cog": [a / 2, 0.0],
-             "points": {"A": [0.0, 0.0], "B": [a, 0.0]}},
-            {"name": "coupler", "mass": 2.0, "inertia": 1e-2, "cog": [b / 2, 0.01],
-             "points": {"B": [0.0, 0.0], "C": [b, 0.0]}},
-            {"name": "rocker", "mass": 1.5, "inertia": 5e-3, "cog": [c / 2, 0.0],
-             "points": {"D": [0.0, 0.0], "C": [c, 0.0]}},
-        ],
-        "joints": [{"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
-                   {"name": "B", "kind": "R", "bodies": ["crank", "coupler"]},
-                   {"name": "C", "kind": "R", "bodies": ["coupler", "rocker"]},
-                   {"name": "D", "kind": "R", "bodies": ["ground", "rocker"]}],
-        "loads": [{"body": "rocker", "moment": -5.0}],
-        "near": {"C": [d, 10.0 * (a + b + c)]},
-    }
-
+    return scenes.four_bar(a, b, c, d, cogs=([a / 2, 0.0], [b / 2, 0.01], [c / 2, 0.0]),
+                           start=start, count=count,
+                           loads=[{"body": "rocker", "moment": -5.0}],
+                           near=[d, 10.0 * (a + b + c)])
 
 def test_block_through_the_pivot_at_a_row_is_refused_naming_it() -> None:
     """Was: Me = -2e16 N m, reactions 4e33 N, singular false."""

@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 
 import kinetostatics as ks
 from tests.helpers import OWN_CASES
-from tests.kinetostatics import checks
+from tests.kinetostatics import checks, scenes
 
 
 def test_slider_crank_closed_form_seed_004():
@@ -67,29 +67,11 @@ def test_angles_continuous_and_first_in_range():
 
 
 def four_bar(a, b, c, d, cog3, cog4, m, load, branch):
-    return {
-        "gravity": [0.0, -9.81],
-        "ground": {"A": [0.0, 0.0], "D": [d, 0.0]},
-        "driver": {"body": "crank", "joint": "A", "speed": 17.0, "start": 0.0,
-                   "stop": 360.0, "count": 2001},
-        "bodies": [
-            {"name": "crank", "mass": m[0], "inertia": 0.002, "cog": [a / 3, 0.01],
-             "points": {"A": [0.0, 0.0], "B": [a, 0.0]}},
-            {"name": "coupler", "mass": m[1], "inertia": 0.01, "cog": cog3,
-             "points": {"B": [0.0, 0.0], "C": [b, 0.0], "P": [b / 2, 0.05]}},
-            {"name": "rocker", "mass": m[2], "inertia": 0.008, "cog": cog4,
-             "points": {"D": [0.0, 0.0], "C": [c, 0.0]}},
-        ],
-        "joints": [
-            {"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
-            {"name": "B", "kind": "R", "bodies": ["crank", "coupler"]},
-            {"name": "C", "kind": "R", "bodies": ["coupler", "rocker"]},
-            {"name": "D", "kind": "R", "bodies": ["ground", "rocker"]},
-        ],
-        "loads": [{"body": "coupler", "point": "P", "force": load, "moment": 2.0}],
-        "near": {"C": [d, branch * 0.3]},
-    }
-
+    return scenes.four_bar(
+        a, b, c, d, masses=m, inertias=(0.002, 0.01, 0.008), cogs=([a / 3, 0.01], cog3, cog4),
+        speed=17.0, count=2001, gravity=[0.0, -9.81], coupler_point=[b / 2, 0.05],
+        loads=[{"body": "coupler", "point": "P", "force": load, "moment": 2.0}],
+        near=[d, branch * 0.3])
 
 def run_all_checks(sol, fd=True):
     assert checks.loop_closure(sol) < 1e-12
@@ -128,30 +110,7 @@ def test_random_offset_slider_cranks(r, lam, e, ang):
     """RRT with an offset and an inclined guide line."""
     l = r / lam
     assume(abs(e) + r < 0.8 * l)
-    beta = np.deg2rad(ang)
-    d = {
-        "gravity": [0.0, -9.81],
-        "ground": {"A": [0.0, 0.0], "O": [-e * np.sin(beta), e * np.cos(beta)]},
-        "driver": {"body": "crank", "joint": "A", "speed": 50.0, "start": 0.0,
-                   "stop": 360.0, "count": 2001},
-        "bodies": [
-            {"name": "crank", "mass": 1.0, "inertia": 0.01, "cog": [r / 2, 0.0],
-             "points": {"A": [0.0, 0.0], "B": [r, 0.0]}},
-            {"name": "rod", "mass": 2.0, "inertia": 0.03, "cog": [l / 3, 0.01],
-             "points": {"B": [0.0, 0.0], "C": [l, 0.0]}},
-            {"name": "piston", "mass": 1.5, "inertia": 0.002, "cog": [0.02, 0.0],
-             "points": {"C": [0.0, 0.0]}},
-        ],
-        "joints": [
-            {"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
-            {"name": "B", "kind": "R", "bodies": ["crank", "rod"]},
-            {"name": "C", "kind": "R", "bodies": ["rod", "piston"]},
-            {"name": "C-slide", "kind": "T", "guide": "ground", "slider": "piston",
-             "line_point": "O", "line_angle": ang, "slider_point": "C"},
-        ],
-        "loads": [{"body": "piston", "point": "C", "force": [-300.0, 10.0]}],
-        "near": {"C": [l * np.cos(beta), l * np.sin(beta)]},
-    }
+    d = scenes.offset_slider_crank(r, l, e, ang)
     sol = ks.solve(d)
     run_all_checks(sol)
 
