@@ -25,7 +25,7 @@ import pandas as pd
 from ..model.errors import SceneError
 from ..model.scene import Scene, load_scene
 from ..model.tomlio import as_float, as_int, as_list, check_keys
-from ..model.units import BASE, Units
+from ..model.units import Units, labelled
 from ..solver import arith as A
 from ..solver.kinematics import solve_kinematics
 from ..solver.loads import applied_loads
@@ -181,6 +181,11 @@ def _motor(spec: MotionSpec):
     return table
 
 
+MOTION_UNITS = {"omega_mean": "rad/s", "omega_max": "rad/s", "omega_min": "rad/s", "delta": "1",
+                "chi": "1", "period": "s", "flywheel_for_target": "kg m^2"}
+"""The unit of each number of the motion's summary."""
+
+
 @dataclass
 class MotionResult:
     """The ``motion`` table (cycle, position, time, omega, alpha) and the summary (SI);
@@ -190,10 +195,12 @@ class MotionResult:
     summary: dict
     solution: Any
     units: Units = field(default_factory=Units)
+    warnings: tuple[str, ...] = ()
 
     def to_json(self) -> dict:
-        """``{"summary": {..., "units": {...}}, "motion": [rows]}``."""
-        return {"summary": {**self.summary, "units": self.units.to_dict(BASE)},
+        """``{"summary": {...}, "motion": [rows]}``: the summary says its units key by key
+        and carries the scene's warnings (:func:`kinetostatics.model.units.labelled`)."""
+        return {"summary": labelled(self.summary, self.units, MOTION_UNITS, self.warnings),
                 "motion": self.motion.to_dict(orient="records")}
 
 
@@ -243,4 +250,4 @@ def simulate_motion(scene: Any, rtol: float = 1e-12) -> MotionResult:
         summary["flywheel_for_target"] = flywheel_for_delta(
             inertia_with(0.0), moment, spec.target_delta, phi0, st["omega_mean"], rtol=rtol,
             periodic_inertia=True)
-    return MotionResult(sol.table(positions), summary, sol, sc.units)
+    return MotionResult(sol.table(positions), summary, sol, sc.units, sc.warnings)
