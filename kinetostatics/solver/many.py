@@ -36,6 +36,7 @@ from __future__ import annotations
 import gc
 import math
 import threading
+import warnings
 from collections.abc import Iterable, Iterator
 from concurrent.futures import Executor
 from contextlib import contextmanager
@@ -45,7 +46,7 @@ from typing import Any
 
 import numpy as np
 
-from ..model.errors import WorkbenchError
+from ..model.errors import UnitWarning, WorkbenchError
 from ..model.scene import load_scene
 from ..results import Solution
 from . import blocks
@@ -93,7 +94,9 @@ def solve_many(scenes: Iterable[Any], *, executor: Executor | None = None,
     Returns
     -------
     list of Solution
-        One per scene, in the order given.
+        One per scene, in the order given. Each scene's suspected unit slips are warned
+        (:class:`~kinetostatics.model.errors.UnitWarning`) led by its place in the list
+        and its title, and kept in its ``scene.warnings``.
 
     Raises
     ------
@@ -146,6 +149,10 @@ def _solve_many(items: list, executor: Executor | None, batch: int | None
             raise type(r)(f"scenes[{i}]: {r}") from None    # which scene, in one line
         if isinstance(r, Exception):
             raise r
+    for i, r in enumerate(out):         # the unit slips, each naming its scene
+        for text in r.scene.warnings:
+            title = f" ({r.scene.title})" if r.scene.title else ""
+            warnings.warn(f"scenes[{i}]{title}: {text}", UnitWarning, stacklevel=3)
     return out
 
 
@@ -158,11 +165,13 @@ def solve_outcomes(items: list[Any], *, lean: bool = True) -> list[Solution | Ex
     elsewhere (pickled whole)."""
     out: list[Any] = [None] * len(items)
     loaded: list[tuple[int, Any]] = []
-    for i, src in enumerate(items):
-        try:
-            loaded.append((i, load_scene(src)))
-        except Exception as exc:        # solve would raise it for this scene
-            out[i] = exc
+    with warnings.catch_warnings():     # said again by solve_many, naming the scene
+        warnings.simplefilter("ignore", UnitWarning)
+        for i, src in enumerate(items):
+            try:
+                loaded.append((i, load_scene(src)))
+            except Exception as exc:        # solve would raise it for this scene
+                out[i] = exc
     groups: dict[Any, list] = {}
     for (i, sc), plain in zip(loaded, _increasing([sc for _, sc in loaded]), strict=True):
         try:
