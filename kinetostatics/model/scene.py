@@ -221,7 +221,7 @@ def _mass_model(table: Any, where: str, points: dict, cog: tuple | None,
         t = float(np.dot(g - b, c - b)) / bc**2
         if t < 0.0 or t > 1.0:
             warnings.warn(f"{w}: the points do not bracket the cog; one concentrated mass is "
-                          "negative (seed 002 eq. 2.11)", stacklevel=3)
+                          "negative (eq. 2.11 of the course notes)", stacklevel=3)
     else:
         gb = float(np.hypot(*(np.array(points[names[0]]) - g)))
         if gb == 0.0:

@@ -222,3 +222,45 @@ def test_every_rule_is_documented() -> None:
     doc = (Path(__file__).resolve().parents[3] / "docs" / "scene-format.md").read_text()
     for rule in RULES:
         assert f"`{rule}`" in doc, rule
+
+
+def test_motion_positions_follow_the_mechanism_rule() -> None:
+    """One positions rule for mechanism and [motion] scenes: any order (the same summary,
+    rows in the list's order), a repeat refused with one line."""
+    with open(ks.example("four_bar_motion"), "rb") as fh:
+        d = tomllib.load(fh)
+    for k in ("start", "stop", "count"):
+        d["driver"].pop(k, None)
+    d["driver"]["positions"] = [90.0, 0.0, 180.0, 270.0]
+    mixed = ks.simulate_motion(d)
+    d["driver"]["positions"] = [0.0, 90.0, 180.0, 270.0]
+    plain = ks.simulate_motion(d)
+    assert mixed.summary == plain.summary
+    assert mixed.motion["position"].tolist()[:4] == [90.0, 0.0, 180.0, 270.0]
+    assert mixed.motion["omega"].iloc[1] == plain.motion["omega"].iloc[0]
+    d["driver"]["positions"] = [90.0, 0.0, 90.0]
+    with pytest.raises(ks.SceneError, match="90 deg is listed more than once") as exc:
+        ks.simulate_motion(d)
+    assert "\n" not in str(exc.value)
+
+
+def test_every_key_of_every_scene_kind_is_documented() -> None:
+    """docs/scene-format.md names every key the readers accept."""
+    from pathlib import Path
+
+    import balance.model.field_scene as field
+    import balance.model.scene as bal
+    import kinetostatics.cams.scene as cam
+    import kinetostatics.model.scene as mech
+    doc = (Path(__file__).resolve().parents[3] / "docs" / "scene-format.md").read_text()
+    keys = {*mech.TOP_KEYS, *mech.DRIVER_KEYS, *mech.BODY_KEYS, *mech.JOINT_KEYS_R,
+            *mech.JOINT_KEYS_T, *mech.LOAD_KEYS, *mech.MOTION_KEYS, *bal.ROTOR_KEYS,
+            *bal.UNBALANCE_KEYS, *bal.PLANE_KEYS, *bal.STATIC_KEYS, *bal.RESONANCE_KEYS,
+            *bal.RUN_KEYS, *bal.NOISE_KEYS, *field.INFLUENCE_KEYS, *field.RUN_KEYS,
+            *field.SPLIT_KEYS, *field.SPLIT_SECTION_KEYS, *field.COMBINE_KEYS,
+            *field.WEIGHT_KEYS, *field.ISO_KEYS, *cam.CAM_KEYS, *cam.SEGMENT_KEYS,
+            *(k for ks_ in cam.FOLLOWER_KEYS.values() for k in ks_),
+            *(k for ks_ in cam.LOAD_KEYS.values() for k in ks_), "checks", "quiet"}
+    missing = sorted(k for k in keys if f"`{k}`" not in doc and f"{k} =" not in doc
+                     and f"[{k}]" not in doc and f"[[{k}]]" not in doc)
+    assert missing == []
