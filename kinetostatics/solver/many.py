@@ -176,7 +176,9 @@ def solve_outcomes(items: list[Any], *, lean: bool = True) -> list[Solution | Ex
     for (i, sc), plain in zip(loaded, _increasing([sc for _, sc in loaded]), strict=True):
         try:
             if not plain:
-                check_distinct(sc.driver.positions, "deg" if sc.driver.kind == "R" else "m")
+                q = "angle" if sc.driver.kind == "R" else "length"
+                check_distinct(sc.driver.positions, sc.units.unit(q),
+                               sc.units.file_factor(q))
             key = signature(sc) if sc.driver.positions.size else None
         except Exception as exc:
             out[i] = exc

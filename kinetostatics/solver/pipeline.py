@@ -66,8 +66,9 @@ def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> 
     if positions is not None:
         positions = given_positions(positions)
     if not allow_repeats:
+        q = "angle" if sc.driver.kind == "R" else "length"
         check_distinct(sc.driver.positions if positions is None else positions,
-                       "deg" if sc.driver.kind == "R" else "m")
+                       sc.units.unit(q), sc.units.file_factor(q))
     # the assemblies are chosen at the scene's first row by the solve itself
     structure = analyse(sc, assemble=False)
     pos = sc.driver.positions if positions is None else positions

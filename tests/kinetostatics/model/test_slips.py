@@ -264,3 +264,44 @@ def test_every_key_of_every_scene_kind_is_documented() -> None:
     missing = sorted(k for k in keys if f"`{k}`" not in doc and f"{k} =" not in doc
                      and f"[{k}]" not in doc and f"[[{k}]]" not in doc)
     assert missing == []
+
+
+def test_errors_quote_the_value_as_typed() -> None:
+    """'got -350 g', '255 mm is listed more than once': the user's numbers, not SI."""
+    with open(ks.example("four_bar_mm"), "rb") as fh:
+        d = tomllib.load(fh)
+    d["bodies"][0]["mass"] = -350.0
+    with pytest.raises(ks.SceneError, match=r"'crank'\.mass must not be negative, got -350 g$"):
+        ks.load_scene(d)
+    with open(ks.example("sliding_driver"), "rb") as fh:
+        d = tomllib.load(fh)
+    for k in ("start", "stop", "count"):
+        d["driver"].pop(k)
+    d["units"] = {"length": "mm"}
+    d = typed_lengths_mm(d)
+    d["driver"]["positions"] = [200.0, 255.00000000000003, 300.0, 255.00000000000003]
+    with pytest.raises(ks.SceneError, match=r"^driver positions: 255 mm is listed more"):
+        ks.solve(d)
+    with pytest.raises(ks.SceneError, match=r"^scenes\[0\]: driver positions: 255 mm is"):
+        ks.solve_many([d])
+
+
+def typed_lengths_mm(d: dict) -> dict:
+    """The sliding-driver scene's lengths (and forces' moments) written in mm."""
+    out = copy.deepcopy(d)
+
+    def pt(p):
+        return [c * 1000.0 for c in p]
+    out["ground"] = {k: pt(v) for k, v in d.get("ground", {}).items()}
+    if "gravity" in d:
+        out["gravity"] = pt(d["gravity"])
+    out["near"] = {k: pt(v) for k, v in d.get("near", {}).items()}
+    for b in out["bodies"]:
+        b["inertia"] = b.get("inertia", 0.0) * 1e6
+        if "cog" in b:
+            b["cog"] = pt(b["cog"])
+        b["points"] = {k: pt(v) for k, v in b["points"].items()}
+    for ld in out.get("loads", []):
+        if "moment" in ld:
+            ld["moment"] *= 1000.0
+    return out
