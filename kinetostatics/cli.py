@@ -29,23 +29,59 @@ def _solve(args) -> int:
         from .results.output import parquet_available
         parquet_available()
     sol = solve(scene_path(args.scene))
-    summary = summary_with_units(sol.summary(), sol.scene.units)
+    summary = summary_with_units(sol.summary(), sol.scene.units, sol.scene.warnings,
+                                 "deg" if sol.scene.driver.kind == "R" else "m")
+    written = []
     if args.out:
         def announce(line: str) -> None:
             print(f"warning: {line}", file=sys.stderr, flush=True)
-        # summary.json repeats the scene's [units] too
-        for p in sol.write(args.out, args.format, announce, summary):
-            print(p)
+        written += sol.write(args.out, args.format, announce, summary)
     if args.plot:
         from .plot.cli import write_pictures
-        for p in write_pictures(sol, args.plot, args.plot_at, dpi=args.dpi):
-            print(p)
-    if args.json or not args.out:
+        written += write_pictures(sol, args.plot, args.plot_at, dpi=args.dpi)
+    if args.json:               # stdout is the JSON alone (| jq works)
         print(json.dumps(summary, indent=2))
+        return 0
+    for p in written:
+        print(p)
+    print(summary_text(summary))
     return 0
 
 
+def summary_text(summary: dict) -> str:
+    """A mechanism solve's labelled summary (:func:`kinetostatics.output.summary_with_units`)
+    as readable lines, every number with its unit, the warnings last."""
+    unit = summary["unit_of"]
+    q = "Fe" if "Fe_mean" in summary else "Me"
+    u, pu = unit[f"{q}_mean"], unit["reaction_max"]["position"]
+    lines = [f"{summary['title'] or 'scene'}: {summary['positions']} positions", *(
+        "  " + line for line in summary["structure"]),
+        f"  {q} mean {summary[q + '_mean']:.6g} {u}, min {summary[q + '_min']:.6g} {u}, "
+        f"max {summary[q + '_max']:.6g} {u}"]
+    lines += [f"  joint {j}: max |F| = {r['F']:.6g} N at {r['position']:g} {pu}"
+              for j, r in summary["reaction_max"].items()]
+    if summary.get("transmission_angle_min") is not None:
+        lines.append(f"  transmission angle min(tau, 180 - tau) = "
+                     f"{summary['transmission_angle_min']:.6g} deg at "
+                     f"{summary['transmission_angle_min_position']:g} {pu}")
+    lines.append(f"  singular rows {summary['singular_rows']}, undefined-load rows "
+                 f"{summary['undefined_load_rows']}")
+    scene = summary["scene_units"]
+    if any(scene[k] != v for k, v in (("length", "m"), ("mass", "kg"), ("angle", "deg"),
+                                      ("speed", "rad/s"), ("force", "N"))):
+        lines.append("  (the scene was typed in " + ", ".join(f"{k} {v}" for k, v in
+                                                              scene.items()) + "; the "
+                     "numbers above are SI)")
+    lines.append("warnings: " + ("; ".join(summary["warnings"]) or "none"))
+    return "\n".join(lines)
+
+
+
 def _cmd_demo(args) -> int:
+    if args.scene and args.example:
+        raise WorkbenchError(f"demo: give a scene ({args.scene}) or --example "
+                             f"{args.example}, not both")
+    args.example = args.example or "four_bar"
     from .plot.cli import run_demo
     return run_demo(args)
 
@@ -82,11 +118,14 @@ CAM_FILES = ("motion.csv", "geometry.csv", "forces.csv", "summary.json")
 
 def _cmd_cam(args) -> int:
     from .cams import solve_cam
+    from .cams.units import cam_summary_units
     from .model.outputs import failure_noted, staged_folder
-    from .results.output import summary_with_units, write_summary
+    from .model.units import labelled
+    from .results.output import write_summary
     with failure_noted(args.out, CAM_FILES, "cam run"):
         res = solve_cam(scene_path(args.scene))
-        summary = summary_with_units(res.summary, res.scene.units)
+        summary = labelled(res.summary, res.scene.units, cam_summary_units(res.summary),
+                           res.scene.warnings)
         if args.out:
             with staged_folder(args.out, CAM_FILES) as stage:
                 for name in ("motion", "geometry", "forces"):
@@ -136,7 +175,8 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
     s.add_argument("--format", choices=("csv", "parquet"), default="csv",
                    help="table files for --out: csv (17 significant digits, the default) or "
                    "parquet (needs pyarrow: the [parquet] extra)")
-    s.add_argument("--json", action="store_true", help="print the summary as JSON")
+    s.add_argument("--json", action="store_true", help="print the summary as JSON, and "
+                   "nothing else on stdout (without it: readable lines with units)")
     s.add_argument("--plot", metavar="DIR", help="folder for the pictures (PNG): overview, "
                    "Me, polar diagrams, mechanism with loads, plans, force polygons")
     s.add_argument("--plot-at", metavar="POS", type=float, nargs="+",
@@ -146,7 +186,7 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
     s.set_defaults(func=_cmd_solve)
     d = sub.add_parser("demo", help="solve a scene; write its tables and pictures")
     d.add_argument("scene", nargs="?", help="bundled scene name or scene file")
-    d.add_argument("--example", default="four_bar", help="bundled scene (default four_bar)")
+    d.add_argument("--example", help="bundled scene (default four_bar); not with a scene")
     d.add_argument("--out", default="demo-out", help="output folder (default demo-out)")
     d.add_argument("--dpi", type=dpi_argument, default=150, help="dots per inch of the pictures "
                    "(default 150)")

@@ -103,6 +103,7 @@ class CamScene:
     loads: CamLoads
     transmission_angle: float | None = None     # admissible, rad, if the radius came from it
     units: Units = field(default_factory=Units)  # the file's [units] (the numbers here are SI)
+    warnings: tuple[str, ...] = ()               # the suspected unit slips, as warned
 
 
 def _opt_float(table: dict, key: str, where: str, default: float = 0.0, **kw: bool) -> float:
@@ -114,11 +115,11 @@ def load_cam_scene(source: Any) -> CamScene:
 
     Unknown keys are refused with the nearest known key suggested; every error is one line
     (:class:`~kinetostatics.model.errors.SceneError` for the file's form, :class:`CamError` for a
-    cam that cannot be built).
+    cam that cannot be built). Suspected unit slips are warned (``warnings`` keeps them).
     """
     raw, quiet = read_checks(read_source(source, "cam scene"))
     raw, units = cam_to_contract_units(raw)
-    emit(cam_slips(raw, units), quiet)
+    texts = emit(cam_slips(raw, units), quiet)
     if isinstance(raw, dict) and "cam" not in raw and "driver" in raw:
         raise CamError("this is a mechanism scene (it has [driver]); the cam command takes a "
                        "[cam] scene (docs/cam-scenes.md), e.g. the bundled translating_roller")
@@ -127,8 +128,31 @@ def load_cam_scene(source: Any) -> CamScene:
         raise CamError(f"cam scene: format must be 1, got {raw['format']!r}")
     title = as_str(raw["title"], "title") if "title" in raw else ""
     cam = check_keys(raw["cam"], CAM_KEYS, "cam", required=("follower", "segments"))
+    kind, fol, stroke = _follower_table(cam["follower"])
+    try:
+        law = CamLaw(stroke, tuple(_segments(cam["segments"])))
+    except CamError as exc:
+        raise CamError(f"cam.segments: {exc}") from None
+    speed = _speed(cam)
+    rotation = as_str(cam.get("rotation", "ccw"), "cam.rotation")
+    if rotation not in ("ccw", "cw"):
+        raise CamError(f"cam.rotation must be 'ccw' or 'cw', not {rotation!r}")
+    count = as_int(cam.get("count", 361), "cam.count", lo=2, hi=10_000_000)
+    if ("base_radius" in cam) == ("transmission_angle" in cam):
+        raise CamError("cam: give exactly one of base_radius (m) and transmission_angle "
+                       "(the admissible one, deg)")
+    tau_adm = None
+    if "transmission_angle" in cam:
+        tau_adm = math.radians(as_float(cam["transmission_angle"], "cam.transmission_angle",
+                                        positive=True))
+        check_tau(tau_adm)
+    loads = _load_loads(cam.get("loads", {}), kind, stroke)
+    follower = _follower(kind, fol, cam, law, tau_adm, loads)
+    return CamScene(title, law, follower, speed, rotation, count, loads, tau_adm, units, texts)
 
-    fol = cam["follower"]
+
+def _follower_table(fol: Any) -> tuple[str, dict, float]:
+    """The follower's kind, its checked table and its stroke (m, or rad)."""
     if not isinstance(fol, dict) or "kind" not in fol:
         check_keys(fol, (*fol, "kind") if isinstance(fol, dict) else (), "cam.follower",
                    required=("kind",))
@@ -144,13 +168,15 @@ def load_cam_scene(source: Any) -> CamScene:
                      required=("stroke",) if kind == "translating"
                      else ("stroke_angle", "arm", "pivot_distance"))
     if kind == "translating":
-        stroke = as_float(fol["stroke"], "cam.follower.stroke", positive=True)
-    else:
-        stroke = math.radians(as_float(fol["stroke_angle"], "cam.follower.stroke_angle",
-                                       positive=True))
+        return kind, fol, as_float(fol["stroke"], "cam.follower.stroke", positive=True)
+    return kind, fol, math.radians(as_float(fol["stroke_angle"], "cam.follower.stroke_angle",
+                                            positive=True))
 
+
+def _segments(items: Any) -> list[Segment]:
+    """The program's segments, checked (angles in radians)."""
     segments = []
-    for i, seg in enumerate(as_list(cam["segments"], "cam.segments"), 1):
+    for i, seg in enumerate(as_list(items, "cam.segments"), 1):
         where = f"cam.segments[{i}]"
         seg = check_keys(seg, SEGMENT_KEYS, where, required=("kind", "angle"))
         skind = as_str(seg["kind"], f"{where}.kind")
@@ -165,31 +191,22 @@ def load_cam_scene(source: Any) -> CamScene:
             raise CamError(f"{where}.law: {exc}") from None
         segments.append(Segment(skind, math.radians(as_float(seg["angle"], f"{where}.angle",
                                                              positive=True)), law))
-    try:
-        law = CamLaw(stroke, tuple(segments))
-    except CamError as exc:
-        raise CamError(f"cam.segments: {exc}") from None
+    return segments
 
+
+def _speed(cam: dict) -> float:
+    """The cam's angular speed (rad/s), from ``speed`` or ``speed_rpm``."""
     if ("speed" in cam) == ("speed_rpm" in cam):
         raise CamError("cam: give exactly one of speed (rad/s) and speed_rpm")
-    speed = (as_float(cam["speed"], "cam.speed", positive=True) if "speed" in cam
-             else as_float(cam["speed_rpm"], "cam.speed_rpm", positive=True) * TWO_PI / 60.0)
-    rotation = as_str(cam.get("rotation", "ccw"), "cam.rotation")
-    if rotation not in ("ccw", "cw"):
-        raise CamError(f"cam.rotation must be 'ccw' or 'cw', not {rotation!r}")
-    count = as_int(cam.get("count", 361), "cam.count", lo=2, hi=10_000_000)
+    if "speed" in cam:
+        return as_float(cam["speed"], "cam.speed", positive=True)
+    return as_float(cam["speed_rpm"], "cam.speed_rpm", positive=True) * TWO_PI / 60.0
+
+
+def _follower(kind: str, fol: dict, cam: dict, law: CamLaw, tau_adm: float | None,
+              loads: CamLoads) -> Follower:
+    """The follower, its base radius given or computed from the admissible angle."""
     roller = _opt_float(cam, "roller_radius", "cam", nonnegative=True)
-    if ("base_radius" in cam) == ("transmission_angle" in cam):
-        raise CamError("cam: give exactly one of base_radius (m) and transmission_angle "
-                       "(the admissible one, deg)")
-    tau_adm = None
-    if "transmission_angle" in cam:
-        tau_adm = math.radians(as_float(cam["transmission_angle"], "cam.transmission_angle",
-                                        positive=True))
-        check_tau(tau_adm)
-
-    loads = _load_loads(cam.get("loads", {}), kind, stroke)
-
     if kind == "translating":
         offset_raw = fol.get("offset", 0.0)
         if offset_raw == "optimal":
@@ -200,26 +217,24 @@ def load_cam_scene(source: Any) -> CamScene:
             offset = as_float(offset_raw, "cam.follower.offset")
             r0 = (base_radius_translating(law, tau_adm, offset) if tau_adm is not None
                   else as_float(cam["base_radius"], "cam.base_radius", positive=True))
-        follower: Follower = TranslatingFollower(r0, offset, roller)
         if tau_adm is not None and loads.friction > 0.0:
-            cr = float(np.max(critical_transmission_angle(loads.friction,
-                                                          loads.guide_gap - np.array([0, stroke]),
-                                                          loads.guide_length)))
+            cr = float(np.max(critical_transmission_angle(
+                loads.friction, loads.guide_gap - np.array([0, law.stroke]),
+                loads.guide_length)))
             if tau_adm <= cr:
                 raise CamError(f"cam.transmission_angle {math.degrees(tau_adm):g} deg is not "
                                f"above the critical angle {math.degrees(cr):.4g} deg (eqs "
                                "1.44-1.45); raise it")
-    else:
-        arm = as_float(fol["arm"], "cam.follower.arm", positive=True)
-        dist = as_float(fol["pivot_distance"], "cam.follower.pivot_distance", positive=True)
-        sense = as_str(fol.get("rise_sense", "same"), "cam.follower.rise_sense")
-        if sense not in ("same", "opposite"):
-            raise CamError(f"cam.follower.rise_sense must be 'same' or 'opposite', not "
-                           f"{sense!r}")
-        r0 = (base_radius_oscillating(law, tau_adm, arm, dist, sense) if tau_adm is not None
-              else as_float(cam["base_radius"], "cam.base_radius", positive=True))
-        follower = OscillatingFollower(r0, arm, dist, roller, sense)
-    return CamScene(title, law, follower, speed, rotation, count, loads, tau_adm, units)
+        return TranslatingFollower(r0, offset, roller)
+    arm = as_float(fol["arm"], "cam.follower.arm", positive=True)
+    dist = as_float(fol["pivot_distance"], "cam.follower.pivot_distance", positive=True)
+    sense = as_str(fol.get("rise_sense", "same"), "cam.follower.rise_sense")
+    if sense not in ("same", "opposite"):
+        raise CamError(f"cam.follower.rise_sense must be 'same' or 'opposite', not "
+                       f"{sense!r}")
+    r0 = (base_radius_oscillating(law, tau_adm, arm, dist, sense) if tau_adm is not None
+          else as_float(cam["base_radius"], "cam.base_radius", positive=True))
+    return OscillatingFollower(r0, arm, dist, roller, sense)
 
 
 def _load_loads(raw: Any, kind: str, stroke: float) -> CamLoads:

@@ -20,7 +20,7 @@ from typing import Any
 from ..model.slips import DEG, Slip, angle_list_slip, tip_speed_slip, typed
 from ..model.units import Units, parse_units
 
-__all__ = ["cam_slips", "cam_to_contract_units"]
+__all__ = ["cam_slips", "cam_summary_units", "cam_to_contract_units"]
 
 
 def _num(x: Any) -> bool:
@@ -119,3 +119,18 @@ def cam_slips(raw: Any, units: Units) -> list[Slip]:
                         f"moves the cam's outline ({size:.3g} m) at {abs(w) * size:.3g} m/s",
                         f"{w * math.pi / 30:.4g} rad/s (rpm typed for rad/s)"))
     return out
+
+
+def cam_summary_units(summary: dict) -> dict[str, str]:
+    """The unit of each number of a cam's summary (docs/cam-scenes.md, "Results"): SI,
+    angles in degrees; a translating follower's forces in N, an oscillating one's in N m."""
+    translating = summary.get("follower") == "translating"
+    load = "N" if translating else "N m"
+    return {"base_radius": "m", "working_base_radius": "m", "transmission_angle_min": "deg",
+            "transmission_angle_min_at": "deg", "pressure_angle_max": "deg",
+            "velocity_max": "m/s", "acceleration_max": "m/s^2", "omega2_max": "rad/s",
+            "eps2_max": "rad/s^2", "F12_max": "N", "F12_max_at": "deg", "torque_max": "N m",
+            "torque_min": "N m", "torque_mean": "N m", "friction_work": "J",
+            "efficiency_rise": "1", "curvature_max": "1/m", "preload_needed": load,
+            "offset": "m", "s0": "m", "stroke": "m", "beta0": "deg", "stroke_angle": "deg",
+            "critical_angle_max": "deg", "transmission_angle_admissible": "deg"}

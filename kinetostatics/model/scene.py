@@ -18,7 +18,7 @@ from .errors import SceneError
 from .examples import SCENES
 from .scene_types import GROUND, Body, Driver, Friction, Joint, Load, MassModel, Scene
 from .scene_units import to_contract_units
-from .slips import emit, mechanism_slips, read_checks
+from .slips import emit, mechanism_slips, read_checks, typed
 from .tomlio import (
     MAX_MAGNITUDE,
     as_float,
@@ -31,6 +31,7 @@ from .tomlio import (
     read_source,
     suggest,
 )
+from .units import Units
 
 MAX_COUNT = 10_000_000
 TOP_KEYS = ("title", "format", "units", "gravity", "ground", "driver", "bodies", "joints", "loads",
@@ -74,7 +75,7 @@ def load_scene(source: Any) -> Scene:
         raise SceneError(f"format = {top['format']!r} is not supported; use format = 1")
     gravity = as_vec2(top.get("gravity", [0.0, 0.0]), "gravity")
     ground = _ground(top.get("ground", {}))
-    bodies = _bodies(top["bodies"])
+    bodies = _bodies(top["bodies"], units)
     joints = _joints(top["joints"], bodies, ground)
     driver = _driver(top["driver"], bodies, joints)
     loads = _loads(top.get("loads", []), bodies)
@@ -146,7 +147,7 @@ def _plain_body(item: Any, bodies: dict) -> Body | None:
     return Body(name, mass, inertia, cog, points, None)
 
 
-def _bodies(items: Any) -> dict[str, Body]:
+def _bodies(items: Any, units: Units) -> dict[str, Body]:
     items = as_list(items, "[[bodies]]")
     if not items:
         raise SceneError("[[bodies]] is empty: a mechanism needs at least the driver body")
@@ -164,8 +165,12 @@ def _bodies(items: Any) -> dict[str, Body]:
             raise SceneError(f"{where}: 'ground' is reserved for the fixed body; rename it")
         if name in bodies:
             raise SceneError(f"{where}: the name is used twice; body names must be unique")
-        mass = as_float(item.get("mass", 0.0), f"{where}.mass", nonnegative=True)
-        inertia = as_float(item.get("inertia", 0.0), f"{where}.inertia", nonnegative=True)
+        mass = as_float(item.get("mass", 0.0), f"{where}.mass")
+        inertia = as_float(item.get("inertia", 0.0), f"{where}.inertia")
+        for key, value, quantity in (("mass", mass, "mass"), ("inertia", inertia, "inertia")):
+            if value < 0.0:         # the value quoted as typed, in the scene's unit
+                raise SceneError(f"{where}.{key} must not be negative, got "
+                                 f"{typed(value, quantity, units)}")
         cog = (plain_vec2(item["cog"]) or as_vec2(item["cog"], f"{where}.cog")
                if "cog" in item else None)
         if mass > 0.0 and cog is None:
@@ -221,7 +226,7 @@ def _mass_model(table: Any, where: str, points: dict, cog: tuple | None,
         t = float(np.dot(g - b, c - b)) / bc**2
         if t < 0.0 or t > 1.0:
             warnings.warn(f"{w}: the points do not bracket the cog; one concentrated mass is "
-                          "negative (seed 002 eq. 2.11)", stacklevel=3)
+                          "negative (eq. 2.11 of the course notes)", stacklevel=3)
     else:
         gb = float(np.hypot(*(np.array(points[names[0]]) - g)))
         if gb == 0.0:

@@ -33,8 +33,8 @@ from typing import Any
 
 from .errors import SceneError
 
-__all__ = ["BASE", "DEFAULTS", "FACTORS", "Units", "angle_slip", "convert", "parse_quantity",
-           "parse_units", "ratio_slip", "unit_kind"]
+__all__ = ["BASE", "DEFAULTS", "FACTORS", "Units", "angle_slip", "convert", "labelled",
+           "parse_quantity", "parse_units", "ratio_slip", "unit_kind"]
 
 FACTORS: dict[str, dict[str, float]] = {
     "length": {"m": 1.0, "mm": 1e-3, "cm": 1e-2, "in": 0.0254},
@@ -312,3 +312,19 @@ def ratio_slip(values: Any, ratio: float = 1000.0) -> tuple[float, float] | None
         return None
     lo, hi = min(mags), max(mags)
     return (lo, hi) if hi >= ratio * lo else None
+
+
+def labelled(summary: dict, units: Units, unit_of: dict[str, Any],
+             warnings: tuple[str, ...] | list[str] = ()) -> dict:
+    """A summary that says its units key by key and carries its warnings: ``units`` is
+    ``"SI"`` (angles in degrees), ``unit_of`` the unit of each numeric key (of a nested
+    table, a table of units), ``scene_units`` the units the scene was typed in (they are
+    the scene's, never the numbers'), and ``warnings`` the suspected unit slips (a list
+    of strings, empty when none).
+
+    >>> labelled({"omega_mean": 31.4}, Units(speed="rpm"), {"omega_mean": "rad/s"})["unit_of"]
+    {'omega_mean': 'rad/s'}
+    """
+    return {**summary, "warnings": list(warnings), "units": "SI (angles in degrees)",
+            "unit_of": {k: v for k, v in unit_of.items() if k in summary},
+            "scene_units": units.to_dict(BASE)}

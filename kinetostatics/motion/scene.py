@@ -25,8 +25,9 @@ import pandas as pd
 from ..model.errors import SceneError
 from ..model.scene import Scene, load_scene
 from ..model.tomlio import as_float, as_int, as_list, check_keys
-from ..model.units import BASE, Units
+from ..model.units import Units, labelled
 from ..solver import arith as A
+from ..solver.continuity import check_distinct
 from ..solver.kinematics import solve_kinematics
 from ..solver.loads import applied_loads
 from ..solver.structure import analyse
@@ -93,11 +94,21 @@ def motion_spec(scene: Scene) -> MotionSpec:
             raise SceneError("motion.target_delta needs a speed-dependent 'motor': with a "
                              "motor_table there is no unique steady state")
     pos = scene.driver.positions
-    start = float(pos[0])
+    check_distinct(pos, "deg")
+    start = motion_start(scene)
     if np.any(pos < start - 1e-9) or np.any(pos > start + 360.0 + 1e-9):
-        raise SceneError("[motion]: the sweep's positions must lie within [start, start + 360] "
-                         "deg")
+        first = "start" if "positions" not in scene.raw.get("driver", {}) else \
+            "the smallest position"
+        raise SceneError(f"[motion]: the sweep's positions must lie within one turn from "
+                         f"{first} ({start:g} deg), [{start:g}, {start + 360:g}] deg")
     return MotionSpec(stall, no_load, table, flywheel, omega0, cycles, target)
+
+
+def motion_start(scene: Scene) -> float:
+    """Where the motion starts (deg): the driver's ``start``, or the smallest of a
+    ``positions`` list (which may come in any order)."""
+    pos = scene.driver.positions
+    return float(pos.min()) if "positions" in scene.raw.get("driver", {}) else float(pos[0])
 
 
 class ReducedMechanism:
@@ -181,6 +192,11 @@ def _motor(spec: MotionSpec):
     return table
 
 
+MOTION_UNITS = {"omega_mean": "rad/s", "omega_max": "rad/s", "omega_min": "rad/s", "delta": "1",
+                "chi": "1", "period": "s", "flywheel_for_target": "kg m^2"}
+"""The unit of each number of the motion's summary."""
+
+
 @dataclass
 class MotionResult:
     """The ``motion`` table (cycle, position, time, omega, alpha) and the summary (SI);
@@ -190,10 +206,12 @@ class MotionResult:
     summary: dict
     solution: Any
     units: Units = field(default_factory=Units)
+    warnings: tuple[str, ...] = ()
 
     def to_json(self) -> dict:
-        """``{"summary": {..., "units": {...}}, "motion": [rows]}``."""
-        return {"summary": {**self.summary, "units": self.units.to_dict(BASE)},
+        """``{"summary": {...}, "motion": [rows]}``: the summary says its units key by key
+        and carries the scene's warnings (:func:`kinetostatics.model.units.labelled`)."""
+        return {"summary": labelled(self.summary, self.units, MOTION_UNITS, self.warnings),
                 "motion": self.motion.to_dict(orient="records")}
 
 
@@ -219,8 +237,7 @@ def simulate_motion(scene: Any, rtol: float = 1e-12) -> MotionResult:
     """
     sc = load_scene(scene)
     spec = motion_spec(sc)
-    start = float(sc.driver.positions[0])
-    phi0 = math.radians(start)
+    phi0 = math.radians(motion_start(sc))
     red = ReducedMechanism(sc, phi0)
     red.prewarm()
     motor = _motor(spec)
@@ -243,4 +260,4 @@ def simulate_motion(scene: Any, rtol: float = 1e-12) -> MotionResult:
         summary["flywheel_for_target"] = flywheel_for_delta(
             inertia_with(0.0), moment, spec.target_delta, phi0, st["omega_mean"], rtol=rtol,
             periodic_inertia=True)
-    return MotionResult(sol.table(positions), summary, sol, sc.units)
+    return MotionResult(sol.table(positions), summary, sol, sc.units, sc.warnings)

@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..model.errors import WorkbenchError
-from ..model.units import BASE, Units
+from ..model.units import Units, labelled
 from . import csvtext
 from .longtable import LongTable
 
@@ -270,11 +270,19 @@ def write_parquet(df: pd.DataFrame, path: str | Path) -> Path:
     return path
 
 
-def summary_with_units(summary: dict, units: Units) -> dict:
-    """A summary that repeats the scene's ``[units]`` (scene-format.md, opening: the result
-    tables and numbers stay SI; ``units`` says how the scene was written). ``units`` is a
-    :class:`~kinetostatics.model.units.Units`."""
-    return {**summary, "units": units.to_dict(BASE)}
+def summary_with_units(summary: dict, units: Units, warnings: tuple[str, ...] = (),
+                       position: str = "deg") -> dict:
+    """A mechanism solve's summary that says its units key by key (SI; ``position`` the
+    unit of the driver's positions, deg or m) and carries the scene's warnings, with the
+    scene's ``[units]`` under ``scene_units`` (:func:`kinetostatics.model.units.labelled`).
+    ``units`` is a :class:`~kinetostatics.model.units.Units`."""
+    q = "Fe" if any(k.startswith("Fe_") for k in summary) else "Me"
+    effort = "N" if q == "Fe" else "N m"
+    unit_of = {f"{q}_mean": effort, f"{q}_max": effort, f"{q}_min": effort,
+               "reaction_max": {"F": "N", "position": position},
+               "transmission_angle_min": "deg", "transmission_angle_min_position": position,
+               "dead_points_between_rows": position, "unassembled_between_rows": position}
+    return labelled(summary, units, unit_of, warnings)
 
 
 def write_summary(path: str | Path, summary: dict) -> Path:

@@ -5,10 +5,12 @@ objects."""
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Iterable
 from concurrent.futures import Executor
 from typing import Any
 
+from ..model.errors import UnitWarning
 from ..solver.many import collector_paused, solve_all, solved_outcomes
 from ..solver.pipeline import solve_arrays
 from .solution import Solution
@@ -82,7 +84,9 @@ def solve_many(scenes: Iterable[Any], *, executor: Executor | None = None,
     Returns
     -------
     list of Solution
-        One per scene, in the order given.
+        One per scene, in the order given. Each scene's suspected unit slips are warned
+        (:class:`~kinetostatics.model.errors.UnitWarning`) led by its place in the list
+        and its title, and kept in its ``scene.warnings``.
 
     Raises
     ------
@@ -101,7 +105,12 @@ def solve_many(scenes: Iterable[Any], *, executor: Executor | None = None,
     """
     items = list(scenes)
     with collector_paused():       # (the Solutions made too: thousands of small objects)
-        return [Solution.of(s) for s in solve_all(items, executor, batch)]
+        out = [Solution.of(s) for s in solve_all(items, executor, batch)]
+    for i, r in enumerate(out):         # the unit slips, each naming its scene
+        for text in r.scene.warnings:
+            title = f" ({r.scene.title})" if r.scene.title else ""
+            warnings.warn(f"scenes[{i}]{title}: {text}", UnitWarning, stacklevel=2)
+    return out
 
 
 def solve_outcomes(items: list[Any], *, lean: bool = True) -> list[Solution | Exception]:

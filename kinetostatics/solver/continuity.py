@@ -89,8 +89,10 @@ def _kind_of(v) -> str:
             bool: "true/false"}.get(type(v), f"a {type(v).__name__}")
 
 
-def check_distinct(positions: np.ndarray, unit: str) -> None:
-    """Refuse a sweep that lists a driver position twice (one line, :class:`SceneError`)."""
+def check_distinct(positions: np.ndarray, unit: str, factor: float = 1.0) -> None:
+    """Refuse a sweep that lists a driver position twice (one line, :class:`SceneError`),
+    the position quoted in ``unit``, of which one is ``factor`` contract units (deg or
+    m): as the scene typed it."""
     pos = np.asarray(positions, dtype=float)
     if pos.size < 2 or bool((pos[1:] > pos[:-1]).all()):
         return                  # strictly increasing: each position once
@@ -99,7 +101,7 @@ def check_distinct(positions: np.ndarray, unit: str) -> None:
     if same.size:
         rows = sorted(np.flatnonzero(pos == p[same[0]]).tolist())
         raise SceneError(
-            f"driver positions: {p[same[0]]:g} {unit} is listed more than once (rows "
+            f"driver positions: {p[same[0]] / factor:g} {unit} is listed more than once (rows "
             f"{', '.join(str(r + 1) for r in rows[:4])}); each position must appear once "
             "(start = stop with count > 1 repeats it too)")
 

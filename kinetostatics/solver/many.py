@@ -36,6 +36,7 @@ from __future__ import annotations
 import gc
 import math
 import threading
+import warnings
 from collections.abc import Iterator
 from concurrent.futures import Executor
 from contextlib import contextmanager
@@ -46,7 +47,7 @@ from typing import Any
 import numpy as np
 
 from ..common.lazy import moved_names
-from ..model.errors import WorkbenchError
+from ..model.errors import UnitWarning, WorkbenchError
 from ..model.scene import load_scene
 from . import blocks
 from .blocks import LeanSolved
@@ -119,16 +120,20 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
     table (an answer key) or sends the arrays elsewhere (pickled whole)."""
     out: list[Any] = [None] * len(items)
     loaded: list[tuple[int, Any]] = []
-    for i, src in enumerate(items):
-        try:
-            loaded.append((i, load_scene(src)))
-        except Exception as exc:        # solve would raise it for this scene
-            out[i] = exc
+    with warnings.catch_warnings():     # said again by solve_many, naming the scene
+        warnings.simplefilter("ignore", UnitWarning)
+        for i, src in enumerate(items):
+            try:
+                loaded.append((i, load_scene(src)))
+            except Exception as exc:        # solve would raise it for this scene
+                out[i] = exc
     groups: dict[Any, list] = {}
     for (i, sc), plain in zip(loaded, _increasing([sc for _, sc in loaded]), strict=True):
         try:
             if not plain:
-                check_distinct(sc.driver.positions, "deg" if sc.driver.kind == "R" else "m")
+                q = "angle" if sc.driver.kind == "R" else "length"
+                check_distinct(sc.driver.positions, sc.units.unit(q),
+                               sc.units.file_factor(q))
             key = signature(sc) if sc.driver.positions.size else None
         except Exception as exc:
             out[i] = exc

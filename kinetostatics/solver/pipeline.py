@@ -71,8 +71,9 @@ class Sweep:
         if positions is not None:
             positions = given_positions(positions)
         if not allow_repeats:
+            q = "angle" if sc.driver.kind == "R" else "length"
             check_distinct(sc.driver.positions if positions is None else positions,
-                           "deg" if sc.driver.kind == "R" else "m")
+                           sc.units.unit(q), sc.units.file_factor(q))
         self.scene = sc
         # the assemblies are chosen at the scene's first row by the solve itself
         self.structure = analyse(sc, assemble=False)

@@ -177,13 +177,18 @@ def test_summary_json_repeats_the_units(tmp_path) -> None:
                           "--out", str(tmp_path)], capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
     summary = json.loads((tmp_path / "summary.json").read_text())
-    assert summary["units"] == {"length": "mm", "mass": "g", "angle": "deg", "speed": "rpm",
-                                "force": "N"}
-    assert summary["positions"] == 361
+    # the numbers are SI, said plainly with a unit per key; the scene's [units] stand
+    # under a key that says they are the scene's
+    assert summary["units"] == "SI (angles in degrees)"
+    assert summary["unit_of"]["Me_max"] == "N m"
+    assert summary["unit_of"]["reaction_max"] == {"F": "N", "position": "deg"}
+    assert summary["scene_units"] == {"length": "mm", "mass": "g", "angle": "deg",
+                                      "speed": "rpm", "force": "N"}
+    assert summary["positions"] == 361 and summary["warnings"] == []
     plain = json.loads(subprocess.run([sys.executable, "-m", "kinetostatics", "solve",
                                        "four_bar", "--json"], capture_output=True,
-                                      text=True).stdout)
-    assert plain["units"]["length"] == "m"
+                                      text=True).stdout)      # stdout is the JSON alone
+    assert plain["scene_units"]["length"] == "m"
 
 
 def test_the_unit_checks_use_the_scenes_length_unit() -> None:

@@ -241,7 +241,7 @@ def test_motion_in_other_units():
             assert got.summary[key] == pytest.approx(ref.summary[key], rel=1e-10), key
         # the table's omega: measured 3.3e-16 relative
         assert np.allclose(got.motion["omega"], ref.motion["omega"], rtol=1e-15, atol=0)
-        assert got.to_json()["summary"]["units"]["length"] == units["length"]
+        assert got.to_json()["summary"]["scene_units"]["length"] == units["length"]
 
 
 def test_motor_table_in_radians():

@@ -29,7 +29,7 @@ def test_solve_plot_writes_the_pictures(tmp_path, capsys):
     assert expect <= names, expect - names
     assert all((out / n).stat().st_size > 10_000 for n in expect)
     assert str(out / "overview.png") in printed
-    assert '"title"' in printed          # the summary still follows
+    assert "Me mean" in printed and "warnings: none" in printed    # the summary follows
 
 
 def test_solve_plot_default_position_and_errors(tmp_path, capsys, monkeypatch):
