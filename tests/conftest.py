@@ -3,17 +3,100 @@
 - Pictures are drawn off-screen (the Agg backend), before any test module imports
   pyplot.
 - Hypothesis runs derandomized by default (profile ``repeatable``): the same examples on
-  every machine, so CI's verdict does not depend on luck. To search with fresh random
-  examples on every run, use ``HYPOTHESIS_PROFILE=explore python -m pytest``.
+  every machine, so CI's verdict does not depend on luck. ``HYPOTHESIS_PROFILE=explore
+  python -m pytest`` searches with fresh random examples, ten times as many.
+- Two tiers. ``python -m pytest -m "not slow"`` is the everyday line; the full suite is
+  ``python -m pytest`` (on every core: ``-n auto`` in pyproject.toml). A test that uses
+  one of :data:`SLOW_FIXTURES` is marked ``slow`` here (and ``kernel`` or ``browser``
+  where the fixture starts one), so nobody has to remember the mark; the remaining slow
+  tests carry ``@pytest.mark.slow`` themselves.
+- Tests that read one session fixture's state (the figures drawn for one scene) run on
+  one xdist worker (``xdist_group`` marks, ``--dist loadgroup``), so each is made once.
 """
 
+from __future__ import annotations
+
+import importlib
 import os
+import pkgutil
 
 import matplotlib
+import pytest
 from hypothesis import settings
 
 matplotlib.use("Agg")
 
 settings.register_profile("repeatable", derandomize=True, print_blob=True)
-settings.register_profile("explore", derandomize=False, print_blob=True)
-settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "repeatable"))
+settings.register_profile("explore", derandomize=False, print_blob=True,
+                          max_examples=10 * settings.default.max_examples)
+PROFILE = os.environ.get("HYPOTHESIS_PROFILE", "repeatable")
+settings.load_profile(PROFILE)
+
+#: Fixtures that make a test slow, and why (a test using one is marked ``slow``).
+SLOW_FIXTURES = {
+    "lecture_figures": "every picture of `solve --plot` for a scene (10-20 s of CPU each)",
+    "classes": "a class of 30 generated for every exercise, sealed sheets and PDFs",
+    "klass": "a class generated through the command line, with its PDFs",
+    "lab": "a JupyterLab server",
+    "browser": "headless Chromium",
+}
+#: Fixtures that start a Jupyter kernel or a browser: the marks they add.
+FIXTURE_MARKS = {"lab": ("kernel", "browser"), "browser": ("kernel", "browser"),
+                 "klass": ("kernel",), "classes": ("kernel",)}
+#: The one picture scene whose command-line figures stay in the quick tier.
+QUICK_PICTURE_SCENE = "four_bar"
+#: Session fixtures whose state is made per scene: tests reading one scene's share a
+#: worker (xdist group ``<fixture>-<scene>``).
+SHARED_PER_SCENE = ("lecture_figures",)
+
+
+def _import_every_module() -> None:
+    """Import every module of both packages.
+
+    Hypothesis draws some examples from the literal constants of the project's modules
+    imported so far (its "local constants"), so without this the derandomized examples
+    of a test would depend on which modules other tests had imported before it (the
+    order of the run, one file or the suite, the xdist worker). With every module
+    imported first, every process draws the same examples."""
+    for package in ("kinetostatics", "balance"):
+        root = importlib.import_module(package)
+        for info in pkgutil.walk_packages(root.__path__, f"{package}."):
+            if not info.name.endswith("__main__"):
+                importlib.import_module(info.name)
+
+
+if PROFILE == "repeatable":
+    _import_every_module()
+
+
+def pytest_addoption(parser: pytest.Parser, pluginmanager: pytest.PytestPluginManager) -> None:
+    """Without pytest-xdist (``-p no:xdist``, or not installed) the configuration's
+    ``-n auto --dist loadgroup`` are taken and ignored: the run is serial."""
+    if not pluginmanager.has_plugin("xdist"):
+        group = parser.getgroup("xdist (not loaded)")
+        # (a lowercase short option: pytest-xdist declares its own -n the same way)
+        group._addoption("-n", "--numprocesses", dest="numprocesses", default=None,
+                        help="ignored: pytest-xdist is not loaded")
+        group.addoption("--dist", dest="dist", default="no",
+                        help="ignored: pytest-xdist is not loaded")
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    config.addinivalue_line("markers", "xdist_group(name): run on one xdist worker")
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Mark ``slow`` (and ``kernel``/``browser``) every test that uses a slow fixture,
+    and group the tests that share a per-scene session fixture."""
+    for item in items:
+        used = set(getattr(item, "fixturenames", ()))
+        scene = getattr(item, "callspec", None)
+        scene = scene.params.get("name") if scene is not None else None
+        for name in used & SLOW_FIXTURES.keys():
+            if name == "lecture_figures" and scene == QUICK_PICTURE_SCENE:
+                continue
+            item.add_marker(pytest.mark.slow)
+            for mark in FIXTURE_MARKS.get(name, ()):
+                item.add_marker(getattr(pytest.mark, mark))
+        for name in used.intersection(SHARED_PER_SCENE):
+            item.add_marker(pytest.mark.xdist_group(f"{name}-{scene}"))

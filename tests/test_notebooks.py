@@ -83,6 +83,8 @@ def test_committed_without_outputs(path):
             assert cell.execution_count is None, f"{path.name}: cell {k} has an execution count"
 
 
+@pytest.mark.slow
+@pytest.mark.kernel
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
 def test_notebook_runs(path, monkeypatch):
     monkeypatch.setenv("MPLBACKEND", "Agg")
