@@ -46,8 +46,12 @@ FIXTURE_MARKS = {"lab": ("kernel", "browser"), "browser": ("kernel", "browser"),
 #: The one picture scene whose command-line figures stay in the quick tier.
 QUICK_PICTURE_SCENE = "four_bar"
 #: Session fixtures whose state is made per scene: tests reading one scene's share a
-#: worker (xdist group ``<fixture>-<scene>``).
-SHARED_PER_SCENE = ("lecture_figures",)
+#: worker (xdist group ``<fixture>-<scene>``), and the tests that use each (the xdist
+#: controller sees only test ids; collection checks that the list is whole).
+SHARED_PER_SCENE = {"lecture_figures": (
+    "tests/kinetostatics/plot/test_collisions.py::test_no_collisions_on_any_cli_picture",
+    "tests/kinetostatics/plot/test_collisions.py::test_cli_pictures_lecture_size",
+    "tests/kinetostatics/plot/test_pictures.py::test_every_new_picture_is_drawn")}
 
 
 def _import_every_module() -> None:
@@ -65,8 +69,16 @@ def _import_every_module() -> None:
                 importlib.import_module(info.name)
 
 
-if PROFILE == "repeatable":
-    _import_every_module()
+def pytest_sessionstart(session: pytest.Session) -> None:
+    """Every module imported where tests run (not in an xdist controller, which only
+    hands them out)."""
+    config = session.config
+    controller = (config.pluginmanager.has_plugin("xdist") and
+                  not hasattr(config, "workerinput") and
+                  bool(config.getoption("numprocesses")) and
+                  config.getoption("dist") != "no")
+    if PROFILE == "repeatable" and not controller:
+        _import_every_module()
 
 
 def pytest_addoption(parser: pytest.Parser, pluginmanager: pytest.PytestPluginManager) -> None:
@@ -85,6 +97,7 @@ def pytest_configure(config: pytest.Config) -> None:
     config.addinivalue_line("markers", "xdist_group(name): run on one xdist worker")
 
 
+@pytest.hookimpl(tryfirst=True)      # before xdist's, which reads the xdist_group marks
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     """Mark ``slow`` (and ``kernel``/``browser``) every test that uses a slow fixture,
     and group the tests that share a per-scene session fixture."""
@@ -99,4 +112,34 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
             for mark in FIXTURE_MARKS.get(name, ()):
                 item.add_marker(getattr(pytest.mark, mark))
         for name in used.intersection(SHARED_PER_SCENE):
+            if item.nodeid.split("[")[0] not in SHARED_PER_SCENE[name]:
+                raise pytest.UsageError(f"{item.nodeid} uses {name}: add it to "
+                                        "SHARED_PER_SCENE in tests/conftest.py")
             item.add_marker(pytest.mark.xdist_group(f"{name}-{scene}"))
+
+
+def _group(nodeid: str) -> str | None:
+    """The xdist group of a test id: ``<fixture>-<scene>`` for the tests of
+    :data:`SHARED_PER_SCENE`, else None."""
+    base, _, param = nodeid.partition("[")
+    for name, tests in SHARED_PER_SCENE.items():
+        if base in tests:
+            return f"{name}-{param.rstrip(']')}"
+    return None
+
+
+def pytest_xdist_make_scheduler(config: pytest.Config, log):
+    """``--dist loadgroup`` that also groups by :func:`_group` (pytest-xdist's own
+    grouping renames the test ids, which pytest 9.2 no longer lets it do: its groups are
+    then silently ignored, pytest-xdist issue 1386)."""
+    if config.getoption("dist") != "loadgroup":
+        return None
+    from xdist.scheduler import LoadGroupScheduling
+
+    class SharedFixtureScheduling(LoadGroupScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            if "@" in nodeid:
+                return super()._split_scope(nodeid)
+            return _group(nodeid) or nodeid
+
+    return SharedFixtureScheduling(config, log)

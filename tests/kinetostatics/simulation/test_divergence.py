@@ -231,6 +231,7 @@ def _true_shaper():
     return crosscheck(_raw("shaper"), **_PLANTED)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("body, key, factor, ratio", [
     ("lever", "inertia", 1.01, 10.0),        # measured 4.6e-4 against 1.18e-5: 39 times
     ("block", "mass", 1.02, 4.0),            # ballasted: 1.4e-4, 11.6 times
@@ -390,6 +391,7 @@ def test_a_translating_body_may_have_no_inertia():
 
 
 # ----------------------------------------------------------------------------- study
+@pytest.mark.slow
 def test_study_lists_diverged_settings_apart():
     st = study(ks.example("shaper"), steps=(1000, 2000), iterations=(10, 480),
                samples_per_revolution=45, executor="serial")
