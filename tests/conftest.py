@@ -10,8 +10,9 @@
   one of :data:`SLOW_FIXTURES` is marked ``slow`` here (and ``kernel`` or ``browser``
   where the fixture starts one), so nobody has to remember the mark; the remaining slow
   tests carry ``@pytest.mark.slow`` themselves.
-- Tests that read one session fixture's state (the figures drawn for one scene) run on
-  one xdist worker (``xdist_group`` marks, ``--dist loadgroup``), so each is made once.
+- Tests that read one fixture's state (the figures drawn for one scene, a class
+  generated for a module's tests, a JupyterLab server) run on one xdist worker
+  (``--dist loadgroup`` with the groups of :func:`_group`), so each is made once.
 """
 
 from __future__ import annotations
@@ -116,12 +117,21 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
                 raise pytest.UsageError(f"{item.nodeid} uses {name}: add it to "
                                         "SHARED_PER_SCENE in tests/conftest.py")
             item.add_marker(pytest.mark.xdist_group(f"{name}-{scene}"))
+#: Test modules whose tests share a costly module fixture (a class of 30 generated, a
+#: JupyterLab server): each runs on one xdist worker, so the fixture is made once.
+SHARED_PER_MODULE = ("tests/kinetostatics/teaching/test_classroom.py",
+                     "tests/kinetostatics/teaching/test_class_record.py",
+                     "tests/test_browser.py")
 
 
 def _group(nodeid: str) -> str | None:
     """The xdist group of a test id: ``<fixture>-<scene>`` for the tests of
-    :data:`SHARED_PER_SCENE`, else None."""
+    :data:`SHARED_PER_SCENE`, the module for those of :data:`SHARED_PER_MODULE`, else
+    None."""
     base, _, param = nodeid.partition("[")
+    module = base.split("::")[0]
+    if module in SHARED_PER_MODULE:
+        return module
     for name, tests in SHARED_PER_SCENE.items():
         if base in tests:
             return f"{name}-{param.rstrip(']')}"
