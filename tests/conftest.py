@@ -138,6 +138,7 @@ def _group(nodeid: str) -> str | None:
     return None
 
 
+@pytest.hookimpl(optionalhook=True)     # (a hook of pytest-xdist: unknown without it)
 def pytest_xdist_make_scheduler(config: pytest.Config, log):
     """``--dist loadgroup`` that also groups by :func:`_group` (pytest-xdist's own
     grouping renames the test ids, which pytest 9.2 no longer lets it do: its groups are
