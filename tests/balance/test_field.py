@@ -1,5 +1,5 @@
 """Splitting a correction onto fixed positions, combining weights, units (balance.field,
-balance.units), each against an independent computation."""
+balance.model.units), each against an independent computation."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from balance import BalanceError, Units, combine_weights, split_correction
-from balance.units import parse_units
+from balance.model.units import parse_units
 
 
 def vec(m: float, deg: float) -> complex:

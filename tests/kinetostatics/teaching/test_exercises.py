@@ -297,13 +297,14 @@ def test_tolerances_and_overrides():
 def test_first_draws_solved_together_give_the_same_variants(monkeypatch) -> None:
     """Exercise.prepare solves the class's first draws with solve_many (stacked where
     the scenes allow it); every variant, redraws included, is the one drawn alone."""
+    from kinetostatics.results import solving
     from kinetostatics.solver import many
     from kinetostatics.teaching import keys
 
     calls, alone = [], []
-    real, solo = many.solve_outcomes, many._alone
-    monkeypatch.setattr(many, "solve_outcomes", lambda items, **kw: calls.append(len(items))
-                        or real(items, **kw))
+    real, solo = solving.solved_outcomes, many._alone
+    monkeypatch.setattr(solving, "solved_outcomes",
+                        lambda items, **kw: calls.append(len(items)) or real(items, **kw))
     monkeypatch.setattr(many, "_alone", lambda sc: alone.append(len(calls)) or solo(sc))
     ids = IDS[:12]
     mine = E.Exercise(ks.example("four_bar"), {"bodies.crank.mass": (1.0, 2.0, 0.1),
