@@ -67,7 +67,10 @@ def _import_every_module() -> None:
         root = importlib.import_module(package)
         for info in pkgutil.walk_packages(root.__path__, f"{package}."):
             if not info.name.endswith("__main__"):
-                importlib.import_module(info.name)
+                try:
+                    importlib.import_module(info.name)
+                except Exception:       # the tests that import it report it
+                    continue
 
 
 def pytest_sessionstart(session: pytest.Session) -> None:
