@@ -3,14 +3,26 @@
 - Pictures are drawn off-screen (the Agg backend), before any test module imports
   pyplot.
 - Hypothesis runs derandomized by default (profile ``repeatable``): the same examples on
-  every machine, so CI's verdict does not depend on luck. To search with fresh random
-  examples on every run, use ``HYPOTHESIS_PROFILE=explore python -m pytest``.
+  every machine, so CI's verdict does not depend on luck. ``HYPOTHESIS_PROFILE=explore
+  python -m pytest`` searches with fresh random examples, ten times as many.
+- Two tiers. ``python -m pytest -m "not slow"`` is the everyday line; the full suite is
+  ``python -m pytest`` (on every core: ``-n auto`` in pyproject.toml). A test that uses
+  one of :data:`SLOW_FIXTURES` is marked ``slow`` here (and ``kernel`` or ``browser``
+  where the fixture starts one), so nobody has to remember the mark; the remaining slow
+  tests carry ``@pytest.mark.slow`` themselves.
+- Tests that read one fixture's state (the figures drawn for one scene, a class
+  generated for a module's tests, a JupyterLab server) run on one xdist worker
+  (``--dist loadgroup`` with the groups of :func:`_group`), so each is made once.
 - The solve path: ``KINETOSTATICS_PATH=fast python -m pytest`` runs the suite on the
   compiled path (numba), ``numpy`` (or unset) on the numpy path. A test of the numpy
   path's own workings takes the fixture ``numpy_path``.
 """
 
+from __future__ import annotations
+
+import importlib
 import os
+import pkgutil
 
 import matplotlib
 import pytest
@@ -19,8 +31,135 @@ from hypothesis import settings
 matplotlib.use("Agg")
 
 settings.register_profile("repeatable", derandomize=True, print_blob=True)
-settings.register_profile("explore", derandomize=False, print_blob=True)
-settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "repeatable"))
+settings.register_profile("explore", derandomize=False, print_blob=True,
+                          max_examples=10 * settings.default.max_examples)
+PROFILE = os.environ.get("HYPOTHESIS_PROFILE", "repeatable")
+settings.load_profile(PROFILE)
+
+#: Fixtures that make a test slow, and why (a test using one is marked ``slow``).
+SLOW_FIXTURES = {
+    "lecture_figures": "every picture of `solve --plot` for a scene (10-20 s of CPU each)",
+    "classes": "a class of 30 generated for every exercise, sealed sheets and PDFs",
+    "klass": "a class generated through the command line, with its PDFs",
+    "lab": "a JupyterLab server",
+    "browser": "headless Chromium",
+}
+#: Fixtures that start a Jupyter kernel or a browser: the marks they add.
+FIXTURE_MARKS = {"lab": ("kernel", "browser"), "browser": ("kernel", "browser"),
+                 "klass": ("kernel",), "classes": ("kernel",)}
+#: The one picture scene whose command-line figures stay in the quick tier.
+QUICK_PICTURE_SCENE = "four_bar"
+#: Session fixtures whose state is made per scene: tests reading one scene's share a
+#: worker (xdist group ``<fixture>-<scene>``), and the tests that use each (the xdist
+#: controller sees only test ids; collection checks that the list is whole).
+SHARED_PER_SCENE = {"lecture_figures": (
+    "tests/kinetostatics/plot/test_collisions.py::test_no_collisions_on_any_cli_picture",
+    "tests/kinetostatics/plot/test_collisions.py::test_cli_pictures_lecture_size",
+    "tests/kinetostatics/plot/test_pictures.py::test_every_new_picture_is_drawn")}
+
+
+def _import_every_module() -> None:
+    """Import every module of both packages.
+
+    Hypothesis draws some examples from the literal constants of the project's modules
+    imported so far (its "local constants"), so without this the derandomized examples
+    of a test would depend on which modules other tests had imported before it (the
+    order of the run, one file or the suite, the xdist worker). With every module
+    imported first, every process draws the same examples."""
+    for package in ("kinetostatics", "balance"):
+        root = importlib.import_module(package)
+        for info in pkgutil.walk_packages(root.__path__, f"{package}."):
+            if not info.name.endswith("__main__"):
+                try:
+                    importlib.import_module(info.name)
+                except Exception:       # the tests that import it report it
+                    continue
+
+
+def pytest_sessionstart(session: pytest.Session) -> None:
+    """Every module imported where tests run (not in an xdist controller, which only
+    hands them out)."""
+    config = session.config
+    controller = (config.pluginmanager.has_plugin("xdist") and
+                  not hasattr(config, "workerinput") and
+                  bool(config.getoption("numprocesses")) and
+                  config.getoption("dist") != "no")
+    if PROFILE == "repeatable" and not controller:
+        _import_every_module()
+
+
+def pytest_addoption(parser: pytest.Parser, pluginmanager: pytest.PytestPluginManager) -> None:
+    """Without pytest-xdist (``-p no:xdist``, or not installed) the configuration's
+    ``-n auto --dist loadgroup`` are taken and ignored: the run is serial."""
+    if not pluginmanager.has_plugin("xdist"):
+        group = parser.getgroup("xdist (not loaded)")
+        # (a lowercase short option: pytest-xdist declares its own -n the same way)
+        group._addoption("-n", "--numprocesses", dest="numprocesses", default=None,
+                        help="ignored: pytest-xdist is not loaded")
+        group.addoption("--dist", dest="dist", default="no",
+                        help="ignored: pytest-xdist is not loaded")
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    config.addinivalue_line("markers", "xdist_group(name): run on one xdist worker")
+
+
+@pytest.hookimpl(tryfirst=True)      # before xdist's, which reads the xdist_group marks
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Mark ``slow`` (and ``kernel``/``browser``) every test that uses a slow fixture,
+    and group the tests that share a per-scene session fixture."""
+    for item in items:
+        used = set(getattr(item, "fixturenames", ()))
+        scene = getattr(item, "callspec", None)
+        scene = scene.params.get("name") if scene is not None else None
+        for name in used & SLOW_FIXTURES.keys():
+            if name == "lecture_figures" and scene == QUICK_PICTURE_SCENE:
+                continue
+            item.add_marker(pytest.mark.slow)
+            for mark in FIXTURE_MARKS.get(name, ()):
+                item.add_marker(getattr(pytest.mark, mark))
+        for name in used.intersection(SHARED_PER_SCENE):
+            if item.nodeid.split("[")[0] not in SHARED_PER_SCENE[name]:
+                raise pytest.UsageError(f"{item.nodeid} uses {name}: add it to "
+                                        "SHARED_PER_SCENE in tests/conftest.py")
+            item.add_marker(pytest.mark.xdist_group(f"{name}-{scene}"))
+#: Test modules whose tests share a costly module fixture (a class of 30 generated, a
+#: JupyterLab server): each runs on one xdist worker, so the fixture is made once.
+SHARED_PER_MODULE = ("tests/kinetostatics/teaching/test_classroom.py",
+                     "tests/kinetostatics/teaching/test_class_record.py",
+                     "tests/test_browser.py")
+
+
+def _group(nodeid: str) -> str | None:
+    """The xdist group of a test id: ``<fixture>-<scene>`` for the tests of
+    :data:`SHARED_PER_SCENE`, the module for those of :data:`SHARED_PER_MODULE`, else
+    None."""
+    base, _, param = nodeid.partition("[")
+    module = base.split("::")[0]
+    if module in SHARED_PER_MODULE:
+        return module
+    for name, tests in SHARED_PER_SCENE.items():
+        if base in tests:
+            return f"{name}-{param.rstrip(']')}"
+    return None
+
+
+@pytest.hookimpl(optionalhook=True)     # (a hook of pytest-xdist: unknown without it)
+def pytest_xdist_make_scheduler(config: pytest.Config, log):
+    """``--dist loadgroup`` that also groups by :func:`_group` (pytest-xdist's own
+    grouping renames the test ids, which pytest 9.2 no longer lets it do: its groups are
+    then silently ignored, pytest-xdist issue 1386)."""
+    if config.getoption("dist") != "loadgroup":
+        return None
+    from xdist.scheduler import LoadGroupScheduling
+
+    class SharedFixtureScheduling(LoadGroupScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            if "@" in nodeid:
+                return super()._split_scope(nodeid)
+            return _group(nodeid) or nodeid
+
+    return SharedFixtureScheduling(config, log)
 
 
 @pytest.fixture

@@ -37,6 +37,7 @@ U = np.array([1.0 * cmath.exp(0.3j), 0.7 * cmath.exp(2.5j)])
 TRIALS = [np.array([0.5, 0]), np.array([0, 0.5j])]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("rel, phase", [(0.01, 2.0), (0.03, 1.0)])
 def test_interval_coverage_with_phase_noise(rel: float, phase: float) -> None:
     """Monte-Carlo on a linear two-plane machine: the 95 % intervals of the correction

@@ -121,6 +121,7 @@ def test_nearly_coincident_marks_give_both_candidates_and_warnings():
     assert "7.38" in text                                    # the linear fit's ratio
 
 
+@pytest.mark.slow
 def test_nearly_coincident_marks_are_never_silently_on_the_wrong_side():
     """Marks 0/0.1/180 at 1 % noise: the two minima (phi and its mirror) are about as
     good, and the estimate lands nearer the mirror of the truth in 79 of 200 draws
@@ -272,6 +273,7 @@ def coverage(n: int, seed: int):
     return cells
 
 
+@pytest.mark.slow
 def test_intervals_cover_the_truth_95_percent():
     """Pooled over the nine cells, 9 x 120 draws: a band of 93-97 % is +-2.9 binomial
     sigma (0.66 %). Measured: unbalance 95.3 %, angle 94.7 % (seed 100)."""
@@ -281,6 +283,7 @@ def test_intervals_cover_the_truth_95_percent():
     assert 0.93 <= cov_u <= 0.97 and 0.93 <= cov_t <= 0.97
 
 
+@pytest.mark.slow
 def test_intervals_cover_the_truth_95_percent_in_every_cell():
     """1000 draws per cell (binomial sigma 0.69 %): each cell within 93-97 %. Measured
     (seed 2024): unbalance 94.1-95.3 %, angle 94.8-96.8 % (about 25 s)."""

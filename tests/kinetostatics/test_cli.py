@@ -17,6 +17,7 @@ def run(*args, cwd=None):
                           text=True, cwd=cwd or ROOT, env=env, timeout=300)
 
 
+@pytest.mark.slow
 def test_demo_writes_tables_and_picture(tmp_path):
     r = run("demo", "--out", str(tmp_path))
     assert r.returncode == 0, r.stderr
@@ -92,6 +93,7 @@ def test_structure_command():
     assert r.returncode == 0 and "RTR" in r.stdout
 
 
+@pytest.mark.slow
 def test_bench_quick():
     r = run("bench", "--quick")
     assert r.returncode == 0, r.stderr
@@ -115,6 +117,7 @@ def test_cam_command(tmp_path):
     assert r.returncode == 2 and r.stderr.startswith("error:") and "stroke" in r.stderr
 
 
+@pytest.mark.slow
 def test_bundled_names_work_in_every_command():
     """The CLI takes a bundled example's name as well as a path: the mechanism, motion
     and cam examples all run; an unknown name lists the known ones."""
@@ -178,6 +181,7 @@ def test_parquet_without_pyarrow_is_one_error_line(tmp_path, monkeypatch, capsys
     assert len(err.strip().splitlines()) == 1
 
 
+@pytest.mark.slow
 def test_bench_tables_quick():
     """bench --tables reports solve, table and CSV times with peak memory (small sizes)."""
     r = run("bench", "--tables", "--quick", "--repeat", "1")

@@ -270,6 +270,7 @@ def test_released_loads_come_back_bit_for_bit(monkeypatch):
                                       check_exact=True)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("load", [0.0, 99.0])
 def test_long_sweep_written_as_pandas_writes_it(tmp_path, monkeypatch, load):
     """Many chunks per block, the position formatted once for every table, with the

@@ -147,6 +147,7 @@ class ForwardFourBar:
         return np.array(out)
 
 
+@pytest.mark.slow
 def test_agrees_with_forward_dynamics_of_all_bodies():
     d = four_bar_motion(cycles=1)
     res = ks.simulate_motion(d)

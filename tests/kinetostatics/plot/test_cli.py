@@ -16,6 +16,7 @@ def _close():
     plt.close("all")
 
 
+@pytest.mark.slow
 def test_solve_plot_writes_the_pictures(tmp_path, capsys):
     out = tmp_path / "pics"
     assert main(["solve", "slider_crank", "--plot", str(out), "--plot-at", "30", "200"]) == 0
@@ -53,6 +54,7 @@ def test_solve_plot_default_position_and_errors(tmp_path, capsys, monkeypatch):
     assert "is a file, not a folder" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_demo_scene(tmp_path, capsys, monkeypatch):
     assert main(["demo", "slotted_lever", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out

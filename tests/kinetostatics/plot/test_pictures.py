@@ -116,6 +116,7 @@ def test_every_new_picture_is_drawn(name, lecture_figures):
 
 # the default style (no lecture_style: what a script calling the pictures gets), on one
 # scene of each driver kind; the command line's style is measured on every scene
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["four_bar", "sliding_driver"])
 def test_every_new_picture_is_clear_in_the_default_style(name, sols):
     sol = sols[name]
@@ -294,6 +295,7 @@ def test_projector_style():
     assert plt.rcParams["font.size"] == base and plt.figure().dpi != 150
 
 
+@pytest.mark.slow
 def test_projector_pictures_stay_clear(sols):
     with kp.projector():
         clear(kp.overview(sols["four_bar"]))

@@ -52,7 +52,9 @@ def test_force_polygons_close(name, sols):
             assert np.hypot(*total) <= 1e-9 * scale, (name, d, i, total)
 
 
-@pytest.mark.parametrize("name", [p.stem for p in SCENE_PATHS])
+# (the quick tier draws the four-bar's; every other scene's in the full suite)
+@pytest.mark.parametrize("name", [pytest.param(p.stem, marks=() if p.stem == "four_bar" else
+                                               pytest.mark.slow) for p in SCENE_PATHS])
 def test_every_picture_of_every_scene(name, sols):
     sol = sols[name]
     pos = _mid(sol)
@@ -110,6 +112,7 @@ def test_force_polygon_arguments(sols):
     assert any("F_{e}" in t.get_text() for t in ax.get_legend().get_texts())
 
 
+@pytest.mark.slow
 def test_curves(sols):
     sol = sols["four_bar"]
     for f in (kp.plot_speeds, kp.plot_accelerations):
@@ -132,6 +135,7 @@ def test_curves(sols):
     assert kp.plot_driver(sols["sliding_driver"]).get_ylabel() == "equilibrating force Fe [N]"
 
 
+@pytest.mark.slow
 def test_animation(sols):
     anim = kp.animate(sols["shaper"], frames=4)
     assert isinstance(anim, FuncAnimation)

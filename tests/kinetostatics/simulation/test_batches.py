@@ -29,6 +29,7 @@ def _same_study(a, b):
     assert a.order == b.order and a.order_points == b.order_points
 
 
+@pytest.mark.slow
 def test_study_and_many_through_a_process_pool_match_serial():
     from concurrent.futures import ProcessPoolExecutor
     serial = study(ks.example("four_bar"), **STUDY, executor=SERIAL)
@@ -69,6 +70,7 @@ def test_a_diverged_run_crosses_a_process_boundary():
     assert exc.value.iterations == 10 and exc.value.drift > 1e-4 * exc.value.size
 
 
+@pytest.mark.slow
 def test_batches_through_a_dask_cluster():
     """A LocalCluster of two worker processes runs a study (with a diverged setting)
     and a balancing machine's runs unchanged: the same numbers as in this process."""

@@ -144,6 +144,7 @@ def _search_followed_the_rule(s):
     assert set(blown) <= set(tried) and kept in tried and kept not in blown
 
 
+@pytest.mark.slow
 def test_automatic_iterations_pass_a_diverged_count_over():
     # the shaper at 2000 steps: with pymunk 7.3.1 30 iterations diverge in either solver
     # order and 480 settle the readings (3.8e-5); which counts diverge is the solver's
@@ -230,6 +231,7 @@ def _true_shaper():
     return crosscheck(_raw("shaper"), **_PLANTED)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("body, key, factor, ratio", [
     ("lever", "inertia", 1.01, 10.0),        # measured 4.6e-4 against 1.18e-5: 39 times
     ("block", "mass", 1.02, 4.0),            # ballasted: 1.4e-4, 11.6 times
@@ -389,6 +391,7 @@ def test_a_translating_body_may_have_no_inertia():
 
 
 # ----------------------------------------------------------------------------- study
+@pytest.mark.slow
 def test_study_lists_diverged_settings_apart():
     st = study(ks.example("shaper"), steps=(1000, 2000), iterations=(10, 480),
                samples_per_revolution=45, executor="serial")
@@ -451,6 +454,7 @@ def _legend_clear_of_data(fig):
 
 
 # ----------------------------------------------------------------------------- defaults
+@pytest.mark.slow
 def test_default_steps_reach_the_target_on_the_bundled_scenes():
     """Every bundled mechanism lands at max_error <= 1e-5 with the default settings
     (measured 6e-7 to 9.8e-6 at 10 to 20 ms per revolution on the idle 2-core machine);
@@ -536,6 +540,7 @@ def test_a_run_that_converges_without_the_ballast_is_unchanged():
         runs[1].rows.simulated.to_numpy().tobytes()
 
 
+@pytest.mark.slow
 def test_crosscheck_speed_rows():
     """The bench's rows: the automatic settings against the previous defaults, timed side
     by side (times are not asserted; only what the rows say)."""

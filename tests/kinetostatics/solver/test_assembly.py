@@ -101,6 +101,7 @@ def test_motion_does_not_depend_on_the_tolerance() -> None:
     assert max(means) - min(means) <= 1e-7 * means[-1]    # measured 1e-7 rad/s apart
 
 
+@pytest.mark.slow
 def test_shaper_motion_agrees_with_forward_dynamics_of_all_bodies() -> None:
     """Crank + RTR slotted lever + RRT ram with a resisting tool force, a motor and a
     flywheel, against an all-body Newton-Euler forward dynamics (R and T joints)."""

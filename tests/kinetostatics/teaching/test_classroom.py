@@ -138,6 +138,8 @@ def test_executed_notebooks(kind, classes, tmp_path):
     assert (rep.graded.set_index("student").loc[IDS[1], "source"] == str(typed)).all()
 
 
+@pytest.mark.slow
+@pytest.mark.kernel
 def test_a_kernel_that_dies_at_start_is_started_again(monkeypatch) -> None:
     """A kernel that dies before its first reply (no cell run) is started again; a
     notebook whose kernels keep dying is reported, not retried for ever."""

@@ -37,8 +37,9 @@ def test_sheet_is_the_generated_student_notebook(stem, tmp_path):
     assert str(seed) not in text and "BEGIN SOLUTION" not in text
 
 
-@pytest.mark.parametrize("stem, execute", [("10_exercise_four_bar", True),
-                                           ("11_exercise_rotor", False)])
+@pytest.mark.parametrize("stem, execute", [
+    pytest.param("10_exercise_four_bar", True, marks=[pytest.mark.slow, pytest.mark.kernel]),
+    ("11_exercise_rotor", False)])
 def test_sheet_run_unchanged_scores_zero(stem, execute, tmp_path):
     kind, seed = SHEETS[stem]
     T.generate_class(kind, [STUDENT], tmp_path / "class", seed=seed)
