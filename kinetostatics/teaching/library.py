@@ -26,12 +26,17 @@ __all__ = ["EXERCISES", "exercise", "four_bar_exercise", "list_exercises",
            "slotted_lever_exercise"]
 
 STEEL_BAR = 7.8            # kg/m: the bars' mass per length
-MECHANISM_PICTURE = ("%matplotlib inline\nfrom kinetostatics.plot import draw_mechanism\n\n"
+# the pictures of the handed-out sheets in the lecture style (150 dpi, text >= 10 pt)
+MECHANISM_PICTURE = ("%matplotlib inline\nfrom kinetostatics.plot import draw_mechanism, "
+                     "lecture_style\n\nlecture_style()\n"
                      "draw_mechanism(ks.solve(scene), {pos});   # your mechanism")
 ROTOR_PICTURE = """%matplotlib inline
 import matplotlib.pyplot as plt
 import numpy as np
 
+from kinetostatics.plot import lecture_style
+
+lecture_style()
 fig, ax = plt.subplots(figsize=(4, 4))      # your rotor seen along its axis
 for k, u in enumerate(scene["rotor"]["unbalance"], 1):
     t = np.radians(u["angle"])
