@@ -222,7 +222,7 @@ def draw_cam(res, angle: float = 0.0, ax: Axes | None = None) -> Axes:
     ax.grid(True, alpha=0.3)
     tau = float(g["tau"].iloc[k])
     ax.set_title(f"{sc.title or 'cam'}\nat φ = {ang[k]:g}°: {rise}, τ = {reading(tau, 3)}°",
-                 fontsize=10)
+                 fontsize=10, pad=10)      # clear of a tick label at the top
     legend_outside(ax)
     return ax
 

@@ -109,7 +109,7 @@ def picture_uri(exercise, variant: Mapping) -> str | None:
     return None             # no clean picture: the page goes without one
 
 
-PICTURE_DPI = 90
+PICTURE_DPI = 150         # the lecture style's resolution
 _LEVELS = (1, 2, 3, 4, 5, 7, 8, 9)      # zlib levels other than the default 6
 
 

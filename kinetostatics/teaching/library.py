@@ -26,18 +26,26 @@ __all__ = ["EXERCISES", "exercise", "four_bar_exercise", "list_exercises",
            "slotted_lever_exercise"]
 
 STEEL_BAR = 7.8            # kg/m: the bars' mass per length
-MECHANISM_PICTURE = ("%matplotlib inline\nfrom kinetostatics.plot import draw_mechanism\n\n"
+# the pictures of the handed-out sheets in the lecture style (150 dpi, text >= 10 pt)
+MECHANISM_PICTURE = ("%matplotlib inline\nfrom kinetostatics.plot import draw_mechanism, "
+                     "lecture_style\n\nlecture_style()\n"
                      "draw_mechanism(ks.solve(scene), {pos});   # your mechanism")
 ROTOR_PICTURE = """%matplotlib inline
 import matplotlib.pyplot as plt
 import numpy as np
 
-fig, ax = plt.subplots(figsize=(4, 4))      # your rotor seen along its axis
+from kinetostatics.plot import lecture_style
+
+lecture_style()
+fig, ax = plt.subplots(figsize=(4.5, 4.5), layout="constrained")   # seen along the axis
 for k, u in enumerate(scene["rotor"]["unbalance"], 1):
     t = np.radians(u["angle"])
     ax.annotate("", (u["radius"] * np.cos(t), u["radius"] * np.sin(t)), (0, 0),
                 arrowprops={"arrowstyle": "-|>"})
-    ax.annotate(f"m{k}", (u["radius"] * np.cos(t), u["radius"] * np.sin(t)))
+    ax.annotate(f"m{k}", (u["radius"] * np.cos(t), u["radius"] * np.sin(t)),
+                xytext=(6 * np.cos(t), 6 * np.sin(t)), textcoords="offset points",
+                ha="left" if np.cos(t) >= 0 else "right",
+                va="bottom" if np.sin(t) >= 0 else "top")
 ax.set_aspect("equal")
 ax.set_xlim(-0.16, 0.16)
 ax.set_ylim(-0.16, 0.16)

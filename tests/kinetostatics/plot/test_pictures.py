@@ -18,6 +18,7 @@ from kinetostatics.cams import optimal_offset, solve_cam
 from kinetostatics.model.errors import WorkbenchError
 from kinetostatics.model.examples import cam_examples, example
 from kinetostatics.plot.cli import cli_figures
+from kinetostatics.plot.notation import reading
 
 from .conftest import PICTURE_SCENES
 
@@ -332,10 +333,10 @@ def test_wittenbauer_tangents_give_delta(cycle):
     np.testing.assert_allclose(omega.max(), wm * (1 + delta / 2), rtol=1e-12)
     np.testing.assert_allclose(omega.min(), wm * (1 - delta / 2), rtol=1e-12)
     ax = kp.plot_wittenbauer(cycle, wm, delta)
-    assert f"J = {w['J']:.4g}" in ax.get_title()
+    assert f"J = {reading(w['J'])}" in ax.get_title()
     clear(ax.figure)
     fig = kp.plot_flywheel_curves(cycle)
-    assert [a.get_ylabel() for a in fig.axes] == ["I_r [kg m²]", "reduced moment [N m]",
+    assert [a.get_ylabel() for a in fig.axes] == ["$I_r$ [kg m²]", "reduced moment [N m]",
                                                   "ΔE [J]"]
     clear(fig)
     with pytest.raises(WorkbenchError):
