@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 import warnings
 from typing import NoReturn
@@ -141,6 +142,10 @@ A table of more than 1e6 rows is announced on stderr with its size and time.
 --format parquet writes about 3x less and keeps the dtypes."""
 
 
+MEMORY_HELP = ("memory budget of the run, e.g. 2G or 1500M (default: 60%% of the memory "
+               "available, or WORKBENCH_MEMORY); a run estimated above it is refused")
+
+
 # the commands of this module: their parser is built without the teaching package's
 # (which loads pandas and matplotlib), so that ``solve`` starts quickly
 CORE_COMMANDS = ("solve", "demo", "structure", "bench", "motion", "cam")
@@ -164,6 +169,7 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
                    help="driver positions (deg, or m) of those pictures (default: max |Me|)")
     s.add_argument("--dpi", type=dpi_argument, default=150, help="dots per inch of the pictures "
                    "(default 150, the lecture-room size; 200 or more for a large room)")
+    s.add_argument("--memory", type=memory_argument, metavar="SIZE", help=MEMORY_HELP)
     s.set_defaults(func=_cmd_solve)
     d = sub.add_parser("demo", help="solve a scene; write its tables and pictures")
     d.add_argument("scene", nargs="?", help="bundled scene name or scene file")
@@ -187,10 +193,12 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
     m.add_argument("scene")
     m.add_argument("--json", action="store_true", help="print summary and motion table as JSON")
     m.add_argument("--out", help="CSV file for the motion table")
+    m.add_argument("--memory", type=memory_argument, metavar="SIZE", help=MEMORY_HELP)
     m.set_defaults(func=_cmd_motion)
     c = sub.add_parser("cam", help="solve a [cam] scene (docs/cam-scenes.md)")
     c.add_argument("scene")
     c.add_argument("--out", help="folder for motion.csv, geometry.csv, forces.csv, summary.json")
+    c.add_argument("--memory", type=memory_argument, metavar="SIZE", help=MEMORY_HELP)
     c.set_defaults(func=_cmd_cam)
     if extras:
         _extra_commands(sub)
@@ -228,3 +236,24 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
+    except MemoryError:
+        print(f"error: {MEMORY_LINE}", file=sys.stderr)
+        return 2
+
+
+# a run that ran out of memory although its estimate was within the budget (another
+# process took memory meanwhile, or an estimate fell short): one line, never a traceback
+MEMORY_LINE = ("the run ran out of memory; give fewer positions (count), or a smaller "
+               "budget (--memory, WORKBENCH_MEMORY) so that it is refused before it starts "
+               "(docs/limits.md)")
+
+
+def memory_argument(text: str) -> str:
+    """A --memory value: a size (``2G``, ``1500M``); set as the run's budget."""
+    from .model.memory import ENV, parse_size
+    try:
+        parse_size(text, "--memory")
+    except WorkbenchError as exc:
+        raise argparse.ArgumentTypeError(str(exc).removeprefix("--memory = ")) from None
+    os.environ[ENV] = text
+    return text

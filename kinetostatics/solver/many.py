@@ -46,11 +46,13 @@ from typing import Any
 import numpy as np
 
 from ..model.errors import WorkbenchError
+from ..model.memory import check_memory
 from ..model.scene import load_scene
 from ..results import Solution
 from . import blocks
 from .deadpoints import _measure2, dead_points_stacked
 from .driver import BodyMotion
+from .footprint import columns, solve_bytes
 from .kinematics import Kinematics, solve_kinematics
 from .pipeline import _solve_block, check_distinct, solve
 from .reactions import DriverReaction
@@ -163,6 +165,11 @@ def solve_outcomes(items: list[Any], *, lean: bool = True) -> list[Solution | Ex
             loaded.append((i, load_scene(src)))
         except Exception as exc:        # solve would raise it for this scene
             out[i] = exc
+    rows = sum(sc.driver.positions.size for _, sc in loaded)
+    if loaded and rows >= 100_000:      # the peak memory known before it is spent
+        largest = max((sc for _, sc in loaded), key=lambda sc: columns(sc))
+        check_memory(solve_bytes(largest, rows), f"solving {len(loaded):,} scene(s) of "
+                     f"{rows:,} positions in all", "solve fewer scenes or positions at a time")
     groups: dict[Any, list] = {}
     for (i, sc), plain in zip(loaded, _increasing([sc for _, sc in loaded]), strict=True):
         try:

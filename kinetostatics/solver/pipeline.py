@@ -13,6 +13,7 @@ from ..results import Solution
 from .blocks import LeanSolution, Sweep, Unblockable, blockable, blocks_of_sweep, solve_blocks
 from .continuity import check_distinct, given_positions
 from .deadpoints import dead_points_between_rows, dead_points_of_sweep, measure2
+from .footprint import check_solve
 from .friction import has_friction, solve_with_friction
 from .kinematics import solve_kinematics
 from .loads import applied_loads, inertia_loads, resultants
@@ -71,6 +72,7 @@ def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> 
     # the assemblies are chosen at the scene's first row by the solve itself
     structure = analyse(sc, assemble=False)
     pos = sc.driver.positions if positions is None else positions
+    check_solve(sc, pos.size)       # the peak memory known before it is spent
     sol = None
     if tame(sc, pos) and not has_friction(sc):
         sol = _trapped(sc, structure, pos, positions)
