@@ -33,6 +33,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from kinetostatics.common.lazy import group, lazy_names
+
 if TYPE_CHECKING:
     from .api import example_path, examples, solve, solve_results
     from .errors import BalanceError, BalanceWarning
@@ -70,12 +72,12 @@ if TYPE_CHECKING:
         shaking_force,
         solve_mechanism_balancing,
     )
+    from .model.scene import BalanceScene, load_scene
+    from .model.units import Units
     from .resonance.methods import ResonanceResult, four_run, parallelogram, trial_runs
     from .rotor.design import Correction, CorrectionPlane, RotorResult, Unbalance, balance_rotor
     from .rotor.static_device import StaticDeviceResult, static_device
-    from .scene import BalanceScene, load_scene
     from .uncertainty import Interval
-    from .units import Units
 
 # Every public name is imported when first asked for (PEP 562), so that ``import balance``
 # costs less than ``import numpy``: each method's module (and numpy) loads with its first use.
@@ -118,10 +120,10 @@ _LAZY = {
     "balance_rotor": "rotor.design",
     "StaticDeviceResult": "rotor.static_device",
     "static_device": "rotor.static_device",
-    "BalanceScene": "scene",
-    "load_scene": "scene",
+    "BalanceScene": "model.scene",
+    "load_scene": "model.scene",
     "Interval": "uncertainty",
-    "Units": "units",
+    "Units": "model.units",
 }
 
 __all__ = [
@@ -191,31 +193,11 @@ _MECHANISM = ("CounterRotatingPair", "Counterweight", "MechanismBalancing", "bal
               "solve_mechanism_balancing")
 
 
-def __getattr__(name: str):
-    """Every public name, imported on first use (the virtual balancing machine
-    ``BalancingMachine``, ``CoastDown``, ``pivot_reaction``, ``coast_down_study`` load
-    pymunk; the static balancing of mechanisms ``solve_mechanism_balancing``, ... pandas
-    and the kinetostatic solver); a subpackage asked for as an attribute is imported."""
-    import importlib
-
-    if name in _MACHINE:
-        where = "machine"
-    elif name in _MECHANISM:
-        where = "mechanism"
-    else:
-        where = _LAZY.get(name)
-    if where is None:
-        try:   # a subpackage (balance.field, .rotor, ...) asked for as an attribute
-            return importlib.import_module(f"{__name__}.{name}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"{__name__}.{name}":
-                raise
-        raise AttributeError(f"module 'balance' has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{where}"), name)
-    if name not in _MACHINE:
-        globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+# every public name, imported on first use (the virtual balancing machine's names,
+# ``BalancingMachine``, ``CoastDown``, ``pivot_reaction``, ``coast_down_study``, load
+# pymunk and are looked up each time; the static balancing of mechanisms,
+# ``solve_mechanism_balancing``, ... pandas and the kinetostatic solver); a subpackage
+# asked for as an attribute is imported
+__getattr__, __dir__ = lazy_names(
+    __name__, {**_LAZY, **group(_MECHANISM, "mechanism"), **group(_MACHINE, "machine")},
+    globals(), __all__, kept=lambda name: name not in _MACHINE)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -47,6 +48,14 @@ def check_number(value: object, name: str, *, positive: bool = False,
     the least magnitude other than zero, for a measured amplitude a method squares)."""
     return as_float(value, name, positive=positive, nonnegative=nonnegative, limit=math.inf,
                     smallest=smallest, error=BalanceError)
+
+
+def within(where: str, func: Any, *args: Any, **kwargs: Any) -> Any:
+    """Call ``func``; a :class:`BalanceError` gets the scene section's name in front."""
+    try:
+        return func(*args, **kwargs)
+    except BalanceError as exc:
+        raise BalanceError(f"{where}: {exc}") from None
 
 
 def coincide(a: float, b: float) -> bool:

@@ -7,12 +7,18 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import sys
 import warnings
-from typing import NoReturn
 
 from . import scene_path
+from .common.cli import (
+    MEMORY_HELP,
+    MEMORY_LINE,
+    OneLineParser,
+    dpi_argument,
+    memory_argument,
+    print_warning,
+)
 from .model.errors import WorkbenchError
 
 
@@ -24,10 +30,10 @@ def _cmd_solve(args) -> int:
 
 
 def _solve(args) -> int:
-    from .output import summary_with_units
-    from .solver.pipeline import solve
+    from .results import solve
+    from .results.output import summary_with_units
     if args.out and args.format == "parquet":
-        from .output import parquet_available
+        from .results.output import parquet_available
         parquet_available()
     sol = solve(scene_path(args.scene))
     summary = summary_with_units(sol.summary(), sol.scene.units)
@@ -44,27 +50,6 @@ def _solve(args) -> int:
     if args.json or not args.out:
         print(json.dumps(summary, indent=2))
     return 0
-
-
-class OneLineParser(argparse.ArgumentParser):
-    """An argument parser whose every mistake is one line ``error: ...`` on stderr and
-    exit code 2, without argparse's usage lines (the parser class of both CLIs and of
-    all their subcommands)."""
-
-    def error(self, message: str) -> NoReturn:
-        print(f"error: {' '.join(message.split())} (see {self.prog} --help)", file=sys.stderr)
-        raise SystemExit(2)
-
-
-def dpi_argument(text: str) -> float:
-    """A --dpi value: a number from 50 to 600 (the argparse type of both CLIs)."""
-    try:
-        v = float(text)
-    except ValueError:
-        v = float("nan")
-    if not 50.0 <= v <= 600.0:
-        raise argparse.ArgumentTypeError(f"{text!r}: give a number from 50 to 600")
-    return v
 
 
 def _cmd_demo(args) -> int:
@@ -105,7 +90,7 @@ CAM_FILES = ("motion.csv", "geometry.csv", "forces.csv", "summary.json")
 def _cmd_cam(args) -> int:
     from .cams import solve_cam
     from .model.outputs import failure_noted, staged_folder
-    from .output import summary_with_units, write_summary
+    from .results.output import summary_with_units, write_summary
     with failure_noted(args.out, CAM_FILES, "cam run"):
         res = solve_cam(scene_path(args.scene))
         summary = summary_with_units(res.summary, res.scene.units)
@@ -121,11 +106,11 @@ def _cmd_cam(args) -> int:
 
 def _cmd_bench(args) -> int:
     if args.tables:
-        from .bench_tables import run_table_bench
+        from .bench.tables import run_table_bench
         run_table_bench(quick=args.quick, repeat=args.repeat)
         return 0
-    from .bench import run_bench
-    from .bench_speed import run_speed
+    from .bench.accuracy import run_bench
+    from .bench.speed import run_speed
     run_bench(quick=args.quick, reference=args.reference)
     run_speed(quick=args.quick, reference=args.reference)
     return 0
@@ -142,13 +127,9 @@ A table of more than 1e6 rows is announced on stderr with its size and time.
 --format parquet writes about 3x less and keeps the dtypes."""
 
 
-MEMORY_HELP = ("memory budget of the run, e.g. 2G or 1500M (default: 60%% of the memory "
-               "available, or WORKBENCH_MEMORY); a run estimated above it is refused")
-
-
 # the commands of this module: their parser is built without the teaching package's
 # (which loads pandas and matplotlib), so that ``solve`` starts quickly
-CORE_COMMANDS = ("solve", "demo", "structure", "bench", "motion", "cam")
+CORE_COMMANDS = ("solve", "demo", "structure", "bench", "motion", "cam", "design")
 
 
 def build_parser(extras: bool = True) -> argparse.ArgumentParser:
@@ -183,7 +164,8 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
     t.set_defaults(func=_cmd_structure)
     b = sub.add_parser("bench", help="positions per second and error against closed forms")
     b.add_argument("--quick", action="store_true", help="small sizes only")
-    b.add_argument("--reference", help="path of reference_fourbar.py to time side by side")
+    b.add_argument("--reference", help="a baseline module to time side by side "
+                   "(default: the bundled kinetostatics/bench/reference.py)")
     b.add_argument("--tables", action="store_true", help="time the result tables and the "
                    "CSV writer (four-bar at 1e4, 1e5, 1e6 positions) with peak memory")
     b.add_argument("--repeat", type=int, default=3, help="runs per size for --tables "
@@ -200,6 +182,8 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
     c.add_argument("--out", help="folder for motion.csv, geometry.csv, forces.csv, summary.json")
     c.add_argument("--memory", type=memory_argument, metavar="SIZE", help=MEMORY_HELP)
     c.set_defaults(func=_cmd_cam)
+    from .design.cli import add_command as add_design_command
+    add_design_command(sub)
     if extras:
         _extra_commands(sub)
         from .teaching.cli import add_commands as add_exercise_commands
@@ -216,11 +200,6 @@ def _extra_commands(sub) -> None:
     add_commands(sub)
 
 
-def _showwarning(message, category, filename, lineno, file=None, line=None) -> None:
-    """Python warnings (unit slips, negative concentrated masses, ...) as one line each."""
-    print(f"warning: {' '.join(str(message).split())}", file=sys.stderr)
-
-
 def main(argv: list[str] | None = None) -> int:
     words = sys.argv[1:] if argv is None else list(argv)
     parser = build_parser(extras=not (words and words[0] in CORE_COMMANDS))
@@ -228,7 +207,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("default")
-            warnings.showwarning = _showwarning
+            warnings.showwarning = print_warning
             return args.func(args)
     except WorkbenchError as exc:
         print(f"error: {exc}", file=sys.stderr)
@@ -240,20 +219,3 @@ def main(argv: list[str] | None = None) -> int:
         print(f"error: {MEMORY_LINE}", file=sys.stderr)
         return 2
 
-
-# a run that ran out of memory although its estimate was within the budget (another
-# process took memory meanwhile, or an estimate fell short): one line, never a traceback
-MEMORY_LINE = ("the run ran out of memory; give fewer positions (count), or a smaller "
-               "budget (--memory, WORKBENCH_MEMORY) so that it is refused before it starts "
-               "(docs/limits.md)")
-
-
-def memory_argument(text: str) -> str:
-    """A --memory value: a size (``2G``, ``1500M``); set as the run's budget."""
-    from .model.memory import ENV, parse_size
-    try:
-        parse_size(text, "--memory")
-    except WorkbenchError as exc:
-        raise argparse.ArgumentTypeError(str(exc).removeprefix("--memory = ")) from None
-    os.environ[ENV] = text
-    return text

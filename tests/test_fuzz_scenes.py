@@ -84,7 +84,7 @@ def mutated(draw, raw: dict) -> dict:
         if kind == "delete":
             del parent[key]
         elif kind == "type":
-            parent[key] = draw(st.sampled_from(ODD))
+            parent[key] = copy.deepcopy(draw(st.sampled_from(ODD)))
         elif kind == "number":
             base = value if isinstance(value, int | float) and not isinstance(value, bool) \
                 else 1.0

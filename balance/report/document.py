@@ -25,11 +25,14 @@ from typing import Any
 
 import numpy as np
 
+from kinetostatics.common.jsontext import json_default
 from kinetostatics.model.outputs import atomic_file
+from kinetostatics.plot.notation import reading
+from kinetostatics.plot.place import settle
 
 from ..errors import BalanceError
 from .pdf import write_pdf
-from .text import result_warnings, summary_text, unit_text
+from .text import noise_lines, result_warnings, summary_text, unit_text
 
 __all__ = ["influence_figure", "iso_figure", "json_default", "report_figures", "report_scene",
            "write_report"]
@@ -142,7 +145,8 @@ def iso_figure(iso: dict[str, Any]):
                    c=["tab:green" if o else "tab:red" for o in ok], label="residual")
     ax.set_xticks(x, names)
     ax.set_ylabel(f"unbalance ({iso['unbalance_unit']})")
-    ax.set_title(f"ISO 21940-11, G {iso['grade']:g}: U_per = {iso['U_per']:.4g} "
+    ax.set_title(f"ISO 21940-11, G {iso['grade']:g}: $U_{{\\mathrm{{per}}}}$ = "
+                 f"{reading(iso['U_per'])} "
                  f"{iso['unbalance_unit']}", fontsize=10)
     ax.legend(fontsize=10)
     ax.grid(True, axis="y", color="0.9")
@@ -183,6 +187,8 @@ def report_figures(results: dict[str, Any], out: dict[str, Any]) -> list[tuple[s
     if "iso" in out:
         figs.append(("ISO 21940-11: tolerances (bars) and residuals (dots)",
                      iso_figure(out["iso"])))
+    for _caption, fig in figs:
+        settle(fig)             # labels clear of the vectors, on the final layout
     return figs
 
 
@@ -234,7 +240,7 @@ def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
     source = ""
     if scene is not None and Path(str(scene)).is_file():
         source = Path(str(scene)).read_text(encoding="utf-8")
-    lines = _textsummary_text(results, out)
+    lines = _textsummary_text(results, out) + noise_lines(results, out)
     warns = [f"{w}: {m}" for w, m in result_warnings(out)]
     figs = report_figures(results, out)
     try:
@@ -307,14 +313,3 @@ def _iso_line(out: dict[str, Any]) -> str | None:
         return None
     return "ISO 21940-11 check: " + ("the residual unbalance is within tolerance"
                                      if out["iso"]["check"]["ok"] else "NOT within tolerance")
-
-
-def json_default(x: Any) -> Any:
-    """numpy scalars and arrays (e.g. from :mod:`balance.mechanism`) as plain JSON values:
-    the ``default`` of ``json.dumps`` for a result dict (the report's JSON section and
-    ``python -m balance solve --json``)."""
-    if isinstance(x, np.generic):
-        return x.item()
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    raise TypeError(f"{type(x).__name__} is not JSON serialisable")

@@ -44,12 +44,13 @@ def _tag(sol: Solution, pos: float) -> str:
 def cli_figures(sol: Solution, positions: list[float] | None = None) -> dict[str, Figure]:
     """Every figure of ``solve --plot``, by file stem.
 
-    ``overview``, ``driver`` (Me or Fe over the cycle), ``polar_<joint>`` (the polar
-    diagram of each joint's reaction, numbered positions along it), and at each
-    position: ``mechanism_<pos>`` (with the loads and the reactions),
-    ``velocity_plan_<pos>``, ``acceleration_plan_<pos>``,
-    ``instant_centres_<pos>``, ``free_body_<pos>_dyad<k>`` (the free-body diagram beside
-    the force polygon; k = 0: the driver).
+    ``overview`` (its drawing at the first position), ``driver`` (Me or Fe over the
+    cycle), ``polar_<joint>`` (the polar diagram of each joint's reaction, numbered
+    positions along it), and at each position: ``mechanism_<pos>`` (with the loads and
+    the reactions), ``velocity_plan_<pos>``, ``acceleration_plan_<pos>``,
+    ``instant_centres_<pos>``, ``free_body_<pos>_driver`` and ``free_body_<pos>_dyad<k>``
+    (the free-body diagram beside the force polygon; dyads numbered from 1, as
+    ``structure`` and the summary number them).
 
     Parameters
     ----------
@@ -67,7 +68,8 @@ def cli_figures(sol: Solution, positions: list[float] | None = None) -> dict[str
         if not lo - 1e-9 <= p <= hi + 1e-9:
             raise WorkbenchError(f"--plot-at {p:g}: outside the sweep [{lo:g}, {hi:g}] "
                                  f"{position_unit(sol)}")
-    figs = {"overview": overview(sol), "driver": plot_driver(sol).figure}
+    figs = {"overview": overview(sol, positions[0] if positions else None),
+            "driver": plot_driver(sol).figure}
     for j in sol.scene.joints:
         figs[f"polar_{j}"] = plot_polar(sol, j).figure
     for p in positions:
@@ -77,7 +79,8 @@ def cli_figures(sol: Solution, positions: list[float] | None = None) -> dict[str
         figs[f"acceleration_plan_{t}"] = acceleration_plan(sol, p).figure
         figs[f"instant_centres_{t}"] = plot_instant_centres(sol, p).figure
         for d in range(len(sol.kin.dyads) + 1):
-            figs[f"free_body_{t}_dyad{d}"] = dyad_free_body(sol, d, p)
+            figs[f"free_body_{t}_" + (f"dyad{d}" if d else "driver")] = \
+                dyad_free_body(sol, d, p)
     for fig in figs.values():
         settle(fig)
     return figs
@@ -133,7 +136,7 @@ def run_demo(args) -> int:
     import matplotlib
     matplotlib.use("Agg")
     from ..model.examples import scene_path
-    from ..solver.pipeline import solve
+    from ..results import solve
     path = scene_path(args.scene or args.example)
     _refuse_cam_scene(path)
     sol = solve(path)
@@ -141,9 +144,10 @@ def run_demo(args) -> int:
     if out.exists() and not out.is_dir():
         raise WorkbenchError(f"--out {out}: is a file, not a folder")
     # the tables and the pictures, one run: all in place, or none
+    at = _default_positions(sol)
     with staged_folder(out, Solution.OUTPUT_KIND + PICTURES) as stage:
         written = sol.to_csv(stage.path)
-        written += write_pictures(sol, stage.path, dpi=getattr(args, "dpi", 150))
+        written += write_pictures(sol, stage.path, at, dpi=getattr(args, "dpi", 150))
     written = [out / p.name for p in written]
     s = sol.summary()
     q = sol.driver_quantity
@@ -164,5 +168,8 @@ def run_demo(args) -> int:
         print(f"  transmission angle min(tau, 180 - tau) = {s['transmission_angle_min']:.4g} deg "
               f"at {s['transmission_angle_min_position']:g} {pu} "
               f"(dyad {s['transmission_angle_min_dyad']})")
+    if at:
+        print(f"  pictures at {'φ' if pu == 'deg' else 's'} = {at[0]:g} {pu}, where "
+              f"|{q}| is largest (the overview's drawing too)")
     print("wrote: " + ", ".join(str(p) for p in written))
     return 0

@@ -19,6 +19,7 @@ import json
 import math
 from pathlib import Path
 
+from ..common.jsontext import plain
 from ..model.outputs import atomic_file
 
 __all__ = ["add_commands"]
@@ -33,6 +34,7 @@ def _error(msg: str) -> Exception:
 
 def add_commands(sub) -> None:
     """Add the ``crosscheck`` subcommand to an argparse subparsers object."""
+    from ..common.cli import dpi_argument  # the --dpi of every command that draws
     c = sub.add_parser(
         "crosscheck", help="simulate a scene in pymunk and compare with kinetostatics",
         description="Simulate a mechanism scene in pymunk at its driver's constant speed "
@@ -64,6 +66,8 @@ def add_commands(sub) -> None:
     c.add_argument("--json", action="store_true", help="print one JSON object")
     c.add_argument("--rows", metavar="CSV", help="write the per-position comparison as CSV")
     c.add_argument("--plot", metavar="PNG", help="write the comparison (or study) picture")
+    c.add_argument("--dpi", type=dpi_argument, default=150,
+                   help="dots per inch of the --plot picture (default 150)")
     c.add_argument("--study", action="store_true",
                    help="sweep dt and iterations: wall time per revolution against error")
     c.add_argument("--study-steps", metavar="LIST",
@@ -126,9 +130,9 @@ def _cmd_crosscheck(args) -> int:
                    samples_per_revolution=args.samples, repeats=args.repeats, fast=fast,
                    executor="serial" if args.serial else None, ballast=not args.no_ballast)
         if args.plot:
-            _save(_plot_study(st), args.plot)
+            _save(lambda: _plot_study(st), args.plot, args.dpi)
         if args.json:
-            print(json.dumps(_clean(st.summary()), indent=2))
+            print(json.dumps(plain(st.summary(), finite=True), indent=2))
             return 0
         print(st.formatted().to_string(index=False))
         print(f"wall time: the best of {st.repeats} run(s) per setting"
@@ -151,9 +155,9 @@ def _cmd_crosscheck(args) -> int:
             cc.wide().to_csv(tmp, index=False, float_format="%.17g")
     if args.plot:
         from .plots import plot_comparison
-        _save(plot_comparison(cc), args.plot)
+        _save(lambda: plot_comparison(cc), args.plot, args.dpi)
     if args.json:
-        print(json.dumps(_clean(cc.summary()), indent=2))
+        print(json.dumps(plain(cc.summary(), finite=True), indent=2))
         return 0
     s = cc.settings
     per = s["seconds_per_revolution"] if s["seconds_per_revolution"] is not None \
@@ -175,22 +179,14 @@ def _plot_study(st):
     return plot_study(st)
 
 
-def _save(fig, path: str) -> None:
+def _save(draw, path: str, dpi: float = 150) -> None:
+    """Draw the picture in the lecture style (150 dpi or ``--dpi``, text >= 10 pt) and
+    write it."""
     import matplotlib
     matplotlib.use("Agg")
-    with atomic_file(path) as tmp:
-        fig.savefig(tmp, dpi=110, format=Path(path).suffix.lstrip(".").lower() or None)
+    from ..plot.style import lecture_style
+    with lecture_style(dpi):
+        fig = draw()
+        with atomic_file(path) as tmp:
+            fig.savefig(tmp, dpi=dpi, format=Path(path).suffix.lstrip(".").lower() or None)
 
-
-def _clean(obj):
-    """JSON-safe: numpy scalars to Python, non-finite floats to None."""
-    import numpy as np
-    if isinstance(obj, dict):
-        return {str(k): _clean(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_clean(v) for v in obj]
-    if isinstance(obj, np.generic):
-        obj = obj.item()
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    return obj

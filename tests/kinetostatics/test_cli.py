@@ -157,7 +157,8 @@ def test_solve_parquet_and_help(tmp_path):
 def test_solve_warns_on_long_tables(tmp_path, monkeypatch, capsys):
     """A table over the warning's row count is announced on stderr with its size and
     time (the threshold lowered here to keep the run small)."""
-    from kinetostatics import cli, output
+    from kinetostatics import cli
+    from kinetostatics.results import output
     monkeypatch.setattr(output, "WARN_ROWS", 1000)
     rc = cli.main(["solve", str(OWN_CASES / "four_bar.toml"), "--out", str(tmp_path)])
     err = capsys.readouterr().err

@@ -8,7 +8,7 @@ import pandas as pd
 import pytest
 
 import kinetostatics as ks
-from kinetostatics import csvtext, output
+from kinetostatics.results import csvtext, output
 from tests.helpers import OWN_CASES
 
 CONTRACT = {
@@ -161,7 +161,7 @@ def test_table_benchmark_reports_its_fields(tmp_path, monkeypatch):
     """``bench --tables`` measures (its numbers are machine time and no test judges
     them): one in-process run reports every field, positive and finite, and Parquet
     unmeasured (NaN) only where pyarrow is missing, with any other error raised."""
-    from kinetostatics.bench_tables import measure_tables
+    from kinetostatics.bench.tables import measure_tables
     row = measure_tables(2_000, str(tmp_path))
     times = [k for k in row if k.endswith(("_s", "_MB", "_per_s", "_over_solve"))]
     assert {"solve_s", "long_tables_s", "long_tables_over_solve", "csv_s", "csv_MB",
@@ -217,7 +217,7 @@ def test_driver_table_either_way_is_the_same_and_keeps_writes_to_itself(monkeypa
     API), of a long one columns shared with the solve and the long tables: the same
     table either way (values, dtypes, labels, index, one block per column), and a write
     to it changes neither the solution, nor the long tables, nor a second look at it."""
-    from kinetostatics import longtable
+    from kinetostatics.results import longtable
     expected = ks.solve(OWN_CASES / f"{case}.toml").driver.copy(deep=True)
     monkeypatch.setattr(longtable, "SHARE_ROWS", share_rows)
     sol = ks.solve(OWN_CASES / f"{case}.toml")

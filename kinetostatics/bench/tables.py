@@ -1,6 +1,6 @@
 """What the result tables cost: ``python -m kinetostatics bench --tables``.
 
-For the benchmark four-bar (:func:`kinetostatics.bench.fourbar_scene`: 4 joints,
+For the benchmark four-bar (:func:`kinetostatics.bench.accuracy.fourbar_scene`: 4 joints,
 9 points and cogs, 3 bodies) at 1e4, 1e5 and 1e6 positions, each run in a fresh
 process (so that its peak memory is its own):
 
@@ -17,7 +17,7 @@ process (so that its peak memory is its own):
   DIR`` on the bundled ``four_bar`` with that many positions (every table and
   summary.json): wall time, CPU time (user + system) and peak memory;
 * ``format_Mvalues_per_s, python_format_Mvalues_per_s``: the vectorised float formatter
-  (:func:`kinetostatics.csvtext.format_floats`, in the writer's chunks) against Python's
+  (:func:`kinetostatics.results.csvtext.format_floats`, in the writer's chunks) against Python's
   own ``format(v, ".17g")`` value by value, in CPU time, on ``positions`` random values
   (measured: about 10 M values/s against 4-5 M/s, one core of a loaded machine).
 
@@ -53,10 +53,10 @@ LONG = ("reactions", "kinematics", "bodies")
 
 def measure_tables(n: int, out: str) -> dict:
     """One run in this process: solve, build the four contract tables, write them."""
-    from .bench import fourbar_scene
-    from .model.errors import WorkbenchError
-    from .output import parquet_available, write_csv, write_parquet
-    from .solver.pipeline import solve
+    from ..model.errors import WorkbenchError
+    from ..results import solve
+    from ..results.output import parquet_available, write_csv, write_parquet
+    from .accuracy import fourbar_scene
     row: dict = {"positions": n}
     t = time.perf_counter()
     sol = solve(fourbar_scene(n))
@@ -94,8 +94,8 @@ def measure_formatter(n: int) -> dict:
     """Values per second (millions, CPU time) of the vectorised float formatter, in the
     writer's chunks, and of Python's ``format(v, ".17g")`` value by value, on ``n``
     standard normal values; each the best of three."""
-    from .csvtext import format_floats
-    from .output import CHUNK
+    from ..results.csvtext import format_floats
+    from ..results.output import CHUNK
     x = np.random.default_rng(3).standard_normal(n)
 
     def best(f) -> float:
@@ -113,7 +113,7 @@ def measure_formatter(n: int) -> dict:
 
 
 def _fresh(n: int, out: str) -> dict:
-    code = ("import json, sys; from kinetostatics.bench_tables import measure_tables; "
+    code = ("import json, sys; from kinetostatics.bench.tables import measure_tables; "
             f"print(json.dumps(measure_tables({n}, {out!r})))")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                        check=True)
@@ -122,7 +122,7 @@ def _fresh(n: int, out: str) -> dict:
 
 def measure_cli(n: int, folder: str) -> dict:
     """``solve --out`` on the bundled four_bar with ``n`` positions, in a fresh process."""
-    from .model.examples import example
+    from ..model.examples import example
     text = Path(example("four_bar")).read_text()
     text, k = re.subn(r"(?m)^count\s*=\s*\d+", f"count = {n}", text)
     if k != 1:

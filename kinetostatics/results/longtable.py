@@ -5,7 +5,7 @@ A :class:`LongTable` knows its blocks' names and how to compute any chunk of pos
 of a block from the solver's arrays. The same definition gives the pandas table
 (:meth:`LongTable.frame`: every column allocated once and filled in place, the name
 columns categorical) and the CSV file written chunk by chunk without the table ever
-being held (:func:`kinetostatics.output.write_long_csv`), so both give the same values.
+being held (:func:`kinetostatics.results.output.write_long_csv`), so both give the same values.
 
 Memory (at 1e6 positions a long table holds hundreds of MB): columns several tables
 have in common are held once (:func:`shared`: the ``position`` column of every long
@@ -56,7 +56,7 @@ def categorical(names: list[str], n: int) -> pd.Categorical:
 
 class Labels:
     """A text column as its distinct texts and a code per row: what
-    :func:`kinetostatics.csvtext.format_column` formats fastest (each text once, as a
+    :func:`kinetostatics.results.csvtext.format_column` formats fastest (each text once, as a
     categorical), without pandas; ``objects()`` gives the column as an array of its
     texts (as a DataFrame takes it)."""
 

@@ -1,6 +1,6 @@
 """Writing result tables: CSV with 17 significant digits, or Parquet; size estimates.
 
-CSV text comes from :mod:`kinetostatics.csvtext` (numpy, whole columns at a time):
+CSV text comes from :mod:`kinetostatics.results.csvtext` (numpy, whole columns at a time):
 the same text as pandas' ``to_csv(index=False, float_format="%.17g")``, written in
 chunks of rows by two threads when a core is free (numpy releases the interpreter lock
 while it works).
@@ -21,10 +21,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..model.errors import WorkbenchError
+from ..model.units import BASE, Units
 from . import csvtext
 from .longtable import LongTable
-from .model.errors import WorkbenchError
-from .model.units import BASE, Units
 
 if TYPE_CHECKING:
     import pandas as pd

@@ -1,0 +1,66 @@
+"""What both command lines share: every user mistake is one line ``error: ...`` on
+stderr with exit code 2, every warning one line ``warning: ...``."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from typing import NoReturn
+
+
+def one_line(message: object) -> str:
+    """``message`` as text on one line (its runs of white space, new lines included, one
+    space each)."""
+    return " ".join(str(message).split())
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """An argument parser whose every mistake is one line ``error: ...`` on stderr and
+    exit code 2, without argparse's usage lines (the parser class of both CLIs and of
+    all their subcommands)."""
+
+    def error(self, message: str) -> NoReturn:
+        print(f"error: {one_line(message)} (see {self.prog} --help)", file=sys.stderr)
+        raise SystemExit(2)
+
+
+def dpi_argument(text: str) -> float:
+    """A --dpi value: a number from 50 to 600 (the argparse type of both CLIs)."""
+    try:
+        v = float(text)
+    except ValueError:
+        v = float("nan")
+    if not 50.0 <= v <= 600.0:
+        raise argparse.ArgumentTypeError(f"{text!r}: give a number from 50 to 600")
+    return v
+
+
+def print_warning(message, category=None, filename=None, lineno=None, file=None,
+                  line=None) -> None:
+    """A Python warning (a unit slip, a negative concentrated mass, ...) as one line
+    ``warning: ...`` on stderr; the signature of :func:`warnings.showwarning`."""
+    print(f"warning: {one_line(message)}", file=sys.stderr)
+
+
+MEMORY_HELP = ("memory budget of the run, e.g. 2G or 1500M (default: 60%% of the memory "
+               "available, or WORKBENCH_MEMORY); a run estimated above it is refused")
+
+
+# a run that ran out of memory although its estimate was within the budget (another
+# process took memory meanwhile, or an estimate fell short): one line, never a traceback
+MEMORY_LINE = ("the run ran out of memory; give fewer positions (count), or a smaller "
+               "budget (--memory, WORKBENCH_MEMORY) so that it is refused before it starts "
+               "(docs/limits.md)")
+
+
+def memory_argument(text: str) -> str:
+    """A --memory value: a size (``2G``, ``1500M``); set as the run's budget."""
+    from ..model.errors import WorkbenchError
+    from ..model.memory import ENV, parse_size
+    try:
+        parse_size(text, "--memory")
+    except WorkbenchError as exc:
+        raise argparse.ArgumentTypeError(str(exc).removeprefix("--memory = ")) from None
+    os.environ[ENV] = text
+    return text
