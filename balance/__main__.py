@@ -14,7 +14,14 @@ import sys
 import warnings
 from typing import Any
 
-from kinetostatics.common.cli import OneLineParser, dpi_argument, one_line
+from kinetostatics.common.cli import (
+    MEMORY_HELP,
+    MEMORY_LINE,
+    OneLineParser,
+    dpi_argument,
+    memory_argument,
+    one_line,
+)
 
 from .api import example_path, examples, results_to_dict, solve_results
 from .errors import WorkbenchError
@@ -35,6 +42,7 @@ def _parser() -> argparse.ArgumentParser:
                    help="write a balancing report: FILE.html (pictures embedded) or FILE.pdf")
     s.add_argument("--dpi", type=dpi_argument, default=150,
                    help="dots per inch of the report's pictures (default 150)")
+    s.add_argument("--memory", type=memory_argument, metavar="SIZE", help=MEMORY_HELP)
     sub.add_parser("examples", help="list the bundled example scenes")
     return p
 
@@ -62,6 +70,9 @@ def main(argv: list[str] | None = None) -> int:
             write_report(args.report, results, out, SCENES.resolve(args.scene), dpi=args.dpi)
     except WorkbenchError as exc:
         print(f"error: {one_line(exc)}", file=sys.stderr)
+        return 2
+    except MemoryError:
+        print(f"error: {MEMORY_LINE}", file=sys.stderr)
         return 2
     except Exception as exc:  # a bug, still one line (the contract: never a traceback)
         print(f"error: internal error, please report: {type(exc).__name__}: {one_line(exc)}",

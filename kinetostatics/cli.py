@@ -11,7 +11,14 @@ import sys
 import warnings
 
 from . import scene_path
-from .common.cli import OneLineParser, dpi_argument, print_warning
+from .common.cli import (
+    MEMORY_HELP,
+    MEMORY_LINE,
+    OneLineParser,
+    dpi_argument,
+    memory_argument,
+    print_warning,
+)
 from .model.errors import WorkbenchError
 
 
@@ -183,6 +190,7 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
                    help="driver positions (deg, or m) of those pictures (default: max |Me|)")
     s.add_argument("--dpi", type=dpi_argument, default=150, help="dots per inch of the pictures "
                    "(default 150, the lecture-room size; 200 or more for a large room)")
+    s.add_argument("--memory", type=memory_argument, metavar="SIZE", help=MEMORY_HELP)
     s.set_defaults(func=_cmd_solve)
     d = sub.add_parser("demo", help="solve a scene; write its tables and pictures")
     d.add_argument("scene", nargs="?", help="bundled scene name or scene file")
@@ -207,10 +215,12 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
     m.add_argument("scene")
     m.add_argument("--json", action="store_true", help="print summary and motion table as JSON")
     m.add_argument("--out", help="CSV file for the motion table")
+    m.add_argument("--memory", type=memory_argument, metavar="SIZE", help=MEMORY_HELP)
     m.set_defaults(func=_cmd_motion)
     c = sub.add_parser("cam", help="solve a [cam] scene (docs/cam-scenes.md)")
     c.add_argument("scene")
     c.add_argument("--out", help="folder for motion.csv, geometry.csv, forces.csv, summary.json")
+    c.add_argument("--memory", type=memory_argument, metavar="SIZE", help=MEMORY_HELP)
     c.set_defaults(func=_cmd_cam)
     from .design.cli import add_command as add_design_command
     add_design_command(sub)
@@ -245,3 +255,7 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
+    except MemoryError:
+        print(f"error: {MEMORY_LINE}", file=sys.stderr)
+        return 2
+

@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from ..model.memory import check_memory
 from ..model.slips import emit, read_checks
 from ..model.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source, suggest
 from ..model.units import Units
@@ -285,6 +286,19 @@ class CamResults:
     summary: dict[str, Any]
 
 
+# peak bytes per cam angle: measured 670-690 B (/usr/bin/time -v, both bundled cams at
+# 1e6 angles, with and without --out), and the interpreter with numpy and pandas
+CAM_ROW_BYTES = 750
+CAM_BASE = 80e6
+
+
+def check_cam_memory(count: int) -> None:
+    """Refuse, in one line, a cam whose estimated peak memory is over the budget
+    (:func:`kinetostatics.model.memory.check_memory`)."""
+    check_memory(CAM_BASE + CAM_ROW_BYTES * count, f"the cam at {count:,} angles",
+                 "use fewer angles (cam.count)")
+
+
 def solve_cam(source: Any) -> CamResults:
     """Solve a ``[cam]`` scene: follower motion, transmission angle, profile, forces, torque.
 
@@ -299,6 +313,7 @@ def solve_cam(source: Any) -> CamResults:
         ``summary`` (a JSON-ready dict); columns and keys in ``docs/cam-scenes.md``.
     """
     sc = source if isinstance(source, CamScene) else load_cam_scene(source)
+    check_cam_memory(sc.count)
     law, fol, w, ld = sc.law, sc.follower, sc.speed, sc.loads
     table = cam_table(law, fol, sc.count, w, sc.rotation)
     phi = cam_angles(sc.count)

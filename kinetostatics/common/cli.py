@@ -4,6 +4,7 @@ stderr with exit code 2, every warning one line ``warning: ...``."""
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from typing import NoReturn
 
@@ -40,3 +41,26 @@ def print_warning(message, category=None, filename=None, lineno=None, file=None,
     """A Python warning (a unit slip, a negative concentrated mass, ...) as one line
     ``warning: ...`` on stderr; the signature of :func:`warnings.showwarning`."""
     print(f"warning: {one_line(message)}", file=sys.stderr)
+
+
+MEMORY_HELP = ("memory budget of the run, e.g. 2G or 1500M (default: 60%% of the memory "
+               "available, or WORKBENCH_MEMORY); a run estimated above it is refused")
+
+
+# a run that ran out of memory although its estimate was within the budget (another
+# process took memory meanwhile, or an estimate fell short): one line, never a traceback
+MEMORY_LINE = ("the run ran out of memory; give fewer positions (count), or a smaller "
+               "budget (--memory, WORKBENCH_MEMORY) so that it is refused before it starts "
+               "(docs/limits.md)")
+
+
+def memory_argument(text: str) -> str:
+    """A --memory value: a size (``2G``, ``1500M``); set as the run's budget."""
+    from ..model.errors import WorkbenchError
+    from ..model.memory import ENV, parse_size
+    try:
+        parse_size(text, "--memory")
+    except WorkbenchError as exc:
+        raise argparse.ArgumentTypeError(str(exc).removeprefix("--memory = ")) from None
+    os.environ[ENV] = text
+    return text

@@ -20,7 +20,9 @@ from typing import Any
 
 import numpy as np
 
+from ..model.memory import check_memory
 from ..model.scene import Scene, load_scene
+from ..solver.footprint import solve_bytes
 from .batch import run_batch
 from .comparison import CrossCheck, compare
 from .drift import drift_bound
@@ -42,6 +44,9 @@ MAX_AUTO_STEPS = 40_000
 """The automatic choice of steps per revolution stays at or below this."""
 
 MAX_STEPS = 50_000_000
+# the record of a run (the bodies' states at each sample) and the kinetostatic solve at
+# the samples it is compared with: twice a solve's estimate (solver/footprint.py)
+RECORD_FACTOR = 2.0
 """A run longer than this is refused (minutes of wall time)."""
 
 SETTLE_FRACTION = 0.01
@@ -82,6 +87,8 @@ def plan(scene: Scene, *, dt: float | None, steps_per_revolution: int | None,
         start = float(pos.min() if speed > 0 else pos.max())
         duration = span / abs(speed)
         unit = duration           # a "revolution" of a sliding driver: its sweep
+    if not math.isfinite(revolutions) or revolutions <= 0.0:
+        raise SimulationError(f"revolutions = {revolutions!r}: give a positive number")
     if revolutions < 1.0 + 1e-12 and full:
         raise SimulationError(f"revolutions = {revolutions:g}: the first revolution is left "
                               "out of the errors; give more than 1 (default 2)")
@@ -103,6 +110,10 @@ def plan(scene: Scene, *, dt: float | None, steps_per_revolution: int | None,
                               "give a larger dt or fewer revolutions")
     per_unit = unit / dt
     every = max(1, int(round(per_unit / max(1, samples_per_revolution))))
+    samples = steps // every + 1        # the peak memory known before it is spent: the
+    check_memory(RECORD_FACTOR * solve_bytes(scene, samples),   # record and its solve
+                 f"the cross-check's {samples:,} samples", "give fewer --samples per "
+                 "revolution or fewer --revolutions")
     compare_from = unit if full else SETTLE_FRACTION * duration
     return {"start": start, "dt": float(dt), "steps": steps, "every": every, "full": full,
             "unit": unit, "duration": duration, "compare_from": compare_from,

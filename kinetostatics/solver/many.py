@@ -48,6 +48,7 @@ import numpy as np
 
 from ..common.lazy import moved_names
 from ..model.errors import UnitWarning, WorkbenchError
+from ..model.memory import check_memory
 from ..model.scene import load_scene
 from . import blocks
 from .blocks import LeanSolved
@@ -55,6 +56,7 @@ from .deadpoints import dead_points_stacked, kin_measure2
 from .driver import BodyMotion
 from .fast import solve_run_compiled, stack_left_alone, wanted
 from .fast.geometry import not_covered
+from .footprint import columns, solve_bytes
 from .kinematics import Kinematics, solve_kinematics
 from .pipeline import check_distinct, solve_arrays, solve_block
 from .reactions import DriverReaction
@@ -127,6 +129,11 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
                 loaded.append((i, load_scene(src)))
             except Exception as exc:        # solve would raise it for this scene
                 out[i] = exc
+    rows = sum(sc.driver.positions.size for _, sc in loaded)
+    if loaded and rows >= 100_000:      # the peak memory known before it is spent
+        largest = max((sc for _, sc in loaded), key=lambda sc: columns(sc))
+        check_memory(solve_bytes(largest, rows), f"solving {len(loaded):,} scene(s) of "
+                     f"{rows:,} positions in all", "solve fewer scenes or positions at a time")
     groups: dict[Any, list] = {}
     for (i, sc), plain in zip(loaded, _increasing([sc for _, sc in loaded]), strict=True):
         try:

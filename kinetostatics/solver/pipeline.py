@@ -26,6 +26,7 @@ from .blocks import Kept, LeanSolved, Unblockable, blockable, blocks_of_sweep, s
 from .continuity import check_distinct, given_positions
 from .deadpoints import dead_points_between_rows, dead_points_of_sweep, measure2
 from .fast import solve_compiled
+from .footprint import check_solve
 from .friction import has_friction, solve_with_friction
 from .kinematics import solve_kinematics
 from .loads import applied_loads, inertia_loads, resultants
@@ -79,6 +80,7 @@ class Sweep:
         self.structure = analyse(sc, assemble=False)
         self.given = positions
         self.positions = sc.driver.positions if positions is None else positions
+        check_solve(sc, self.positions.size)    # the peak memory known before it is spent
         self.blocked = blockable(sc, self.positions.size)
         self.trusty = tame(sc, self.positions) and not has_friction(sc)
 
