@@ -1,0 +1,329 @@
+"""The compiled kernels of the loads and the reactions (seed 002 s. 2.1-2.3), row by row:
+the numpy path's formulas, as :mod:`~kinetostatics.solver.fast.kernels` computes the
+motion (the same conventions: rows ``lo`` to ``hi``, arrays at ``i - off``, geometry at
+``i * gs``; each kernel returns the count of rows the numpy path must judge)."""
+
+from __future__ import annotations
+
+import math
+
+from .jitbase import body, jit, nonfinite
+from .layout import (
+    AL,
+    AX,
+    AY,
+    C1X,
+    C1Y,
+    C2X,
+    C2Y,
+    D_LX,
+    D_LY,
+    DET,
+    I_SFIRST,
+    I_SX,
+    I_SY,
+    INNER_R,
+    L_I,
+    L_M0,
+    L_POINT,
+    NX,
+    NY,
+    O_WHERE,
+    O_X,
+    O_Y,
+    OM,
+    OX,
+    OY,
+    P_BX,
+    P_BY,
+    P_GROUND,
+    P_KX,
+    P_KY,
+    PARAM,
+    Q1X,
+    Q1Y,
+    Q2X,
+    Q2Y,
+    R_FX,
+    R_FY,
+    R_M,
+    R_N,
+    R_SX,
+    R_SY,
+    ROT1,
+    ROT2,
+    T_ON,
+    T_RUX,
+    T_RUY,
+    T_SX,
+    T_SY,
+    VX,
+    VY,
+    XX,
+    XY,
+    C,
+    S,
+)
+
+
+# -- loads (seed 002 s. 2.1-2.2) ----------------------------------------------------------
+@jit
+def body_loads(lo, hi, off, g, gs, npoint, m, acc):
+    """A body's load resultants [Fx, Fy, M about its origin]: forces at local points,
+    each with the inertia force -m_k a_k of a mass there (the cog's, eq. 2.1, or a
+    concentrated mass, eq. 2.8), a couple, and the inertia couple -I_G eps (eq. 2.1)."""
+    bad = 0
+    for i in range(lo, hi):
+        j, r = i - off, i * gs
+        c, s = m[C, j], m[S, j]
+        om, al = m[OM, j], m[AL, j]
+        w2 = om * om
+        fx = fy = mo = 0.0
+        for q in range(npoint):
+            b = 2 + L_POINT * q
+            lx, ly = g[b, r], g[b + 1, r]
+            rx, ry = c * lx - s * ly, s * lx + c * ly
+            mk = g[b + 4, r]
+            ax = (m[AX, j] - al * ry) - w2 * rx
+            ay = (m[AY, j] + al * rx) - w2 * ry
+            px, py = g[b + 2, r] - mk * ax, g[b + 3, r] - mk * ay
+            fx += px
+            fy += py
+            mo += rx * py - ry * px
+        acc[0, j], acc[1, j] = fx, fy
+        acc[2, j] = mo + g[L_M0, r] - g[L_I, r] * al
+        bad += nonfinite(acc[0, j], acc[1, j], acc[2, j])
+    return bad
+
+
+@jit
+def swept_loads(lo, hi, off, g, gs, nload, m, acc, undefined, stats):
+    """Loads whose rows are told by the whole sweep (the numpy path's
+    ``applied_loads``), added to a body's resultants: a ``resist`` force (kind 1) of
+    magnitude R against its point's velocity, a force (kind 2) acting ``when =
+    "resisting"`` (where its power is negative). A row stands still where the speed (the
+    power's magnitude) is at most ``thr`` (1e-9 of the mechanism's own scale): the force
+    is zero there and the row is undefined. ``stats[q]`` gathers the largest speed and the
+    smallest speed of a moving row: the caller checks that the sweep's top does not move
+    the threshold over a row."""
+    bad = 0
+    for i in range(lo, hi):
+        j, r = i - off, i * gs
+        c, s = m[C, j], m[S, j]
+        om = m[OM, j]
+        for q in range(nload):
+            b = 7 * q
+            lx, ly = g[b, r], g[b + 1, r]
+            rx, ry = c * lx - s * ly, s * lx + c * ly
+            vx, vy = m[VX, j] - om * ry, m[VY, j] + om * rx
+            thr = g[b + 6, r]
+            if g[b + 2, r] == 1.0:
+                x = math.hypot(vx, vy)
+                still = x <= thr
+                fx = 0.0 if still else -g[b + 3, r] * vx / x
+                fy = 0.0 if still else -g[b + 3, r] * vy / x
+            else:
+                fx, fy = g[b + 4, r], g[b + 5, r]
+                power = fx * vx + fy * vy
+                x = abs(power)
+                still = x <= thr
+                if still or not power < 0.0:
+                    fx = fy = 0.0
+            if x > stats[q, 0] or not x == x:
+                stats[q, 0] = x
+            if not still and x < stats[q, 1]:
+                stats[q, 1] = x
+            if still:
+                undefined[j] = True
+            acc[0, j] += fx
+            acc[1, j] += fy
+            acc[2, j] += rx * fy - ry * fx
+        bad += nonfinite(acc[0, j], acc[1, j], acc[2, j])
+    return bad
+
+
+# -- reactions (seed 002 s. 2.3) ----------------------------------------------------------
+@body
+def _add(acc, j, fx, fy, rx, ry, mm, sign):
+    """acc += sign (F, r x F + M) on a body's resultants."""
+    acc[0, j] += sign * fx
+    acc[1, j] += sign * fy
+    acc[2, j] += sign * ((rx * fy - ry * fx) + mm)
+
+
+@body
+def _generalised(rot, m, a, d, g, j, r, t):
+    """The generalised force of a dyad body's loads along its freedom: the moment about
+    its outer pivot P (rot) or the force along its outer guide u (trans)."""
+    if rot:
+        lx, ly = g[PARAM * t + P_BX, r], g[PARAM * t + P_BY, r]
+        px, py = m[C, j] * lx - m[S, j] * ly, m[S, j] * lx + m[C, j] * ly
+        return a[2, j] - (px * a[1, j] - py * a[0, j])
+    return a[0, j] * d[10 + 4 * t, j] + a[1, j] * d[11 + 4 * t, j]
+
+
+@body
+def _dyad_reactions(kind, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    """A dyad's joint reactions (seed 002 s. 2.3.1, eqs 2.16-2.43 in vector form, the
+    numpy path's ``_solve_dyad``): the inner joint's from the two bodies' equations along
+    their freedoms (a 2 x 2 system with the velocity system's columns), each outer
+    joint's from its body's remaining equations; the outer reactions load the known
+    bodies (``ak1``, ``ak2``) with opposite sign."""
+    rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
+    bad = 0
+    for i in range(lo, hi):
+        j, r = i - off, i * gs
+        sfirst = g[I_SFIRST, r] != 0.0
+        # the generalised forces: moment about the outer pivot, or force along the guide
+        q1 = _generalised(rot1, m1, a1, d, g, j, r, 0)
+        q2 = _generalised(rot2, m2, a2, d, g, j, r, 1)
+        c1x, c1y, c2x, c2y, det = d[C1X, j], d[C1Y, j], d[C2X, j], d[C2Y, j], d[DET, j]
+        xx, xy = d[XX, j], d[XY, j]
+        if inner_r:
+            # c1 . R = Q1, c2 . R = -Q2 (eqs 2.17, 2.22, 2.26): R on body 2 from body 1
+            rx = -((q1 * c2y + q2 * c1y) / det)
+            ry = (c1x * q2 + c2x * q1) / det
+            l1x, l1y, l2x, l2y = g[Q1X, r], g[Q1Y, r], g[Q2X, r], g[Q2Y, r]
+            b1x, b1y = m1[C, j] * l1x - m1[S, j] * l1y, m1[S, j] * l1x + m1[C, j] * l1y
+            b2x, b2y = m2[C, j] * l2x - m2[S, j] * l2y, m2[S, j] * l2x + m2[C, j] * l2y
+            _add(a1, j, rx, ry, b1x, b1y, 0.0, -1.0)
+            _add(a2, j, rx, ry, b2x, b2y, 0.0, 1.0)
+            rr[R_FX, j], rr[R_FY, j] = rx, ry
+        else:
+            # [n.c_i, w_i] (N, M) = -sigma_i Q_i, sigma +1 on the slider, -1 on the guide
+            nx, ny = d[NX, j], d[NY, j]
+            e1, e2 = nx * c1x + ny * c1y, nx * c2x + ny * c2y
+            w1 = 1.0 if rot1 else 0.0
+            w2 = 1.0 if rot2 else 0.0
+            s1, s2 = (1.0, -1.0) if sfirst else (-1.0, 1.0)
+            dd = e1 * w2 - w1 * e2
+            y1, y2 = -s1 * q1, -s2 * q2
+            nn = (y1 * w2 - w1 * y2) / dd
+            mm = (e1 * y2 - y1 * e2) / dd
+            fx, fy = nn * nx, nn * ny
+            ms, mg = (m1, m2) if sfirst else (m2, m1)
+            as_, ag = (a1, a2) if sfirst else (a2, a1)
+            lx, ly = g[I_SX, r], g[I_SY, r]
+            sx, sy = ms[C, j] * lx - ms[S, j] * ly, ms[S, j] * lx + ms[C, j] * ly
+            _add(as_, j, fx, fy, sx, sy, mm, 1.0)
+            _add(ag, j, fx, fy, xx - mg[OX, j], xy - mg[OY, j], mm, -1.0)
+            rr[R_FX, j], rr[R_FY, j], rr[R_N, j], rr[R_M, j] = fx, fy, nn, mm
+        for t in range(2):
+            rot = rot1 if t == 0 else rot2
+            m = m1 if t == 0 else m2
+            mk = mk1 if t == 0 else mk2
+            a = a1 if t == 0 else a2
+            ak = ak1 if t == 0 else ak2
+            base = PARAM * t
+            ground = g[base + P_GROUND, r] != 0.0
+            if rot:
+                # eqs 2.19, 2.21, 2.28: the body's force balance gives the outer reaction
+                if not ground:
+                    lx, ly = g[base + P_KX, r], g[base + P_KY, r]
+                    kx, ky = mk[C, j] * lx - mk[S, j] * ly, mk[S, j] * lx + mk[C, j] * ly
+                    _add(ak, j, a[0, j], a[1, j], kx, ky, 0.0, 1.0)
+                continue
+            # an outer prismatic joint: normal force through the slider point and a
+            # couple about it (eqs 2.24-2.25, 2.36-2.37, 2.42-2.43)
+            where = g[O_WHERE + 3 * t, r]
+            lx, ly = g[O_X + 3 * t, r], g[O_Y + 3 * t, r]
+            if where == 0.0:
+                sx, sy = lx, ly
+            else:
+                ms = m if where == 1.0 else mk
+                sx = ms[OX, j] + (ms[C, j] * lx - ms[S, j] * ly)
+                sy = ms[OY, j] + (ms[S, j] * lx + ms[C, j] * ly)
+            ux, uy = d[10 + 4 * t, j], d[11 + 4 * t, j]
+            nx, ny = -uy, ux
+            fn = -(a[0, j] * nx + a[1, j] * ny)
+            fx, fy = fn * nx, fn * ny
+            cc = -(a[2, j] - ((sx - m[OX, j]) * a[1, j] - (sy - m[OY, j]) * a[0, j]))
+            if not ground:
+                _add(ak, j, fx, fy, sx - mk[OX, j], sy - mk[OY, j], cc, -1.0)
+            b = 4 + 6 * t
+            rr[b + R_FX, j], rr[b + R_FY, j], rr[b + R_N, j] = fx, fy, fn
+            rr[b + R_M, j], rr[b + R_SX, j], rr[b + R_SY, j] = cc, sx, sy
+        bad += nonfinite(rr[R_FX, j], rr[R_FY, j], rr[R_N, j], rr[R_M, j],
+                    a1[0, j], a1[1, j], a2[0, j], a2[1, j],
+                    rr[4, j], rr[5, j], rr[7, j], rr[10, j], rr[11, j], rr[13, j])
+    return bad
+
+
+@jit
+def crank_reaction(lo, hi, off, g, gs, m, a, out):
+    """The equilibrating moment on a crank, from the moments about its ground joint
+    (seed 002 eqs 2.47-2.48); the ground reaction is the crank's resultant force."""
+    bad = 0
+    for i in range(lo, hi):
+        j, r = i - off, i * gs
+        lx, ly = g[D_LX, r], g[D_LY, r]
+        ax, ay = m[C, j] * lx - m[S, j] * ly, m[S, j] * lx + m[C, j] * ly
+        out[0, j] = -(a[2, j] - (ax * a[1, j] - ay * a[0, j]))
+        bad += nonfinite(out[0, j], a[0, j], a[1, j])
+    return bad
+
+
+@jit
+def slider_reaction(lo, hi, off, g, gs, m, a, out):
+    """The equilibrating force on a sliding driver along its line, the guide's normal
+    force and couple about the slider point (seed 002 eqs 2.49-2.51): rows Fe, N, M,
+    the slider point's x, y and the normal force's Fx, Fy."""
+    bad = 0
+    for i in range(lo, hi):
+        j, r = i - off, i * gs
+        ux, uy = g[T_RUX, r], g[T_RUY, r]
+        lx, ly = g[T_SX, r], g[T_SY, r]
+        if g[T_ON, r] != 0.0:
+            ax, ay = m[C, j] * lx - m[S, j] * ly, m[S, j] * lx + m[C, j] * ly
+            sx, sy = m[OX, j] + ax, m[OY, j] + ay
+        else:
+            sx, sy = lx, ly
+            ax, ay = sx - m[OX, j], sy - m[OY, j]
+        nx, ny = -uy, ux
+        out[0, j] = -(a[0, j] * ux + a[1, j] * uy)
+        out[1, j] = -(a[0, j] * nx + a[1, j] * ny)
+        out[2, j] = -(a[2, j] - (ax * a[1, j] - ay * a[0, j]))
+        out[3, j], out[4, j] = sx, sy
+        out[5, j], out[6, j] = out[1, j] * nx, out[1, j] * ny
+        bad += nonfinite(out[0, j], out[1, j], out[2, j])
+    return bad
+
+
+@jit
+def rrr_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(7, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def rrt_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(5, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def trr_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(6, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def trt_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(4, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def rtr_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(3, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def rtt_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(1, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def ttr_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(2, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+REACTIONS = {"RRR": rrr_reactions, "RRT": rrt_reactions, "TRR": trr_reactions,
+             "TRT": trt_reactions, "RTR": rtr_reactions, "RTT": rtt_reactions,
+             "TTR": ttr_reactions}
