@@ -72,12 +72,12 @@ if TYPE_CHECKING:
         shaking_force,
         solve_mechanism_balancing,
     )
+    from .model.scene import BalanceScene, load_scene
+    from .model.units import Units
     from .resonance.methods import ResonanceResult, four_run, parallelogram, trial_runs
     from .rotor.design import Correction, CorrectionPlane, RotorResult, Unbalance, balance_rotor
     from .rotor.static_device import StaticDeviceResult, static_device
-    from .scene import BalanceScene, load_scene
     from .uncertainty import Interval
-    from .units import Units
 
 # Every public name is imported when first asked for (PEP 562), so that ``import balance``
 # costs less than ``import numpy``: each method's module (and numpy) loads with its first use.
@@ -120,10 +120,10 @@ _LAZY = {
     "balance_rotor": "rotor.design",
     "StaticDeviceResult": "rotor.static_device",
     "static_device": "rotor.static_device",
-    "BalanceScene": "scene",
-    "load_scene": "scene",
+    "BalanceScene": "model.scene",
+    "load_scene": "model.scene",
     "Interval": "uncertainty",
-    "Units": "units",
+    "Units": "model.units",
 }
 
 __all__ = [

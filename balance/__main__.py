@@ -18,10 +18,10 @@ from kinetostatics.common.cli import OneLineParser, dpi_argument, one_line
 
 from .api import example_path, examples, results_to_dict, solve_results
 from .errors import WorkbenchError
+from .model.scene import SCENES
+from .model.units import SI
 from .report.document import json_default
 from .report.text import result_warnings, summary_text
-from .scene import SCENES
-from .units import SI
 
 
 def _parser() -> argparse.ArgumentParser:

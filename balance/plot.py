@@ -22,6 +22,11 @@ import math
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.patches import Circle
+from matplotlib.text import Annotation
+
+from kinetostatics.plot.collide import GUIDE
+from kinetostatics.plot.place import declutter
 
 from .common import polar
 from .errors import BalanceError
@@ -73,13 +78,16 @@ def _finish(ax: Axes, xlabel: str, ylabel: str, title: str) -> Axes:
     ax.set_aspect("equal", adjustable="datalim")
     ax.autoscale_view()
     ax.margins(0.12)
-    ax.axhline(0.0, color="0.85", lw=0.8, zorder=0)
-    ax.axvline(0.0, color="0.85", lw=0.8, zorder=0)
+    ax.axhline(0.0, color="0.85", lw=0.8, zorder=0, gid=GUIDE)     # guides, as grid lines
+    ax.axvline(0.0, color="0.85", lw=0.8, zorder=0, gid=GUIDE)
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.set_title(title, fontsize=10, pad=14)
     ax.grid(True, color="0.93")
     ax.ticklabel_format(style="sci", axis="both", scilimits=(-3, 4), useMathText=True)
+    # the vectors' labels placed clear of the vectors and of each other (as the
+    # mechanism pictures' labels: kinetostatics.plot.declutter; settle() at the end)
+    declutter(ax, [t for t in ax.texts if isinstance(t, Annotation) and t.get_text()])
     return ax
 
 
@@ -234,7 +242,7 @@ def plot_parallelogram(result: ResonanceResult, ax: Axes | None = None, *,
         _arrow(ax, Avec, U, f"A3{tag}", "tab:purple" if n == 0 else "0.5", ls=ls, lw=1.4,
                text_offset=0.03 * scale, frac=0.3)
         ax.plot([U.real], [U.imag], "o", color=color, ms=5, alpha=alpha)
-    _arrow(ax, 0j, Avec, "A (trial at 0 deg)", "tab:orange", text_offset=-0.05 * scale)
+    _arrow(ax, 0j, Avec, "A", "tab:orange", text_offset=-0.05 * scale)   # the trial, at 0°
     R = 1.15 * max(A1, A)
     for ang, text, filled in corr:
         q = polar(R, ang)
@@ -247,13 +255,11 @@ def plot_parallelogram(result: ResonanceResult, ax: Axes | None = None, *,
                     textcoords="offset points", color=_CORRECTION, fontsize=10,
                     ha="right" if right else "left")
         ax.update_datalim([(q.real, q.imag)])
-    t = np.linspace(0.0, 2.0 * math.pi, 181)
-    ax.plot(R * np.cos(t), R * np.sin(t), color="0.9", lw=0.8, zorder=0)
-    ax.annotate("0 deg mark", (R, 0.0), xytext=(4, 4), textcoords="offset points",
-                fontsize=10, color="0.4")
-    return _finish(ax, f"amplitude, along the 0 deg mark ({unit})",
+    # the circle of the marks: a faint guide, as a grid line (a label may cross it)
+    ax.add_patch(Circle((0.0, 0.0), R, fill=False, color="0.9", lw=0.8, zorder=0))
+    return _finish(ax, f"amplitude along the 0° mark, the trial A's ({unit})",
                    f"amplitude, normal to it ({unit})",
-                   f"Amplitude parallelogram, plane {result.plane}: phi = {result.phi:.2f} deg"
+                   f"Amplitude parallelogram, plane {result.plane}: φ = {result.phi:.2f}°"
                    + ("\nthree runs fit both: a run at a third mark decides"
                       if result.mirror_angle is not None and selected is None else ""))
 
@@ -271,12 +277,12 @@ def candidate_marks(result: ResonanceResult, selected: float | None = None
         ``selected`` is not one of the candidates.
     """
     if result.mirror_angle is None:
-        return [(result.angle, f"correction {result.angle:.1f} deg", True)]
+        return [(result.angle, f"correction {result.angle:.1f}°", True)]
     both = [result.angle, result.mirror_angle]
-    names = ("angle", "mirror_angle")      # the result's own keys
+    # the result's keys angle and mirror_angle, as a student reads them
+    names = ("candidate 1", "candidate 2 (mirror)")
     if selected is None:
-        return [(a, f"candidate {n} {a:.1f} deg", False) for a, n in zip(both, names,
-                                                                          strict=True)]
+        return [(a, f"{n}: {a:.1f}°", False) for a, n in zip(both, names, strict=True)]
 
     def gap(a):
         return abs((a - selected + 180.0) % 360.0 - 180.0)
@@ -284,8 +290,8 @@ def candidate_marks(result: ResonanceResult, selected: float | None = None
     if min(gap(a) for a in both) > 1e-6:
         raise BalanceError(f"plot_parallelogram: selected = {selected:g} deg is neither "
                            f"candidate ({both[0]:.6g} or {both[1]:.6g} deg)")
-    return [(a, f"correction = {n} {a:.1f} deg (selected)" if gap(a) <= 1e-6 else
-             f"{n} {a:.1f} deg (rejected)", gap(a) <= 1e-6)
+    return [(a, f"correction = {n}: {a:.1f}° (selected)" if gap(a) <= 1e-6 else
+             f"{n}: {a:.1f}° (rejected)", gap(a) <= 1e-6)
             for a, n in zip(both, names, strict=True)]
 
 
@@ -336,7 +342,7 @@ def plot_amplitude_circles(result: ResonanceResult, ax: Axes | None = None, *,
     ax.legend(fontsize=10, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     kind = "three-run" if result.method == "three-run" else f"{result.marks.size + 1}-run"
     return _finish(ax, f"x ({u}), 0 deg mark along +x", f"y ({u})",
-                   f"{kind} method, plane {result.plane}: circles of the measured amplitudes")
+                   f"{kind} method, plane {result.plane}:\ncircles of the measured amplitudes")
 
 
 def plot_run_comparison(three_run: ResonanceResult, runs: ResonanceResult,

@@ -15,8 +15,10 @@ concentration s. 2.2), :mod:`~kinetostatics.transmission` (gears s. 2.3.3, effic
 s. 4.3), :mod:`~kinetostatics.solver`
 (structure, kinematics, loads, friction s. 2.4, reactions, reduction s. 2.5, dead points),
 :mod:`~kinetostatics.motion` and :func:`simulate_motion` (motion under forces, ch. 4),
-:mod:`~kinetostatics.cams` (ch. 1), :mod:`~kinetostatics.teaching` (exercises for a class
-and grading), :mod:`~kinetostatics.plot` (pictures), :mod:`~kinetostatics.notebook` (the
+:mod:`~kinetostatics.cams` (ch. 1), :mod:`~kinetostatics.design` and :func:`design` (a
+search over a scene's dimensions with forces, its ``[design]`` section; pymoo),
+:mod:`~kinetostatics.teaching` (exercises for a class and grading),
+:mod:`~kinetostatics.plot` (pictures), :mod:`~kinetostatics.notebook` (the
 sheets' interactive cells). The pymunk cross-check is :mod:`kinetostatics.simulation`
 (``crosscheck``, ``study``; its names load pymunk lazily, so ``import kinetostatics`` does
 not). The scene model (reading, checking, exceptions, bundled scenes) is
@@ -38,6 +40,7 @@ from .model.errors import (
 )
 
 if TYPE_CHECKING:
+    from .design.result import design
     from .model.examples import cam_examples, example, examples, scene_path
     from .model.scene import Scene, load_scene
     from .motion.scene import simulate_motion
@@ -57,13 +60,14 @@ _LAZY = {
     "Kinematics": "solver.kinematics", "solve_kinematics": "solver.kinematics",
     "solve": "results.solving", "solve_many": "results.solving",
     "Dyad": "solver.structure", "Structure": "solver.structure", "analyse": "solver.structure",
+    "design": "design.result",
 }
 
 __all__ = [
     "AssemblyError", "Dyad", "Kinematics", "Scene", "SceneError", "SelfLockingError",
     "Solution", "Structure", "StructureError", "UnitWarning", "WorkbenchError", "analyse",
-    "cam_examples", "example", "examples", "load_scene", "scene_path", "simulate_motion",
-    "solve", "solve_kinematics", "solve_many",
+    "cam_examples", "design", "example", "examples", "load_scene", "scene_path",
+    "simulate_motion", "solve", "solve_kinematics", "solve_many",
 ]
 
 

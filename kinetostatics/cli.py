@@ -9,7 +9,6 @@ import argparse
 import json
 import sys
 import warnings
-from pathlib import Path
 
 from . import scene_path
 from .common.cli import OneLineParser, dpi_argument, print_warning
@@ -17,6 +16,13 @@ from .model.errors import WorkbenchError
 
 
 def _cmd_solve(args) -> int:
+    from .model.outputs import failure_noted
+    from .results import Solution
+    with failure_noted(args.out, Solution.OUTPUT_KIND, "solve"):
+        return _solve(args)
+
+
+def _solve(args) -> int:
     from .results import solve
     from .results.output import summary_with_units
     if args.out and args.format == "parquet":
@@ -64,23 +70,29 @@ def _cmd_motion(args) -> int:
             print(f"scene units: {res.units.describe()} (the numbers above are SI: rad/s, "
                   "s, kg m^2)")
         if args.out:
-            Path(args.out).parent.mkdir(parents=True, exist_ok=True)
-            res.motion.to_csv(args.out, index=False, float_format="%.17g")
+            from .model.outputs import atomic_file
+            with atomic_file(args.out) as tmp:
+                res.motion.to_csv(tmp, index=False, float_format="%.17g")
             print(f"wrote {args.out}")
     return 0
 
 
+CAM_FILES = ("motion.csv", "geometry.csv", "forces.csv", "summary.json")
+
+
 def _cmd_cam(args) -> int:
     from .cams import solve_cam
+    from .model.outputs import failure_noted, staged_folder
     from .results.output import summary_with_units, write_summary
-    res = solve_cam(scene_path(args.scene))
-    summary = summary_with_units(res.summary, res.scene.units)
-    if args.out:
-        out = Path(args.out)
-        out.mkdir(parents=True, exist_ok=True)
-        for name in ("motion", "geometry", "forces"):
-            getattr(res, name).to_csv(out / f"{name}.csv", index=False, float_format="%.17g")
-        write_summary(out / "summary.json", summary)
+    with failure_noted(args.out, CAM_FILES, "cam run"):
+        res = solve_cam(scene_path(args.scene))
+        summary = summary_with_units(res.summary, res.scene.units)
+        if args.out:
+            with staged_folder(args.out, CAM_FILES) as stage:
+                for name in ("motion", "geometry", "forces"):
+                    getattr(res, name).to_csv(stage.file(f"{name}.csv"), index=False,
+                                              float_format="%.17g")
+                write_summary(stage.file("summary.json"), summary)
     print(json.dumps(summary, indent=2))
     return 0
 
@@ -110,7 +122,7 @@ A table of more than 1e6 rows is announced on stderr with its size and time.
 
 # the commands of this module: their parser is built without the teaching package's
 # (which loads pandas and matplotlib), so that ``solve`` starts quickly
-CORE_COMMANDS = ("solve", "demo", "structure", "bench", "motion", "cam")
+CORE_COMMANDS = ("solve", "demo", "structure", "bench", "motion", "cam", "design")
 
 
 def build_parser(extras: bool = True) -> argparse.ArgumentParser:
@@ -160,6 +172,8 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
     c.add_argument("scene")
     c.add_argument("--out", help="folder for motion.csv, geometry.csv, forces.csv, summary.json")
     c.set_defaults(func=_cmd_cam)
+    from .design.cli import add_command as add_design_command
+    add_design_command(sub)
     if extras:
         _extra_commands(sub)
         from .teaching.cli import add_commands as add_exercise_commands

@@ -1,13 +1,17 @@
-"""The sheets' interactive cells in a real browser: JupyterLab serves sheets 02 and 13, a
-headless Chromium (the Debian package, driven by Playwright's Python package; no browser
-download) runs all their cells, and the test checks what a student sees:
+"""The sheets' interactive cells in a real browser: JupyterLab serves every sheet with a
+widget (an Explorer), a headless Chromium (the Debian package, driven by Playwright's
+Python package; no browser download) runs all their cells, and the tests check what a
+student sees:
 
-- every widget renders (no "Error displaying widget", no model-not-found message);
-- a slider moved by keyboard and one moved by drag each change the picture;
-- after rapid moves the kernel holds the newest values and the picture the same number
-  of axes as before (redrawn, never stacked).
+- on every widget sheet: every widget renders (no "Error displaying widget", no
+  model-not-found message), every slider moved by keyboard changes the picture, and
+  after each move the sheet shows exactly one picture per explorer, with no JavaScript
+  error on the page;
+- on sheets 02 and 13, in depth: a slider moved by drag changes the picture, and after
+  rapid moves the kernel holds the newest values and the picture the same number of
+  axes as before (redrawn, never stacked).
 
-One JupyterLab server serves both sheets (copied into a temporary folder, so the
+One JupyterLab server serves the sheets (copied into a temporary folder, so the
 checkout's sheets stay without outputs). In CI (``CI=true``) the test must run: a
 missing Chromium or Playwright fails it; elsewhere it is skipped with one line saying
 what to install.
@@ -33,6 +37,9 @@ CHROMIUM = Path(os.environ.get("KINETOSTATICS_CHROMIUM", "/usr/bin/chromium"))
 FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
          "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 SHEETS = ["02_four_bar_kinetostatics.ipynb", "13_motion_flywheel.ipynb"]
+# every sheet with an interactive cell (an Explorer's widget)
+WIDGET_SHEETS = sorted(p.name for p in (ROOT / "notebooks").glob("*.ipynb")
+                       if "Explorer(" in p.read_text(encoding="utf-8"))
 RUN_ALL = 600_000      # ms: stops a hung kernel only (a full run took 20-65 s, load 1-17)
 RUN_TRY = 240_000      # ms: one "Run All" that has not finished by then is given again once
                        # (under load a Run All given as the kernel connected was seen lost)
@@ -69,7 +76,7 @@ def lab(tmp_path_factory):
     """One JupyterLab server over a copy of the two sheets: (base url, token)."""
     _requirements()
     home = tmp_path_factory.mktemp("lab")
-    for name in SHEETS:
+    for name in WIDGET_SHEETS:
         shutil.copy(ROOT / "notebooks" / name, home / name)
     port, token = _free_port(), "kinetostatics-browser-test"
     env = {k: v for k, v in os.environ.items() if k != "MPLBACKEND"}
@@ -201,6 +208,62 @@ def _state(page) -> tuple[int, dict]:
     return int(m.group(1)), ast.literal_eval(m.group(2))    # a dict of floats we printed
 
 
+def _page_errors(console: list[str]) -> list[str]:
+    """JavaScript errors on the page (uncaught exceptions, widget errors)."""
+    return [c for c in console if c.startswith("pageerror") or WIDGET_ERRORS.search(c)
+            or (c.startswith("error") and "Uncaught" in c)]
+
+
+HANDLE_VALUE = """(h) => [parseFloat(h.getAttribute('aria-valuenow')),
+                         parseFloat(h.getAttribute('aria-valuemax'))]"""
+
+
+@pytest.mark.slow
+@pytest.mark.browser
+@pytest.mark.parametrize("sheet", WIDGET_SHEETS, ids=[s[:2] for s in WIDGET_SHEETS])
+def test_every_slider_of_every_widget_sheet(lab, browser, sheet):
+    """Every slider of the sheet moved once (by keyboard): the picture changes, the
+    sheet still shows exactly one picture per explorer, no JavaScript error."""
+    base, token = lab
+    page = browser.new_page(viewport={"width": 1400, "height": 1000})
+    console: list[str] = []
+    page.on("console", lambda m: console.append(f"{m.type}: {m.text}"))
+    page.on("pageerror", lambda e: console.append(f"pageerror: {e}"))
+    page.goto(f"{base}/lab/tree/{sheet}?token={token}&reset", timeout=RUN_ALL)
+    _run_all(page)
+    page.locator(".widget-slider").first.wait_for(timeout=UPDATE)
+    pictures = page.locator(".jp-OutputArea-output img.widget-image")
+    explorers = pictures.count()
+    assert explorers >= 1, sheet
+    handles = page.locator(".widget-slider .noUi-handle")
+    assert handles.count() >= 1, sheet
+    for k in range(handles.count()):
+        handle = handles.nth(k)
+        handle.scroll_into_view_if_needed()
+        before = [pictures.nth(j).get_attribute("src") for j in range(explorers)]
+        value, top = handle.evaluate(HANDLE_VALUE)
+        handle.focus()
+        page.keyboard.press("ArrowLeft" if value >= top else "ArrowRight")
+        page.wait_for_function(
+            """(before) => {
+                const imgs = [...document.querySelectorAll(
+                    '.jp-OutputArea-output img.widget-image')];
+                const html = [...document.querySelectorAll('.widget-html')]
+                    .map(e => e.textContent);
+                return imgs.length === before.length &&
+                       imgs.some((img, j) => img.src !== before[j]) &&
+                       !html.some(t => t.includes('computing'));
+            }""", arg=before, timeout=UPDATE)
+        assert pictures.count() == explorers, (sheet, k, "pictures stacked")
+        errors = _page_errors(console)
+        assert not errors, (sheet, k, errors)
+    text = page.locator(".jp-Notebook").inner_text()
+    assert not WIDGET_ERRORS.findall(text), sheet
+    page.close()
+
+
+@pytest.mark.slow
+@pytest.mark.browser
 @pytest.mark.parametrize("sheet", SHEETS, ids=[s[:2] for s in SHEETS])
 def test_sheet_in_a_real_browser(lab, browser, sheet):
     base, token = lab

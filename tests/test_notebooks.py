@@ -14,6 +14,7 @@ exercise sheets carry valid nbgrader metadata.
 
 from __future__ import annotations
 
+import json
 import os
 import re
 from pathlib import Path
@@ -29,12 +30,72 @@ NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
 CELL_TIMEOUT = 600
 
 # the topic sheets: each teaches with one interactive cell (an Explorer)
-TOPIC_SHEETS = {"01", "02", "03", "04", "05", "06", "07", "13", "14", "15"}
+TOPIC_SHEETS = {"01", "02", "03", "04", "05", "06", "07", "13", "14", "15", "16"}
 
 # a number that is not one, as pandas, numpy and Python print it
 _NOT_A_NUMBER = re.compile(r"(?<![A-Za-z0-9_])[-+]?(nan|inf|infinity)(?![A-Za-z0-9_])",
                            re.IGNORECASE)
 _DATA_URI = re.compile(r"data:[\w/+.-]+;base64,[A-Za-z0-9+/=\s]*")
+
+# run first in the kernel: every figure a cell shows is measured against the picture
+# standard (kinetostatics.plot.audit) before the inline backend shows and closes it
+# (post_execute callbacks run in the order registered: this one before the backend's)
+AUDIT_HOOK = """
+def _install_audit():
+    import matplotlib.pyplot as plt
+    from kinetostatics.plot.audit import audit
+    ip = get_ipython()
+    found = []
+
+    def measure(where, fig):
+        a = audit(fig)
+        found.append({"where": where, "dpi": a.dpi, "font": a.smallest_font,
+                      "collisions": a.collisions, "not_placed": a.not_placed,
+                      "notation": a.notation, "problems": a.problems})
+
+    def before_show():
+        code = ip.user_ns["_ih"][-1].strip().splitlines() or [""]
+        for k in plt.get_fignums():
+            measure(f"cell {code[0][:60]!r} figure {k}", plt.figure(k))
+
+    ip.events.register("post_execute", before_show)
+    return found, measure
+
+
+_AUDITS, _AUDIT = _install_audit()
+del _install_audit
+"""
+AUDIT_REPORT = 'import json as _json; print("AUDITS " + _json.dumps(_AUDITS))'
+
+# run after a sheet, in its kernel: what its text promises about its own output
+SHEET_CHECKS = {
+    # 02: at every crank length of the slider no singular row is shown as a number:
+    # the extremes leave the rows out and say how many, the readout at a singular row
+    # says so (the change point at crank + frame = coupler + rocker: 0.15 m)
+    "02": """
+import numpy as _np
+_crank = explorer.slider("crank")
+_seen_singular = False
+for _c in _np.round(_np.arange(_crank.min, _crank.max + 1e-9, _crank.step), 4):
+    _n = explorer.set(crank=float(_c), phi=30.0)
+    if explorer.error is not None:
+        assert _c > limit, (_c, explorer.error)      # only past the Grashof limit
+        continue
+    _sol = explorer.result
+    _sing = _np.asarray(_sol.singular)
+    assert _n["rows near a dead point (left out)"] == int(_sing.sum()), (_c, _n)
+    _regular = _np.asarray(_sol.Me)[~_sing]
+    assert _n["Me max [N m]"] == _regular.max() and _n["Me min [N m]"] == _regular.min()
+    assert ("change point" in _n["turns fully (Grashof)"]) == bool(abs(_c - limit) < 1e-9)
+    if _sing.any():
+        _seen_singular = True
+        _at = float(_sol.positions[_sing][0])
+        _n = explorer.set(phi=_at)
+        assert _n["Me at φ [N m]"] == "singular (dead point)", (_c, _at, _n)
+        explorer.set(phi=30.0)
+assert _seen_singular, "the slider never reaches the change point"
+""",
+}
 
 # run after the sheet in the same kernel: move every slider of every Explorer
 _EXPLORER_CHECK = """
@@ -53,6 +114,7 @@ for _e in _explorers:
         assert _e.png(dpi=30) != _png, f"slider {_s.name} = {_v} does not change the picture"
         assert _e.numbers != _numbers, f"slider {_s.name} = {_v} changes no key number"
         _e.table()                      # every key number is finite (raises otherwise)
+        _AUDIT(f"explorer {_s.name} = {_v}", _e.figure)
 """
 
 
@@ -83,18 +145,45 @@ def test_committed_without_outputs(path):
             assert cell.execution_count is None, f"{path.name}: cell {k} has an execution count"
 
 
-@pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
-def test_notebook_runs(path, monkeypatch):
-    monkeypatch.setenv("MPLBACKEND", "Agg")
-    monkeypatch.setenv("PYTHONPATH", os.pathsep.join(
-        [str(ROOT), *filter(None, [os.environ.get("PYTHONPATH")])]))
+def run_sheet(path: Path) -> tuple[list, list[dict]]:
+    """Run a sheet headless (every Explorer's sliders moved after it), every figure it
+    shows measured: (the outputs of its cells, one audit per figure)."""
     nb = nbformat.read(path, as_version=4)
+    nb.cells.insert(0, nbformat.v4.new_code_cell(AUDIT_HOOK))
     nb.cells.append(nbformat.v4.new_code_cell(
         _EXPLORER_CHECK.replace("{topic}", str(path.name[:2] in TOPIC_SHEETS))))
-    client = NotebookClient(nb, timeout=CELL_TIMEOUT, kernel_name="python3",
-                            resources={"metadata": {"path": str(path.parent)}})
-    client.execute()            # raises CellExecutionError, naming the cell, on any error
-    outputs = [o for c in nb.cells if c.cell_type == "code" for o in c.outputs]
+    if path.name[:2] in SHEET_CHECKS:
+        nb.cells.append(nbformat.v4.new_code_cell(SHEET_CHECKS[path.name[:2]]))
+    nb.cells.append(nbformat.v4.new_code_cell(AUDIT_REPORT))
+    env = {"MPLBACKEND": "Agg", "PYTHONPATH": os.pathsep.join(
+        [str(ROOT), *filter(None, [os.environ.get("PYTHONPATH")])])}
+    old = {k: os.environ.get(k) for k in env}
+    os.environ.update(env)
+    try:
+        client = NotebookClient(nb, timeout=CELL_TIMEOUT, kernel_name="python3",
+                                resources={"metadata": {"path": str(path.parent)}})
+        client.execute()        # raises CellExecutionError, naming the cell, on any error
+    finally:
+        for k, v in old.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
+    report = nb.cells.pop()
+    line = next(o.text for o in report.outputs if o.output_type == "stream")
+    audits = json.loads(line.split("AUDITS ", 1)[1])
+    outputs = [o for c in nb.cells[1:] if c.cell_type == "code" for o in c.outputs]
+    return outputs, audits
+
+
+@pytest.mark.slow
+@pytest.mark.kernel
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
+def test_notebook_runs(path):
+    """The sheet runs; every picture it shows (the Explorer's after each slider move too)
+    meets the picture standard: 150 dpi, text >= 10 pt, no collision, at most one label
+    not placed, the notation of docs/notation.md."""
+    outputs, audits = run_sheet(path)
     errors = [o for o in outputs if o.output_type == "error"]
     assert not errors, errors
     assert any("image/png" in o.get("data", {}) for o in outputs), \
@@ -105,6 +194,9 @@ def test_notebook_runs(path, monkeypatch):
     assert not stderr, f"{path.name} writes to stderr (a warning?): {stderr}"
     bad = sorted({m.group(0) for t in _output_texts(outputs) for m in _NOT_A_NUMBER.finditer(t)})
     assert not bad, f"{path.name} shows {bad} in its outputs: show a dash where no value applies"
+    assert audits, f"{path.name}: no figure measured"
+    problems = {a["where"]: a["problems"] for a in audits if a["problems"]}
+    assert not problems, f"{path.name}: pictures below the standard: {problems}"
 
 
 EXERCISES = [p for p in NOTEBOOKS if "exercise" in p.stem and "teacher" not in p.stem]

@@ -26,14 +26,12 @@ on the amplitude (the same model as the resonance methods) and ``phase_noise``
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass
-from typing import Any
+from collections.abc import Callable
 
 import numpy as np
 
-from ..common import check_number, deg360
-from ..errors import BalanceError
+from ..common import deg360
+from ..model.noise import NoiseModel, parse_noise
 
 __all__ = [
     "AMPLIFICATION_LIMIT",
@@ -57,54 +55,6 @@ RUN_NOISE_LIMIT = 0.25
 
 SEED = 20240514
 """Fixed seed of the bootstrap: repeated runs give the same interval."""
-
-
-@dataclass(frozen=True)
-class NoiseModel:
-    """1-sigma noise of every reading: amplitude (relative, absolute) and phase (deg)."""
-
-    relative: float = 0.01
-    absolute: float = 0.0
-    phase: float = 1.0
-    confidence: float = 0.95
-
-    def amplitude_sigma(self, amps: np.ndarray) -> np.ndarray:
-        """sigma_A = sqrt((relative A)^2 + absolute^2), element-wise."""
-        return np.hypot(self.relative * amps, self.absolute)
-
-    def complex_sigma(self, amps: np.ndarray) -> np.ndarray:
-        """Standard deviation of the complex reading, sqrt(sigma_A^2 + (A sigma_phase)^2)."""
-        return np.hypot(self.amplitude_sigma(amps), amps * np.radians(self.phase))
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: the noise model and confidence used."""
-        return {"relative": self.relative, "absolute": self.absolute,
-                "phase_noise": self.phase, "confidence": self.confidence}
-
-
-def parse_noise(noise: Mapping[str, Any] | None = None, phase_noise: float | None = None,
-                confidence: float | None = None) -> NoiseModel:
-    """A :class:`NoiseModel` from the scene's keys (defaults: 1 %, 0, 1 deg, 0.95)."""
-    d = NoiseModel()
-    rel, ab = d.relative, d.absolute
-    if noise is not None:
-        if not isinstance(noise, Mapping):
-            raise BalanceError("noise must be a table, e.g. { relative = 0.01, absolute = 0.0 }")
-        unknown = set(noise) - {"relative", "absolute"}
-        if unknown:
-            raise BalanceError(f"noise: unknown key {sorted(unknown)[0]!r}; known keys: "
-                               "relative, absolute")
-        rel = check_number(noise.get("relative", rel), "noise.relative", nonnegative=True)
-        ab = check_number(noise.get("absolute", ab), "noise.absolute", nonnegative=True)
-    ph = d.phase if phase_noise is None else check_number(phase_noise, "phase_noise",
-                                                           nonnegative=True)
-    c = d.confidence if confidence is None else check_number(confidence, "confidence")
-    if not 0.5 <= c < 1.0:
-        raise BalanceError(f"confidence must lie in [0.5, 1), got {c:g}")
-    if rel == 0.0 and ab == 0.0 and ph == 0.0:
-        raise BalanceError("noise: relative, absolute and phase_noise are all 0; a measurement "
-                           "always has noise (give at least one of them)")
-    return NoiseModel(relative=rel, absolute=ab, phase=ph, confidence=c)
 
 
 Solver = Callable[[np.ndarray, np.ndarray], np.ndarray]

@@ -24,6 +24,10 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from kinetostatics.plot.collide import GUIDE
+from kinetostatics.plot.notation import reading
+from kinetostatics.plot.place import declutter
+
 from .shaking import crank_axis, motion_at, pair_motion
 from .solve import MechanismBalancing
 
@@ -82,20 +86,23 @@ def plot_shaking_hodograph(result: MechanismBalancing, ax: Axes | None = None, *
         if not full_turn:
             fx, fy = _closed(fx), _closed(fy)
         what = f"after {result.method} balancing" if name == "after" else "before"
-        ax.plot(fx, fy, color=color, lw=1.6,
-                label=f"{what}: max |F| = {float(tab['F'].max()):.4g} N")
+        peak = float(tab["F"].max())
+        scale = float(result.before["F"].max()) or 1.0
+        peak_text = "0 (to rounding)" if peak <= 1e-9 * scale else f"{reading(peak)} N"
+        ax.plot(fx, fy, color=color, lw=1.6, label=f"{what}: max |F| = {peak_text}")
         if fx.size:
             ax.plot(fx[0], fy[0], "o", color=color, ms=5)
     ax.plot(0.0, 0.0, "+", color="k", ms=10)
     ax.set_aspect("equal", adjustable="datalim")
-    ax.axhline(0.0, color="0.85", lw=0.8, zorder=0)
-    ax.axvline(0.0, color="0.85", lw=0.8, zorder=0)
+    ax.axhline(0.0, color="0.85", lw=0.8, zorder=0, gid=GUIDE)
+    ax.axvline(0.0, color="0.85", lw=0.8, zorder=0, gid=GUIDE)
     ax.set_xlabel("shaking force $F_x$ (N)")
     ax.set_ylabel("shaking force $F_y$ (N)")
     ax.set_title(f"Shaking-force hodograph, {result.kind}, method {result.method!r}\n"
                  "(dot: first position of the sweep)", fontsize=10)
     ax.grid(True, color="0.93")
-    ax.legend(fontsize=10, loc="best")
+    ax.legend(fontsize=10, loc="upper center", bbox_to_anchor=(0.5, -0.14),
+              borderaxespad=0.0)        # below the drawing, never over the curves
     return ax
 
 
@@ -150,7 +157,8 @@ def plot_centre_of_mass(result: MechanismBalancing, ax: Axes | None = None) -> A
     ax.set_ylabel("y (m)")
     ax.set_title(f"Centre of mass of the mechanism, method {result.method!r}", fontsize=10)
     ax.grid(True, color="0.93")
-    ax.legend(fontsize=10, loc="best")
+    ax.legend(fontsize=10, loc="upper center", bbox_to_anchor=(0.5, -0.14),
+              borderaxespad=0.0)        # below the drawing, never over the curves
     return ax
 
 
@@ -186,6 +194,7 @@ def plot_counterweights(result: MechanismBalancing, position: float | None = Non
     if result.pair is not None:
         masses.append(result.pair.mass)
     top = max(masses, default=0.0) or 1.0
+    texts: list = []            # the masses, placed clear of the links (declutter)
     for c in result.counterweights:
         bm = result.kin.bodies[c.body]
         x, y, *_ = motion_at(bm, c.position, result.kin.n)
@@ -194,20 +203,21 @@ def plot_counterweights(result: MechanismBalancing, position: float | None = Non
                 lw=2.0)
         ax.plot(float(x[i]), float(y[i]), "o", color="0.25", alpha=0.8,
                 ms=6 + 18 * math.sqrt(c.mass / top))
-        ax.annotate(f"{c.mass:.3g} kg", (float(x[i]), float(y[i])), xytext=(8, -12),
-                    textcoords="offset points", fontsize=10)
+        texts.append(ax.annotate(f"{reading(c.mass, 3)} kg", (float(x[i]), float(y[i])),
+                                 xytext=(8, -12), textcoords="offset points", fontsize=10))
     if result.pair is not None:
         (xc, yc, _, _), (xr, yr, _, _) = pair_motion(result.kin, result.pair)
         ang = np.linspace(0.0, 2.0 * np.pi, 121)
         cx, cy = result.pair.axis
         ax.plot(cx + result.pair.radius * np.cos(ang), cy + result.pair.radius * np.sin(ang),
                 ":", color="0.5", lw=1)
-        for x, y, name in ((xc, yc, "+omega"), (xr, yr, "-omega")):
+        for x, y, name in ((xc, yc, "+ω"), (xr, yr, "−ω")):
             ax.plot(float(x[i]), float(y[i]), "o", color="tab:purple", alpha=0.6,
                     ms=6 + 18 * math.sqrt(result.pair.mass / top))
-            ax.annotate(f"{result.pair.mass:.3g} kg ({name})", (float(x[i]), float(y[i])),
-                        xytext=(8, 6), textcoords="offset points", fontsize=10,
-                        color="tab:purple")
+            texts.append(ax.annotate(f"{reading(result.pair.mass, 3)} kg ({name})",
+                                     (float(x[i]), float(y[i])), xytext=(8, 6),
+                                     textcoords="offset points", fontsize=10,
+                                     color="tab:purple"))
     ax.set_aspect("equal", adjustable="datalim")
     ax.margins(0.1)
     ax.set_xlabel("x (m)")
@@ -215,6 +225,7 @@ def plot_counterweights(result: MechanismBalancing, position: float | None = Non
     unit = "deg" if result.scene.driver.kind == "R" else "m"
     ax.set_title(f"Counterweights ({result.method}) at position {pos[i]:g} {unit}",
                  fontsize=10)
+    declutter(ax, texts)
     return ax
 
 

@@ -26,10 +26,13 @@ from typing import Any
 import numpy as np
 
 from kinetostatics.common.jsontext import json_default
+from kinetostatics.model.outputs import atomic_file
+from kinetostatics.plot.notation import reading
+from kinetostatics.plot.place import settle
 
 from ..errors import BalanceError
 from .pdf import write_pdf
-from .text import result_warnings, summary_text, unit_text
+from .text import noise_lines, result_warnings, summary_text, unit_text
 
 __all__ = ["influence_figure", "iso_figure", "json_default", "report_figures", "report_scene",
            "write_report"]
@@ -142,7 +145,8 @@ def iso_figure(iso: dict[str, Any]):
                    c=["tab:green" if o else "tab:red" for o in ok], label="residual")
     ax.set_xticks(x, names)
     ax.set_ylabel(f"unbalance ({iso['unbalance_unit']})")
-    ax.set_title(f"ISO 21940-11, G {iso['grade']:g}: U_per = {iso['U_per']:.4g} "
+    ax.set_title(f"ISO 21940-11, G {iso['grade']:g}: $U_{{\\mathrm{{per}}}}$ = "
+                 f"{reading(iso['U_per'])} "
                  f"{iso['unbalance_unit']}", fontsize=10)
     ax.legend(fontsize=10)
     ax.grid(True, axis="y", color="0.9")
@@ -183,6 +187,8 @@ def report_figures(results: dict[str, Any], out: dict[str, Any]) -> list[tuple[s
     if "iso" in out:
         figs.append(("ISO 21940-11: tolerances (bars) and residuals (dots)",
                      iso_figure(out["iso"])))
+    for _caption, fig in figs:
+        settle(fig)             # labels clear of the vectors, on the final layout
     return figs
 
 
@@ -234,16 +240,16 @@ def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
     source = ""
     if scene is not None and Path(str(scene)).is_file():
         source = Path(str(scene)).read_text(encoding="utf-8")
-    lines = _textsummary_text(results, out)
+    lines = _textsummary_text(results, out) + noise_lines(results, out)
     warns = [f"{w}: {m}" for w, m in result_warnings(out)]
     figs = report_figures(results, out)
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        if suffix == ".pdf":
-            write_pdf(path, datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"), source,
-                      lines, _iso_line(out), warns, figs, dpi)
-        else:
-            path.write_text(_html(lines, warns, figs, source, out, dpi), encoding="utf-8")
+        with atomic_file(path) as tmp:          # the whole report, or the earlier one kept
+            if suffix == ".pdf":
+                write_pdf(tmp, datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"), source,
+                          lines, _iso_line(out), warns, figs, dpi)
+            else:
+                tmp.write_text(_html(lines, warns, figs, source, out, dpi), encoding="utf-8")
     except OSError as exc:
         raise BalanceError(f"--report {path}: cannot write the file ({exc.strerror})") from exc
     return path

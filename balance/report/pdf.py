@@ -47,7 +47,7 @@ class _Pages:
             self.fig = None
 
     def _room(self, inches: float) -> None:
-        if self.fig is None or self.y + inches > A4[1] - _MARGIN:
+        if self.fig is None or self.y + inches > A4[1] - _MARGIN + 1e-9:
             self._new()
 
     def line(self, text: str, size: float = _BODY, weight: str = "normal",
@@ -73,12 +73,16 @@ class _Pages:
             for k, part in enumerate(textwrap.wrap(raw.strip(), width) or [""]):
                 self.line(part, color=color, indent=indent + (0.25 if k else 0.0))
 
-    def picture(self, caption: str, fig: Any, dpi: float = 150) -> None:
+    def picture(self, caption: str, fig: Any, dpi: float = 150,
+                heading: str | None = None) -> None:
+        """The picture at the text width under ``heading`` (kept on its page), its
+        caption under it. A figure wider than the text is drawn at the printed size (its
+        fonts stay >= 10 pt), its panels side by side stacked one above the other at
+        the full width."""
         import matplotlib.pyplot as plt
-        w0, h0 = fig.get_size_inches()
         text_width = A4[0] - 2 * _MARGIN
-        if w0 > text_width:         # drawn at the printed size: its fonts stay >= 10 pt
-            fig.set_size_inches(text_width, h0 * text_width / w0)
+        if fig.get_size_inches()[0] > text_width:
+            _full_width(fig, text_width)
         buf = io.BytesIO()
         fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight", pad_inches=0.05)
         plt.close(fig)
@@ -86,10 +90,16 @@ class _Pages:
         img = plt.imread(buf)
         width = A4[0] - 2 * _MARGIN
         height = width * img.shape[0] / img.shape[1]
-        need = height + 2 * _BODY * _LINE / 72.0
-        if need > A4[1] - 2 * _MARGIN:             # a tall picture: fit the height
-            height = A4[1] - 2 * _MARGIN - 2 * _BODY * _LINE / 72.0
+        caption_room = 2 * _BODY * _LINE / 72.0
+        head = 0.2 + _HEAD * _LINE / 72.0 if heading is not None else 0.0
+        room = A4[1] - 2 * _MARGIN - head - caption_room     # a page under the heading
+        if height > room:                           # a tall picture: fit the height
+            height = room
             width = height * img.shape[1] / img.shape[0]
+        need = height + caption_room
+        if heading is not None:     # the heading never alone at the foot of a page
+            self._room(need + head)
+            self.heading(heading)
         self._room(need)
         left = (A4[0] - width) / 2.0
         ax = self.fig.add_axes([left / A4[0], 1.0 - (self.y + height) / A4[1],
@@ -102,6 +112,28 @@ class _Pages:
 
     def close(self) -> None:
         self._flush()
+
+
+def _full_width(fig: Any, width: float) -> None:
+    """Lay a figure out at ``width`` inches: panels side by side (one row of a grid)
+    go one above the other, each at the full width with its own aspect; a single panel
+    is scaled. Its labels are placed again on the new layout."""
+    from kinetostatics.plot.place import settle
+    w0, h0 = fig.get_size_inches()
+    panels = [ax for ax in fig.axes if ax.get_subplotspec() is not None]
+    cols = {ax.get_subplotspec().colspan.start for ax in panels}
+    rows = {ax.get_subplotspec().rowspan.start for ax in panels}
+    if len(cols) > 1 and len(rows) == 1:
+        grid = fig.add_gridspec(len(panels), 1)
+        for k, ax in enumerate(sorted(panels, key=lambda a: a.get_subplotspec().colspan.start)):
+            ax.set_subplotspec(grid[k])
+        fig.set_layout_engine("constrained")
+        fig.set_size_inches(width, min(len(panels) * h0 * width / (w0 / len(cols)),
+                                       A4[1] - 2 * _MARGIN - 0.6))
+    else:
+        fig.set_layout_engine("constrained")
+        fig.set_size_inches(width, h0 * width / w0)
+    settle(fig)
 
 
 def write_pdf(path: Path, stamp: str, source: str, lines: list[str], iso_line: str | None,
@@ -144,8 +176,6 @@ def write_pdf(path: Path, stamp: str, source: str, lines: list[str], iso_line: s
                 pages.paragraph("- " + w, color="#a04000")
         else:
             pages.paragraph("None: every result is determined by the data.", color="#007000")
-        if figs:
-            pages.heading("Pictures")
-            for caption, fig in figs:
-                pages.picture(caption, fig, dpi)
+        for k, (caption, fig) in enumerate(figs):
+            pages.picture(caption, fig, dpi, heading="Pictures" if k == 0 else None)
         pages.close()

@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 from typing import Any
 
-__all__ = ["field_text", "fmt", "interval_text", "result_warnings"]
+__all__ = ["field_text", "fmt", "interval_text", "noise_lines", "result_warnings"]
 
 
 def fmt(x: Any, unit: str = "", digits: int = 4) -> str:
@@ -70,8 +70,12 @@ def field_text(out: dict[str, Any]) -> list[str]:
                         f"{rounded(r2['amplitude'], ref, vu)}"
                         for i, r2 in enumerate(r["residual_vibration"]))
         lines.append(f"  predicted residual vibration: {res}")
-        lines.append(f"  condition number {fmt(r['condition_number'])}, noise amplified to "
-                     f"{fmt(100.0 * r['noise_amplification'])} % of the correction")
+        n = r["noise"]
+        lines.append(f"  intervals at {100.0 * n['confidence']:g} % for readings with "
+                     f"{_noise_text(n['relative'], n['absolute'], vu, n['phase_noise'])}")
+        lines.append(f"  condition number {fmt(r['condition_number'])}: that reading noise "
+                     f"moves the correction by up to {fmt(100.0 * r['noise_amplification'])} % "
+                     "(a first-order bound; the intervals above are the likelihood's)")
     if "iso" in out:
         s = out["iso"]
         un = s["unbalance_unit"]
@@ -103,6 +107,37 @@ def field_text(out: dict[str, Any]) -> list[str]:
         what = ("they cancel: no weight needed" if cb["angle"] is None
                 else f"{fmt(cb['mass'], mu)} at {fmt(cb['angle'], 'deg')}{at}")
         lines.append(f"combine {cb['count']} weights into one: {what}")
+    return lines
+
+
+def _noise_text(relative: float, absolute: float, unit: str, phase: float | None) -> str:
+    """``1 % of each amplitude (1 sigma), 1 deg of phase``: a noise model in words."""
+    parts = [f"{100.0 * relative:g} % of each amplitude"]
+    if absolute:
+        parts[0] += f" + {absolute:g} {unit}".rstrip()
+    parts[0] += " (1 sigma)"
+    if phase is not None:
+        parts.append(f"{phase:g} deg of phase")
+    return ", ".join(parts)
+
+
+def noise_lines(results: dict[str, Any], out: dict[str, Any]) -> list[str]:
+    """What the report's intervals assume: the reading noise and the confidence of each
+    resonance test's estimate (the result objects carry them; the result dict does
+    not), and what "not determined" means. Influence results state theirs in
+    :func:`field_text`."""
+    from ..resonance.estimate import WIDE, WIDE_ANGLE
+    vu = _units(out)["vibration"]
+    lines = []
+    for k, t in enumerate(results.get("resonance_test", [])):
+        est = getattr(t, "estimate", None)
+        if est is None:
+            continue
+        rel, ab = est.noise
+        lines.append(f"resonance test {k + 1}: intervals at {100.0 * est.confidence:g} % for "
+                     f"readings with {_noise_text(rel, ab, vu, None)}; an estimate is not "
+                     f"determined when its interval leaves more than {100.0 * WIDE:g} % of "
+                     f"the unbalance uncorrected (or spans more than {WIDE_ANGLE:.1f} deg)")
     return lines
 
 

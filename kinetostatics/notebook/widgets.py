@@ -38,6 +38,7 @@ import pandas as pd
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from ..plot.place import settle
 from .limits import Limit
 
 __all__ = ["Explorer", "Slider", "format_number"]
@@ -73,6 +74,17 @@ class Slider:
             raise ValueError(f"slider {self.name!r}: needs min < max and step > 0, got "
                              f"min={self.min}, max={self.max}, step={self.step}")
         self.check(self.value)
+
+    @property
+    def readout_format(self) -> str:
+        """The slider's readout with as many decimals as its step and its ends need
+        (0.125 shown as 0.125, never rounded to 0.13)."""
+        digits = 0
+        for v in (self.step, self.min, self.max, self.value):
+            text = f"{v:.10g}"
+            if "e" not in text and "." in text:
+                digits = max(digits, len(text.split(".")[1]))
+        return f".{min(digits, 6)}f"
 
     def check(self, value: float) -> float:
         """``value`` as a float, or a ``ValueError`` naming the slider when it is out of
@@ -252,7 +264,9 @@ class Explorer:
         try:
             result = self._compute(**self.values)
             self.figure.clear()         # after compute: the picture holds one update
+            self.figure.set_layout_engine("constrained")
             self._draw(result, self.figure, **self.values)
+            settle(self.figure)         # labels and legends clear of the drawing
             self.numbers = dict(self._numbers(result, **self.values))
             self.result, self.error = result, None
         except ValueError as exc:      # WorkbenchError and BalanceError are ValueErrors
@@ -332,6 +346,7 @@ class Explorer:
         for s in self.sliders:
             c = w.FloatSlider(value=self.values[s.name], min=s.min, max=s.max, step=s.step,
                               description=s.label, continuous_update=False,
+                              readout_format=s.readout_format,
                               style={"description_width": "initial"},
                               layout=w.Layout(width="460px"))
 

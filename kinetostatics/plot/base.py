@@ -16,6 +16,7 @@ from matplotlib.ticker import MaxNLocator, MultipleLocator
 
 from ..model.scene import GROUND
 from ..results import Solution
+from .notation import reading
 
 LOAD_COLORS = {"applied": "tab:blue", "gravity": "tab:brown", "inertia": "tab:purple"}
 REACTION_COLOR = "tab:red"
@@ -45,6 +46,16 @@ def position_text(sol: Solution, i: int) -> str:
     """The driver's position at row ``i`` with its unit, e.g. ``φ = 30°``."""
     p = float(sol.positions[i])
     return f"φ = {p:g}°" if sol.scene.driver.kind == "R" else f"s = {p:g} m"
+
+
+#: What a picture of forces says at a row flagged singular, instead of drawing them.
+SINGULAR_NOTE = "singular row (at or near a dead point): the forces are not drawn"
+
+
+def singular_row(sol: Solution, i: int) -> bool:
+    """Row ``i`` is flagged singular (at or near a dead point): its forces and Me have
+    no value a picture can vouch for."""
+    return bool(np.asarray(sol.singular)[i])
 
 
 def vector_axes(ax: Axes) -> None:
@@ -87,8 +98,8 @@ def global_point(sol: Solution, body: str, point: str, row: int) -> tuple[float,
 
 
 def magnitude_text(x: float) -> str:
-    """A magnitude for a legend: 31770 rather than 3.177e+04."""
-    return f"{x:.0f}" if 1e3 <= abs(x) < 1e7 else f"{x:.4g}"
+    """A magnitude for a legend: 31770 rather than 3.177e+04, never in e-notation."""
+    return f"{x:.0f}" if 1e3 <= abs(x) < 1e7 else reading(x)
 
 
 def math_name(name: str) -> str:

@@ -14,6 +14,8 @@ from matplotlib.patches import Circle
 
 from ..model.errors import WorkbenchError
 from .base import axes_or_new, legend_outside, vector_axes
+from .collide import GUIDE
+from .notation import reading
 from .place import declutter
 
 __all__ = ["cam_shocks", "draw_cam", "plot_cam_diagram", "plot_cam_motion"]
@@ -112,12 +114,14 @@ def plot_cam_motion(res) -> Figure:
         a.grid(True, alpha=0.3)
         a.axhline(0.0, color="0.5", lw=0.8)
     bounds = np.degrees(_boundaries(law))
+    lo, hi = axs[0].get_ylim()
+    axs[0].set_ylim(lo, hi + 0.55 * (hi - lo))      # a band above the lift for the names
     texts = []
     for b, seg in zip(bounds, law.segments, strict=True):
         for a in axs:
-            a.axvline(b, color="0.6", lw=0.8, ls=":")
+            a.axvline(b, color="0.6", lw=0.8, ls=":", gid=GUIDE)   # a faint guide
         name = seg.kind if seg.law is None else f"{seg.kind}\n{seg.law}"
-        texts.append(axs[0].annotate(name, (b + 0.5 * math.degrees(seg.angle), 0.5),
+        texts.append(axs[0].annotate(name, (b + 0.5 * math.degrees(seg.angle), 0.83),
                                      xycoords=("data", "axes fraction"), ha="center",
                                      va="center", fontsize=10, color="0.3",
                                      xytext=(0, 0), textcoords="offset points"))
@@ -189,7 +193,7 @@ def draw_cam(res, angle: float = 0.0, ax: Axes | None = None) -> Axes:
     r0 = fol.base_radius
     t = np.linspace(0.0, 2.0 * np.pi, 241)
     ax.plot(r0 * np.cos(t), r0 * np.sin(t), color="0.5", lw=0.8, ls=":",
-            label=f"base circle r0 = {r0 * 1e3:.4g} mm")
+            label=f"base circle $r_0$ = {reading(r0 * 1e3)} mm")
     ax.plot(0.0, 0.0, "+", color="k", ms=12, mew=2)
     mark = _rot(np.array([[0.0], [0.8 * r0]]), turn).ravel()      # the cam's own radius
     ax.plot([0.0, mark[0]], [0.0, mark[1]], color="tab:blue", lw=1.2)
@@ -217,8 +221,8 @@ def draw_cam(res, angle: float = 0.0, ax: Axes | None = None) -> Axes:
     ax.set_ylabel("y [m]")
     ax.grid(True, alpha=0.3)
     tau = float(g["tau"].iloc[k])
-    ax.set_title(f"{sc.title or 'cam'}\nat φ = {ang[k]:g}°: {rise}, transmission angle "
-                 f"τ = {tau:.3g}°", fontsize=10)
+    ax.set_title(f"{sc.title or 'cam'}\nat φ = {ang[k]:g}°: {rise}, τ = {reading(tau, 3)}°",
+                 fontsize=10)
     legend_outside(ax)
     return ax
 
@@ -276,12 +280,14 @@ def plot_cam_diagram(res, transmission_angle: float | None = None,
     for slope, bb, side in ((k, b_up, "rise"), (-k, b_dn, "return")):
         x_at = np.array([(lo_y - bb) / slope, float(ds[np.argmin(s - slope * ds)])])
         ax.plot(x_at, slope * x_at + bb, "--", lw=1.2,
-                label=f"tangent at τ_adm = {tau_deg:g}° ({side} side)")
+                label=f"tangent at $τ_{{adm}}$ = {tau_deg:g}° ({side} side)")
     ax.plot(e_opt, -s0_opt, "s", color="tab:red",
-            label=f"smallest cam: e = {e_opt * 1e3:.4g} mm, r0 = {r0_opt * 1e3:.4g} mm")
+            label=f"smallest cam: e = {reading(e_opt * 1e3)} mm, $r_0$ = "
+                  f"{reading(r0_opt * 1e3)} mm")
     ax.plot([0.0, e_opt], [0.0, -s0_opt], color="tab:red", lw=0.9)
     ax.plot(e, -s0, "o", color="k",
-            label=f"this cam: e = {e * 1e3:.4g} mm, r0 = {sc.follower.base_radius * 1e3:.4g} mm")
+            label=f"this cam: e = {reading(e * 1e3)} mm, $r_0$ = "
+                  f"{reading(sc.follower.base_radius * 1e3)} mm")
     closed = abs(p[-1] - p[0] - 360.0) < 1e-9
     rows = np.unique(np.linspace(0, len(p) - 1, numbers, endpoint=not closed).round()
                      .astype(int)) if numbers > 0 else np.array([], dtype=int)

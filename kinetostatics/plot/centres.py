@@ -5,6 +5,7 @@ at one position, with the three-centre theorem (Kennedy) of the course (seed 001
 
 from __future__ import annotations
 
+import re
 from itertools import combinations
 
 import numpy as np
@@ -16,14 +17,45 @@ from ..model.scene import GROUND
 from ..results import Solution
 from .base import at_row, axes_or_new, global_point, legend_outside, position_text, row_index
 from .mechanism import draw_mechanism
-from .notation import gloss
+from .notation import reading
 from .place import declutter
 
-__all__ = ["instant_centres", "plot_instant_centres"]
+__all__ = ["element_numbers", "instant_centres", "plot_instant_centres"]
+
+_NUMBERED_PIVOT = re.compile(r"^O(\d+)$")
+
+
+def element_numbers(scene) -> dict[str, int]:
+    """The course's number of every element, the ground (``GROUND``) included.
+
+    One rule for every scene (docs/notation.md): the ground is 0 and the moving bodies
+    1, 2, ... in the scene's order (the numbering of the course's four-bar and
+    slider-crank: crank 1, F01, I13), unless the scene numbers its ground pivots
+    ``O<k>``: then the element pivoted at ``Ok`` is element k (the shaper's crank at O2
+    is element 2, its lever at O4 element 4), the ground is 1 and the other bodies take
+    the free numbers in the scene's order.
+
+    Returns
+    -------
+    dict of str to int
+    """
+    pinned: dict[str, int] = {}
+    for j in scene.joints.values():
+        m = _NUMBERED_PIVOT.match(j.name)
+        if m is not None and j.kind == "R" and GROUND in j.bodies:
+            pinned.setdefault(j.other(GROUND), int(m.group(1)))
+    if not pinned or len(set(pinned.values())) < len(pinned) or 1 in pinned.values():
+        return {GROUND: 0, **{b: k for k, b in enumerate(scene.bodies, start=1)}}
+    out = {GROUND: 1, **pinned}
+    free = (k for k in range(2, 2 + 2 * len(scene.bodies)) if k not in pinned.values())
+    for b in scene.bodies:
+        if b not in out:
+            out[b] = next(free)
+    return out
 
 
 def _fields(sol: Solution, i: int) -> dict[str, tuple[np.ndarray, float]]:
-    """Per body (the ground first, numbered 0): the velocity at the global origin of
+    """Per body (the ground first): the velocity at the global origin of
     its rigid velocity field and its angular velocity, at row i."""
     out = {GROUND: (np.zeros(2), 0.0)}
     for b in sol.scene.bodies:
@@ -32,10 +64,10 @@ def _fields(sol: Solution, i: int) -> dict[str, tuple[np.ndarray, float]]:
     return out
 
 
-def _name(names: list, a: str, b: str) -> str:
-    """``I`` and the two elements' numbers, smaller first."""
-    ka, kb = sorted((names.index(a), names.index(b)))
-    return f"I{ka}{kb}"
+def _name(numbers: dict, a: str, b: str) -> str:
+    """``I`` and the two elements' numbers (:func:`element_numbers`), smaller first."""
+    ka, kb = sorted((numbers[a], numbers[b]))
+    return f"I{ka}{kb}" if kb < 10 else f"I{ka},{kb}"
 
 
 def instant_centres(sol: Solution, position: float | None = None, *,
@@ -57,19 +89,19 @@ def instant_centres(sol: Solution, position: float | None = None, *,
     Returns
     -------
     DataFrame
-        ``name`` (``I02``: elements numbered 0 = ground, then the bodies in scene order),
+        ``name`` (``I13``: the two elements' numbers of :func:`element_numbers`),
         ``j``, ``k`` (the bodies), ``x``, ``y`` [m] (empty at infinity), ``at_infinity``,
         ``dir_x``, ``dir_y`` (unit direction towards the centre at infinity, else empty),
         ``omega_rel`` [rad/s] (omega_j - omega_k).
     """
     i = row_index(sol, position, row)
     f = _fields(sol, i)
-    names = list(f)
+    numbers = element_numbers(sol.scene)
     wmax = max(abs(w) for _, w in f.values()) or 1.0
     rows = []
     for (a, (ua, wa)), (b, (ub, wb)) in combinations(f.items(), 2):
         u, w = ua - ub, wa - wb
-        rec = {"name": _name(names, a, b), "j": a, "k": b,
+        rec = {"name": _name(numbers, a, b), "j": a, "k": b,
                "x": np.nan, "y": np.nan, "at_infinity": False, "dir_x": np.nan,
                "dir_y": np.nan, "omega_rel": w}
         if abs(w) <= 1e-12 * wmax:
@@ -115,7 +147,9 @@ def plot_instant_centres(sol: Solution, position: float | None = None, *,
     allpts = np.vstack([ln.get_xydata() for ln in ax.lines if len(ln.get_xydata())])
     centre = 0.5 * (allpts.min(axis=0) + allpts.max(axis=0))
     size = float(np.ptp(allpts, axis=0).max()) or 1.0
-    names = [GROUND, *sol.scene.bodies]
+    numbers = element_numbers(sol.scene)
+    names = sorted(numbers, key=numbers.get)
+    frame = numbers[GROUND]
     near = tab[~tab.at_infinity & (np.hypot(tab.x - centre[0], tab.y - centre[1])
                                    <= reach * size)]
     far = tab[~tab.index.isin(near.index)]
@@ -142,7 +176,7 @@ def plot_instant_centres(sol: Solution, position: float | None = None, *,
         for m in names:             # Kennedy: I_jm - I_km passes through I_jk
             if m in (r.j, r.k) or lines == 2:
                 continue
-            a, b = (_name(names, x, m) for x in (r.j, r.k))
+            a, b = (_name(numbers, x, m) for x in (r.j, r.k))
             if b in shown and a not in shown:
                 a, b = b, a
             if a not in shown or np.hypot(*(xy[a] - p)) <= 1e-9 * size:
@@ -161,8 +195,8 @@ def plot_instant_centres(sol: Solution, position: float | None = None, *,
             lines += 1
         if lines:
             crossed.append(r.name)
-    for k, b in enumerate(sol.scene.bodies, start=1):
-        key = f"I0{k}"
+    for b in sol.scene.bodies:
+        key = _name(numbers, GROUND, b)
         if key not in xy or key not in near.name.values:
             continue
         for p in sol.scene.bodies[b].points:
@@ -170,19 +204,19 @@ def plot_instant_centres(sol: Solution, position: float | None = None, *,
             ax.plot([xy[key][0], q[0]], [xy[key][1], q[1]], ":", color="0.45", lw=0.9)
     for r in far.itertuples():
         txt = (f"{r.name} at infinity, towards ({r.dir_x + 0.0:.3f}, {r.dir_y + 0.0:.3f})"
-               if r.at_infinity else f"{r.name} far: ({r.x:.4g}, {r.y:.4g}) m")
+               if r.at_infinity else f"{r.name} far: ({reading(r.x)}, {reading(r.y)}) m")
         handles.append(Line2D([], [], color="none", label=txt))
     if crossed:
         handles.insert(0, Line2D([], [], color="tab:red", ls="-.", lw=0.8,
                                  label=f"three-centre lines crossing at {', '.join(crossed)}"))
-    key = ", ".join(f"{k} = {n}" for k, n in enumerate(names))
+    key = ", ".join(f"{numbers[n]} = {n}" for n in names)
     handles.insert(0, Line2D([], [], color="0.45", ls=":",
-                             label="rays from I0k: v perpendicular to the ray"))
+                             label=f"rays from I{frame}k: v perpendicular to the ray"))
     handles.insert(0, Line2D([], [], color="none", label=key))
     ax.relim()
     ax.autoscale_view()
-    ax.set_title(f"instantaneous centres of velocity\n({gloss('instantaneous centres')}) "
-                 f"at {position_text(sol, i)}", fontsize=11)
+    ax.set_title(f"instantaneous centres of velocity\nat {position_text(sol, i)}",
+                 fontsize=11)
     legend_outside(ax, handles=handles)
     declutter(ax, texts)
     return ax

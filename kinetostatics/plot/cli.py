@@ -13,6 +13,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..model.errors import WorkbenchError
+from ..model.outputs import staged_folder
 from ..results import Solution
 from .centres import plot_instant_centres
 from .curves import overview, plot_driver, plot_polar
@@ -43,12 +44,13 @@ def _tag(sol: Solution, pos: float) -> str:
 def cli_figures(sol: Solution, positions: list[float] | None = None) -> dict[str, Figure]:
     """Every figure of ``solve --plot``, by file stem.
 
-    ``overview``, ``driver`` (Me or Fe over the cycle), ``polar_<joint>`` (the polar
-    diagram of each joint's reaction, numbered positions along it), and at each
-    position: ``mechanism_<pos>`` (with the loads and the reactions),
-    ``velocity_plan_<pos>``, ``acceleration_plan_<pos>``,
-    ``instant_centres_<pos>``, ``free_body_<pos>_dyad<k>`` (the free-body diagram beside
-    the force polygon; k = 0: the driver).
+    ``overview`` (its drawing at the first position), ``driver`` (Me or Fe over the
+    cycle), ``polar_<joint>`` (the polar diagram of each joint's reaction, numbered
+    positions along it), and at each position: ``mechanism_<pos>`` (with the loads and
+    the reactions), ``velocity_plan_<pos>``, ``acceleration_plan_<pos>``,
+    ``instant_centres_<pos>``, ``free_body_<pos>_driver`` and ``free_body_<pos>_dyad<k>``
+    (the free-body diagram beside the force polygon; dyads numbered from 1, as
+    ``structure`` and the summary number them).
 
     Parameters
     ----------
@@ -66,7 +68,8 @@ def cli_figures(sol: Solution, positions: list[float] | None = None) -> dict[str
         if not lo - 1e-9 <= p <= hi + 1e-9:
             raise WorkbenchError(f"--plot-at {p:g}: outside the sweep [{lo:g}, {hi:g}] "
                                  f"{position_unit(sol)}")
-    figs = {"overview": overview(sol), "driver": plot_driver(sol).figure}
+    figs = {"overview": overview(sol, positions[0] if positions else None),
+            "driver": plot_driver(sol).figure}
     for j in sol.scene.joints:
         figs[f"polar_{j}"] = plot_polar(sol, j).figure
     for p in positions:
@@ -76,28 +79,43 @@ def cli_figures(sol: Solution, positions: list[float] | None = None) -> dict[str
         figs[f"acceleration_plan_{t}"] = acceleration_plan(sol, p).figure
         figs[f"instant_centres_{t}"] = plot_instant_centres(sol, p).figure
         for d in range(len(sol.kin.dyads) + 1):
-            figs[f"free_body_{t}_dyad{d}"] = dyad_free_body(sol, d, p)
+            figs[f"free_body_{t}_" + (f"dyad{d}" if d else "driver")] = \
+                dyad_free_body(sol, d, p)
     for fig in figs.values():
         settle(fig)
     return figs
 
 
+# the pictures' files in a folder (an earlier run's not drawn again are removed when a new
+# run ends well: kinetostatics.model.outputs)
+PICTURES = ("overview.png", "driver.png", "polar_*.png", "mechanism_*.png",
+            "velocity_plan_*.png", "acceleration_plan_*.png", "instant_centres_*.png",
+            "free_body_*.png")
+
+
 def write_pictures(sol: Solution, directory: str | Path,
                    positions: list[float] | None = None, dpi: float = 150) -> list[Path]:
     """Save :func:`cli_figures`, drawn in the :func:`~kinetostatics.plot.lecture_style`
-    at ``dpi``, as ``DIR/<stem>.png``; the paths written."""
+    at ``dpi``, as ``DIR/<stem>.png``, all or none (:mod:`kinetostatics.model.outputs`);
+    the paths written."""
     out = Path(directory)
     if out.exists() and not out.is_dir():
         raise WorkbenchError(f"--plot {out}: is a file, not a folder")
-    out.mkdir(parents=True, exist_ok=True)
-    written = []
+    with staged_folder(out, PICTURES) as stage:
+        stems = _save_pictures(sol, stage.path, positions, dpi)
+    return [out / f"{stem}.png" for stem in stems]
+
+
+def _save_pictures(sol: Solution, folder: Path, positions: list[float] | None,
+                   dpi: float) -> list[str]:
+    """Draw and save the pictures into ``folder``; their stems."""
+    stems = []
     with lecture_style(dpi):
         for stem, fig in cli_figures(sol, positions).items():
-            path = out / f"{stem}.png"
-            fig.savefig(path, dpi=dpi)
+            fig.savefig(folder / f"{stem}.png", dpi=dpi)
             plt.close(fig)
-            written.append(path)
-    return written
+            stems.append(stem)
+    return stems
 
 
 def _refuse_cam_scene(path: Path) -> None:
@@ -123,8 +141,14 @@ def run_demo(args) -> int:
     _refuse_cam_scene(path)
     sol = solve(path)
     out = Path(args.out)
-    written = sol.to_csv(out)
-    written += write_pictures(sol, out, dpi=getattr(args, "dpi", 150))
+    if out.exists() and not out.is_dir():
+        raise WorkbenchError(f"--out {out}: is a file, not a folder")
+    # the tables and the pictures, one run: all in place, or none
+    at = _default_positions(sol)
+    with staged_folder(out, Solution.OUTPUT_KIND + PICTURES) as stage:
+        written = sol.to_csv(stage.path)
+        written += write_pictures(sol, stage.path, at, dpi=getattr(args, "dpi", 150))
+    written = [out / p.name for p in written]
     s = sol.summary()
     q = sol.driver_quantity
     unit = "N m" if q == "Me" else "N"
@@ -144,5 +168,8 @@ def run_demo(args) -> int:
         print(f"  transmission angle min(tau, 180 - tau) = {s['transmission_angle_min']:.4g} deg "
               f"at {s['transmission_angle_min_position']:g} {pu} "
               f"(dyad {s['transmission_angle_min_dyad']})")
+    if at:
+        print(f"  pictures at {'φ' if pu == 'deg' else 's'} = {at[0]:g} {pu}, where "
+              f"|{q}| is largest (the overview's drawing too)")
     print("wrote: " + ", ".join(str(p) for p in written))
     return 0

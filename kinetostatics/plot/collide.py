@@ -15,7 +15,10 @@ from matplotlib.text import Annotation, Text
 
 from .style import drawn_extent, overlapping_texts
 
-__all__ = ["collisions", "drawn_paths", "label_boxes"]
+__all__ = ["GUIDE", "collisions", "drawn_paths", "label_boxes"]
+
+#: The gid of a faint guide line (as a grid line: labels and legends may cross it).
+GUIDE = "guide"
 
 
 def _shrunk(bb, tol: float):
@@ -28,11 +31,14 @@ def drawn_paths(ax: Axes, skip=()) -> list[tuple[str, Path, int]]:
 
     Lines are taken with their markers (a marker-only line counts by its points); the
     arrows of annotations and free arrow patches by their drawn outline. Grid lines,
-    spines and tick marks are not data and are left out.
+    spines and tick marks are not data and are left out, and so are faint guide lines
+    drawn like a grid line (``gid="guide"``: the axes through the origin of a vector
+    diagram).
     """
     out: list[tuple[str, Path, int]] = []
     for ln in ax.get_lines():
-        if not ln.get_visible() or len(ln.get_xdata()) == 0 or id(ln) in skip:
+        if not ln.get_visible() or len(ln.get_xdata()) == 0 or id(ln) in skip or \
+                ln.get_gid() == GUIDE:
             continue
         name = ln.get_label() if not ln.get_label().startswith("_") else "a line"
         xy = ln.get_transform().transform(np.column_stack(

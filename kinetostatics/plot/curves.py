@@ -27,7 +27,7 @@ from .base import (
     vector_axes,
 )
 from .mechanism import draw_mechanism
-from .notation import direction_text, gloss, number, titled
+from .notation import direction_text, force_symbol, number, reading, titled
 from .place import declutter, settle
 
 __all__ = [
@@ -54,26 +54,26 @@ def plot_driver(sol: Solution, ax: Axes | None = None) -> Axes:
     """
     ax = axes_or_new(ax, figsize=(8.5, 5.0))
     q = sol.driver_quantity
-    me = sol.Me
+    sing = np.asarray(sol.singular, dtype=bool)
+    me = np.where(sing, np.nan, sol.Me)     # a singular row has no value: a gap, shaded
     unit = "N m" if q == "Me" else "N"
     ax.plot(sol.positions, me, lw=2, label=q)
     mean = sol.summary()[f"{q}_mean"]
-    if abs(mean) < 1e-9 * (np.abs(me).max() or 1.0):
+    if abs(mean) < 1e-9 * (np.nanmax(np.abs(me), initial=0.0) or 1.0):
         mean = 0.0
     mean_text = "0 (to rounding)" if mean == 0.0 else f"{number(mean)} {unit}"
     ax.axhline(mean, color="tab:orange", ls="--", label=f"mean {mean_text}")
     ax.axhline(0.0, color="0.5", lw=0.8)
-    sing = sol.singular
     if sing.any():
         ax.fill_between(sol.positions, 0, 1, where=sing, transform=ax.get_xaxis_transform(),
-                        color="tab:red", alpha=0.15, label="near a dead centre")
+                        color="tab:red", alpha=0.15,
+                        label=f"near a dead point: {int(sing.sum())} rows, no value")
     ax.set_xlabel(position_label(sol))
     cycle_axis(ax, sol)
     ax.set_ylabel("equilibrating moment Me [N m]" if q == "Me"
                   else "equilibrating force Fe [N]")
-    ax.set_title(f"{q} over the cycle\n"
-                 f"{titled('balancing moment' if q == 'Me' else 'balancing force')}",
-                 fontsize=11)
+    ax.set_title(f"{titled('equilibrating moment' if q == 'Me' else 'equilibrating force')} "
+                 f"{q} over the cycle", fontsize=11)
     ax.grid(True, alpha=0.3)
     legend_outside(ax)
     return ax
@@ -116,25 +116,30 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
     numbered = False
     for j in joints:
         fx, fy = sol.reaction(j)
+        sing = np.asarray(sol.singular, dtype=bool)
+        if sing.any() and not sing.all():       # a singular row has no value: a gap
+            fx, fy = np.where(sing, np.nan, fx), np.where(sing, np.nan, fy)
         r = sol.joint_reactions[j]
         kind, u = _polar_kind(fx, fy)
         f0 = np.array([float(fx[0]), float(fy[0])])
         if kind == "constant":      # one point: say it, number nothing
-            ax.plot(fx[:1], fy[:1], "o", ms=7, label=f"F[{j}] on {r.on}")
+            ax.plot(fx[:1], fy[:1], "o", ms=7, label=f"{force_symbol(j)} on {r.on}")
             c = ax.lines[-1].get_color()
             ax.annotate("", tuple(f0), (0.0, 0.0), arrowprops={
                 "arrowstyle": "-|>", "color": c, "lw": 1.2, "shrinkA": 0, "shrinkB": 4})
             texts.append(ax.annotate(
-                f"F[{j}] = {magnitude_text(float(np.hypot(*f0)))} N at {direction_text(f0)}"
+                f"{force_symbol(j)} = {magnitude_text(float(np.hypot(*f0)))} N at "
+                f"{direction_text(f0)}"
                 "\nover the whole cycle", tuple(f0), xytext=(6, 6),
                 textcoords="offset points", fontsize=10, color=c))
             continue
         numbered = True
-        ax.plot(fx, fy, lw=1.8, label=f"F[{j}] on {r.on}")
+        ax.plot(fx, fy, lw=1.8, label=f"{force_symbol(j)} on {r.on}")
         c = ax.lines[-1].get_color()
         if kind == "fixed direction":
             along = np.asarray(fx) * u[0] + np.asarray(fy) * u[1]
-            ax.plot([], [], ls="none", label=f"F[{j}]: fixed direction {direction_text(u)}, "
+            ax.plot([], [], ls="none", label=f"{force_symbol(j)}: fixed direction "
+                    f"{direction_text(u)}, "
                     f"{number(along.min(), '.4g')} to {number(along.max(), '.4g')} N along it")
             ax.annotate("", tuple(u * float(np.abs(along).max())), (0.0, 0.0),
                         arrowprops={"arrowstyle": "-|>", "color": c, "lw": 0.8, "ls": ":",
@@ -149,13 +154,13 @@ def plot_polar(sol: Solution, joints: Sequence[str] | str | None = None,
         step = float(sol.positions[rows[1]] - sol.positions[rows[0]]) if len(rows) > 1 else 0.0
         unit = "°" if sol.scene.driver.kind == "R" else " m"
         ax.plot([], [], ".", color="0.3",
-                label=f"k: position {float(sol.positions[0]):g}{unit} + k·{step:.4g}{unit}")
+                label=f"k: position {float(sol.positions[0]):g}{unit} + k·{reading(step)}{unit}")
     ax.set_aspect("equal", adjustable="datalim")
     vector_axes(ax)
     ax.set_xlabel("Fx [N]")
     ax.set_ylabel("Fy [N]")
-    ax.set_title(f"polar diagram of the joint reactions\n({gloss('polar diagram')}; "
-                 "dot: first position)", fontsize=11)
+    ax.set_title(f"{titled('polar diagram')} of the joint reactions\n(dot: first position)",
+                 fontsize=11)
     ax.grid(True, alpha=0.3)
     legend_outside(ax)
     declutter(ax, texts)

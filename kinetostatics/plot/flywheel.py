@@ -10,9 +10,11 @@ import numpy as np
 import pandas as pd
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.ticker import MaxNLocator
 
 from ..model.errors import WorkbenchError
 from .base import axes_or_new
+from .notation import reading
 
 __all__ = ["plot_flywheel_curves", "plot_wittenbauer", "reduced_cycle", "wittenbauer_flywheel"]
 
@@ -80,12 +82,12 @@ def plot_flywheel_curves(data: pd.DataFrame) -> Figure:
     fig, axs = plt.subplots(3, 1, figsize=(7.0, 8.0), sharex=True, layout="constrained")
     p = data["phi"].to_numpy()
     axs[0].plot(p, data["I_r"], lw=2, color="tab:blue")
-    axs[0].set_ylabel("I_r [kg m²]")
+    axs[0].set_ylabel("$I_r$ [kg m²]")
     axs[0].set_title("reduced moment of inertia, reduced moments\nand energy over a cycle",
                      fontsize=10)
-    axs[1].plot(p, data["M_loads"], lw=1.8, label="loads M_r")
-    axs[1].plot(p, data["M_motor"], lw=1.8, label="motor M_m")
-    axs[1].plot(p, data["M"], lw=2.2, color="k", label="M = M_m + M_r")
+    axs[1].plot(p, data["M_loads"], lw=1.8, label="loads $M_r$")
+    axs[1].plot(p, data["M_motor"], lw=1.8, label="motor $M_m$")
+    axs[1].plot(p, data["M"], lw=2.2, color="k", label="$M = M_m + M_r$")
     axs[1].axhline(0.0, color="0.5", lw=0.8)
     axs[1].set_ylabel("reduced moment [N m]")
     axs[1].legend(fontsize=10, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
@@ -97,7 +99,7 @@ def plot_flywheel_curves(data: pd.DataFrame) -> Figure:
     axs[2].annotate("", (p[k_hi], de[k_hi]), (p[k_hi], de[k_lo]),
                     arrowprops={"arrowstyle": "<->", "color": "tab:red"})
     axs[2].plot([], [], color="tab:red",
-                label=f"ΔE_max = {de[k_hi] - de[k_lo]:.4g} J "
+                label=f"$ΔE_{{max}}$ = {reading(de[k_hi] - de[k_lo])} J "
                       f"({p[k_lo]:.0f}° to {p[k_hi]:.0f}°)")
     axs[2].set_ylabel("ΔE [J]")
     axs[2].set_xlabel("crank angle φ [deg]")
@@ -186,21 +188,24 @@ def plot_wittenbauer(data: pd.DataFrame, omega_mean: float | None = None,
     if omega_mean is not None and delta is not None:
         w = wittenbauer_flywheel(i_r, de, omega_mean, delta)
         x0 = -w["J"]
-        for k, b, r, lab in ((w["k_max"], w["b_max"], w["i_max"], "ω_max²/2"),
-                             (w["k_min"], w["b_min"], w["i_min"], "ω_min²/2")):
+        for k, b, r, lab in ((w["k_max"], w["b_max"], w["i_max"], "$ω_{max}^2/2$"),
+                             (w["k_min"], w["b_min"], w["i_min"], "$ω_{min}^2/2$")):
             xs = np.array([x0, i_r[r]])
             ax.plot(xs, k * xs + b, "--", lw=1.2,
-                    label=f"tangent, slope {lab} = {k:.4g} J/(kg m²)")
+                    label=f"tangent, slope {lab} = {reading(k)} J/(kg m²)")
         ax.plot(x0, -w["E0"], "s", color="k",
-                label=f"(−J, −E0) = ({x0:.4g} kg m², {-w['E0']:.4g} J)")
-        title += f"\nω_m = {omega_mean:g} rad/s, δ = {delta:g}: flywheel J = {w['J']:.4g} kg m²"
+                label=f"(−J, −E0) = ({reading(x0)} kg m², {reading(-w['E0'])} J)")
+        title += (f"\n$ω_m$ = {reading(omega_mean)} rad/s, δ = {delta:g}: flywheel J = "
+                  f"{reading(w['J'])} kg m²")
         # the curve is small beside the construction: zoomed in an inset
         curve = ax.inset_axes([0.08, 0.5, 0.45, 0.42])
         curve.set_title("the curve, zoomed", fontsize=10)
-        curve.tick_params(labelsize=7)
+        curve.tick_params(labelsize=10)       # the lecture style's smallest text
+        for axis in (curve.xaxis, curve.yaxis):
+            axis.set_major_locator(MaxNLocator(nbins=3))
         curve.grid(True, alpha=0.3)
     for a in {ax, curve}:
-        a.plot(i_r, de, lw=2, color="tab:blue", label="(I_r(φ), ΔE(φ))" if a is ax else None)
+        a.plot(i_r, de, lw=2, color="tab:blue", label="($I_r$(φ), ΔE(φ))" if a is ax else None)
     if w is not None:
         for k, b, r in ((w["k_max"], w["b_max"], w["i_max"]),
                         (w["k_min"], w["b_min"], w["i_min"])):

@@ -20,22 +20,31 @@ from ..results import Solution
 from .base import (
     LOAD_COLORS,
     REACTION_COLOR,
+    SINGULAR_NOTE,
     at_row,
     body_colors,
     global_point,
     magnitude_text,
     position_text,
     row_index,
+    singular_row,
     vector_axes,
 )
 from .mechanism import draw_body
-from .notation import signed_text, titled
+from .notation import (
+    couple_subscript,
+    force_symbol,
+    load_symbol,
+    reading,
+    round_scale,
+    signed_text,
+    titled,
+)
 from .place import declutter, settle
 from .polygons import find_dyad, force_on, force_polygon
 
 __all__ = ["dyad_free_body", "free_body_forces"]
 
-_SHORT = {"applied": "F", "gravity": "G", "inertia": "Fi", "friction": "Ff"}
 
 
 def free_body_forces(sol: Solution, dyad, position: float | None = None, *,
@@ -53,12 +62,13 @@ def free_body_forces(sol: Solution, dyad, position: float | None = None, *,
     Returns
     -------
     list of dict
-        One per force: ``label``, ``body`` (the body it acts on), ``kind`` (``applied``,
-        ``gravity``, ``inertia``, ``friction``, ``reaction`` for outer joints and the
-        dyads solved before, ``inner`` for the inner joint), ``x``, ``y`` [m] (point of
-        application), ``fx``, ``fy`` [N], ``m`` [N m] (a couple, ccw positive). On each
-        body the forces and couples balance (the ``m`` of a prismatic joint's reaction
-        included).
+        One per force: ``label`` (a reaction's also says which body acts on which),
+        ``symbol`` (as the force polygon writes it, mathtext), ``body`` (the body it
+        acts on), ``kind`` (``applied``, ``gravity``, ``inertia``, ``friction``,
+        ``reaction`` for outer joints and the dyads solved before, ``inner`` for the
+        inner joint), ``x``, ``y`` [m] (point of application), ``fx``, ``fy`` [N],
+        ``m`` [N m] (a couple, ccw positive). On each body the forces and couples
+        balance (the ``m`` of a prismatic joint's reaction included).
     """
     i = row_index(sol, position, row)
     n = sol.positions.size
@@ -73,7 +83,8 @@ def free_body_forces(sol: Solution, dyad, position: float | None = None, *,
         if fx == 0.0 and fy == 0.0 and m == 0.0:
             continue
         x, y = ld.position(sol.kin)
-        out.append({"label": f"{_SHORT.get(ld.kind, 'F')} {ld.body}", "body": ld.body,
+        sym = load_symbol(ld.kind, ld.body)
+        out.append({"label": sym, "symbol": sym, "body": ld.body,
                     "kind": ld.kind, "x": at_row(x, i, n), "y": at_row(y, i, n),
                     "fx": fx, "fy": fy, "m": m})
     for j in sol.scene.joints.values():
@@ -84,7 +95,9 @@ def free_body_forces(sol: Solution, dyad, position: float | None = None, *,
             f = force_on(sol, j.name, b, i)
             m = 0.0 if r.M is None else at_row(r.M, i, n) * (1.0 if r.on == b else -1.0)
             other = j.other(b)
-            out.append({"label": f"F[{j.name}] {other}→{b}", "body": b,
+            out.append({"label": f"{force_symbol(j.name)} {other}→{b}",
+                        "symbol": force_symbol(j.name), "body": b,
+                        "joint": j.name,
                         "kind": "inner" if j.name == inner else "reaction",
                         "x": at_row(r.x, i, n), "y": at_row(r.y, i, n),
                         "fx": float(f[0]), "fy": float(f[1]), "m": m})
@@ -93,12 +106,13 @@ def free_body_forces(sol: Solution, dyad, position: float | None = None, *,
         me = float(sol.Me[i])
         if sol.drive.kind == "R":
             x, y = global_point(sol, bodies[0], dj.point_on(bodies[0]), i)
-            out.append({"label": "Me", "body": bodies[0], "kind": "applied", "x": x, "y": y,
+            out.append({"label": "Me", "symbol": "Me", "body": bodies[0], "kind": "applied",
+                        "x": x, "y": y,
                         "fx": 0.0, "fy": 0.0, "m": me})
         else:       # Fe along the driving guide, at the slider point (as in the polygon)
             beta = dj.beta if dj.guide == GROUND else 0.0
             r = sol.joint_reactions[dj.name]
-            out.append({"label": "Fe", "body": bodies[0], "kind": "applied",
+            out.append({"label": "Fe", "symbol": "Fe", "body": bodies[0], "kind": "applied",
                         "x": at_row(r.x, i, n), "y": at_row(r.y, i, n),
                         "fx": me * np.cos(beta), "fy": me * np.sin(beta), "m": 0.0})
     return out
@@ -154,14 +168,17 @@ def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
     pts = []
     for b in bodies:
         pts += draw_body(ax, sol, b, i, colors[names.index(b) % len(colors)], texts, named)
-    forces = free_body_forces(sol, dyad, row=i)
+    singular = singular_row(sol, i)     # no force to vouch for: said, not drawn
+    forces = [] if singular else free_body_forces(sol, dyad, row=i)
     pts = np.array(pts + [(f["x"], f["y"]) for f in forces])
     size = float(np.ptp(pts, axis=0).max()) or 1.0
     fmax = max((np.hypot(f["fx"], f["fy"]) for f in forces), default=0.0) or 1.0
     mmax = max((abs(f["m"]) for f in forces), default=0.0) or 1.0
-    sc = 0.45 * size / fmax
+    sc = round_scale(0.45 * size / fmax)      # m per N: 1, 2 or 5 x 10^k
+    ref = 10.0 ** np.floor(np.log10(0.2 * size))      # m: the scale's length
     first_inner = True
     kinds = {}
+    couples: list = []      # the couples: curved arrows, named in the legend
     for f in forces:
         col = {"reaction": REACTION_COLOR, "inner": "k"}.get(f["kind"],
                                                           LOAD_COLORS.get(f["kind"], "0.3"))
@@ -175,30 +192,37 @@ def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
                 "arrowstyle": "-|>", "color": col, "lw": 1.6, "shrinkA": 0, "shrinkB": 0,
                 "ls": "--" if f["kind"] == "inner" else "-"})
             ax.update_datalim([(x, y), tip])
-            lab = f["label"] + (" (reversed on the other)" if f["kind"] == "inner" else "")
-            texts.append(ax.annotate(f"{lab}\n{magnitude_text(mag)} N", tip,
+            lab = f"{f['symbol']} {magnitude_text(mag)} N"
+            if f["kind"] == "reaction":     # which body acts on which, under it
+                lab += "\n" + f["label"].split(" ", 1)[1]
+            texts.append(ax.annotate(lab, tip,
                                      xytext=(4 * f["fx"] / mag, 4 * f["fy"] / mag),
                                      textcoords="offset points", fontsize=10, color=col,
                                      ha="left" if f["fx"] >= 0 else "right",
                                      va="bottom" if f["fy"] >= 0 else "top"))
             kinds.setdefault(f["kind"], col)
-        if abs(f["m"]) > 1e-9 * mmax:
+        if abs(f["m"]) > 1e-9 * max(mmax, fmax * size):      # not a rounding-level couple
             r = 0.04 * size
             _couple(ax, x, y, f["m"], r, col)
-            name = "Mi" if f["kind"] == "inertia" else "M" if f["label"] != "Me" else "Me"
-            texts.append(ax.annotate(signed_text(name, f["m"], "N m"), (x, y),
-                                     xytext=(-6, -14), textcoords="offset points",
-                                     fontsize=10, color=col, ha="right", va="top"))
+            # each couple names its body (and a joint's couple its joint)
+            name = {"inertia": f"Mi {f['body']}"}.get(
+                f["kind"], "Me" if f["label"] == "Me" else
+                f"$M{couple_subscript(f.get('joint', ''))}$ on {f['body']}")
+            couples.append(Line2D([], [], color=col, lw=1.3, marker=r"$\circlearrowleft$"
+                                  if f["m"] > 0 else r"$\circlearrowright$", ms=9,
+                                  label=signed_text(name, f["m"], "N m")))
         if f["kind"] == "inner":
             first_inner = False
     handles = [Line2D([], [], color=c, lw=1.6, ls="--" if k == "inner" else "-",
                       label={"reaction": "outer joint reactions", "inner": "inner joint "
-                             "(on the first body)"}.get(k, f"{k} forces"))
+                             "(on the first body; reversed on the other)"}.get(
+                                 k, f"{k} forces"))
                for k, c in kinds.items()]
     h, _ = ax.get_legend_handles_labels()
-    fig.legend(handles=h + handles, fontsize=10, loc="outside lower left", ncol=4)
+    fig.legend(handles=h + handles + couples, fontsize=10, loc="outside lower left",
+               ncol=3 if couples else 4)
     ax.set_aspect("equal", adjustable="datalim")
-    ax.margins(0.15)
+    ax.margins(0.25)            # room for the labels around the arrows
     ax.autoscale_view()
     vector_axes(ax)             # few ticks: the diagram is narrow beside its polygon
     ax.set_xlabel("x [m]")
@@ -207,7 +231,8 @@ def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
     what = f"dyad {d.index + 1} {d.kind} ({', '.join(d.bodies)})" if d is not None else \
         f"driver {bodies[0]}"
     ax.set_title(f"{titled('free-body diagram')}\n{what} at {position_text(sol, i)}\n"
-                 f"arrows: {sc * fmax:.3g} m ≙ {magnitude_text(fmax)} N", fontsize=10)
+                 + (SINGULAR_NOTE if singular else
+                    f"arrows: {ref:g} m ≙ {reading(ref / sc)} N"), fontsize=10)
     force_polygon(sol, 0 if d is None else d.index + 1, row=i, ax=ax2)
     declutter(ax, texts)
     settle(fig)

@@ -16,14 +16,18 @@ from ..results import Solution
 from .base import (
     LOAD_COLORS,
     REACTION_COLOR,
+    SINGULAR_NOTE,
     at_row,
     axes_or_new,
     body_colors,
     global_point,
+    legend_outside,
     position_text,
     row_index,
+    singular_row,
     trace_points,
 )
+from .notation import force_symbol, load_symbol, reading, round_scale
 from .place import declutter
 
 __all__ = ["animate", "draw_body", "draw_mechanism"]
@@ -165,7 +169,7 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
         for name in scene.joints:
             r = sol.joint_reactions[name]
             fx, fy = sol.reaction(name)
-            arrows.append((f"F[{name}]", at_row(r.x, i, n), at_row(r.y, i, n), float(fx[i]),
+            arrows.append((force_symbol(name), at_row(r.x, i, n), at_row(r.y, i, n), float(fx[i]),
                            float(fy[i]), REACTION_COLOR))
     if loads:
         for ld in sol.loads:
@@ -173,13 +177,16 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
             if fx == 0.0 and fy == 0.0:
                 continue
             x, y = ld.position(sol.kin)
-            short = {"applied": "F", "gravity": "G", "inertia": "Fi"}[ld.kind]
-            arrows.append((f"{short} {ld.body}", at_row(x, i, n), at_row(y, i, n), fx, fy,
+            arrows.append((load_symbol(ld.kind, ld.body), at_row(x, i, n), at_row(y, i, n), fx, fy,
                            LOAD_COLORS[ld.kind]))
     handles = []
+    note = ""
+    if arrows and singular_row(sol, i):
+        arrows, note = [], "\n" + SINGULAR_NOTE      # no number to vouch for
     if arrows:
         fmax = max(np.hypot(a[3], a[4]) for a in arrows) or 1.0
-        sc = force_scale or 0.25 * size / fmax
+        # a round scale (1, 2 or 5 x 10^k m per N): the arrow legend reads round numbers
+        sc = force_scale or round_scale(0.25 * size / fmax)
         for lab, x, y, fx, fy, col in arrows:
             tip = (x + sc * fx, y + sc * fy)
             ax.annotate("", tip, (x, y),
@@ -198,13 +205,15 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
                       if any(a[5] == c for a in arrows)]
         handles = [Line2D([], [], color=c, lw=1.5, label=k) for k, c in kinds]
         ref = 10.0 ** np.floor(np.log10(0.1 * size))
-        handles.append(Line2D([], [], ls="none", label=f"arrows: {ref:g} m ≙ {ref / sc:.3g} N"))
+        handles.append(Line2D([], [], ls="none",
+                              label=f"arrows: {ref:g} m ≙ {reading(ref / sc)} N"))
     ax.set_aspect("equal", adjustable="datalim")
     ax.margins(0.08)
     ax.autoscale_view()
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
-    ax.set_title(f"{scene.title or 'mechanism'}\nat {position_text(sol, i)}", fontsize=11)
+    ax.set_title(f"{scene.title or 'mechanism'}\nat {position_text(sol, i)}{note}",
+                 fontsize=11)
     ax.grid(True, alpha=0.3)
     h, _ = ax.get_legend_handles_labels()
     ax.legend(handles=h + handles, fontsize=10, loc="best")
@@ -298,7 +307,7 @@ def animate(sol: Solution, frames: int = 24, *, ax: Axes | None = None,
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=10, loc="best")
+    legend_outside(ax, fontsize=10)     # never over the moving links
     update(0)
     return FuncAnimation(fig, update, frames=len(rows), interval=interval, blit=False)
 

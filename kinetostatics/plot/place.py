@@ -23,7 +23,7 @@ from matplotlib.transforms import Bbox
 from .collide import drawn_paths
 from .style import figure_boxes, lay_out, text_extent
 
-__all__ = ["declutter", "settle"]
+__all__ = ["UNPLACED_TITLE", "declutter", "settle"]
 
 _DIRECTIONS = np.deg2rad(np.array([45, 135, 315, 225, 90, 270, 0, 180,
                                    22.5, 67.5, 112.5, 157.5, 202.5, 247.5, 292.5, 337.5]))
@@ -138,13 +138,13 @@ def _place_one(t: Annotation, room: _Room, renderer, scale: float) -> bool:
     return False
 
 
-_UNPLACED_TITLE = "labels not placed (no free room at their point)"
+UNPLACED_TITLE = "labels not placed (no free room at their point)"
 
 
 def _not_placed(fig, texts: list[Text]) -> None:
     """Take the labels off the drawing and name them in a legend below the figure (one
     legend per figure: a later call adds to it)."""
-    old = next((lg for lg in fig.legends if lg.get_title().get_text() == _UNPLACED_TITLE),
+    old = next((lg for lg in fig.legends if lg.get_title().get_text() == UNPLACED_TITLE),
                None)
     handles = [] if old is None else list(old.legend_handles)
     labels = [] if old is None else [t.get_text() for t in old.get_texts()]
@@ -157,7 +157,7 @@ def _not_placed(fig, texts: list[Text]) -> None:
     others = [lg for lg in fig.legends if lg is not old]
     fig.legend(handles, labels, loc="outside upper center" if others else "outside lower right",
                fontsize=10,
-               title=_UNPLACED_TITLE, title_fontsize=10, ncol=min(3, len(handles)))
+               title=UNPLACED_TITLE, title_fontsize=10, ncol=min(3, len(handles)))
 
 
 def _legend_off_data(ax: Axes, renderer) -> None:

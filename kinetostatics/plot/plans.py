@@ -22,10 +22,16 @@ from .base import (
     row_index,
     vector_axes,
 )
-from .notation import POLE, gloss, signed_text
+from .notation import POLE, reading, signed_text, titled
 from .place import declutter
 
 __all__ = ["acceleration_plan", "velocity_plan"]
+
+#: The colours of the absolute vectors of a plan, one per point (none of them the
+#: olive, cyan, pink and grey of the components and relative vectors, nor the red of
+#: the reactions).
+VECTOR_COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:brown",
+                 "#1b9e77", "#7570b3", "#e7298a", "#a6761d", "#e6ab02", "#1f3b73", "#000000")
 
 
 @dataclass
@@ -134,13 +140,11 @@ def _start(sol: Solution, position, row, ax, kind: str, cog: bool) -> _Plan:
 def _absolute_vectors(pl: _Plan) -> None:
     """From the pole, the absolute vector of every point (tips at one place share one
     label "b = c"); the points on the pole are named beside it."""
-    colors, bodies = body_colors(), list(pl.sol.scene.bodies)
     sym = "v" if pl.kind == "v" else "a"
     tips: list[list] = []
-    for q in pl.pts:
-        if id(q) in pl.at_pole:
-            continue
-        c = colors[bodies.index(q.bodies[0]) % len(colors)]
+    moving = [q for q in pl.pts if id(q) not in pl.at_pole]
+    for k, q in enumerate(moving):
+        c = VECTOR_COLORS[k % len(VECTOR_COLORS)]     # every vector its own colour
         v = pl.vec[id(q)]
         pl.arrow((0.0, 0.0), v, c)
         same = next((t for t in tips if np.hypot(*(t[0] - v)) <= 1e-6 * pl.big), None)
@@ -148,7 +152,8 @@ def _absolute_vectors(pl: _Plan) -> None:
             tips.append([v, [q.label], c])
         else:
             same[1].append(q.label)
-        pl.legend(f"{POLE}{q.label} = {sym}({q.text}): {np.hypot(*v):.3g} {pl.unit}", c)
+        pl.legend(f"{POLE}{q.label} = {sym}({q.text}): {reading(np.hypot(*v), 3)} {pl.unit}",
+                  c)
     for v, labs, c in tips:
         off = 10.0 * v / np.hypot(*v)
         pl.ax.annotate(" = ".join(labs), tuple(v), xytext=tuple(off),
@@ -199,16 +204,21 @@ def _relative_vectors(pl: _Plan, components: bool) -> tuple[bool, bool]:
                 an = -omega ** 2 * d                          # towards q0: omega^2 l
                 at = alpha * np.array([-d[1], d[0]])         # eps x r
                 mid = t0 + an
-                pl.arrow(t0, mid, "tab:olive", lw=1.0, ls="--")
-                pl.arrow(mid, mid + at, "tab:cyan", lw=1.0, ls="--")
-                comp_drawn = True
+                # from the pole with no tangential part the normal part is the absolute
+                # vector itself (a crank at constant speed): drawn once, as the absolute
+                lies_on = id(q0) in pl.at_pole and np.hypot(*at) <= 1e-9 * pl.big
+                if not lies_on:
+                    pl.arrow(t0, mid, "tab:olive", lw=1.0, ls="--")
+                if np.hypot(*at) > 1e-9 * pl.big:
+                    pl.arrow(mid, mid + at, "tab:cyan", lw=1.0, ls="--")
+                comp_drawn = comp_drawn or not lies_on
     return rel_drawn, comp_drawn
 
 
 def _relative_text(pl: _Plan, b: str, q0, q1, omega: float, alpha: float) -> str:
     """``bc: 0.183 m/s, ω(coupler) = v_CB/BC = 0.787 rad/s, clockwise``."""
     rel = float(np.hypot(*(pl.vec[id(q1)] - pl.vec[id(q0)])))
-    head = f"{q0.label}{q1.label}: {rel:.3g} {pl.unit}"
+    head = f"{q0.label}{q1.label}: {reading(rel, 3)} {pl.unit}"
     if float(np.hypot(*(q1.xy - q0.xy))) == 0.0:
         return head
     rn, ln = q1.name + q0.name, q0.name + q1.name
@@ -235,9 +245,10 @@ def _sliding_vectors(pl: _Plan) -> bool:
         if np.hypot(*cor) > 1e-9 * pl.big:
             pl.arrow(t0, t0 + cor, "tab:pink", lw=1.2, ls="--")
             pl.legend(f"Coriolis 2ω × $v_{{\\mathrm{{rel}}}}$ at {j.name} = "
-                      f"{np.hypot(*cor):.3g} {pl.unit}", "tab:pink", ls="--")
+                      f"{reading(np.hypot(*cor), 3)} {pl.unit}", "tab:pink", ls="--")
         pl.arrow(t0 + cor, t1, "tab:gray", lw=1.2, ls=":")
-        pl.legend(f"relative along {j.name} = {np.hypot(*(t1 - t0 - cor)):.3g} {pl.unit}",
+        pl.legend(f"relative along {j.name} = {reading(np.hypot(*(t1 - t0 - cor)), 3)} "
+                  f"{pl.unit}",
                   "tab:gray", ls=":")
     if pl.kind == "v" and pl.slides:
         pl.legend("relative velocity along the guide", "tab:gray", ls=":")
@@ -255,13 +266,15 @@ def _frame(pl: _Plan) -> None:
     ax.set_xlabel(f"${attr}_x$ [{pl.unit}]")
     ax.set_ylabel(f"${attr}_y$ [{pl.unit}]")
     term = "velocity plan" if pl.kind == "v" else "acceleration plan"
-    what = f"{term}\n({gloss(term)})"
+    what = titled(term)
     drv = sol.scene.driver
     speed = f"ω = {drv.speed:g} rad/s" if drv.kind == "R" else f"v = {drv.speed:g} m/s"
     ax.set_title(f"{what}\nat {position_text(sol, pl.i)}, {speed}", fontsize=11)
     ax.grid(True, alpha=0.3)
-    ax.legend(handles=pl.handles, loc="upper center", bbox_to_anchor=(0.5, -0.1),
-              borderaxespad=0.0)      # below: the plan keeps the figure's width
+    # below the x label (3.4 font sizes under the Axes, whatever their size): the plan
+    # keeps the figure's width
+    ax.legend(handles=pl.handles, loc="upper center", bbox_to_anchor=(0.5, 0.0),
+              borderaxespad=3.4)
 
 
 def _plan(sol: Solution, position, row, ax, kind: str, cog: bool,

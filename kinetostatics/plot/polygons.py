@@ -15,6 +15,7 @@ from ..solver.structure import Dyad
 from .base import (
     LOAD_COLORS,
     REACTION_COLOR,
+    SINGULAR_NOTE,
     at_row,
     axes_or_new,
     global_point,
@@ -24,9 +25,10 @@ from .base import (
     place_labels,
     position_text,
     row_index,
+    singular_row,
     vector_axes,
 )
-from .notation import direction_text, gloss, signed_text
+from .notation import direction_text, force_symbol, signed_text, titled
 from .place import declutter
 from .sidebyside import side_by_side
 
@@ -125,7 +127,7 @@ def polygon_forces(sol: Solution, dyad: Dyad | None, i: int, components: bool):
                             "outer"))
                 out.append((f"$F_{{\\mathrm{{{name}}}}}^{{n}}$", fn, "tab:orange", "outer"))
                 return
-        out.append((f"$F_{{\\mathrm{{{name}}}}}$", f, color, "outer"))
+        out.append((force_symbol(j.name), f, color, "outer"))
 
     if dyad is None:
         b = scene.driver.body
@@ -151,7 +153,7 @@ def polygon_forces(sol: Solution, dyad: Dyad | None, i: int, components: bool):
         for j in scene.joints.values():
             if b in j.bodies and j.name not in own:
                 f = force_on(sol, j.name, b, i)
-                out.append((f"$F_{{\\mathrm{{{math_name(j.name)}}}}}$ ({j.other(b)})", f,
+                out.append((f"{force_symbol(j.name)} ({j.other(b)})", f,
                             "darkred", "load"))
 
     if inner.kind == "R":
@@ -211,6 +213,14 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
     d = find_dyad(sol, dyad)
     ax = axes_or_new(ax, figsize=(7.5, 5.0))
     i = row_index(sol, position, row)
+    if singular_row(sol, i):        # no force to vouch for: said, not drawn
+        ax.set(xticks=[], yticks=[])
+        for side in ax.spines.values():
+            side.set_visible(False)
+        ax.text(0.5, 0.5, f"{titled('force polygon')} at {position_text(sol, i)}:\n"
+                + SINGULAR_NOTE.replace(": ", ":\n"), ha="center", va="center",
+                transform=ax.transAxes, color="tab:red")
+        return ax
     forces, split = polygon_forces(sol, d, i, components)
     big = max((np.hypot(*f[1]) for f in forces), default=1.0) or 1.0
     chain = _chain(forces, d, split, big)
@@ -259,7 +269,7 @@ def force_polygon(sol: Solution, dyad: int | str | tuple = 1, position: float | 
     extra = ""
     if d is None and sol.drive.kind == "R":
         extra = ", " + signed_text("Me", float(sol.Me[i]), "N m")
-    ax.set_title(f"force polygon ({gloss('force polygon')})\n{what} at "
+    ax.set_title(f"{titled('force polygon')}\n{what} at "
                  f"{position_text(sol, i)}{extra}\nclosing error |ΣF| = {closure:.1e} N",
                  fontsize=11)
     ax.grid(True, alpha=0.3)
@@ -289,11 +299,10 @@ def _chain(forces: list, d, split: int | None, big: float) -> list:
     if d is not None and split is not None:
         s = corners[split]
         mag = float(np.hypot(*s))
-        name = math_name(d.inner.name)
+        name = force_symbol(d.inner.name)
         if mag > 1e-12 * big:
-            out.append((s.copy(), np.zeros(2), f"$F_{{\\mathrm{{{name}}}}}$", "k", True,
-                        f"$F_{{\\mathrm{{{name}}}}}$ on {d.bodies[0]} = {magnitude_text(mag)} N "
-                        "(inner joint)"))
+            out.append((s.copy(), np.zeros(2), name, "k", True,
+                        f"{name} on {d.bodies[0]} = {magnitude_text(mag)} N (inner joint)"))
     return out
 
 

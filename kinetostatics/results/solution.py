@@ -15,7 +15,7 @@ import json
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
@@ -60,6 +60,9 @@ class Solution:
         With joint friction: rows where no finite driving effort moves the mechanism
         (friction locks it; Me/Fe and the reactions are NaN there and stay out of the
         summary); None without friction.
+    path : str
+        Which solve path made the arrays: ``"numpy"`` (the reference) or ``"fast"``
+        (the compiled kernels, :mod:`kinetostatics.solver.fast`).
     """
 
     scene: Scene
@@ -70,6 +73,7 @@ class Solution:
     drive: DriverReaction
     undefined_load: np.ndarray
     self_locking: np.ndarray | None = None
+    path: ClassVar[str] = "numpy"       # (set on the instance by the compiled path)
 
     # -- arrays -----------------------------------------------------------------
     def release_loads(self) -> None:
@@ -111,6 +115,9 @@ class Solution:
                                 self_locking=solved.self_locking)
         else:
             new.__dict__.update(solved.known, _deferred=solved)
+        path = getattr(solved, "path", None)    # (set by the compiled path)
+        if path is not None:
+            new.__dict__["path"] = path
         return new
 
     def __getattr__(self, name: str):
@@ -531,6 +538,8 @@ class Solution:
         return solution_summary(self)
 
     FILES = ("reactions", "driver", "kinematics", "bodies", "dyads", "sliders", "frame")
+    # a solution's files in a folder (kinetostatics.model.outputs)
+    OUTPUT_KIND = (*(f"{n}.{x}" for n in FILES for x in ("csv", "parquet")), "summary.json")
 
     def to_csv(self, directory: str | Path) -> list[Path]:
         """Write every table as CSV (17 significant digits) and ``summary.json``."""
@@ -539,46 +548,45 @@ class Solution:
     def write(self, directory: str | Path, fmt: str = "csv", announce=None,
               summary: dict | None = None) -> list[Path]:
         """Write every table (``fmt``: ``"csv"``, 17 significant digits, or
-        ``"parquet"``) and ``summary.json``. A table built only for writing is
-        dropped once written, and a long table not built yet is written as CSV straight
-        from the solver's arrays, never held whole. ``announce``
-        (a callable taking one line) hears of every CSV table over 1e6 rows, with its
-        size and time estimate (:func:`kinetostatics.results.output.write_csv`). ``summary``:
-        the content of ``summary.json`` when it is not :meth:`summary` (the command
-        line's, with the scene's ``[units]``)."""
-        from .output import Repeats, write_csv, write_long_csv, write_parquet
+        ``"parquet"``) and ``summary.json``, whole or not at all (an earlier run's files
+        untouched on failure: :mod:`kinetostatics.model.outputs`). A table built only for
+        writing is dropped once written, and a long table not built yet is written as CSV
+        straight from the solver's arrays, never held whole. ``announce`` (a callable
+        taking one line) hears of every CSV table over 1e6 rows, with its size and time
+        estimate (:func:`kinetostatics.results.output.write_csv`). ``summary``: the content of
+        ``summary.json`` when it is not :meth:`summary` (the command line's)."""
+        from ..model.outputs import staged_folder
         if fmt not in ("csv", "parquet"):
             raise WorkbenchError(f"format {fmt!r}: use csv or parquet")
-        d = Path(directory)
-        d.mkdir(parents=True, exist_ok=True)
-        written = []
+        text = json.dumps(self.summary() if summary is None else summary, indent=2) + "\n"
+        with staged_folder(directory, self.OUTPUT_KIND) as stage:
+            self._write_tables(stage.path, fmt, announce)
+            stage.file("summary.json").write_text(text)
+        return [Path(directory) / f for f in (*(f"{n}.{fmt}" for n in self.FILES), "summary.json")]
+
+    def _write_tables(self, d: Path, fmt: str, announce) -> None:
+        """Every table into the folder ``d`` (the staging folder of :meth:`write`)."""
+        from .output import Repeats, write_csv, write_long_csv, write_parquet
         positions = Repeats()     # the position column, formatted once for every table
         for name in self.FILES:
             kept = name in self.__dict__
             if fmt == "csv" and name in self.LONG_TABLES and not kept:
                 # straight from the solver's arrays, chunk by chunk: never held whole
-                written.append(write_long_csv(self.long_table(name), d / f"{name}.csv",
-                                              announce, positions))
+                write_long_csv(self.long_table(name), d / f"{name}.csv", announce, positions)
                 continue
             if fmt == "csv" and not kept:
                 # the short tables' columns, written without building a DataFrame
-                written.append(write_csv(self.columns(name), d / f"{name}.csv",
-                                         self.positions.size, announce, positions))
+                write_csv(self.columns(name), d / f"{name}.csv", self.positions.size,
+                          announce, positions)
                 continue
             table = getattr(self, name)
             if fmt == "csv":
-                written.append(write_csv(table, d / f"{name}.csv", self.positions.size,
-                                         announce, positions))
+                write_csv(table, d / f"{name}.csv", self.positions.size, announce, positions)
             else:
-                written.append(write_parquet(table, d / f"{name}.parquet"))
+                write_parquet(table, d / f"{name}.parquet")
             del table
             if not kept:
                 del self.__dict__[name]
-        path = d / "summary.json"
-        path.write_text(json.dumps(self.summary() if summary is None else summary,
-                                   indent=2) + "\n")
-        written.append(path)
-        return written
 
 
 # ``Solution.loads`` is a dataclass field whose value may be let go and computed again

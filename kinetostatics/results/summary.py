@@ -21,11 +21,16 @@ def solution_summary(sol: Solution) -> dict:
     me = np.asarray(sol.Me, dtype=float)[order]
     pos = sol.positions.astype(float)[order]
     locked = sol.self_locking
-    if locked is not None and locked.any():
-        # with friction, rows where the mechanism locks have no settled Me or
-        # reactions: the statistics are over the other rows (counted below)
-        keep = order[~locked[order]]
-        me, pos = me[~locked[order]], pos[~locked[order]]
+    # rows where the mechanism locks (friction) have no settled Me or reactions, and
+    # rows flagged singular (at or near a dead point) no number to vouch for: the
+    # extremes and the mean are over the other rows, the counts below say how many
+    # were left out
+    out_rows = np.asarray(sol.singular, dtype=bool).copy()
+    if locked is not None:
+        out_rows |= locked
+    if out_rows.any() and not out_rows.all():
+        keep = order[~out_rows[order]]
+        me, pos = me[~out_rows[order]], pos[~out_rows[order]]
     else:
         keep = order
     if pos.size > 1 and pos[-1] != pos[0]:
@@ -54,6 +59,7 @@ def solution_summary(sol: Solution) -> dict:
     else:
         out["transmission_angle_min"] = None
     out["singular_rows"] = int(np.count_nonzero(sol.singular))
+    out["rows_left_out"] = int(np.count_nonzero(out_rows)) if not out_rows.all() else 0
     # a dead point between two rows (a change point passed, a lever through its
     # pivot): the pairs of positions around it, both rows flagged singular
     pos_all = sol.positions.astype(float)

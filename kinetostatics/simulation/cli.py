@@ -20,6 +20,7 @@ import math
 from pathlib import Path
 
 from ..common.jsontext import plain
+from ..model.outputs import atomic_file
 
 __all__ = ["add_commands"]
 
@@ -33,6 +34,7 @@ def _error(msg: str) -> Exception:
 
 def add_commands(sub) -> None:
     """Add the ``crosscheck`` subcommand to an argparse subparsers object."""
+    from ..common.cli import dpi_argument  # the --dpi of every command that draws
     c = sub.add_parser(
         "crosscheck", help="simulate a scene in pymunk and compare with kinetostatics",
         description="Simulate a mechanism scene in pymunk at its driver's constant speed "
@@ -64,6 +66,8 @@ def add_commands(sub) -> None:
     c.add_argument("--json", action="store_true", help="print one JSON object")
     c.add_argument("--rows", metavar="CSV", help="write the per-position comparison as CSV")
     c.add_argument("--plot", metavar="PNG", help="write the comparison (or study) picture")
+    c.add_argument("--dpi", type=dpi_argument, default=150,
+                   help="dots per inch of the --plot picture (default 150)")
     c.add_argument("--study", action="store_true",
                    help="sweep dt and iterations: wall time per revolution against error")
     c.add_argument("--study-steps", metavar="LIST",
@@ -126,7 +130,7 @@ def _cmd_crosscheck(args) -> int:
                    samples_per_revolution=args.samples, repeats=args.repeats, fast=fast,
                    executor="serial" if args.serial else None, ballast=not args.no_ballast)
         if args.plot:
-            _save(_plot_study(st), args.plot)
+            _save(lambda: _plot_study(st), args.plot, args.dpi)
         if args.json:
             print(json.dumps(plain(st.summary(), finite=True), indent=2))
             return 0
@@ -147,12 +151,11 @@ def _cmd_crosscheck(args) -> int:
                     samples_per_revolution=args.samples, error_bias=args.error_bias,
                     fast=fast, ballast=not args.no_ballast)
     if args.rows:
-        out = Path(args.rows)
-        out.parent.mkdir(parents=True, exist_ok=True)
-        cc.wide().to_csv(out, index=False, float_format="%.17g")
+        with atomic_file(args.rows) as tmp:     # the whole table, or the earlier one kept
+            cc.wide().to_csv(tmp, index=False, float_format="%.17g")
     if args.plot:
         from .plots import plot_comparison
-        _save(plot_comparison(cc), args.plot)
+        _save(lambda: plot_comparison(cc), args.plot, args.dpi)
     if args.json:
         print(json.dumps(plain(cc.summary(), finite=True), indent=2))
         return 0
@@ -176,9 +179,14 @@ def _plot_study(st):
     return plot_study(st)
 
 
-def _save(fig, path: str) -> None:
+def _save(draw, path: str, dpi: float = 150) -> None:
+    """Draw the picture in the lecture style (150 dpi or ``--dpi``, text >= 10 pt) and
+    write it."""
     import matplotlib
     matplotlib.use("Agg")
-    out = Path(path)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=110)
+    from ..plot.style import lecture_style
+    with lecture_style(dpi):
+        fig = draw()
+        with atomic_file(path) as tmp:
+            fig.savefig(tmp, dpi=dpi, format=Path(path).suffix.lstrip(".").lower() or None)
+

@@ -3,15 +3,32 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pandas as pd
 
+from ..plot.notation import couple_subscript, force_symbol, reading
 from .comparison import CrossCheck, quantity_unit
 from .runner import BUDGET, TARGET_ERROR
 from .studies import Study
 
-__all__ = ["plot_comparison", "plot_study"]
+__all__ = ["display_name", "plot_comparison", "plot_study"]
+
+_BRACKETED = re.compile(r"^([A-Za-z|]+)\[([^\]]+)\](\|?)$")
+
+
+def display_name(quantity: str) -> str:
+    """A compared quantity as the pictures write it: ``F[A]`` is the reaction
+    :math:`F_A` (the notation of the free-body diagrams and polygons), ``M[slot]`` the
+    couple in a prismatic joint; ``Me``, ``Fe`` stay."""
+    m = _BRACKETED.match(quantity)
+    if m is None:
+        return quantity
+    head, joint, bar = m.groups()
+    sym = force_symbol(joint) if head.strip("|") == "F" else \
+        f"${head.strip('|')}{couple_subscript(joint)}$"
+    return f"|{sym}|" if head.startswith("|") or bar else sym
 
 
 def plot_comparison(cc: CrossCheck, quantities: list[str] | None = None, *, every: int = 1):
@@ -37,7 +54,7 @@ def plot_comparison(cc: CrossCheck, quantities: list[str] | None = None, *, ever
     nrow = -(-len(qs) // ncol)
     fig = Figure(figsize=(4.2 * ncol, 3.0 * nrow), layout="constrained")
     axes = fig.subplots(nrow, ncol, squeeze=False).ravel()
-    xlab = "driver angle (deg)" if cc.scene.driver.kind == "R" else "driver position (m)"
+    xlab = "crank angle φ (deg)" if cc.scene.driver.kind == "R" else "driver position s (m)"
     for ax, q in zip(axes, qs, strict=False):
         g = cc.rows[cc.rows.quantity == q]
         ax.plot(g.position, g.computed, "-", lw=1.2, color="C0", label="kinetostatics")
@@ -45,14 +62,17 @@ def plot_comparison(cc: CrossCheck, quantities: list[str] | None = None, *, ever
         ax.plot(s.position, s.simulated, ".", ms=3, color="C1", label="pymunk")
         e = cc.errors.get(q, cc.derived_errors.get(q, float("nan")))
         src = "" if q in cc.errors else " (momentum balance)"
-        ax.set_title(f"{q}: error {e:.1e}{src}", fontsize=10)
+        name = display_name(q)
+        ax.set_title(f"{name}: error {e:.1e}{src}", fontsize=10)
         ax.set_xlabel(xlab)
-        ax.set_ylabel(f"{q} ({quantity_unit(q, cc.scene)})")
+        ax.set_ylabel(f"{name} ({quantity_unit(q, cc.scene)})")
         ax.grid(alpha=0.3)
     for ax in axes[len(qs):]:
         ax.set_visible(False)
-    axes[0].legend(fontsize=10)
-    fig.suptitle(f"{cc.scene.title}: pymunk (dt = {cc.settings.get('dt', 0):.3g} s, "
+    # one legend for all panels, below them: never over a curve
+    fig.legend(*axes[0].get_legend_handles_labels(), loc="outside lower center", ncol=2,
+               fontsize=10, frameon=False)
+    fig.suptitle(f"{cc.scene.title}: pymunk (dt = {reading(cc.settings.get('dt', 0), 3)} s, "
                  f"{cc.settings.get('iterations')} iterations) against kinetostatics",
                  fontsize=10)
     return fig
@@ -140,7 +160,7 @@ def plot_study(table: pd.DataFrame | Study, *, repeats: int | None = None):
         ax.grid(alpha=0.3, which="both")
         # ticks at 1, 2 and 5 of each decade, labelled as plain numbers: never crowded
         ax.xaxis.set_major_locator(FixedLocator(_log_ticks(*ax.get_xlim())))
-        ax.xaxis.set_major_formatter(FuncFormatter(lambda x, _: f"{x:g}"))
+        ax.xaxis.set_major_formatter(FuncFormatter(lambda x, _: reading(x)))
         ax.xaxis.set_minor_formatter(NullFormatter())
         for h, lab in zip(*ax.get_legend_handles_labels(), strict=True):
             handles.setdefault(lab, h)

@@ -52,6 +52,8 @@ from . import blocks
 from .blocks import LeanSolved
 from .deadpoints import dead_points_stacked, kin_measure2
 from .driver import BodyMotion
+from .fast import solve_run_compiled, wanted
+from .fast.geometry import not_covered
 from .kinematics import Kinematics, solve_kinematics
 from .pipeline import check_distinct, solve_arrays, solve_block
 from .reactions import DriverReaction
@@ -228,12 +230,14 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     alone: list[int] = []
     structures: dict[tuple, Any] = {}
     trusty = stacker.tame() and positions_tame(positions)
+    # the compiled path for the whole group when wanted (numba loaded here, once)
+    compiled = not_covered(stacker.base) is None and wanted(positions.size) is not None
     for lo, hi in zip(bounds[:-1].tolist(), bounds[1:].tolist(), strict=True):
         a = int(starts[lo])
         b = int(starts[hi - 1] + counts[hi - 1])
         try:
             sol = _trapped_run(trusty, stacker, structure, ks, lo, hi, counts[lo:hi],
-                               positions[a:b])
+                               positions[a:b], compiled)
         except Exception:
             alone.extend(range(lo, hi))
             m2[a:b] = np.inf        # solved alone: nothing of it to probe here
@@ -243,7 +247,7 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
         # other arrays are let go before the next run is solved (which then reuses their
         # memory), and solved again when a scene's kinematics are first read
         again = (_Run(_trapped_run, (trusty, stacker, structure, ks, lo, hi,
-                                     counts[lo:hi], positions[a:b]))
+                                     counts[lo:hi], positions[a:b], compiled))
                  if lean else _Run(None, (), _splitter(sol)))
         _cut_run(sol, again, scenes, ks, starts, counts, lo, hi, a, structure, structures,
                  out)
@@ -284,6 +288,9 @@ def _cut_run(sol: Solved, again: _Run, scenes: list, ks: np.ndarray,
         if sj is None:
             sj = structures[key] = replace(structure, assembly=key)
         out[j] = CutSolved(scenes[j], sj, again, slice(r0, r0 + n), run)
+        path = getattr(sol, "path", None)     # (set by the compiled path)
+        if path is not None:
+            out[j].path = path
 
 
 def _runs(starts: np.ndarray, counts: np.ndarray, size: int) -> np.ndarray:
@@ -302,13 +309,20 @@ def _trapped_run(trusty: bool, *args) -> Solved:
 
 
 def _solve_run(stacker: Stacker, structure, ks: np.ndarray, lo: int, hi: int,
-               counts: np.ndarray, positions: np.ndarray) -> Solved:
+               counts: np.ndarray, positions: np.ndarray, compiled: bool = False
+               ) -> Solved:
     """The stacked arrays of scenes ``lo`` to ``hi - 1`` (``counts`` rows each, at
     ``positions``), each dyad in its scene's assembly; a run too long for the cache (a
     long sweep) in blocks, gathered (:func:`~kinetostatics.solver.blocks.solve_blocks`),
     unless a load's threshold is its sweep's maximum (``resist``, ``when = "resisting"``:
-    then in one pass, each scene's maximum over its own rows)."""
+    then in one pass, each scene's maximum over its own rows). ``compiled``: on the
+    compiled path (:mod:`~kinetostatics.solver.fast`) unless a kernel meets a row the
+    numpy path must judge."""
     st = replace(structure, assembly=tuple(np.repeat(k[lo:hi], counts) for k in ks))
+    if compiled:
+        sol = solve_run_compiled(stacker.runs(lo, hi, counts, positions), st)
+        if sol is not None:
+            return sol
     if blocks.blockable(stacker.base, positions.size):    # (not a sweep's maxima)
         owner = np.repeat(np.arange(lo, hi), counts)
 
@@ -329,7 +343,7 @@ class CutSolved:
     for all its scenes, :class:`_Run`); its loads are computed from its kinematics when
     asked for, as a solve's are."""
 
-    __slots__ = ("again", "dead", "rows", "run", "scene", "structure")
+    __slots__ = ("again", "dead", "path", "rows", "run", "scene", "structure")
 
     def __init__(self, scene, structure, again: _Run, rows: slice, run: tuple):
         self.scene, self.structure, self.again, self.rows, self.run = (

@@ -25,6 +25,7 @@ from ..model.scene import load_scene
 from .blocks import Kept, LeanSolved, Unblockable, blockable, blocks_of_sweep, solve_blocks
 from .continuity import check_distinct, given_positions
 from .deadpoints import dead_points_between_rows, dead_points_of_sweep, measure2
+from .fast import solve_compiled
 from .friction import has_friction, solve_with_friction
 from .kinematics import solve_kinematics
 from .loads import applied_loads, inertia_loads, resultants
@@ -82,7 +83,12 @@ class Sweep:
 
     def solve(self) -> Solved | LeanSolved:
         """The solve: trapped first where the numbers are tame, else (or if the trap was
-        touched) checked."""
+        touched) checked. The compiled path (:mod:`~kinetostatics.solver.fast`) goes
+        first when it is wanted for this many rows and covers the scene."""
+        sol = solve_compiled(self.scene, self.structure, self.positions,
+                             self.given is not None)
+        if sol is not None:
+            return sol
         sol = self.trapped() if self.trusty else None
         if sol is None:
             sol = self.checked()

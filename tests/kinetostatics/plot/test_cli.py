@@ -25,7 +25,7 @@ def test_solve_plot_writes_the_pictures(tmp_path, capsys):
     for t in ("30deg", "200deg"):
         expect |= {f"mechanism_{t}.png", f"velocity_plan_{t}.png",
                    f"acceleration_plan_{t}.png", f"instant_centres_{t}.png",
-                   f"free_body_{t}_dyad0.png", f"free_body_{t}_dyad1.png"}
+                   f"free_body_{t}_driver.png", f"free_body_{t}_dyad1.png"}
     assert expect <= names, expect - names
     assert all((out / n).stat().st_size > 10_000 for n in expect)
     assert str(out / "overview.png") in printed
@@ -59,8 +59,17 @@ def test_demo_scene(tmp_path, capsys, monkeypatch):
     assert out.startswith("Crank and slotted lever")
     assert " deg\n" in out and "max |F| =" in out and " N at " in out
     assert (tmp_path / "overview.png").exists() and (tmp_path / "reactions.csv").exists()
-    # the pictures at the default position (where |Me| is largest)
-    assert any(p.name.startswith("free_body_") for p in tmp_path.glob("*.png"))
+    # every picture at one stated position (where |Me| is largest), the overview too;
+    # the driver's free-body diagram named "driver", the dyads numbered from 1
+    import numpy as np
+
+    import kinetostatics as ks
+    sol = ks.solve(ks.example("slotted_lever"))
+    at = float(sol.positions[int(np.argmax(np.abs(sol.Me)))])
+    assert f"pictures at φ = {at:g} deg, where |Me| is largest" in out
+    names = {p.name for p in tmp_path.glob("*.png")}
+    assert {f"free_body_{at:g}deg_driver.png", f"free_body_{at:g}deg_dyad1.png"} <= names
+    assert not any("dyad0" in n for n in names)
     # the old form still works (its pictures are the same code as above: not drawn again,
     # a sliding driver's figures are drawn in test_pictures and test_collisions)
     drawn = []
@@ -68,7 +77,10 @@ def test_demo_scene(tmp_path, capsys, monkeypatch):
                         lambda sol, out, positions=None, dpi=150: drawn.append(out) or [])
     assert main(["demo", "--example", "sliding_driver", "--out", str(tmp_path / "s")]) == 0
     assert " m\n" in capsys.readouterr().out           # a sliding driver's position unit
-    assert drawn == [tmp_path / "s"] and (tmp_path / "s" / "reactions.csv").exists()
+    # drawn once, into the run's staging folder inside s (kinetostatics.model.outputs)
+    assert len(drawn) == 1 and drawn[0].parent == tmp_path / "s"
+    assert (tmp_path / "s" / "reactions.csv").exists()
+    assert [p.name for p in (tmp_path / "s").iterdir() if p.name.startswith(".")] == []
 
 
 def test_demo_of_a_cam_scene_points_to_the_cam_command(tmp_path, capsys):

@@ -13,6 +13,7 @@ import kinetostatics as ks
 from kinetostatics import plot as kp
 from kinetostatics.model.errors import WorkbenchError
 from kinetostatics.plot import polygon_forces
+from kinetostatics.plot.notation import reading
 from tests.helpers import SCENES
 
 SCENE_PATHS = [ks.example(n) for n in ks.examples()] + sorted(SCENES.glob("*.toml"))
@@ -156,16 +157,16 @@ def test_draw_gear_pair(monkeypatch):
         assert ax.get_xlabel() == "x [m]" and ax.get_ylabel() == "y [m]"
         assert ax.get_aspect() == 1.0
         assert ("internal" if internal else "external") in ax.get_title()
-        assert f"i12 = {pair.i12:.4g}" in ax.get_title()
+        assert f"$i_{{12}}$ = {reading(pair.i12)}" in ax.get_title()
         # two arrows from the pitch point: F12 along the computed force, F21 against it
-        arrows = [t for t in ax.texts if t.arrow_patch is not None]
+        arrows = [t for t in ax.texts if t.arrow_patch is not None and not t.get_text()]
         assert len(arrows) == 2
         f = np.array([pair.F12x[0], pair.F12y[0]])
         for a, sign in zip(arrows, (1.0, -1.0), strict=True):
             np.testing.assert_allclose(a.xyann, pair.P, atol=1e-12)
             d = np.subtract(a.xy, a.xyann)
             np.testing.assert_allclose(d / np.hypot(*d), sign * f / np.hypot(*f), atol=1e-12)
-        assert any(f"{pair.F[0]:.4g} N" in t.get_text() for t in ax.texts)
+        assert any(f"{reading(pair.F[0])} N" in t.get_text() for t in ax.texts)
         # pitch circles through P around each axis
         pitch = [ln for ln in ax.lines if ln.get_label().startswith("gear ")]
         for o, line in zip((pair.O1, pair.O2), pitch, strict=True):

@@ -13,7 +13,7 @@ A scene may name the units of its numbers in a ``[units]`` table::
 (``speed`` and ``force`` are accepted too, as in every scene kind.) Inside the workbench
 every quantity is SI; :class:`Units` converts a number read from the scene into SI
 (:meth:`Units.to_si`) and an SI result back into the scene's unit
-(:meth:`Units.from_si`); :mod:`balance.scene_units` rewrites a scene when it is read.
+(:meth:`Units.from_si`); :mod:`balance.model.scene_units` rewrites a scene when it is read.
 
 The factors are definitions: 1 g = 1e-3 kg, 1 mm = 1e-3 m, 1 g mm = 1e-6 kg m,
 1 um = 1e-6 m, 1 mil = 25.4 um (1/1000 inch), 1 mm/s = 1e-3 m/s. A vibration unit
@@ -30,7 +30,7 @@ from typing import Any
 from kinetostatics.model.units import BASE, DEFAULTS, FACTORS, Units
 from kinetostatics.model.units import parse_units as _parse_units
 
-from .errors import BalanceError
+from ..errors import BalanceError
 
 __all__ = ["FACTORS", "QUANTITIES", "SI", "Units", "parse_units"]
 
