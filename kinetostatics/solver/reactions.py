@@ -98,8 +98,8 @@ class _Store:
         return A.sub(x, m.ox), A.sub(y, m.oy)
 
 
-def record(out: dict, joint: Joint, body: str, fx, fy, x, y, N=None, M=None,
-            sign: float = 1.0):
+def record_reaction(out: dict, joint: Joint, body: str, fx, fy, x, y, N=None, M=None,
+                    sign: float = 1.0):
     """Store the reaction ``sign * (fx, fy)`` on ``body`` in the joint's on/by orientation
     (the sign is applied when the reaction is read, not here: no pass over the arrays)."""
     on, by = joint.on_by
@@ -163,7 +163,7 @@ def _solve_dyad(scene: Scene, dm: DyadMotion, store: _Store, out: dict) -> None:
         a2 = store.motions[b2].rotate(*dm.inner_local[1])
         store.add(b1, rx, ry, *a1, sign=-1.0)
         store.add(b2, rx, ry, *a2)
-        record(out, inner, b2, rx, ry, xx, xy)
+        record_reaction(out, inner, b2, rx, ry, xx, xy)
     else:
         # [n.c_i, w_i] (N, M) = -sigma_i Q_i ; sigma = +1 on the slider, -1 on the guide
         nx, ny = dm.nx, dm.ny
@@ -180,14 +180,14 @@ def _solve_dyad(scene: Scene, dm: DyadMotion, store: _Store, out: dict) -> None:
         slider, guide = (b1, b2) if dm.slider_first else (b2, b1)
         store.add(slider, fx, fy, *store.arm(scene, slider, inner.points[1]), M)
         store.add(guide, fx, fy, *store.arm_to(guide, xx, xy), M, sign=-1.0)
-        record(out, inner, slider, fx, fy, xx, xy, N, M)
+        record_reaction(out, inner, slider, fx, fy, xx, xy, N, M)
     for name, pr, joint in ((b1, p1, dyad.outer[0]), (b2, p2, dyad.outer[1])):
         r = store.acc[name]
         kname = joint.other(name)
         if joint.kind == "R":
             # eqs 2.19, 2.21, 2.28: the force balance of the body gives the outer reaction
             store.add(kname, r[0], r[1], *store.arm(scene, kname, joint.point_on(kname)))
-            record(out, joint, name, r[0], r[1], pr.px, pr.py, sign=-1.0)
+            record_reaction(out, joint, name, r[0], r[1], pr.px, pr.py, sign=-1.0)
         else:
             _outer_prismatic(scene, store, out, joint, name, kname, pr.ux, pr.uy)
 
@@ -210,7 +210,7 @@ def _outer_prismatic(scene, store, out, joint, name, kname, ux, uy):
     fx, fy = A.mul(fn, nx), A.mul(fn, ny)
     c = -A.sub(r[2], A.cross(arm_i[0], arm_i[1], r[0], r[1]))
     store.add(kname, fx, fy, *store.arm_to(kname, sx, sy), c, sign=-1.0)
-    record(out, joint, name, fx, fy, sx, sy, fn, c)
+    record_reaction(out, joint, name, fx, fy, sx, sy, fn, c)
 
 
 def _solve_driver(scene: Scene, kin: Kinematics, store: _Store, out: dict) -> DriverReaction:
@@ -222,7 +222,7 @@ def _solve_driver(scene: Scene, kin: Kinematics, store: _Store, out: dict) -> Dr
         px, py = scene.ground[joint.point_on(GROUND)]
         ax, ay = store.arm(scene, drv.body, joint.point_on(drv.body))
         me = -A.sub(r[2], A.cross(ax, ay, r[0], r[1]))
-        record(out, joint, drv.body, r[0], r[1], A.scalar(px), A.scalar(py), sign=-1.0)
+        record_reaction(out, joint, drv.body, r[0], r[1], A.scalar(px), A.scalar(py), sign=-1.0)
         return DriverReaction("R", A.full(me, kin.n))
     # sliding driver (eqs 2.49-2.51): Fe along the line through the slider point
     if joint.guide == GROUND:
@@ -240,6 +240,6 @@ def _solve_driver(scene: Scene, kin: Kinematics, store: _Store, out: dict) -> Dr
     nx, ny = -uy, ux
     fn = -A.add(A.mul(r[0], nx), A.mul(r[1], ny))
     c = -A.sub(r[2], A.cross(ax, ay, r[0], r[1]))
-    record(out, joint, drv.body, A.mul(fn, nx), A.mul(fn, ny), sx, sy, fn, c)
+    record_reaction(out, joint, drv.body, A.mul(fn, nx), A.mul(fn, ny), sx, sy, fn, c)
     return DriverReaction("T", A.full(fe, kin.n))
 

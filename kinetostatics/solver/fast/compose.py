@@ -23,7 +23,7 @@ from ..closure import Param
 from ..driver import BodyMotion, ground_motion
 from ..kinematics import SINGULAR_WARN, DyadMotion, Kinematics
 from ..loads import RESIST_STILL
-from ..reactions import DriverReaction, record
+from ..reactions import DriverReaction, record_reaction
 from ..solved import Solved
 from . import layout as L
 from .geometry import (
@@ -242,26 +242,26 @@ def _reactions(plan: Plan, buf: dict) -> dict:
                                      strict=True):
         inner = dyad.inner
         if inner.kind == "R":
-            record(out, inner, dyad.bodies[1], r[L.R_FX], r[L.R_FY], d[L.XX], d[L.XY])
+            record_reaction(out, inner, dyad.bodies[1], r[L.R_FX], r[L.R_FY], d[L.XX], d[L.XY])
         else:
-            record(out, inner, inner.slider, r[L.R_FX], r[L.R_FY], d[L.XX], d[L.XY],
+            record_reaction(out, inner, inner.slider, r[L.R_FX], r[L.R_FY], d[L.XX], d[L.XY],
                     r[L.R_N], r[L.R_M])
         for i, (name, joint) in enumerate(zip(dyad.bodies, dyad.outer, strict=True)):
             if joint.kind == "R":
                 b = 10 + 4 * i
-                record(out, joint, name, a[name][0], a[name][1], d[b], d[b + 1], sign=-1.0)
+                record_reaction(out, joint, name, a[name][0], a[name][1], d[b], d[b + 1], sign=-1.0)
                 continue
             o = 4 + 6 * i
-            record(out, joint, name, r[o + L.R_FX], r[o + L.R_FY], r[o + L.R_SX],
+            record_reaction(out, joint, name, r[o + L.R_FX], r[o + L.R_FY], r[o + L.R_SX],
                     r[o + L.R_SY], r[o + L.R_N], r[o + L.R_M])
     drv = scene.driver
     joint = scene.joints[drv.joint]
     ad, r = a[drv.body], buf["drv"]
     if drv.kind == "R":
         px, py = scene.ground[joint.point_on(GROUND)]
-        record(out, joint, drv.body, ad[0], ad[1], px, py, sign=-1.0)
+        record_reaction(out, joint, drv.body, ad[0], ad[1], px, py, sign=-1.0)
     else:
-        record(out, joint, drv.body, r[5], r[6], r[3], r[4], r[1], r[2])
+        record_reaction(out, joint, drv.body, r[5], r[6], r[3], r[4], r[1], r[2])
     return out
 
 
