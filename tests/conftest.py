@@ -55,7 +55,8 @@ QUICK_PICTURE_SCENE = "four_bar"
 SHARED_PER_SCENE = {"lecture_figures": (
     "tests/kinetostatics/plot/test_collisions.py::test_no_collisions_on_any_cli_picture",
     "tests/kinetostatics/plot/test_collisions.py::test_cli_pictures_lecture_size",
-    "tests/kinetostatics/plot/test_pictures.py::test_every_new_picture_is_drawn")}
+    "tests/kinetostatics/plot/test_pictures.py::test_every_new_picture_is_drawn",
+    "tests/kinetostatics/plot/test_notation.py::test_every_cli_picture_meets_the_standard")}
 
 
 def _import_every_module() -> None:
