@@ -33,6 +33,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from kinetostatics.common.lazy import group, lazy_names
+
 if TYPE_CHECKING:
     from .api import example_path, examples, solve, solve_results
     from .errors import BalanceError, BalanceWarning
@@ -191,31 +193,11 @@ _MECHANISM = ("CounterRotatingPair", "Counterweight", "MechanismBalancing", "bal
               "solve_mechanism_balancing")
 
 
-def __getattr__(name: str):
-    """Every public name, imported on first use (the virtual balancing machine
-    ``BalancingMachine``, ``CoastDown``, ``pivot_reaction``, ``coast_down_study`` load
-    pymunk; the static balancing of mechanisms ``solve_mechanism_balancing``, ... pandas
-    and the kinetostatic solver); a subpackage asked for as an attribute is imported."""
-    import importlib
-
-    if name in _MACHINE:
-        where = "machine"
-    elif name in _MECHANISM:
-        where = "mechanism"
-    else:
-        where = _LAZY.get(name)
-    if where is None:
-        try:   # a subpackage (balance.field, .rotor, ...) asked for as an attribute
-            return importlib.import_module(f"{__name__}.{name}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"{__name__}.{name}":
-                raise
-        raise AttributeError(f"module 'balance' has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{where}"), name)
-    if name not in _MACHINE:
-        globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+# every public name, imported on first use (the virtual balancing machine's names,
+# ``BalancingMachine``, ``CoastDown``, ``pivot_reaction``, ``coast_down_study``, load
+# pymunk and are looked up each time; the static balancing of mechanisms,
+# ``solve_mechanism_balancing``, ... pandas and the kinetostatic solver); a subpackage
+# asked for as an attribute is imported
+__getattr__, __dir__ = lazy_names(
+    __name__, {**_LAZY, **group(_MECHANISM, "mechanism"), **group(_MACHINE, "machine")},
+    globals(), __all__, kept=lambda name: name not in _MACHINE)

@@ -14,7 +14,7 @@ import sys
 import warnings
 from typing import Any
 
-from kinetostatics.cli import OneLineParser, dpi_argument
+from kinetostatics.common.cli import OneLineParser, dpi_argument, one_line
 
 from .api import example_path, examples, results_to_dict, solve_results
 from .errors import WorkbenchError
@@ -61,23 +61,23 @@ def main(argv: list[str] | None = None) -> int:
 
             write_report(args.report, results, out, SCENES.resolve(args.scene), dpi=args.dpi)
     except WorkbenchError as exc:
-        print(f"error: {_one_line(exc)}", file=sys.stderr)
+        print(f"error: {one_line(exc)}", file=sys.stderr)
         return 2
     except Exception as exc:  # a bug, still one line (the contract: never a traceback)
-        print(f"error: internal error, please report: {type(exc).__name__}: {_one_line(exc)}",
+        print(f"error: internal error, please report: {type(exc).__name__}: {one_line(exc)}",
               file=sys.stderr)
         return 1
     shown = set()
     for where, msg in result_warnings(out):
-        line = _one_line(msg)
+        line = one_line(msg)
         shown.add(line)
         section = where.split("[")[0].split(".")[0]
         print(f"warning: {line if line.startswith(section) else f'{where}: {line}'}",
               file=sys.stderr)
     for w in caught:
-        if _one_line(w.message) not in shown:
-            shown.add(_one_line(w.message))
-            print(f"warning: {_one_line(w.message)}", file=sys.stderr)
+        if one_line(w.message) not in shown:
+            shown.add(one_line(w.message))
+            print(f"warning: {one_line(w.message)}", file=sys.stderr)
     print(text)
     return 0
 
@@ -91,10 +91,6 @@ def _units_line(out: dict[str, Any]) -> str:
     named = ", ".join(f'{k} = "{v}"' for k, v in u.items() if v != SI.get(k))
     return (f"\nscene units: {named}; the rotor, static test, resonance and mechanism "
             "results above are SI (kg, m, kg m, N, N m; deg)")
-
-
-def _one_line(exc: object) -> str:
-    return " ".join(str(exc).split())
 
 
 if __name__ == "__main__":

@@ -6,10 +6,12 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from .errors import BalanceError
+from kinetostatics.model.slips import emit
+
+from .errors import BalanceError, BalanceWarning
 from .field.scene import solve_field
 from .model.scene import SCENES, BalanceScene, ResonanceSpec, load_scene
-from .model.slips import check_corrections
+from .model.slips import correction_slips
 from .resonance.methods import ResonanceResult, parallelogram, trial_runs
 from .rotor.design import balance_rotor
 from .rotor.static_device import static_device
@@ -50,7 +52,8 @@ def solve_results(scene: Any) -> dict[str, Any]:
         :class:`~balance.static_device.StaticDeviceResult`, ``resonance_test`` -> list
         of :class:`~balance.resonance.ResonanceResult`, ``balancing`` -> what
         ``balance.mechanism.solve_mechanism_balancing`` returns; one key per section
-        present.
+        present; and ``warnings``, the suspected unit slips (a list of strings, empty
+        when none), each also issued as a :class:`~balance.errors.BalanceWarning`.
 
     Raises
     ------
@@ -75,7 +78,7 @@ def solve_results(scene: Any) -> dict[str, Any]:
     if sc.balancing is not None:
         out["balancing"] = _mechanism_balancing(sc.raw)
     out.update(solve_field(sc.field_scene))
-    check_corrections(out, sc)
+    out["warnings"] = [*sc.warnings, *emit(correction_slips(out, sc), sc.quiet, BalanceWarning)]
     return out
 
 

@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinetostatics.model.tomlio import as_float
+from kinetostatics.model.tomlio import MIN_MAGNITUDE, as_float
 
 from .errors import BalanceError
 
@@ -42,11 +42,12 @@ def polar(magnitude: float, angle_deg: float) -> complex:
 
 
 def check_number(value: object, name: str, *, positive: bool = False,
-                 nonnegative: bool = False) -> float:
+                 nonnegative: bool = False, smallest: float | None = None) -> float:
     """A finite float, else :class:`BalanceError` naming ``name`` (the scene reader's
-    :func:`~kinetostatics.model.tomlio.as_float`, with no magnitude limit)."""
+    :func:`~kinetostatics.model.tomlio.as_float`, with no magnitude limit; ``smallest``:
+    the least magnitude other than zero, for a measured amplitude a method squares)."""
     return as_float(value, name, positive=positive, nonnegative=nonnegative, limit=math.inf,
-                    error=BalanceError)
+                    smallest=smallest, error=BalanceError)
 
 
 def within(where: str, func: Any, *args: Any, **kwargs: Any) -> Any:
@@ -55,3 +56,9 @@ def within(where: str, func: Any, *args: Any, **kwargs: Any) -> Any:
         return func(*args, **kwargs)
     except BalanceError as exc:
         raise BalanceError(f"{where}: {exc}") from None
+
+
+def coincide(a: float, b: float) -> bool:
+    """Two positions (the z of two planes) equal to rounding: a method that divides by
+    their distance cannot use them (below 1e-9 of their size, or ``MIN_MAGNITUDE``)."""
+    return abs(b - a) <= max(1e-9 * max(abs(a), abs(b)), MIN_MAGNITUDE)

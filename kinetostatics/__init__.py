@@ -15,8 +15,10 @@ concentration s. 2.2), :mod:`~kinetostatics.transmission` (gears s. 2.3.3, effic
 s. 4.3), :mod:`~kinetostatics.solver`
 (structure, kinematics, loads, friction s. 2.4, reactions, reduction s. 2.5, dead points),
 :mod:`~kinetostatics.motion` and :func:`simulate_motion` (motion under forces, ch. 4),
-:mod:`~kinetostatics.cams` (ch. 1), :mod:`~kinetostatics.teaching` (exercises for a class
-and grading), :mod:`~kinetostatics.plot` (pictures), :mod:`~kinetostatics.notebook` (the
+:mod:`~kinetostatics.cams` (ch. 1), :mod:`~kinetostatics.design` and :func:`design` (a
+search over a scene's dimensions with forces, its ``[design]`` section; pymoo),
+:mod:`~kinetostatics.teaching` (exercises for a class and grading),
+:mod:`~kinetostatics.plot` (pictures), :mod:`~kinetostatics.notebook` (the
 sheets' interactive cells). The pymunk cross-check is :mod:`kinetostatics.simulation`
 (``crosscheck``, ``study``; its names load pymunk lazily, so ``import kinetostatics`` does
 not). The scene model (reading, checking, exceptions, bundled scenes) is
@@ -27,6 +29,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from .common.lazy import lazy_names
 from .model.errors import (
     AssemblyError,
     SceneError,
@@ -37,13 +40,13 @@ from .model.errors import (
 )
 
 if TYPE_CHECKING:
+    from .design.result import design
     from .model.examples import cam_examples, example, examples, scene_path
     from .model.scene import Scene, load_scene
     from .motion.scene import simulate_motion
     from .results import Solution
+    from .results.solving import solve, solve_many
     from .solver.kinematics import Kinematics, solve_kinematics
-    from .solver.many import solve_many
-    from .solver.pipeline import solve
     from .solver.structure import Dyad, Structure, analyse
 
 # Imported when first asked for (PEP 562), so that ``import kinetostatics`` costs little
@@ -55,36 +58,56 @@ _LAZY = {
     "Scene": "model.scene", "load_scene": "model.scene",
     "simulate_motion": "motion.scene", "Solution": "results",
     "Kinematics": "solver.kinematics", "solve_kinematics": "solver.kinematics",
-    "solve": "solver.pipeline", "solve_many": "solver.many",
+    "solve": "results.solving", "solve_many": "results.solving",
     "Dyad": "solver.structure", "Structure": "solver.structure", "analyse": "solver.structure",
+    "design": "design.result",
 }
 
 __all__ = [
     "AssemblyError", "Dyad", "Kinematics", "Scene", "SceneError", "SelfLockingError",
     "Solution", "Structure", "StructureError", "UnitWarning", "WorkbenchError", "analyse",
-    "cam_examples", "example", "examples", "load_scene", "scene_path", "simulate_motion",
-    "solve", "solve_kinematics", "solve_many",
+    "cam_examples", "design", "example", "examples", "load_scene", "scene_path",
+    "simulate_motion", "solve", "solve_kinematics", "solve_many",
 ]
 
 
-def __getattr__(name: str):
-    """The public names of the solver, the results and the motion, imported on first use."""
-    where = _LAZY.get(name)
-    if where is None:
+# modules moved into subpackages: their old names import the new module with a
+# DeprecationWarning, for one release
+_MOVED = {"output": "results.output", "csvtext": "results.csvtext",
+          "longtable": "results.longtable", "bench_speed": "bench.speed",
+          "bench_tables": "bench.tables"}
+
+
+class _MovedModules:
+    """Import finder of the moved modules' old names (``kinetostatics.output``, ...)."""
+
+    @staticmethod
+    def find_spec(fullname: str, path=None, target=None):
+        package, _, name = fullname.rpartition(".")
+        if package != __name__ or name not in _MOVED:
+            return None
+        from importlib.util import spec_from_loader
+        return spec_from_loader(fullname, _MovedModules)
+
+    @staticmethod
+    def create_module(spec):
         import importlib
+        import warnings
 
-        try:   # a subpackage (kinetostatics.plot, .cams, ...) asked for as an attribute
-            return importlib.import_module(f"{__name__}.{name}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"{__name__}.{name}":
-                raise
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    import importlib
+        new = f"{__name__}.{_MOVED[spec.name.rpartition('.')[2]]}"
+        warnings.warn(f"{spec.name} is now {new}; the old name goes in the next release",
+                      DeprecationWarning, stacklevel=2)
+        module = importlib.import_module(new)
+        spec.loader_state = module.__spec__      # put back in exec_module
+        return module
 
-    value = getattr(importlib.import_module(f"{__name__}.{where}"), name)
-    globals()[name] = value
-    return value
+    @staticmethod
+    def exec_module(module) -> None:
+        module.__spec__ = module.__spec__.loader_state
 
 
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+if not any(f is _MovedModules for f in __import__("sys").meta_path):
+    __import__("sys").meta_path.insert(0, _MovedModules)
+
+
+__getattr__, __dir__ = lazy_names(__name__, _LAZY, globals(), __all__)

@@ -9,16 +9,22 @@ import argparse
 import json
 import sys
 import warnings
-from pathlib import Path
-from typing import NoReturn
 
 from . import scene_path
+from .common.cli import OneLineParser, dpi_argument, print_warning
 from .model.errors import WorkbenchError
 
 
 def _cmd_solve(args) -> int:
+    from .model.outputs import failure_noted
+    from .results import Solution
+    with failure_noted(args.out, Solution.OUTPUT_KIND, "solve"):
+        return _solve(args)
+
+
+def _solve(args) -> int:
+    from .results import solve
     from .results.output import summary_with_units
-    from .solver.pipeline import solve
     if args.out and args.format == "parquet":
         from .results.output import parquet_available
         parquet_available()
@@ -37,27 +43,6 @@ def _cmd_solve(args) -> int:
     if args.json or not args.out:
         print(json.dumps(summary, indent=2))
     return 0
-
-
-class OneLineParser(argparse.ArgumentParser):
-    """An argument parser whose every mistake is one line ``error: ...`` on stderr and
-    exit code 2, without argparse's usage lines (the parser class of both CLIs and of
-    all their subcommands)."""
-
-    def error(self, message: str) -> NoReturn:
-        print(f"error: {' '.join(message.split())} (see {self.prog} --help)", file=sys.stderr)
-        raise SystemExit(2)
-
-
-def dpi_argument(text: str) -> float:
-    """A --dpi value: a number from 50 to 600 (the argparse type of both CLIs)."""
-    try:
-        v = float(text)
-    except ValueError:
-        v = float("nan")
-    if not 50.0 <= v <= 600.0:
-        raise argparse.ArgumentTypeError(f"{text!r}: give a number from 50 to 600")
-    return v
 
 
 def _cmd_demo(args) -> int:
@@ -85,23 +70,29 @@ def _cmd_motion(args) -> int:
             print(f"scene units: {res.units.describe()} (the numbers above are SI: rad/s, "
                   "s, kg m^2)")
         if args.out:
-            Path(args.out).parent.mkdir(parents=True, exist_ok=True)
-            res.motion.to_csv(args.out, index=False, float_format="%.17g")
+            from .model.outputs import atomic_file
+            with atomic_file(args.out) as tmp:
+                res.motion.to_csv(tmp, index=False, float_format="%.17g")
             print(f"wrote {args.out}")
     return 0
 
 
+CAM_FILES = ("motion.csv", "geometry.csv", "forces.csv", "summary.json")
+
+
 def _cmd_cam(args) -> int:
     from .cams import solve_cam
+    from .model.outputs import failure_noted, staged_folder
     from .results.output import summary_with_units, write_summary
-    res = solve_cam(scene_path(args.scene))
-    summary = summary_with_units(res.summary, res.scene.units)
-    if args.out:
-        out = Path(args.out)
-        out.mkdir(parents=True, exist_ok=True)
-        for name in ("motion", "geometry", "forces"):
-            getattr(res, name).to_csv(out / f"{name}.csv", index=False, float_format="%.17g")
-        write_summary(out / "summary.json", summary)
+    with failure_noted(args.out, CAM_FILES, "cam run"):
+        res = solve_cam(scene_path(args.scene))
+        summary = summary_with_units(res.summary, res.scene.units)
+        if args.out:
+            with staged_folder(args.out, CAM_FILES) as stage:
+                for name in ("motion", "geometry", "forces"):
+                    getattr(res, name).to_csv(stage.file(f"{name}.csv"), index=False,
+                                              float_format="%.17g")
+                write_summary(stage.file("summary.json"), summary)
     print(json.dumps(summary, indent=2))
     return 0
 
@@ -131,7 +122,7 @@ A table of more than 1e6 rows is announced on stderr with its size and time.
 
 # the commands of this module: their parser is built without the teaching package's
 # (which loads pandas and matplotlib), so that ``solve`` starts quickly
-CORE_COMMANDS = ("solve", "demo", "structure", "bench", "motion", "cam")
+CORE_COMMANDS = ("solve", "demo", "structure", "bench", "motion", "cam", "design")
 
 
 def build_parser(extras: bool = True) -> argparse.ArgumentParser:
@@ -165,7 +156,8 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
     t.set_defaults(func=_cmd_structure)
     b = sub.add_parser("bench", help="positions per second and error against closed forms")
     b.add_argument("--quick", action="store_true", help="small sizes only")
-    b.add_argument("--reference", help="path of reference_fourbar.py to time side by side")
+    b.add_argument("--reference", help="a baseline module to time side by side "
+                   "(default: the bundled kinetostatics/bench/reference.py)")
     b.add_argument("--tables", action="store_true", help="time the result tables and the "
                    "CSV writer (four-bar at 1e4, 1e5, 1e6 positions) with peak memory")
     b.add_argument("--repeat", type=int, default=3, help="runs per size for --tables "
@@ -180,6 +172,8 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
     c.add_argument("scene")
     c.add_argument("--out", help="folder for motion.csv, geometry.csv, forces.csv, summary.json")
     c.set_defaults(func=_cmd_cam)
+    from .design.cli import add_command as add_design_command
+    add_design_command(sub)
     if extras:
         _extra_commands(sub)
         from .teaching.cli import add_commands as add_exercise_commands
@@ -196,11 +190,6 @@ def _extra_commands(sub) -> None:
     add_commands(sub)
 
 
-def _showwarning(message, category, filename, lineno, file=None, line=None) -> None:
-    """Python warnings (unit slips, negative concentrated masses, ...) as one line each."""
-    print(f"warning: {' '.join(str(message).split())}", file=sys.stderr)
-
-
 def main(argv: list[str] | None = None) -> int:
     words = sys.argv[1:] if argv is None else list(argv)
     parser = build_parser(extras=not (words and words[0] in CORE_COMMANDS))
@@ -208,7 +197,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("default")
-            warnings.showwarning = _showwarning
+            warnings.showwarning = print_warning
             return args.func(args)
     except WorkbenchError as exc:
         print(f"error: {exc}", file=sys.stderr)

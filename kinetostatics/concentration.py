@@ -33,8 +33,8 @@ import pandas as pd
 
 from .model.errors import WorkbenchError
 from .model.scene import GROUND, Body, Scene, load_scene
+from .results import solve
 from .solver.loads import concentrated_masses
-from .solver.pipeline import solve
 
 __all__ = [
     "Concentration", "ConcentrationError", "body_concentration", "concentrate",

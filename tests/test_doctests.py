@@ -34,7 +34,8 @@ def test_the_examples_are_found():
     """The finder sees the modules known to hold examples, in both packages (so that a
     broken finder cannot make the runner below pass on nothing)."""
     assert {"kinetostatics.model.units", "kinetostatics.simulation.runner",
-            "balance.machine.pivot", "balance.rotor.design"} <= set(MODULES)
+            "balance.machine.pivot", "balance.rotor.design", "balance.field.weights",
+            "balance.resonance.chi2"} <= set(MODULES)
     assert len(MODULES) >= 15
 
 

@@ -30,7 +30,7 @@ NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
 CELL_TIMEOUT = 600
 
 # the topic sheets: each teaches with one interactive cell (an Explorer)
-TOPIC_SHEETS = {"01", "02", "03", "04", "05", "06", "07", "13", "14", "15"}
+TOPIC_SHEETS = {"01", "02", "03", "04", "05", "06", "07", "13", "14", "15", "16"}
 
 # a number that is not one, as pandas, numpy and Python print it
 _NOT_A_NUMBER = re.compile(r"(?<![A-Za-z0-9_])[-+]?(nan|inf|infinity)(?![A-Za-z0-9_])",

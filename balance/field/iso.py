@@ -40,7 +40,7 @@ from typing import Any
 
 import numpy as np
 
-from ..common import check_number
+from ..common import check_number, coincide
 from ..errors import BalanceError
 
 __all__ = [
@@ -151,8 +151,7 @@ def iso_allocate(U_per: float, z_a: float, z_b: float, z_cog: float) -> IsoAlloc
     """
     U = check_number(U_per, "U_per", positive=True)
     za, zb, zc = (check_number(v, n) for v, n in ((z_a, "z_a"), (z_b, "z_b"), (z_cog, "z_cog")))
-    L = abs(zb - za)
-    if L == 0.0:
+    if coincide(za, zb):
         raise BalanceError("iso_allocate: planes A and B coincide; give two distinct planes")
     t = (zc - za) / (zb - za)                     # L_A / L, 0 at plane A, 1 at plane B
     if not -1e-12 <= t <= 1.0 + 1e-12:
@@ -340,7 +339,7 @@ def iso_tolerances(U_per: float, bearings: Sequence[float], z_cog: float,
         raise BalanceError("give the z of the two bearing planes A and B")
     za, zb = (check_number(v, f"bearing {n} z") for v, n in zip(bearings, "AB", strict=True))
     zc = check_number(z_cog, "z_cog")
-    if za == zb:
+    if coincide(za, zb):
         raise BalanceError(f"bearing planes A and B coincide (z = {za:g} for both); give two "
                            "distinct bearing planes")
     lever_a, lever_b = _levers(zc, za, zb)
@@ -357,7 +356,7 @@ def iso_tolerances(U_per: float, bearings: Sequence[float], z_cog: float,
     if len(planes) != 2:
         raise BalanceError("give the z of the two correction planes")
     z1, z2 = (check_number(v, f"correction plane {i + 1} z") for i, v in enumerate(planes))
-    if z1 == z2:
+    if coincide(z1, z2):
         raise BalanceError(f"correction planes 1 and 2 coincide (z = {z1:g} for both); give "
                            "two distinct planes")
     L = abs(zb - za)
@@ -406,7 +405,7 @@ def to_bearing_planes(residuals: Sequence[complex] | Sequence[float],
     """
     z1, z2 = (check_number(v, "correction plane z") for v in planes)
     za, zb = (check_number(v, "bearing z") for v in bearings)
-    if za == zb:
+    if coincide(za, zb):
         raise BalanceError("bearing planes A and B coincide; give two distinct planes")
     res = np.asarray(residuals)
     if res.shape != (2,):

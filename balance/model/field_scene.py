@@ -30,6 +30,9 @@ __all__ = ["FIELD_SECTIONS", "FieldScene", "parse_field"]
 FIELD_SECTIONS = ("influence", "iso", "split", "combine")
 INFLUENCE_KEYS = ("name", "points", "initial", "runs", "coefficients", "trim", "trial_radius",
                   "correction_radius", "noise", "phase_noise", "confidence", "dA", "split")
+# balancing holes of a split: more than this is a continuous ring (and the angles of
+# neighbouring holes would differ by less than the rounding of the correction angle)
+MAX_HOLES = 100_000
 RUN_KEYS = ("plane", "mass", "angle", "masses", "readings")
 SPLIT_KEYS = ("positions", "first")
 SPLIT_SECTION_KEYS = ("mass", "angle", "positions", "first", "radius", "correction_radius")
@@ -105,6 +108,23 @@ def _masses(runs: list[dict[int, tuple[float, float]]], n: int) -> list[list]:
             for r in runs]
 
 
+def _planes(runs: list, trims: list, coefficients: list | None, where: str) -> int:
+    """The number of correction planes: the coefficients' columns, else the largest plane
+    the trial runs name. A plane number is bounded by the planes there can be (one trial
+    run per plane; a trim run by the planes of the runs or coefficients)."""
+    most = len(coefficients[0]) if coefficients else max(len(runs), 1)
+    for what, items in (("runs", runs), ("trim", trims)):
+        for k, (r, _) in enumerate(items):
+            if max(r) > most:
+                there = (f"the coefficients have {most} column(s)" if coefficients
+                         else f"{len(runs)} trial run(s), one per plane")
+                raise SceneError(f"{where}.{what}[{k}]: plane {max(r):_} does not exist "
+                                 f"({there}); give a plane from 1 to {most}")
+        if what == "runs" and not coefficients:
+            most = max([max(r) for r, _ in runs] + [1])
+    return max([max(r) for r, _ in runs + trims] + [len(coefficients[0]) if coefficients else 1])
+
+
 def _influence(item: Any, i: int) -> dict:
     w = f"influence[{i}]"
     t = check_keys(item, INFLUENCE_KEYS, w, required=("initial",))
@@ -123,7 +143,7 @@ def _influence(item: Any, i: int) -> dict:
                         for k, r in enumerate(rows)]
         if not coefficients:
             raise SceneError(f"{w}.coefficients is empty: one row per measurement point")
-    n = max([max(r) for r, _ in runs + trims] + [len(coefficients[0]) if coefficients else 1])
+    n = _planes(runs, trims, coefficients, w)
     spec: dict[str, Any] = {
         "name": as_str(t["name"], f"{w}.name") if "name" in t else f"influence {i + 1}",
         "initial": initial,
@@ -150,7 +170,8 @@ def _influence(item: Any, i: int) -> dict:
         if isinstance(s, int) and not isinstance(s, bool):
             s = {"positions": s}
         s = check_keys(s, SPLIT_KEYS, f"{w}.split", required=("positions",))
-        spec["split"] = (as_int(s["positions"], f"{w}.split.positions", lo=3),
+        spec["split"] = (as_int(s["positions"], f"{w}.split.positions", lo=3,
+                                hi=MAX_HOLES),
                          as_float(s.get("first", 0.0), f"{w}.split.first"))
     return spec
 
@@ -160,7 +181,7 @@ def _split(item: Any, i: int) -> dict:
     t = check_keys(item, SPLIT_SECTION_KEYS, w, required=("mass", "angle", "positions"))
     out = {"mass": as_float(t["mass"], f"{w}.mass", nonnegative=True),
            "angle": as_float(t["angle"], f"{w}.angle"),
-           "positions": as_int(t["positions"], f"{w}.positions", lo=3),
+           "positions": as_int(t["positions"], f"{w}.positions", lo=3, hi=MAX_HOLES),
            "first": as_float(t.get("first", 0.0), f"{w}.first")}
     for key in ("radius", "correction_radius"):
         if key in t:

@@ -27,12 +27,22 @@ from typing import Any
 
 from kinetostatics.model.errors import SceneError
 from kinetostatics.model.examples import BundledScenes
-from kinetostatics.model.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source
+from kinetostatics.model.slips import emit, read_checks
+from kinetostatics.model.tomlio import (
+    MIN_MAGNITUDE,
+    as_float,
+    as_int,
+    as_list,
+    as_str,
+    check_keys,
+    read_source,
+)
 
+from ..errors import BalanceWarning
 from ..rotor.design import CorrectionPlane, Unbalance
 from .field_scene import FIELD_SECTIONS, FieldScene, parse_field
 from .scene_units import to_contract_units
-from .slips import check_slips
+from .slips import scene_slips
 from .units import Units
 
 # the example scenes bundled with the package (balance/scenes): a bare name is one of them
@@ -103,7 +113,9 @@ class ResonanceSpec:
 @dataclass(frozen=True)
 class BalanceScene:
     """A checked balancing scene; ``raw`` keeps the mapping as read, rewritten into its
-    solvers' units (:mod:`balance.model.scene_units`); ``units`` is the file's ``[units]``."""
+    solvers' units (:mod:`balance.model.scene_units`); ``units`` is the file's ``[units]``;
+    ``quiet`` the slip rules its ``[checks]`` silences and ``warnings`` the suspected unit
+    slips found when it was read (:mod:`balance.model.slips`)."""
 
     title: str = ""
     rotor: RotorSpec | None = None
@@ -113,6 +125,8 @@ class BalanceScene:
     raw: dict = field(default_factory=dict, repr=False)
     field_scene: FieldScene = field(default_factory=FieldScene)
     units: Units = field(default_factory=Units)
+    quiet: frozenset[str] = field(default=frozenset(), compare=False)
+    warnings: tuple[str, ...] = field(default=(), compare=False)
 
     @property
     def sections(self) -> tuple[str, ...]:
@@ -144,7 +158,8 @@ def load_scene(source: Any) -> BalanceScene:
     """
     if isinstance(source, BalanceScene):
         return source
-    raw, units = to_contract_units(read_source(source, "balancing scene", bundled=SCENES))
+    raw, quiet = read_checks(read_source(source, "balancing scene", bundled=SCENES))
+    raw, units = to_contract_units(raw)
     top = check_keys(raw, TOP_KEYS, "scene")
     title = as_str(top["title"], "title") if "title" in top else ""
     if "format" in top:
@@ -166,8 +181,10 @@ def load_scene(source: Any) -> BalanceScene:
         raise SceneError("[balancing] must be a table")
     scene = BalanceScene(title=title, rotor=rotor, static_test=static, resonance_tests=tests,
                          balancing=balancing, raw=raw, field_scene=parse_field(top, units),
-                         units=units)
-    check_slips(scene)
+                         units=units, quiet=quiet)
+    texts = emit(scene_slips(scene), quiet, BalanceWarning)
+    if texts:
+        object.__setattr__(scene, "warnings", texts)     # (a frozen dataclass, made here)
     return scene
 
 
@@ -216,7 +233,7 @@ def _static(table: Any) -> StaticTestSpec:
                                  positive=True),
         comparison_radius=as_float(t["comparison_radius"], "static_test.comparison_radius",
                                    positive=True),
-        alpha=as_float(t["alpha"], "static_test.alpha"),
+        alpha=as_float(t["alpha"], "static_test.alpha", smallest=MIN_MAGNITUDE),
         correction_radius=as_float(t["correction_radius"], "static_test.correction_radius",
                                    positive=True),
     )
@@ -233,7 +250,7 @@ def _resonance(item: Any, i: int) -> ResonanceSpec:
         trial_radius=as_float(t["trial_radius"], f"{w}.trial_radius", positive=True),
         correction_radius=as_float(t["correction_radius"], f"{w}.correction_radius",
                                    positive=True),
-        A1=as_float(t["A1"], f"{w}.A1", nonnegative=True),
+        A1=as_float(t["A1"], f"{w}.A1", nonnegative=True, smallest=MIN_MAGNITUDE),
         dA=as_float(t["dA"], f"{w}.dA", nonnegative=True) if "dA" in t else None,
         **_noise(t, w),
     )
@@ -246,14 +263,16 @@ def _resonance(item: Any, i: int) -> ResonanceSpec:
             rw = f"{w}.runs[{k}]"
             r = check_keys(run, RUN_KEYS, rw, required=RUN_KEYS)
             runs.append((as_float(r["angle"], f"{rw}.angle"),
-                         as_float(r["A"], f"{rw}.A", positive=True)))
+                         as_float(r["A"], f"{rw}.A", positive=True, smallest=MIN_MAGNITUDE)))
         return ResonanceSpec(runs=tuple(runs), **common)
     for key in ("A2", "A3"):
         if key not in t:
             raise SceneError(f"{w}: missing required key {key!r} (or give runs = "
                              "[{angle = .., A = ..}, ...] instead of A2 and A3)")
-    return ResonanceSpec(A2=as_float(t["A2"], f"{w}.A2", positive=True),
-                         A3=as_float(t["A3"], f"{w}.A3", positive=True), **common)
+    return ResonanceSpec(A2=as_float(t["A2"], f"{w}.A2", positive=True,
+                                       smallest=MIN_MAGNITUDE),
+                         A3=as_float(t["A3"], f"{w}.A3", positive=True,
+                                       smallest=MIN_MAGNITUDE), **common)
 
 
 def _noise(t: dict, w: str) -> dict[str, float]:

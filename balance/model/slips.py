@@ -1,132 +1,158 @@
-"""Numbers of a balancing scene that look like unit slips: one :class:`BalanceWarning` each
-(the command line prints a ``warning:`` line; the exit code is unchanged).
+"""Numbers of a balancing scene that look like unit slips, judged on the physical quantity
+after conversion (the rules and the :class:`~kinetostatics.model.slips.Slip` are
+:mod:`kinetostatics.model.slips`'; docs/scene-format.md, "Unit slips", has the table).
 
-A slip gives a plausible-looking number, so the scene is checked where it is read and
-its results where they are made (scene-format.md, opening; docs/balancing.md, "Units"):
+- ``angles``: per list, a rotor's unbalance angles, a resonance test's run marks, an
+  influence section's phases and mass angles (its runs, not its trims), a combine's
+  weight angles: all within 2 pi degrees, spread over a degree, not all whole (radians
+  typed for degrees); any angle beyond two turns (degrees typed under ``angle = "rad"``).
+  A single angle (a split's, the static device's ``alpha``) is judged on the second only.
+- ``unbalance_mass``: a rotor's unbalance masses 300 times apart or more.
+- ``trial_mass``: a trial mass above 2 kg, or above a hundredth of ``[iso]`` rotor_mass
+  when that is larger (grams typed as kilograms); an influence section's trial masses
+  300 times apart. A trim mass is never judged (a trim after a good correction is small).
+- ``readings``: one run's largest reading 300 times off the median of the other runs'
+  (resonance amplitudes, influence initial and trial runs; trims are not judged, and a
+  small reading beside larger ones of its run, a node, is never judged).
+- ``correction``: a correction more than 100 times its trial mass
+  (:func:`correction_slips`, on the results).
 
-- angles that all lie within [-2 pi, 2 pi] with fractional values under ``angle = "deg"``
-  (radians typed for degrees), per section: a rotor's unbalance angles, the static
-  device's ``alpha``, a resonance test's run marks, an influence section's phases and
-  mass angles, a split's or combine's angles;
-- masses or readings 1000 times off the others of their kind (grams among kilograms):
-  a rotor's unbalance masses, a resonance test's amplitudes, an influence section's
-  trial and trim masses and its reading amplitudes, a combine's weights;
-- trial masses all below 1 under ``mass = "g"`` (kilograms typed under grams: 100 g
-  typed as 0.1), or all 10 or more under ``mass = "kg"`` (grams typed under kilograms);
-- a correction more than 100 times the trial mass (:func:`check_corrections`).
+Every warning is a :class:`~balance.errors.BalanceWarning` (the command line prints a
+``warning:`` line; the exit code is unchanged) and its text is kept on the scene
+(``BalanceScene.warnings``) for every output.
 """
 
 from __future__ import annotations
 
-import warnings
+import statistics
 from typing import TYPE_CHECKING, Any
 
-from kinetostatics.model.units import angle_slip, ratio_slip
-
-from ..errors import BalanceWarning
+from kinetostatics.model.slips import DEG, Slip, angle_list_slip, typed
 
 if TYPE_CHECKING:
     from .scene import BalanceScene
 
-__all__ = ["CORRECTION_RATIO", "check_corrections", "check_slips"]
+__all__ = ["CORRECTION_RATIO", "RATIO", "TRIAL_MASS", "correction_slips", "scene_slips"]
 
 CORRECTION_RATIO = 100.0
 """A correction more than this many times the trial mass looks like a slip."""
 
+RATIO = 300.0
+"""Masses (readings) of one kind this many times apart look like one typed in another
+unit (g among kg is 1000)."""
 
-def _warn(text: str) -> None:
-    warnings.warn(text, BalanceWarning, stacklevel=4)
-
-
-def _angles(where: str, values: list[float], unit: str) -> None:
-    if values and angle_slip(values, unit):
-        shown = ", ".join(f"{v:g}" for v in values[:5]) + (", ..." if len(values) > 5 else "")
-        _warn(f"{where}: the angles [{shown}] look like radians (all within 2 pi, with "
-              "fractional values) but angles are in degrees; write them in degrees, or "
-              "angle = \"rad\" in [units]")
+TRIAL_MASS = 2.0
+"""kg: a heavier trial mass looks like grams typed as kilograms (unless the rotor's mass
+makes it plausible)."""
 
 
-def _ratio(where: str, what: str, values: list[float], unit: str) -> None:
-    hit = ratio_slip(values)
-    if hit is not None:
-        u = f" {unit}" if unit else ""
-        _warn(f"{where}: the {what} range from {hit[0]:g}{u} to {hit[1]:g}{u}, 1000 times "
-              "apart: one typed in another unit (g for kg, um for mm)?")
+def _angles(where: str, deg: list[float], units: Any) -> list[Slip]:
+    why = angle_list_slip([a * DEG for a in deg])
+    if why is None:
+        return []
+    return [Slip("angles", where, typed(deg, "angle", units), why,
+                 "write them in degrees, or angle = \"rad\" in [units]")]
 
 
-def _trial_masses(where: str, masses: list[float], unit: str) -> None:
-    masses = [m for m in masses if m > 0.0]
-    if not masses:
-        return
-    if unit == "g" and max(masses) < 1.0:
-        _warn(f"{where}: every trial mass is below 1 g ({', '.join(f'{m:g}' for m in masses)} "
-              "g): kilograms typed under mass = \"g\"?")
-    elif unit == "kg" and min(masses) >= 10.0:
-        _warn(f"{where}: every trial mass is 10 kg or more ({', '.join(f'{m:g}' for m in masses)}"
-              " kg): grams typed in kilograms? Name mass = \"g\" in [units]")
+def _ratio(rule: str, where: str, si: list[float], quantity: str, units: Any,
+           what: str) -> list[Slip]:
+    mags = [abs(v) for v in si if v]
+    if len(mags) < 2 or max(mags) < RATIO * min(mags):
+        return []
+    lo, hi = min(mags), max(mags)
+    return [Slip(rule, where, typed(si, quantity, units, file=False),
+                 f"the {what} range from {lo:.4g} to {hi:.4g} (SI), {hi / lo:.3g} times apart",
+                 "one was typed in another unit (g for kg: 1000 times)")]
 
 
-def check_slips(scene: BalanceScene) -> None:
-    """Warn about the numbers of a read scene that look like unit slips (module text)."""
+def scene_slips(scene: BalanceScene) -> list[Slip]:
+    """The suspected slips of a read balancing scene (the module's rules)."""
     u = scene.units
-    ang = u.angle
+    out: list[Slip] = []
     if scene.rotor is not None:
         ub = scene.rotor.unbalances
-        _angles("rotor.unbalance", [x.angle for x in ub], ang)
-        _ratio("rotor.unbalance", "masses", [x.mass for x in ub], "kg")
+        out += _angles("rotor.unbalance.angle", [x.angle for x in ub], u)
+        out += _ratio("unbalance_mass", "rotor.unbalance.mass", [x.mass for x in ub], "mass",
+                      u, "unbalance masses")
     if scene.static_test is not None:
-        _angles("static_test.alpha", [scene.static_test.alpha], ang)
+        out += _angles("static_test.alpha", [scene.static_test.alpha], u)
+    fs = scene.field_scene
+    limit = max(TRIAL_MASS, fs.iso["rotor_mass"] / 100.0 if fs.iso else 0.0)
     for i, t in enumerate(scene.resonance_tests):
         w = f"resonance_test[{i}]"
         if t.runs is not None:
-            _angles(f"{w}.runs", [a for a, _ in t.runs], ang)
+            out += _angles(f"{w}.runs.angle", [a for a, _ in t.runs], u)
         amps = [t.A1, *(a for _, a in t.runs or ()), *(x for x in (t.A2, t.A3) if x)]
-        _ratio(w, "amplitudes", amps, "")
-    fs = scene.field_scene
+        out += _readings(f"{w}.A", [[a] for a in amps], u)
+        out += _heavy(f"{w}.trial_mass", [t.trial_mass], limit, u)
     for i, spec in enumerate(fs.influence):
-        _influence(f"influence[{i}]", spec, ang, u.mass)
+        out += _influence(f"influence[{i}]", spec, u, limit)
     for i, spec in enumerate(fs.split):
-        _angles(f"split[{i}]", [spec["angle"], spec["first"]], ang)
+        out += _angles(f"split[{i}].angle", [spec["angle"]], u)
     for i, spec in enumerate(fs.combine):
-        _angles(f"combine[{i}].weights", [w[1] for w in spec["weights"]], ang)
-        _ratio(f"combine[{i}].weights", "masses", [w[0] for w in spec["weights"]], u.mass)
+        out += _angles(f"combine[{i}].weights.angle", [w[1] for w in spec["weights"]], u)
+    return out
 
 
-def _influence(where: str, spec: dict, ang: str, mass_unit: str) -> None:
-    readings = list(spec["initial"])
-    masses: list[tuple[float, float]] = []
-    for plane_masses, vals in spec["runs"] + spec["trims"]:
-        readings += list(vals)
-        masses += [m for m in plane_masses if m is not None]
-    coeff = [c for row in spec["coefficients"] or () for c in row]
-    _angles(where, [p for _, p in readings + coeff] + [a for _, a in masses], ang)
-    _ratio(where, "reading amplitudes", [a for a, _ in readings], "")
-    trial = [m for m, _ in masses]
-    _ratio(where, "trial masses", trial, mass_unit)
-    _trial_masses(where, [m for m, _ in (m for pm, _ in spec["runs"] for m in pm
-                                          if m is not None)], mass_unit)
+def _heavy(where: str, kg: list[float], limit: float, units: Any) -> list[Slip]:
+    heavy = [m for m in kg if m > limit]
+    if not heavy:
+        return []
+    return [Slip("trial_mass", where, typed(heavy, "mass", units, file=False),
+                 f"a trial mass of {max(heavy):.4g} kg (above {limit:.4g} kg)",
+                 f"{max(heavy):.4g} g, grams typed as kilograms")]
 
 
-def check_corrections(results: dict[str, Any], scene: BalanceScene) -> None:
-    """Warn where a correction is more than 100 times its trial mass (a slip in the trial
-    mass's unit, or in the readings' phases): resonance tests and influence sections."""
-    for i, (spec, res) in enumerate(zip(scene.resonance_tests, results.get("resonance_test",
-                                                                            ()), strict=False)):
+def _readings(where: str, runs: list[list[float]], units: Any) -> list[Slip]:
+    """One run's largest reading against the median of the other runs' largest."""
+    peaks = [max(abs(a) for a in run) for run in runs if run]
+    if len([p for p in peaks if p]) < 3:
+        return []
+    for k, p in enumerate(peaks):
+        others = [q for j, q in enumerate(peaks) if j != k and q]
+        mid = statistics.median(others)
+        if p and mid and (p >= RATIO * mid or mid >= RATIO * p):
+            return [Slip("readings", f"{where} (run {k + 1})", f"{p:g}",
+                         f"{p / mid:.3g} times the median of the other runs' ({mid:g})",
+                         "one run typed in another vibration unit (um for mm: 1000 times)")]
+    return []
+
+
+def _influence(where: str, spec: dict, u: Any, limit: float) -> list[Slip]:
+    runs = [(pm, vals) for pm, vals in spec["runs"]]
+    masses = [m for pm, _ in runs for m in pm if m is not None]
+    phases = [p for _, p in spec["initial"]] + [p for _, vals in runs for _, p in vals]
+    out = _angles(f"{where}.runs (phases and mass angles)",
+                  phases + [a for _, a in masses], u)
+    kg = [u.to_si(m, "mass") for m, _ in masses]
+    out += _ratio("trial_mass", f"{where}.runs.mass", kg, "mass", u, "trial masses")
+    out += _heavy(f"{where}.runs.mass", kg, limit, u)
+    out += _readings(f"{where}.readings", [[a for a, _ in spec["initial"]]]
+                     + [[a for a, _ in vals] for _, vals in runs], u)
+    return out
+
+
+def correction_slips(results: dict[str, Any], scene: BalanceScene) -> list[Slip]:
+    """A correction more than 100 times its trial mass (a slip in the trial mass's unit, or
+    in the readings' phases): resonance tests and influence sections."""
+    out = []
+    u = scene.units
+    for i, (spec, res) in enumerate(zip(scene.resonance_tests,
+                                        results.get("resonance_test", ()), strict=False)):
         m = getattr(res, "correction_mass", None)
         if m is not None and m > CORRECTION_RATIO * spec.trial_mass:
-            _warn(f"resonance_test[{i}]: the correction mass {m:.4g} kg is "
-                  f"{m / spec.trial_mass:.3g} times the trial mass {spec.trial_mass:g} kg: a "
-                  "unit slip in the trial mass or the amplitudes?")
-    unit = scene.units.mass
+            out.append(Slip("correction", f"resonance_test[{i}].trial_mass",
+                            typed(spec.trial_mass, "mass", u, file=False),
+                            f"the correction {m:.4g} kg is {m / spec.trial_mass:.3g} times it",
+                            "a unit slip in the trial mass or the amplitudes"))
     for i, (spec, res) in enumerate(zip(scene.field_scene.influence,
                                         results.get("influence", ()), strict=False)):
         trial = [m for pm, _ in spec["runs"] for m, _ in (x for x in pm if x is not None)]
-        corr = _correction_masses(res)
+        corr = [abs(float(m)) for m in getattr(res, "masses", ()) if m is not None]
         if trial and corr and max(corr) > CORRECTION_RATIO * max(trial):
-            _warn(f"influence[{i}]: a correction of {max(corr):.4g} {unit} is "
-                  f"{max(corr) / max(trial):.3g} times the largest trial mass "
-                  f"{max(trial):g} {unit}: a unit slip in the trial masses or the phases?")
-
-
-def _correction_masses(res: Any) -> list[float]:
-    return [abs(float(m)) for m in getattr(res, "masses", ()) if m is not None]
+            out.append(Slip("correction", f"influence[{i}].runs.mass",
+                            f"{max(trial):g} {u.mass}",
+                            f"a correction of {max(corr):.4g} {u.mass} is "
+                            f"{max(corr) / max(trial):.3g} times the largest trial mass",
+                            "a unit slip in the trial masses or the phases"))
+    return out

@@ -25,6 +25,8 @@ from typing import Any
 
 import numpy as np
 
+from kinetostatics.common.jsontext import json_default
+from kinetostatics.model.outputs import atomic_file
 from kinetostatics.plot.notation import reading
 from kinetostatics.plot.place import settle
 
@@ -242,12 +244,12 @@ def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
     warns = [f"{w}: {m}" for w, m in result_warnings(out)]
     figs = report_figures(results, out)
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        if suffix == ".pdf":
-            write_pdf(path, datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"), source,
-                      lines, _iso_line(out), warns, figs, dpi)
-        else:
-            path.write_text(_html(lines, warns, figs, source, out, dpi), encoding="utf-8")
+        with atomic_file(path) as tmp:          # the whole report, or the earlier one kept
+            if suffix == ".pdf":
+                write_pdf(tmp, datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"), source,
+                          lines, _iso_line(out), warns, figs, dpi)
+            else:
+                tmp.write_text(_html(lines, warns, figs, source, out, dpi), encoding="utf-8")
     except OSError as exc:
         raise BalanceError(f"--report {path}: cannot write the file ({exc.strerror})") from exc
     return path
@@ -311,14 +313,3 @@ def _iso_line(out: dict[str, Any]) -> str | None:
         return None
     return "ISO 21940-11 check: " + ("the residual unbalance is within tolerance"
                                      if out["iso"]["check"]["ok"] else "NOT within tolerance")
-
-
-def json_default(x: Any) -> Any:
-    """numpy scalars and arrays (e.g. from :mod:`balance.mechanism`) as plain JSON values:
-    the ``default`` of ``json.dumps`` for a result dict (the report's JSON section and
-    ``python -m balance solve --json``)."""
-    if isinstance(x, np.generic):
-        return x.item()
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    raise TypeError(f"{type(x).__name__} is not JSON serialisable")

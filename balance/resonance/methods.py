@@ -37,6 +37,8 @@ from typing import Any
 
 import numpy as np
 
+from kinetostatics.model.tomlio import MIN_MAGNITUDE
+
 from ..common import check_number, deg360
 from ..errors import BalanceError, BalanceWarning
 from ..uncertainty import Interval, propagate
@@ -192,11 +194,12 @@ def _check_common(trial_mass: float, trial_radius: float, correction_radius: flo
 
 
 def _check_A1(A1: float, where: str) -> float:
-    return check_number(A1, f"{where}: A1 (amplitude without trial mass)", nonnegative=True)
+    return check_number(A1, f"{where}: A1 (amplitude without trial mass)", nonnegative=True,
+                        smallest=MIN_MAGNITUDE)
 
 
 def _check_trial_amplitude(value: float, name: str) -> float:
-    a = check_number(value, name)
+    a = check_number(value, name, smallest=MIN_MAGNITUDE)
     if a <= 0.0:
         raise BalanceError(f"{name} must be a positive amplitude, got {a:g}: a run with the "
                            "trial mass that does not vibrate at all is not a usable reading")

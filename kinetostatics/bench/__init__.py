@@ -13,6 +13,8 @@ that ``kinetostatics.bench.tables`` starts without pandas.
 
 from __future__ import annotations
 
+from ..common.lazy import group, lazy_names
+
 _ACCURACY = ("FB", "SC", "bench_against_reference", "bench_kinematics", "bench_reactions",
              "find_reference", "fourbar_closed_form", "fourbar_matrix_solution",
              "fourbar_scene", "load_reference", "run_bench", "slider_closed_form",
@@ -21,12 +23,5 @@ _ACCURACY = ("FB", "SC", "bench_against_reference", "bench_kinematics", "bench_r
 __all__ = list(_ACCURACY)
 
 
-def __getattr__(name: str):
-    if name in _ACCURACY:
-        from . import accuracy
-        return getattr(accuracy, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_names(__name__, group(_ACCURACY, "accuracy"), globals(),
+                                  __all__, subpackages=False)

@@ -9,9 +9,10 @@ kinetostatic solve, with the error against independent closed forms.
   slider-crank of seed 004 eqs (1)-(3));
 * reactions and Me of a four-bar at 1e6 positions against a global matrix solution
   (the nine Newton-Euler equations of the three bodies, one 9 x 9 system per position);
-* with ``--reference PATH`` (the hand-written baseline ``reference_fourbar.py``), the
-  baseline's ``fourbar_kin`` and ``fourbar_dyad`` timed side by side, in one process,
-  with the workbench on the same four-bar: ratios of the best of several runs.
+* the hand-written baseline's ``fourbar_kin`` and ``fourbar_dyad``
+  (:mod:`kinetostatics.bench.reference`, or another module of the same names given with
+  ``--reference PATH``) timed side by side, in one process, with the workbench on the
+  same four-bar: ratios of the best of several runs.
 """
 
 from __future__ import annotations
@@ -27,8 +28,8 @@ import numpy as np
 import pandas as pd
 
 from ..model.scene import load_scene
+from ..results import solve
 from ..solver.kinematics import solve_kinematics
-from ..solver.pipeline import solve
 from ..solver.structure import analyse
 
 # the baseline's four-bar: a = 0.1, b = 0.25, c = 0.2, d = 0.3, cogs at mid-links,
@@ -65,7 +66,7 @@ def fourbar_scene(count: int, speed: float = 20.0, p: dict = FB) -> dict:
 
 
 def slider_crank_reference_scene(count: int, p: dict) -> dict:
-    """The baseline's slider-crank (``SC`` of ``reference_fourbar.py``: r, l, masses,
+    """The baseline's slider-crank (``SC`` of :mod:`kinetostatics.bench.reference`: r, l, masses,
     inertias, speed ``w2``, cogs at mid-link and on the piston pin, no gravity, no load)
     as a scene dict over ``count`` positions of a turn: the bundled ``slider_crank``
     with those numbers."""
@@ -241,23 +242,22 @@ def bench_reactions(n: int = 1_000_000, repeat: int = 3) -> pd.DataFrame:
                           "positions_per_s": n / t, "max_rel_error_vs_matrix": err}])
 
 
-def load_reference(path: str | Path):
-    """The hand-written baseline module (``reference_fourbar.py``) loaded from ``path``."""
+def load_reference(path: str | Path | None = None):
+    """The hand-written baseline (a module with ``fourbar_kin``, ``fourbar_dyad``,
+    ``slider_dyad`` and ``SC``): :mod:`kinetostatics.bench.reference`, or one loaded
+    from ``path``."""
+    if path is None or Path(path).resolve() == find_reference():
+        from . import reference
+        return reference
     spec = importlib.util.spec_from_file_location("reference_fourbar", path)
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
     return mod
 
 
-def find_reference() -> Path | None:
-    """``../shared/bench/reference_fourbar.py`` beside the working folder or the package."""
-    here = Path(__file__).resolve().parents[2]
-    for base in (Path.cwd(), here):
-        for cand in (base.parent / "shared" / "bench" / "reference_fourbar.py",
-                     base / "shared" / "bench" / "reference_fourbar.py"):
-            if cand.is_file():
-                return cand
-    return None
+def find_reference() -> Path:
+    """The repository's own baseline, :mod:`kinetostatics.bench.reference`."""
+    return Path(__file__).resolve().with_name("reference.py")
 
 
 def bench_against_reference(path: str | Path, n: int = 200_001, repeat: int = 7) -> pd.DataFrame:
@@ -299,16 +299,12 @@ def run_bench(quick: bool = False, reference: str | None = None) -> dict[str, pd
     sizes = (1_000, 10_000) if quick else (1_000, 100_000, 1_000_000)
     out = {"kinematics": bench_kinematics(sizes)}
     out["reactions"] = bench_reactions(10_000 if quick else 1_000_000)
-    ref = reference or find_reference()
-    if ref:
-        out["reference"] = bench_against_reference(ref, 20_001 if quick else 200_001)
+    out["reference"] = bench_against_reference(reference or find_reference(),
+                                               20_001 if quick else 200_001)
     pd.set_option("display.width", 160)
     for name, df in out.items():
         print(f"\n== {name} ==")
         print(df.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
-    if "reference" in out:
-        print(f"Me vs reference fourbar_dyad: max relative difference "
-              f"{out['reference'].attrs['Me_rel_difference']:.2e}")
-    else:
-        print("\n(reference_fourbar.py not found: pass --reference PATH to time the baseline)")
+    print(f"Me vs reference fourbar_dyad: max relative difference "
+          f"{out['reference'].attrs['Me_rel_difference']:.2e}")
     return out

@@ -4,15 +4,20 @@ Every figure is a ratio to its baseline, both timed side by side (alternating ru
 one process where they can share one), best and median of several runs: the machine
 may be shared, so a single run says little.
 
-* ``reference``: :func:`kinetostatics.solve` plus its ``driver`` table against the
-  hand-written closed forms ``fourbar_dyad`` and ``slider_dyad`` of
-  ``reference_fourbar.py`` on the same four-bar and slider-crank, at 2001, 2e5 and 1e6
+* ``reference``: :func:`kinetostatics.solve` plus its ``driver`` table, on each solve
+  path (``numpy``, and ``fast`` when the compiled kernels load: column ``path``), against
+  the hand-written closed forms ``fourbar_dyad`` and ``slider_dyad`` of
+  :mod:`kinetostatics.bench.reference` on the same four-bar and slider-crank, at 2001, 2e5 and 1e6
   positions, with the largest difference of Me (2001 positions also in batches of
   calls, as :mod:`timeit` times);
 * ``many``: :func:`kinetostatics.solve_many` on 1000 variants of the bundled four-bar
   (361 positions; every length, ground point and mass within +-10 %) against a loop of
-  ``solve``, given as Scene objects and as dicts: the speed-up (the loop's time over
+  ``solve``, on each path (the compiled one also against the numpy path's loop),
+  given as Scene objects and as dicts: the speed-up (the loop's time over
   solve_many's), with the largest difference of any table (0: the same numbers);
+* ``design``: :func:`kinetostatics.design` on the bundled ``four_bar_design`` (1000
+  designs, 10 generations, 361 rows) against ``solve_many`` of as many four-bars: its
+  kinetostatic rows per second (:func:`bench_design`; needs pymoo);
 * ``start``: ``import kinetostatics``, ``import balance`` and the commands
   ``python -m balance solve rotor_two_plane`` and ``python -m kinetostatics solve
   four_bar --out DIR`` in fresh processes, wall time against ``import numpy``;
@@ -73,48 +78,63 @@ def _row(what: str, n, times: dict, job: str, base: str, **extra) -> dict:
             "ratio_median": statistics.median(t) / statistics.median(b), **extra}
 
 
+def solve_paths() -> list[str]:
+    """The solve paths this process can time: ``numpy``, and ``fast`` when the compiled
+    kernels load (numba installed, a writable cache folder)."""
+    from ..solver.fast import loader
+    return ["numpy", "fast"] if loader.kernels() is not None else ["numpy"]
+
+
+def on_path(path: str, job: Callable[[], object]) -> Callable[[], object]:
+    """``job`` run with the solve path set to ``path`` (put back after)."""
+    from ..solver.fast import use
+
+    def run():
+        use(path)
+        try:
+            return job()
+        finally:
+            use(None)
+    return run
+
+
 def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001)) -> list[dict]:
-    """solve(scene).driver against ``fourbar_dyad`` of the hand-written baseline."""
-    from ..solver.pipeline import solve
+    """solve(scene).driver on each solve path against ``fourbar_dyad`` (and
+    ``slider_dyad``) of the hand-written baseline, all timed side by side in one run."""
+    from ..results import solve
     from .accuracy import load_reference
     ref = load_reference(path)
+    w2 = ref.SC["w2"]
     rows = []
-    for n in sizes:
-        scene = fourbar_scene(n)
-        th = np.deg2rad(np.linspace(0.0, 360.0, n))
-        repeat = 25 if n < 10_000 else 7 if n < 500_000 else 3
-        times = side_by_side({"reference": lambda th=th: ref.fourbar_dyad(th, 20.0),
-                              "solve": lambda s=scene: solve(s).driver}, repeat)
-        me = ref.fourbar_dyad(th, 20.0)["Me"]
-        err = float(np.abs(solve(scene).Me - me).max() / np.abs(me).max())
-        rows.append(_row("solve(scene).driver / hand-written fourbar_dyad", n, times,
-                         "solve", "reference", error=err))
-        rows += _warm(n, "solve(scene).driver / hand-written fourbar_dyad",
-                      {"reference": lambda th=th: ref.fourbar_dyad(th, 20.0),
-                       "solve": lambda s=scene: solve(s).driver}, err)
     # the baseline's other mechanism: far fewer operations by hand (a centred slider-crank
     # in closed form), the same general solve
-    w2 = ref.SC["w2"]
-    for n in sizes:
-        scene = slider_crank_reference_scene(n, ref.SC)
-        th = np.deg2rad(np.linspace(0.0, 360.0, n))
-        repeat = 25 if n < 10_000 else 7 if n < 500_000 else 3
-        times = side_by_side({"reference": lambda th=th: ref.slider_dyad(th, w2),
-                              "solve": lambda s=scene: solve(s).driver}, repeat)
-        me = ref.slider_dyad(th, w2)["Me"]
-        err = float(np.abs(solve(scene).Me - me).max() / np.abs(me).max())
-        rows.append(_row("solve(scene).driver / hand-written slider_dyad", n, times,
-                         "solve", "reference", error=err))
-        rows += _warm(n, "solve(scene).driver / hand-written slider_dyad",
-                      {"reference": lambda th=th: ref.slider_dyad(th, w2),
-                       "solve": lambda s=scene: solve(s).driver}, err)
+    for name, make, hand in (("fourbar_dyad", fourbar_scene, lambda th: ref.fourbar_dyad(
+            th, 20.0)), ("slider_dyad", lambda n: slider_crank_reference_scene(n, ref.SC),
+                         lambda th: ref.slider_dyad(th, w2))):
+        for n in sizes:
+            scene = make(n)
+            th = np.deg2rad(np.linspace(0.0, 360.0, n))
+            repeat = 25 if n < 10_000 else 7 if n < 500_000 else 3
+            jobs = {"reference": lambda th=th, hand=hand: hand(th)}
+            for p in solve_paths():
+                jobs[p] = on_path(p, lambda s=scene: solve(s).driver)
+                jobs[p]()                   # (the compiled kernels loaded before timing)
+            times = side_by_side(jobs, repeat)
+            me = hand(th)["Me"]
+            what = f"solve(scene).driver / hand-written {name}"
+            for p in solve_paths():
+                sol = on_path(p, lambda s=scene: solve(s))()
+                err = float(np.abs(sol.Me - me).max() / np.abs(me).max())
+                rows.append(_row(what, n, times, p, "reference", path=p, error=err))
+                rows += _warm(n, what, {"reference": jobs["reference"], "solve": jobs[p]},
+                              err, path=p)
     return rows
 
 
 WARM_BATCH = 20     # calls per round for the small sizes' warm row
 
 
-def _warm(n: int, what: str, jobs: dict, err: float) -> list[dict]:
+def _warm(n: int, what: str, jobs: dict, err: float, **extra) -> list[dict]:
     """A small size timed again in batches of ``WARM_BATCH`` calls (timeit's way)
     beside the single calls after a garbage collection: both rows are given. (Measured
     2026-11-27 for the four-bar at 2001 positions: 3.9-4.0x either way; 3.2-3.5x when
@@ -124,7 +144,7 @@ def _warm(n: int, what: str, jobs: dict, err: float) -> list[dict]:
         return []
     times = side_by_side(jobs, 15, batch=WARM_BATCH)
     return [_row(f"{what} (warm, batches of {WARM_BATCH} calls)", n, times, "solve",
-                 "reference", error=err)]
+                 "reference", error=err, **extra)]
 
 
 def four_bar_variants(count: int = 1000, spread: float = 0.10, seed: int = 0) -> list[dict]:
@@ -132,7 +152,7 @@ def four_bar_variants(count: int = 1000, spread: float = 0.10, seed: int = 0) ->
     ground point, mass and inertia scaled within 1 +- spread."""
     from ..model.examples import example
     from ..model.scene import load_scene
-    from ..solver.pipeline import solve
+    from ..results import solve
     base = load_scene(example("four_bar")).raw
     rng = np.random.default_rng(seed)
     out: list[dict] = []
@@ -160,8 +180,7 @@ def bench_many(count: int = 1000, repeat: int = 3) -> list[dict]:
     read: that cost counted too). ``error``: the largest difference of any table of
     solve_many against solve alone, over the first 50 scenes (0: the same numbers)."""
     from ..model.scene import load_scene
-    from ..solver.many import solve_many
-    from ..solver.pipeline import solve
+    from ..results import solve, solve_many
 
     def largest_difference(sols: list, items: list) -> float:
         err = 0.0
@@ -177,17 +196,51 @@ def bench_many(count: int = 1000, repeat: int = 3) -> list[dict]:
     dicts = four_bar_variants(count)
     scenes = [load_scene(d) for d in dicts]
     rows = []
-    for label, items in (("Scene objects", scenes), ("dicts", dicts)):
-        times = side_by_side({"loop": lambda it=items: [solve(s) for s in it],
-                              "many": lambda it=items: solve_many(it)}, repeat)
-        rows.append(_row(f"speed-up: loop of solve / solve_many ({label})",
-                         f"{count} x 361", times, "loop", "many",
-                         error=largest_difference(solve_many(items[:50]), items[:50])))
-    times = side_by_side({"loop": lambda: [solve(d).driver for d in dicts],
-                          "many": lambda: [s.driver for s in solve_many(dicts)]}, repeat)
-    rows.append(_row("speed-up: loop of solve / solve_many (dicts, each driver table)",
-                     f"{count} x 361", times, "loop", "many"))
+    for p in solve_paths():
+        for label, items in (("Scene objects", scenes), ("dicts", dicts)):
+            on_path(p, lambda it=items: solve_many(it[:60]))()      # (kernels loaded)
+            jobs = {"loop": on_path(p, lambda it=items: [solve(s) for s in it]),
+                    "many": on_path(p, lambda it=items: solve_many(it))}
+            if p != "numpy":        # (the compiled solve_many against the numpy loop too)
+                jobs["numpy loop"] = on_path("numpy", lambda it=items: [solve(s) for s in it])
+            times = side_by_side(jobs, repeat)
+            err = on_path(p, lambda it=items: largest_difference(solve_many(it[:50]),
+                                                                 it[:50]))()
+            rows.append(_row(f"speed-up: loop of solve / solve_many ({label})",
+                             f"{count} x 361", times, "loop", "many", path=p, error=err))
+            if p != "numpy":
+                rows.append(_row(f"speed-up: numpy loop of solve / solve_many ({label})",
+                                 f"{count} x 361", times, "numpy loop", "many", path=p))
+        times = side_by_side({"loop": on_path(p, lambda: [solve(d).driver for d in dicts]),
+                              "many": on_path(p, lambda: [s.driver for s in
+                                                          solve_many(dicts)])}, repeat)
+        rows.append(_row("speed-up: loop of solve / solve_many (dicts, each driver table)",
+                         f"{count} x 361", times, "loop", "many", path=p))
     return rows
+
+
+def bench_design(population: int = 1000, generations: int = 10, repeat: int = 2
+                 ) -> list[dict]:
+    """``design`` on the bundled four_bar_design (``population`` x ``generations`` x 361
+    rows, seed 1, nothing written) against ``solve_many`` of as many scenes of that
+    mechanism as dicts (its variants within +-10 %: the bare stacked solve, no screen,
+    no optimiser): the seconds of each, their ratio, and ``design``'s rows per second.
+    Needs pymoo (the ``[design]`` extra); without it, no row."""
+    try:
+        import pymoo  # noqa: F401
+    except ImportError:
+        return []
+    from ..design.result import design
+    from ..solver.many import solve_many
+    dicts = four_bar_variants(population)
+    times = side_by_side({
+        "design": lambda: design("four_bar_design", population=population,
+                                 generations=generations, seed=1),
+        "many": lambda: [solve_many(dicts) for _ in range(generations)]}, repeat)
+    rows = population * generations * 361
+    return [_row("design: rows per second (NSGA-II, one stacked solve a generation)",
+                 f"{population} x {generations} x 361", times, "design", "many",
+                 rows_per_second=rows / min(times["design"]))]
 
 
 def _wall(args: list[str], env: dict) -> float:
@@ -248,13 +301,11 @@ def bench_crosscheck(repeat: int = 3) -> list[dict]:
 
 def run_speed(quick: bool = False, reference: str | None = None) -> pd.DataFrame:
     """Every ratio of this module, printed as one table (``quick``: small sizes)."""
-    ref = reference or find_reference()
-    rows = []
-    if ref:
-        rows += bench_reference(str(ref), (2_001, 20_001) if quick else
-                                (2_001, 200_001, 1_000_001))
+    rows = bench_reference(str(reference or find_reference()),
+                           (2_001, 20_001) if quick else (2_001, 200_001, 1_000_001))
     rows += bench_many(100 if quick else 1000)
     rows += bench_start(3 if quick else 7)
+    rows += bench_design(100, 3) if quick else bench_design()
     if not quick:
         rows += bench_tables()
         rows += bench_crosscheck()

@@ -54,8 +54,8 @@ LONG = ("reactions", "kinematics", "bodies")
 def measure_tables(n: int, out: str) -> dict:
     """One run in this process: solve, build the four contract tables, write them."""
     from ..model.errors import WorkbenchError
+    from ..results import solve
     from ..results.output import parquet_available, write_csv, write_parquet
-    from ..solver.pipeline import solve
     from .accuracy import fourbar_scene
     row: dict = {"positions": n}
     t = time.perf_counter()

@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from ..model.slips import emit, read_checks
 from ..model.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source, suggest
 from ..model.units import Units
 from ..transmission.efficiency import mean_efficiency
@@ -57,7 +58,7 @@ from .laws import (
     sine_acceleration,
     zero_acceleration,
 )
-from .units import cam_to_contract_units, check_cam_slips
+from .units import cam_slips, cam_to_contract_units
 
 # --------------------------------------------------------------------------- scenes
 
@@ -115,8 +116,9 @@ def load_cam_scene(source: Any) -> CamScene:
     (:class:`~kinetostatics.model.errors.SceneError` for the file's form, :class:`CamError` for a
     cam that cannot be built).
     """
-    raw, units = cam_to_contract_units(read_source(source, "cam scene"))
-    check_cam_slips(raw, units)
+    raw, quiet = read_checks(read_source(source, "cam scene"))
+    raw, units = cam_to_contract_units(raw)
+    emit(cam_slips(raw, units), quiet)
     if isinstance(raw, dict) and "cam" not in raw and "driver" in raw:
         raise CamError("this is a mechanism scene (it has [driver]); the cam command takes a "
                        "[cam] scene (docs/cam-scenes.md), e.g. the bundled translating_roller")

@@ -1,5 +1,5 @@
 """A ``[cam]`` scene's ``[units]``: the scene rewritten into the contract's units, once, where
-it is read (docs/cam-scenes.md, "Units"), and the warnings for unit slips.
+it is read (docs/cam-scenes.md, "Units"), and the checks for unit slips.
 
 Which quantity each field is: length: ``base_radius``, ``roller_radius``, the follower's
 ``stroke``, ``offset`` (a number), ``arm``, ``pivot_distance``, the loads' ``guide_length``,
@@ -15,14 +15,12 @@ from __future__ import annotations
 
 import copy
 import math
-import warnings
 from typing import Any
 
-from ..model.errors import UnitWarning
-from ..model.scene_units import SPEED_SLIP
-from ..model.units import Units, angle_slip, parse_units
+from ..model.slips import DEG, Slip, angle_list_slip, tip_speed_slip, typed
+from ..model.units import Units, parse_units
 
-__all__ = ["cam_to_contract_units", "check_cam_slips"]
+__all__ = ["cam_slips", "cam_to_contract_units"]
 
 
 def _num(x: Any) -> bool:
@@ -84,32 +82,40 @@ def cam_to_contract_units(raw: Any) -> tuple[Any, Units]:
     return out, units
 
 
-def check_cam_slips(raw: Any, units: Units) -> None:
-    """Warn (:class:`~kinetostatics.model.errors.UnitWarning`) where a cam scene's numbers
-    look like unit slips: its angles (the segments' alone, ``stroke_angle`` or
-    ``transmission_angle`` alone, or all of them) all within 2 pi with fractional values
-    under ``angle = "deg"`` (radians typed for degrees), a speed above 1e4 rad/s (rpm
-    typed for rad/s). ``raw`` is the scene in the contract's units."""
+def cam_slips(raw: Any, units: Units) -> list[Slip]:
+    """The suspected unit slips of a cam scene (``raw`` in the contract's units), judged on
+    the physical quantity (:mod:`kinetostatics.model.slips`): the segments' angles as a
+    list (radians typed for degrees); any angle beyond two turns (degrees typed under
+    ``angle = "rad"``); a speed that moves the cam's outline faster than 400 m/s (rpm typed
+    for rad/s). A single small angle (a real 4.5 deg swing) is never judged alone."""
     cam = raw.get("cam") if isinstance(raw, dict) else None
     if not isinstance(cam, dict):
-        return
-    fol = cam.get("follower")
+        return []
+    fol = cam.get("follower") if isinstance(cam.get("follower"), dict) else {}
     segs = cam.get("segments")
-    seg_angles = [seg["angle"] for seg in (segs if isinstance(segs, list) else ())
-                  if isinstance(seg, dict) and _num(seg.get("angle"))]
-    angles = list(seg_angles)
-    for table, key in ((fol, "stroke_angle"), (cam, "transmission_angle")):
-        if isinstance(table, dict) and _num(table.get(key)):
-            angles.append(table[key])
-    singles = [[a] for a in angles[len(seg_angles):]]      # stroke_angle, transmission_angle
-    if angles and (angle_slip(angles, units.angle) or angle_slip(seg_angles, units.angle)
-                   or any(angle_slip(a, units.angle) for a in singles)):
-        warnings.warn(f"cam angles {[float(a) for a in angles[:5]]} look like radians (all "
-                      "within 2 pi, with fractional values) but angles are in degrees (the "
-                      "segments add up to 360); write them in degrees, or angle = \"rad\" in "
-                      "[units]", UnitWarning, stacklevel=3)
+    seg = [s["angle"] for s in (segs if isinstance(segs, list) else ())
+           if isinstance(s, dict) and _num(s.get("angle"))]
+    out = []
+    why = angle_list_slip([a * DEG for a in seg])
+    if why is not None:
+        out.append(Slip("angles", "cam.segments.angle", typed(seg, "angle", units), why,
+                        "write them in degrees (the segments add up to 360), or angle = "
+                        "\"rad\" in [units]"))
+    for table, key, where in ((fol, "stroke_angle", "cam.follower.stroke_angle"),
+                              (cam, "transmission_angle", "cam.transmission_angle")):
+        a = table.get(key)
+        if _num(a) and angle_list_slip([a * DEG]) is not None:
+            out.append(Slip("angles", where, typed(a, "angle", units),
+                            "beyond two turns", "write it in degrees, or angle = \"deg\""))
     w = cam.get("speed")
-    if _num(w) and abs(w) > SPEED_SLIP:
-        warnings.warn(f"cam.speed = {w:.6g} rad/s ({abs(w) * 30 / math.pi:.4g} rpm) looks like "
-                      "rpm in a rad/s field; give speed_rpm, or speed = \"rpm\" in [units]",
-                      UnitWarning, stacklevel=3)
+    # the cam's outline: base circle, stroke and roller (an oscillating follower's stroke
+    # is an angle: its arm and pivot distance stand for the reach)
+    reach = [abs(x) for t, k in ((cam, "base_radius"), (cam, "roller_radius"),
+                                 (fol, "stroke"), (fol, "arm"), (fol, "pivot_distance"))
+             if _num(x := t.get(k))]
+    size = sum(reach)
+    if _num(w) and tip_speed_slip(w, size):
+        out.append(Slip("speed", "cam.speed", typed(w, "speed", units),
+                        f"moves the cam's outline ({size:.3g} m) at {abs(w) * size:.3g} m/s",
+                        f"{w * math.pi / 30:.4g} rad/s (rpm typed for rad/s)"))
+    return out

@@ -17,7 +17,8 @@ import numpy as np
 from .errors import SceneError
 from .examples import SCENES
 from .scene_types import GROUND, Body, Driver, Friction, Joint, Load, MassModel, Scene
-from .scene_units import check_unit_slips, to_contract_units
+from .scene_units import to_contract_units
+from .slips import emit, mechanism_slips, read_checks
 from .tomlio import (
     MAX_MAGNITUDE,
     as_float,
@@ -33,7 +34,7 @@ from .tomlio import (
 
 MAX_COUNT = 10_000_000
 TOP_KEYS = ("title", "format", "units", "gravity", "ground", "driver", "bodies", "joints", "loads",
-            "near", "motion", "balancing")
+            "near", "motion", "balancing", "design")
 DRIVER_KEYS = ("body", "joint", "speed", "speed_rpm", "acceleration", "start", "stop",
                "count", "positions")
 BODY_KEYS = ("name", "mass", "inertia", "cog", "points", "mass_model")
@@ -65,7 +66,8 @@ def load_scene(source: Any) -> Scene:
     """
     if isinstance(source, Scene):
         return source
-    raw, units = to_contract_units(read_source(source, bundled=SCENES))
+    raw, quiet = read_checks(read_source(source, bundled=SCENES))
+    raw, units = to_contract_units(raw)
     top = check_keys(raw, TOP_KEYS, "scene", required=("driver", "bodies", "joints"))
     title = str(top.get("title", ""))
     if "format" in top and top["format"] != 1:
@@ -84,7 +86,9 @@ def load_scene(source: Any) -> Scene:
     scene = Scene(title=title, gravity=gravity, ground=ground, driver=driver, bodies=bodies,
                   joints=joints, loads=loads, near=near, motion=motion, balancing=balancing,
                   raw=raw, units=units)
-    check_unit_slips(scene, units)
+    texts = emit(mechanism_slips(scene), quiet)
+    if texts:
+        object.__setattr__(scene, "warnings", texts)     # (a frozen dataclass, made here)
     return scene
 
 

@@ -163,7 +163,9 @@ class Scene:
     Every number is in the contract's units (SI; degrees for the driver's positions and
     ``line_angle``), whatever units the file named: ``raw`` is the mapping as read,
     rewritten into those units (:mod:`kinetostatics.model.scene_units`), and ``units``
-    the file's ``[units]`` (for the output, which repeats them).
+    the file's ``[units]`` (for the output, which repeats them); ``warnings`` the
+    suspected unit slips found when it was read (:mod:`kinetostatics.model.slips`), which
+    every output repeats.
     """
 
     title: str
@@ -178,6 +180,7 @@ class Scene:
     balancing: dict[str, Any] | None = None
     raw: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
     units: Units = field(default_factory=Units, compare=False)
+    warnings: tuple[str, ...] = field(default=(), compare=False)
 
     @cached_property
     def size(self) -> float:

@@ -1,5 +1,5 @@
 """A mechanism scene's ``[units]``: the scene rewritten into the contract's units, once, where
-it is read; and the warnings for numbers that look like unit slips.
+it is read (the checks for unit slips follow in :mod:`kinetostatics.model.slips`).
 
 A scene may name the units its numbers are written in (scene-format.md, opening; the
 factors in :mod:`kinetostatics.model.units`). :func:`to_contract_units` returns a copy of the
@@ -29,25 +29,11 @@ Which quantity each field is:
 from __future__ import annotations
 
 import copy
-import math
-import warnings
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-import numpy as np
+from .units import Units, parse_units
 
-from .errors import UnitWarning
-from .units import Units, angle_slip, parse_units
-
-if TYPE_CHECKING:
-    from .scene import Scene
-
-__all__ = ["check_unit_slips", "convert_mechanism", "to_contract_units"]
-
-_max, _min = np.maximum.reduce, np.minimum.reduce     # np.ptp's parts, without its detours
-
-SPEED_SLIP = 1e4
-"""rad/s: a faster angular speed looks like rpm typed in a rad/s field."""
-
+__all__ = ["convert_mechanism", "to_contract_units"]
 
 def _number(x: Any) -> bool:
     return isinstance(x, int | float) and not isinstance(x, bool)
@@ -180,151 +166,3 @@ def _copy(value: Any) -> Any:
     if t in _PLAIN:
         return value
     return copy.deepcopy(value)
-
-
-def _warn(text: str) -> None:
-    warnings.warn(text, UnitWarning, stacklevel=4)
-
-
-def check_unit_slips(scene: Scene, units: Units) -> None:
-    """Warn (:class:`UnitWarning`) where a number looks like a unit slip (scene-format.md,
-    opening): a rotating driver's positions that all lie within [-2 pi, 2 pi] with fractional
-    values, or that span about 2 pi, under ``angle = "deg"`` (radians typed for degrees); a
-    speed above 1e4 rad/s (rpm typed for rad/s: the driver's, ``[motion]`` ``omega0`` and
-    ``no_load_speed``); the angles of ``motor_table`` likewise, and the prismatic joints'
-    ``line_angle`` values; a point or cog farther from
-    its body's joints than 100 times the mechanism's size (a length typed in mm among
-    metres). A warning never stops the solve."""
-    drv = scene.driver
-    pos = drv.positions
-    if drv.kind == "R" and units.angle == "deg":
-        typed = _typed_positions(scene)
-        if angle_slip(typed, "deg") or (pos.size > 1 and _spans_a_turn(pos)):
-            shown = ", ".join(f"{v:g}" for v in typed[:4]) + (", ..." if len(typed) > 4 else "")
-            _warn(f"driver positions [{shown}] look like radians (all within 2 pi, with "
-                  "fractional values) but angles are in degrees (a full turn is 360); write "
-                  "them in degrees, or angle = \"rad\" in [units]")
-    if drv.kind == "R" and abs(drv.speed) > SPEED_SLIP:
-        _warn(f"driver.speed = {drv.speed:.6g} rad/s ({abs(drv.speed) * 30 / math.pi:.4g} "
-              "rpm) looks like rpm in a rad/s field; give speed_rpm, or speed = \"rpm\" in "
-              "[units]")
-    lines = {n: j.line_angle for n, j in scene.joints.items() if j.kind == "T"}
-    if lines and angle_slip(list(lines.values()), units.angle):
-        shown = ", ".join(f"{n} = {a:g}" for n, a in lines.items())
-        _warn(f"line_angle ({shown}) looks like radians (within 2 pi, with fractional "
-              "values) but angles are in degrees; write it in degrees, or angle = \"rad\" "
-              "in [units]")
-    if scene.motion is not None:
-        _motion_slips(scene.motion, units)
-    _far_points(scene, units)
-
-
-def _spans_a_turn(pos: np.ndarray) -> bool:
-    """True when the positions span 2 pi within 1 % (max - min: radians typed in a
-    degree field).
-
-    The span is at least the distance between the first and the last position (the
-    largest is not below either, the smallest not above), and rounding keeps that order;
-    so a sweep whose ends lie farther apart than 2 pi by more than 1 % (every sweep in
-    degrees over more than about 6.35 deg, a full turn's 360 among them) is told by its
-    two ends, without the two passes over the array."""
-    turn = 2.0 * math.pi
-    if abs(float(pos[-1]) - float(pos[0])) - turn > 0.01 * turn:
-        return False
-    return abs(float(_max(pos) - _min(pos)) - turn) <= 0.01 * turn
-
-
-def _typed_positions(scene: Scene) -> list[float]:
-    """The driver's positions as the file gives them (start and stop, or the list)."""
-    drv = scene.raw.get("driver", {})
-    if "positions" in drv:
-        return [float(x) for x in drv["positions"]]
-    return [float(drv["start"]), float(drv["stop"])]
-
-
-def _motion_slips(motion: dict, units: Units) -> None:
-    speeds = [("motion.omega0", motion.get("omega0"))]
-    motor = motion.get("motor")
-    if isinstance(motor, dict):
-        speeds.append(("motion.motor.no_load_speed", motor.get("no_load_speed")))
-    for where, w in speeds:
-        if _number(w) and abs(w) > SPEED_SLIP:
-            _warn(f"{where} = {w:.6g} rad/s ({abs(w) * 30 / math.pi:.4g} rpm) looks like rpm "
-                  "in a rad/s field; write speed = \"rpm\" in [units]")
-    table = motion.get("motor_table")
-    if isinstance(table, list) and len(table) > 1:
-        angles = [r[0] for r in table if isinstance(r, list) and r and _number(r[0])]
-        if len(angles) > 1 and angle_slip(angles, units.angle):
-            _warn(f"motion.motor_table: the angles {angles[:4]} look like radians (all within "
-                  "2 pi, with fractional values) but angles are in degrees; write them in "
-                  "degrees, or angle = \"rad\" in [units]")
-
-
-def _far_points(scene: Scene, units: Units) -> None:
-    joint_pts: dict[str, list[tuple[float, float]]] = {b: [] for b in scene.bodies}
-    for j in scene.joints.values():
-        if j.kind != "R":
-            continue
-        for b, p in zip(j.bodies, j.points, strict=True):
-            if b in joint_pts:
-                joint_pts[b].append(scene.bodies[b].points[p])
-    pts = [p for b in joint_pts.values() for p in b] + list(scene.ground.values())
-    if len(pts) < 2 or _all_near(scene, joint_pts, pts):
-        return
-    arr = np.asarray(pts, dtype=float)
-    size = float(np.max(np.hypot(*(arr - arr.mean(axis=0)).T)))
-    if size <= 0.0:
-        return          # every joint at one point (a lone crank): no size to compare with
-    unit = units.length
-    f = units.factor("length")
-    for name, body in scene.bodies.items():
-        ref = joint_pts[name]
-        if not ref:
-            continue
-        named = dict(body.points)
-        if body.cog is not None:
-            named["cog"] = body.cog
-        for pname, p in named.items():
-            far = min(math.hypot(p[0] - q[0], p[1] - q[1]) for q in ref)
-            if far > 100.0 * size:
-                _warn(f"body {name!r}: point {pname} = [{p[0] / f:g}, {p[1] / f:g}] {unit} is "
-                      f"{far / f:.3g} {unit} from the body's joints, over 100 times the "
-                      f"mechanism's size ({size / f:.3g} {unit}): millimetres among metres (a "
-                      f"length typed in another unit)? Every length is in {unit}")
-
-
-def _all_near(scene: Scene, joint_pts: dict, pts: list) -> bool:
-    """True when every point and cog clearly lies within 100 sizes of its body's joints
-    (the usual scene, told in plain Python without numpy's cost per call); a scene near
-    that line, or with a point beyond it, is left to the exact test (False)."""
-    n = len(pts)
-    mx = my = 0.0
-    for x, y in pts:
-        mx += x
-        my += y
-    mx, my = mx / n, my / n
-    hypot = math.hypot
-    # the largest distance from the mean and the largest coordinate (finite numbers:
-    # the same maxima, taken at once)
-    size = max([hypot(x - mx, y - my) for x, y in pts])
-    scale = max([abs(c) for xy in pts for c in xy])
-    if not size > 1e-6 * scale:     # rounding could weigh here: the exact test decides
-        return False
-    limit = 100.0 * size * (1.0 - 1e-6)     # a margin for the rounding of mean and size
-    for name, body in scene.bodies.items():
-        ref = joint_pts[name]
-        if not ref:
-            continue
-        named = list(body.points.values())
-        if body.cog is not None:
-            named.append(body.cog)
-        for p in named:
-            if p in ref:            # a joint's own point: at distance 0 (limit > 0)
-                continue
-            x, y = p
-            for q in ref:
-                if hypot(x - q[0], y - q[1]) <= limit:
-                    break
-            else:
-                return False
-    return True

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import re
 import tomllib
 from collections.abc import Iterable, Mapping
 from pathlib import Path
@@ -56,10 +57,7 @@ def read_source(source: Any, kind: str = "scene", bundled: Any = None) -> dict:
                          if bundled is not None else "")
                 raise SceneError(f"{text}: no such {kind} file{known}")
             return _read_file(path, kind)
-        try:
-            return tomllib.loads(source)
-        except tomllib.TOMLDecodeError as exc:
-            raise SceneError(f"{kind} is not valid TOML: {exc}") from None
+        return parse_toml(source, kind, f"{kind} is not valid TOML")
     raise SceneError(
         f"{kind} must be a path, a TOML string or a dict, not {type(source).__name__}"
     )
@@ -80,10 +78,52 @@ def _read_file(path: Path, kind: str) -> dict:
         line = data[:exc.start].count(b"\n") + 1
         raise SceneError(f"{path}: not UTF-8 text (byte {data[exc.start]:#04x} on line "
                          f"{line}); save it as UTF-8 (line {line})") from None
+    return parse_toml(text, str(path))
+
+
+MAX_DEPTH = 100
+"""Levels of nesting (arrays, inline tables, dotted keys) a scene's TOML may have: a scene
+needs a few; the reader's cost grows with the square of the depth, and its stack with
+the depth."""
+_QUOTED = re.compile(r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'|"(?:[^"\\\n]|\\.)*"|\'[^\'\n]*\''
+                     r"|#[^\n]*")
+_DOTTED = re.compile(r"(?:(?:[A-Za-z0-9_-]+|\"\")[ \t]*\.[ \t]*){" + str(MAX_DEPTH) + ",}")
+
+
+def parse_toml(text: str, what: str = "scene", invalid: str | None = None) -> dict:
+    """Parse TOML text, every failure one :class:`SceneError` line naming ``what``:
+    invalid TOML with its line, nesting deeper than ``MAX_DEPTH`` (refused before the
+    parser spends time and memory on it), a text too large for the memory. ``invalid``:
+    the opening of the invalid-TOML message (``"<what>: not valid TOML"`` unless told)."""
+    if (text.count("[") + text.count("{") > MAX_DEPTH or text.count(".") > MAX_DEPTH):
+        _check_depth(text, what)
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise SceneError(f"{path}: not valid TOML: {exc}") from None
+        raise SceneError(f"{invalid or f'{what}: not valid TOML'}: {exc}") from None
+    except RecursionError:
+        raise SceneError(f"{what}: nested too deeply for the TOML reader (a scene needs a "
+                         f"few levels)") from None
+    except MemoryError:
+        raise SceneError(f"{what}: too large to read into memory ({len(text):,} characters)"
+                         ) from None
+
+
+def _check_depth(text: str, what: str) -> None:
+    """Refuse nesting deeper than ``MAX_DEPTH`` (strings and comments left out)."""
+    bare = _QUOTED.sub('""', text)
+    depth = 0
+    for m in re.finditer(r"[\[\]{}]", bare):
+        depth += 1 if m.group() in "[{" else -1
+        if depth > MAX_DEPTH:
+            line = bare.count("\n", 0, m.start()) + 1
+            raise SceneError(f"{what}: line {line}: arrays or tables nested more than "
+                             f"{MAX_DEPTH} levels deep; a scene needs a few")
+    m = _DOTTED.search(bare)
+    if m:
+        line = bare.count("\n", 0, m.start()) + 1
+        raise SceneError(f"{what}: line {line}: a dotted key more than {MAX_DEPTH} levels "
+                         "deep; a scene needs a few")
 
 
 def suggest(name: str, known: Iterable[str]) -> str:
@@ -131,19 +171,28 @@ def _typename(value: Any) -> str:
 MAX_MAGNITUDE = 1e12
 """Numbers beyond this are refused: no mechanism or rotor needs them, and squares of them
 overflow in the formulas."""
+MIN_MAGNITUDE = 1e-60
+"""The ``smallest`` of :func:`as_float` for a measured magnitude that a method squares or
+divides by (an amplitude, a deflection): no measured quantity is that small in any unit,
+and below it squares and products (after the unit's factor) underflow to zero."""
 
 
 def as_float(value: Any, where: str, *, positive: bool = False, nonnegative: bool = False,
              nonzero: bool = False, limit: float = MAX_MAGNITUDE,
+             smallest: float | None = None,
              error: type[WorkbenchError] = SceneError) -> float:
     """A finite float of magnitude at most ``limit``, optionally positive / non-negative /
     non-zero; else ``error`` (a :class:`SceneError` unless told) naming ``where``. Python
-    and numpy numbers are accepted, booleans are not."""
+    and numpy numbers are accepted, booleans are not. ``smallest``: the least magnitude
+    other than zero (``MIN_MAGNITUDE`` for a positive quantity unless told, else none)."""
+    if smallest is None:            # a positive quantity is divided by: keep it from 0
+        smallest = MIN_MAGNITUDE if positive else 0.0
     t = type(value)
     if t is float or t is int:      # the common case, checked without a detour
         x = float(value)
         if (-limit <= x <= limit and (not positive or x > 0.0)
-                and (not nonnegative or x >= 0.0) and (not nonzero or x != 0.0)):
+                and (not nonnegative or x >= 0.0) and (not nonzero or x != 0.0)
+                and (not smallest or x == 0.0 or not -smallest < x < smallest)):
             return x
     if isinstance(value, bool | np.bool_) or not isinstance(
             value, int | float | np.integer | np.floating):
@@ -159,6 +208,10 @@ def as_float(value: Any, where: str, *, positive: bool = False, nonnegative: boo
         raise error(f"{where} must not be negative, got {x:g}")
     if nonzero and x == 0.0:
         raise error(f"{where} must not be zero")
+    if x != 0.0 and abs(x) < smallest:
+        zero = "" if positive or nonzero else "0 or "
+        raise error(f"{where} = {x:g} is too small to compute with (below {smallest:g} "
+                    f"in magnitude, its square underflows); give {zero}a larger value")
     return x
 
 

@@ -13,6 +13,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..model.errors import WorkbenchError
+from ..model.outputs import staged_folder
 from ..results import Solution
 from .centres import plot_instant_centres
 from .curves import overview, plot_driver, plot_polar
@@ -85,22 +86,36 @@ def cli_figures(sol: Solution, positions: list[float] | None = None) -> dict[str
     return figs
 
 
+# the pictures' files in a folder (an earlier run's not drawn again are removed when a new
+# run ends well: kinetostatics.model.outputs)
+PICTURES = ("overview.png", "driver.png", "polar_*.png", "mechanism_*.png",
+            "velocity_plan_*.png", "acceleration_plan_*.png", "instant_centres_*.png",
+            "free_body_*.png")
+
+
 def write_pictures(sol: Solution, directory: str | Path,
                    positions: list[float] | None = None, dpi: float = 150) -> list[Path]:
     """Save :func:`cli_figures`, drawn in the :func:`~kinetostatics.plot.lecture_style`
-    at ``dpi``, as ``DIR/<stem>.png``; the paths written."""
+    at ``dpi``, as ``DIR/<stem>.png``, all or none (:mod:`kinetostatics.model.outputs`);
+    the paths written."""
     out = Path(directory)
     if out.exists() and not out.is_dir():
         raise WorkbenchError(f"--plot {out}: is a file, not a folder")
-    out.mkdir(parents=True, exist_ok=True)
-    written = []
+    with staged_folder(out, PICTURES) as stage:
+        stems = _save_pictures(sol, stage.path, positions, dpi)
+    return [out / f"{stem}.png" for stem in stems]
+
+
+def _save_pictures(sol: Solution, folder: Path, positions: list[float] | None,
+                   dpi: float) -> list[str]:
+    """Draw and save the pictures into ``folder``; their stems."""
+    stems = []
     with lecture_style(dpi):
         for stem, fig in cli_figures(sol, positions).items():
-            path = out / f"{stem}.png"
-            fig.savefig(path, dpi=dpi)
+            fig.savefig(folder / f"{stem}.png", dpi=dpi)
             plt.close(fig)
-            written.append(path)
-    return written
+            stems.append(stem)
+    return stems
 
 
 def _refuse_cam_scene(path: Path) -> None:
@@ -121,14 +136,19 @@ def run_demo(args) -> int:
     import matplotlib
     matplotlib.use("Agg")
     from ..model.examples import scene_path
-    from ..solver.pipeline import solve
+    from ..results import solve
     path = scene_path(args.scene or args.example)
     _refuse_cam_scene(path)
     sol = solve(path)
     out = Path(args.out)
-    written = sol.to_csv(out)
+    if out.exists() and not out.is_dir():
+        raise WorkbenchError(f"--out {out}: is a file, not a folder")
+    # the tables and the pictures, one run: all in place, or none
     at = _default_positions(sol)
-    written += write_pictures(sol, out, at, dpi=getattr(args, "dpi", 150))
+    with staged_folder(out, Solution.OUTPUT_KIND + PICTURES) as stage:
+        written = sol.to_csv(stage.path)
+        written += write_pictures(sol, stage.path, at, dpi=getattr(args, "dpi", 150))
+    written = [out / p.name for p in written]
     s = sol.summary()
     q = sol.driver_quantity
     unit = "N m" if q == "Me" else "N"

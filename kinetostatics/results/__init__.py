@@ -4,11 +4,13 @@
 tables built on demand), :mod:`~kinetostatics.results.longtable` (the long tables,
 chunk by chunk from the arrays), :mod:`~kinetostatics.results.csvtext` (CSV text, whole
 columns at a time) and :mod:`~kinetostatics.results.output` (the CSV, Parquet and
-``summary.json`` writers).
+``summary.json`` writers). :func:`solve` and :func:`solve_many`
+(:mod:`~kinetostatics.results.solving`) wrap the solver's arrays in Solutions.
 """
 
 from __future__ import annotations
 
 from .solution import Solution
+from .solving import solve, solve_many, solve_outcomes
 
-__all__ = ["Solution"]
+__all__ = ["Solution", "solve", "solve_many", "solve_outcomes"]

@@ -15,7 +15,7 @@ import json
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
@@ -26,6 +26,7 @@ from ..solver.continuity import body_angles, sweep_order
 from ..solver.kinematics import Kinematics
 from ..solver.loads import PointLoad
 from ..solver.reactions import DriverReaction, JointReaction
+from ..solver.solved import DEFERRED, Deferred, Solved, drive_values
 from ..solver.structure import Structure
 from . import longtable as tables
 from .longtable import LongTable, TiledPositions, shared
@@ -59,6 +60,9 @@ class Solution:
         With joint friction: rows where no finite driving effort moves the mechanism
         (friction locks it; Me/Fe and the reactions are NaN there and stay out of the
         summary); None without friction.
+    path : str
+        Which solve path made the arrays: ``"numpy"`` (the reference) or ``"fast"``
+        (the compiled kernels, :mod:`kinetostatics.solver.fast`).
     """
 
     scene: Scene
@@ -69,6 +73,7 @@ class Solution:
     drive: DriverReaction
     undefined_load: np.ndarray
     self_locking: np.ndarray | None = None
+    path: ClassVar[str] = "numpy"       # (set on the instance by the compiled path)
 
     # -- arrays -----------------------------------------------------------------
     def release_loads(self) -> None:
@@ -93,9 +98,50 @@ class Solution:
     def _set_loads(self, value: list[PointLoad] | None) -> None:
         self.__dict__["_loads"] = value
 
+    # -- made from the solver's arrays ----------------------------------------------
+    @classmethod
+    def of(cls, solved: Solved | Deferred) -> Solution:
+        """The Solution of the solver's arrays: a :class:`Solved` (every array), or a
+        :class:`~kinetostatics.solver.solved.Deferred` (a lean long sweep, one scene of a
+        stacked solve) whose other arrays come when first read, the same numbers. Made
+        without the dataclass' constructor, which :func:`dataclasses.replace` and a copy
+        still use (they read every field: a deferred one is solved then)."""
+        new = object.__new__(cls)
+        if type(solved) is Solved:
+            new.__dict__.update(scene=solved.scene, structure=solved.structure,
+                                kin=solved.kin, _loads=solved.loads,
+                                joint_reactions=solved.joint_reactions, drive=solved.drive,
+                                undefined_load=solved.undefined_load,
+                                self_locking=solved.self_locking)
+        else:
+            new.__dict__.update(solved.known, _deferred=solved)
+        path = getattr(solved, "path", None)    # (set by the compiled path)
+        if path is not None:
+            new.__dict__["path"] = path
+        return new
+
+    def __getattr__(self, name: str):
+        d = self.__dict__
+        source = d.get("_deferred")
+        if source is None or name not in DEFERRED:
+            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+        d.update(source.give(name, d))
+        if all(f in d for f in DEFERRED):
+            d.pop("_deferred", None)    # (another thread may have done it too: the same)
+        return d[name]
+
+    def __getstate__(self) -> dict:
+        for name in DEFERRED:           # the state holds arrays, not the solver's closure
+            getattr(self, name)
+        return {k: v for k, v in self.__dict__.items() if k != "_deferred"}
+
     @property
     def positions(self) -> np.ndarray:
-        return self.kin.positions
+        d = self.__dict__
+        if "kin" in d:
+            return d["kin"].positions
+        source = d.get("_deferred")
+        return self.kin.positions if source is None else source.positions
 
     @property
     def driver_quantity(self) -> str:
@@ -105,18 +151,18 @@ class Solution:
     def Me(self) -> np.ndarray:
         """Equilibrating moment (crank) or force (sliding driver) over the sweep (a
         read-only view of the solver's array)."""
-        value, shape = self.drive.value, self.positions.shape
-        if type(value) is np.ndarray and value.shape == shape:
-            # what np.broadcast_to gives for an array of the shape already, for a tenth
-            # of its cost (the solve and the driver table both ask for it)
-            view = value.view()
-            view.flags.writeable = False
-            return view
-        return np.broadcast_to(value, shape)
+        return drive_values(self.drive, self.positions.shape)
 
     @property
     def singular(self) -> np.ndarray:
-        return self.kin.singular
+        """Rows where the mechanism is singular (:attr:`Kinematics.singular
+        <kinetostatics.solver.kinematics.Kinematics.singular>`; of a deferred solve,
+        from the flags it kept, without solving again)."""
+        d = self.__dict__
+        source = d.get("_deferred")
+        if "kin" in d or source is None:
+            return self.kin.singular
+        return source.singular()
 
     def reaction(self, joint: str) -> tuple[np.ndarray, np.ndarray]:
         """(Fx, Fy) of a joint's reaction on its ``on`` body, arrays over positions."""
@@ -488,67 +534,12 @@ class Solution:
         of the motion (the mean by the trapezoid rule, the position of an extreme when
         several rows tie, the intervals between rows) is taken along increasing driver
         position, so that the same set of positions gives the same summary in any order."""
-        q = self.driver_quantity
-        order = self.order
-        me = np.asarray(self.Me, dtype=float)[order]
-        pos = self.positions.astype(float)[order]
-        locked = self.self_locking
-        # rows where the mechanism locks (friction) have no settled Me or reactions, and
-        # rows flagged singular (at or near a dead point) no number to vouch for: the
-        # extremes and the mean are over the other rows (scene-format.md), the counts
-        # below say how many were left out
-        out_rows = np.asarray(self.singular, dtype=bool).copy()
-        if locked is not None:
-            out_rows |= locked
-        if out_rows.any() and not out_rows.all():
-            keep = order[~out_rows[order]]
-            me, pos = me[~out_rows[order]], pos[~out_rows[order]]
-        else:
-            keep = order
-        if pos.size > 1 and pos[-1] != pos[0]:
-            mean = float(np.trapezoid(me, pos) / (pos[-1] - pos[0]))
-        else:
-            mean = float(me.mean())
-        out: dict = {"title": self.scene.title, "positions": int(pos.size),
-                     f"{q}_mean": mean, f"{q}_max": float(me.max()), f"{q}_min": float(me.min())}
-        rmax = {}
-        for name in self.scene.joints:
-            fx, fy = self.reaction(name)
-            f = np.broadcast_to(np.hypot(fx, fy), self.positions.shape)[keep]
-            i = int(np.argmax(f))
-            rmax[name] = {"F": float(f[i]), "position": float(pos[i])}
-        out["reaction_max"] = rmax
-        if self.kin.dyads:
-            best = None
-            for dm in self.kin.dyads:
-                t = np.broadcast_to(dm.transmission_angle, self.positions.shape)[keep]
-                i = int(np.argmin(t))
-                if best is None or t[i] < best[0]:
-                    best = (float(t[i]), float(pos[i]), dm.dyad.index + 1)
-            out["transmission_angle_min"] = best[0]
-            out["transmission_angle_min_position"] = best[1]
-            out["transmission_angle_min_dyad"] = best[2]
-        else:
-            out["transmission_angle_min"] = None
-        out["singular_rows"] = int(np.count_nonzero(self.singular))
-        out["rows_left_out"] = int(np.count_nonzero(out_rows)) if not out_rows.all() else 0
-        # a dead point between two rows (a change point passed, a lever through its
-        # pivot): the pairs of positions around it, both rows flagged singular
-        pos_all = self.positions.astype(float)
-        out["dead_points_between_rows"] = [[float(pos_all[i]), float(pos_all[j])]
-                                           for i, j in self.kin.between]
-        # a dyad that cannot close somewhere between two rows: no motion joins them
-        # (listed only when there is one)
-        if len(self.kin.unassembled):
-            out["unassembled_between_rows"] = [[float(pos_all[i]), float(pos_all[j])]
-                                               for i, j in self.kin.unassembled]
-        out["undefined_load_rows"] = int(np.count_nonzero(self.undefined_load))
-        if locked is not None:
-            out["self_locking_rows"] = int(np.count_nonzero(locked))
-        out["structure"] = self.structure.describe()
-        return out
+        from .summary import solution_summary
+        return solution_summary(self)
 
     FILES = ("reactions", "driver", "kinematics", "bodies", "dyads", "sliders", "frame")
+    # a solution's files in a folder (kinetostatics.model.outputs)
+    OUTPUT_KIND = (*(f"{n}.{x}" for n in FILES for x in ("csv", "parquet")), "summary.json")
 
     def to_csv(self, directory: str | Path) -> list[Path]:
         """Write every table as CSV (17 significant digits) and ``summary.json``."""
@@ -557,46 +548,45 @@ class Solution:
     def write(self, directory: str | Path, fmt: str = "csv", announce=None,
               summary: dict | None = None) -> list[Path]:
         """Write every table (``fmt``: ``"csv"``, 17 significant digits, or
-        ``"parquet"``) and ``summary.json``. A table built only for writing is
-        dropped once written, and a long table not built yet is written as CSV straight
-        from the solver's arrays, never held whole. ``announce``
-        (a callable taking one line) hears of every CSV table over 1e6 rows, with its
-        size and time estimate (:func:`kinetostatics.results.output.write_csv`). ``summary``:
-        the content of ``summary.json`` when it is not :meth:`summary` (the command
-        line's, with the scene's ``[units]``)."""
-        from .output import Repeats, write_csv, write_long_csv, write_parquet
+        ``"parquet"``) and ``summary.json``, whole or not at all (an earlier run's files
+        untouched on failure: :mod:`kinetostatics.model.outputs`). A table built only for
+        writing is dropped once written, and a long table not built yet is written as CSV
+        straight from the solver's arrays, never held whole. ``announce`` (a callable
+        taking one line) hears of every CSV table over 1e6 rows, with its size and time
+        estimate (:func:`kinetostatics.results.output.write_csv`). ``summary``: the content of
+        ``summary.json`` when it is not :meth:`summary` (the command line's)."""
+        from ..model.outputs import staged_folder
         if fmt not in ("csv", "parquet"):
             raise WorkbenchError(f"format {fmt!r}: use csv or parquet")
-        d = Path(directory)
-        d.mkdir(parents=True, exist_ok=True)
-        written = []
+        text = json.dumps(self.summary() if summary is None else summary, indent=2) + "\n"
+        with staged_folder(directory, self.OUTPUT_KIND) as stage:
+            self._write_tables(stage.path, fmt, announce)
+            stage.file("summary.json").write_text(text)
+        return [Path(directory) / f for f in (*(f"{n}.{fmt}" for n in self.FILES), "summary.json")]
+
+    def _write_tables(self, d: Path, fmt: str, announce) -> None:
+        """Every table into the folder ``d`` (the staging folder of :meth:`write`)."""
+        from .output import Repeats, write_csv, write_long_csv, write_parquet
         positions = Repeats()     # the position column, formatted once for every table
         for name in self.FILES:
             kept = name in self.__dict__
             if fmt == "csv" and name in self.LONG_TABLES and not kept:
                 # straight from the solver's arrays, chunk by chunk: never held whole
-                written.append(write_long_csv(self.long_table(name), d / f"{name}.csv",
-                                              announce, positions))
+                write_long_csv(self.long_table(name), d / f"{name}.csv", announce, positions)
                 continue
             if fmt == "csv" and not kept:
                 # the short tables' columns, written without building a DataFrame
-                written.append(write_csv(self.columns(name), d / f"{name}.csv",
-                                         self.positions.size, announce, positions))
+                write_csv(self.columns(name), d / f"{name}.csv", self.positions.size,
+                          announce, positions)
                 continue
             table = getattr(self, name)
             if fmt == "csv":
-                written.append(write_csv(table, d / f"{name}.csv", self.positions.size,
-                                         announce, positions))
+                write_csv(table, d / f"{name}.csv", self.positions.size, announce, positions)
             else:
-                written.append(write_parquet(table, d / f"{name}.parquet"))
+                write_parquet(table, d / f"{name}.parquet")
             del table
             if not kept:
                 del self.__dict__[name]
-        path = d / "summary.json"
-        path.write_text(json.dumps(self.summary() if summary is None else summary,
-                                   indent=2) + "\n")
-        written.append(path)
-        return written
 
 
 # ``Solution.loads`` is a dataclass field whose value may be let go and computed again

@@ -19,6 +19,9 @@ import json
 import math
 from pathlib import Path
 
+from ..common.jsontext import plain
+from ..model.outputs import atomic_file
+
 __all__ = ["add_commands"]
 
 
@@ -31,7 +34,7 @@ def _error(msg: str) -> Exception:
 
 def add_commands(sub) -> None:
     """Add the ``crosscheck`` subcommand to an argparse subparsers object."""
-    from ..cli import dpi_argument  # the --dpi of every command that draws
+    from ..common.cli import dpi_argument  # the --dpi of every command that draws
     c = sub.add_parser(
         "crosscheck", help="simulate a scene in pymunk and compare with kinetostatics",
         description="Simulate a mechanism scene in pymunk at its driver's constant speed "
@@ -129,7 +132,7 @@ def _cmd_crosscheck(args) -> int:
         if args.plot:
             _save(lambda: _plot_study(st), args.plot, args.dpi)
         if args.json:
-            print(json.dumps(_clean(st.summary()), indent=2))
+            print(json.dumps(plain(st.summary(), finite=True), indent=2))
             return 0
         print(st.formatted().to_string(index=False))
         print(f"wall time: the best of {st.repeats} run(s) per setting"
@@ -148,14 +151,13 @@ def _cmd_crosscheck(args) -> int:
                     samples_per_revolution=args.samples, error_bias=args.error_bias,
                     fast=fast, ballast=not args.no_ballast)
     if args.rows:
-        out = Path(args.rows)
-        out.parent.mkdir(parents=True, exist_ok=True)
-        cc.wide().to_csv(out, index=False, float_format="%.17g")
+        with atomic_file(args.rows) as tmp:     # the whole table, or the earlier one kept
+            cc.wide().to_csv(tmp, index=False, float_format="%.17g")
     if args.plot:
         from .plots import plot_comparison
         _save(lambda: plot_comparison(cc), args.plot, args.dpi)
     if args.json:
-        print(json.dumps(_clean(cc.summary()), indent=2))
+        print(json.dumps(plain(cc.summary(), finite=True), indent=2))
         return 0
     s = cc.settings
     per = s["seconds_per_revolution"] if s["seconds_per_revolution"] is not None \
@@ -183,21 +185,8 @@ def _save(draw, path: str, dpi: float = 150) -> None:
     import matplotlib
     matplotlib.use("Agg")
     from ..plot.style import lecture_style
-    out = Path(path)
-    out.parent.mkdir(parents=True, exist_ok=True)
     with lecture_style(dpi):
-        draw().savefig(out, dpi=dpi)
+        fig = draw()
+        with atomic_file(path) as tmp:
+            fig.savefig(tmp, dpi=dpi, format=Path(path).suffix.lstrip(".").lower() or None)
 
-
-def _clean(obj):
-    """JSON-safe: numpy scalars to Python, non-finite floats to None."""
-    import numpy as np
-    if isinstance(obj, dict):
-        return {str(k): _clean(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_clean(v) for v in obj]
-    if isinstance(obj, np.generic):
-        obj = obj.item()
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    return obj

@@ -30,7 +30,7 @@ def reference_solution(scene: Any, positions):
     The scene's first position is solved first, as row 0, so that the assembly chosen
     by the ``[near]`` hints is the scene's own; the positions asked for are rows 1...
     """
-    from ..solver.pipeline import solve
+    from ..results import solve
     sc = load_scene(scene)
     pos = np.concatenate([[sc.driver.positions[0]], np.asarray(positions, dtype=float)])
     return solve(_raw_with_positions(sc, pos), allow_repeats=True)

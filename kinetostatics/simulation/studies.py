@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from ..common.jsontext import plain
 from .batch import run_batch
 from .errors import SimulationDiverged, SimulationError
 from .model import check_scene
@@ -117,7 +118,7 @@ class Study:
 
 def _plain(row: dict) -> dict:
     """numpy scalars to Python; integer columns as int."""
-    out = {k: (v.item() if isinstance(v, np.generic) else v) for k, v in row.items()}
+    out = plain(row)
     for k in ("steps_per_revolution", "iterations"):
         if k in out:
             out[k] = int(out[k])

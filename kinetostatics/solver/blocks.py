@@ -6,9 +6,9 @@ solved a block of rows at a time, giving exactly the numbers of one pass over al
 rows. What it saves is memory traffic: a pass over 2e5 rows makes each of its few
 hundred intermediate arrays 1.6 MB, beyond the L2 cache, and each fresh one costs
 page faults; a block of ``BLOCK_ROWS`` rows keeps them in cache and reuses the same
-memory. Only the arrays the :class:`~kinetostatics.results.Solution` keeps are
-gathered into arrays over the whole sweep (:class:`Gather`); a solve keeps first only
-what the driver table and the dead points need (``lean``: a :class:`LeanSolution`),
+memory. Only the arrays a solve keeps are gathered into arrays over the whole sweep
+(:class:`Gather`); a solve keeps first only what the driver table and the dead points
+need (``lean``: a :class:`LeanSolved`),
 and solves the blocks again, gathering every kept array, when another table asks.
 
 What is not elementwise is done once over the whole sweep, as before: the assembly is
@@ -22,15 +22,16 @@ how many) is the one pass's.
 
 from __future__ import annotations
 
+import threading
 from dataclasses import replace
 
 import numpy as np
 
 from ..model.scene import Scene
-from ..results import Solution
 from .driver import BodyMotion
 from .kinematics import Kinematics, choose_assembly, solve_kinematics, with_positions
 from .reactions import DriverReaction
+from .solved import Solved
 
 BLOCK_ROWS = 16384   # 128 kB per array (measured best of 4096-65536 on a 2 MB L2 cache)
 
@@ -177,10 +178,10 @@ def _same(a, b) -> bool:
 
 def solve_blocks(total: int, part, solve_block, scene: Scene | None = None,
                  structure=None, positions: np.ndarray | None = None,
-                 block: int | None = None, lean: bool = False) -> Solution | Sweep:
-    """The Solution over ``total`` rows, solved ``block`` rows at a time (``lean``: only
+                 block: int | None = None, lean: bool = False) -> Solved | Kept:
+    """The solved arrays over ``total`` rows, solved ``block`` rows at a time (``lean``: only
     the driver table's arrays and the dyads' closeness to a dead centre, a
-    :class:`Sweep`).
+    :class:`Kept`).
 
     Parameters
     ----------
@@ -191,10 +192,10 @@ def solve_blocks(total: int, part, solve_block, scene: Scene | None = None,
         rows ``rows`` (a slice), given the structure the previous block solved with (its
         assemblies chosen; the first block gets ``structure``).
     solve_block : callable
-        ``solve_block(scene, structure, kin)``: a block's Solution from its kinematics
+        ``solve_block(scene, structure, kin)``: a block's :class:`Solved` from its kinematics
         (the loads and reactions, checked finite).
     scene, structure
-        The whole sweep's scene and structure, held by the Solution; ``structure`` None:
+        The whole sweep's scene and structure; ``structure`` None:
         the last block's.
     positions : ndarray, optional
         The whole sweep's driver positions (default: the scene's).
@@ -228,7 +229,7 @@ def solve_blocks(total: int, part, solve_block, scene: Scene | None = None,
         structure = solved
     if lean:
         drive_g, undefined_g, flags_g = gathers
-        return Sweep(structure, drive_g.build(), undefined_g.values["undefined"],
+        return Kept(structure, drive_g.build(), undefined_g.values["undefined"],
                      [g.values["closeness2"] for g in flags_g],
                      [g.values["singular"] for g in flags_g])
     bodies_g, dyads_g, reactions_g, drive_g, undefined = gathers
@@ -242,8 +243,8 @@ def solve_blocks(total: int, part, solve_block, scene: Scene | None = None,
         positions = scene.driver.positions
     kin = Kinematics(scene, structure, positions, bodies, dyads)
     reactions = {name: g.build() for name, g in reactions_g.items()}
-    return Solution(scene, structure, kin, None, reactions, drive_g.build(),
-                    undefined.values["undefined"])
+    return Solved(scene, structure, kin, None, reactions, drive_g.build(),
+                  undefined.values["undefined"])
 
 
 def blocks_of_sweep(scene: Scene, structure, positions: np.ndarray):
@@ -279,7 +280,7 @@ class _Flags:
         self.closeness2, self.singular = dm.closeness2, dm.singular
 
 
-class Sweep:
+class Kept:
     """What a lean solve in blocks keeps of a long sweep: the structure it solved with,
     ``Me``/``Fe`` and the undefined-load rows (the driver table), and each dyad's
     closeness to a dead centre and singular rows (its dead points and flags)."""
@@ -290,66 +291,53 @@ class Sweep:
         self.closeness2, self.singular = closeness2, singular
 
 
-class LeanSolution(Solution):
-    """The Solution of a long sweep solved in blocks that holds, of the solver's arrays,
-    only what the driver table and the dead points need: ``Me``/``Fe``, the
-    undefined-load rows and each dyad's closeness to a dead centre and singular rows
-    (at 1e6 rows about 4 arrays instead of about 26: 30 MB instead of 200 MB gathered,
-    written and faulted in). Its kinematics and joint reactions, which every other table
-    reads, are solved again when first read, in the same blocks with the same
-    assemblies: the same numbers, bit for bit."""
+class LeanSolved:
+    """A long sweep solved in blocks that holds, of the solver's arrays, only what the
+    driver table and the dead points need: ``Me``/``Fe``, the undefined-load rows and
+    each dyad's closeness to a dead centre and singular rows (at 1e6 rows about 4 arrays
+    instead of about 26: 30 MB instead of 200 MB gathered, written and faulted in). Its
+    kinematics and joint reactions, which every other table reads, are solved again when
+    first asked for (:meth:`give`), in the same blocks with the same assemblies: the same
+    numbers, bit for bit (a :class:`~kinetostatics.solver.solved.Deferred`)."""
 
-    @classmethod
-    def of(cls, scene: Scene, sweep: Sweep, positions: np.ndarray, dead: tuple,
-           again) -> LeanSolution:
-        """The lean Solution of ``sweep`` (``again()``: the full solve of the same
-        blocks). Made without the dataclass' constructor, which
-        :func:`dataclasses.replace` and a copy still use (they read ``kin``: solved
-        again)."""
-        new = object.__new__(cls)
-        new.__dict__.update(scene=scene, structure=sweep.structure, self_locking=None,
-                            drive=sweep.drive, undefined_load=sweep.undefined,
-                            _positions=positions, _flags=sweep.singular, _dead=dead,
-                            _again=again)
-        return new
+    def __init__(self, scene: Scene, sweep: Kept, positions: np.ndarray, dead: tuple,
+                 again):
+        self.known = {"scene": scene, "structure": sweep.structure, "self_locking": None,
+                      "drive": sweep.drive, "undefined_load": sweep.undefined}
+        self.positions = positions
+        self.flags, self.dead, self.again = sweep.singular, dead, again
+        self.lock = threading.Lock()
+        self.full: dict | None = None
 
-    def __getattr__(self, name: str):
-        if name not in ("kin", "joint_reactions") or "_again" not in self.__dict__:
-            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
-        self._solve_again()
-        return self.__dict__[name]
-
-    def _solve_again(self) -> None:
-        """The kinematics and joint reactions, solved again (if not done yet)."""
-        d = self.__dict__
-        again = d.get("_again")
-        if again is None:
-            return
-        sol = again()
-        kin = sol.kin
-        kin.between, kin.ends, kin.unassembled = d["_dead"]
-        kin.release()
-        # from now on the full solve's arrays (the same numbers): the lean ones go
-        d.update(kin=kin, joint_reactions=sol.joint_reactions, drive=sol.drive,
-                 undefined_load=sol.undefined_load)
-        d.pop("_again", None)           # (another thread may have done it too: the same)
-
-    def __getstate__(self) -> dict:
-        self._solve_again()             # the state holds arrays, not the solver's closure
-        return dict(self.__dict__)
-
-    @property
-    def positions(self) -> np.ndarray:
-        d = self.__dict__
-        return d["_positions"] if "_positions" in d else self.kin.positions
-
-    @property
     def singular(self) -> np.ndarray:
         """As :attr:`Kinematics.singular`, from the kept rows of each dyad."""
-        if "kin" in self.__dict__:
-            return self.kin.singular
-        return singular_rows(self.positions.size, self.__dict__["_flags"],
-                             self.__dict__["_dead"])
+        return singular_rows(self.positions.size, self.flags, self.dead)
+
+    def give(self, name: str, have=()) -> dict:
+        """The kinematics and joint reactions, solved again (once), and from now on the
+        full solve's ``Me``/``Fe`` and undefined rows (the same numbers)."""
+        with self.lock:
+            if self.full is None:
+                sol = self.again()
+                kin = sol.kin
+                kin.between, kin.ends, kin.unassembled = self.dead
+                kin.release()
+                self.full = {"kin": kin, "joint_reactions": sol.joint_reactions,
+                             "drive": sol.drive, "undefined_load": sol.undefined_load}
+                self.again = None       # (the solver's closure: no longer needed)
+            return self.full
+
+    def solved(self) -> Solved:
+        full = self.give("kin")
+        return Solved(self.known["scene"], self.known["structure"], full["kin"], None,
+                      full["joint_reactions"], full["drive"], full["undefined_load"])
+
+    def __reduce__(self):
+        return _solved, (self.solved(),)
+
+
+def _solved(solved: Solved) -> Solved:
+    return solved
 
 
 def singular_rows(n: int, flags: list, dead: tuple) -> np.ndarray:
@@ -365,12 +353,12 @@ def singular_rows(n: int, flags: list, dead: tuple) -> np.ndarray:
     return out
 
 
-def _lean_layout(sol: Solution, n: int, arrays: _Arrays) -> tuple:
+def _lean_layout(sol: Solved, n: int, arrays: _Arrays) -> tuple:
     return (Gather(sol.drive, n, arrays), Gather(_Undefined(sol.undefined_load), n, arrays),
             [Gather(_Flags(dm), n, arrays) for dm in sol.kin.dyads])
 
 
-def _lean_put(gathers: tuple, sol: Solution, rows: slice, n: int) -> None:
+def _lean_put(gathers: tuple, sol: Solved, rows: slice, n: int) -> None:
     drive, undefined, flags = gathers
     if len(flags) != len(sol.kin.dyads):
         raise Unblockable("dyads")
@@ -381,7 +369,7 @@ def _lean_put(gathers: tuple, sol: Solution, rows: slice, n: int) -> None:
         g.put(_Flags(dm), rows, n, seen)
 
 
-def _layout(sol: Solution, n: int, arrays: _Arrays) -> tuple:
+def _layout(sol: Solved, n: int, arrays: _Arrays) -> tuple:
     bodies = {name: Gather(m, n, arrays, skip=("_origin_arm",))
               for name, m in sol.kin.bodies.items()}
     dyads = [(Gather(dm, n, arrays, skip=("params", "dyad")),
@@ -393,7 +381,7 @@ def _layout(sol: Solution, n: int, arrays: _Arrays) -> tuple:
     return bodies, dyads, reactions, drive, undefined
 
 
-def _put(gathers: tuple, sol: Solution, rows: slice, n: int) -> None:
+def _put(gathers: tuple, sol: Solved, rows: slice, n: int) -> None:
     bodies, dyads, reactions, drive, undefined = gathers
     seen: dict = {}
     if list(bodies) != list(sol.kin.bodies) or list(reactions) != list(sol.joint_reactions):
@@ -410,5 +398,5 @@ def _put(gathers: tuple, sol: Solution, rows: slice, n: int) -> None:
     undefined.put(_Undefined(sol.undefined_load), rows, n, seen)
 
 
-__all__ = ["BLOCK_ROWS", "BodyMotion", "DriverReaction", "Gather", "LeanSolution", "Sweep",
+__all__ = ["BLOCK_ROWS", "BodyMotion", "DriverReaction", "Gather", "Kept", "LeanSolved",
            "Unblockable", "blockable", "solve_blocks"]

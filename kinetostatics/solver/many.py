@@ -7,7 +7,7 @@ by structure (:func:`~kinetostatics.solver.stack.signature`) and solves each gro
 one scene over all its rows (:mod:`~kinetostatics.solver.stack`; groups of at most about
 ``CHUNK_ROWS`` rows), a run of whole scenes of about ``RUN_ROWS`` rows at a time (the
 solver's cost per pass is spread over many scenes while its arrays stay in the cache),
-and cuts each run's result into one :class:`~kinetostatics.results.Solution` per scene
+and cuts each run's result into one scene's arrays (:class:`CutSolved`) per scene
 (no array over all the rows is gathered: a scene's rows lie in one run). Each holds
 exactly the numbers :func:`~kinetostatics.solve` gives that scene alone: the same
 elementwise operations run on every row. A scene that cannot be stacked (joint
@@ -20,12 +20,12 @@ positions is told in one pass, the assembly chosen per scene vectorised
 (:func:`~kinetostatics.solver.stack.assemblies`), the finite check left to the
 floating-point trap per run (:mod:`~kinetostatics.solver.trap`),
 and the dead points of every scene screened in one probe solve
-(:func:`~kinetostatics.solver.deadpoints.dead_points_stacked`). Each scene's Solution
-holds its scene and structure from the start, and its ``Me``/``Fe`` and flags (views of
+(:func:`~kinetostatics.solver.deadpoints.dead_points_stacked`). Each scene's arrays
+hold its scene and structure from the start, and its ``Me``/``Fe`` and flags (views of
 its run's, cut when first read). A run keeps nothing else: its kinematics and joint
 reactions are solved again, for all its scenes at once, when one scene's are first read
 (the same rows and assemblies: the same numbers), as a long sweep's are
-(:class:`~kinetostatics.solver.blocks.LeanSolution`). Keeping every run's arrays cost
+(:class:`~kinetostatics.solver.blocks.LeanSolved`). Keeping every run's arrays cost
 about as much as the solve that made them (measured for 1000 four-bars of 361 rows:
 about 290 MB of fresh pages; 75-150 ms a call, against 60-75 ms lean). Its loads, as a
 solve's, are computed again from its kinematics when asked for.
@@ -36,7 +36,7 @@ from __future__ import annotations
 import gc
 import math
 import threading
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterator
 from concurrent.futures import Executor
 from contextlib import contextmanager
 from dataclasses import replace
@@ -45,15 +45,19 @@ from typing import Any
 
 import numpy as np
 
+from ..common.lazy import moved_names
 from ..model.errors import WorkbenchError
 from ..model.scene import load_scene
-from ..results import Solution
 from . import blocks
+from .blocks import LeanSolved
 from .deadpoints import _measure2, dead_points_stacked
 from .driver import BodyMotion
+from .fast import solve_run_compiled, wanted
+from .fast.geometry import not_covered
 from .kinematics import Kinematics, solve_kinematics
-from .pipeline import _solve_block, check_distinct, solve
+from .pipeline import _solve_block, check_distinct, solve_arrays
 from .reactions import DriverReaction
+from .solved import Solved
 from .stack import Rows, Stacker, assemblies, signature
 from .structure import analyse
 from .trap import first_trapped, positions_tame
@@ -67,56 +71,30 @@ RUN_ROWS = 12_288
 CHUNK_ROWS = 1_048_576  # rows per group (one Stacker, one dead-point screen for all)
 
 
-def solve_many(scenes: Iterable[Any], *, executor: Executor | None = None,
-               batch: int | None = None) -> list[Solution]:
-    """The :class:`~kinetostatics.results.Solution` of each scene, in order, with exactly
-    the numbers :func:`~kinetostatics.solve` gives each alone.
-
-    Scenes of the same structure (the same bodies, points, joints, driver, loads and
-    gravity; their lengths, ground points, masses, inertias, hints and sweeps may differ)
-    are solved together in one vectorised pass, stacked along the position axis; the
-    others are grouped by structure.
-
-    Parameters
-    ----------
-    scenes : iterable of Scene, path, TOML text or dict
-        What :func:`~kinetostatics.solve` takes, one per mechanism.
-    executor : concurrent.futures.Executor, optional
-        Spreads the scenes over its workers in batches of ``batch`` scenes (a
-        ``ProcessPoolExecutor``, or a dask.distributed ``Client.get_executor()``); it is
-        not shut down. Default: all in this process (usually the fastest for a few
-        thousand scenes: one process solves them stacked).
-    batch : int, optional
-        Scenes per task for ``executor`` (default: about 4 tasks per 100 scenes, at
-        least 32 scenes a task).
-
-    Returns
-    -------
-    list of Solution
-        One per scene, in the order given.
-
-    Raises
-    ------
-    WorkbenchError
-        The error :func:`~kinetostatics.solve` raises for the first scene (in order) that
-        it refuses, of the same class, its message led by the scene's place in the list:
-        ``scenes[417]: body 'rocker'.mass must not be negative, got -1``.
-
-    Examples
-    --------
-    >>> import kinetostatics as ks
-    >>> sols = ks.solve_many([ks.example("four_bar"), ks.example("slider_crank")])
-    >>> [s.scene.title for s in sols] == [ks.solve(ks.example(n)).scene.title
-    ...                                   for n in ("four_bar", "slider_crank")]
-    True
-    """
-    items = list(scenes)
-    with _collector_paused():
-        return _solve_many(items, executor, batch)
+def solve_all(items: list, executor: Executor | None = None, batch: int | None = None
+              ) -> list[Solved | LeanSolved | CutSolved]:
+    """The arrays of :func:`kinetostatics.solve_many` (which wraps each in a
+    :class:`~kinetostatics.results.Solution`), one per scene, in order; the first scene
+    refused raises its error, led by its place in the list (see there)."""
+    if executor is None or len(items) <= 1:
+        out = solved_outcomes(items)
+    else:
+        size = batch or max(32, math.ceil(len(items) / 25))
+        parts = [items[i:i + size] for i in range(0, len(items), size)]
+        # (each scene's arrays are sent back whole, pickled: its runs kept, not solved
+        # again)
+        out = [r for part in executor.map(partial(solved_outcomes, lean=False), parts)
+               for r in part]
+    for i, r in enumerate(out):
+        if isinstance(r, WorkbenchError):
+            raise type(r)(f"scenes[{i}]: {r}") from None    # which scene, in one line
+        if isinstance(r, Exception):
+            raise r
+    return out
 
 
 @contextmanager
-def _collector_paused() -> Iterator[None]:
+def collector_paused() -> Iterator[None]:
     """Python's cyclic garbage collector paused while the scenes are read and their
     Solutions made: thousands of small objects (few if any in a cycle) that would
     each time set off collections over every object of the process (measured for 1000
@@ -131,31 +109,14 @@ def _collector_paused() -> Iterator[None]:
             gc.enable()
 
 
-def _solve_many(items: list, executor: Executor | None, batch: int | None
-                ) -> list[Solution]:
-    if executor is None or len(items) <= 1:
-        out = solve_outcomes(items)
-    else:
-        size = batch or max(32, math.ceil(len(items) / 25))
-        parts = [items[i:i + size] for i in range(0, len(items), size)]
-        # (each Solution is sent back whole, pickled: its runs kept, not solved again)
-        out = [r for part in executor.map(partial(solve_outcomes, lean=False), parts)
-               for r in part]
-    for i, r in enumerate(out):
-        if isinstance(r, WorkbenchError):
-            raise type(r)(f"scenes[{i}]: {r}") from None    # which scene, in one line
-        if isinstance(r, Exception):
-            raise r
-    return out
-
-
-def solve_outcomes(items: list[Any], *, lean: bool = True) -> list[Solution | Exception]:
-    """Per scene, its Solution or the exception :func:`~kinetostatics.solve` raises for it
-    (a top-level function: the task an executor runs). ``lean``: each run of stacked
-    scenes keeps only Me/Fe and the flags, and is solved again when a scene's kinematics
-    or joint reactions are first read (:class:`_Run`); False keeps every run's arrays,
-    for a caller that reads every table (an answer key) or sends the Solutions
-    elsewhere (pickled whole)."""
+def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
+    """Per scene, its arrays (:class:`~kinetostatics.solver.solved.Solved`,
+    :class:`~kinetostatics.solver.blocks.LeanSolved` or :class:`CutSolved`) or the
+    exception :func:`~kinetostatics.solve` raises for it (a top-level function: the task
+    an executor runs). ``lean``: each run of stacked scenes keeps only Me/Fe and the
+    flags, and is solved again when a scene's kinematics or joint reactions are first
+    read (:class:`_Run`); False keeps every run's arrays, for a caller that reads every
+    table (an answer key) or sends the arrays elsewhere (pickled whole)."""
     out: list[Any] = [None] * len(items)
     loaded: list[tuple[int, Any]] = []
     for i, src in enumerate(items):
@@ -208,9 +169,9 @@ def _increasing(scenes: list) -> np.ndarray:
     return ok
 
 
-def _alone(sc) -> Solution | Exception:
+def _alone(sc) -> Solved | LeanSolved | Exception:
     try:
-        return solve(sc)
+        return solve_arrays(sc)
     except Exception as exc:
         return exc
 
@@ -248,7 +209,7 @@ def _solve_group(members: list, out: list, lean: bool) -> None:
 
 
 def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bool
-             ) -> list[Solution | Exception]:
+             ) -> list[CutSolved | Solved | LeanSolved | Exception]:
     """The solve of :func:`kinetostatics.solve` on the stacked scenes, cut per scene.
 
     The rows are solved in runs of whole scenes of about ``RUN_ROWS`` rows (as
@@ -269,12 +230,14 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     alone: list[int] = []
     structures: dict[tuple, Any] = {}
     trusty = stacker.tame() and positions_tame(positions)
+    # the compiled path for the whole group when wanted (numba loaded here, once)
+    compiled = not_covered(stacker.base) is None and wanted(positions.size) is not None
     for lo, hi in zip(bounds[:-1].tolist(), bounds[1:].tolist(), strict=True):
         a = int(starts[lo])
         b = int(starts[hi - 1] + counts[hi - 1])
         try:
             sol = _trapped_run(trusty, stacker, structure, ks, lo, hi, counts[lo:hi],
-                               positions[a:b])
+                               positions[a:b], compiled)
         except Exception:
             alone.extend(range(lo, hi))
             m2[a:b] = np.inf        # solved alone: nothing of it to probe here
@@ -284,7 +247,7 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
         # other arrays are let go before the next run is solved (which then reuses their
         # memory), and solved again when a scene's kinematics are first read
         again = (_Run(_trapped_run, (trusty, stacker, structure, ks, lo, hi,
-                                     counts[lo:hi], positions[a:b]))
+                                     counts[lo:hi], positions[a:b], compiled))
                  if lean else _Run(None, (), _splitter(sol)))
         _cut_run(sol, again, scenes, ks, starts, counts, lo, hi, a, structure, structures,
                  out)
@@ -297,13 +260,12 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     for j in alone:
         out[j] = _alone(scenes[j])
     for j, one in enumerate(out):
-        if isinstance(one, _Cut):
-            again, rows, _, run = one.__dict__["_lazy"]
-            one.__dict__["_lazy"] = (again, rows, dead[j], run)
+        if type(one) is CutSolved:
+            one.dead = dead[j]
     return out
 
 
-def _cut_run(sol: Solution, again: _Run, scenes: list, ks: np.ndarray,
+def _cut_run(sol: Solved, again: _Run, scenes: list, ks: np.ndarray,
              starts: np.ndarray, counts: np.ndarray, lo: int, hi: int, a: int, structure,
              structures: dict, out: list) -> None:
     """The Solutions of scenes ``lo`` to ``hi - 1`` into ``out``, cut lazily from their
@@ -325,10 +287,10 @@ def _cut_run(sol: Solution, again: _Run, scenes: list, ks: np.ndarray,
         sj = structures.get(key)
         if sj is None:
             sj = structures[key] = replace(structure, assembly=key)
-        one = object.__new__(_Cut)
-        one.__dict__.update(scene=scenes[j], structure=sj, self_locking=None,
-                            _lazy=(again, slice(r0, r0 + n), None, run))
-        out[j] = one
+        out[j] = CutSolved(scenes[j], sj, again, slice(r0, r0 + n), run)
+        path = getattr(sol, "path", None)     # (set by the compiled path)
+        if path is not None:
+            out[j].path = path
 
 
 def _runs(starts: np.ndarray, counts: np.ndarray, size: int) -> np.ndarray:
@@ -339,7 +301,7 @@ def _runs(starts: np.ndarray, counts: np.ndarray, size: int) -> np.ndarray:
     return np.concatenate([[0], np.flatnonzero(run[1:] != run[:-1]) + 1, [counts.size]])
 
 
-def _trapped_run(trusty: bool, *args) -> Solution:
+def _trapped_run(trusty: bool, *args) -> Solved:
     """:func:`_solve_run` with the finite checks left to the floating-point trap
     (:mod:`~kinetostatics.solver.trap`) where the stack's numbers are tame; checked
     (solved again) if the trap is touched."""
@@ -347,13 +309,20 @@ def _trapped_run(trusty: bool, *args) -> Solution:
 
 
 def _solve_run(stacker: Stacker, structure, ks: np.ndarray, lo: int, hi: int,
-               counts: np.ndarray, positions: np.ndarray) -> Solution:
-    """The stacked Solution of scenes ``lo`` to ``hi - 1`` (``counts`` rows each, at
+               counts: np.ndarray, positions: np.ndarray, compiled: bool = False
+               ) -> Solved:
+    """The stacked arrays of scenes ``lo`` to ``hi - 1`` (``counts`` rows each, at
     ``positions``), each dyad in its scene's assembly; a run too long for the cache (a
     long sweep) in blocks, gathered (:func:`~kinetostatics.solver.blocks.solve_blocks`),
     unless a load's threshold is its sweep's maximum (``resist``, ``when = "resisting"``:
-    then in one pass, each scene's maximum over its own rows)."""
+    then in one pass, each scene's maximum over its own rows). ``compiled``: on the
+    compiled path (:mod:`~kinetostatics.solver.fast`) unless a kernel meets a row the
+    numpy path must judge."""
     st = replace(structure, assembly=tuple(np.repeat(k[lo:hi], counts) for k in ks))
+    if compiled:
+        sol = solve_run_compiled(stacker.runs(lo, hi, counts, positions), st)
+        if sol is not None:
+            return sol
     if blocks.blockable(stacker.base, positions.size):    # (not a sweep's maxima)
         owner = np.repeat(np.arange(lo, hi), counts)
 
@@ -366,63 +335,63 @@ def _solve_run(stacker: Stacker, structure, ks: np.ndarray, lo: int, hi: int,
     return _solve_block(sc, st, solve_kinematics(sc, st))
 
 
-class _Cut(Solution):
-    """One scene's :class:`~kinetostatics.results.Solution` cut from a stacked solve: its
-    kinematics, joint reactions, ``Me``/``Fe`` and flags (views of the stacked arrays)
-    are cut when first read;
-    its loads are computed from its kinematics when asked for, as a solve's are
-    (:meth:`~kinetostatics.results.Solution.release_loads`); everything else is the
-    scene's own from the start."""
+class CutSolved:
+    """One scene's arrays cut from a stacked solve (a
+    :class:`~kinetostatics.solver.solved.Deferred`): its scene and structure from the
+    start; its ``Me``/``Fe`` and flags (views of its run's arrays) cut when first asked
+    for, its kinematics and joint reactions when first asked for (the run solved again
+    for all its scenes, :class:`_Run`); its loads are computed from its kinematics when
+    asked for, as a solve's are."""
 
-    def __getattr__(self, name: str):
-        lazy = self.__dict__.get("_lazy")
-        if lazy is None or name not in ("kin", "joint_reactions", "drive", "undefined_load"):
-            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
-        if name in ("drive", "undefined_load"):
-            # Me/Fe and the flags: views of the run's arrays (the same for every thread)
-            rows = lazy[1]
-            kind, drive, drive_rows, undefined, undefined_rows, _ = lazy[3]
-            self.__dict__.update(
-                drive=DriverReaction(kind, drive[rows] if drive_rows else drive),
-                undefined_load=undefined[rows] if undefined_rows else undefined)
-        else:
-            self._cut()
-        return self.__dict__[name]
+    __slots__ = ("again", "dead", "path", "rows", "run", "scene", "structure")
+
+    def __init__(self, scene, structure, again: _Run, rows: slice, run: tuple):
+        self.scene, self.structure, self.again, self.rows, self.run = (
+            scene, structure, again, rows, run)
+        self.dead = None            # (filled in once every scene's are screened)
+
+    @property
+    def known(self) -> dict:
+        return {"scene": self.scene, "structure": self.structure, "self_locking": None}
 
     @property
     def positions(self) -> np.ndarray:
-        d = self.__dict__
-        return d["kin"].positions if "kin" in d else self.scene.driver.positions
+        return self.scene.driver.positions
 
-    @property
     def singular(self) -> np.ndarray:
-        """As :attr:`Kinematics.singular`, from the run's flags while not cut (the driver
-        table reads it: no need to solve the run again)."""
-        d = self.__dict__
-        lazy = d.get("_lazy")
-        if "kin" in d or lazy is None:
-            return self.kin.singular
-        rows, run = lazy[1], lazy[3]
+        """As :attr:`Kinematics.singular`, from the run's flags (the driver table reads
+        it: no need to solve the run again)."""
+        rows, run = self.rows, self.run
         return blocks.singular_rows(rows.stop - rows.start,
-                                    [f[rows] if cut else f for f, cut in run[5]], lazy[2])
+                                    [f[rows] if cut else f for f, cut in run[5]], self.dead)
 
-    def _cut(self) -> None:
-        """Cut the kinematics and joint reactions (and Me/Fe and the flags) from the
-        stack, if not done yet."""
-        d = self.__dict__
-        lazy = d.get("_lazy")
-        if lazy is None:
-            return
-        if "drive" not in d:
-            self.__getattr__("drive")
-        again, rows, dead, _ = lazy
-        kin, reactions = again.cutter()(self.scene, self.structure, rows, dead)
-        d.update(kin=kin, joint_reactions=reactions)
-        d.pop("_lazy", None)            # (another thread may have cut it too: the same)
+    def give(self, name: str, have=()) -> dict:
+        """``drive`` or ``undefined_load``: both, views of the run's arrays (the same
+        for every thread); ``kin`` or ``joint_reactions``: both, cut from the run solved
+        again (with the views, if not held yet)."""
+        out = {}
+        if "drive" not in have or "undefined_load" not in have:
+            rows = self.rows
+            kind, drive, drive_rows, undefined, undefined_rows, _ = self.run
+            out.update(drive=DriverReaction(kind, drive[rows] if drive_rows else drive),
+                       undefined_load=undefined[rows] if undefined_rows else undefined)
+        if name in ("kin", "joint_reactions"):
+            kin, reactions = self.again.cutter()(self.scene, self.structure, self.rows,
+                                                 self.dead)
+            out.update(kin=kin, joint_reactions=reactions)
+        return out
 
-    def __getstate__(self) -> dict:
-        self._cut()                     # the state holds arrays, not the stack's cutter
-        return dict(self.__dict__)
+    def solved(self) -> Solved:
+        got = self.give("kin")
+        return Solved(self.scene, self.structure, got["kin"], None, got["joint_reactions"],
+                      got["drive"], got["undefined_load"])
+
+    def __reduce__(self):
+        return _solved, (self.solved(),)
+
+
+def _solved(solved: Solved) -> Solved:
+    return solved
 
 
 class _Run:
@@ -481,7 +450,7 @@ def _per_row(v, total: int) -> bool:
     return isinstance(v, np.ndarray) and v.ndim == 1 and v.shape[0] == total
 
 
-def _splitter(sol: Solution):
+def _splitter(sol: Solved):
     """A function (scene, structure, rows, dead points) -> that scene's kinematics and
     joint reactions, cutting the rows of every array of the stacked ``sol``."""
     total = sol.positions.size
@@ -511,3 +480,8 @@ def _splitter(sol: Solution):
         return (kin,
                 {name: t.cut(rows) for name, t in reactions})
     return cut
+
+
+# kinetostatics.solver.many.solve_many, deprecated: the public one is
+# kinetostatics.solve_many (the results wrap the arrays)
+__getattr__ = moved_names(__name__, {"solve_many": ("kinetostatics", "solve_many")})

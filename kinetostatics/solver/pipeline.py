@@ -1,4 +1,16 @@
-"""The kinetostatic solve: scene -> structure -> kinematics -> loads -> reactions."""
+"""The kinetostatic solve: scene -> structure -> kinematics -> loads -> reactions.
+
+Every solve takes one road, a :class:`Sweep`: it knows whether its rows are solved in
+blocks (:mod:`~kinetostatics.solver.blocks`: a long sweep, every load elementwise, no
+joint friction) or in one pass, and how they are checked: left to the floating-point
+trap (:mod:`~kinetostatics.solver.trap`: tame numbers, no friction), then, if the trap
+was touched or the trapped pass refused, by looking at the numbers (one refusal naming
+the first row that is not finite). A block of rows is solved by :func:`solve_rows`
+(loads and reactions from the block's kinematics). The solve gives arrays
+(:class:`~kinetostatics.solver.solved.Solved`, or a lean
+:class:`~kinetostatics.solver.blocks.LeanSolved`); :func:`kinetostatics.solve` wraps them
+in a :class:`~kinetostatics.results.Solution`.
+"""
 
 from __future__ import annotations
 
@@ -7,181 +19,189 @@ from typing import Any
 
 import numpy as np
 
+from ..common.lazy import moved_names
 from ..model.errors import AssemblyError, WorkbenchError
 from ..model.scene import load_scene
-from ..results import Solution
-from .blocks import LeanSolution, Sweep, Unblockable, blockable, blocks_of_sweep, solve_blocks
+from .blocks import Kept, LeanSolved, Unblockable, blockable, blocks_of_sweep, solve_blocks
 from .continuity import check_distinct, given_positions
 from .deadpoints import dead_points_between_rows, dead_points_of_sweep, measure2
+from .fast import solve_compiled
 from .friction import has_friction, solve_with_friction
 from .kinematics import solve_kinematics
 from .loads import applied_loads, inertia_loads, resultants
 from .reactions import solve_reactions
+from .solved import Solved
 from .structure import analyse
 from .trap import FloatTrap, active, first_trapped, tame, trapped
 
 _sum = np.add.reduce
 
 
-def solve(scene: Any, positions: Any = None, *, allow_repeats: bool = False) -> Solution:
-    """Kinematics, reactions in every joint and the equilibrating moment over the sweep.
+def solve_arrays(scene: Any, positions: Any = None, *,
+                 allow_repeats: bool = False) -> Solved | LeanSolved:
+    """The arrays of :func:`kinetostatics.solve`, which takes the same arguments, raises
+    the same errors and wraps the arrays in a :class:`~kinetostatics.results.Solution`:
+    kinematics, reactions in every joint and the equilibrating moment over the sweep."""
+    return Sweep(scene, positions, allow_repeats).solve()
+
+
+class Sweep:
+    """One scene over its driver positions, and how they are solved.
 
     Parameters
     ----------
     scene : Scene, pathlib.Path, str or dict
-        A loaded scene, a path to a ``.toml`` file, TOML text or a dict
-        (``scene-format.md`` section 1).
+        What :func:`~kinetostatics.model.scene.load_scene` reads.
     positions : array_like, optional
-        Driver positions (deg or m) at which to solve the same mechanism, in any order
-        (each listed once): each dyad keeps the assembly chosen at the scene's own first
-        row. Default: the scene's sweep. The tables keep the given order; the summary,
-        the continuity of angles and the dead points between rows follow increasing
-        driver position.
+        Driver positions (deg or m), in any order; default: the scene's sweep. Each dyad
+        keeps the assembly chosen at the scene's own first row.
     allow_repeats : bool
-        Solve a sweep that lists a position more than once instead of refusing it (for
-        the project's own callers, e.g. a simulation's record that passes a position
-        twice, or a reference row prepended to a batch); each repeat is its own row.
+        Solve a sweep that lists a position more than once instead of refusing it.
 
-    Returns
-    -------
-    Solution
-        Arrays and lazily built tables: ``kinematics``, ``bodies``, ``reactions``,
-        ``driver``, ``dyads``, ``sliders``, ``frame``, ``reduced`` and ``summary()``.
-
-    Raises
-    ------
-    SceneError, StructureError, AssemblyError
-        One-line messages for a bad scene (a position listed twice included), a chain
-        that is not driver + dyads, a mechanism that cannot be assembled or is exactly
-        singular somewhere.
-
-    Examples
-    --------
-    >>> import kinetostatics as ks
-    >>> sol = ks.solve(ks.example("four_bar"))
-    >>> round(float(sol.driver["Me"].abs().max()), 1) > 0
-    True
+    Attributes
+    ----------
+    blocked : bool
+        Solved in blocks of rows (:func:`~kinetostatics.solver.blocks.blockable`).
+    trusty : bool
+        Checked by the floating-point trap first (tame numbers, no joint friction).
     """
-    sc = load_scene(scene)
-    if positions is not None:
-        positions = given_positions(positions)
-    if not allow_repeats:
-        check_distinct(sc.driver.positions if positions is None else positions,
-                       "deg" if sc.driver.kind == "R" else "m")
-    # the assemblies are chosen at the scene's first row by the solve itself
-    structure = analyse(sc, assemble=False)
-    pos = sc.driver.positions if positions is None else positions
-    sol = None
-    if tame(sc, pos) and not has_friction(sc):
-        sol = _trapped(sc, structure, pos, positions)
-    if sol is None:
-        sol = _checked(sc, structure, pos, positions)
-    sol.release_loads()     # recomputed when asked for: no table needs them (memory)
-    if "kin" in sol.__dict__:   # (a lean long sweep: released when solved again)
-        sol.kin.release()   # what only the solve needed (the same, recomputed if asked)
-    return sol
 
+    def __init__(self, scene: Any, positions: Any = None, allow_repeats: bool = False):
+        sc = load_scene(scene)
+        if positions is not None:
+            positions = given_positions(positions)
+        if not allow_repeats:
+            check_distinct(sc.driver.positions if positions is None else positions,
+                           "deg" if sc.driver.kind == "R" else "m")
+        self.scene = sc
+        # the assemblies are chosen at the scene's first row by the solve itself
+        self.structure = analyse(sc, assemble=False)
+        self.given = positions
+        self.positions = sc.driver.positions if positions is None else positions
+        self.blocked = blockable(sc, self.positions.size)
+        self.trusty = tame(sc, self.positions) and not has_friction(sc)
 
-def _trapped(sc, structure, pos: np.ndarray, positions) -> Solution | None:
-    """The solve with the finite checks left to the floating-point trap
-    (:mod:`~kinetostatics.solver.trap`): its Solution when the trap stayed untouched,
-    else None (the caller solves again, checked: the same numbers, and its refusals).
-    The dead points between rows are screened outside the trap, as the checked solve
-    screens them (their probes may meet singular rows on purpose)."""
-    trap = FloatTrap()
-    try:
-        if blockable(sc, pos.size):
-            with trapped(trap):
-                long = _long_sweep(sc, structure, pos, trapped_road=True)
-            return None if trap.hit else _lean(*long)
-        with trapped(trap):
-            kin = solve_kinematics(sc, structure, positions)
-        if trap.hit:
-            return None
-        kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
-            kin.scene, kin.structure, kin)
-        with trapped(trap):
-            sol = _solve_loads(kin.scene, kin.structure, kin)
-        return None if trap.hit else sol
-    except Exception:       # (refused, or a block layout: the checked solve decides)
-        return None
+    def solve(self) -> Solved | LeanSolved:
+        """The solve: trapped first where the numbers are tame, else (or if the trap was
+        touched) checked. The compiled path (:mod:`~kinetostatics.solver.fast`) goes
+        first when it is wanted for this many rows and covers the scene."""
+        sol = solve_compiled(self.scene, self.structure, self.positions,
+                             self.given is not None)
+        if sol is not None:
+            return sol
+        sol = self.trapped() if self.trusty else None
+        if sol is None:
+            sol = self.checked()
+        if isinstance(sol, Solved):
+            sol.kin.release()   # what only the solve needed (the same, recomputed if asked)
+        return sol
 
-
-def _checked(sc, structure, pos: np.ndarray, positions) -> Solution:
-    """The solve with every finite check made by looking at the numbers (a pass per
-    kept array): one refusal names the first row that is not finite."""
-    long = None
-    if blockable(sc, pos.size):
+    def trapped(self) -> Solved | LeanSolved | None:
+        """The solve with the finite checks left to the floating-point trap: its arrays
+        when the trap stayed untouched, else None (the caller solves again, checked: the
+        same numbers, and its refusals). The dead points between rows are screened
+        outside the trap, as the checked solve screens them (their probes may meet
+        singular rows on purpose)."""
+        sc, structure = self.scene, self.structure
+        trap = FloatTrap()
         try:
-            long = _long_sweep(sc, structure, pos, trapped_road=False)
-        except (Unblockable, WorkbenchError, OverflowError, ZeroDivisionError):
-            long = None     # solved in one pass below: its message names every row
-    try:
-        if long is None:
-            kin = solve_kinematics(sc, structure, positions)
+            if self.blocked:
+                with trapped(trap):
+                    long = self.in_blocks(trapped_road=True)
+                return None if trap.hit else _lean(*long)
+            with trapped(trap):
+                kin = solve_kinematics(sc, structure, self.given)
+            if trap.hit:
+                return None
             kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
                 kin.scene, kin.structure, kin)
-            sol = _solve_loads(kin.scene, kin.structure, kin)
-            _check_finite(sol)
-        else:
-            sol = _lean(*long)
-    except (OverflowError, ZeroDivisionError) as exc:
-        raise AssemblyError(f"the scene's numbers overflow ({exc}); check its dimensions "
-                            "and masses") from None
-    return sol
+            with trapped(trap):
+                sol = _solve_loads(kin.scene, kin.structure, kin)
+            return None if trap.hit else sol
+        except Exception:       # (refused, or a block layout: the checked solve decides)
+            return None
+
+    def checked(self) -> Solved | LeanSolved:
+        """The solve with every finite check made by looking at the numbers (a pass per
+        kept array): one refusal names the first row that is not finite."""
+        long = None
+        if self.blocked:
+            try:
+                long = self.in_blocks(trapped_road=False)
+            except (Unblockable, WorkbenchError, OverflowError, ZeroDivisionError):
+                long = None     # solved in one pass below: its message names every row
+        try:
+            if long is None:
+                kin = solve_kinematics(self.scene, self.structure, self.given)
+                kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
+                    kin.scene, kin.structure, kin)
+                sol = _solve_loads(kin.scene, kin.structure, kin)
+                _check_finite(sol)
+            else:
+                sol = _lean(*long)
+        except (OverflowError, ZeroDivisionError) as exc:
+            raise AssemblyError(f"the scene's numbers overflow ({exc}); check its "
+                                "dimensions and masses") from None
+        return sol
+
+    def in_blocks(self, trapped_road: bool) -> tuple:
+        """The sweep solved in blocks, lean (:class:`~kinetostatics.solver.blocks.Kept`:
+        the driver table's arrays and the dyads' closeness to a dead centre), with the
+        function that solves it again in full (the same blocks and assemblies: the same
+        numbers), on the same road, when another table asks."""
+        pos = self.positions
+        full, st, part = blocks_of_sweep(self.scene, self.structure, pos)
+        kept = solve_blocks(pos.size, part, _solve_block, full, st, lean=True)
+        solved = kept.structure     # (the closure holds this, not the kept arrays)
+
+        def again() -> Solved:
+            args = (pos.size, part, _solve_block, full, solved)
+            return first_trapped(solve_blocks, *args) if trapped_road else solve_blocks(*args)
+        return full, kept, again
 
 
-def _long_sweep(sc, structure, pos: np.ndarray, trapped_road: bool) -> tuple:
-    """A long sweep solved in blocks, lean (:class:`~kinetostatics.solver.blocks.Sweep`:
-    the driver table's arrays and the dyads' closeness to a dead centre), with the
-    function that solves it again in full (the same blocks and assemblies: the same
-    numbers), on the same road, when another table asks."""
-    full, st, part = blocks_of_sweep(sc, structure, pos)
-    sweep = solve_blocks(pos.size, part, _solve_block, full, st, lean=True)
-    solved = sweep.structure        # (the closure holds this, not the sweep's arrays)
-
-    def again() -> Solution:
-        args = (pos.size, part, _solve_block, full, solved)
-        return first_trapped(solve_blocks, *args) if trapped_road else solve_blocks(*args)
-    return full, sweep, again
-
-
-def _lean(full, sweep: Sweep, again) -> Solution:
-    """The long sweep's Solution, its dead points screened (as on its kinematics)."""
+def _lean(full, kept: Kept, again) -> LeanSolved:
+    """The long sweep's lean arrays, its dead points screened (as on its kinematics)."""
     positions = full.driver.positions
-    dead = dead_points_of_sweep(full, sweep.structure, positions,
-                                measure2(sweep.closeness2, positions.size))
-    return LeanSolution.of(full, sweep, positions, dead, again)
+    dead = dead_points_of_sweep(full, kept.structure, positions,
+                                measure2(kept.closeness2, positions.size))
+    return LeanSolved(full, kept, positions, dead, again)
 
 
-def _solve_block(sc, structure, kin) -> Solution:
+def _solve_block(sc, structure, kin) -> Solved:
     """One block of rows (:func:`~kinetostatics.solver.blocks.solve_blocks`): loads and
     reactions from its kinematics, checked finite."""
-    sol = _solve_loads(sc, structure, kin)
+    sol = solve_rows(sc, structure, kin)
     if not active():        # (a trapped solve: its trap stands for the check)
         _check_finite(sol)
     kin.release()           # not gathered: the solve alone needed it
     return sol
 
 
-def _solve_loads(sc, structure, kin) -> Solution:
+def solve_rows(sc, structure, kin) -> Solved:
+    """The loads and reactions of the rows of ``kin`` (a whole sweep, a block of it or a
+    stack of scenes): the place where rows are solved once their motion is known."""
+    return _solve_loads(sc, structure, kin)
+
+
+def _solve_loads(sc, structure, kin) -> Solved:
     inertia = inertia_loads(sc, kin)
     applied, undefined = applied_loads(sc, kin)
     loads = applied + inertia
     if has_friction(sc):
         reactions, drive, fl, locking, at_rest = solve_with_friction(sc, kin, loads)
-        return Solution(sc, structure, kin, loads + fl, reactions, drive,
-                        np.broadcast_to(undefined, (kin.n,)) | at_rest, self_locking=locking)
+        return Solved(sc, structure, kin, loads + fl, reactions, drive,
+                      np.broadcast_to(undefined, (kin.n,)) | at_rest, self_locking=locking)
     acc = resultants(loads, sc.bodies, kin.n)
     # the loads are let go before the reactions are solved (a lower peak of memory: at
     # large sizes fresh pages cost more than the arithmetic); Solution.loads computes them
     # again, with the same numbers, when asked for
     del loads, inertia, applied
     reactions, drive = solve_reactions(kin, acc)
-    return Solution(sc, structure, kin, None, reactions, drive, undefined)
+    return Solved(sc, structure, kin, None, reactions, drive, undefined)
 
 
-def _check_finite(sol: Solution) -> None:
+def _check_finite(sol: Solved) -> None:
     """Never a silent NaN: every number behind every table is finite, or the scene is
     refused naming the first position where it is not.
 
@@ -219,3 +239,17 @@ def _check_finite(sol: Solution) -> None:
                 "the solution overflows (numbers too large or a degenerate geometry) at "
                 f"driver position {sol.positions[bad[0]]:g} {unit}; check the scene's "
                 "dimensions")
+
+
+def _trapped(sc, structure, pos: np.ndarray, positions) -> Solved | LeanSolved | None:
+    """:meth:`Sweep.trapped` of ``sc`` at ``pos`` (``positions``: as given, or None)."""
+    sweep = Sweep.__new__(Sweep)
+    sweep.scene, sweep.structure, sweep.given, sweep.positions = sc, structure, positions, pos
+    sweep.blocked, sweep.trusty = blockable(sc, pos.size), True
+    return sweep.trapped()
+
+
+# kinetostatics.solver.pipeline.solve, deprecated: the public solve is
+# kinetostatics.solve (the results wrap the arrays); the package root stands above every
+# subpackage, so no import runs upward
+__getattr__ = moved_names(__name__, {"solve": ("kinetostatics", "solve")})

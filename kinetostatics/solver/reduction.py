@@ -25,7 +25,7 @@ from .kinematics import Kinematics, solve_kinematics
 from .loads import concentrated_masses
 
 if TYPE_CHECKING:
-    from ..results import Solution
+    from ..results import Solution  # noqa: F401  (a name for the type hints only)
 
 
 LOAD_KINDS = ("applied", "gravity", "inertia", "friction")

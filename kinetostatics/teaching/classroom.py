@@ -147,7 +147,7 @@ def generate_class(exercise: str | Exercise, students: str | Path | Iterable[Any
             done = run_batch(_student_files, tasks, executor=pool)
     files = []
     for sid, (variant, written) in zip(ids, done, strict=True):
-        ex._cache.setdefault(sid, variant)        # the key below needs no new solve
+        ex.remember(sid, variant)                 # the key below needs no new solve
         files += [Path(f) for f in written]
     cls = ex.generate(ids)
     for name, df in (("key", cls.key), ("variants", cls.variants),

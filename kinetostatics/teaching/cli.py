@@ -53,6 +53,7 @@ def add_commands(sub) -> None:
                    help="read the saved answer cells without running the notebooks")
     r.add_argument("--timeout", type=float, default=60.0,
                    help="seconds allowed per notebook cell (default 60)")
+    _limit_options(r)
     r.add_argument("--jobs", type=int,
                    help="notebooks run at the same time, in processes (default: cores, "
                         "at most 4)")
@@ -68,6 +69,32 @@ def add_commands(sub) -> None:
     r.add_argument("--lms", nargs=2, metavar=("moodle|canvas", "FILE.csv"),
                    help="write the per-student totals for a gradebook import")
     r.set_defaults(func=_cmd_grade)
+
+
+def _limit_options(r) -> None:
+    from .sandbox import Limits
+
+    lim = Limits()
+    r.add_argument("--unsandboxed", action="store_true",
+                   help="run the notebooks as you, with no isolation (only where bubblewrap "
+                        "cannot run; every run and grades_students.csv say so)")
+    for name, kind, what in (
+            ("memory_mb", int, "address space of each kernel process, MB"),
+            ("notebook_seconds", float, "wall time of a whole notebook, s"),
+            ("cpu_seconds", int, "CPU seconds of each kernel process"),
+            ("processes", int, "processes and threads of a kernel"),
+            ("file_mb", int, "size of a file a notebook writes, MB"),
+            ("output_mb", float, "what a notebook prints and displays, MB")):
+        r.add_argument("--" + name.replace("_", "-"), type=kind, default=getattr(lim, name),
+                       help=f"sandbox limit: {what} (default {getattr(lim, name):g})")
+
+
+def _limits(args):
+    from .sandbox import Limits
+
+    return Limits(memory_mb=args.memory_mb, cell_seconds=args.timeout,
+                  notebook_seconds=args.notebook_seconds, cpu_seconds=args.cpu_seconds,
+                  processes=args.processes, file_mb=args.file_mb, output_mb=args.output_mb)
 
 
 def _cmd_list(args) -> int:
@@ -102,29 +129,9 @@ def _cmd_generate(args) -> int:
     return 0
 
 
-def _cmd_grade(args) -> int:
-    from ..model.errors import WorkbenchError
-    from .classroom import grade_class
-    from .lms import LMS, write_lms
-    from .questions import TOLERANCE_RULE
-
-    if not 0.0 <= args.unit_slip_credit <= 1.0:
-        raise WorkbenchError(f"--unit-slip-credit {args.unit_slip_credit:g}: give a number "
-                             "in 0..1")
-    if args.lms and args.lms[0].lower() not in LMS:
-        raise WorkbenchError(f"--lms {args.lms[0]!r}: give one of {', '.join(LMS)}")
-    t = time.perf_counter()
-    rep = grade_class(args.dir, args.submissions, execute=not args.no_execute,
-                      timeout=args.timeout, jobs=args.jobs, on_error=args.on_error,
-                      unit_slip_credit=args.unit_slip_credit, prefer=args.prefer)
-    dt = time.perf_counter() - t
-    credit = f"{100 * args.unit_slip_credit:g} %"
-    print(f"tolerance: {TOLERANCE_RULE} A unit slip (the key times a unit factor: N mm "
-          f"for N m, rad for deg, rpm for rad/s, a flipped sign) earns {credit} credit.")
-    how = "read as saved" if args.no_execute else "run in a clean kernel"
-    n = len({x["file"] for x in rep.submissions} | {b["file"] for b in rep.broken})
-    print(f"read {n} submission(s) in {dt:.1f} s (notebooks {how}; one that does not run "
-          f"is graded {'0' if args.on_error == 'zero' else 'on its answers cell as saved'})")
+def _problems(rep) -> list[str]:
+    """The console's ``!!`` lines: broken, unknown, conflicting, duplicated, flagged
+    and missing submissions."""
     loud = []
     for b in rep.broken:
         who = f"{b['student']} graded 0" if b["student"] else "no known id: not graded"
@@ -140,31 +147,76 @@ def _cmd_grade(args) -> int:
                     f"{dup['kept']} ({dup['why']})")
     for s, fl in rep.flags.items():
         for f in fl:
+            if f == "no submission" or f.endswith("(graded 0)") or " submissions: kept " in f:
+                continue                    # said above: MISSING, BROKEN, DUPLICATE
             tag = "COPY?" if f.startswith(("copy?", "same answers")) else "FLAG"
             loud.append(f"{tag} {s}: {f}")
     if rep.missing:
         loud.append(f"MISSING {len(rep.missing)} student(s) handed in nothing (graded 0): "
                     f"{', '.join(rep.missing)}")
+    return loud
+
+
+def _cmd_grade(args) -> int:
+    from ..model.errors import WorkbenchError
+    from ..model.outputs import staged_folder
+    from .classroom import grade_class
+    from .lms import LMS, write_lms
+    from .questions import TOLERANCE_RULE
+
+    if not 0.0 <= args.unit_slip_credit <= 1.0:
+        raise WorkbenchError(f"--unit-slip-credit {args.unit_slip_credit:g}: give a number "
+                             "in 0..1")
+    if args.lms and args.lms[0].lower() not in LMS:
+        raise WorkbenchError(f"--lms {args.lms[0]!r}: give one of {', '.join(LMS)}")
+    t = time.perf_counter()
+    hide = [p for p in (args.out, args.lms[1] if args.lms else None) if p]
+    rep = grade_class(args.dir, args.submissions, execute=not args.no_execute,
+                      jobs=args.jobs, on_error=args.on_error,
+                      unit_slip_credit=args.unit_slip_credit, prefer=args.prefer,
+                      limits=_limits(args), unsandboxed=args.unsandboxed,
+                      hide=[Path(p).resolve().parent / Path(p).name for p in hide])
+    dt = time.perf_counter() - t
+    if rep.sandbox.startswith("none"):
+        print("!! WARNING: --unsandboxed: the notebooks ran as you, with your files, your "
+              "network and your processes in their reach (grades_students.csv says so "
+              "on every row)")
+    elif rep.sandbox:
+        print(f"sandbox: {rep.sandbox}")
+    credit = f"{100 * args.unit_slip_credit:g} %"
+    print(f"tolerance: {TOLERANCE_RULE} A unit slip (the key times a unit factor: N mm "
+          f"for N m, rad for deg, rpm for rad/s) or a sign slip (the sign flipped) earns "
+          f"{credit} credit.")
+    how = ("read as saved" if args.no_execute else
+           "run in a fresh kernel, no sandbox" if args.unsandboxed else
+           "run in a fresh kernel, each in its sandbox")
+    n = len({x["file"] for x in rep.submissions} | {b["file"] for b in rep.broken})
+    print(f"read {n} submission(s) in {dt:.1f} s (notebooks {how}; one that does not run "
+          f"is graded {'0' if args.on_error == 'zero' else 'on its answers cell as saved'})")
+    loud = _problems(rep)
     for line in loud:
         print("!! " + line)
     sc = rep.scores
     print(f"{'student':16s} {'score':>7s} {'points':>9s}  failed")
     for row in sc.to_dict("records"):
-        print(f"{row['student']:16s} {row['score %']:6.1f}% {row['points']:4g}/{row['total']:<4d}"
-              f"  {row['failed']}")
-    print(f"class: {len(sc)} students, mean {sc['score %'].mean():.1f} %")
+        if row["total"]:
+            print(f"{row['student']:16s} {row['score %']:6.1f}% "
+                  f"{row['points']:4g}/{row['total']:<4d}  {row['failed']}")
+    sc_class = sc[sc["total"] > 0]
+    print(f"class: {len(sc_class)} students, mean {sc_class['score %'].mean():.1f} %")
     if loud:
         print(f"!! {len(loud)} problem(s) listed above (lines starting with !!)")
     if args.out:
         out = Path(args.out)
-        out.parent.mkdir(parents=True, exist_ok=True)
-        rep.graded.to_csv(out, index=False)
         summary = out.with_name(out.stem + "_students.csv")
-        sc.to_csv(summary, index=False)
+        with staged_folder(out.parent) as stage:      # both files, or neither
+            rep.graded.to_csv(stage.file(out.name), index=False)
+            sc.to_csv(stage.file(summary.name), index=False)
         print(f"wrote {out} ({len(rep.graded)} rows: one per student and question, one per "
-              f"submission not graded) and {summary} ({len(sc)} rows: one per student)")
+              f"submission not graded) and {summary} ({len(sc)} rows: one per student, one "
+              "per unknown id or unreadable file)")
     if args.lms:
-        p = write_lms(sc, args.lms[0], args.lms[1], rep.exercise or "exercise")
-        print(f"wrote {p} ({args.lms[0].lower()} gradebook import, {len(sc)} students, "
+        p = write_lms(sc_class, args.lms[0], args.lms[1], rep.exercise or "exercise")
+        print(f"wrote {p} ({args.lms[0].lower()} gradebook import, {len(sc_class)} students, "
               "score in %)")
     return 0

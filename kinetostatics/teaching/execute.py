@@ -1,48 +1,30 @@
-"""Running a submitted notebook in a clean kernel, without network, to read its answers.
+"""Running a submitted notebook in a fresh kernel, in a sandbox, to read its answers.
 
 A copy of the notebook runs top to bottom in a fresh ``python3`` kernel (nbclient),
-from an empty temporary folder, with a time limit per cell; the submitted file is
-never changed. Before the student's first cell a guard cell switches the network off
-(Python sockets may connect only to this machine: a guard against accidental
-downloads, not a sandbox against a hostile student). After the last cell the kernel's
+from an empty scratch folder, with a time limit per cell; the submitted file is never
+changed. The kernel runs in bubblewrap (:mod:`~kinetostatics.teaching.sandbox`): no
+network, no view of the grader, the class folder or the other submissions, limits on
+memory, time, processes, files and output. After the last cell the kernel's
 ``student_id`` and ``answers`` are read, so computed answers count as computed.
+
+Without a sandbox (``sandbox=None``: the teacher's explicit ``--unsandboxed``) the
+kernel runs as the teacher, with the whole machine in reach.
 """
 
 from __future__ import annotations
 
 import json
-import math
 import os
 import subprocess
-import tempfile
 from pathlib import Path
 from typing import Any
 
 from ..model.errors import WorkbenchError
+from .sandbox import Limits, Sandbox, exit_reason
 
 __all__ = ["NotebookRunError", "SubmissionError", "cell_name", "run_notebook"]
 
 _MARK = "KS-ANSWERS "
-_GUARD = '''import socket as _ks_socket
-
-def _ks_no_network(*_a, **_k):
-    raise OSError("the network is switched off while the notebook is graded")
-
-def _ks_guard(orig):
-    def connect(self, address, *rest):
-        if self.family in (_ks_socket.AF_INET, _ks_socket.AF_INET6) and \\
-                str(address[0]) not in ("127.0.0.1", "::1", "localhost"):
-            _ks_no_network()
-        return orig(self, address, *rest)
-    return connect
-
-_ks_socket.socket.connect = _ks_guard(_ks_socket.socket.connect)
-_ks_socket.socket.connect_ex = _ks_guard(_ks_socket.socket.connect_ex)
-_ks_getaddrinfo = _ks_socket.getaddrinfo
-_ks_socket.getaddrinfo = lambda host, *a, **k: (
-    _ks_getaddrinfo(host, *a, **k) if host in (None, "localhost", "127.0.0.1", "::1")
-    else _ks_no_network())
-del _ks_guard'''
 _READER = '''import json as _ks_json
 
 def _ks_value(v):
@@ -90,9 +72,9 @@ def cell_name(nb, k: int) -> str:
 
 
 def _failed_cell(run, nb) -> str:
-    """The failing cell of ``run`` (``nb`` with a guard cell before its first), named
-    in ``nb``'s numbering."""
-    for k, cell in enumerate(run.cells):
+    """The failing cell of ``run`` (``nb`` with the answers' reader after its last),
+    named in ``nb``'s numbering."""
+    for k, cell in enumerate(run.cells, start=1):
         for out in cell.get("outputs", []):
             if out.get("output_type") == "error":
                 return f"{cell_name(nb, k)} raised {out.get('ename')}: {out.get('evalue')}"
@@ -102,7 +84,7 @@ def _failed_cell(run, nb) -> str:
 KERNEL_STARTS = 3      # a kernel that dies before it answers is started again, twice
 
 
-def _execute(client) -> None:
+def _execute(client, env: dict[str, str]) -> None:
     """Run ``client()``'s notebook; a kernel that dies before it replies to its first
     request (no cell has run: the machine's hiccup, not the notebook's fault; seen now
     and then in this project's tests, two kernels starting at a time on a 2-core
@@ -110,9 +92,11 @@ def _execute(client) -> None:
     ``KERNEL_STARTS`` times in all."""
     for attempt in range(1, KERNEL_STARTS + 1):
         try:
-            # the kernel's own stderr (its start-up chatter) is not the teacher's business;
-            # what the cells print comes back through the notebook's outputs
-            client().execute(env=_env(), stderr=subprocess.DEVNULL)
+            # the kernel's own output streams (its start-up chatter) are not the teacher's
+            # business, nor is the grader's terminal the kernel's: what the cells print
+            # comes back through the notebook's outputs
+            client().execute(env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                             stderr=subprocess.DEVNULL)
             return
         except RuntimeError as exc:
             if "before replying to kernel_info" not in str(exc) or attempt == KERNEL_STARTS:
@@ -120,22 +104,72 @@ def _execute(client) -> None:
 
 
 class NotebookRunError(SubmissionError):
-    """The notebook did not run to its end: a cell raised, ran too long, or the kernel
-    died (its saved answers may still be read)."""
+    """The notebook did not run to its end: a cell raised, ran too long, the kernel
+    died or hit a limit of its sandbox (its saved answers may still be read)."""
 
 
-def run_notebook(nb, timeout: float = 60.0, kernel: str = "python3"
-                 ) -> tuple[str | None, dict[str, Any]]:
-    """Run a notebook in a clean kernel and read its ``student_id`` and ``answers``.
+def _run_in(run, tmp: str, timeout: float, kernel: str, sandbox: Sandbox | None,
+            made: list) -> None:
+    """Execute ``run`` in a kernel started in ``tmp``; ``made`` receives the clients
+    (the last one knows why it stopped a kernel)."""
+    from .kernels import GradingClient, sandboxed_kernel
+
+    if sandbox is None:
+        limits = Limits(cell_seconds=max(1.0, float(timeout)), notebook_seconds=1e9)
+        env = _env()
+    else:
+        limits = sandbox.limits
+        uid = sandbox.prepare(tmp)
+        env = {"PATH": "/usr/bin:/bin"}        # bwrap's own; the kernel's is built anew
+
+    def client():
+        km = None if sandbox is None else sandboxed_kernel(sandbox, tmp, uid, kernel)
+        made.append(GradingClient(run, limits, km=km, kernel_name=kernel,
+                                  resources={"metadata": {"path": tmp}}))
+        return made[-1]
+    try:
+        _execute(client, env)
+    finally:
+        if made:
+            made[-1].close()
+
+
+def _stopped(made: list, nb, dead: bool = False) -> str:
+    """Why the run stopped (a cell's or the notebook's time, the output limit, the
+    kernel's death and its cause), naming the cell in ``nb``'s numbering."""
+    c = made[-1] if made else None
+    k = c.cell + 1 if c is not None else 0      # run.cells[k - 1] is the student's cell k
+    where = cell_name(nb, k) if 0 < k <= len(nb.cells) else "a cell"
+    if c is None:
+        return "the kernel died while running the notebook"
+    if c.stopped:
+        return f"{where} {c.stopped}"
+    if not dead:
+        if c.whole:
+            return (f"the notebook ran longer than {c.limits.notebook_seconds:g} s (the "
+                    f"limit per notebook), in {where}")
+        return f"{where} ran longer than {c.limits.cell_seconds:g} s"
+    code = c.exit_code()
+    why = "" if code is None else f": {exit_reason(code, c.limits)}"
+    return f"the kernel died in {where}{why}"
+
+
+def run_notebook(nb, timeout: float = 60.0, kernel: str = "python3",
+                 sandbox: Sandbox | None = None) -> tuple[str | None, dict[str, Any]]:
+    """Run a notebook in a fresh kernel and read its ``student_id`` and ``answers``.
 
     Parameters
     ----------
     nb : nbformat.NotebookNode
         The submitted notebook (not changed).
     timeout : float
-        Seconds allowed per cell (rounded up to whole seconds).
+        Seconds allowed per cell (rounded up to whole seconds) without a sandbox; in a
+        sandbox its limits' ``cell_seconds`` rule.
     kernel : str
         Kernel name.
+    sandbox : Sandbox, optional
+        The sandbox the kernel runs in (:func:`sandbox_or_refuse`); None runs the
+        kernel as the grader's user, with no isolation.
 
     Returns
     -------
@@ -147,49 +181,48 @@ def run_notebook(nb, timeout: float = 60.0, kernel: str = "python3"
     Raises
     ------
     SubmissionError
-        A cell raised (which one and what), a cell ran longer than ``timeout``, the
-        kernel died, or the notebook leaves no ``answers`` dict.
+        A cell raised (which one and what), a cell or the notebook ran longer than
+        allowed, the kernel died or hit a limit (which), or the notebook leaves no
+        ``answers`` dict.
     """
     import copy
+    import tempfile
 
     import nbformat
-    from nbclient import NotebookClient
     from nbclient.exceptions import CellExecutionError, CellTimeoutError, DeadKernelError
 
     run = copy.deepcopy(nb)
     for cell in run.cells:
         cell.pop("id", None)
-    run.cells.insert(0, nbformat.v4.new_code_cell(_GUARD))
     run.cells.append(nbformat.v4.new_code_cell(_READER))
     run.metadata["kernelspec"] = {"name": kernel, "display_name": kernel,
                                   "language": "python"}
-    started = [0]
-
-    def on_start(cell=None, cell_index=0, **_):
-        started[0] = int(cell_index)
-
-    orig = [*nb.cells]
-    with tempfile.TemporaryDirectory(prefix="ks-grade-") as tmp:
+    with tempfile.TemporaryDirectory(prefix="ks-grade-", ignore_cleanup_errors=True) as tmp:
+        made: list = []
         try:
-            _execute(lambda: NotebookClient(
-                run, timeout=max(1, math.ceil(timeout)), kernel_name=kernel,
-                allow_errors=False, resources={"metadata": {"path": tmp}},
-                on_cell_start=on_start))
+            _run_in(run, tmp, timeout, kernel, sandbox, made)
         except CellTimeoutError:
-            # run.cells[k] is the student's cell k (the guard cell is run.cells[0])
-            k = started[0]
-            where = cell_name(nb, k) if 0 < k <= len(orig) else "a cell"
-            raise NotebookRunError(f"{where} ran longer than {timeout:g} s") from None
+            raise NotebookRunError(_stopped(made, nb)) from None
         except DeadKernelError:
-            raise NotebookRunError("the kernel died while running the notebook") from None
+            raise NotebookRunError(_stopped(made, nb, dead=True)) from None
         except CellExecutionError:
             raise NotebookRunError(_failed_cell(run, nb)) from None
+    return _answers_read(run)
+
+
+def _answers_read(run) -> tuple[str | None, dict[str, Any]]:
     text = "".join(o.get("text", "") for o in run.cells[-1].get("outputs", [])
                    if o.get("output_type") == "stream")
     line = next((ln for ln in text.splitlines() if ln.startswith(_MARK)), None)
     if line is None:
         raise SubmissionError("the notebook's answers could not be read after the run")
-    got = json.loads(line[len(_MARK):])
-    if got["answers"] is None:
+    try:
+        got = json.loads(line[len(_MARK):])
+        answers = got["answers"]
+        sid = got["student_id"]
+    except (ValueError, TypeError, KeyError):
+        raise SubmissionError("the notebook's answers could not be read after the "
+                              "run") from None
+    if not isinstance(answers, dict):
         raise SubmissionError("after the run there is no dict named 'answers'")
-    return got["student_id"], got["answers"]
+    return (None if sid is None else str(sid)), answers

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Mapping, Sequence
+from decimal import ROUND_HALF_UP, Decimal
 from typing import Any
 
 import numpy as np
@@ -18,7 +19,7 @@ import pandas as pd
 from ..model.errors import WorkbenchError
 from .answers import read_answers
 from .questions import ANGLE_ATOL, DEFAULT_RTOL, normalize_id, var_name, wrap_angle
-from .slips import answer_value, slip_note
+from .slips import answer_value, slip_note, slip_status
 
 __all__ = ["class_table", "grade"]
 
@@ -92,7 +93,70 @@ def grade(answers: Any, key: Any, *, rtol: float | None = None, atol: float | No
         ``missing_students`` (in the key, no answer), ``unknown_students`` (answers
         but not in the key), ``unknown_questions`` (answered but not asked).
     """
+    if not 0.0 <= float(unit_slip_credit) <= 1.0:
+        raise WorkbenchError(f"unit slip credit {unit_slip_credit!r}: give a number in 0..1")
     ans = read_answers(answers, student)
+    kt, ans = _matched(key, ans, set(angle_keys))
+    key_students = list(dict.fromkeys(kt["student"]))
+    students = list(dict.fromkeys(ans["student"]))
+    graded_students = [s for s in key_students if s in set(ans["student"])]
+    kt = kt[kt["student"].isin(graded_students)]
+    m = kt.merge(ans, on=["student", "question"], how="left")
+    exp = m["expected"].to_numpy(dtype=float)
+    units = m["unit"].fillna("").astype(str)
+    read = [answer_value(a, u) for a, u in zip(m["answer"], units, strict=True)]
+    got = np.array([r[0] for r in read], dtype=float)
+    notes = [r[1] for r in read]
+    is_angle = (m["kind"] == "angle").to_numpy()
+    tol = _tolerance(m, is_angle, rtol, atol, angle_atol)
+    err = np.where(is_angle, wrap_angle(got - exp), got - exp)
+    with np.errstate(invalid="ignore"):
+        passed = np.abs(err) <= tol
+    passed &= ~np.isnan(got)
+    missing = m["answer"].isna().to_numpy() | np.array(
+        [isinstance(x, float) and math.isnan(x) for x in m["answer"]], dtype=bool)
+    status = np.where(passed, "ok", np.where(missing, "missing",
+                                             np.where(np.isnan(got), "not a number", "wrong")))
+    status = np.where([("the question asks for" in n) for n in notes], "wrong unit", status)
+    status = status.astype(object)
+    points = passed.astype(float)
+    kinds = np.where(is_angle, "angle", "number")
+    for i in np.flatnonzero(status == "wrong"):
+        slip = slip_note(str(m["question"].iat[i]), str(units.iat[i]), str(kinds[i]),
+                         float(got[i]), float(exp[i]), float(tol[i]))
+        if slip:
+            status[i], points[i] = slip_status(slip), float(unit_slip_credit)
+            notes[i] = "; ".join(filter(None, [slip, notes[i]]))
+    graded = pd.DataFrame({
+        "student": m["student"], "question": m["question"], "expected": exp,
+        "answer": got, "unit": m["unit"].fillna(""), "error": err, "tolerance": tol,
+        "passed": passed, "points": points, "status": status.astype(str), "note": notes})
+    st = graded.status
+    summary = {
+        "students": len(graded_students), "items": int(len(graded)),
+        "passed": int(graded.passed.sum()),
+        "failed": int(st.isin(["wrong", "not a number", "wrong unit", *SLIP_STATUSES]).sum()),
+        "missing": int((st == "missing").sum()),
+        "unit_slips": int(st.isin(["unit slip", "unit and sign slip"]).sum()),
+        "sign_slips": int(st.isin(["sign slip", "unit and sign slip"]).sum()),
+        "score": float(graded.points.mean()) if len(graded) else 0.0,
+        "per_student": _per_student(graded),
+        "missing_students": [s for s in key_students if s not in set(ans["student"])],
+        "unknown_students": [s for s in students if s not in set(key_students)],
+        "unknown_questions": sorted({q for q in ans["question"]
+                                     if q not in set(kt["question"])}),
+    }
+    return graded, summary
+
+
+SLIP_STATUSES = ("unit slip", "sign slip", "unit and sign slip")
+"""The statuses of a slip (credited ``unit_slip_credit``)."""
+
+
+def _matched(key: Any, ans: pd.DataFrame, angle_keys: set[str]
+             ) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """The key table (kind, unit, tolerances filled) and the answers, their questions
+    and ids matched to the key's."""
     students = list(dict.fromkeys(ans["student"].astype(str)))
     if isinstance(key, Mapping) and not isinstance(key, pd.DataFrame) and len(students) > 1:
         raise WorkbenchError("a dict key is one student's: grade one student at a time, or "
@@ -111,7 +175,6 @@ def grade(answers: Any, key: Any, *, rtol: float | None = None, atol: float | No
         kt["student"] = students[0]
     if (kt["student"] == "").all() and len(students) == 1:
         kt["student"] = students[0]
-    angle_keys = set(angle_keys)
     if "kind" not in kt.columns:
         kt["kind"] = "number"
     kt.loc[kt["question"].isin(angle_keys), "kind"] = "angle"
@@ -126,75 +189,41 @@ def grade(answers: Any, key: Any, *, rtol: float | None = None, atol: float | No
     # ids match after trimming and case-folding: " S001" answers for "s001"
     canon = {normalize_id(k): k for k in kt["student"]}
     ans["student"] = [canon.get(normalize_id(a), a) for a in ans["student"].astype(str)]
-    students = list(dict.fromkeys(ans["student"]))
-    ans = ans.drop_duplicates(["student", "question"], keep="last")
-    key_students = list(dict.fromkeys(kt["student"]))
-    graded_students = [s for s in key_students if s in set(ans["student"])]
-    unknown_students = [s for s in students if s not in set(key_students)]
-    kt = kt[kt["student"].isin(graded_students)]
-    m = kt.merge(ans, on=["student", "question"], how="left")
+    return kt, ans.drop_duplicates(["student", "question"], keep="last")
+
+
+def _tolerance(m: pd.DataFrame, is_angle: np.ndarray, rtol, atol, angle_atol) -> np.ndarray:
+    """Each row's tolerance: max(rtol |key|, atol) for numbers, the angle's atol."""
     exp = m["expected"].to_numpy(dtype=float)
-    if not 0.0 <= float(unit_slip_credit) <= 1.0:
-        raise WorkbenchError(f"unit slip credit {unit_slip_credit!r}: give a number in 0..1")
-    units = m["unit"].fillna("").astype(str)
-    read = [answer_value(a, u) for a, u in zip(m["answer"], units, strict=True)]
-    got = np.array([r[0] for r in read], dtype=float)
-    notes = [r[1] for r in read]
-    is_angle = (m["kind"] == "angle").to_numpy()
+    key_atol = m["atol"].to_numpy(dtype=float)
     r = np.where(np.isnan(m["rtol"].to_numpy(dtype=float)), DEFAULT_RTOL,
                  m["rtol"].to_numpy(dtype=float))
-    a = np.where(np.isnan(m["atol"].to_numpy(dtype=float)), 0.0,
-                 m["atol"].to_numpy(dtype=float))
+    a = np.where(np.isnan(key_atol), 0.0, key_atol)
     if rtol is not None:
         r = np.full_like(r, float(rtol))
     if atol is not None:
         a = np.full_like(a, float(atol))
-    a_ang = np.where(np.isnan(m["atol"].to_numpy(dtype=float)), ANGLE_ATOL,
-                     m["atol"].to_numpy(dtype=float))
+    a_ang = np.where(np.isnan(key_atol), ANGLE_ATOL, key_atol)
     if angle_atol is not None:
         a_ang = np.full_like(a_ang, float(angle_atol))
-    err = np.where(is_angle, wrap_angle(got - exp), got - exp)
-    tol = np.where(is_angle, a_ang, np.maximum(a, r * np.abs(exp)))
-    with np.errstate(invalid="ignore"):
-        passed = np.abs(err) <= tol
-    passed &= ~np.isnan(got)
-    missing = m["answer"].isna().to_numpy() | np.array(
-        [isinstance(x, float) and math.isnan(x) for x in m["answer"]], dtype=bool)
-    status = np.where(passed, "ok", np.where(missing, "missing",
-                                             np.where(np.isnan(got), "not a number", "wrong")))
-    status = np.where([("the question asks for" in n) for n in notes], "wrong unit", status)
-    points = passed.astype(float)
-    kinds = np.where(is_angle, "angle", "number")
-    for i in np.flatnonzero(status == "wrong"):
-        slip = slip_note(str(m["question"].iat[i]), str(units.iat[i]), str(kinds[i]),
-                         float(got[i]), float(exp[i]), float(tol[i]))
-        if slip:
-            status[i], points[i] = "unit slip", float(unit_slip_credit)
-            notes[i] = "; ".join(filter(None, [slip, notes[i]]))
-    graded = pd.DataFrame({
-        "student": m["student"], "question": m["question"], "expected": exp,
-        "answer": got, "unit": m["unit"].fillna(""), "error": err, "tolerance": tol,
-        "passed": passed, "points": points, "status": status, "note": notes})
+    return np.where(is_angle, a_ang, np.maximum(a, r * np.abs(exp)))
+
+
+def _per_student(graded: pd.DataFrame) -> dict[str, dict]:
     per = {}
     for s, g in graded.groupby("student", sort=False):
         per[s] = {"passed": int(g.passed.sum()), "total": int(len(g)),
                   "points": float(g.points.sum()),
                   "score": float(g.points.mean()) if len(g) else 0.0,
                   "failed": g.loc[~g.passed, "question"].tolist()}
-    asked = set(kt["question"])
-    summary = {
-        "students": len(per), "items": int(len(graded)), "passed": int(graded.passed.sum()),
-        "failed": int(graded.status.isin(["wrong", "not a number", "unit slip",
-                                           "wrong unit"]).sum()),
-        "missing": int((graded.status == "missing").sum()),
-        "unit_slips": int((graded.status == "unit slip").sum()),
-        "score": float(graded.points.mean()) if len(graded) else 0.0,
-        "per_student": per,
-        "missing_students": [s for s in key_students if s not in set(ans["student"])],
-        "unknown_students": unknown_students,
-        "unknown_questions": sorted({q for q in ans["question"] if q not in asked}),
-    }
-    return graded, summary
+    return per
+
+
+def _percent(passed: int, total: int) -> float:
+    """Percent to one decimal, half up (the gradebooks' rule)."""
+    if not total:
+        return float("nan")
+    return float((Decimal(100 * passed) / total).quantize(Decimal("0.1"), ROUND_HALF_UP))
 
 
 def class_table(graded: pd.DataFrame) -> pd.DataFrame:
@@ -213,7 +242,7 @@ def class_table(graded: pd.DataFrame) -> pd.DataFrame:
     rows = []
     for s, g in graded.groupby("student", sort=False):
         rows.append({"student": s, "passed": int(g.passed.sum()), "total": int(len(g)),
-                     "score %": round(100.0 * float(g.passed.mean()), 1),
+                     "score %": _percent(int(g.passed.sum()), len(g)),
                      "failed": ", ".join(g.loc[~g.passed, "question"])})
     return pd.DataFrame(rows, columns=["student", "passed", "total", "score %", "failed"])
 

@@ -94,7 +94,7 @@ def _mechanism_values(raw: dict, questions: Sequence[Question],
     """question -> (value, unit, kind, atol). ``solved``: ``_vouched(solve, s)`` (the
     Solution or the exception) of the scene and of its sweep with the asked positions
     added, by the scene's id, where already solved (:func:`key_rows_many`)."""
-    from ..solver.pipeline import solve
+    from ..results import solve
 
     done = solved.get(id(raw), (None, None)) if solved is not None else (None, None)
 
@@ -109,102 +109,11 @@ def _mechanism_values(raw: dict, questions: Sequence[Question],
     aug = _with_positions(raw, at) if at else None
     psol = vouched(aug, done[1]) if aug is not None else sol
     summ = sol.summary()
-    dq = sol.driver_quantity
     out: dict[str, tuple] = {}
-    n = psol.positions.size
     for q in questions:
         unit = _MECH_UNITS.get(q.q, "")
         kind = "angle" if q.q in _ANGLES else "number"
-        if q.q in ("Me", "Fe"):
-            if q.q != dq:
-                raise WorkbenchError(f"question {q.text!r}: this driver has {dq}, not {q.q}")
-            _needs_position(q)
-            val = float(psol.Me[_row_of(psol, q)])
-            scale = float(np.abs(sol.Me).max())
-        elif q.q in ("Me_mean", "Me_max", "Me_min", "Fe_mean", "Fe_max", "Fe_min"):
-            if q.q[:2] != dq:
-                raise WorkbenchError(f"question {q.text!r}: this driver has {dq}, not "
-                                     f"{q.q[:2]}")
-            val = float(summ[q.q])
-            scale = float(np.abs(sol.Me).max())
-        elif q.q in ("F", "Fx", "Fy", "Fmax", "Fangle", "N", "M"):
-            if q.arg not in sol.scene.joints:
-                raise WorkbenchError(f"question {q.text!r}: no joint {q.arg!r}; joints: "
-                                     f"{', '.join(sol.scene.joints)}")
-            fx, fy = sol.reaction(q.arg)
-            scale = float(np.hypot(fx, fy).max())
-            if q.q == "Fmax":
-                val = float(summ["reaction_max"][q.arg]["F"])
-            else:
-                _needs_position(q)
-                i = _row_of(psol, q)
-                px, py = psol.reaction(q.arg)
-                if q.q in ("N", "M"):
-                    r = psol.joint_reactions[q.arg]
-                    if r.N is None:
-                        raise WorkbenchError(f"question {q.text!r}: joint {q.arg!r} is "
-                                             "revolute: it has no N or M")
-                    arr = r.N if q.q == "N" else r.M
-                    val = float(np.broadcast_to(arr, (n,))[i])
-                    s0 = sol.joint_reactions[q.arg]
-                    full = np.broadcast_to(s0.N if q.q == "N" else s0.M,
-                                           sol.positions.shape)
-                    scale = float(np.abs(full).max())
-                else:
-                    val = {"F": float(np.hypot(px[i], py[i])), "Fx": float(px[i]),
-                           "Fy": float(py[i]),
-                           "Fangle": float(np.degrees(np.arctan2(py[i], px[i])) % 360.0)
-                           }[q.q]
-        elif q.q == "tau_min":
-            val = summ["transmission_angle_min"]
-            if val is None:
-                raise WorkbenchError(f"question {q.text!r}: the mechanism has no dyad")
-            val, scale, unit = float(val), None, "deg"
-        elif q.q == "tau":
-            _needs_position(q)
-            t = psol.dyads
-            g = t[t.dyad == int(q.arg or 1)]
-            if g.empty:
-                raise WorkbenchError(f"question {q.text!r}: no dyad {q.arg}")
-            t = float(g.transmission_angle.to_numpy()[_row_of(psol, q)]) % 180.0
-            val = min(t, 180.0 - t)             # the summary's definition, min(tau, 180 - tau)
-            scale = None
-        elif q.q in ("angle", "omega", "alpha"):
-            _needs_position(q)
-            if q.arg not in sol.scene.bodies:
-                raise WorkbenchError(f"question {q.text!r}: no body {q.arg!r}; bodies: "
-                                     f"{', '.join(sol.scene.bodies)}")
-            t = psol.bodies
-            g = t[t.body == q.arg]
-            val = float(g[q.q].to_numpy()[_row_of(psol, q)])
-            if q.q == "angle":
-                val %= 360.0
-                scale = None
-            else:
-                full = sol.bodies[sol.bodies.body == q.arg][q.q].to_numpy()
-                scale = float(np.abs(full).max())
-        elif q.q in ("x", "y", "v", "a"):
-            _needs_position(q)
-            b, _, p = (q.arg or "").partition(".")
-            k = psol.kinematics
-            g = k[(k.body == b) & (k.point == p)]
-            if g.empty:
-                raise WorkbenchError(f"question {q.text!r}: no point {q.arg!r} (write "
-                                     "'body.point', e.g. 'coupler.P')")
-            i = _row_of(psol, q)
-            row = g.iloc[i]
-            val = {"x": row.x, "y": row.y, "v": math.hypot(row.vx, row.vy),
-                   "a": math.hypot(row.ax, row.ay)}[q.q]
-            val = float(val)
-            k0 = sol.kinematics
-            g0 = k0[(k0.body == b) & (k0.point == p)]
-            scale = float({"x": np.ptp(g0.x.to_numpy()) + np.abs(g0.x).max(),
-                           "y": np.ptp(g0.y.to_numpy()) + np.abs(g0.y).max(),
-                           "v": np.hypot(g0.vx, g0.vy).max(),
-                           "a": np.hypot(g0.ax, g0.ay).max()}[q.q])
-        else:
-            raise WorkbenchError(f"question {q.text!r}: unknown mechanism quantity {q.q!r}; "
-                                 f"known: {', '.join(sorted(_MECH_UNITS))}")
+        val, scale, unit = _mechanism_value(q, sol, psol, summ, unit)
         if q.q in _PLAIN_DEG:           # in [0, 90]: a plain number, not modulo 360
             kind, atol = "number", ANGLE_ATOL
         elif kind == "angle" or unit == "deg":
@@ -213,6 +122,105 @@ def _mechanism_values(raw: dict, questions: Sequence[Question],
             atol = ATOL_FRACTION * (scale or 0.0)
         out[q.text] = (val, unit, kind, atol)
     return out
+
+
+def _mechanism_value(q: Question, sol, psol, summ: dict, unit: str
+                     ) -> tuple[float, float | None, str]:
+    """One question's (value, scale of the quantity over the cycle, unit)."""
+    dq = sol.driver_quantity
+    if q.q in ("Me", "Fe"):
+        if q.q != dq:
+            raise WorkbenchError(f"question {q.text!r}: this driver has {dq}, not {q.q}")
+        _needs_position(q)
+        return float(psol.Me[_row_of(psol, q)]), float(np.abs(sol.Me).max()), unit
+    if q.q in ("Me_mean", "Me_max", "Me_min", "Fe_mean", "Fe_max", "Fe_min"):
+        if q.q[:2] != dq:
+            raise WorkbenchError(f"question {q.text!r}: this driver has {dq}, not "
+                                 f"{q.q[:2]}")
+        return float(summ[q.q]), float(np.abs(sol.Me).max()), unit
+    if q.q in ("F", "Fx", "Fy", "Fmax", "Fangle", "N", "M"):
+        return (*_reaction_value(q, sol, psol, summ), unit)
+    if q.q == "tau_min":
+        val = summ["transmission_angle_min"]
+        if val is None:
+            raise WorkbenchError(f"question {q.text!r}: the mechanism has no dyad")
+        return float(val), None, "deg"
+    if q.q == "tau":
+        _needs_position(q)
+        t = psol.dyads
+        g = t[t.dyad == int(q.arg or 1)]
+        if g.empty:
+            raise WorkbenchError(f"question {q.text!r}: no dyad {q.arg}")
+        t = float(g.transmission_angle.to_numpy()[_row_of(psol, q)]) % 180.0
+        return min(t, 180.0 - t), None, unit   # the summary's definition, min(tau, 180 - tau)
+    if q.q in ("angle", "omega", "alpha"):
+        return (*_body_value(q, sol, psol), unit)
+    if q.q in ("x", "y", "v", "a"):
+        return (*_point_value(q, sol, psol), unit)
+    raise WorkbenchError(f"question {q.text!r}: unknown mechanism quantity {q.q!r}; "
+                         f"known: {', '.join(sorted(_MECH_UNITS))}")
+
+
+def _reaction_value(q: Question, sol, psol, summ: dict) -> tuple[float, float]:
+    """A joint's reaction asked for (F, Fx, Fy, Fmax, Fangle, N, M) and its scale."""
+    if q.arg not in sol.scene.joints:
+        raise WorkbenchError(f"question {q.text!r}: no joint {q.arg!r}; joints: "
+                             f"{', '.join(sol.scene.joints)}")
+    fx, fy = sol.reaction(q.arg)
+    scale = float(np.hypot(fx, fy).max())
+    if q.q == "Fmax":
+        return float(summ["reaction_max"][q.arg]["F"]), scale
+    _needs_position(q)
+    i = _row_of(psol, q)
+    px, py = psol.reaction(q.arg)
+    if q.q in ("N", "M"):
+        r = psol.joint_reactions[q.arg]
+        if r.N is None:
+            raise WorkbenchError(f"question {q.text!r}: joint {q.arg!r} is "
+                                 "revolute: it has no N or M")
+        arr = r.N if q.q == "N" else r.M
+        val = float(np.broadcast_to(arr, (psol.positions.size,))[i])
+        s0 = sol.joint_reactions[q.arg]
+        full = np.broadcast_to(s0.N if q.q == "N" else s0.M, sol.positions.shape)
+        return val, float(np.abs(full).max())
+    return {"F": float(np.hypot(px[i], py[i])), "Fx": float(px[i]), "Fy": float(py[i]),
+            "Fangle": float(np.degrees(np.arctan2(py[i], px[i])) % 360.0)}[q.q], scale
+
+
+def _body_value(q: Question, sol, psol) -> tuple[float, float | None]:
+    """A body's angle (modulo 360), omega or alpha asked for, and its scale."""
+    _needs_position(q)
+    if q.arg not in sol.scene.bodies:
+        raise WorkbenchError(f"question {q.text!r}: no body {q.arg!r}; bodies: "
+                             f"{', '.join(sol.scene.bodies)}")
+    t = psol.bodies
+    g = t[t.body == q.arg]
+    val = float(g[q.q].to_numpy()[_row_of(psol, q)])
+    if q.q == "angle":
+        return val % 360.0, None
+    full = sol.bodies[sol.bodies.body == q.arg][q.q].to_numpy()
+    return val, float(np.abs(full).max())
+
+
+def _point_value(q: Question, sol, psol) -> tuple[float, float]:
+    """A point's x, y, speed or acceleration asked for, and its scale."""
+    _needs_position(q)
+    b, _, p = (q.arg or "").partition(".")
+    k = psol.kinematics
+    g = k[(k.body == b) & (k.point == p)]
+    if g.empty:
+        raise WorkbenchError(f"question {q.text!r}: no point {q.arg!r} (write "
+                             "'body.point', e.g. 'coupler.P')")
+    row = g.iloc[_row_of(psol, q)]
+    val = float({"x": row.x, "y": row.y, "v": math.hypot(row.vx, row.vy),
+                 "a": math.hypot(row.ax, row.ay)}[q.q])
+    k0 = sol.kinematics
+    g0 = k0[(k0.body == b) & (k0.point == p)]
+    scale = float({"x": np.ptp(g0.x.to_numpy()) + np.abs(g0.x).max(),
+                   "y": np.ptp(g0.y.to_numpy()) + np.abs(g0.y).max(),
+                   "v": np.hypot(g0.vx, g0.vy).max(),
+                   "a": np.hypot(g0.ax, g0.ay).max()}[q.q])
+    return val, scale
 
 
 # ---------------------------------------------------------------- balance answers
@@ -320,7 +328,7 @@ def answer_key(scene: Any, questions: Iterable[str]) -> dict[str, float]:
 def key_rows_many(raws: Sequence[dict], questions: Sequence[str]) -> list[dict | Exception]:
     """:func:`key_rows` of each scene, or the exception it raises, in order; the
     mechanism scenes (and their sweeps with the asked positions added) solved together
-    by :func:`~kinetostatics.solver.many.solve_outcomes`, each with exactly the numbers
+    by :func:`~kinetostatics.results.solving.solve_outcomes`, each with exactly the numbers
     and the refusals (an error, a warning) of its own solve."""
     qs = [parse_question(q) for q in questions]
     at = [q.pos for q in qs if q.pos is not None]
@@ -352,8 +360,7 @@ def _vouched_many(raws: list[dict]) -> list:
     together; a warning that the batch cannot pin on one scene sends each back to
     :func:`_vouched` alone."""
     from ..model.scene import load_scene
-    from ..solver.many import solve_outcomes
-    from ..solver.pipeline import solve
+    from ..results import solve, solve_outcomes
 
     flags: list[Any] = []
     loaded: list[Any] = []

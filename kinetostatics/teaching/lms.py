@@ -19,6 +19,7 @@ from typing import Any
 import pandas as pd
 
 from ..model.errors import WorkbenchError
+from ..model.outputs import atomic_file
 
 __all__ = ["LMS", "lms_table", "write_lms"]
 
@@ -57,6 +58,6 @@ def lms_table(scores: pd.DataFrame, lms: str, assignment: str) -> pd.DataFrame:
 def write_lms(scores: pd.DataFrame, lms: str, path: Any, assignment: str) -> Path:
     """Write :func:`lms_table` as a UTF-8 CSV file (ids with accents kept)."""
     p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    lms_table(scores, lms, assignment).to_csv(p, index=False, encoding="utf-8")
+    with atomic_file(p) as tmp:             # the whole file, or the earlier one kept
+        lms_table(scores, lms, assignment).to_csv(tmp, index=False, encoding="utf-8")
     return p

@@ -31,7 +31,7 @@ from ..model.errors import WorkbenchError
 from ..model.units import parse_quantity, unit_kind
 from .questions import parse_question, to_float, wrap_angle
 
-__all__ = ["SIGNED", "SLIPS", "answer_value", "slip_note"]
+__all__ = ["SIGNED", "SLIPS", "answer_value", "slip_note", "slip_status"]
 
 _LEAD = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 _K, _M = 1e3, 1e-3
@@ -123,6 +123,14 @@ def slip_note(question: str, unit: str, kind: str, answer: float, expected: floa
             head = _times(abs(f)) + (" minus" if f < 0 else "")
             return f"{head} the key: {what}?"
     return ""
+
+
+def slip_status(note: str) -> str:
+    """The grade row's status of a slip :func:`slip_note` named: ``"sign slip"`` (the
+    sign alone flipped: not a unit slip), ``"unit and sign slip"`` or ``"unit slip"``."""
+    if note == "the sign flipped?":
+        return "sign slip"
+    return "unit and sign slip" if "sign flipped" in note else "unit slip"
 
 
 def answer_value(x: Any, unit: str) -> tuple[float, str]:

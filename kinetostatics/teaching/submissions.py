@@ -12,20 +12,26 @@ its plain numbers count, the values it computes count for nothing, and the
 submission carries the flag ``"did not run: cell 5 ('while True:') ran longer than
 60 s"``. ``on_error="zero"`` keeps the stricter policy: such a notebook is broken and
 scores 0. Read without running (``execute=False``), an answers cell that computes its
-values is graded on its plain numbers and flagged the same way.
+values is graded on its plain numbers and on the values its saved output shows (the
+``answers`` dict displayed or printed by that cell or a later one, as the student
+saved the notebook after running it); a computed value no saved output shows is
+flagged and counts for nothing.
 """
 
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 from typing import Any
 
 from ..model.errors import WorkbenchError
 from .answers import read_answers, saved_answers
 from .execute import NotebookRunError, SubmissionError, run_notebook
+from .questions import ANSWER_TAG
+from .sandbox import Sandbox
 
-__all__ = ["ON_ERROR", "read_one", "read_submission"]
+__all__ = ["ON_ERROR", "output_answers", "read_one", "read_submission"]
 
 ON_ERROR = ("saved", "zero")
 """What a notebook that does not run is graded on: its saved answers cell, or nothing."""
@@ -37,10 +43,62 @@ def _computed_flag(computed: list[str], how: str) -> str:
             f"{'those count' if how.startswith('ran') else 'those count for nothing'}")
 
 
+def _as_saved(nb, ids: list[str], literal: dict, computed: list[str], on_error: str) -> dict:
+    """A notebook read without running it: the answers cell's numbers, and the values
+    it computes as its saved output shows them (the notebook was run before it was
+    saved), else flagged: those count for nothing."""
+    if not computed:
+        return {"ids": ids, "answers": literal, "flags": []}
+    shown = output_answers(nb)
+    found = [q for q in computed if q in shown]
+    answers = {**literal, **{q: shown[q] for q in found}}
+    left = [q for q in computed if q not in shown]
+    flags = []
+    if found:
+        flags.append(f"read as saved (not run): {', '.join(found[:4])}"
+                     f"{' ...' if len(found) > 4 else ''} read from the saved output")
+    if left:
+        if on_error == "zero" and not any(v is not None for v in answers.values()):
+            raise SubmissionError(_computed_flag(left, "read as saved"), ids)
+        flags.append(_computed_flag(left, "read as saved (not run)"))
+    return {"ids": ids, "answers": answers, "flags": flags}
+
+
+_NUMPY = re.compile(r"\bnp\.(?:float|int)\d*\(([^()]*)\)")
+
+
+def output_answers(nb) -> dict[str, Any]:
+    """The ``answers`` dict as the saved outputs show it: the last output, of the
+    answers cell or a cell after it, that reads as a dict literal (``np.float64(x)``
+    read as x), or ``{}``."""
+    import ast
+
+    cells = nb.get("cells", [])
+    at = next((k for k, c in enumerate(cells) if c.get("cell_type") == "code" and
+               ANSWER_TAG in c.get("metadata", {}).get("tags", [])), None)
+    found: dict[str, Any] = {}
+    for cell in cells[at or 0:] if at is not None else []:
+        for out in cell.get("outputs", []):
+            text = out.get("data", {}).get("text/plain") if "data" in out else out.get("text")
+            text = "".join(text) if isinstance(text, list) else (text or "")
+            if len(text) > 1 << 20:              # no answers dict is a megabyte long
+                continue
+            for chunk in (text, *text.splitlines()):
+                try:
+                    got = ast.literal_eval(_NUMPY.sub(r"\1", chunk.strip()))
+                except (ValueError, SyntaxError, TypeError, MemoryError, RecursionError):
+                    continue
+                if isinstance(got, dict) and got and all(isinstance(k, str) for k in got):
+                    found = got
+                    break
+    return found
+
+
 def read_submission(p: Path, execute: bool = True, timeout: float = 60.0,
-                    on_error: str = "saved") -> list[dict]:
+                    on_error: str = "saved", sandbox: Sandbox | None = None) -> list[dict]:
     """The parts of one submission file: ``[{ids, answers, flags}]`` (a form may hold
-    many students; a notebook is one).
+    many students; a notebook is one). A notebook runs in ``sandbox`` (None: as the
+    grader's user, no isolation).
 
     Raises
     ------
@@ -76,14 +134,9 @@ def read_submission(p: Path, execute: bool = True, timeout: float = 60.0,
     if cell_id is not None:
         ids.append(cell_id)
     if not execute:
-        flags = []
-        if computed:
-            if on_error == "zero" and not any(v is not None for v in literal.values()):
-                raise SubmissionError(_computed_flag(computed, "read as saved"), ids)
-            flags.append(_computed_flag(computed, "read as saved (not run)"))
-        return [{"ids": ids, "answers": literal, "flags": flags}]
+        return [_as_saved(nb, ids, literal, computed, on_error)]
     try:
-        run_id, answers = run_notebook(nb, timeout=timeout)
+        run_id, answers = run_notebook(nb, timeout=timeout, sandbox=sandbox)
     except NotebookRunError as exc:
         why = f"did not run: {exc.args[0]}"
         if on_error == "zero":
@@ -110,24 +163,29 @@ def read_one(task: tuple) -> dict[str, Any]:
     Parameters
     ----------
     task : tuple
-        ``(path, execute, timeout, on_error)`` (plain data: any executor can run it).
+        ``(path, execute, timeout, on_error[, sandbox])`` (plain data: any executor
+        can run it; the sandbox a notebook runs in, None or left out: no isolation).
 
     Returns
     -------
     dict
-        ``file, mtime, parts`` (None when broken), ``reason`` (why broken) and ``ids``
-        (the ids a broken file carries).
+        ``file, mtime, parts`` (None when broken), ``reason`` (why broken), ``ids``
+        (the ids a broken file carries) and ``sandbox`` (what a notebook ran in:
+        ``"bubblewrap"``, ``"none (--unsandboxed)"``, ``""`` when nothing ran).
     """
-    path, execute, timeout, on_error = task
+    path, execute, timeout, on_error, sandbox = (*task, None)[:5]
     p = Path(path)
     try:
         mtime = os.stat(p).st_mtime
     except OSError:
         mtime = float("nan")
+    ran = execute and p.suffix.lower() == ".ipynb"
     out: dict[str, Any] = {"file": str(p), "mtime": mtime, "parts": None, "reason": "",
-                           "ids": []}
+                           "ids": [], "sandbox": "" if not ran else (
+                               "bubblewrap" if sandbox is not None else
+                               "none (--unsandboxed)")}
     try:
-        out["parts"] = read_submission(p, execute, timeout, on_error)
+        out["parts"] = read_submission(p, execute, timeout, on_error, sandbox)
     except SubmissionError as exc:
         out["reason"] = str(exc.args[0])
         out["ids"] = list(exc.args[1]) if len(exc.args) > 1 else []

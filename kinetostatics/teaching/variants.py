@@ -242,6 +242,12 @@ class Exercise:
                              f"in {self.max_tries} draws (last: {last}); widen the ranges or "
                              "relax the check")
 
+    def remember(self, student: Any, variant: dict) -> None:
+        """Keep a variant of ``student`` drawn elsewhere (by this exercise in another
+        process or on a cluster's worker: the same seed draws the same numbers), so
+        that the key needs no new solve; a variant already drawn here is kept."""
+        self._cache.setdefault(str(student).strip(), variant)
+
     def prepare(self, students: Iterable[Any]) -> None:
         """Draw the first variant of each student not drawn yet and solve them all
         together (:func:`~kinetostatics.teaching.keys.key_rows_many`:

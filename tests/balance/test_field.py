@@ -3,7 +3,6 @@ balance.model.units), each against an independent computation."""
 
 from __future__ import annotations
 
-import doctest
 import math
 
 import numpy as np
@@ -11,7 +10,6 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-import balance.field.weights
 from balance import BalanceError, Units, combine_weights, split_correction
 from balance.model.units import parse_units
 
@@ -142,7 +140,3 @@ def test_units_errors(table, text) -> None:
     with pytest.raises(BalanceError) as exc:
         parse_units(table)
     assert text in str(exc.value)
-
-
-def test_doctests() -> None:
-    assert doctest.testmod(balance.field.weights).failed == 0

@@ -40,3 +40,41 @@ def test_solve_out_writes_csv_without_pandas(tmp_path) -> None:
             f"assert main(['solve', 'four_bar', '--out', {str(tmp_path)!r}]) == 0")
     assert loaded_after(code) & set(HEAVY) == set()
     assert (tmp_path / "dyads.csv").stat().st_size > 0
+
+
+@pytest.mark.parametrize(("old", "new"), [
+    ("output", "results.output"), ("csvtext", "results.csvtext"),
+    ("longtable", "results.longtable"), ("bench_speed", "bench.speed"),
+    ("bench_tables", "bench.tables")])
+def test_moved_modules_answer_to_their_old_names_with_a_warning(old: str, new: str) -> None:
+    """The modules moved into ``results/`` and ``bench/`` keep their old names for a
+    release: the same module object, with a DeprecationWarning naming the new one."""
+    code = ("import importlib, warnings\n"
+            "with warnings.catch_warnings(record=True) as w:\n"
+            "    warnings.simplefilter('always')\n"
+            f"    old = importlib.import_module('kinetostatics.{old}')\n"
+            f"new = importlib.import_module('kinetostatics.{new}')\n"
+            "assert old is new and new.__spec__.name == new.__name__, new.__spec__\n"
+            "assert [x.category for x in w] == [DeprecationWarning], w\n"
+            f"assert 'kinetostatics.{new}' in str(w[0].message)\n")
+    subprocess.run([sys.executable, "-c", code], check=True)
+
+
+@pytest.mark.parametrize(("module", "name"), [("kinetostatics.solver.pipeline", "solve"),
+                                              ("kinetostatics.solver.many", "solve_many")])
+def test_the_solvers_old_public_names_warn_and_give_the_new(module: str, name: str) -> None:
+    """The solver gives arrays now; its old public solve and solve_many are the
+    package's (which wrap them in Solutions), with a DeprecationWarning."""
+    import importlib
+    import warnings
+
+    import kinetostatics as ks
+    mod = importlib.import_module(module)
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        got = getattr(mod, name)
+    assert got is getattr(ks, name)
+    assert [x.category for x in w] == [DeprecationWarning] and f"kinetostatics.{name}" in \
+        str(w[0].message)
+    with pytest.raises(AttributeError):
+        mod.no_such_name  # noqa: B018

@@ -165,9 +165,19 @@ def check_coarse_rows(d: dict, data) -> None:
             assert np.all(np.round(per_body) == np.round(per_body[:, :1]))
             a, b = np.delete(a, ang, axis=1), np.delete(b[rows], ang, axis=1)
             rows = np.arange(a.shape[0])
-        if table == "driver":       # singular: a dead point between far rows flags them
-            continue
         np.testing.assert_array_equal(a, b[rows], err_msg=table)    # measured 0
+    # the driver's flags: a row flagged in the fine sweep stays flagged (a dead point
+    # between two fine rows lies between the coarse ones too); a coarse row may add a
+    # flag only for a dead point between it and a coarse neighbour (the fine sweep flags
+    # a row there) or, at an end, within one coarse spacing beyond the sweep
+    fc, ff = coarse.driver, fine.driver
+    np.testing.assert_array_equal(fc.undefined_load.to_numpy(),
+                                  ff.undefined_load.to_numpy()[shared])
+    sc, sf = fc.singular.to_numpy(), ff.singular.to_numpy()
+    assert np.all(sc >= sf[shared]), "a fine sweep's singular row lost its flag"
+    for k in np.flatnonzero(sc & ~sf[shared]):
+        if 0 < k < m - 1:
+            assert sf[shared[k - 1]:shared[k + 1] + 1].any(), f"row {shared[k]} flagged"
 
 
 @pytest.mark.parametrize("path", FILES, ids=IDS)

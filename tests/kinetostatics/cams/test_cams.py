@@ -410,9 +410,17 @@ def test_seed_scene_solves_with_power_balance():
     assert sm["separation_rows"] == 0 and not sm["undercut"]
     friction_work = np.trapezoid(frc.friction * np.abs(mot.ds), np.radians(mot.angle))
     assert sm["friction_work"] == pytest.approx(friction_work)
-    # cycle mean torque: friction work per radian (the conservative loads cancel, up to the
-    # trapezoid rule's error over the table's 0.5 deg rows)
-    assert sm["torque_mean"] == pytest.approx(friction_work / (2 * math.pi), rel=1e-2)
+    # cycle mean torque: friction work per radian, the conservative loads cancelling over
+    # the cycle up to the trapezoid rule's error, first order in the row spacing (the
+    # constant-acceleration rise's jumps of m a): measured 4.36e-3 at 0.5 deg rows,
+    # 1.08e-3 at 0.125 deg (4.05 times less)
+    assert sm["torque_mean"] == pytest.approx(friction_work / (2 * math.pi), rel=5e-3)
+    fine = cams.solve_cam(SEED_SCENE.replace("count = 721", "count = 2881"))
+    fine_work = np.trapezoid(fine.forces.friction * np.abs(fine.motion.ds),
+                             np.radians(fine.motion.angle))
+    coarse_off = sm["torque_mean"] / (friction_work / (2 * math.pi)) - 1.0
+    fine_off = fine.summary["torque_mean"] / (fine_work / (2 * math.pi)) - 1.0
+    assert 3.5 < coarse_off / fine_off < 4.5
     assert 0.5 < sm["efficiency_rise"] < 1.0
 
 
@@ -431,7 +439,8 @@ def test_scene_from_transmission_angle_and_optimal_offset():
 def test_scene_without_friction_is_lossless():
     text = SEED_SCENE.replace("friction = 0.15\n", "")
     sm = cams.solve_cam(text).summary
-    assert sm["efficiency_rise"] == pytest.approx(1.0, rel=1e-3)
+    # the cam's work on the rise is the work against the load (measured: exactly 1.0)
+    assert sm["efficiency_rise"] == pytest.approx(1.0, abs=1e-12)
     assert sm["friction_work"] == 0.0
 
 

@@ -45,10 +45,10 @@ def test_millimetres_among_metres_warn() -> None:
     d = four_bar()
     d["bodies"][1]["cog"] = [125.0, 20.0]            # typed in mm
     msgs = _warnings(d)
-    assert any("coupler" in m and "cog" in m and "millimetres" in m for m in msgs)
+    assert any("'coupler'.points.cog" in m and "millimetres" in m for m in msgs)
     d = four_bar()
     d["bodies"][1]["points"]["P"] = [100.0, 60.0]    # a coupler point in mm
-    assert any("point P" in m for m in _warnings(d))
+    assert any("points.P = [100, 60] m" in m for m in _warnings(d))
 
 
 def test_the_cli_prints_a_warning_line_and_keeps_exit_code_0(tmp_path) -> None:
@@ -104,7 +104,7 @@ def _positions(values: list[float], units: dict | None = None) -> dict:
 def test_positions_typed_in_radians_warn_under_degrees() -> None:
     rad = [0.0, 0.7854, 1.5708, 3.1416]             # 0, 45, 90, 180 deg typed in radians
     msgs = _warnings(_positions(rad))
-    assert len(msgs) == 1 and "driver positions" in msgs[0] and "radians" in msgs[0]
+    assert len(msgs) == 1 and "driver.positions" in msgs[0] and "radians" in msgs[0]
     assert _warnings(_positions(rad, {"angle": "rad"})) == []          # said so: no slip
     assert _warnings(_positions([0.0, 45.0, 90.0, 180.0])) == []
     assert _warnings(_positions([0.0, 1.0, 2.0, 3.0])) == []            # whole degrees
@@ -194,52 +194,46 @@ def test_the_unit_checks_use_the_scenes_length_unit() -> None:
     assert _warnings(d) == []
     d["bodies"][1]["points"]["P"] = [100000.0, 60000.0]
     msgs = _warnings(d)
-    assert any("point P" in m and " mm " in m for m in msgs)
+    assert any("points.P = [100000, 60000] mm" in m for m in msgs)
 
 
-def test_a_line_angle_in_radians_warns() -> None:
+def test_a_line_angle_in_degrees_under_radians_warns() -> None:
+    """A single small line angle cannot be told from a slip (a 0.2618 deg guide is real):
+    silent. Degrees under angle = "rad" put it beyond two turns: warned."""
     with open(ks.example("slider_crank"), "rb") as fh:
         d = tomllib.load(fh)
     slide = next(j for j in d["joints"] if j["kind"] == "T")
-    slide["line_angle"] = 0.2618                     # 15 deg typed in radians
-    msgs = _all_warnings(ks.load_scene, d)
-    assert len(msgs) == 1 and "line_angle" in msgs[0] and "radians" in msgs[0]
-    slide["line_angle"] = 15.0
+    slide["line_angle"] = 0.2618
     assert _all_warnings(ks.load_scene, d) == []
+    d["units"] = {"angle": "rad"}
+    d["driver"]["start"], d["driver"]["stop"] = 0.0, 2 * math.pi
+    slide["line_angle"] = 90.0                       # degrees typed under rad
+    msgs = _all_warnings(ks.load_scene, d)
+    assert len(msgs) == 1 and "line_angle" in msgs[0] and "quiet" in msgs[0]
 
 
-def test_a_cam_stroke_angle_in_radians_warns() -> None:
+def test_a_small_cam_swing_is_not_warned() -> None:
+    """A real 4.5 deg swing of an oscillating follower is silent (a single angle is never
+    judged alone); 200 deg typed under angle = "rad" is warned."""
     from kinetostatics.cams import load_cam_scene
     with open(ks.scene_path("oscillating_roller"), "rb") as fh:
         d = tomllib.load(fh)
-    d["cam"]["follower"]["stroke_angle"] = 0.3491     # 20 deg typed in radians
-    msgs = _all_warnings(load_cam_scene, d)
-    assert len(msgs) == 1 and "radians" in msgs[0]
+    d["cam"]["follower"]["stroke_angle"] = 4.5
+    assert _all_warnings(load_cam_scene, d) == []
+    d["cam"]["follower"]["stroke_angle"] = 200.0
+    d["units"] = {"angle": "rad"}
+    for seg in d["cam"]["segments"]:
+        seg["angle"] = math.radians(seg["angle"])
+    d["cam"].pop("transmission_angle", None)
+    msgs = [m for m in _all_warnings(_quietly(load_cam_scene), d) if "stroke_angle" in m]
+    assert len(msgs) == 1 and "two turns" in msgs[0]
 
 
-def test_a_turn_is_told_by_the_ends_as_by_the_whole_span() -> None:
-    """The sweep-spans-2-pi test looks at the two ends first; it answers as the span
-    (max - min) does, at the 1 % line, for sweeps in any order and with a NaN."""
-    import numpy as np
-
-    from kinetostatics.model.scene_units import _spans_a_turn
-
-    def by_span(pos):
-        return abs(float(np.max(pos) - np.min(pos)) - 2.0 * math.pi) <= 0.01 * 2.0 * math.pi
-
-    rng = np.random.default_rng(7)
-    turn = 2.0 * math.pi
-    widths = [turn, turn * 1.01, turn * 0.99, np.nextafter(turn * 1.01, 0.0),
-              np.nextafter(turn * 1.01, 10.0), 360.0, 6.3, 6.4, 1.0]
-    told = 0
-    for _ in range(3000):
-        w, c = rng.choice(widths), rng.choice([0.0, -3.0, 1e3, rng.normal() * 10])
-        k = int(rng.integers(2, 9))
-        kind = rng.integers(3)
-        pos = (np.linspace(c, c + w * rng.choice([1.0, -1.0]), k) if kind == 0
-               else c + rng.random(k) * w if kind == 1 else np.array([c, c + w])[::-1])
-        if rng.random() < 0.02:
-            pos[rng.integers(pos.size)] = np.nan
-        assert _spans_a_turn(pos) == by_span(pos), pos
-        told += by_span(pos)
-    assert 0 < told < 3000
+def _quietly(fn):
+    """fn, its WorkbenchError (a cam that cannot be built) swallowed: only warnings count."""
+    def run(*args):
+        try:
+            fn(*args)
+        except ks.WorkbenchError:
+            pass
+    return run

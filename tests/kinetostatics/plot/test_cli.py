@@ -77,7 +77,10 @@ def test_demo_scene(tmp_path, capsys, monkeypatch):
                         lambda sol, out, positions=None, dpi=150: drawn.append(out) or [])
     assert main(["demo", "--example", "sliding_driver", "--out", str(tmp_path / "s")]) == 0
     assert " m\n" in capsys.readouterr().out           # a sliding driver's position unit
-    assert drawn == [tmp_path / "s"] and (tmp_path / "s" / "reactions.csv").exists()
+    # drawn once, into the run's staging folder inside s (kinetostatics.model.outputs)
+    assert len(drawn) == 1 and drawn[0].parent == tmp_path / "s"
+    assert (tmp_path / "s" / "reactions.csv").exists()
+    assert [p.name for p in (tmp_path / "s").iterdir() if p.name.startswith(".")] == []
 
 
 def test_demo_of_a_cam_scene_points_to_the_cam_command(tmp_path, capsys):

@@ -84,8 +84,35 @@ def test_every_new_picture_is_drawn(name, lecture_figures):
               f"free_body_{tag}_driver",
               *(f"free_body_{tag}_dyad{d}" for d in range(1, len(sol.kin.dyads) + 1))}
     assert set(figs) == expect
+    where = (f"at φ = {pos:g}°" if sol.scene.driver.kind == "R" else f"at s = {pos:g} m")
     for stem, fig in figs.items():
         assert isinstance(fig, Figure), stem
+        assert fig.axes and all(ax.lines or ax.patches for ax in fig.axes), stem
+        if tag in stem:         # a picture of one position says which
+            assert any(where in ax.get_title() for ax in fig.axes), stem
+    # what they draw is the solution's: Me over the sweep, each joint's reaction (on the
+    # body its polar diagram names), the mechanism through every point at the position
+    # (measured: equal to the last bit)
+    me = [ln.get_ydata() for ln in figs["driver"].axes[0].lines]
+    assert any(np.array_equal(y, sol.Me) for y in me)
+    r = sol.reactions
+    for j in sol.scene.joints:
+        drawn = [np.column_stack([ln.get_xdata(), ln.get_ydata()]).astype(float)
+                 for ln in figs[f"polar_{j}"].axes[0].lines]
+        on = [g[["Fx", "Fy"]].to_numpy() for _, g in r[r.joint == j].groupby("on",
+                                                                          observed=True)]
+        # (a reaction constant over the cycle is drawn as its first row's point)
+        assert any(np.array_equal(d, f) or (len(d) == 1 and np.array_equal(d[0], f[0]) and
+                                            np.ptp(f, axis=0).max() <= 1e-9 * abs(f).max())
+                   for d in drawn for f in on), j
+    lines = figs[f"mechanism_{tag}"].axes[0].lines
+    verts = np.concatenate([np.column_stack([ln.get_xdata(), ln.get_ydata()]).astype(float)
+                            for ln in lines])
+    k = sol.kinematics
+    points = k.loc[k.position == pos, ["x", "y"]].to_numpy()
+    assert len(points) >= len(sol.scene.joints)
+    for p in points:
+        assert np.hypot(*(verts - p).T).min() <= 1e-12 * sol.scene.size, p
 
 
 # the default style (no lecture_style: what a script calling the pictures gets), on one

@@ -13,6 +13,7 @@ import pytest
 import kinetostatics as ks
 from kinetostatics.model.errors import AssemblyError
 from kinetostatics.model.scene import load_scene
+from kinetostatics.results import solve_outcomes
 from kinetostatics.solver import many
 
 from .test_deadpoints import change_point_four_bar, slotted_lever
@@ -282,7 +283,7 @@ def test_runs_of_whole_scenes_and_long_runs_in_blocks(alone_calls, monkeypatch) 
     scenes[6]["bodies"][2]["points"]["C"] = [0.06, 0.0]
     with pytest.raises(AssemblyError) as alone:
         ks.solve(scenes[6])
-    outcomes = many.solve_outcomes(scenes)
+    outcomes = solve_outcomes(scenes)
     assert alone_calls == ["v5", "v6"]        # its run only
     assert str(outcomes[6]) == str(alone.value)
     for i, (s, d) in enumerate(zip(outcomes, scenes, strict=True)):
@@ -320,7 +321,7 @@ def test_runs_are_lean_and_solved_again_once_when_read(alone_calls, monkeypatch)
     # kept whole (an answer key, an executor's task): each run solved once, every table
     # cut from it
     del solved[:]
-    kept = many.solve_outcomes(scenes, lean=False)
+    kept = solve_outcomes(scenes, lean=False)
     for s, a in zip(kept, alone, strict=True):
         assert_same(s, a)
     assert solved == [(0, 3), (3, 6)]

@@ -15,10 +15,10 @@ import pytest
 
 import kinetostatics as ks
 from kinetostatics.model.scene import load_scene
+from kinetostatics.results import solve_many
 from kinetostatics.solver import arith as A
 from kinetostatics.solver import blocks, trap
 from kinetostatics.solver import pipeline as pl
-from kinetostatics.solver.many import solve_many
 from kinetostatics.solver.stack import Stacker
 from tests.kinetostatics.solver.test_blocks import FILES, IDS, assert_same, sweeps, tables
 
@@ -27,7 +27,7 @@ def checked(monkeypatch, scene, positions=None):
     """The solve with the trap never tried."""
     with monkeypatch.context() as m:
         m.setattr(pl, "tame", lambda sc, pos: False)
-        return pl.solve(scene, positions)
+        return ks.solve(scene, positions)
 
 
 def outcome(f):
@@ -42,7 +42,7 @@ def test_trapped_solve_gives_the_checked_tables_bit_for_bit(path, monkeypatch) -
     sc = load_scene(path)
     for positions in sweeps(sc):
         ref = outcome(lambda p=positions: checked(monkeypatch, sc, p))
-        got = outcome(lambda p=positions: pl.solve(sc, p))
+        got = outcome(lambda p=positions: ks.solve(sc, p))
         if isinstance(ref, str):
             assert got == ref
         else:
@@ -101,7 +101,7 @@ def test_a_flag_raised_by_the_loads_sends_the_solve_back(rows, monkeypatch) -> N
         monkeypatch.setattr(blocks, "BLOCK_ROWS", rows)
     with warnings.catch_warnings():             # (the checked road warns of it)
         warnings.simplefilter("ignore", RuntimeWarning)
-        sol = pl.solve(ks.example("four_bar"))
+        sol = ks.solve(ks.example("four_bar"))
     assert roads[0] is True and roads[-1] is False
     monkeypatch.setattr(pl, "_solve_loads", real)
     assert_same(tables(sol), tables(checked(monkeypatch, ks.example("four_bar"))))

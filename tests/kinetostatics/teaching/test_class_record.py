@@ -150,7 +150,12 @@ def test_unit_slips_are_named_and_credited_as_told(klass, tmp_path):
     assert s.passed.all() and (s.points == 1.0).all(), s
     assert s.set_index("question").loc["Me@60", "note"].startswith("read '")
     summary = pd.read_csv(tmp_path / "grades_students.csv", dtype={"student": str})
-    assert summary.set_index("student").loc["Ana", "unit slips"] == 4
+    # a flipped sign is a sign slip, named apart from the unit slips (issue 33)
+    assert a.loc["N[C-slide]@60", "status"] == "sign slip"
+    assert summary.set_index("student").loc["Ana", "unit slips"] == 3
+    assert summary.set_index("student").loc["Ana", "sign slips"] == 1
+    fl = summary.set_index("student").loc["Ana", "flags"]
+    assert "unit slip: " in fl and "sign slip: N[C-slide]@60" in fl
     # the default: named, no credit
     rep = T.grade_class(d, [tmp_path / "subs"], execute=False)
     a = rep.graded[rep.graded.student == "Ana"].set_index("question")
@@ -191,7 +196,9 @@ def test_copies_and_the_record(klass, tmp_path):
     assert flags["maria"] == "same answers as 'ion' (another variant)"
     assert flags["c1"] == "same answers as 'c2' (another variant)"
     assert flags["c2"] == "same answers as 'c1' (another variant)"
-    assert flags["zoë"] == "" and flags["bogdan"] == ""
+    assert flags["zoë"] == ""
+    assert flags["bogdan"] == (f"2 submissions: kept {new} (newest by modification time, "
+                               f"{flags['bogdan'].rsplit(', ', 1)[1]}")
     assert "!! COPY? ion: copy? 8 of 8 answers are the key of 'maria'" in out
     assert "!! COPY? c1: same answers as 'c2'" in out
     # every file read is on record
@@ -207,10 +214,16 @@ def test_copies_and_the_record(klass, tmp_path):
     # one summary row per student; the LMS file
     summary = pd.read_csv(tmp_path / "grades_students.csv", dtype={"student": str},
                           keep_default_na=False)
-    assert summary.student.tolist() == IDS
+    # one row per student, then one per unknown id or unreadable file (issue 33)
+    assert summary.student.tolist()[:8] == IDS
+    tail = summary.iloc[8:].set_index("student")
+    assert sorted(tail.index) == ["", "zoe.x"]
+    assert tail.loc["zoe.x", "flags"].startswith("unknown id: not in the class list")
+    assert tail.loc["", "flags"].startswith("broken, not graded (no known id)")
     assert list(summary.columns[:4]) == ["student", "score %", "points", "total"]
     s = summary.set_index("student")
-    assert s.loc["maria", "score %"] == 100.0 and s.loc["bogdan", "score %"] == 0.0
+    assert float(s.loc["maria", "score %"]) == 100.0
+    assert float(s.loc["bogdan", "score %"]) == 0.0
     assert s.loc["Ana", "source"] == "" and "copy?" in s.loc["ion", "flags"]
     moodle = pd.read_csv(tmp_path / "moodle.csv", dtype=str)
     assert list(moodle.columns) == ["ID number", "slider_crank"]
@@ -273,6 +286,57 @@ def test_saved_unrun_answers_cell_that_computes(klass, tmp_path):
                                               tmp_path / "z2.ipynb")],
                         execute=False, on_error="zero")
     assert rep.broken and "computes Me@60" in rep.broken[0]["reason"]
+
+
+def test_saved_output_of_a_run_notebook_is_graded_without_running(klass, tmp_path):
+    """--no-execute: a computed answer counts as the saved output shows it (issue 33)."""
+    kz = _key(klass, "zoë")
+    p = _typed(klass, "zoë", {"Me@60": "sol.Me[60]", "Me_mean": kz["Me_mean"]},
+               tmp_path / "zoe.ipynb")
+    nb = nbformat.read(p, as_version=4)
+    cell = next(c for c in nb.cells if "answers" in c.metadata.get("tags", []))
+    cell.source += "\nanswers"
+    shown = {**{q: None for q in kz}, "Me@60": kz["Me@60"], "Me_mean": kz["Me_mean"]}
+    text = "{" + ", ".join(f"{q!r}: " + ("None" if v is None else f"np.float64({v!r})")
+                           for q, v in shown.items()) + "}"
+    cell.outputs = [nbformat.v4.new_output("execute_result", data={"text/plain": text},
+                                           execution_count=9)]
+    nbformat.write(nb, str(p))
+    rep = T.grade_class(klass["dir"], [p], execute=False)
+    sc = rep.scores.set_index("student")
+    assert sc.loc["zoë", "points"] == 2.0
+    assert rep.flags["zoë"] == ["read as saved (not run): Me@60 read from the saved output"]
+    g = rep.graded.set_index(["student", "question"])
+    assert g.loc[("zoë", "Me@60"), "answer"] == kz["Me@60"]
+
+
+def test_equal_times_are_named_not_resolved_silently(klass, tmp_path):
+    a = _typed(klass, "maria", _key(klass, "maria"), tmp_path / "a" / "maria.ipynb")
+    b = _typed(klass, "maria", {"Me@60": 1.0}, tmp_path / "b" / "maria.ipynb")
+    t = time.time() - 60
+    for f in (a, b):
+        os.utime(f, (t, t))
+    code, out, err = _run(["exercises", "grade", klass["dir"], a, b, "--no-execute",
+                           "--out", tmp_path / "grades.csv"])
+    assert code == 0 and not err
+    summary = pd.read_csv(tmp_path / "grades_students.csv", dtype={"student": str},
+                          keep_default_na=False).set_index("student")
+    flags = summary.loc["maria", "flags"]
+    assert f"2 submissions: kept {b}" in flags
+    assert f"{a} has the same time: kept the last by name, choose with --prefer" in flags
+    assert f"{a} has the same time" in next(ln for ln in out.splitlines() if "DUPLICATE" in ln)
+
+
+def test_percent_rounds_half_up_as_gradebooks_do():
+    from kinetostatics.teaching.gradebook import percent
+
+    assert round(6.25, 1) == 6.2                      # Python's rule: half to even
+    assert percent(1, 16) == 6.3 and percent(5, 8) == 62.5 and percent(3, 16) == 18.8
+    assert percent(0.5, 8) == 6.3 and percent(7, 7) == 100.0 and percent(0, 3) == 0.0
+    assert percent(1, 3) == 33.3 and percent(2, 3) == 66.7
+    g = pd.DataFrame({"student": ["a"] * 16, "question": [f"q{k}" for k in range(16)],
+                      "passed": [True] + [False] * 15})
+    assert T.class_table(g)["score %"].iloc[0] == 6.3
 
 
 # -------------------------------------------------------------- 7. executors

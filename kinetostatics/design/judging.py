@@ -1,0 +1,191 @@
+"""A population of designs judged at once: one stacked solve, feasibility, the
+objectives and the constraints: :func:`evaluate`.
+
+Feasibility is never a penalty nor a partial answer. A design is feasible when its
+whole sweep is solved and vouched for: the solver assembles it at every row (else it
+refuses the design, naming the rows), no row lies near a dead centre (``singular``:
+the sine of a transmission angle below 1e-3), and the solver's own between-row checks
+find no dead point and no gap between two rows (``dead_points_between_rows``: a change
+of assembly branch or a change point passed; ``unassembled_between_rows``). With
+``full_turn`` and a sweep shorter than a turn, the design's whole turn is checked the
+same way. A design that is not feasible has no objectives (NaN) and the reason is kept.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Sequence
+from concurrent.futures import Executor
+from dataclasses import dataclass
+from functools import partial
+
+import numpy as np
+
+from ..solver.many import solve_outcomes
+from .screen import loaded
+from .section import DesignSpec
+
+# the stacked solve keeps every run's arrays: each design's kinematics are read (the
+# feasibility, the transmission angle), which a lean solve would solve again (measured for
+# 1000 four-bars of 361 rows: about 0.1 s a generation less)
+LEAN = False
+
+
+@dataclass
+class Evaluation:
+    """The judgement of a population.
+
+    Attributes
+    ----------
+    values : ndarray (n, objectives)
+        Each objective's value (SI or deg, a maximised one as its value); NaN where the
+        design is not solved.
+    limits : ndarray (n, constraints)
+        Each constrained quantity's value (NaN where the design is not solved).
+    solved : ndarray of bool
+        Solved and vouched for over the whole sweep (and turn).
+    feasible : ndarray of bool
+        Solved and every constraint kept.
+    reasons : list of str or None
+        Why each design is infeasible (None for a feasible one).
+    """
+
+    values: np.ndarray
+    limits: np.ndarray
+    solved: np.ndarray
+    feasible: np.ndarray
+    reasons: list[str | None]
+
+    @staticmethod
+    def concat(parts: Sequence[Evaluation]) -> Evaluation:
+        return Evaluation(np.concatenate([p.values for p in parts]),
+                          np.concatenate([p.limits for p in parts]),
+                          np.concatenate([p.solved for p in parts]),
+                          np.concatenate([p.feasible for p in parts]),
+                          [r for p in parts for r in p.reasons])
+
+
+def evaluate(spec: DesignSpec, X: np.ndarray, executor: Executor | None = None,
+             parts: int = 1) -> Evaluation:
+    """Judge the designs ``X`` (one row per design, the variables in the section's
+    order): one :func:`~kinetostatics.solver.many.solve_outcomes` call (the stacked
+    solve of :func:`~kinetostatics.solve_many`, each design's outcome its Solution or
+    the error ``solve`` raises for it) for the whole population, or, through
+    ``executor``, one per part of ``parts`` (the numbers are the same: each design's
+    are those ``solve`` gives it alone)."""
+    X = np.asarray(X, dtype=float)
+    if executor is None or parts < 2 or len(X) < 2 * parts:
+        return evaluate_rows(spec, X)
+    bounds = np.linspace(0, len(X), parts + 1).astype(int)
+    chunks = [X[a:b] for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
+    return Evaluation.concat(list(executor.map(partial(evaluate_rows, spec), chunks)))
+
+
+def evaluate_rows(spec: DesignSpec, X: np.ndarray) -> Evaluation:
+    """:func:`evaluate` in this process (a top-level function: an executor's task). The
+    designs the screen (:func:`~kinetostatics.design.screen.screen`) sets aside are not
+    solved; the others are, in one call."""
+    n = len(X)
+    made = [spec.design_scene(x) for x in X]
+    turns = [spec.turn_dict(d) for d, _ in made]
+    dicts = [s for _, s in made] + [t for t in turns if t is not None]
+    scenes, why = loaded(dicts)
+    go = [i for i, (s, w) in enumerate(zip(scenes, why, strict=True))
+          if w is None and not isinstance(s, Exception)]
+    outcomes: list = [w if w is not None else s for s, w in zip(scenes, why, strict=True)]
+    for i, sol in zip(go, solve_outcomes([scenes[i] for i in go], lean=LEAN), strict=True):
+        outcomes[i] = sol
+    turn_of = iter(range(n, len(dicts)))
+    values = np.full((n, len(spec.objectives)), np.nan)
+    limits = np.full((n, len(spec.constraints)), np.nan)
+    feasible = np.zeros(n, dtype=bool)
+    solved = np.zeros(n, dtype=bool)
+    reasons: list[str | None] = [None] * n
+    for i, turn in enumerate(turns):
+        t = None if turn is None else next(turn_of)
+        why_i = unvouched(outcomes[i])
+        if why_i is None and t is not None:
+            why_t = unvouched(outcomes[t])
+            why_i = None if why_t is None else f"full_turn: {why_t}"
+        if why_i is None:
+            solved[i] = True
+            why_i = _judge(spec, outcomes[i], i, values, limits)
+        reasons[i] = why_i
+        feasible[i] = why_i is None
+    return Evaluation(values, limits, solved, feasible, reasons)
+
+
+def _judge(spec: DesignSpec, sol, i: int, values: np.ndarray, limits: np.ndarray
+           ) -> str | None:
+    """Fill row ``i`` of the values and limits of a solved design; the first broken
+    constraint, or None."""
+    known: dict[str, float] = {}       # (a quantity both constrained and an objective: once)
+
+    def of(q) -> float:
+        if q.name not in known:
+            known[q.name] = q.of(sol)
+        return known[q.name]
+    for k, c in enumerate(spec.constraints):
+        limits[i, k] = of(c.quantity)
+    for k, o in enumerate(spec.objectives):
+        values[i, k] = of(o.quantity)
+    if not np.isfinite(values[i]).all() or not np.isfinite(limits[i]).all():
+        return "an objective is not finite"
+    for k, c in enumerate(spec.constraints):
+        if c.excess(limits[i, k]) > 0:
+            return f"{c.text} not kept"
+    return None
+
+
+def unvouched(sol) -> str | None:
+    """Why a solve's outcome (a Solution, the error the solver raised, or the screen's
+    reason) cannot be vouched for over its whole sweep, or None."""
+    if isinstance(sol, str):        # (set aside by the screen)
+        return sol
+    if isinstance(sol, Exception):
+        return reason_of(sol)
+    if len(sol.kin.between):
+        return "a dead point between rows (a change of branch)"
+    if len(sol.kin.unassembled):
+        return "cannot be assembled between two rows"
+    if sol.singular.any():
+        return "passes a dead centre (a row with sin tau below 1e-3)"
+    locked = sol.self_locking
+    if locked is not None and locked.any():
+        return "self-locking rows"
+    return None
+
+
+def reason_of(exc: Exception) -> str:
+    """The gist of the solver's refusal, without its rows and numbers (to count the
+    commonest reason): ``dyad RRR(coupler, rocker) cannot be assembled``."""
+    text = re.split(r" at | by |: |; ", str(exc), maxsplit=1)[0]
+    return text if text else type(exc).__name__
+
+
+def excess(spec: DesignSpec, ev: Evaluation) -> np.ndarray:
+    """The constraints as the search sees them (<= 0 kept): first, whether the design is
+    solved and vouched for (0 or 1); then each constraint's relative excess (1 where the
+    design is not solved)."""
+    g = np.ones((len(ev.feasible), 1 + len(spec.constraints)))
+    solved = ev.solved
+    g[solved, 0] = 0.0
+    for k, c in enumerate(spec.constraints):
+        col = ev.limits[:, k]
+        ok = solved & np.isfinite(col)
+        g[ok, 1 + k] = [c.excess(v) for v in col[ok]]
+    g[~np.isfinite(g)] = 1.0
+    return g
+
+
+def minimised(spec: DesignSpec, values: np.ndarray, feasible: np.ndarray | None = None
+              ) -> np.ndarray:
+    """The objectives as the search minimises them (a maximised one negated); those of a
+    design not ``feasible`` are +inf (never compared: its constraints rank it)."""
+    sense = np.array([o.sense for o in spec.objectives], dtype=float)
+    f = values * sense
+    if feasible is not None:
+        f[~feasible] = math.inf
+    f[~np.isfinite(f)] = math.inf
+    return f

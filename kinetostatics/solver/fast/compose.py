@@ -1,0 +1,261 @@
+"""The compiled kernels composed over blocks of rows, and their arrays wrapped in the
+solver's objects (no numba here: the kernels module is passed in).
+
+Per block of rows: the driver's motion, each dyad's motion in solving order, each body's
+load resultants, each dyad's reactions in reverse order, the driver's Me/Fe (the numpy
+path's :func:`~kinetostatics.solver.kinematics.solve_kinematics` then
+:func:`~kinetostatics.solver.reactions.solve_reactions`, row by row). A long sweep keeps
+only what the driver table and the dead points need, block by block in scratch arrays
+(:class:`~kinetostatics.solver.blocks.Kept`); the full solve writes arrays over the
+whole sweep, wrapped without copies in the :class:`BodyMotion`, :class:`DyadMotion` and
+:class:`JointReaction` objects every table reads.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from ...model.scene import GROUND, Scene
+from ..blocks import BLOCK_ROWS, Kept
+from ..closure import Param
+from ..driver import BodyMotion, ground_motion
+from ..kinematics import SINGULAR_WARN, DyadMotion, Kinematics
+from ..loads import RESIST_STILL
+from ..reactions import DriverReaction, _record
+from ..solved import Solved
+from . import layout as L
+from .geometry import (
+    body_loads_geometry,
+    driver_geometry,
+    dyad_geometry,
+    swept_loads_geometry,
+)
+
+
+class Refused(Exception):
+    """A kernel wrote a value that is not finite, or met a row the numpy path refuses:
+    the sweep is solved on the numpy path, whose message names the rows."""
+
+
+class Plan:
+    """The kernels and their geometry for one scene (or stack) and structure, each dyad
+    with its assembly ``ks`` (numbers, or arrays over a stack's rows)."""
+
+    def __init__(self, kernels, scene: Scene, structure, ks):
+        self.k = kernels
+        self.scene, self.structure = scene, structure
+        drv = scene.driver
+        self.crank = drv.kind == "R"
+        self.speed, self.accel = float(drv.speed), float(drv.acceleration)
+        self.driver = driver_geometry(scene)
+        self.dyads = [(*dyad_geometry(scene, d, k), d)
+                      for d, k in zip(structure.dyads, ks, strict=True)]
+        self.bodies = list(scene.bodies)
+        self.loads = {b: body_loads_geometry(scene, b) for b in self.bodies}
+        self.swept = {b: sw for b in self.bodies
+                      if (sw := swept_loads_geometry(scene, b))[2]}
+        self.stats = {b: np.array([[0.0, np.inf]] * len(f)) for b, (_, _, f)
+                      in self.swept.items()}
+
+    def check_swept(self) -> None:
+        """Refuse (:class:`Refused`) a sweep whose top speed (power) of a ``resist``
+        (``when = "resisting"``) load lifts its still threshold over a row the kernel took
+        as moving (the numpy path tells those rows from the whole sweep)."""
+        for b, (_, _, floors) in self.swept.items():
+            for (top, least), floor in zip(self.stats[b], floors, strict=True):
+                if not least > RESIST_STILL * max(top, floor):
+                    raise Refused("swept load")
+
+    def buffers(self, width: int) -> dict:
+        """Arrays for ``width`` rows: each body's motion and load resultants, each dyad's
+        data and reactions, the driver's reaction (the ground's motion: constant): rows
+        of one slab, its rows padded (:func:`~kinetostatics.solver.fast.layout.padded_width`)."""
+        stride = L.padded_width(width)
+        sizes = ([("m", b, L.MOTION) for b in (GROUND, *self.bodies)]
+                 + [("a", b, 3) for b in (GROUND, *self.bodies)]
+                 + [("d", i, L.DYAD_OUT) for i in range(len(self.dyads))]
+                 + [("r", i, L.REACTIONS) for i in range(len(self.dyads))] + [("drv", 0, 7)])
+        # (np.empty: memory a freed slab leaves is reused without faulting in fresh
+        # zeroed pages; only what a kernel may leave unwritten is zeroed)
+        slab = np.empty((sum(k for _, _, k in sizes), stride))
+        out: dict = {"m": {}, "a": {}, "d": [], "r": [], "u": np.zeros(width, dtype=bool)}
+        row = 0
+        for part, key, k in sizes:
+            block = slab[row:row + k]
+            row += k
+            if part in ("d", "r", "drv"):
+                block[:] = 0.0
+            if part == "drv":
+                out["drv"] = block
+            elif isinstance(out[part], dict):
+                out[part][key] = block
+            else:
+                out[part].append(block)
+        out["m"][GROUND][:] = 0.0
+        out["m"][GROUND][L.C] = 1.0
+        return out
+
+    def run(self, x: np.ndarray, lo: int, hi: int, off: int, buf: dict) -> None:
+        """Rows ``lo`` to ``hi`` (``x``: the driver's angles in rad, or its positions),
+        into ``buf`` at ``i - off``; raises :class:`Refused`."""
+        k, m, a = self.k, buf["m"], buf["a"]
+        dname = self.scene.driver.body
+        g, gs = self.driver
+        motion = k.crank_motion if self.crank else k.slider_motion
+        bad = motion(x, lo, hi, off, g, gs, self.speed, self.accel, m[dname])
+        for (g, gs, dyad), d in zip(self.dyads, buf["d"], strict=True):
+            (b1, b2), (j1, j2) = dyad.bodies, dyad.outer
+            bad += k.MOTION[dyad.kind](lo, hi, off, g, gs, m[j1.other(b1)], m[j2.other(b2)],
+                                 m[b1], m[b2], d)
+        for b, (g, gs, npoint) in self.loads.items():
+            bad += k.body_loads(lo, hi, off, g, gs, npoint, m[b], a[b])
+        buf["u"][lo - off:hi - off] = False
+        for b, (g, gs, floors) in self.swept.items():
+            bad += k.swept_loads(lo, hi, off, g, gs, len(floors), m[b], a[b], buf["u"],
+                                 self.stats[b])
+        for (g, gs, dyad), d, r in zip(self.dyads[::-1], buf["d"][::-1],
+                                             buf["r"][::-1], strict=True):
+            (b1, b2), (j1, j2) = dyad.bodies, dyad.outer
+            k1, k2 = j1.other(b1), j2.other(b2)
+            bad += k.REACTIONS[dyad.kind](lo, hi, off, g, gs, m[b1], m[b2], m[k1], m[k2], d,
+                                    a[b1], a[b2], a[k1], a[k2], r)
+        g, gs = self.driver
+        react = k.crank_reaction if self.crank else k.slider_reaction
+        bad += react(lo, hi, off, g, gs, m[dname], a[dname], buf["drv"])
+        if bad:
+            raise Refused(bad)
+
+
+def driver_input(scene: Scene) -> np.ndarray:
+    """What the driver kernel reads per row: a crank's angles (rad), a slider's positions."""
+    drv = scene.driver
+    return drv.angles if drv.kind == "R" else np.asarray(drv.positions, dtype=float)
+
+
+def solve_full(plan: Plan, positions: np.ndarray, block: int = BLOCK_ROWS) -> Solved:
+    """The whole sweep's Solved (every table's arrays), solved block by block into
+    arrays over the whole sweep."""
+    n = positions.size
+    x = driver_input(plan.scene)
+    buf = plan.buffers(n)
+    for lo in range(0, n, block):
+        plan.run(x, lo, min(lo + block, n), 0, buf)
+    plan.check_swept()
+    return _solution(plan, positions, _cut(buf, n))
+
+
+def _cut(buf: dict, n: int) -> dict:
+    """The buffers' first ``n`` columns (views: the slab's rows are padded)."""
+    return {"m": {k: v[:, :n] for k, v in buf["m"].items()},
+            "a": {k: v[:, :n] for k, v in buf["a"].items()},
+            "d": [v[:, :n] for v in buf["d"]], "r": [v[:, :n] for v in buf["r"]],
+            "drv": buf["drv"][:, :n], "u": buf["u"]}
+
+
+def solve_lean(plan: Plan, positions: np.ndarray, block: int = BLOCK_ROWS) -> Kept:
+    """A long sweep's :class:`~kinetostatics.solver.blocks.Kept`: Me/Fe and each dyad's
+    closeness to a dead centre, the rest of each block in scratch arrays."""
+    n = positions.size
+    x = driver_input(plan.scene)
+    buf = plan.buffers(min(block, n))
+    drive = np.empty(n)
+    undefined = np.zeros(n, dtype=bool)
+    close = [np.empty(n) for _ in plan.dyads]
+    for lo in range(0, n, block):
+        hi = min(lo + block, n)
+        plan.run(x, lo, hi, lo, buf)
+        drive[lo:hi] = buf["drv"][0, :hi - lo]
+        undefined[lo:hi] = buf["u"][:hi - lo]
+        for c, d in zip(close, buf["d"], strict=True):
+            c[lo:hi] = d[L.CL2, :hi - lo]
+    plan.check_swept()
+    kind = plan.scene.driver.kind
+    singular = [~(c > SINGULAR_WARN**2) for c in close]
+    return Kept(plan.structure, DriverReaction(kind, drive), undefined, close, singular)
+
+
+def _param(scene: Scene, dyad, i: int, known: BodyMotion, m: np.ndarray, d: np.ndarray
+           ) -> Param:
+    joint, name = dyad.outer[i], dyad.bodies[i]
+    b = 10 + 4 * i
+    if joint.kind == "R":
+        local = scene.bodies[name].local(joint.point_on(name))
+        return Param("rot", known, local, d[b], d[b + 1], None, None, None, None)
+    return Param("trans", known, c=m[L.C], s=m[L.S], ux=d[b], uy=d[b + 1], bx=d[b + 2],
+                 by=d[b + 3])
+
+
+def _solution(plan: Plan, positions: np.ndarray, buf: dict) -> Solved:
+    """The Solved over the rows of ``buf`` (arrays over the whole sweep), every array a
+    view of the kernels' output."""
+    scene, n = plan.scene, positions.size
+    m = buf["m"]
+    drv = scene.driver
+    bodies = {GROUND: ground_motion(), drv.body: BodyMotion(drv.angles if drv.kind == "R"
+                                                            else None, *m[drv.body])}
+    dyads = []
+    for (g, gs, dyad), d in zip(plan.dyads, buf["d"], strict=True):
+        for b in dyad.bodies:
+            bodies[b] = BodyMotion(None, *m[b])
+        pr = tuple(_param(scene, dyad, i, bodies[dyad.outer[i].other(dyad.bodies[i])],
+                          m[dyad.bodies[i]], d) for i in range(2))
+        inner = dyad.inner
+        q = (tuple(g[L.Q1X:L.Q1Y + 1, 0]), tuple(g[L.Q2X:L.Q2Y + 1, 0])) if not gs else None
+        if inner.kind == "R" and q is None:
+            q = tuple(scene.bodies[b].local(inner.point_on(b)) for b in dyad.bodies)
+        k = int(g[L.ASSEMBLY, 0]) if not gs else g[L.ASSEMBLY]
+        dyads.append(DyadMotion(
+            dyad, pr, k, d[L.XX], d[L.XY], (d[L.C1X], d[L.C1Y]), (d[L.C2X], d[L.C2Y]),
+            d[L.DET], n, singular=~(d[L.CL2] > SINGULAR_WARN**2), closeness2=d[L.CL2],
+            inner_local=q if inner.kind == "R" else None,
+            slider_first=inner.kind == "T" and inner.slider == dyad.bodies[0],
+            nx=d[L.NX] if inner.kind == "T" else None,
+            ny=d[L.NY] if inner.kind == "T" else None))
+    structure = plan.structure
+    kin = Kinematics(scene, structure, positions, bodies, dyads)
+    reactions = _reactions(plan, buf)
+    r = buf["drv"]
+    # (Me/Fe copied out: a stacked run's scenes keep it, not the slab it lies in)
+    sol = Solved(scene, structure, kin, None, reactions,
+                 DriverReaction(drv.kind, r[0].copy()), buf["u"])
+    sol.path = "fast"
+    return sol
+
+
+def _reactions(plan: Plan, buf: dict) -> dict:
+    """The joint reactions in the numpy path's order (dyads last to first, each its inner
+    joint then its outer ones; the driver's joint last)."""
+    scene, a = plan.scene, buf["a"]
+    out: dict = {}
+    for (_, _, dyad), d, r in zip(plan.dyads[::-1], buf["d"][::-1], buf["r"][::-1],
+                                     strict=True):
+        inner = dyad.inner
+        if inner.kind == "R":
+            _record(out, inner, dyad.bodies[1], r[L.R_FX], r[L.R_FY], d[L.XX], d[L.XY])
+        else:
+            _record(out, inner, inner.slider, r[L.R_FX], r[L.R_FY], d[L.XX], d[L.XY],
+                    r[L.R_N], r[L.R_M])
+        for i, (name, joint) in enumerate(zip(dyad.bodies, dyad.outer, strict=True)):
+            if joint.kind == "R":
+                b = 10 + 4 * i
+                _record(out, joint, name, a[name][0], a[name][1], d[b], d[b + 1], sign=-1.0)
+                continue
+            o = 4 + 6 * i
+            _record(out, joint, name, r[o + L.R_FX], r[o + L.R_FY], r[o + L.R_SX],
+                    r[o + L.R_SY], r[o + L.R_N], r[o + L.R_M])
+    drv = scene.driver
+    joint = scene.joints[drv.joint]
+    ad, r = a[drv.body], buf["drv"]
+    if drv.kind == "R":
+        px, py = scene.ground[joint.point_on(GROUND)]
+        _record(out, joint, drv.body, ad[0], ad[1], px, py, sign=-1.0)
+    else:
+        _record(out, joint, drv.body, r[5], r[6], r[3], r[4], r[1], r[2])
+    return out
+
+
+def with_assembly(structure, ks) -> object:
+    """The structure with each dyad's assembly (numbers)."""
+    return replace(structure, assembly=tuple(int(k) for k in ks))

@@ -1,0 +1,834 @@
+"""The compiled kernels: the numpy path's formulas, row by row (numba).
+
+Imported only by :func:`~kinetostatics.solver.fast.loader.kernels`, after the cache
+folder is settled. Every kernel works on rows ``lo`` to ``hi`` of the sweep; the arrays
+it reads and writes over the rows (motions, a dyad's data, load resultants) hold them at
+``i - off`` (``off = 0``: arrays over the whole sweep; ``off = lo``: a block's scratch),
+its geometry at ``i * gs`` (:mod:`~kinetostatics.solver.fast.layout`). Each returns the
+number of rows where it wrote a value that is not finite, or where the numpy path would
+refuse the row (the links do not reach, a dead centre, coincident pivots): the caller
+then solves on the numpy path, whose message names the rows.
+
+Rules (measured on a prototype): ``error_model="numpy"`` (a division by zero gives an
+infinity, as numpy's, counted), sin and cos in a pass of their own, no ``fastmath`` (the
+numbers stay IEEE), no ``prange`` (the executors spread scenes over processes).
+A dyad's kernels have one entry point per kind (:data:`MOTION`, :data:`REACTIONS`): the
+kind a constant in each, its other kinds' branches folded away.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from .layout import (
+    AL,
+    ASSEMBLY,
+    AX,
+    AY,
+    C1X,
+    C1Y,
+    C2X,
+    C2Y,
+    CL2,
+    D_LX,
+    D_LY,
+    D_PX,
+    D_PY,
+    DET,
+    I_BETA,
+    I_CB,
+    I_LX,
+    I_LY,
+    I_RTR,
+    I_SB,
+    I_SFIRST,
+    I_SX,
+    I_SY,
+    INNER_R,
+    L_I,
+    L_M0,
+    L_POINT,
+    NORM2,
+    NX,
+    NY,
+    O_WHERE,
+    O_X,
+    O_Y,
+    OM,
+    OX,
+    OY,
+    P_BX,
+    P_BY,
+    P_CB,
+    P_GK,
+    P_GROUND,
+    P_KX,
+    P_KY,
+    P_SB,
+    PARAM,
+    Q1X,
+    Q1Y,
+    Q2X,
+    Q2Y,
+    R_FX,
+    R_FY,
+    R_M,
+    R_N,
+    R_SX,
+    R_SY,
+    ROT1,
+    ROT2,
+    SIZE,
+    T_C,
+    T_LX,
+    T_LY,
+    T_ON,
+    T_RUX,
+    T_RUY,
+    T_RX,
+    T_RY,
+    T_S,
+    T_SIGN,
+    T_SX,
+    T_SY,
+    T_UX,
+    T_UY,
+    VX,
+    VY,
+    XX,
+    XY,
+    C,
+    S,
+)
+
+SINGULAR_WARN2 = 1e-6       # (1e-3)^2: kinematics.SINGULAR_WARN squared
+SINGULAR_FAIL2 = 1e-24      # (1e-12)^2
+SINGULAR_FAIL = 1e-12
+
+jit = njit(cache=True, error_model="numpy", nogil=True)
+# the helpers and a dyad's kernel body, inlined where they are called (a call that
+# passes arrays costs atomic reference counts per row; inlined, they are pruned), a
+# dyad's body into each kind's entry point with its kind a constant
+body = njit(error_model="numpy", nogil=True, inline="always")
+
+
+@jit
+def _bad(*values) -> int:
+    """1 when a value is not finite (v * 0 is 0 for a finite v, NaN otherwise)."""
+    z = 0.0
+    for v in values:
+        z += v * 0.0
+    return 0 if z == 0.0 else 1
+
+
+# -- the driver (seed 000 ch. 4) ---------------------------------------------------------
+@jit
+def crank_motion(theta, lo, hi, off, g, gs, w, eps, m):
+    """A crank turning about its ground joint P: o = P - R a, v_o = omega k x (o - P),
+    a_o = eps k x (o - P) - omega^2 (o - P) (seed 000 ch. 4; the numpy path's
+    ``driver_motion``)."""
+    for i in range(lo, hi):             # sin and cos: a pass of their own
+        j = i - off
+        m[C, j] = math.cos(theta[i])
+        m[S, j] = math.sin(theta[i])
+    w2 = w * w
+    bad = 0
+    for i in range(lo, hi):
+        j, r = i - off, i * gs
+        c, s = m[C, j], m[S, j]
+        lx, ly = g[D_LX, r], g[D_LY, r]
+        rax, ray = c * lx - s * ly, s * lx + c * ly
+        m[OM, j] = w
+        m[AL, j] = eps
+        m[OX, j] = g[D_PX, r] - rax
+        m[OY, j] = g[D_PY, r] - ray
+        m[VX, j] = w * ray
+        m[VY, j] = -w * rax
+        m[AX, j] = eps * ray + w2 * rax
+        m[AY, j] = -eps * rax + w2 * ray
+        bad += _bad(c, s, m[OX, j], m[OY, j], m[AX, j], m[AY, j])
+    return bad
+
+
+@jit
+def slider_motion(pos, lo, hi, off, g, gs, w, eps, m):
+    """A slider on a ground guide (or carrying a guide along a ground point): its origin
+    moves along the line, o = L + sign s u - R a (seed 000 ch. 4)."""
+    bad = 0
+    for i in range(lo, hi):
+        j, r = i - off, i * gs
+        sign = g[T_SIGN, r]
+        ux, uy = g[T_UX, r], g[T_UY, r]
+        v, a = sign * w, sign * eps
+        m[C, j] = g[T_C, r]
+        m[S, j] = g[T_S, r]
+        m[OM, j] = 0.0
+        m[AL, j] = 0.0
+        m[OX, j] = sign * ux * pos[i] + (g[T_LX, r] - g[T_RX, r])
+        m[OY, j] = sign * uy * pos[i] + (g[T_LY, r] - g[T_RY, r])
+        m[VX, j] = v * ux
+        m[VY, j] = v * uy
+        m[AX, j] = a * ux
+        m[AY, j] = a * uy
+        bad += _bad(m[OX, j], m[OY, j])
+    return bad
+
+
+# -- a dyad's kinematics (seed 000 ch. 5-12) ---------------------------------------------
+@jit
+def _rot_angle(dx, dy, lx, ly, r2):
+    """cos, sin of the angle that turns the local vector (lx, ly) onto (dx, dy)."""
+    return dx * (lx / r2) + dy * (ly / r2), dy * (lx / r2) - dx * (ly / r2)
+
+
+@body
+def _param(rot, k, j, g, r, base):
+    """A dyad body's parameter through its outer joint (the numpy path's ``dyad_param``):
+    rot, the known body's point P with its velocity and acceleration; trans, the body's
+    angle (c, s), the guide's direction u and the line's base point b."""
+    kc, ks = k[C, j], k[S, j]
+    lx, ly = g[base + P_KX, r], g[base + P_KY, r]
+    rx, ry = kc * lx - ks * ly, ks * lx + kc * ly
+    px, py = k[OX, j] + rx, k[OY, j] + ry
+    if rot:
+        om, al = k[OM, j], k[AL, j]
+        w2 = om * om
+        return (px, py, k[VX, j] - om * ry, k[VY, j] + om * rx,
+                (k[AX, j] - al * ry) - w2 * rx, (k[AY, j] + al * rx) - w2 * ry)
+    cb, sb = g[base + P_CB, r], g[base + P_SB, r]
+    c, s = kc * cb - ks * sb, ks * cb + kc * sb
+    bx, by = g[base + P_BX, r], g[base + P_BY, r]
+    if g[base + P_GK, r] != 0.0:
+        ux, uy = c, s
+    else:
+        ux, uy = kc, ks
+    return c, s, ux, uy, px - (c * bx - s * by), py - (s * bx + c * by)
+
+
+@body
+def _vel_at(k, j, x, y):
+    """Velocity of the known body's point at the global (x, y)."""
+    om = k[OM, j]
+    return k[VX, j] - om * (y - k[OY, j]), k[VY, j] + om * (x - k[OX, j])
+
+
+@body
+def _acc_at(k, j, x, y):
+    """Acceleration of the known body's point at (x, y) (seed 001 eq. 9)."""
+    rx, ry = x - k[OX, j], y - k[OY, j]
+    om, al = k[OM, j], k[AL, j]
+    w2 = om * om
+    return (k[AX, j] - al * ry) - w2 * rx, (k[AY, j] + al * rx) - w2 * ry
+
+
+@body
+def _close_r(kind, p1, p2, g, r, k):
+    """A revolute inner joint closed (the numpy path's ``DyadSolver._inner_r``): each
+    body's (cos, sin), the displacements, the reach and the gap (> 0: cannot close)."""
+    rot1, rot2 = (kind & ROT1) != 0, (kind & ROT2) != 0
+    q1x, q1y, q2x, q2y = g[Q1X, r], g[Q1Y, r], g[Q2X, r], g[Q2Y, r]
+    a1x = q1x - g[P_BX, r] if rot1 else q1x
+    a1y = q1y - g[P_BY, r] if rot1 else q1y
+    a2x = q2x - g[PARAM + P_BX, r] if rot2 else q2x
+    a2y = q2y - g[PARAM + P_BY, r] if rot2 else q2y
+    if rot1 and rot2:
+        # circle-circle (RRR, seed 000 eq. 5.1): Q = P1 + x e + k h J e
+        r1s, r2s = a1x * a1x + a1y * a1y, a2x * a2x + a2y * a2y
+        ex, ey = p2[0] - p1[0], p2[1] - p1[1]
+        d2 = ex * ex + ey * ey
+        reach = math.sqrt(d2)
+        inv = 1.0 / reach
+        x = (d2 + (r1s - r2s)) * (0.5 * inv)
+        h2 = r1s - x * x
+        gap = -1.0
+        if not h2 >= 0.0:
+            r1, r2 = math.sqrt(r1s), math.sqrt(r2s)
+            gap = max(reach - (r1 + r2), abs(r1 - r2) - reach)
+        kh = (k * inv) * math.sqrt(max(h2, 0.0))
+        xi = x * inv
+        tx, ty = xi * ex - kh * ey, xi * ey + kh * ex
+        c1, s1 = _rot_angle(tx, ty, a1x, a1y, r1s)
+        c2, s2 = _rot_angle((p1[0] + tx) - p2[0], (p1[1] + ty) - p2[1], a2x, a2y, r2s)
+        return c1, s1, c2, s2, 0.0, 0.0, reach, gap
+    if not rot1 and not rot2:
+        # line-line (TRT, seed 000 ch. 10): Q01 + s1 u1 = Q02 + s2 u2
+        q01x = p1[4] + (p1[0] * q1x - p1[1] * q1y)
+        q01y = p1[5] + (p1[1] * q1x + p1[0] * q1y)
+        q02x = p2[4] + (p2[0] * q2x - p2[1] * q2y)
+        q02y = p2[5] + (p2[1] * q2x + p2[0] * q2y)
+        rx, ry = q02x - q01x, q02y - q01y
+        det = p1[3] * p2[2] - p1[2] * p2[3]
+        s1 = (ry * p2[2] - rx * p2[3]) / det
+        s2 = (p1[2] * ry - p1[3] * rx) / det
+        return p1[0], p1[1], p2[0], p2[1], s1, s2, -1.0, -1.0
+    # circle-line (RRT / TRR, seed 000 ch. 9 and 8)
+    pr, pt = (p1, p2) if rot1 else (p2, p1)
+    arx, ary = (a1x, a1y) if rot1 else (a2x, a2y)
+    qx, qy = (q2x, q2y) if rot1 else (q1x, q1y)
+    rs = arx * arx + ary * ary
+    q0x = pt[4] + (pt[0] * qx - pt[1] * qy)
+    q0y = pt[5] + (pt[1] * qx + pt[0] * qy)
+    wx, wy = q0x - pr[0], q0y - pr[1]
+    ux, uy = pt[2], pt[3]
+    b = ux * wx + uy * wy
+    disc = b * b - (wx * wx + wy * wy) + rs
+    gap = -1.0
+    if not disc >= 0.0:
+        gap = abs(ux * wy - uy * wx) - math.sqrt(rs)
+    s = k * math.sqrt(max(disc, 0.0)) - b
+    cr, sr = _rot_angle(wx + s * ux, wy + s * uy, arx, ary, rs)
+    if rot1:
+        return cr, sr, pt[0], pt[1], 0.0, s, -1.0, gap
+    return pt[0], pt[1], cr, sr, s, 0.0, -1.0, gap
+
+
+@body
+def _close_t(kind, p1, p2, g, r, k, th):
+    """A prismatic inner joint closed (``DyadSolver._inner_t``): RTR from the angle
+    ``th`` of the guide (worked out in a pass before, with its cos and sin), RTT and TTR
+    from the other body's angle."""
+    rot1, rot2 = (kind & ROT1) != 0, (kind & ROT2) != 0
+    sfirst = g[I_SFIRST, r] != 0.0
+    ps, pg = (p1, p2) if sfirst else (p2, p1)
+    rots = rot1 if sfirst else rot2
+    cb, sb = g[I_CB, r], g[I_SB, r]
+    slx, sly = g[I_SX, r], g[I_SY, r]
+    llx, lly = g[I_LX, r], g[I_LY, r]
+    bs = 0 if sfirst else PARAM             # the slider's parameter rows
+    bg = PARAM - bs
+    if rot1 and rot2:
+        cg, sg = th[0], th[1]
+        cs_, ss_ = cg * cb - sg * sb, sg * cb + cg * sb
+        s = 0.0
+    elif rots:
+        # RTT: the slider's angle is the guide's + beta; its point stays on the line
+        cs_, ss_ = pg[0] * cb - pg[1] * sb, pg[1] * cb + pg[0] * sb
+        ax_, ay_ = slx - g[bs + P_BX, r], sly - g[bs + P_BY, r]
+        sx = ps[0] + (cs_ * ax_ - ss_ * ay_)
+        sy = ps[1] + (ss_ * ax_ + cs_ * ay_)
+        l0x = pg[4] + (pg[0] * llx - pg[1] * lly)
+        l0y = pg[5] + (pg[1] * llx + pg[0] * lly)
+        den = cs_ * pg[3] - ss_ * pg[2]
+        s = (cs_ * (sy - l0y) - ss_ * (sx - l0x)) / den
+        cg, sg = pg[0], pg[1]
+    else:
+        # TTR: the guide's angle is the slider's - beta
+        cg, sg = ps[0] * cb + ps[1] * sb, ps[1] * cb - ps[0] * sb
+        ax_, ay_ = llx - g[bg + P_BX, r], lly - g[bg + P_BY, r]
+        lx = pg[0] + (cg * ax_ - sg * ay_)
+        ly = pg[1] + (sg * ax_ + cg * ay_)
+        ux, uy = ps[0], ps[1]
+        s0x = ps[4] + (ps[0] * slx - ps[1] * sly)
+        s0y = ps[5] + (ps[1] * slx + ps[0] * sly)
+        den = ux * ps[3] - uy * ps[2]
+        s = -(ux * (s0y - ly) - uy * (s0x - lx)) / den
+        cs_, ss_ = ps[0], ps[1]
+    if sfirst:
+        return cs_, ss_, cg, sg, s if not rots else 0.0, s if rots else 0.0
+    return cg, sg, cs_, ss_, s if rots else 0.0, s if not rots else 0.0
+
+
+@body
+def _rtr_angle(p1, p2, g, r, k):
+    """RTR (seed 000 ch. 6-7): the guide's angle, sin(delta - theta_g - beta) = -c/|D|,
+    the pivots' distance |D| and the gap."""
+    sfirst = g[I_SFIRST, r] != 0.0
+    ps, pg = (p1, p2) if sfirst else (p2, p1)
+    c = g[I_RTR, r]
+    dx, dy = ps[0] - pg[0], ps[1] - pg[1]
+    dn = math.sqrt(dx * dx + dy * dy)
+    y = -c / dn
+    gap = -1.0
+    if not abs(y) <= 1.0:
+        gap = abs(c) - dn if y == y else math.inf
+    x = math.asin(min(max(y, -1.0), 1.0))
+    side = -x if k > 0 else x - math.pi
+    return math.atan2(dy, dx) - g[I_BETA, r] + side, dn, gap
+
+
+@body
+def _origin(rot, p, c, s, lx, ly, q):
+    """A dyad body's origin (``body_origin``): P - R a (rot) or b + s u (trans)."""
+    if rot:
+        return p[0] - (c * lx - s * ly), p[1] - (s * lx + c * ly)
+    return p[4] + q * p[2], p[5] + q * p[3]
+
+
+@body
+def _column(rot, p, k1, j, xx, xy):
+    """The column c_i of the velocity system, the known part k_i of the velocity of the
+    body's point at X and the angular weight w_i."""
+    if rot:
+        return p[1] - xy, xx - p[0], p[2], p[3], 1.0
+    kx, ky = _vel_at(k1, j, xx, xy)
+    return p[2], p[3], kx, ky, 0.0
+
+
+@body
+def _body(rot, p, kb, j, c, s, lx, ly, ox, oy, qd, qdd, m, jo):
+    """A dyad body's motion from its unknown's rate and acceleration (``_body_motion``)."""
+    m[C, jo], m[S, jo], m[OX, jo], m[OY, jo] = c, s, ox, oy
+    if rot:
+        rax, ray = c * -lx - s * -ly, s * -lx + c * -ly
+        w2 = qd * qd
+        m[OM, jo], m[AL, jo] = qd, qdd
+        m[VX, jo] = p[2] - qd * ray
+        m[VY, jo] = p[3] + qd * rax
+        m[AX, jo] = (p[4] - qdd * ray) - w2 * rax
+        m[AY, jo] = (p[5] + qdd * rax) - w2 * ray
+        return
+    om = kb[OM, j]
+    vkx, vky = _vel_at(kb, j, ox, oy)
+    akx, aky = _acc_at(kb, j, ox, oy)
+    f = 2.0 * om * qd
+    m[OM, jo], m[AL, jo] = om, kb[AL, j]
+    m[VX, jo], m[VY, jo] = vkx + qd * p[2], vky + qd * p[3]
+    m[AX, jo] = (akx + qdd * p[2]) - f * p[3]
+    m[AY, jo] = (aky + qdd * p[3]) + f * p[2]
+
+
+@body
+def _dyad_motion(kind, lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    """Positions, velocities and accelerations of a dyad of kind ``kind`` (seed 000
+    ch. 5-12, the numpy path's ``solve_dyad``): its bodies' motions into ``m1``, ``m2``
+    and its data (closing point, velocity system, closeness to a dead centre, parameters)
+    into ``d``. Counts the rows that are not finite, cannot close, or are exactly
+    singular."""
+    rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
+    rtr = rot1 and rot2 and not inner_r
+    if rtr:     # the guide's angle, then its sin and cos in a pass of their own
+        for i in range(lo, hi):
+            j, r = i - off, i * gs
+            p1 = _param(True, k1, j, g, r, 0)
+            p2 = _param(True, k2, j, g, r, PARAM)
+            d[D_TH, j], d[CL2, j], d[XX, j] = _rtr_angle(p1, p2, g, r, g[ASSEMBLY, r])
+        for i in range(lo, hi):
+            j = i - off
+            th = d[D_TH, j]
+            d[C1X, j] = math.cos(th)
+            d[C1Y, j] = math.sin(th)
+    bad = 0
+    for i in range(lo, hi):
+        j, r = i - off, i * gs
+        bad += _dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d)
+    return bad
+
+
+D_TH = 11       # (RTR: the guide's angle, held in a row that is written later)
+
+
+@body
+def _dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d):
+    size = g[SIZE, r]
+    kk = g[ASSEMBLY, r]
+    p1 = _param(rot1, k1, j, g, r, 0)
+    p2 = _param(rot2, k2, j, g, r, PARAM)
+    reach = -1.0
+    gap = -1.0
+    if inner_r:
+        c1, s1, c2, s2, q1, q2, reach, gap = _close_r(kind, p1, p2, g, r, kk)
+    else:
+        th = (d[C1X, j], d[C1Y, j])
+        if rtr:
+            reach, gap = d[CL2, j], d[XX, j]
+        c1, s1, c2, s2, q1, q2 = _close_t(kind, p1, p2, g, r, kk, th)
+    o1x, o1y = _origin(rot1, p1, c1, s1, g[P_BX, r], g[P_BY, r], q1)
+    o2x, o2y = _origin(rot2, p2, c2, s2, g[PARAM + P_BX, r], g[PARAM + P_BY, r], q2)
+    # the closing point X: the inner joint's point (prismatic: the slider's point)
+    sfirst = g[I_SFIRST, r] != 0.0
+    if inner_r or sfirst:
+        lx, ly = (g[Q1X, r], g[Q1Y, r]) if inner_r else (g[I_SX, r], g[I_SY, r])
+        xx, xy = o1x + (c1 * lx - s1 * ly), o1y + (s1 * lx + c1 * ly)
+    else:
+        lx, ly = g[I_SX, r], g[I_SY, r]
+        xx, xy = o2x + (c2 * lx - s2 * ly), o2y + (s2 * lx + c2 * ly)
+    c1x, c1y, k1x, k1y, w1 = _column(rot1, p1, k1, j, xx, xy)
+    c2x, c2y, k2x, k2y, w2 = _column(rot2, p2, k2, j, xx, xy)
+    nx = ny = ux = uy = 0.0
+    if inner_r:
+        a11, b12, a21, b22 = c1x, c2x, c1y, c2y
+        r1, r2 = k2x - k1x, k2y - k1y
+    else:
+        cg, sg = (c2, s2) if sfirst else (c1, s1)
+        cb, sb = g[I_CB, r], g[I_SB, r]
+        ux, uy = cg * cb - sg * sb, sg * cb + cg * sb
+        nx, ny = -uy, ux
+        om01 = 0.0 if rot1 else k1[OM, j]
+        om02 = 0.0 if rot2 else k2[OM, j]
+        r1 = om02 - om01
+        r2 = nx * (k2x - k1x) + ny * (k2y - k1y)
+        a11, b12 = w1, w2
+        a21, b22 = nx * c1x + ny * c1y, nx * c2x + ny * c2y
+    det = b12 * a21 - a11 * b22
+    # the closeness to a dead centre: min(sin^2 tau, (pivots' distance / size)^2)
+    if inner_r:
+        sin2 = det * det / g[NORM2, r]
+    else:
+        if rtr:
+            dx, dy = p1[0] - p2[0], p1[1] - p2[1]
+            st = (ux * dx + uy * dy) / math.sqrt(dx * dx + dy * dy)
+        else:
+            pt = p2 if rot1 else p1
+            st = ux * pt[3] - uy * pt[2]
+        sin2 = st * st
+    bad = 0
+    if reach >= 0.0:
+        rs = reach / size
+        sin2 = min(sin2, rs * rs) if sin2 == sin2 else sin2
+        bad += 0 if rs > SINGULAR_FAIL else 1
+    bad += 0 if gap <= 1e-9 * size else 1
+    bad += 0 if sin2 > SINGULAR_FAIL2 else 1
+    qd1 = (b12 * r2 - r1 * b22) / det
+    qd2 = (a11 * r2 - r1 * a21) / det
+    # the acceleration system's right-hand side (centripetal and Coriolis terms)
+    if rot1:
+        ww = qd1 * qd1
+        ka1x, ka1y = p1[4] - ww * c1y, p1[5] + ww * c1x
+    else:
+        kax, kay = _acc_at(k1, j, xx, xy)
+        f = 2.0 * k1[OM, j] * qd1
+        ka1x, ka1y = kax - f * p1[3], kay + f * p1[2]
+    if rot2:
+        ww = qd2 * qd2
+        ka2x, ka2y = p2[4] - ww * c2y, p2[5] + ww * c2x
+    else:
+        kax, kay = _acc_at(k2, j, xx, xy)
+        f = 2.0 * k2[OM, j] * qd2
+        ka2x, ka2y = kax - f * p2[3], kay + f * p2[2]
+    if inner_r:
+        ra1, ra2 = ka2x - ka1x, ka2y - ka1y
+    else:
+        al01 = 0.0 if rot1 else k1[AL, j]
+        al02 = 0.0 if rot2 else k2[AL, j]
+        ra1 = al02 - al01
+        v1x, v1y = k1x + c1x * qd1, k1y + c1y * qd1
+        v2x, v2y = k2x + c2x * qd2, k2y + c2y * qd2
+        sgn = 1.0 if sfirst else -1.0
+        rdot = sgn * (ux * (v1x - v2x) + uy * (v1y - v2y))
+        if sfirst:
+            om_g = qd2 if rot2 else k2[OM, j]
+        else:
+            om_g = qd1 if rot1 else k1[OM, j]
+        # n.(a_slider - a_guide) = 2 omega_g rdot (Coriolis, seed 001 eq. 8)
+        ra2 = 2.0 * sgn * (om_g * rdot) - (nx * (ka1x - ka2x) + ny * (ka1y - ka2y))
+    qdd1 = (b12 * ra2 - ra1 * b22) / det
+    qdd2 = (a11 * ra2 - ra1 * a21) / det
+    _body(rot1, p1, k1, j, c1, s1, g[P_BX, r], g[P_BY, r], o1x, o1y, qd1, qdd1, m1, j)
+    _body(rot2, p2, k2, j, c2, s2, g[PARAM + P_BX, r], g[PARAM + P_BY, r], o2x, o2y,
+          qd2, qdd2, m2, j)
+    d[XX, j], d[XY, j] = xx, xy
+    d[C1X, j], d[C1Y, j], d[C2X, j], d[C2Y, j], d[DET, j] = c1x, c1y, c2x, c2y, det
+    d[NX, j], d[NY, j], d[CL2, j] = nx, ny, sin2
+    for b, p, rot in ((10, p1, rot1), (14, p2, rot2)):
+        if rot:
+            d[b, j], d[b + 1, j] = p[0], p[1]
+        else:
+            d[b, j], d[b + 1, j], d[b + 2, j], d[b + 3, j] = p[2], p[3], p[4], p[5]
+    bad += _bad(m1[AX, j], m1[AY, j], m1[AL, j], m2[AX, j], m2[AY, j], m2[AL, j], xx, xy)
+    return bad
+
+
+# -- loads (seed 002 s. 2.1-2.2) ----------------------------------------------------------
+@jit
+def body_loads(lo, hi, off, g, gs, npoint, m, acc):
+    """A body's load resultants [Fx, Fy, M about its origin]: forces at local points,
+    each with the inertia force -m_k a_k of a mass there (the cog's, eq. 2.1, or a
+    concentrated mass, eq. 2.8), a couple, and the inertia couple -I_G eps (eq. 2.1)."""
+    bad = 0
+    for i in range(lo, hi):
+        j, r = i - off, i * gs
+        c, s = m[C, j], m[S, j]
+        om, al = m[OM, j], m[AL, j]
+        w2 = om * om
+        fx = fy = mo = 0.0
+        for q in range(npoint):
+            b = 2 + L_POINT * q
+            lx, ly = g[b, r], g[b + 1, r]
+            rx, ry = c * lx - s * ly, s * lx + c * ly
+            mk = g[b + 4, r]
+            ax = (m[AX, j] - al * ry) - w2 * rx
+            ay = (m[AY, j] + al * rx) - w2 * ry
+            px, py = g[b + 2, r] - mk * ax, g[b + 3, r] - mk * ay
+            fx += px
+            fy += py
+            mo += rx * py - ry * px
+        acc[0, j], acc[1, j] = fx, fy
+        acc[2, j] = mo + g[L_M0, r] - g[L_I, r] * al
+        bad += _bad(acc[0, j], acc[1, j], acc[2, j])
+    return bad
+
+
+@jit
+def swept_loads(lo, hi, off, g, gs, nload, m, acc, undefined, stats):
+    """Loads whose rows are told by the whole sweep (the numpy path's
+    ``applied_loads``), added to a body's resultants: a ``resist`` force (kind 1) of
+    magnitude R against its point's velocity, a force (kind 2) acting ``when =
+    "resisting"`` (where its power is negative). A row stands still where the speed (the
+    power's magnitude) is at most ``thr`` (1e-9 of the mechanism's own scale): the force
+    is zero there and the row is undefined. ``stats[q]`` gathers the largest speed and the
+    smallest speed of a moving row: the caller checks that the sweep's top does not move
+    the threshold over a row."""
+    bad = 0
+    for i in range(lo, hi):
+        j, r = i - off, i * gs
+        c, s = m[C, j], m[S, j]
+        om = m[OM, j]
+        for q in range(nload):
+            b = 7 * q
+            lx, ly = g[b, r], g[b + 1, r]
+            rx, ry = c * lx - s * ly, s * lx + c * ly
+            vx, vy = m[VX, j] - om * ry, m[VY, j] + om * rx
+            thr = g[b + 6, r]
+            if g[b + 2, r] == 1.0:
+                x = math.hypot(vx, vy)
+                still = x <= thr
+                fx = 0.0 if still else -g[b + 3, r] * vx / x
+                fy = 0.0 if still else -g[b + 3, r] * vy / x
+            else:
+                fx, fy = g[b + 4, r], g[b + 5, r]
+                power = fx * vx + fy * vy
+                x = abs(power)
+                still = x <= thr
+                if still or not power < 0.0:
+                    fx = fy = 0.0
+            if x > stats[q, 0] or not x == x:
+                stats[q, 0] = x
+            if not still and x < stats[q, 1]:
+                stats[q, 1] = x
+            if still:
+                undefined[j] = True
+            acc[0, j] += fx
+            acc[1, j] += fy
+            acc[2, j] += rx * fy - ry * fx
+        bad += _bad(acc[0, j], acc[1, j], acc[2, j])
+    return bad
+
+
+# -- reactions (seed 002 s. 2.3) ----------------------------------------------------------
+@body
+def _add(acc, j, fx, fy, rx, ry, mm, sign):
+    """acc += sign (F, r x F + M) on a body's resultants."""
+    acc[0, j] += sign * fx
+    acc[1, j] += sign * fy
+    acc[2, j] += sign * ((rx * fy - ry * fx) + mm)
+
+
+@body
+def _generalised(rot, m, a, d, g, j, r, t):
+    """The generalised force of a dyad body's loads along its freedom: the moment about
+    its outer pivot P (rot) or the force along its outer guide u (trans)."""
+    if rot:
+        lx, ly = g[PARAM * t + P_BX, r], g[PARAM * t + P_BY, r]
+        px, py = m[C, j] * lx - m[S, j] * ly, m[S, j] * lx + m[C, j] * ly
+        return a[2, j] - (px * a[1, j] - py * a[0, j])
+    return a[0, j] * d[10 + 4 * t, j] + a[1, j] * d[11 + 4 * t, j]
+
+
+@body
+def _dyad_reactions(kind, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    """A dyad's joint reactions (seed 002 s. 2.3.1, eqs 2.16-2.43 in vector form, the
+    numpy path's ``_solve_dyad``): the inner joint's from the two bodies' equations along
+    their freedoms (a 2 x 2 system with the velocity system's columns), each outer
+    joint's from its body's remaining equations; the outer reactions load the known
+    bodies (``ak1``, ``ak2``) with opposite sign."""
+    rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
+    bad = 0
+    for i in range(lo, hi):
+        j, r = i - off, i * gs
+        sfirst = g[I_SFIRST, r] != 0.0
+        # the generalised forces: moment about the outer pivot, or force along the guide
+        q1 = _generalised(rot1, m1, a1, d, g, j, r, 0)
+        q2 = _generalised(rot2, m2, a2, d, g, j, r, 1)
+        c1x, c1y, c2x, c2y, det = d[C1X, j], d[C1Y, j], d[C2X, j], d[C2Y, j], d[DET, j]
+        xx, xy = d[XX, j], d[XY, j]
+        if inner_r:
+            # c1 . R = Q1, c2 . R = -Q2 (eqs 2.17, 2.22, 2.26): R on body 2 from body 1
+            rx = -((q1 * c2y + q2 * c1y) / det)
+            ry = (c1x * q2 + c2x * q1) / det
+            l1x, l1y, l2x, l2y = g[Q1X, r], g[Q1Y, r], g[Q2X, r], g[Q2Y, r]
+            b1x, b1y = m1[C, j] * l1x - m1[S, j] * l1y, m1[S, j] * l1x + m1[C, j] * l1y
+            b2x, b2y = m2[C, j] * l2x - m2[S, j] * l2y, m2[S, j] * l2x + m2[C, j] * l2y
+            _add(a1, j, rx, ry, b1x, b1y, 0.0, -1.0)
+            _add(a2, j, rx, ry, b2x, b2y, 0.0, 1.0)
+            rr[R_FX, j], rr[R_FY, j] = rx, ry
+        else:
+            # [n.c_i, w_i] (N, M) = -sigma_i Q_i, sigma +1 on the slider, -1 on the guide
+            nx, ny = d[NX, j], d[NY, j]
+            e1, e2 = nx * c1x + ny * c1y, nx * c2x + ny * c2y
+            w1 = 1.0 if rot1 else 0.0
+            w2 = 1.0 if rot2 else 0.0
+            s1, s2 = (1.0, -1.0) if sfirst else (-1.0, 1.0)
+            dd = e1 * w2 - w1 * e2
+            y1, y2 = -s1 * q1, -s2 * q2
+            nn = (y1 * w2 - w1 * y2) / dd
+            mm = (e1 * y2 - y1 * e2) / dd
+            fx, fy = nn * nx, nn * ny
+            ms, mg = (m1, m2) if sfirst else (m2, m1)
+            as_, ag = (a1, a2) if sfirst else (a2, a1)
+            lx, ly = g[I_SX, r], g[I_SY, r]
+            sx, sy = ms[C, j] * lx - ms[S, j] * ly, ms[S, j] * lx + ms[C, j] * ly
+            _add(as_, j, fx, fy, sx, sy, mm, 1.0)
+            _add(ag, j, fx, fy, xx - mg[OX, j], xy - mg[OY, j], mm, -1.0)
+            rr[R_FX, j], rr[R_FY, j], rr[R_N, j], rr[R_M, j] = fx, fy, nn, mm
+        for t in range(2):
+            rot = rot1 if t == 0 else rot2
+            m = m1 if t == 0 else m2
+            mk = mk1 if t == 0 else mk2
+            a = a1 if t == 0 else a2
+            ak = ak1 if t == 0 else ak2
+            base = PARAM * t
+            ground = g[base + P_GROUND, r] != 0.0
+            if rot:
+                # eqs 2.19, 2.21, 2.28: the body's force balance gives the outer reaction
+                if not ground:
+                    lx, ly = g[base + P_KX, r], g[base + P_KY, r]
+                    kx, ky = mk[C, j] * lx - mk[S, j] * ly, mk[S, j] * lx + mk[C, j] * ly
+                    _add(ak, j, a[0, j], a[1, j], kx, ky, 0.0, 1.0)
+                continue
+            # an outer prismatic joint: normal force through the slider point and a
+            # couple about it (eqs 2.24-2.25, 2.36-2.37, 2.42-2.43)
+            where = g[O_WHERE + 3 * t, r]
+            lx, ly = g[O_X + 3 * t, r], g[O_Y + 3 * t, r]
+            if where == 0.0:
+                sx, sy = lx, ly
+            else:
+                ms = m if where == 1.0 else mk
+                sx = ms[OX, j] + (ms[C, j] * lx - ms[S, j] * ly)
+                sy = ms[OY, j] + (ms[S, j] * lx + ms[C, j] * ly)
+            ux, uy = d[10 + 4 * t, j], d[11 + 4 * t, j]
+            nx, ny = -uy, ux
+            fn = -(a[0, j] * nx + a[1, j] * ny)
+            fx, fy = fn * nx, fn * ny
+            cc = -(a[2, j] - ((sx - m[OX, j]) * a[1, j] - (sy - m[OY, j]) * a[0, j]))
+            if not ground:
+                _add(ak, j, fx, fy, sx - mk[OX, j], sy - mk[OY, j], cc, -1.0)
+            b = 4 + 6 * t
+            rr[b + R_FX, j], rr[b + R_FY, j], rr[b + R_N, j] = fx, fy, fn
+            rr[b + R_M, j], rr[b + R_SX, j], rr[b + R_SY, j] = cc, sx, sy
+        bad += _bad(rr[R_FX, j], rr[R_FY, j], rr[R_N, j], rr[R_M, j],
+                    a1[0, j], a1[1, j], a2[0, j], a2[1, j],
+                    rr[4, j], rr[5, j], rr[7, j], rr[10, j], rr[11, j], rr[13, j])
+    return bad
+
+
+@jit
+def crank_reaction(lo, hi, off, g, gs, m, a, out):
+    """The equilibrating moment on a crank, from the moments about its ground joint
+    (seed 002 eqs 2.47-2.48); the ground reaction is the crank's resultant force."""
+    bad = 0
+    for i in range(lo, hi):
+        j, r = i - off, i * gs
+        lx, ly = g[D_LX, r], g[D_LY, r]
+        ax, ay = m[C, j] * lx - m[S, j] * ly, m[S, j] * lx + m[C, j] * ly
+        out[0, j] = -(a[2, j] - (ax * a[1, j] - ay * a[0, j]))
+        bad += _bad(out[0, j], a[0, j], a[1, j])
+    return bad
+
+
+@jit
+def slider_reaction(lo, hi, off, g, gs, m, a, out):
+    """The equilibrating force on a sliding driver along its line, the guide's normal
+    force and couple about the slider point (seed 002 eqs 2.49-2.51): rows Fe, N, M,
+    the slider point's x, y and the normal force's Fx, Fy."""
+    bad = 0
+    for i in range(lo, hi):
+        j, r = i - off, i * gs
+        ux, uy = g[T_RUX, r], g[T_RUY, r]
+        lx, ly = g[T_SX, r], g[T_SY, r]
+        if g[T_ON, r] != 0.0:
+            ax, ay = m[C, j] * lx - m[S, j] * ly, m[S, j] * lx + m[C, j] * ly
+            sx, sy = m[OX, j] + ax, m[OY, j] + ay
+        else:
+            sx, sy = lx, ly
+            ax, ay = sx - m[OX, j], sy - m[OY, j]
+        nx, ny = -uy, ux
+        out[0, j] = -(a[0, j] * ux + a[1, j] * uy)
+        out[1, j] = -(a[0, j] * nx + a[1, j] * ny)
+        out[2, j] = -(a[2, j] - (ax * a[1, j] - ay * a[0, j]))
+        out[3, j], out[4, j] = sx, sy
+        out[5, j], out[6, j] = out[1, j] * nx, out[1, j] * ny
+        bad += _bad(out[0, j], out[1, j], out[2, j])
+    return bad
+
+
+# one compiled kernel per dyad kind (the kind's code: layout.KINDS), motion and reactions
+@jit
+def rrr_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(7, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+
+
+@jit
+def rrt_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(5, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+
+
+@jit
+def trr_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(6, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+
+
+@jit
+def trt_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(4, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+
+
+@jit
+def rtr_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(3, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+
+
+@jit
+def rtt_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(1, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+
+
+@jit
+def ttr_motion(lo, hi, off, g, gs, k1, k2, m1, m2, d):
+    return _dyad_motion(2, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+
+
+@jit
+def rrr_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(7, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def rrt_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(5, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def trr_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(6, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def trt_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(4, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def rtr_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(3, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def rtt_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(1, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+@jit
+def ttr_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(2, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+
+
+MOTION = {"RRR": rrr_motion, "RRT": rrt_motion, "TRR": trr_motion, "TRT": trt_motion,
+          "RTR": rtr_motion, "RTT": rtt_motion, "TTR": ttr_motion}
+REACTIONS = {"RRR": rrr_reactions, "RRT": rrt_reactions, "TRR": trr_reactions,
+             "TRT": trt_reactions, "RTR": rtr_reactions, "RTT": rtt_reactions,
+             "TTR": ttr_reactions}
+
+__all__ = ["MOTION", "REACTIONS", "body_loads", "swept_loads", "crank_motion", "crank_reaction",
+           "slider_motion", "slider_reaction"]

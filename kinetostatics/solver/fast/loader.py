@@ -1,0 +1,74 @@
+"""Loading the compiled kernels: numba imported on first use, its cache folder settled
+first (no numba here at import).
+
+numba reads its cache folder when a kernel is decorated (``cache=True`` raises there when
+no folder is writable), so the folder is chosen before numba loads: ``NUMBA_CACHE_DIR``
+when set, else ``$XDG_CACHE_HOME/kinetostatics/numba`` (``~/.cache/...``). When nothing is
+writable the compiled path is off for the process, with one warning: the numpy path
+solves everything. The project ships no caches; the first use on a machine compiles each
+kernel once (0.5-4 s each), later processes load them from the folder.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+import sys
+import tempfile
+import warnings
+from pathlib import Path
+from types import ModuleType
+
+_STATE: dict[str, object] = {"kernels": None, "off": None}
+
+
+def installed() -> bool:
+    """Whether numba can be imported (the ``[fast]`` extra), without importing it."""
+    return importlib.util.find_spec("numba") is not None
+
+
+def loaded() -> bool:
+    """Whether the kernels are loaded in this process."""
+    return _STATE["kernels"] is not None
+
+
+def _writable(folder: Path) -> bool:
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        with tempfile.NamedTemporaryFile(dir=folder):
+            pass
+    except OSError:
+        return False
+    return True
+
+
+def cache_folder() -> Path | None:
+    """The folder numba caches the compiled kernels in, or None when none is writable."""
+    given = os.environ.get("NUMBA_CACHE_DIR")
+    if given:
+        return Path(given) if _writable(Path(given)) else None
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    folder = Path(base) / "kinetostatics" / "numba"
+    return folder if _writable(folder) else None
+
+
+def kernels() -> ModuleType | None:
+    """The kernels module (numba loaded on the first call), or None: numba is not
+    installed, or no cache folder is writable (warned once)."""
+    if _STATE["kernels"] is not None:
+        return _STATE["kernels"]      # type: ignore[return-value]
+    if _STATE["off"] is not None or not installed():
+        return None
+    folder = cache_folder()
+    if folder is None:
+        _STATE["off"] = "no writable cache folder"
+        warnings.warn("the compiled solve path is off: no writable folder for numba's cache "
+                      "(set NUMBA_CACHE_DIR); solving on the numpy path", RuntimeWarning,
+                      stacklevel=3)
+        return None
+    os.environ["NUMBA_CACHE_DIR"] = str(folder)
+    if "numba" in sys.modules:          # (loaded by someone else: its config read already)
+        sys.modules["numba"].config.CACHE_DIR = str(folder)
+    from . import kernels as module
+    _STATE["kernels"] = module
+    return module

@@ -1,0 +1,71 @@
+"""A scene solved on the compiled path, or None for the numpy path (no numba here)."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from ...model.scene import Scene
+from ..blocks import BLOCK_ROWS, LeanSolved
+from ..deadpoints import dead_points_between_rows, dead_points_of_sweep, measure2
+from ..kinematics import choose_assembly, with_positions
+from ..solved import Solved
+from .choice import wanted
+from .compose import Plan, Refused, solve_full, solve_lean
+from .geometry import not_covered
+
+
+def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
+                   ) -> Solved | None:
+    """``scene`` at ``positions`` (``given``: not the scene's own) on the compiled path,
+    or None: the path is off or not wanted for this many rows
+    (:func:`~kinetostatics.solver.fast.choice.wanted`), the scene is not covered
+    (:func:`~kinetostatics.solver.fast.geometry.not_covered`), or a kernel met a row the
+    numpy path must judge (it refuses it with its message, or solves it)."""
+    n = positions.size
+    if not_covered(scene) is not None:
+        return None
+    kernels = wanted(n)
+    if kernels is None:
+        return None
+    if len(structure.assembly) != len(structure.dyads):
+        structure = replace(structure, assembly=choose_assembly(scene, structure))
+    full = with_positions(scene, positions) if given else scene
+    try:
+        if n >= 2 * BLOCK_ROWS:
+            sweep = solve_lean(Plan(kernels, full, structure, structure.assembly), positions)
+
+            def again() -> Solved:
+                return solve_full(Plan(kernels, full, structure, structure.assembly),
+                                  positions)
+            dead = dead_points_of_sweep(full, structure, positions,
+                                        measure2(sweep.closeness2, n))
+            sol = LeanSolved(full, sweep, positions, dead, again)
+        else:
+            sol = solve_full(Plan(kernels, full, structure, structure.assembly), positions)
+            kin = sol.kin
+            kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
+                full, structure, kin)
+    except Refused:
+        return None
+    sol.path = "fast"       # (a LeanSolved's: its full solve's is set by _solution)
+    return sol
+
+
+def solve_run_compiled(scene: Scene, structure) -> Solved | None:
+    """A run of stacked scenes (:meth:`~kinetostatics.solver.stack.Stacker.runs`, each
+    dyad's assembly an array over the rows) on the compiled path, or None (as
+    :func:`solve_compiled`; the caller asks :func:`~kinetostatics.solver.fast.choice.wanted`
+    once for the whole group first). Every row is the row its scene gives alone on the
+    compiled path, bit for bit: the same kernels, each number the scene's own."""
+    if not_covered(scene) is not None:
+        return None
+    positions = scene.driver.positions
+    kernels = wanted(positions.size)
+    if kernels is None:
+        return None
+    try:
+        return solve_full(Plan(kernels, scene, structure, structure.assembly), positions)
+    except Refused:
+        return None

@@ -1,0 +1,345 @@
+"""A class that cheats (issue 35): every submitted notebook runs in a bubblewrap sandbox.
+
+One class is generated; each hostile student hands in their own notebook with one
+attack cell after the answers cell (so that a stolen key would fill the answers), and
+the whole class is graded once, from the command line, two notebooks at a time, with
+small limits. Each test then reads that run for one attack: it must fail, the grading
+must finish, the grades files and the class folder must not change, and the honest
+students keep 100 %. The fast tests check the refusal without bwrap and the command.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import io
+import os
+import socket
+import subprocess
+import sys
+import threading
+from pathlib import Path
+
+import nbformat
+import pandas as pd
+import pytest
+
+from kinetostatics import teaching as T
+from kinetostatics.cli import main
+from kinetostatics.model.errors import WorkbenchError
+from kinetostatics.teaching import sandbox as S
+
+IDS = ["honest", "honest2", "proc", "walker", "cmdline", "seed", "writer", "net", "forker",
+       "hog", "printer", "looper", "daemon", "parricide"]
+SEED = 20261128
+SLEEP = "6173"           # the background process's sleep, to find it afterwards
+
+STEAL = '''
+import csv, glob, os
+def _steal(path):
+    with open(path) as f:
+        for row in csv.DictReader(f):
+            if row["student"] == student_id:
+                answers[row["question"]] = float(row["expected"])
+'''
+
+ATTACKS = {
+    # up the process tree: each ancestor's working folder, then every open key.csv
+    "proc": STEAL + """
+pid = os.getppid()
+while pid > 1:
+    try:
+        cwd = os.readlink(f"/proc/{pid}/cwd")
+        for k in glob.glob(cwd + "/key.csv") + glob.glob(cwd + "/*/key.csv"):
+            _steal(k)
+        pid = int(open(f"/proc/{pid}/stat").read().rsplit(")", 1)[1].split()[1])
+    except (OSError, ValueError):
+        break
+for pid in [p for p in os.listdir("/proc") if p.isdigit()]:
+    try:
+        for fd in os.listdir(f"/proc/{pid}/fd"):
+            if os.readlink(f"/proc/{pid}/fd/{fd}").endswith("key.csv"):
+                _steal(f"/proc/{pid}/fd/{fd}")
+    except OSError:
+        pass
+""",
+    # every file named key.csv anywhere, and the class folder's path guessed right
+    "walker": STEAL + '''
+for root, dirs, files in os.walk("/"):
+    # everything but the system's and the Python packages' own trees
+    dirs[:] = [x for x in dirs if os.path.join(root, x) not in ("/proc", "/sys", "/usr")
+               and x not in ("site-packages", "lib")]
+    if "key.csv" in files:
+        _steal(os.path.join(root, "key.csv"))
+try:
+    _steal(CLASS + "/key.csv")
+except OSError:
+    pass
+''',
+    # the class folder from the grader's command line
+    "cmdline": STEAL + '''
+for pid in [p for p in os.listdir("/proc") if p.isdigit()]:
+    try:
+        argv = open(f"/proc/{pid}/cmdline").read().split("\\0")
+    except OSError:
+        continue
+    for a in argv:
+        if os.path.isfile(os.path.join(a, "key.csv")):
+            _steal(os.path.join(a, "key.csv"))
+for k, v in os.environ.items():
+    if os.path.isfile(os.path.join(v, "key.csv")):
+        _steal(os.path.join(v, "key.csv"))
+''',
+    # the seed in teacher.json, and the key computed from it
+    "seed": '''
+import json
+try:
+    seed = json.load(open(CLASS + "/teacher.json"))["seed"]
+    from kinetostatics import teaching as _T
+    k = _T.exercise("slider_crank", seed).key([student_id])
+    answers.update(dict(zip(k.question, k.expected)))
+except OSError:
+    pass
+''',
+    # the class folder, another student's notebook, the grades
+    "writer": '''
+for path in [CLASS + "/key.csv", CLASS + "/planted.txt", HONEST, GRADES]:
+    try:
+        with open(path, "a") as f:
+            f.write("100,100,100\\n")
+    except OSError:
+        pass
+''',
+    # a service on the machine's loopback
+    "net": '''
+import socket
+for host in ("127.0.0.1", "localhost", "::1"):
+    try:
+        socket.create_connection((host, PORT), timeout=2).sendall(b"key please")
+    except OSError:
+        pass
+''',
+    "forker": "import os\nwhile True:\n    os.fork()\n",
+    "hog": "x = bytearray(50 * 10**9)\n",
+    "printer": "for _ in range(10**7):\n    print('x' * 100)\n",
+    "looper": "while True:\n    pass\n",
+    "daemon": f'''
+import subprocess
+subprocess.Popen(["sleep", "{SLEEP}"], start_new_session=True,
+                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+''',
+    "parricide": '''
+import os, signal
+try:
+    os.kill(os.getppid(), signal.SIGKILL)
+except OSError:
+    pass
+for pid in [p for p in os.listdir("/proc") if p.isdigit()]:
+    try:
+        os.kill(int(pid), signal.SIGKILL)        # everything in reach, itself last
+    except OSError:
+        pass
+''',
+}
+
+
+def _run(argv) -> tuple[int, str, str]:
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        code = main([str(a) for a in argv])
+    return code, out.getvalue(), err.getvalue()
+
+
+def _digest(folder: Path) -> dict[str, str]:
+    return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def _sleepers() -> list[str]:
+    out = []
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            argv = Path(f"/proc/{pid}/cmdline").read_bytes().split(b"\0")
+        except OSError:
+            continue
+        if argv[:2] == [b"sleep", SLEEP.encode()]:
+            out.append(pid)
+    return out
+
+
+class _Listener:
+    """A loopback service the test opens: it records whoever connects."""
+
+    def __init__(self):
+        self.sock = socket.socket()
+        self.sock.bind(("127.0.0.1", 0))
+        self.sock.listen(8)
+        self.sock.settimeout(0.5)
+        self.port = self.sock.getsockname()[1]
+        self.connected: list = []
+        self.stop = threading.Event()
+        self.thread = threading.Thread(target=self._serve, daemon=True)
+        self.thread.start()
+
+    def _serve(self):
+        while not self.stop.is_set():
+            try:
+                conn, addr = self.sock.accept()
+            except OSError:
+                continue
+            self.connected.append(addr)
+            conn.close()
+
+    def close(self):
+        self.stop.set()
+        self.thread.join(5)
+        self.sock.close()
+
+
+@pytest.fixture(scope="module")
+def hostile(tmp_path_factory):
+    """The class graded once: the console, the grades, the folders before and after."""
+    if S.find_bwrap() is None and os.environ.get("CI") != "true":
+        pytest.skip("bubblewrap (bwrap) is not installed: apt-get install bubblewrap")
+    root = tmp_path_factory.mktemp("hostile")
+    d = root / "class"
+    T.generate_class("slider_crank", IDS, d, seed=SEED)
+    key = pd.read_csv(d / "key.csv", dtype={"student": str})
+    subs = root / "subs"
+    subs.mkdir()
+    grades = root / "out" / "grades.csv"
+    grades.parent.mkdir()
+    grades.write_text("the grades of last week\n", encoding="utf-8")
+    listener = _Listener()
+    consts = (f"CLASS = {str(d)!r}\nHONEST = {str(subs / 'honest.ipynb')!r}\n"
+              f"GRADES = {str(grades)!r}\nPORT = {listener.port}\n")
+    for sid in IDS:
+        nb = nbformat.read(d / "students" / f"{sid}.ipynb", as_version=4)
+        if sid.startswith("honest"):
+            k = key[key.student == sid]
+            T.fill_answer_cell(nb, dict(zip(k.question, k.expected, strict=True)))
+        else:
+            at = next(i for i, c in enumerate(nb.cells)
+                      if "answers" in c.get("metadata", {}).get("tags", []))
+            nb.cells.insert(at + 1, nbformat.v4.new_code_cell(consts + ATTACKS[sid]))
+        nbformat.write(nb, str(subs / f"{sid}.ipynb"))
+    before = {"class": _digest(d), "subs": _digest(subs), "out": _digest(grades.parent)}
+    # graded as a teacher types it: from the class folder, its path on the command line
+    res = subprocess.run([sys.executable, "-m", "kinetostatics", "exercises", "grade", d,
+                          subs, "--out", grades, "--jobs", "2", "--timeout", "40",
+                          "--notebook-seconds", "120", "--memory-mb", "1536",
+                          "--output-mb", "1", "--processes", "48"], cwd=d,
+                         capture_output=True, text=True, timeout=1200)
+    code, out, err = res.returncode, res.stdout, res.stderr
+    listener.close()
+    summary = pd.read_csv(grades.with_name("grades_students.csv"), dtype={"student": str},
+                          keep_default_na=False).set_index("student")
+    return {"code": code, "out": out, "err": err, "summary": summary, "key": key,
+            "before": before, "dir": d, "subs": subs, "grades": grades,
+            "connected": listener.connected}
+
+
+def _score(hostile, sid) -> float:
+    return float(hostile["summary"].loc[sid, "score %"])
+
+
+# ----------------------------------------------------------------- the whole run
+@pytest.mark.slow
+def test_grading_finishes_and_the_honest_keep_full_marks(hostile):
+    assert hostile["code"] == 0, hostile["err"]
+    assert hostile["summary"].index.tolist() == IDS
+    assert _score(hostile, "honest") == 100.0 and _score(hostile, "honest2") == 100.0
+    assert "sandbox: bubblewrap" in hostile["out"]
+    assert set(hostile["summary"]["sandbox"]) == {"bubblewrap"}
+
+
+@pytest.mark.slow
+def test_no_hostile_student_gets_a_key_value(hostile):
+    s = hostile["summary"]
+    for sid in IDS[2:]:
+        assert _score(hostile, sid) == 0.0, (sid, s.loc[sid].to_dict())
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("sid", ["proc", "walker", "cmdline", "seed"])
+def test_reading_the_key_or_the_seed_fails(hostile, sid):
+    # the attack ran to its end, found nothing and left the answers empty
+    assert _score(hostile, sid) == 0.0
+    assert int(hostile["summary"].loc[sid, "passed"]) == 0
+    assert "did not run" not in hostile["summary"].loc[sid, "flags"]
+
+
+@pytest.mark.slow
+def test_nothing_outside_the_sandbox_is_written(hostile):
+    d, subs, grades = hostile["dir"], hostile["subs"], hostile["grades"]
+    assert _digest(d) == hostile["before"]["class"]
+    assert not (d / "planted.txt").exists()
+    assert _digest(subs) == hostile["before"]["subs"]
+    # the grades file is the grader's own: written once, by the grader
+    text = grades.read_text(encoding="utf-8")
+    assert "100,100,100" not in text and text.startswith("student,question")
+
+
+@pytest.mark.slow
+def test_the_loopback_service_is_not_reached(hostile):
+    assert hostile["connected"] == []
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("sid, says", [
+    ("forker", "raised BlockingIOError"),
+    ("hog", "raised MemoryError"),
+    ("printer", "printed more than 1 MB (the output limit): stopped"),
+    ("looper", "ran longer than 40 s"),
+    ("parricide", "the kernel died"),
+])
+def test_a_limit_hit_is_a_flag_naming_it(hostile, sid, says):
+    flags = hostile["summary"].loc[sid, "flags"]
+    assert flags.startswith("did not run: ") and says in flags, flags
+    assert f"!! FLAG {sid}: did not run" in hostile["out"]
+
+
+@pytest.mark.slow
+def test_no_background_process_outlives_its_notebook(hostile):
+    assert _sleepers() == []
+
+
+# ------------------------------------------------------------------ fast checks
+def test_without_bwrap_grading_refuses_in_one_line(tmp_path, monkeypatch):
+    d = tmp_path / "class"
+    T.generate_class("slider_crank", ["ana"], d, seed=SEED)
+    monkeypatch.setattr(S, "find_bwrap", lambda: None)
+    code, out, err = _run(["exercises", "grade", d, d / "students"])
+    assert code == 2
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and "bwrap was not found" in lines[0]
+    assert "apt install bubblewrap" in lines[0] and "--unsandboxed" in lines[0]
+    # read as saved, nothing runs: no sandbox needed
+    code, out, err = _run(["exercises", "grade", d, d / "students", "--no-execute"])
+    assert code == 0 and "WARNING" not in out
+
+
+def test_the_sandbox_hides_what_lies_inside_what_it_shows(tmp_path):
+    project = Path(T.__file__).resolve().parents[2]
+    inside = project / "tests"
+    sb = S.Sandbox(S.Limits(), (str(inside), str(tmp_path)), "bwrap")
+    cmd = sb.command(["python"], tmp_path / "scratch", None)
+    i = cmd.index(str(inside))
+    assert cmd[i - 1] == "--tmpfs"                  # covered by an empty folder
+    assert cmd.count(str(tmp_path)) == 0            # /tmp is the sandbox's own anyway
+    for flag in ("--unshare-net", "--unshare-pid", "--unshare-ipc", "--die-with-parent",
+                 "--clearenv", "--unshare-user"):
+        assert flag in cmd
+    env = {cmd[i + 1]: cmd[i + 2] for i, a in enumerate(cmd) if a == "--setenv"}
+    assert env["HOME"] == str((tmp_path / "scratch").resolve())
+    assert set(env) >= {"PATH", "PYTHONPATH", "MPLBACKEND"} and "PWD" not in env
+
+
+def test_limits_are_checked_and_stated():
+    with pytest.raises(WorkbenchError, match="memory_mb=10"):
+        S.Limits(memory_mb=10)
+    text = S.Limits().describe()
+    for part in ("2048 MB", "60 s per cell", "600 s per notebook", "64 processes",
+                 "output up to 8 MB"):
+        assert part in text
+    assert S.exit_reason(128 + 24, S.Limits()) == "killed: CPU time limit of 300 s hit"
