@@ -163,7 +163,7 @@ def report_figures(results: dict[str, Any], out: dict[str, Any]) -> list[tuple[s
         if two:
             bplot.plot_moment_polygon(r, axes[1, 0])
         figs.append(("rotor: unbalance polygon closed by the corrections", fig))
-    units = out.get("units") or {}
+    units = out.get("scene_units") or {}
     vib = unit_text(units.get("vibration", "")) or "amplitude unit"
     for k, t in enumerate(results.get("resonance_test", [])):
         if t.A is None:
