@@ -233,7 +233,7 @@ def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
     if scene is not None and Path(str(scene)).is_file():
         source = Path(str(scene)).read_text(encoding="utf-8")
     lines = _textsummary_text(results, out)
-    warns = [f"{w}: {m}" for w, m in result_warnings(out)]
+    warns = [f"{w}: {m}" if w else m for w, m in result_warnings(out)]
     figs = report_figures(results, out)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
