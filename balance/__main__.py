@@ -94,14 +94,14 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _units_line(out: dict[str, Any]) -> str:
-    """The scene's [units], and which results are SI (scene-format.md, opening)."""
-    u = out.get("units")
-    if not u or not any(k in out for k in ("rotor", "static_test", "resonance_test",
-                                           "balancing")):
-        return ""
+    """The units of each section's numbers (``result_units``), when the scene was typed in
+    other units than the defaults."""
+    u = out.get("scene_units") or {}
     named = ", ".join(f'{k} = "{v}"' for k, v in u.items() if v != SI.get(k))
-    return (f"\nscene units: {named}; the rotor, static test, resonance and mechanism "
-            "results above are SI (kg, m, kg m, N, N m; deg)")
+    if not named:
+        return ""
+    return ("\nscene units: " + named + "\n" + "\n".join(
+        f"  {k}: {v}" for k, v in out.get("result_units", {}).items()))
 
 
 if __name__ == "__main__":

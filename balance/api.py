@@ -12,6 +12,7 @@ from .errors import BalanceError, BalanceWarning
 from .field.scene import solve_field
 from .model.scene import SCENES, BalanceScene, ResonanceSpec, load_scene
 from .model.slips import correction_slips
+from .model.units import Units
 from .resonance.methods import ResonanceResult, parallelogram, trial_runs
 from .rotor.design import balance_rotor
 from .rotor.static_device import static_device
@@ -53,7 +54,9 @@ def solve_results(scene: Any) -> dict[str, Any]:
         of :class:`~balance.resonance.ResonanceResult`, ``balancing`` -> what
         ``balance.mechanism.solve_mechanism_balancing`` returns; one key per section
         present; and ``warnings``, the suspected unit slips (a list of strings, empty
-        when none), each also issued as a :class:`~balance.errors.BalanceWarning`.
+        when none), each also issued as a :class:`~balance.errors.BalanceWarning`;
+        ``result_units``, the units of each section's numbers, and ``scene_units``, the
+        units the scene was typed in (its own, not the numbers').
 
     Raises
     ------
@@ -79,7 +82,22 @@ def solve_results(scene: Any) -> dict[str, Any]:
         out["balancing"] = _mechanism_balancing(sc.raw)
     out.update(solve_field(sc.field_scene))
     out["warnings"] = [*sc.warnings, *emit(correction_slips(out, sc), sc.quiet, BalanceWarning)]
+    out["result_units"] = result_units(out, sc.units)
+    out["scene_units"] = sc.units
     return out
+
+
+SI_TEXT = "SI: kg, m, kg m, N, N m, s; angles in degrees"
+
+
+def result_units(out: dict[str, Any], units: Units) -> dict[str, str]:
+    """The units of each section's numbers: SI for the course's methods and ``[iso]``; the
+    scene's own for the influence method, split and combine (linear in the masses and
+    readings, they answer in the units they were given)."""
+    scene = (f"the scene's: mass {units.mass}, length {units.length}, unbalance "
+             f"{units.unbalance}, readings {units.vibration or 'as typed'}; angles in degrees")
+    return {k: scene if k in ("influence", "split", "combine") else SI_TEXT
+            for k in out if k not in ("warnings", "result_units", "scene_units")}
 
 
 def solve(scene: Any) -> dict[str, Any]:

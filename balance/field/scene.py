@@ -181,11 +181,8 @@ def solve_combine(spec: dict) -> Combined:
 
 def solve_field(fs: FieldScene) -> dict[str, Any]:
     """Solve every field section: ``influence``, ``split``, ``combine`` (lists of result
-    objects) and ``iso`` (an :class:`IsoResult`), one key per section present, and
-    ``units`` (the :class:`~balance.units.Units`) when the scene names units."""
+    objects) and ``iso`` (an :class:`IsoResult`), one key per section present."""
     out: dict[str, Any] = {}
-    if not fs.units.is_si:
-        out["units"] = fs.units
     if fs.influence:
         out["influence"] = [within(f"influence[{i}]", solve_influence, s)
                             for i, s in enumerate(fs.influence)]

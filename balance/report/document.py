@@ -169,7 +169,7 @@ def report_figures(results: dict[str, Any], out: dict[str, Any]) -> list[tuple[s
         if two:
             bplot.plot_moment_polygon(r, axes[1, 0])
         figs.append(("rotor: unbalance polygon closed by the corrections", fig))
-    units = out.get("units") or {}
+    units = out.get("scene_units") or {}
     vib = unit_text(units.get("vibration", "")) or "amplitude unit"
     for k, t in enumerate(results.get("resonance_test", [])):
         if t.A is None:
@@ -241,7 +241,7 @@ def write_report(path: str | Path, results: dict[str, Any], out: dict[str, Any],
     if scene is not None and Path(str(scene)).is_file():
         source = Path(str(scene)).read_text(encoding="utf-8")
     lines = _textsummary_text(results, out) + noise_lines(results, out)
-    warns = [f"{w}: {m}" for w, m in result_warnings(out)]
+    warns = [f"{w}: {m}" if w else m for w, m in result_warnings(out)]
     figs = report_figures(results, out)
     try:
         with atomic_file(path) as tmp:          # the whole report, or the earlier one kept

@@ -41,7 +41,7 @@ def rounded(x: Any, ref: float, unit: str = "", digits: int = 4) -> str:
 
 
 def _units(out: dict[str, Any]) -> dict[str, str]:
-    u = out.get("units") or {}
+    u = out.get("scene_units") or {}
     return {"mass": u.get("mass", "kg"), "vibration": unit_text(u.get("vibration", "")),
             "length": u.get("length", "m"), "unbalance": u.get("unbalance", "kg m")}
 

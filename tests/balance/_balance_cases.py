@@ -108,7 +108,7 @@ EXPECTED: dict[str, dict[str, Any]] = {
 ANGLE_KEYS = {"angle", "mirror_angle", "phi"}
 # keys the contract adds beside the expected numbers (the best estimate and the warnings,
 # compared by their own tests); a public case must give no warning
-OPTIONAL_KEYS = {"estimate", "warnings", "uncertainty"}
+OPTIONAL_KEYS = {"estimate", "warnings", "uncertainty", "result_units", "scene_units"}
 RESIDUAL_KEYS = {"residual_force", "residual_moment"}
 
 

@@ -51,7 +51,7 @@ def test_published_case_from_the_scene() -> None:
                                          / math.sin(math.radians(30)), rel=1e-12)
     assert r["warnings"] == []
     assert [x["point"] for x in r["residual_vibration"]] == ["bearing A", "bearing B"]
-    assert balance.solve(example_path("influence_two_plane"))["units"]["mass"] == "g"
+    assert balance.solve(example_path("influence_two_plane"))["scene_units"]["mass"] == "g"
 
 
 def test_two_speeds_recover_the_machine() -> None:
@@ -158,7 +158,7 @@ def test_units_beside_seed_sections_apply_to_them() -> None:
     ref = balance.solve(si)["static_test"]
     assert out["static_test"]["correction_mass"] == pytest.approx(ref["correction_mass"],
                                                                   rel=1e-14)
-    assert out["units"]["mass"] == "g" and out["units"]["length"] == "mm"
+    assert out["scene_units"]["mass"] == "g" and out["scene_units"]["length"] == "mm"
     assert out["influence"][0]["corrections"]
 
 

@@ -165,5 +165,7 @@ def test_bundled_rotor_in_grams_and_millimetres():
     for x, y in zip(a["rotor"]["corrections"], b["rotor"]["corrections"], strict=True):
         for key in ("z", "radius", "mass", "angle", "U"):
             assert x[key] == pytest.approx(y[key], rel=1e-14, abs=1e-300), key   # measured 0
-    assert a["units"]["mass"] == "g" and a["units"]["length"] == "mm"
-    assert "units" not in b
+    assert a["scene_units"]["mass"] == "g" and a["scene_units"]["length"] == "mm"
+    # the numbers' units said plainly, the scene's own beside them, default ones too
+    assert a["result_units"]["rotor"].startswith("SI") and "units" not in b
+    assert b["scene_units"]["mass"] == "kg"

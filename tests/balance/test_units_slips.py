@@ -202,3 +202,23 @@ def test_mechanism_balancing_refuses_a_failed_closed_form(monkeypatch) -> None:
     monkeypatch.setattr(ms, "_drift", lambda c: 1.0)      # the centre of mass still moves
     with pytest.raises(BalanceError, match="fails its own check"):
         balance.solve("four_bar_balancing")
+
+
+@pytest.mark.slow
+def test_a_slipped_scene_shows_its_warning_in_the_report_and_the_json(tmp_path) -> None:
+    """Phases typed in radians: the report's Warnings section names the slip (never
+    "None"), and so do the JSON and the solve's dict."""
+    path = tmp_path / "slip.toml"
+    path.write_text(INFLUENCE.format(p0=4.3633, p1=2.7925, m=100.0))
+    report = tmp_path / "slip.html"
+    out = subprocess.run([sys.executable, "-m", "balance", "solve", str(path), "--report",
+                          str(report)], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    html = report.read_text()
+    section = html[html.index("<h2>Warnings</h2>"):]
+    section = section[:section.index("<h2>", 5)]
+    assert "influence[0].runs" in section and "quiet" in section and "None" not in section
+    js = subprocess.run([sys.executable, "-m", "balance", "solve", str(path), "--json"],
+                        capture_output=True, text=True)
+    import json
+    assert any("influence[0].runs" in w for w in json.loads(js.stdout)["warnings"])
