@@ -32,7 +32,8 @@ __all__ = ["RULES", "Slip", "angle_list_slip", "emit", "mechanism_slips", "read_
 
 RULES: dict[str, str] = {
     "positions": "a rotating driver's positions: radians typed for degrees (a sweep within "
-                 "one turn of degrees, over half a turn if read as radians) or degrees typed "
+                 "2 pi degrees, over 0.9 turn if read as radians, or half a turn with "
+                 "fractional values) or degrees typed "
                  "under angle = \"rad\" (more than four turns)",
     "angles": "a list of angles within 2 pi degrees, spread over a degree or more, not all "
               "whole (radians typed for degrees); any angle beyond 720 deg (degrees typed "
@@ -196,7 +197,11 @@ def _position_slips(scene: Scene, u: Units) -> list[Slip]:
         return [Slip("positions", field, typed(ends, "angle", u),
                      f"the sweep spans {(hi - lo) / 360:.3g} turns",
                      f"it is [{lo:g}, {hi:g}] deg: write angle = \"deg\" in [units]")]
-    if max(abs(lo), abs(hi)) <= 2.0 * math.pi * 1.01 and hi - lo >= math.pi:
+    # within one turn of degrees, and most of a turn as radians (or half a turn with
+    # fractional values): a 5 deg sweep in whole degrees is a real one
+    if max(abs(lo), abs(hi)) <= 2.0 * math.pi * 1.01 and (
+            hi - lo >= 0.9 * 2.0 * math.pi or (hi - lo >= math.pi and not all(
+                abs(v - round(v)) <= 1e-9 for v in (pos if listed else ends)))):
         return [Slip("positions", field, typed(ends, "angle", u),
                      f"a sweep of {hi - lo:.4g} deg, all within 2 pi degrees",
                      f"radians typed for degrees: [{lo * 180 / math.pi:.4g}, "

@@ -122,6 +122,7 @@ def scaled(k: float) -> dict:
 LEGITIMATE = {
     "a 40..46.3 deg sweep": lambda: sweep(40.0, 46.3),
     "a 2 deg sweep": lambda: sweep(0.0, 2.0),
+    "a 5 deg sweep": lambda: sweep(0.0, 5.0, 6),
     "a fractional 2.5 deg sweep": lambda: sweep(0.5, 3.0),
     "speed_rpm = 120000 on a 15 mm spindle": lambda: _rpm(scaled(0.05), 120000.0),
     "speed = 120000 under speed = rpm": lambda: _rpm(scaled(0.05), 120000.0, units=True),
