@@ -143,8 +143,14 @@ def staged_folder(target: str | Path, kind: Iterable[str] = ()) -> Iterator[Stag
 
     Examples
     --------
-    >>> with staged_folder(out, ("*.csv", "summary.json")) as stage:   # doctest: +SKIP
-    ...     table.to_csv(stage.file("motion.csv"))
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> out = Path(tempfile.mkdtemp()) / "run"
+    >>> with staged_folder(out, ("*.csv", "summary.json")) as stage:
+    ...     _ = stage.file("motion.csv").write_text("phi,s")
+    ...     _ = stage.file("summary.json").write_text("{}")
+    >>> sorted(p.name for p in out.iterdir())
+    ['motion.csv', 'summary.json']
     """
     stage = StagedFolder(target, kind)
     try:

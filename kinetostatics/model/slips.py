@@ -43,7 +43,7 @@ RULES: dict[str, str] = {
              "for rad/s)",
     "gravity": "gravity's magnitude outside 1..30 m/s^2 (not zero): m/s^2 typed under "
                "length = \"mm\" or the like",
-    "mass": "a body heavier than 30 000 kg/m^3 over the cube of its size (kg typed under "
+    "mass": "a body heavier than 200 000 kg/m^3 over the cube of its size (kg typed under "
             "mass = \"t\", or grams typed as kilograms)",
     "lengths": "a point farther than 100 mechanism sizes from its body's joints "
                "(millimetres among metres)",
@@ -57,6 +57,10 @@ RULES: dict[str, str] = {
 """The rules' names (the keys of ``[checks] quiet``) and what each looks for."""
 
 TIP_SPEED = 400.0
+# a body's mass over the cube of its size above this is a slip (25 x steel's density: a
+# compact piston of 5.5 kg over 38 mm of points, 9.9e4 kg/m^3, is a real one; a mass
+# in kg typed under t, or grams typed as kilograms, is 1000 x too heavy)
+DENSEST = 2e5
 """m/s: an angular speed that moves the mechanism's outline faster than this looks like rpm
 typed for rad/s (no linkage runs near the speed of sound)."""
 
@@ -256,13 +260,13 @@ def _mass_slips(scene: Scene, u: Units) -> list[Slip]:
             continue
         # the body's size: twice its radius of gyration, or its points' box's diagonal
         extent = max(2.0 * math.sqrt(b.inertia / b.mass), floor)
-        if b.mass <= 3e4 * extent**3:
+        if b.mass <= DENSEST * extent**3:
             continue                        # light enough for its radius of gyration
         pts = list(b.points.values()) + ([b.cog] if b.cog is not None else [])
         xs, ys = [p[0] for p in pts] or [0.0], [p[1] for p in pts] or [0.0]
         extent = max(math.hypot(max(xs) - min(xs), max(ys) - min(ys)), extent)
         density = b.mass / extent**3
-        if density > 3e4:
+        if density > DENSEST:
             out.append(Slip("mass", f"body {name!r}.mass", typed(b.mass, "mass", u),
                             f"{density:.3g} kg/m^3 over the cube of its size ({extent:.3g} m)",
                             f"{b.mass / 1000:g} kg (kilograms typed under mass = \"t\", or "
