@@ -118,10 +118,10 @@ def test_handout_shows_the_data_the_key_was_computed_from(classes):
         assert float(shown.group(1)) == row[f"{sym} [{unit}]"]
 
 
+# ------------------------------------------------------------- run for real (kernel)
 @pytest.mark.xfail(strict=False, reason="open (issue 35): the sandboxed kernel of a handed-out "
                    "sheet sometimes dies with SIGABRT at %matplotlib inline or sends a message "
                    "with an invalid signature on this machine")
-# ------------------------------------------------------------- run for real (kernel)
 @pytest.mark.parametrize("kind", KINDS)
 def test_executed_notebooks(kind, classes, tmp_path):
     """Unchanged scores 0; the key typed to 6 digits (angles minus 360) scores full."""
