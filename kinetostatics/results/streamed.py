@@ -53,9 +53,9 @@ STREAM_BLOCK = 131_072      # rows solved and written at a time
 # bytes per row held over the sweep (the positions twice, Me, the order and the summary's
 # passes over them) and per row and column of a block being solved and written; measured
 # with /usr/bin/time -v at 1e7 positions (docs/limits.md), a little above
-SWEEP_ROW = 64 * FLOAT
-SWEEP_COLUMN = 3 * FLOAT    # per dyad and turning body
-BLOCK_ROW_FACTOR = 3.0      # a block's solve and its tables: 3 x a one-shot solve's row
+SWEEP_ROW = 12 * FLOAT
+SWEEP_COLUMN = 2 * FLOAT    # per dyad and turning body
+BLOCK_ROW_FACTOR = 1.5      # a block's solve and its tables: 1.5 x a one-shot solve's row
 
 
 def streamable(sweep: Sweep) -> bool:
@@ -99,6 +99,9 @@ class StreamedSolve:
     """
 
     def __init__(self, sweep: Sweep, block: int = STREAM_BLOCK):
+        if not streamable(sweep):
+            raise ValueError("a streamed solve needs a sweep solved in blocks over strictly "
+                             "increasing positions (streamable)")
         n = sweep.positions.size
         check_memory(stream_bytes(sweep.scene, n, block),
                      f"the streamed solve of {sweep.scene.title!r} at {n:,} positions",
