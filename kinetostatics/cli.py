@@ -168,7 +168,9 @@ bodies.csv and per dyad of dyads.csv. The bundled four_bar (4 joints, 11 points,
 machine (busy): count = 1e5 writes 220 MB in about 2 s (1.4-1.7 s of CPU, the whole
 command); count = 1e6 writes 2.2 GB in about 15 s (14 s of CPU) with 0.6 GB of memory.
 A table of more than 1e6 rows is announced on stderr with its size and time.
---format parquet writes about 3x less and keeps the dtypes."""
+--format parquet writes about 3x less and keeps the dtypes. A sweep whose solve is over
+the memory budget is streamed with --out: solved and written block by block (count = 1e7:
+22 GB of CSV with under 1 GB of memory; docs/limits.md)."""
 
 
 # the commands of this module: their parser is built without the teaching package's

@@ -51,10 +51,11 @@ from .sweepangles import SweepAngles
 
 STREAM_BLOCK = 131_072      # rows solved and written at a time
 # bytes per row held over the sweep (the positions twice, Me, the order and the summary's
-# passes over them) and per row and column of a block being solved and written; measured
-# with /usr/bin/time -v at 1e7 positions (docs/limits.md), a little above
-SWEEP_ROW = 12 * FLOAT
-SWEEP_COLUMN = 2 * FLOAT    # per dyad and turning body
+# passes over them), per row and turning body or dyad, and per row and column of a block
+# being solved and written: measured with /usr/bin/time -v, the bundled four-bar at 1e7
+# positions peaks at 883 MB writing CSV (estimate 1.22 GB), at 1e6 at 191 MB
+SWEEP_ROW = 8 * FLOAT
+SWEEP_COLUMN = 1 * FLOAT    # per dyad and turning body
 BLOCK_ROW_FACTOR = 1.5      # a block's solve and its tables: 1.5 x a one-shot solve's row
 
 
@@ -242,9 +243,21 @@ class _Tables:
             path = self.folder / f"{name}.{self.fmt}"
             if self.fmt == "csv":
                 self.sinks[name] = CsvStream(path, names, n * blocks, self.announce)
+                self.sinks[name].tell(table if name in Solution.LONG_TABLES else
+                                      self._columns(name, sol, slice(0, sol.positions.size)))
             elif blocks:
                 self.sinks[name] = ParquetStream(path)
         return counts
+
+    def _columns(self, name: str, sol: Solution, rows: slice) -> dict:
+        """The columns of a short table at the rows ``rows`` (every block of rows)."""
+        if name != "driver":
+            return sol.columns(name)
+        w = self.s.whole
+        return {"position": self.s.positions[rows], w.driver_quantity: np.asarray(w.Me)[rows],
+                "singular": self.s.singular[rows],
+                "undefined_load": np.broadcast_to(w.undefined_load,
+                                                  self.s.positions.shape)[rows]}
 
     def _put(self, name: str, k: int, rows: slice, sol: Solution, reps: Repeats) -> None:
         """Block ``k`` of table ``name`` at the rows ``rows``."""
@@ -256,15 +269,8 @@ class _Tables:
             else:
                 sink.frame(table.block_frame(k))
             return
-        if name == "driver":
-            w = self.s.whole
-            cols = {"position": self.s.positions[rows],
-                    w.driver_quantity: np.asarray(w.Me)[rows],
-                    "singular": self.s.singular[rows],
-                    "undefined_load": np.broadcast_to(w.undefined_load,
-                                                      self.s.positions.shape)[rows]}
-        else:
-            cols = sol.columns(name)
+        cols = self._columns(name, sol, rows)
+        if name not in ("driver", "frame"):
             m = rows.stop - rows.start
             cols = {c: v[k * m:(k + 1) * m] for c, v in cols.items()}
         if self.fmt == "csv":
