@@ -14,10 +14,13 @@ from . import scene_path
 from .common.cli import (
     MEMORY_HELP,
     MEMORY_LINE,
+    TERMINATED_LINE,
     OneLineParser,
+    Terminated,
     dpi_argument,
     memory_argument,
     print_warning,
+    stopped_cleanly,
 )
 from .model.errors import WorkbenchError
 
@@ -252,10 +255,13 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser(extras=not (words and words[0] in CORE_COMMANDS))
     args = parser.parse_args(words)
     try:
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), stopped_cleanly():
             warnings.simplefilter("default")
             warnings.showwarning = print_warning
             return args.func(args)
+    except Terminated:
+        print(f"error: {TERMINATED_LINE}", file=sys.stderr)
+        return 143
     except WorkbenchError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
