@@ -231,7 +231,7 @@ class _Tables:
                 table = sol.long_table(name)
                 names, blocks = table.columns, table.blocks
             elif name == "driver":
-                names, blocks = self.s.whole._driver_names(), 1
+                names, blocks = self.s.whole.driver_names(), 1
             elif name == "frame":
                 names, blocks = list(sol.columns(name)), 1
             else:
