@@ -84,8 +84,23 @@ def open_solve(scene: Any, stream: bool | None = None) -> Solution | StreamedSol
         stream = n >= 100_000 and solve_bytes(sweep.scene, n) > budget()[0]
     if stream and streamable(sweep):
         return StreamedSolve(sweep)
+    if stream and n >= 100_000:
+        check_memory(solve_bytes(sweep.scene, n),
+                     f"the solve of {sweep.scene.title!r} at {n:,} positions",
+                     f"its tables cannot be streamed ({_not_streamed(sweep)}); use fewer "
+                     "positions (driver.count, or a shorter positions list)")
     check_solve(sweep.scene, n)
     return Solution.of(sweep.solve())
+
+
+def _not_streamed(sweep: Sweep) -> str:
+    """Why a sweep is not streamed (:func:`streamable`)."""
+    from ..solver.friction import has_friction
+    if has_friction(sweep.scene):
+        return "joint friction is solved over the whole sweep at once"
+    if not sweep.blocked:
+        return "a resist or when = \"resisting\" load measures its threshold on the whole sweep"
+    return "its driver positions do not increase"
 
 
 class StreamedSolve:

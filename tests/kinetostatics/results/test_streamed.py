@@ -140,8 +140,14 @@ def test_the_road_is_chosen_by_the_budget(monkeypatch: pytest.MonkeyPatch) -> No
     raw = _raw("four_bar", 100_000)
     raw["driver"]["start"], raw["driver"]["stop"] = 359.9, 0.0     # decreasing
     monkeypatch.setenv("WORKBENCH_MEMORY", "50M")
-    with pytest.raises(ks.WorkbenchError, match="solve --out"):
+    with pytest.raises(ks.WorkbenchError, match="cannot be streamed .its driver positions do "
+                       "not increase"):
         open_solve(raw)
+    with pytest.raises(ks.WorkbenchError, match="resisting"):
+        open_solve(_raw("shaper", 100_000))
+    # without --out (ks.solve), the refusal names the streamed road
+    with pytest.raises(ks.WorkbenchError, match="solve --out"):
+        ks.solve(_raw("four_bar", 100_000))
 
 
 FULL_DISK = """
