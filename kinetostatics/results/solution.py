@@ -77,10 +77,8 @@ class Solution:
 
     # -- arrays -----------------------------------------------------------------
     def release_loads(self) -> None:
-        """Let the loads go, to be computed again from the kinematics when next asked
-        for (:func:`~kinetostatics.solver.loads.applied_loads` and
-        :func:`~kinetostatics.solver.loads.inertia_loads`, as the solve computes them):
-        at 1e6 positions they hold about 120 MB that no contract table needs. With joint
+        """Let the loads go (about 120 MB at 1e6 positions, in no contract table), to be
+        computed again as the solve computes them when next asked for; with joint
         friction they are kept (the friction loads come from the friction solve)."""
         from ..solver.friction import has_friction
         if not has_friction(self.scene):
@@ -97,15 +95,13 @@ class Solution:
 
     def _set_loads(self, value: list[PointLoad] | None) -> None:
         self.__dict__["_loads"] = value
-
     # -- made from the solver's arrays ----------------------------------------------
     @classmethod
     def of(cls, solved: Solved | Deferred) -> Solution:
-        """The Solution of the solver's arrays: a :class:`Solved` (every array), or a
+        """The Solution of a :class:`Solved` (every array) or of a
         :class:`~kinetostatics.solver.solved.Deferred` (a lean long sweep, one scene of a
-        stacked solve) whose other arrays come when first read, the same numbers. Made
-        without the dataclass' constructor, which :func:`dataclasses.replace` and a copy
-        still use (they read every field: a deferred one is solved then)."""
+        stack: the other arrays come when first read), without the dataclass'
+        constructor (:func:`dataclasses.replace` and a copy use it, solving then)."""
         new = object.__new__(cls)
         if type(solved) is Solved:
             new.__dict__.update(scene=solved.scene, structure=solved.structure,
@@ -123,11 +119,8 @@ class Solution:
     @classmethod
     def block_of(cls, solved: Solved, angles: dict[str, np.ndarray],
                  largest_n: dict[int, float]) -> Solution:
-        """The Solution of a block of rows of a long sweep, whose tables are those rows of
-        the sweep's tables (a streamed write, :mod:`kinetostatics.results.streamed`):
-        ``angles``, the sweep's continuous body angles at these rows (they depend on the
-        rows before), and ``largest_n``, per prismatic joint (by its index) the sweep's
-        largest |N| (the ``offset`` column is left empty against it)."""
+        """A block of rows of a long sweep, its tables those rows of the sweep's, given
+        the sweep's ``angles`` there and max |N| per prismatic joint (a streamed write)."""
         new = cls.of(solved)
         new.__dict__.update(angles=angles, _largest_n=largest_n)
         return new
@@ -271,8 +264,7 @@ class Solution:
     def _reactions_long(self) -> LongTable:
         n = self.positions.size
         joints = list(self.scene.joints)
-        # per prismatic joint: the largest |N| (of the whole sweep, for a block of it)
-        largest: dict[int, float] = dict(self.__dict__.get("_largest_n", {}))
+        largest = dict(self.__dict__.get("_largest_n", {}))   # per prismatic joint: max |N|
 
         def chunk(i: int, part: slice) -> dict:
             r = self.joint_reactions[joints[i]]
