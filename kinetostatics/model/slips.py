@@ -47,10 +47,11 @@ RULES: dict[str, str] = {
             "mass = \"t\", or grams typed as kilograms)",
     "lengths": "a point farther than 100 mechanism sizes from its body's joints "
                "(millimetres among metres)",
-    "unbalance_mass": "a rotor's unbalance masses 300 times apart or more (one typed in "
-                      "another unit)",
+    "unbalance_mass": "a rotor's unbalance masses 300 times apart or more, the heavier "
+                      "1 kg or more or the lighter under 1 mg (one typed in another unit)",
     "trial_mass": "a trial mass above 2 kg (or a hundredth of the rotor's mass): grams typed "
-                  "as kilograms; trial masses of one section 300 times apart",
+                  "as kilograms; trial masses of one section 300 times apart, the heavier "
+                  "1 kg or more or the lighter under 1 mg",
     "readings": "one run's readings 300 times off the other runs' (another vibration unit)",
     "correction": "a correction more than 100 times its trial mass",
 }
@@ -133,12 +134,10 @@ def typed(values: float | Sequence[float], quantity: str, units: Units, *,
           file: bool = True) -> str:
     """Values in the contract's units (``file``: degrees for angles) or SI, written as
     typed: in the scene's unit, with its name (``"350 g"``, ``"[0, 0.5, ...] rad"``)."""
-    f = units.file_factor(quantity) if file else units.factor(quantity)
-    unit = {"moment": f"{units.force} {units.length}", "inertia": f"{units.mass} {units.length}^2",
-            "velocity": f"{units.length}/s", "acceleration": f"{units.length}/s^2"}.get(
-        quantity) or units.unit(quantity)
     if isinstance(values, int | float):
-        return f"{values / f:g} {unit}".rstrip()
+        return units.quote(values, quantity, file=file)
+    f = units.file_factor(quantity) if file else units.factor(quantity)
+    unit = units.unit(quantity)
     vals = [v / f for v in values]
     shown = ", ".join(f"{v:g}" for v in vals[:4]) + (", ..." if len(vals) > 4 else "")
     return f"[{shown}] {unit}".rstrip()

@@ -212,8 +212,26 @@ class Units:
         return value / self.factor(quantity)
 
     def unit(self, quantity: str) -> str:
-        """The scene's unit name of a base quantity."""
-        return getattr(self, quantity)
+        """The scene's unit name of a quantity, base (``"mm"``) or derived (``"N mm"``,
+        ``"g mm^2"``, ``"mm/s"``...)."""
+        derived = {"moment": f"{self.force} {self.length}",
+                   "inertia": f"{self.mass} {self.length}^2",
+                   "velocity": f"{self.length}/s", "acceleration": f"{self.length}/s^2",
+                   "angular acceleration": "rad/s^2"}
+        return derived.get(quantity) or getattr(self, quantity)
+
+    def quote(self, value: float, quantity: str, spec: str = "g", *,
+              file: bool = False) -> str:
+        """An SI number (``file``: in the contract's file units, degrees for an angle)
+        said in the scene's unit, for a message: the user reads the unit they typed.
+
+        >>> Units(length="mm").quote(0.00236, "length", ".3g")
+        '2.36 mm'
+        >>> Units(angle="rad").quote(90.0, "angle", file=True)
+        '1.5708 rad'
+        """
+        f = self.file_factor(quantity) if file else self.factor(quantity)
+        return f"{format(value / f, spec)} {self.unit(quantity)}".rstrip()
 
     @property
     def is_default(self) -> bool:
