@@ -8,7 +8,6 @@ the field and the fix. Unknown keys are refused with the nearest known key sugge
 
 from __future__ import annotations
 
-import math
 import warnings
 from typing import Any
 
@@ -31,7 +30,7 @@ from .tomlio import (
     read_source,
     suggest,
 )
-from .units import Units
+from .units import Units, rpm_to_rad_s
 
 MAX_COUNT = 10_000_000
 TOP_KEYS = ("title", "format", "units", "gravity", "ground", "driver", "bodies", "joints", "loads",
@@ -422,7 +421,7 @@ def _driver(table: Any, bodies: dict, joints: dict) -> Driver:
         if kind != "R":
             raise SceneError("driver.speed_rpm is for a rotating driver; a sliding driver "
                              "takes 'speed' in m/s")
-        speed = as_float(t["speed_rpm"], "driver.speed_rpm") * math.pi / 30.0
+        speed = rpm_to_rad_s(as_float(t["speed_rpm"], "driver.speed_rpm"))
     elif "speed" in t:
         speed = as_float(t["speed"], "driver.speed")
     else:
