@@ -169,8 +169,9 @@ def plot_instant_centres(sol: Solution, position: float | None = None, *,
     Parameters
     ----------
     sol : Solution
-    position : float, optional
-        Driver position (nearest row); ``row`` picks a row by index instead.
+        A solved scene.
+    position, row : float or int, optional
+        The driver position (the nearest row is drawn), or a row index instead.
     ax : Axes, optional
     reach : float
         How far (in sizes of the mechanism) the view may grow to show a centre.
