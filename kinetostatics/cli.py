@@ -35,7 +35,12 @@ def _solve(args) -> int:
     if args.out and args.format == "parquet":
         from .results.output import parquet_available
         parquet_available()
-    sol = solve(scene_path(args.scene))
+    if args.out and not args.plot:
+        # a sweep too long to hold is streamed: its tables written block by block
+        from .results.streamed import open_solve
+        sol = open_solve(scene_path(args.scene))
+    else:
+        sol = solve(scene_path(args.scene))
     summary = summary_with_units(sol.summary(), sol.scene.units, sol.scene.warnings,
                                  "deg" if sol.scene.driver.kind == "R" else "m")
     written = []
