@@ -19,12 +19,12 @@ from __future__ import annotations
 
 import copy
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from .units import Units, parse_units
 
-__all__ = ["BALANCING", "CAM", "MECHANISM", "Field", "ROLES", "convert", "markdown",
+__all__ = ["BALANCING", "CAM", "MECHANISM", "Field", "ROLES", "convert", "markdown", "section",
            "to_contract_units"]
 
 REQUIRED = "required"
@@ -49,6 +49,10 @@ class Field:
         ``""`` when absence has its own meaning).
     doc : str
         One line: what it is.
+    key : str
+        The last step of ``path`` (the key a reader looks up).
+    fallback : float or None
+        ``default`` as a number, or None.
     """
 
     path: tuple[str, ...]
@@ -56,11 +60,27 @@ class Field:
     bound: str = ""
     default: str = ""
     doc: str = ""
+    key: str = field(init=False, repr=False, compare=False)
+    fallback: float | None = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        # what a reader asks for each item, told once: the key, the default as a number
+        # ("0" -> 0.0; None when there is none or it is not a number)
+        object.__setattr__(self, "key", self.path[-1])
+        try:
+            object.__setattr__(self, "fallback", float(self.default))
+        except ValueError:
+            object.__setattr__(self, "fallback", None)
 
     @property
     def name(self) -> str:
         """The field as the docs and messages name it: ``bodies[].points.*``."""
         return ".".join(self.path).replace(".[]", "[]").replace(".#", "#")
+
+
+def section(fields: tuple[Field, ...], *where: str) -> dict[str, Field]:
+    """The fields of one table, by key: ``section(MECHANISM, "bodies", "[]")["mass"]``."""
+    return {f.path[-1]: f for f in fields if f.path[:-1] == where}
 
 
 def F(path: str, quantity: str, bound: str = "", default: str = "", doc: str = "") -> Field:

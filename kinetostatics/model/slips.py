@@ -305,7 +305,7 @@ def _far_points(scene: Scene, u: Units) -> list[Slip]:
             continue
         for b, p in zip(j.bodies, j.points, strict=True):
             if b in joint_pts:
-                joint_pts[b].append(scene.bodies[b].points[p])
+                joint_pts[b].append(scene.bodies[b].local(p))     # "cog" too
     pts = [p for b in joint_pts.values() for p in b] + list(scene.ground.values())
     if len(pts) < 2:
         return []
