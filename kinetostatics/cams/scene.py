@@ -57,7 +57,7 @@ from .laws import (
     sine_acceleration,
     zero_acceleration,
 )
-from .units import cam_slips, cam_to_contract_units
+from .units import cam_slips, cam_speed_slips, cam_to_contract_units
 
 # --------------------------------------------------------------------------- scenes
 
@@ -147,6 +147,8 @@ def load_cam_scene(source: Any) -> CamScene:
         check_tau(tau_adm)
     loads = _load_loads(cam.get("loads", {}), kind, stroke)
     follower = _follower(kind, fol, cam, law, tau_adm, loads)
+    if "base_radius" not in cam:        # the speed judged on the base radius computed
+        texts += emit(cam_speed_slips(raw, units, follower.base_radius), quiet)
     return CamScene(title, law, follower, speed, rotation, count, loads, tau_adm, units, texts)
 
 
