@@ -145,7 +145,7 @@ def load_cam_scene(source: Any) -> CamScene:
         tau_adm = radians(as_float(cam["transmission_angle"], "cam.transmission_angle",
                                         positive=True))
         check_tau(tau_adm)
-    loads = _load_loads(cam.get("loads", {}), kind, stroke)
+    loads = _load_loads(cam.get("loads", {}), kind, stroke, units)
     follower = _follower(kind, fol, cam, law, tau_adm, loads)
     if "base_radius" not in cam:        # the speed judged on the base radius computed
         texts += emit(cam_speed_slips(raw, units, follower.base_radius), quiet)
@@ -238,7 +238,7 @@ def _follower(kind: str, fol: dict, cam: dict, law: CamLaw, tau_adm: float | Non
     return OscillatingFollower(r0, arm, dist, roller, sense)
 
 
-def _load_loads(raw: Any, kind: str, stroke: float) -> CamLoads:
+def _load_loads(raw: Any, kind: str, stroke: float, units: Units) -> CamLoads:
     other = "oscillating" if kind == "translating" else "translating"
     if isinstance(raw, dict):
         for key in raw:
@@ -263,8 +263,9 @@ def _load_loads(raw: Any, kind: str, stroke: float) -> CamLoads:
                 raise CamError("cam.loads: guide friction needs guide_gap (a at the lowest "
                                "position, m)")
             if loads.guide_gap < stroke:
-                raise CamError(f"cam.loads.guide_gap {loads.guide_gap:g} m is less than the "
-                               f"stroke {stroke:g} m: the contact point would enter the guide")
+                raise CamError(f"cam.loads.guide_gap {units.quote(loads.guide_gap, 'length')} is "
+                               f"less than the stroke {units.quote(stroke, 'length')}: the "
+                               "contact point would enter the guide")
         return loads
     loads = CamLoads(
         force=_opt_float(tab, "moment", w), mass=_opt_float(tab, "inertia", w, nonnegative=True),
