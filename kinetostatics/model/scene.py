@@ -15,12 +15,11 @@ import numpy as np
 
 from .errors import SceneError
 from .examples import SCENES
-from .fields import MECHANISM, Field, section
+from .fields import MECHANISM, read_number, section
 from .scene_types import GROUND, Body, Driver, Friction, Joint, Load, MassModel, Scene
 from .scene_units import to_contract_units
 from .slips import emit, mechanism_slips, read_checks
 from .tomlio import (
-    MAX_MAGNITUDE,
     as_float,
     as_int,
     as_list,
@@ -108,26 +107,7 @@ LOAD = section(MECHANISM, "loads", "[]")
 # unknown key (or what is missing) with the nearest known one
 _BODY_KEYS, _R_KEYS, _T_KEYS, _DRIVER_KEYS, _LOAD_KEYS = (
     frozenset(k) for k in (BODY_KEYS, JOINT_KEYS_R, JOINT_KEYS_T, DRIVER_KEYS, LOAD_KEYS))
-_BOUND_WORDS = {"nonnegative": "must not be negative", "positive": "must be positive"}
-
-
-def _number(table: dict, fd: Field, where: str, units: Units) -> float:
-    """The number of the declared field ``fd`` in ``table`` (its default when absent),
-    within the field's bounds (:mod:`kinetostatics.model.fields`); a value out of them is
-    quoted as typed, in the scene's unit ("got -350 g")."""
-    key = fd.key
-    if key not in table:
-        return fd.fallback
-    value = table[key]
-    t = type(value)
-    if (t is float or t is int) and -MAX_MAGNITUDE <= value <= MAX_MAGNITUDE and (
-            not fd.bound or value > 0 or (value == 0 and fd.bound == "nonnegative")):
-        return float(value)     # the common case (compared before float(): a huge int)
-    x = as_float(value, f"{where}.{key}")
-    if fd.bound and (x < 0.0 or (x == 0.0 and fd.bound == "positive")):
-        said = units.quote(x, fd.quantity, file=True) if fd.quantity else f"{x:g}"
-        raise SceneError(f"{where}.{key} {_BOUND_WORDS[fd.bound]}, got {said}")
-    return x
+_number = read_number        # (the declared fields' reader, in kinetostatics.model.fields)
 
 
 def _pair(table: dict, key: str, where: str) -> tuple[float, float]:
