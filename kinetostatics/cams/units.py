@@ -17,10 +17,10 @@ from __future__ import annotations
 from typing import Any
 
 from ..model.fields import CAM, to_contract_units
-from ..model.slips import DEG, Slip, angle_list_slip, tip_speed_slip, typed
-from ..model.units import Units, rpm_to_rad_s
+from ..model.slips import DEG, Slip, angle_list_slip, typed
+from ..model.units import Units, radians, rpm_to_rad_s
 
-__all__ = ["cam_slips", "cam_summary_units", "cam_to_contract_units"]
+__all__ = ["cam_slips", "cam_speed_slips", "cam_summary_units", "cam_to_contract_units"]
 
 
 def _num(x: Any) -> bool:
@@ -39,6 +39,13 @@ def cam_to_contract_units(raw: Any) -> tuple[Any, Units]:
         A ``[units]`` that is not a table, or names an unknown quantity or unit.
     """
     return to_contract_units(raw, CAM)
+
+
+CAM_TIP_SPEED = 50.0
+"""m/s: a cam whose outline moves faster than this looks like rpm typed for rad/s (a
+racing engine's camshaft at 9000 rpm moves its 35 mm outline at 33 m/s; 3000 rpm typed as
+rad/s moves the bundled translating cam's 24 mm at 73 m/s, and spins its 4 mm roller at
+175 000 rpm)."""
 
 
 def cam_slips(raw: Any, units: Units) -> list[Slip]:
@@ -66,14 +73,26 @@ def cam_slips(raw: Any, units: Units) -> list[Slip]:
         if _num(a) and angle_list_slip([a * DEG]) is not None:
             out.append(Slip("angles", where, typed(a, "angle", units),
                             "beyond two turns", "write it in degrees, or angle = \"deg\""))
+    if _num(cam.get("base_radius")):
+        out += cam_speed_slips(raw, units, cam["base_radius"])
+    return out
+
+
+def cam_speed_slips(raw: dict, units: Units, base_radius: float) -> list[Slip]:
+    """The cam's speed judged on its outline (the base circle of ``base_radius``, given or
+    computed from the admissible transmission angle, the roller and the lift): faster
+    than :data:`CAM_TIP_SPEED` at its edge is rpm typed for rad/s."""
+    cam = raw["cam"]
+    fol = cam.get("follower") if isinstance(cam.get("follower"), dict) else {}
     w = cam.get("speed")
-    # the cam's outline: base circle, stroke and roller (an oscillating follower's stroke
-    # is an angle: its arm and pivot distance stand for the reach)
-    reach = [abs(x) for t, k in ((cam, "base_radius"), (cam, "roller_radius"),
-                                 (fol, "stroke"), (fol, "arm"), (fol, "pivot_distance"))
-             if _num(x := t.get(k))]
-    size = sum(reach)
-    if _num(w) and tip_speed_slip(w, size):
+    # the cam's outline: its base circle, the roller, and the lift at the roller (a
+    # translating follower's stroke; an oscillating one's arm times its swing)
+    lift = fol.get("stroke") if fol.get("kind") != "oscillating" else (
+        fol["arm"] * radians(fol["stroke_angle"])
+        if _num(fol.get("arm")) and _num(fol.get("stroke_angle")) else None)
+    size = abs(base_radius) + sum(abs(x) for x in (cam.get("roller_radius"), lift) if _num(x))
+    out = []
+    if _num(w) and abs(w) * size > CAM_TIP_SPEED:
         out.append(Slip("speed", "cam.speed", typed(w, "speed", units),
                         f"moves the cam's outline ({size:.3g} m) at {abs(w) * size:.3g} m/s",
                         f"{rpm_to_rad_s(w):.4g} rad/s (rpm typed for rad/s)"))

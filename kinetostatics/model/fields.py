@@ -19,13 +19,15 @@ from __future__ import annotations
 
 import copy
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
+from .errors import SceneError
+from .tomlio import MAX_MAGNITUDE, MIN_MAGNITUDE, as_float
 from .units import Units, parse_units
 
 __all__ = ["BALANCING", "CAM", "MECHANISM", "Field", "ROLES", "convert", "markdown",
-           "to_contract_units"]
+           "read_number", "section", "to_contract_units"]
 
 REQUIRED = "required"
 """The ``default`` of a field the scene must give."""
@@ -49,6 +51,10 @@ class Field:
         ``""`` when absence has its own meaning).
     doc : str
         One line: what it is.
+    key : str
+        The last step of ``path`` (the key a reader looks up).
+    fallback : float or None
+        ``default`` as a number, or None.
     """
 
     path: tuple[str, ...]
@@ -56,11 +62,59 @@ class Field:
     bound: str = ""
     default: str = ""
     doc: str = ""
+    key: str = field(init=False, repr=False, compare=False)
+    fallback: float | None = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        # what a reader asks for each item, told once: the key, the default as a number
+        # ("0" -> 0.0; None when there is none or it is not a number)
+        object.__setattr__(self, "key", self.path[-1])
+        try:
+            object.__setattr__(self, "fallback", float(self.default))
+        except ValueError:
+            object.__setattr__(self, "fallback", None)
 
     @property
     def name(self) -> str:
         """The field as the docs and messages name it: ``bodies[].points.*``."""
         return ".".join(self.path).replace(".[]", "[]").replace(".#", "#")
+
+
+def section(fields: tuple[Field, ...], *where: str) -> dict[str, Field]:
+    """The fields of one table, by key: ``section(MECHANISM, "bodies", "[]")["mass"]``."""
+    return {f.path[-1]: f for f in fields if f.path[:-1] == where}
+
+
+_BOUND_WORDS = {"nonnegative": "must not be negative", "positive": "must be positive"}
+
+
+def read_number(table: dict, fd: Field, where: str, units: Units) -> float:
+    """The number of the declared field ``fd`` in ``table`` (its default when absent),
+    within the field's bounds; a value out of them is quoted as typed, in the scene's unit
+    ("got -350 g"). Every scene reader reads its declared numbers through this.
+
+    Raises
+    ------
+    SceneError
+        Not a number, not finite, out of range, or out of the field's bounds.
+    """
+    key = fd.key
+    if key not in table:
+        return fd.fallback
+    value = table[key]
+    t = type(value)
+    if (t is float or t is int) and -MAX_MAGNITUDE <= value <= MAX_MAGNITUDE and (
+            not fd.bound or (value > 0 and (fd.bound != "positive" or value >= MIN_MAGNITUDE))
+            or (value == 0 and fd.bound == "nonnegative")):
+        return float(value)     # the common case (compared before float(): a huge int)
+    x = as_float(value, f"{where}.{key}")
+    if fd.bound and (x < 0.0 or (x == 0.0 and fd.bound == "positive")):
+        said = (units.quote(x, fd.quantity, file=True)
+                if fd.quantity and fd.quantity not in ROLES else f"{x:g}")
+        raise SceneError(f"{where}.{key} {_BOUND_WORDS[fd.bound]}, got {said}")
+    if fd.bound == "positive":      # a positive quantity is divided by: keep it from 0
+        return as_float(x, f"{where}.{key}", positive=True)
+    return x
 
 
 def F(path: str, quantity: str, bound: str = "", default: str = "", doc: str = "") -> Field:
@@ -144,9 +198,11 @@ CAM: tuple[Field, ...] = (
       "rate (per length, or per rad)"),
     F("cam.loads.spring_preload", "follower load", "", "0", "the spring's load at the "
       "lowest position"),
+    F("cam.loads.friction", "", "nonnegative", "0", "the guide's (translating) or the "
+      "pin's (oscillating) friction coefficient"),
     F("cam.loads.guide_length", "length", "nonnegative", "0", "the guide's length b"),
-    F("cam.loads.guide_gap", "length", "nonnegative", "", "the guide's gap a at the lowest "
-      "position"),
+    F("cam.loads.guide_gap", "length", "nonnegative", "0", "the guide's gap a at the lowest "
+      "position (needed with guide friction)"),
     F("cam.loads.pin_radius", "length", "nonnegative", "0", "the pivot pin's radius"),
 )
 """A cam scene's number-bearing fields (docs/cam-scenes.md)."""

@@ -39,8 +39,8 @@ RULES: dict[str, str] = {
               "whole (radians typed for degrees); any angle beyond 720 deg (degrees typed "
               "under angle = \"rad\")",
     "speed": "an angular speed whose peripheral speed over the mechanism's size exceeds "
-             "400 m/s, or omega0 above three times the motor's no-load speed (rpm typed "
-             "for rad/s)",
+             "400 m/s (a cam's outline: 50 m/s), or omega0 above three times the motor's "
+             "no-load speed (rpm typed for rad/s)",
     "gravity": "gravity's magnitude outside 1..30 m/s^2 (not zero): m/s^2 typed under "
                "length = \"mm\" or the like",
     "mass": "a body heavier than 200 000 kg/m^3 over the cube of its size (kg typed under "
@@ -305,7 +305,7 @@ def _far_points(scene: Scene, u: Units) -> list[Slip]:
             continue
         for b, p in zip(j.bodies, j.points, strict=True):
             if b in joint_pts:
-                joint_pts[b].append(scene.bodies[b].points[p])
+                joint_pts[b].append(scene.bodies[b].local(p))     # "cog" too
     pts = [p for b in joint_pts.values() for p in b] + list(scene.ground.values())
     if len(pts) < 2:
         return []

@@ -8,8 +8,10 @@ import math
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
 
+import kinetostatics as ks
 from kinetostatics.cams import scene as cam_scene
 from kinetostatics.model import scene as mech_scene
 from kinetostatics.model.fields import BALANCING, CAM, MECHANISM, ROLES, convert, markdown
@@ -82,3 +84,18 @@ def test_the_units_stage_reaches_every_declared_field(fd) -> None:
     out = convert(raw, UNITS, (fd,))
     assert _read(out, fd.path) == pytest.approx(7.0 * FACTOR[quantity], rel=1e-15)
     assert _read(raw, fd.path) == 7.0                   # the mapping read is not changed
+
+
+@pytest.mark.parametrize("name", ["four_bar", "slider_crank", "four_bar_mm", "slotted_lever"])
+def test_a_read_scene_holds_its_angles_in_radians(name) -> None:
+    """Converted once, when read: a crank's positions (read-only, shared) and a prismatic
+    line's angle, bit for bit numpy's and math's degrees-to-radians; the degrees stay as
+    the tables' labels."""
+    sc = ks.load_scene(name)
+    drv = sc.driver
+    assert np.array_equal(drv.angles, np.deg2rad(drv.positions))
+    assert drv.angles is drv.angles and not drv.angles.flags.writeable
+    with pytest.raises(ValueError, match="read-only"):
+        drv.angles[0] = 0.0
+    for j in sc.joints.values():
+        assert j.beta == math.radians(j.line_angle)
