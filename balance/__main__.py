@@ -17,10 +17,13 @@ from typing import Any
 from kinetostatics.common.cli import (
     MEMORY_HELP,
     MEMORY_LINE,
+    TERMINATED_LINE,
     OneLineParser,
+    Terminated,
     dpi_argument,
     memory_argument,
     one_line,
+    stopped_cleanly,
 )
 
 from .api import example_path, examples, results_to_dict, solve_results
@@ -55,7 +58,7 @@ def main(argv: list[str] | None = None) -> int:
             print(f"{name}\t{example_path(name)}")
         return 0
     try:
-        with warnings.catch_warnings(record=True) as caught:
+        with warnings.catch_warnings(record=True) as caught, stopped_cleanly():
             warnings.simplefilter("always")
             results = solve_results(args.scene)
             out = results_to_dict(results)
@@ -68,6 +71,9 @@ def main(argv: list[str] | None = None) -> int:
             from .report.document import write_report
 
             write_report(args.report, results, out, SCENES.resolve(args.scene), dpi=args.dpi)
+    except Terminated:
+        print(f"error: {TERMINATED_LINE}", file=sys.stderr)
+        return 143
     except WorkbenchError as exc:
         print(f"error: {one_line(exc)}", file=sys.stderr)
         return 2

@@ -14,10 +14,13 @@ from . import scene_path
 from .common.cli import (
     MEMORY_HELP,
     MEMORY_LINE,
+    TERMINATED_LINE,
     OneLineParser,
+    Terminated,
     dpi_argument,
     memory_argument,
     print_warning,
+    stopped_cleanly,
 )
 from .model.errors import WorkbenchError
 
@@ -140,7 +143,9 @@ bodies.csv and per dyad of dyads.csv. The bundled four_bar (4 joints, 11 points,
 machine (busy): count = 1e5 writes 220 MB in about 2 s (1.4-1.7 s of CPU, the whole
 command); count = 1e6 writes 2.2 GB in about 15 s (14 s of CPU) with 0.6 GB of memory.
 A table of more than 1e6 rows is announced on stderr with its size and time.
---format parquet writes about 3x less and keeps the dtypes."""
+--format parquet writes about 3x less and keeps the dtypes. A sweep whose solve is over
+the memory budget is streamed with --out: solved and written block by block (count = 1e7:
+22 GB of CSV with under 1 GB of memory; docs/limits.md)."""
 
 
 # the commands of this module: their parser is built without the teaching package's
@@ -222,10 +227,13 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser(extras=not (words and words[0] in CORE_COMMANDS))
     args = parser.parse_args(words)
     try:
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), stopped_cleanly():
             warnings.simplefilter("default")
             warnings.showwarning = print_warning
             return args.func(args)
+    except Terminated:
+        print(f"error: {TERMINATED_LINE}", file=sys.stderr)
+        return 143
     except WorkbenchError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2

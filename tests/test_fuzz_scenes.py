@@ -209,3 +209,111 @@ def test_a_sample_through_the_command_line(kind: str, path: Path, tmp_path: Path
 
     check()
     assert seen
+
+
+# -- resource bombs: each alone under 4 GB of address space and a file-size limit -------
+def _limits(fsize: int):
+    def apply() -> None:
+        import resource
+        import signal
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)     # a write past it: EFBIG
+        resource.setrlimit(resource.RLIMIT_AS, (4_000_000_000, 4_000_000_000))
+        resource.setrlimit(resource.RLIMIT_FSIZE, (fsize, fsize))
+    return apply
+
+
+def _bomb(tmp_path: Path, name: str, text: str, *args: str, fsize: int = 3_000_000_000,
+          env: dict | None = None) -> subprocess.CompletedProcess:
+    scene = tmp_path / f"{name}.toml"
+    scene.write_text(text)
+    return subprocess.run([sys.executable, *args[:2], args[2], str(scene), *args[3:]],
+                          capture_output=True, text=True, cwd=ROOT, timeout=600,
+                          env=dict(os.environ, MPLBACKEND="Agg", **(env or {})),
+                          preexec_fn=_limits(fsize))
+
+
+def _one_line(r: subprocess.CompletedProcess) -> str:
+    assert "Traceback" not in r.stderr and "internal error" not in r.stderr, r.stderr
+    assert "MemoryError" not in r.stderr and "ran out of memory" not in r.stderr, r.stderr
+    errors = [ln for ln in r.stderr.splitlines() if ln.startswith("error:")]
+    assert r.returncode == 2 and len(errors) == 1, (r.returncode, r.stderr)
+    return errors[0]
+
+
+def _text(path: Path, **changes: str) -> str:
+    text = path.read_text()
+    for old, new in changes.items():
+        assert old in text, old
+        text = text.replace(old, new, 1)
+    return text
+
+
+SOLVE = ("-m", "kinetostatics", "solve")
+SCENE_DIR = ROOT / "kinetostatics" / "scenes"
+BALANCE_DIR = ROOT / "balance" / "scenes"
+
+
+def test_resource_bombs_end_in_one_line(tmp_path: Path) -> None:
+    """The bombs of issue 36 under the default budget (4 GB of address space): count =
+    1e7 for a cam, a mechanism's balancing and a solve without --out; a scene file of
+    listed positions over 32 MB; TOML 100 000 levels deep; plane = 10**30; a measured
+    amplitude of 1e-308. Each is one error line, no traceback, no memory error."""
+    four_bar = SCENE_DIR / "four_bar.toml"
+    big = {"count = 361": "count = 10000000"}
+    cases = {
+        "cam": (_text(SCENE_DIR / "cams" / "translating_roller.toml", **big),
+                "-m", "kinetostatics", "cam", "--out", str(tmp_path / "cam")),
+        "balancing": (_text(BALANCE_DIR / "four_bar_balancing.toml", **big),
+                      "-m", "balance", "solve", "--report", str(tmp_path / "b" / "r.html")),
+        "solve": (_text(four_bar, **big), *SOLVE),
+        "positions": (_text(four_bar, **{"count = 361": "", "start = 0.0": "", "stop = 360.0":
+                                         "positions = [" + ", ".join(
+                                             f"{i * 1e-4:.6f}" for i in range(3_500_000))
+                                         + "]"}), *SOLVE),
+        "deep": ("a" + ".a" * 100_000 + " = 1\n", *SOLVE),
+        "deep arrays": ("a = " + "[" * 100_000 + "]" * 100_000 + "\n", "-m", "balance", "solve"),
+        "plane": (_text(BALANCE_DIR / "influence_two_plane.toml",
+                        **{"plane = 2": "plane = 1000000000000000000000000000000"}),
+                  "-m", "balance", "solve"),
+    }
+    said = {name: _one_line(_bomb(tmp_path, name.replace(" ", "_"), text, *args))
+            for name, (text, *args) in cases.items()}
+    assert "--out" in said["solve"] and "32 MB" in said["positions"]
+    assert not (tmp_path / "cam").exists() and not (tmp_path / "b").exists()
+    # a measured amplitude of 1e-308: one line, or a finite result
+    r = _bomb(tmp_path, "amplitude", _text(BALANCE_DIR / "influence_two_plane.toml",
+                                           **{"235.0": "1e-308"}), "-m", "balance", "solve")
+    if r.returncode:
+        _one_line(r)
+    assert "Traceback" not in r.stderr and "nan" not in r.stdout.lower()
+
+
+def test_a_streamed_solve_on_a_full_disk_or_stopped(tmp_path: Path) -> None:
+    """solve --out streamed (the one-shot over a 230 MB budget at 3e5 positions): a disk
+    that fills up halfway and a SIGTERM halfway both leave no folder, and an earlier
+    run's results untouched."""
+    text = _text(SCENE_DIR / "four_bar.toml", **{"count = 361": "count = 300000",
+                                                  "stop = 360.0": "stop = 359.9"})
+    out = tmp_path / "out"
+    budget = {ENV: "230M"}
+    r = _bomb(tmp_path, "s", text, *SOLVE, "--out", str(out), fsize=20_000_000, env=budget)
+    assert "File too large" in _one_line(r) and not out.exists()
+    earlier = tmp_path / "earlier"
+    assert subprocess.run([sys.executable, *SOLVE, "four_bar", "--out", str(earlier)],
+                          cwd=ROOT, capture_output=True).returncode == 0
+    before = {p.name: p.read_bytes() for p in earlier.iterdir()}
+    scene = tmp_path / "s.toml"
+    p = subprocess.Popen([sys.executable, *SOLVE, str(scene), "--out", str(earlier)],
+                         cwd=ROOT, stderr=subprocess.PIPE, text=True,
+                         env=dict(os.environ, **budget))
+    import time
+    for _ in range(600):            # until the staging folder fills
+        time.sleep(0.1)
+        stage = [q for q in earlier.iterdir() if q.name.startswith(STAGING)]
+        if stage and any(stage[0].iterdir()):
+            break
+    p.terminate()
+    err = p.communicate(timeout=120)[1]
+    assert p.returncode == 143 and "SIGTERM" in err and "Traceback" not in err, err
+    after = {q.name: q.read_bytes() for q in earlier.iterdir()}
+    assert after.pop("FAILED.txt") and after == before

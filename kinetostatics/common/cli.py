@@ -4,8 +4,12 @@ stderr with exit code 2, every warning one line ``warning: ...``."""
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
+import signal
 import sys
+import threading
+from collections.abc import Iterator
 from typing import NoReturn
 
 
@@ -64,3 +68,35 @@ def memory_argument(text: str) -> str:
         raise argparse.ArgumentTypeError(str(exc).removeprefix("--memory = ")) from None
     os.environ[ENV] = text
     return text
+
+
+class Terminated(BaseException):
+    """The run was asked to stop (SIGTERM: ``kill``, a time limit): raised in the main
+    thread so that every writer cleans up as after an interrupt (its staging files
+    removed, the earlier results kept: :mod:`kinetostatics.model.outputs`)."""
+
+
+TERMINATED_LINE = ("stopped by SIGTERM; the files being written were removed and earlier "
+                   "results kept as they were")
+
+
+@contextlib.contextmanager
+def stopped_cleanly() -> Iterator[None]:
+    """SIGTERM raised as :class:`Terminated` while the body runs (in the main thread;
+    elsewhere nothing changes). The command lines print :data:`TERMINATED_LINE` and exit
+    with 143 (128 + SIGTERM), the code a shell gives a run stopped by the signal."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def stop(signum, frame):
+        raise Terminated(signum)
+    try:
+        before = signal.signal(signal.SIGTERM, stop)
+    except (ValueError, OSError):           # (no signals here)
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, before)

@@ -69,6 +69,13 @@ def _read_file(path: Path, kind: str) -> dict:
     if not path.is_file():
         raise SceneError(f"{path}: no such {kind} file")
     try:
+        size = path.stat().st_size
+        if size > MAX_FILE:
+            raise SceneError(
+                f"{path}: {size / 1e6:,.0f} MB, more than a {kind} file may hold "
+                f"({MAX_FILE / 1e6:.0f} MB: the TOML reader takes minutes and gigabytes on "
+                "it); give a long sweep as driver.start, stop and count, or a long list of "
+                "positions through the Python API (kinetostatics.solve(scene, positions))")
         data = path.read_bytes()
     except OSError as exc:
         raise SceneError(f"{path}: cannot be read: {exc.strerror or exc}") from None
@@ -81,6 +88,9 @@ def _read_file(path: Path, kind: str) -> dict:
     return parse_toml(text, str(path))
 
 
+MAX_FILE = 32e6
+"""Bytes a scene file may hold: the TOML reader (pure Python) takes about a minute and
+a few GB on 1e7 listed positions (127 MB); a scene needs a few kB."""
 MAX_DEPTH = 100
 """Levels of nesting (arrays, inline tables, dotted keys) a scene's TOML may have: a scene
 needs a few; the reader's cost grows with the square of the depth, and its stack with

@@ -297,10 +297,26 @@ class CsvStream:
         self.fh.write(csvtext.header_text(names))
         self.told = not (announce is not None and rows > WARN_ROWS)
 
-    def _tell(self, text: bytes, rows: int) -> None:
-        if not self.told and rows:
-            self.told = True
-            _announce(self.announce, self.path, self.rows, len(text) / rows)
+    def tell(self, sample: dict | LongTable) -> None:
+        """Announce a table of over ``WARN_ROWS`` rows, its size estimated from a sample
+        of every block of rows: ``sample``, the first block of positions (a long table,
+        or the columns of a short one)."""
+        if self.told:
+            return
+        self.told = True
+        if isinstance(sample, LongTable):
+            text = _long_text(sample, Repeats())
+            parts = [(i, slice(0, min(512, sample.n))) for i in range(sample.blocks)]
+            per_row = sum(len(text(p)) for p in parts) / max(sum(p.stop for _, p in parts), 1)
+        else:
+            data = [np.asarray(v) if not hasattr(v, "categories") else v
+                    for v in sample.values()]
+            rows = len(data[0]) if data else 0
+            pick = np.linspace(0, max(rows - 1, 0), min(4096, rows)).astype(np.intp)
+            seps = _separators(len(data))
+            per_row = len(csvtext.rows_text([_fields(d[pick], seps[i])
+                                             for i, d in enumerate(data)])) / max(pick.size, 1)
+        _announce(self.announce, self.path, self.rows, per_row)
 
     def columns(self, cols: dict, repeats: Repeats) -> None:
         """The next rows, as columns by name (one block: ``position`` formatted once per
@@ -310,8 +326,6 @@ class CsvStream:
         seps = _separators(len(data))
         reps = {i: repeats for i, n in enumerate(cols) if n == "position"}
         spans = list(_chunks(rows, rows))
-        if spans:
-            self._tell(_columns_text(data, seps, reps, spans[0]), spans[0][1])
         _write_spans(self.fh, spans, lambda s: _columns_text(data, seps, reps, s),
                      rows * len(data))
 
@@ -319,8 +333,6 @@ class CsvStream:
         """The next rows: block ``i`` of a long table over all its positions."""
         text = _long_text(table, repeats)
         spans = [(i, slice(s, min(s + CHUNK, table.n))) for s in range(0, table.n, CHUNK)]
-        if spans:
-            self._tell(text(spans[0]), spans[0][1].stop)
         _write_spans(self.fh, spans, text, table.n * len(self.names))
 
     def close(self) -> None:

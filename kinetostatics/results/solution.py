@@ -200,14 +200,14 @@ class Solution:
                                                                   shared(value))
         else:
             cols[self.driver_quantity] = tables.table_column(self.Me, n)
-        return tables.columns_frame({c: cols[c] for c in self._driver_names()}, copy=False)
+        return tables.columns_frame({c: cols[c] for c in self.driver_names()}, copy=False)
 
     def columns(self, table: str) -> dict:
         """The columns of a short table (``driver``, ``dyads``, ``sliders``, ``frame``) as
         arrays by name, without pandas (the CSV writer takes them as they are)."""
         return getattr(self, f"_{table}_columns")()
 
-    def _driver_names(self) -> list[str]:
+    def driver_names(self) -> list[str]:
         """The ``driver`` table's columns, in order."""
         names = ["position", self.driver_quantity, "singular", "undefined_load"]
         return names if self.self_locking is None else [*names, "self_locking"]

@@ -51,11 +51,12 @@ from .sweepangles import SweepAngles
 
 STREAM_BLOCK = 131_072      # rows solved and written at a time
 # bytes per row held over the sweep (the positions twice, Me, the order and the summary's
-# passes over them) and per row and column of a block being solved and written; measured
-# with /usr/bin/time -v at 1e7 positions (docs/limits.md), a little above
-SWEEP_ROW = 64 * FLOAT
-SWEEP_COLUMN = 3 * FLOAT    # per dyad and turning body
-BLOCK_ROW_FACTOR = 3.0      # a block's solve and its tables: 3 x a one-shot solve's row
+# passes over them), per row and turning body or dyad, and per row and column of a block
+# being solved and written: measured with /usr/bin/time -v, the bundled four-bar at 1e7
+# positions peaks at 883 MB writing CSV (estimate 1.22 GB), at 1e6 at 191 MB
+SWEEP_ROW = 8 * FLOAT
+SWEEP_COLUMN = 1 * FLOAT    # per dyad and turning body
+BLOCK_ROW_FACTOR = 1.5      # a block's solve and its tables: 1.5 x a one-shot solve's row
 
 
 def streamable(sweep: Sweep) -> bool:
@@ -83,8 +84,23 @@ def open_solve(scene: Any, stream: bool | None = None) -> Solution | StreamedSol
         stream = n >= 100_000 and solve_bytes(sweep.scene, n) > budget()[0]
     if stream and streamable(sweep):
         return StreamedSolve(sweep)
+    if stream and n >= 100_000:
+        check_memory(solve_bytes(sweep.scene, n),
+                     f"the solve of {sweep.scene.title!r} at {n:,} positions",
+                     f"its tables cannot be streamed ({_not_streamed(sweep)}); use fewer "
+                     "positions (driver.count, or a shorter positions list)")
     check_solve(sweep.scene, n)
     return Solution.of(sweep.solve())
+
+
+def _not_streamed(sweep: Sweep) -> str:
+    """Why a sweep is not streamed (:func:`streamable`)."""
+    from ..solver.friction import has_friction
+    if has_friction(sweep.scene):
+        return "joint friction is solved over the whole sweep at once"
+    if not sweep.blocked:
+        return "a resist or when = \"resisting\" load measures its threshold on the whole sweep"
+    return "its driver positions do not increase"
 
 
 class StreamedSolve:
@@ -99,6 +115,9 @@ class StreamedSolve:
     """
 
     def __init__(self, sweep: Sweep, block: int = STREAM_BLOCK):
+        if not streamable(sweep):
+            raise ValueError("a streamed solve needs a sweep solved in blocks over strictly "
+                             "increasing positions (streamable)")
         n = sweep.positions.size
         check_memory(stream_bytes(sweep.scene, n, block),
                      f"the streamed solve of {sweep.scene.title!r} at {n:,} positions",
@@ -227,7 +246,7 @@ class _Tables:
                 table = sol.long_table(name)
                 names, blocks = table.columns, table.blocks
             elif name == "driver":
-                names, blocks = self.s.whole._driver_names(), 1
+                names, blocks = self.s.whole.driver_names(), 1
             elif name == "frame":
                 names, blocks = list(sol.columns(name)), 1
             else:
@@ -239,9 +258,21 @@ class _Tables:
             path = self.folder / f"{name}.{self.fmt}"
             if self.fmt == "csv":
                 self.sinks[name] = CsvStream(path, names, n * blocks, self.announce)
+                self.sinks[name].tell(table if name in Solution.LONG_TABLES else
+                                      self._columns(name, sol, slice(0, sol.positions.size)))
             elif blocks:
                 self.sinks[name] = ParquetStream(path)
         return counts
+
+    def _columns(self, name: str, sol: Solution, rows: slice) -> dict:
+        """The columns of a short table at the rows ``rows`` (every block of rows)."""
+        if name != "driver":
+            return sol.columns(name)
+        w = self.s.whole
+        return {"position": self.s.positions[rows], w.driver_quantity: np.asarray(w.Me)[rows],
+                "singular": self.s.singular[rows],
+                "undefined_load": np.broadcast_to(w.undefined_load,
+                                                  self.s.positions.shape)[rows]}
 
     def _put(self, name: str, k: int, rows: slice, sol: Solution, reps: Repeats) -> None:
         """Block ``k`` of table ``name`` at the rows ``rows``."""
@@ -253,15 +284,8 @@ class _Tables:
             else:
                 sink.frame(table.block_frame(k))
             return
-        if name == "driver":
-            w = self.s.whole
-            cols = {"position": self.s.positions[rows],
-                    w.driver_quantity: np.asarray(w.Me)[rows],
-                    "singular": self.s.singular[rows],
-                    "undefined_load": np.broadcast_to(w.undefined_load,
-                                                      self.s.positions.shape)[rows]}
-        else:
-            cols = sol.columns(name)
+        cols = self._columns(name, sol, rows)
+        if name not in ("driver", "frame"):
             m = rows.stop - rows.start
             cols = {c: v[k * m:(k + 1) * m] for c, v in cols.items()}
         if self.fmt == "csv":
