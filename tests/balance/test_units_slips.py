@@ -7,14 +7,13 @@ from __future__ import annotations
 
 import cmath
 import math
-import subprocess
-import sys
 import warnings
 
 import pytest
 
 import balance
 from balance.errors import BalanceError, BalanceWarning
+from tests.helpers import run_main
 
 # a single-plane influence scene: a 100 g trial mass at 0 deg
 INFLUENCE = """
@@ -138,16 +137,14 @@ def test_a_correction_100_times_the_trial_mass_warns() -> None:
 def test_the_cli_prints_warning_lines_and_exits_0(tmp_path) -> None:
     path = tmp_path / "slip.toml"
     path.write_text(INFLUENCE.format(p0=4.3633, p1=2.7925, m=100.0))
-    out = subprocess.run([sys.executable, "-m", "balance", "solve", str(path)],
-                         capture_output=True, text=True)
+    out = run_main("balance", "solve", str(path))
     assert out.returncode == 0, out.stderr
     lines = out.stderr.strip().splitlines()
     assert lines and all(ln.startswith("warning: ") for ln in lines)
     assert sum("radians" in ln for ln in lines) == 1
     bad = tmp_path / "bad.toml"
     bad.write_text('[units]\nmass = "lb"\n' + rotor([30.0, 150.0]))
-    out = subprocess.run([sys.executable, "-m", "balance", "solve", str(bad)],
-                         capture_output=True, text=True)
+    out = run_main("balance", "solve", str(bad))
     assert out.returncode == 2 and out.stderr.startswith("error: ")
     assert len(out.stderr.strip().splitlines()) == 1
 
@@ -211,15 +208,13 @@ def test_a_slipped_scene_shows_its_warning_in_the_report_and_the_json(tmp_path) 
     path = tmp_path / "slip.toml"
     path.write_text(INFLUENCE.format(p0=4.3633, p1=2.7925, m=100.0))
     report = tmp_path / "slip.html"
-    out = subprocess.run([sys.executable, "-m", "balance", "solve", str(path), "--report",
-                          str(report)], capture_output=True, text=True)
+    out = run_main("balance", "solve", str(path), "--report", str(report))
     assert out.returncode == 0, out.stderr
     html = report.read_text()
     section = html[html.index("<h2>Warnings</h2>"):]
     section = section[:section.index("<h2>", 5)]
     assert "influence[0].runs" in section and "quiet" in section and "None" not in section
-    js = subprocess.run([sys.executable, "-m", "balance", "solve", str(path), "--json"],
-                        capture_output=True, text=True)
+    js = run_main("balance", "solve", str(path), "--json")
     import json
     assert any("influence[0].runs" in w for w in json.loads(js.stdout)["warnings"])
 
