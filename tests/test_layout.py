@@ -165,9 +165,16 @@ def test_no_private_name_crosses_a_package() -> None:
 
 
 def _plant(root: Path, files: dict[str, str]) -> dict[str, Path]:
+    """Write ``files`` below ``root``; every folder without an ``__init__.py`` gets an
+    empty one (a package)."""
     for rel, text in files.items():
         (root / rel).parent.mkdir(parents=True, exist_ok=True)
         (root / rel).write_text(text)
+    for rel in files:
+        for folder in Path(rel).parents[:-1]:
+            init = root / folder / "__init__.py"
+            if not init.exists():
+                init.write_text("")
     return _modules(root, ("pkg",))
 
 
@@ -175,7 +182,6 @@ def test_a_cycle_through_a_package_init_is_found(tmp_path: Path) -> None:
     """The cycle this test once missed: ``results`` imports ``solver.kinematics``, which
     runs ``solver/__init__``, which imports ``pipeline``, which imports ``results``."""
     modules = _plant(tmp_path, {
-        "pkg/__init__.py": "",
         "pkg/results.py": "from .solver.kinematics import K\n",
         "pkg/solver/__init__.py": "from .pipeline import solve\n",
         "pkg/solver/kinematics.py": "K = 1\n",
@@ -189,11 +195,8 @@ def test_a_cycle_through_a_package_init_is_found(tmp_path: Path) -> None:
 
 def test_a_private_import_across_packages_is_found(tmp_path: Path) -> None:
     modules = _plant(tmp_path, {
-        "pkg/__init__.py": "",
-        "pkg/solver/__init__.py": "",
         "pkg/solver/_arith.py": "def full(): pass\n",
         "pkg/solver/closure.py": "from . import _arith\nfrom ._arith import full\n",
-        "pkg/motion/__init__.py": "",
         "pkg/motion/scene.py": "from ..solver import _arith\n",
         "pkg/motion/loads.py": "from ..solver.closure import _hidden\n",
     })
@@ -271,7 +274,6 @@ def test_balance_never_reaches_teaching() -> None:
 def test_a_floor_cycle_through_a_lazy_import_is_found(tmp_path: Path) -> None:
     """The checker itself: a lazy import inside a function counts."""
     modules = _plant(tmp_path, {
-        "pkg/__init__.py": "",
         "pkg/cli.py": "def main():\n    from .teaching import grade\n",
         "pkg/teaching/__init__.py": "from .grading import grade\n",
         "pkg/teaching/grading.py": "from ..cli import main\ndef grade(): pass\n",
@@ -340,8 +342,7 @@ def test_no_long_function() -> None:
 
 def test_the_function_counter_counts_code_only(tmp_path: Path) -> None:
     body = "\n".join(f"    x{i} = {i}  # a comment" for i in range(78))
-    _plant(tmp_path, {"pkg/__init__.py": "",
-                      "pkg/m.py": f'def f():\n    """Doc\n\n    more doc."""\n\n    # note\n'
+    _plant(tmp_path, {"pkg/m.py": f'def f():\n    """Doc\n\n    more doc."""\n\n    # note\n'
                                   f"{body}\n\n\ndef g():\n{body}\n    return x0\n"})
     # f: its def and 78 lines (79: under the limit); g: 80
     assert _long_functions(tmp_path, ("pkg",)) == {"pkg/m.py:g": 80}
@@ -391,8 +392,7 @@ def test_no_private_state_written_from_outside() -> None:
 
 
 def test_the_private_write_finder_finds_them(tmp_path: Path) -> None:
-    _plant(tmp_path, {"pkg/__init__.py": "",
-                      "pkg/m.py": "def f(model, ax):\n    model._loads = []\n"
+    _plant(tmp_path, {"pkg/m.py": "def f(model, ax):\n    model._loads = []\n"
                                   "    ax.__dict__['_cache'] = 1\n    setattr(ax, '_x', 2)\n"
                                   "    model.loads = []\n",
                       "pkg/c.py": "class C:\n    def f(self):\n        self._x = 1\n"})
@@ -428,7 +428,7 @@ def test_no_private_name_crosses_a_module() -> None:
 
 
 def test_the_private_import_finder_sees_siblings(tmp_path: Path) -> None:
-    modules = _plant(tmp_path, {"pkg/__init__.py": "", "pkg/a.py": "_x = 1\ny = 2\n",
+    modules = _plant(tmp_path, {"pkg/a.py": "_x = 1\ny = 2\n",
                                 "pkg/b.py": "from .a import _x, y\n"})
     assert _private_imports(modules) == ["pkg.b:1: pkg.a._x"]
 
@@ -472,8 +472,7 @@ def test_few_degree_conversions_inside() -> None:
 
 
 def test_the_degree_counter_counts(tmp_path: Path) -> None:
-    _plant(tmp_path, {"pkg/__init__.py": "",
-                      "pkg/m.py": "import math\nimport numpy as np\nx = math.degrees(1.0)\n"
+    _plant(tmp_path, {"pkg/m.py": "import math\nimport numpy as np\nx = math.degrees(1.0)\n"
                                   "y = np.deg2rad(2.0) * 3\nz = 2.0 * 180.0 / math.pi\n"
                                   "w = 'math.radians(1)'  # math.radians(2)\n"})
     assert len(_degree_conversions(tmp_path, ("pkg",))) == 3

@@ -35,6 +35,12 @@ IDS = [p.stem for p in FILES]
 EXAMPLES = settings(max_examples=4, deadline=None)
 
 
+def each_scene(test):
+    """A property of every bundled scene (``path``), hypothesis drawing from ``data``
+    (four examples a scene)."""
+    return pytest.mark.parametrize("path", FILES, ids=IDS)(EXAMPLES(given(data=st.data())(test)))
+
+
 def raw(path) -> dict:
     with open(path, "rb") as fh:
         d = tomllib.load(fh)
@@ -74,9 +80,7 @@ TABLES = ("driver", "kinematics", "bodies", "reactions", "dyads", "frame", "redu
 
 # -- (a) order ------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("path", FILES, ids=IDS)
-@EXAMPLES
-@given(data=st.data())
+@each_scene
 def test_permuted_positions_give_the_sorted_rows(path, data) -> None:
     d = raw(path)
     pos = sweep(d)
@@ -163,9 +167,7 @@ def check_coarse_rows(d: dict, data) -> None:
             assert sf[shared[k - 1]:shared[k + 1] + 1].any(), f"row {shared[k]} flagged"
 
 
-@pytest.mark.parametrize("path", FILES, ids=IDS)
-@EXAMPLES
-@given(data=st.data())
+@each_scene
 def test_coarse_rows_are_the_fine_rows(path, data) -> None:
     check_coarse_rows(raw(path), data)
 
@@ -210,12 +212,9 @@ def mirrored(d: dict) -> dict:
     return m
 
 
-@pytest.mark.parametrize("path", FILES, ids=IDS)
-@EXAMPLES
-@given(data=st.data())
+@each_scene
 def test_the_mirror_image_gives_mirrored_results(path, data) -> None:
-    d = raw(path)
-    d = a_few_rows(d, data)
+    d = a_few_rows(raw(path), data)
     d["driver"]["speed"] = data.draw(st.floats(-50.0, 50.0).filter(lambda w: abs(w) > 0.1))
     d["driver"]["acceleration"] = data.draw(st.floats(-100.0, 100.0))
     sol, mir = ks.solve(d), ks.solve(mirrored(d))
@@ -251,12 +250,9 @@ def with_friction(d: dict, mu: float) -> dict:
     return d
 
 
-@pytest.mark.parametrize("path", FILES, ids=IDS)
-@EXAMPLES
-@given(data=st.data())
+@each_scene
 def test_speed_to_zero_is_continuous_with_rest(path, data) -> None:
-    d = raw(path)
-    d = a_few_rows(d, data)
+    d = a_few_rows(raw(path), data)
     # a resist load (or one on the working stroke only) has no direction at rest
     # (scene-format: flagged, zero): leave them out
     d["loads"] = [ld for ld in d.get("loads", []) if "resist" not in ld and "when" not in ld]
@@ -289,12 +285,9 @@ def test_speed_to_zero_is_continuous_with_rest(path, data) -> None:
 
 # -- (f) mass scale -------------------------------------------------------------------------
 
-@pytest.mark.parametrize("path", FILES, ids=IDS)
-@EXAMPLES
-@given(data=st.data())
+@each_scene
 def test_masses_times_k_scale_forces_by_k(path, data) -> None:
-    d = raw(path)
-    d = a_few_rows(d, data)
+    d = a_few_rows(raw(path), data)
     mu = data.draw(st.sampled_from([0.0, 0.1]), label="mu")
     if mu:
         d = with_friction(d, mu)
