@@ -549,10 +549,8 @@ def influence_two_plane(initial: Any, trial_plane1: Any, trial_plane2: Any,
         Trial mass in plane 1 and its angle (deg).
     trial_mass2, trial_angle2 : float, optional
         The plane-2 trial mass and angle; default: the same as in plane 1.
-    dA : float, optional
-        Uncertainty on every amplitude, see :func:`influence_balance`.
-    noise : NoiseModel, optional
-        See :func:`influence_balance`.
+    dA, noise : optional
+        Uncertainty on every amplitude, or a noise model: see :func:`influence_balance`.
 
     Returns
     -------
