@@ -95,16 +95,9 @@ def test_iso_example_by_hand() -> None:
 
 
 def test_iso_in_si_and_failing_check() -> None:
-    text = """
-[iso]
-grade = 2.5
-rotor_mass = 4.0
-speed_rpm = 6000.0
-bearings = [0.0, 0.4]
-cog = 0.2
-residual = [20e-6, 5e-6]
-"""
-    s = balance.solve(text)["iso"]
+    s = balance.solve({"iso": {"grade": 2.5, "rotor_mass": 4.0, "speed_rpm": 6000.0,
+                               "bearings": [0.0, 0.4], "cog": 0.2,
+                               "residual": [20e-6, 5e-6]}})["iso"]
     U = 1e-6 * 1000.0 * 2.5 * 4.0 / (6000.0 * math.pi / 30.0)            # kg m
     assert s["U_per"] == pytest.approx(U, rel=1e-12) and s["unbalance_unit"] == "kg m"
     assert s["check"]["ok"] is False
@@ -178,17 +171,9 @@ def test_iso_scene_errors(body, expected) -> None:
 
 
 def test_iso_single_correction_plane_takes_the_whole_u_per() -> None:
-    text = """
-[iso]
-grade = 2.5
-rotor_mass = 30.0
-speed_rpm = 1800.0
-bearings = [0.0, 0.8]
-cog = 0.4
-planes = [0.35]
-residual = [300e-6]
-"""
-    s = balance.solve(text)["iso"]
+    s = balance.solve({"iso": {"grade": 2.5, "rotor_mass": 30.0, "speed_rpm": 1800.0,
+                               "bearings": [0.0, 0.8], "cog": 0.4, "planes": [0.35],
+                               "residual": [300e-6]}})["iso"]
     U = 1000.0 * 2.5 * 30.0 / (1800.0 * math.pi / 30.0) * 1e-6
     assert s["check"]["permissible"] == pytest.approx([U], rel=1e-12)
     assert s["check"]["ratio"] == pytest.approx([300e-6 / U], rel=1e-12)

@@ -8,6 +8,7 @@ mistake here cannot hide in both.
 
 from __future__ import annotations
 
+import copy
 import math
 from typing import Any
 
@@ -109,3 +110,14 @@ def offset_slider_crank(r: float, rod: float, e: float, angle: float, *, start: 
         if friction and j["name"] in friction:
             j["friction"] = dict(friction[j["name"]])
     return scene
+
+
+def with_friction(d: dict, mu: float, radius: float = 0.01,
+                  length: float | None = None) -> dict:
+    """A copy of the scene dict ``d`` with the friction coefficient ``mu`` in every joint:
+    pins of ``radius`` (m), sliders of ``length`` (m, left out when None)."""
+    d = copy.deepcopy(d)
+    for j in d["joints"]:
+        j["friction"] = {"mu": mu, "radius": radius} if j["kind"] == "R" else \
+            {"mu": mu, **({"length": length} if length is not None else {})}
+    return d

@@ -243,13 +243,6 @@ def test_the_mirror_image_gives_mirrored_results(path, data) -> None:
 
 # -- (e) rest -------------------------------------------------------------------------------
 
-def with_friction(d: dict, mu: float) -> dict:
-    d = copy.deepcopy(d)
-    for j in d["joints"]:
-        j["friction"] = {"mu": mu, "radius": 0.01} if j["kind"] == "R" else {"mu": mu}
-    return d
-
-
 @each_scene
 def test_speed_to_zero_is_continuous_with_rest(path, data) -> None:
     d = a_few_rows(raw(path), data)
@@ -258,7 +251,7 @@ def test_speed_to_zero_is_continuous_with_rest(path, data) -> None:
     d["loads"] = [ld for ld in d.get("loads", []) if "resist" not in ld and "when" not in ld]
     acc = data.draw(st.sampled_from([-1.0, 1.0])) * data.draw(st.floats(1.0, 500.0))
     mu = data.draw(st.sampled_from([0.05, 0.2]), label="mu")
-    for scene in (d, with_friction(d, mu)):
+    for scene in (d, scenes.with_friction(d, mu)):
         scene["driver"]["acceleration"] = acc
         scene["driver"]["speed"] = 0.0
         rest = ks.solve(scene)
@@ -290,7 +283,7 @@ def test_masses_times_k_scale_forces_by_k(path, data) -> None:
     d = a_few_rows(raw(path), data)
     mu = data.draw(st.sampled_from([0.0, 0.1]), label="mu")
     if mu:
-        d = with_friction(d, mu)
+        d = scenes.with_friction(d, mu)
     k = 10.0 ** data.draw(st.floats(-3.0, 3.0), label="log10 k")
     e = copy.deepcopy(d)
     for b in e["bodies"]:
