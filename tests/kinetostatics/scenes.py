@@ -121,3 +121,19 @@ def with_friction(d: dict, mu: float, radius: float = 0.01,
         j["friction"] = {"mu": mu, "radius": radius} if j["kind"] == "R" else \
             {"mu": mu, **({"length": length} if length is not None else {})}
     return d
+
+
+def varied_slotted_lever(base: dict, r: float, h: float, e: float, beta: float,
+                         count: int) -> dict:
+    """A copy of the slotted-lever scene ``base`` (crank O2-A first, the lever third, its
+    slot the third joint) with the crank ``r``, O2 ``h`` above the lever's pivot, the
+    slot through S, ``e`` off the pivot at ``beta`` deg in the lever's frame, and
+    ``count`` rows."""
+    d = copy.deepcopy(base)
+    d["ground"]["O2"] = [0.0, h]
+    d["bodies"][0]["points"]["A"] = [r, 0.0]
+    d["bodies"][2]["points"]["S"] = [0.0, e]
+    d["joints"][2]["line_point"] = "S"
+    d["joints"][2]["line_angle"] = beta
+    d["driver"]["count"] = count
+    return d
