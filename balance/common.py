@@ -50,6 +50,19 @@ def check_number(value: object, name: str, *, positive: bool = False,
                     smallest=smallest, error=BalanceError)
 
 
+def radius_ratio(top: object, top_name: str, bottom: object, bottom_name: str,
+                 neither: str) -> float:
+    """``top / bottom`` of two radii given together (both checked positive, ``top``
+    first), 1.0 when neither is given; one alone raises :class:`BalanceError` with the
+    message ``neither``."""
+    if (top is None) != (bottom is None):
+        raise BalanceError(neither)
+    if top is None:
+        return 1.0
+    return (check_number(top, top_name, positive=True)
+            / check_number(bottom, bottom_name, positive=True))
+
+
 def within(where: str, func: Any, *args: Any, **kwargs: Any) -> Any:
     """Call ``func``; a :class:`BalanceError` gets the scene section's name in front."""
     try:

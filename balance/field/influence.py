@@ -40,7 +40,7 @@ from typing import Any
 
 import numpy as np
 
-from ..common import angle_of, check_number, deg360_array, polar
+from ..common import angle_of, check_number, deg360_array, polar, radius_ratio
 from ..errors import BalanceError
 from ..uncertainty import Interval, propagate
 from .influence_stats import (
@@ -413,12 +413,8 @@ def influence_balance(initial: Any, runs: Iterable[tuple[Any, Any]] = (), *,
     """
     d = _prepare(initial, runs, trims, coefficients)
     model = noise if noise is not None else NoiseModel()
-    if (trial_radius is None) != (correction_radius is None):
-        raise BalanceError("give both trial_radius and correction_radius, or neither")
-    ratio = 1.0
-    if trial_radius is not None:
-        ratio = (check_number(trial_radius, "trial_radius", positive=True)
-                 / check_number(correction_radius, "correction_radius", positive=True))
+    ratio = radius_ratio(trial_radius, "trial_radius", correction_radius, "correction_radius",
+                         "give both trial_radius and correction_radius, or neither")
     alpha, W = _solve_batch(d.amps[None], d.phases[None], d)
     alpha, W = alpha[0], W[0]
     if not np.all(np.isfinite(W)):

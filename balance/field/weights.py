@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from ..common import angle_of, check_number, deg360
+from ..common import angle_of, check_number, deg360, radius_ratio
 from ..errors import BalanceError
 
 __all__ = ["Combined", "Placement", "Split", "combine_weights", "split_correction"]
@@ -123,12 +123,8 @@ def split_correction(mass: float, angle: float, positions: int, first: float = 0
         raise BalanceError(f"split: {n} position(s) cannot hold every correction angle; "
                            "give at least 3 equally spaced positions")
     phi0 = deg360(check_number(first, "split: first"))
-    if (radius is None) != (correction_radius is None):
-        raise BalanceError("split: give both radius and correction_radius, or neither")
-    scale = 1.0
-    if radius is not None:
-        scale = (check_number(correction_radius, "split: correction_radius", positive=True)
-                 / check_number(radius, "split: radius", positive=True))
+    scale = radius_ratio(correction_radius, "split: correction_radius", radius, "split: radius",
+                         "split: give both radius and correction_radius, or neither")
     delta = 360.0 / n
     rel = (theta - phi0) % 360.0                  # angle past position 1, [0, 360)
     k = int(rel // delta) % n                     # the position just below theta

@@ -51,7 +51,8 @@ are flagged as absurd."""
 
 @dataclass(frozen=True)
 class Unbalance:
-    """One eccentric mass: ``mass`` (kg) at ``radius`` (m), ``angle`` (deg), plane ``z`` (m)."""
+    """One eccentric mass: ``mass`` (kg) at ``radius`` (m) and ``angle`` (deg), in the
+    plane ``z`` (m)."""
 
     mass: float
     radius: float

@@ -20,7 +20,8 @@ __all__ = ["StaticDeviceResult", "static_device"]
 
 @dataclass(frozen=True)
 class StaticDeviceResult:
-    """Result of :func:`static_device`.
+    """Result of :func:`static_device`: the disk's eccentricity and the correction mass
+    that balances it (seed 002, eqs 3.18-3.21).
 
     Attributes
     ----------

@@ -77,6 +77,17 @@ A3 = 495.0
 """,
 }
 
+# a two-plane influence section (two sensors, one trial run a plane): the base the scene
+# tests edit
+INFLUENCE_TWO_PLANE = """
+[[influence]]
+initial = [[170.0, 112.0], [53.0, 78.0]]
+runs = [
+  { plane = 1, mass = 1.15, angle = 0.0, readings = [[235.0, 94.0], [58.0, 68.0]] },
+  { plane = 2, mass = 1.15, angle = 0.0, readings = [[185.0, 115.0], [77.0, 104.0]] },
+]
+"""
+
 EXPECTED: dict[str, dict[str, Any]] = {
     "rotor_two_plane": {
         "rotor": {

@@ -13,6 +13,7 @@ import pytest
 import balance
 from balance import example_path, examples
 from kinetostatics.model.errors import WorkbenchError
+from tests.balance._balance_cases import INFLUENCE_TWO_PLANE
 
 FIELD_EXAMPLES = ("influence_two_plane", "influence_speeds", "trim_run", "iso_tolerance",
                   "split_combine")
@@ -113,14 +114,7 @@ def test_split_and_combine_sections() -> None:
     assert cb["mass"] == pytest.approx(math.hypot(x, y), rel=1e-12)
 
 
-BASE = """
-[[influence]]
-initial = [[170.0, 112.0], [53.0, 78.0]]
-runs = [
-  { plane = 1, mass = 1.15, angle = 0.0, readings = [[235.0, 94.0], [58.0, 68.0]] },
-  { plane = 2, mass = 1.15, angle = 0.0, readings = [[185.0, 115.0], [77.0, 104.0]] },
-]
-"""
+BASE = INFLUENCE_TWO_PLANE
 
 
 @pytest.mark.parametrize("old, new, expected", [
