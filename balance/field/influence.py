@@ -40,6 +40,8 @@ from typing import Any
 
 import numpy as np
 
+from kinetostatics.common.angles import degree_column, radian_column
+
 from ..common import angle_of, check_number, deg360_array, polar, radius_ratio
 from ..errors import BalanceError
 from ..uncertainty import Interval, propagate
@@ -207,7 +209,7 @@ def _mass(x: Any, where: str) -> complex:
 
 
 def _to_complex(amp: np.ndarray, phase_deg: np.ndarray) -> np.ndarray:
-    return amp * np.exp(1j * np.radians(phase_deg))
+    return amp * np.exp(1j * radian_column(phase_deg))
 
 
 # -------------------------------------------------------------------- solving
@@ -449,14 +451,14 @@ def influence_balance(initial: Any, runs: Iterable[tuple[Any, Any]] = (), *,
         def batch(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             a = pts.reshape((-1,) + shape)
             Wb = solve(a, np.broadcast_to(d.phases, a.shape))
-            return np.abs(Wb), np.degrees(np.angle(Wb))
+            return np.abs(Wb), degree_column(np.angle(Wb))
 
         unc = propagate(batch, d.amps.ravel(), dd, "measured amplitudes")
     splits = None
     if split is not None:
         n, first = (split, 0.0) if isinstance(split, int | np.integer) else split
         splits = [split_correction(abs(w), angle_of(complex(w)), n, first) for w in Wc]
-    return InfluenceResult(masses=np.abs(Wc), angles=deg360_array(np.degrees(np.angle(Wc))),
+    return InfluenceResult(masses=np.abs(Wc), angles=deg360_array(degree_column(np.angle(Wc))),
                            corrections=Wc, coefficients=alpha, initial=V[0],
                            residual=residual, uncertainty=unc, intervals=intervals,
                            noise=model, condition_number=kappa, amplification=amp,

@@ -28,6 +28,8 @@ from typing import Any
 
 import numpy as np
 
+from kinetostatics.common.angles import radian_value
+
 from ..common import angle_of, check_number, deg360, radius_ratio
 from ..errors import BalanceError
 
@@ -136,6 +138,8 @@ def split_correction(mass: float, angle: float, positions: int, first: float = 0
         k = k if frac <= _ON_POSITION else (k + 1) % n
         placements.append(Placement(k + 1, deg360(phi0 + k * delta), m * scale))
     else:
+        # degrees kept (7-9/10): the law of sines on the positions' angles, which the
+        # split takes and gives in degrees (a field balancer's marks)
         d = math.radians(delta)
         below, above = math.radians(rel - k * delta), math.radians((k + 1) * delta - rel)
         m_k = m * math.sin(above) / math.sin(d)          # law of sines, see module doc
@@ -209,7 +213,7 @@ def combine_weights(weights: Iterable[Any], radius: float | None = None) -> Comb
         a = check_number(w[1], f"{where}: angle")
         r = check_number(w[2], f"{where}: radius", positive=True) if len(w) == 3 else 1.0
         with_radius.append(len(w) == 3)
-        vecs.append(m * r * complex(math.cos(math.radians(a)), math.sin(math.radians(a))))
+        vecs.append(m * r * complex(math.cos(radian_value(a)), math.sin(radian_value(a))))
     if any(with_radius) and not all(with_radius):
         raise BalanceError("combine: give a radius for every weight, or for none")
     if all(with_radius) and radius is None:
