@@ -26,23 +26,11 @@ SCENES = {
 [rotor]
 speed_rpm = 1500                # forces and moments are reported in N and N m
 
-[[rotor.unbalance]]
-mass = 0.020
-radius = 0.10
-angle = 30.0
-z = 0.05
-
-[[rotor.unbalance]]
-mass = 0.015
-radius = 0.12
-angle = 150.0
-z = 0.15
-
-[[rotor.unbalance]]
-mass = 0.010
-radius = 0.08
-angle = 260.0
-z = 0.25
+unbalance = [
+    { mass = 0.020, radius = 0.10, angle = 30.0, z = 0.05 },
+    { mass = 0.015, radius = 0.12, angle = 150.0, z = 0.15 },
+    { mass = 0.010, radius = 0.08, angle = 260.0, z = 0.25 },
+]
 
 [[rotor.planes]]
 z = 0.0
