@@ -19,7 +19,8 @@ def four_bar(a: float, b: float, c: float, d: float, *,
              stop: float | None = None, count: int = 361,
              acceleration: float | None = None, gravity: list | None = None,
              coupler_point: list | None = None, loads: list | None = None,
-             near: list | None = None, friction: dict | None = None) -> dict[str, Any]:
+             near: list | None = None, friction: dict | None = None,
+             positions: list | None = None) -> dict[str, Any]:
     """A four-bar scene dict.
 
     Parameters
@@ -43,12 +44,17 @@ def four_bar(a: float, b: float, c: float, d: float, *,
         The hint for C (default: above D, 10 x the size away: the open assembly).
     friction : dict, optional
         Joint name -> its friction table.
+    positions : list, optional
+        The driver's positions (deg) in place of start, stop and count.
     """
     cogs = cogs if cogs is not None else ([a / 2, 0.0], [b / 2, 0.0], [c / 2, 0.0])
     driver: dict[str, Any] = {"body": "crank", "joint": "A", "speed": speed}
     if acceleration is not None:
         driver["acceleration"] = acceleration
-    driver.update(start=start, stop=start + 360.0 if stop is None else stop, count=count)
+    if positions is not None:
+        driver["positions"] = [float(p) for p in positions]
+    else:
+        driver.update(start=start, stop=start + 360.0 if stop is None else stop, count=count)
     coupler = {"B": [0.0, 0.0], "C": [b, 0.0]}
     if coupler_point is not None:
         coupler["P"] = list(coupler_point)
