@@ -35,7 +35,12 @@ def _solve(args) -> int:
     if args.out and args.format == "parquet":
         from .results.output import parquet_available
         parquet_available()
-    sol = solve(scene_path(args.scene))
+    if args.out and not args.plot:
+        # a sweep too long to hold is streamed: its tables written block by block
+        from .results.streamed import open_solve
+        sol = open_solve(scene_path(args.scene))
+    else:
+        sol = solve(scene_path(args.scene))
     summary = summary_with_units(sol.summary(), sol.scene.units, sol.scene.warnings,
                                  "deg" if sol.scene.driver.kind == "R" else "m")
     written = []
@@ -61,10 +66,14 @@ def summary_text(summary: dict) -> str:
     unit = summary["unit_of"]
     q = "Fe" if "Fe_mean" in summary else "Me"
     u, pu = unit[f"{q}_mean"], unit["reaction_max"]["position"]
+    mean, low, high = (summary[q + k] for k in ("_mean", "_min", "_max"))
+    # a mean that is rounding next to the peaks (a whole cycle of a conservative load:
+    # 6e-16 N m beside 22 N m) is said as zero, not as a number nobody can use
+    said = (f"0 {u} (to rounding)" if abs(mean) <= 1e-12 * max(abs(low), abs(high))
+            else f"{mean:.6g} {u}")
     lines = [f"{summary['title'] or 'scene'}: {summary['positions']} positions", *(
         "  " + line for line in summary["structure"]),
-        f"  {q} mean {summary[q + '_mean']:.6g} {u}, min {summary[q + '_min']:.6g} {u}, "
-        f"max {summary[q + '_max']:.6g} {u}"]
+        f"  {q} mean {said}, min {low:.6g} {u}, max {high:.6g} {u}"]
     lines += [f"  joint {j}: max |F| = {r['F']:.6g} N at {r['position']:g} {pu}"
               for j, r in summary["reaction_max"].items()]
     if summary.get("transmission_angle_min") is not None:

@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -14,7 +13,7 @@ import pandas as pd
 from ..model.memory import check_memory
 from ..model.slips import emit, read_checks
 from ..model.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source, suggest
-from ..model.units import Units
+from ..model.units import Units, degrees, radians, rpm_to_rad_s
 from ..transmission.efficiency import mean_efficiency
 from .followers import (
     Follower,
@@ -45,7 +44,6 @@ from .laws import (
     ALIASES,
     LAW_COEFFICIENTS,
     LAWS,
-    TWO_PI,
     CamError,
     CamLaw,
     Segment,
@@ -144,7 +142,7 @@ def load_cam_scene(source: Any) -> CamScene:
                        "(the admissible one, deg)")
     tau_adm = None
     if "transmission_angle" in cam:
-        tau_adm = math.radians(as_float(cam["transmission_angle"], "cam.transmission_angle",
+        tau_adm = radians(as_float(cam["transmission_angle"], "cam.transmission_angle",
                                         positive=True))
         check_tau(tau_adm)
     loads = _load_loads(cam.get("loads", {}), kind, stroke)
@@ -170,7 +168,7 @@ def _follower_table(fol: Any) -> tuple[str, dict, float]:
                      else ("stroke_angle", "arm", "pivot_distance"))
     if kind == "translating":
         return kind, fol, as_float(fol["stroke"], "cam.follower.stroke", positive=True)
-    return kind, fol, math.radians(as_float(fol["stroke_angle"], "cam.follower.stroke_angle",
+    return kind, fol, radians(as_float(fol["stroke_angle"], "cam.follower.stroke_angle",
                                             positive=True))
 
 
@@ -190,7 +188,7 @@ def _segments(items: Any) -> list[Segment]:
             law = law_name(law) if law is not None else None
         except CamError as exc:
             raise CamError(f"{where}.law: {exc}") from None
-        segments.append(Segment(skind, math.radians(as_float(seg["angle"], f"{where}.angle",
+        segments.append(Segment(skind, radians(as_float(seg["angle"], f"{where}.angle",
                                                              positive=True)), law))
     return segments
 
@@ -201,7 +199,7 @@ def _speed(cam: dict) -> float:
         raise CamError("cam: give exactly one of speed (rad/s) and speed_rpm")
     if "speed" in cam:
         return as_float(cam["speed"], "cam.speed", positive=True)
-    return as_float(cam["speed_rpm"], "cam.speed_rpm", positive=True) * TWO_PI / 60.0
+    return rpm_to_rad_s(as_float(cam["speed_rpm"], "cam.speed_rpm", positive=True))
 
 
 def _follower(kind: str, fol: dict, cam: dict, law: CamLaw, tau_adm: float | None,
@@ -223,8 +221,8 @@ def _follower(kind: str, fol: dict, cam: dict, law: CamLaw, tau_adm: float | Non
                 loads.friction, loads.guide_gap - np.array([0, law.stroke]),
                 loads.guide_length)))
             if tau_adm <= cr:
-                raise CamError(f"cam.transmission_angle {math.degrees(tau_adm):g} deg is not "
-                               f"above the critical angle {math.degrees(cr):.4g} deg (eqs "
+                raise CamError(f"cam.transmission_angle {degrees(tau_adm):g} deg is not "
+                               f"above the critical angle {degrees(cr):.4g} deg (eqs "
                                "1.44-1.45); raise it")
         return TranslatingFollower(r0, offset, roller)
     arm = as_float(fol["arm"], "cam.follower.arm", positive=True)
@@ -361,9 +359,9 @@ def solve_cam(source: Any) -> CamResults:
         "follower": "translating" if translating else "oscillating",
         "base_radius": fol.base_radius,
         "working_base_radius": fol.base_radius - fol.roller_radius,
-        "transmission_angle_min": math.degrees(-tau_min),
-        "transmission_angle_min_at": math.degrees(tau_at),
-        "pressure_angle_max": 90.0 - math.degrees(-tau_min),
+        "transmission_angle_min": degrees(-tau_min),
+        "transmission_angle_min_at": degrees(tau_at),
+        "pressure_angle_max": 90.0 - degrees(-tau_min),
         ("velocity_max" if translating else "omega2_max"): w * vmax,
         ("acceleration_max" if translating else "eps2_max"): w * w * float(np.max(np.abs(dds))),
         "F12_max": float(np.max(f12)),
@@ -382,14 +380,14 @@ def solve_cam(source: Any) -> CamResults:
         summary.update(offset=fol.offset, s0=fol.s0, stroke=law.stroke)
         if ld.friction > 0.0:
             cr = critical_transmission_angle(ld.friction, ld.guide_gap - s, ld.guide_length)
-            summary["critical_angle_max"] = math.degrees(float(np.max(cr)))
+            summary["critical_angle_max"] = degrees(float(np.max(cr)))
     else:
-        summary.update(beta0=math.degrees(fol.beta0), stroke_angle=math.degrees(law.stroke))
+        summary.update(beta0=degrees(fol.beta0), stroke_angle=degrees(law.stroke))
         if ld.friction > 0.0:
-            summary["critical_angle_max"] = math.degrees(critical_transmission_angle_oscillating(
+            summary["critical_angle_max"] = degrees(critical_transmission_angle_oscillating(
                 ld.friction, ld.pin_radius, fol.arm))
     if sc.transmission_angle is not None:
-        summary["transmission_angle_admissible"] = math.degrees(sc.transmission_angle)
+        summary["transmission_angle_admissible"] = degrees(sc.transmission_angle)
     return CamResults(sc, motion, geometry, forces, summary)
 
 

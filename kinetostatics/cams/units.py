@@ -1,7 +1,8 @@
 """A ``[cam]`` scene's ``[units]``: the scene rewritten into the contract's units, once, where
 it is read (docs/cam-scenes.md, "Units"), and the checks for unit slips.
 
-Which quantity each field is: length: ``base_radius``, ``roller_radius``, the follower's
+Which quantity each field is (declared once, in :data:`kinetostatics.model.fields.CAM`):
+length: ``base_radius``, ``roller_radius``, the follower's
 ``stroke``, ``offset`` (a number), ``arm``, ``pivot_distance``, the loads' ``guide_length``,
 ``guide_gap`` and ``pin_radius``; angle: ``transmission_angle``, ``stroke_angle``, every
 segment's ``angle``; speed: ``speed`` (``speed_rpm`` stays rpm); force: a translating
@@ -13,12 +14,11 @@ length^2): its ``inertia``.
 
 from __future__ import annotations
 
-import copy
-import math
 from typing import Any
 
+from ..model.fields import CAM, to_contract_units
 from ..model.slips import DEG, Slip, angle_list_slip, tip_speed_slip, typed
-from ..model.units import Units, parse_units
+from ..model.units import Units, rpm_to_rad_s
 
 __all__ = ["cam_slips", "cam_summary_units", "cam_to_contract_units"]
 
@@ -27,59 +27,18 @@ def _num(x: Any) -> bool:
     return isinstance(x, int | float) and not isinstance(x, bool)
 
 
-def _scale(table: Any, key: str, f: float) -> None:
-    if isinstance(table, dict) and _num(table.get(key)) and f != 1.0:
-        table[key] = table[key] * f
-
-
 def cam_to_contract_units(raw: Any) -> tuple[Any, Units]:
     """The raw cam scene with its numbers in the contract's units (m, kg, N, N m, rad/s,
-    degrees), without ``[units]``, and the scene's units. A scene in the default units is
-    returned untouched.
+    degrees), without ``[units]``, and the scene's units: the declared fields
+    (:data:`kinetostatics.model.fields.CAM`) through the one units stage. A scene in the
+    default units is returned untouched.
 
     Raises
     ------
     SceneError
         A ``[units]`` that is not a table, or names an unknown quantity or unit.
     """
-    if not isinstance(raw, dict) or "units" not in raw:
-        return raw, Units()
-    units = parse_units(raw["units"])
-    out = {k: v for k, v in raw.items() if k != "units"}
-    cam = out.get("cam")
-    if units.is_default or not isinstance(cam, dict):
-        return out, units
-    out = copy.deepcopy(out)
-    cam = out["cam"]
-    f = units.file_factor
-    L, A = f("length"), f("angle")
-    for key in ("base_radius", "roller_radius"):
-        _scale(cam, key, L)
-    _scale(cam, "transmission_angle", A)
-    _scale(cam, "speed", f("speed"))
-    fol = cam.get("follower")
-    for key in ("stroke", "offset", "arm", "pivot_distance"):
-        _scale(fol, key, L)
-    _scale(fol, "stroke_angle", A)
-    segs = cam.get("segments")
-    for seg in segs if isinstance(segs, list) else ():
-        _scale(seg, "angle", A)
-    loads = cam.get("loads")
-    oscillating = isinstance(fol, dict) and fol.get("kind") == "oscillating"
-    if oscillating:
-        for key in ("moment", "spring_preload", "spring_rate"):
-            _scale(loads, key, f("moment"))
-        _scale(loads, "inertia", f("inertia"))
-        _scale(loads, "pin_radius", L)
-    else:
-        _scale(loads, "force", f("force"))
-        _scale(loads, "spring_preload", f("force"))
-        _scale(loads, "spring_rate", f("force") / L)
-        _scale(loads, "mass", f("mass"))
-        _scale(loads, "gravity", f("acceleration"))
-        _scale(loads, "guide_length", L)
-        _scale(loads, "guide_gap", L)
-    return out, units
+    return to_contract_units(raw, CAM)
 
 
 def cam_slips(raw: Any, units: Units) -> list[Slip]:
@@ -117,7 +76,7 @@ def cam_slips(raw: Any, units: Units) -> list[Slip]:
     if _num(w) and tip_speed_slip(w, size):
         out.append(Slip("speed", "cam.speed", typed(w, "speed", units),
                         f"moves the cam's outline ({size:.3g} m) at {abs(w) * size:.3g} m/s",
-                        f"{w * math.pi / 30:.4g} rad/s (rpm typed for rad/s)"))
+                        f"{rpm_to_rad_s(w):.4g} rad/s (rpm typed for rad/s)"))
     return out
 
 

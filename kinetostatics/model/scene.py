@@ -8,7 +8,6 @@ the field and the fix. Unknown keys are refused with the nearest known key sugge
 
 from __future__ import annotations
 
-import math
 import warnings
 from typing import Any
 
@@ -31,7 +30,7 @@ from .tomlio import (
     read_source,
     suggest,
 )
-from .units import Units
+from .units import Units, rpm_to_rad_s
 
 MAX_COUNT = 10_000_000
 TOP_KEYS = ("title", "format", "units", "gravity", "ground", "driver", "bodies", "joints", "loads",
@@ -185,13 +184,13 @@ def _bodies(items: Any, units: Units) -> dict[str, Body]:
             points[str(pname)] = plain_vec2(pval) or as_vec2(pval, f"{where}.points.{pname}")
         model = None
         if "mass_model" in item:
-            model = _mass_model(item["mass_model"], where, points, cog, mass)
+            model = _mass_model(item["mass_model"], where, points, cog, mass, units)
         bodies[name] = Body(name, mass, inertia, cog, points, model)
     return bodies
 
 
 def _mass_model(table: Any, where: str, points: dict, cog: tuple | None,
-                mass: float) -> MassModel:
+                mass: float, units: Units) -> MassModel:
     w = f"{where}.mass_model"
     if not isinstance(table, dict):
         raise SceneError(f"{w} must be a table like "
@@ -220,7 +219,8 @@ def _mass_model(table: Any, where: str, points: dict, cog: tuple | None,
             raise SceneError(f"{w}: the two points coincide")
         off = abs(float((c - b)[0] * (g - b)[1] - (c - b)[1] * (g - b)[0])) / bc
         if off > 1e-9 * bc:
-            raise SceneError(f"{w}: the cog is {off:.3g} m off the line through "
+            raise SceneError(f"{w}: the cog is {units.quote(off, 'length', '.3g')} off the "
+                             f"line through "
                              f"{names[0]} and {names[1]}; static concentration needs it "
                              "on the line")
         t = float(np.dot(g - b, c - b)) / bc**2
@@ -421,7 +421,7 @@ def _driver(table: Any, bodies: dict, joints: dict) -> Driver:
         if kind != "R":
             raise SceneError("driver.speed_rpm is for a rotating driver; a sliding driver "
                              "takes 'speed' in m/s")
-        speed = as_float(t["speed_rpm"], "driver.speed_rpm") * math.pi / 30.0
+        speed = rpm_to_rad_s(as_float(t["speed_rpm"], "driver.speed_rpm"))
     elif "speed" in t:
         speed = as_float(t["speed"], "driver.speed")
     else:

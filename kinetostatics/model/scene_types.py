@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from .units import Units
+from .units import Units, radians
 
 GROUND = "ground"
 
@@ -93,7 +93,7 @@ class Joint:
     def beta(self) -> float:
         """The line angle in radians: the model works in radians, the scene file and the
         tables in degrees; this is where a joint's angle is converted."""
-        return math.radians(self.line_angle)
+        return radians(self.line_angle)
 
     def other(self, body: str) -> str:
         """The body at the other side of the joint."""
@@ -134,7 +134,7 @@ class Driver:
     def angles(self) -> np.ndarray:
         """A crank's positions in radians (the file and the tables give degrees; this is
         where they are converted)."""
-        return np.deg2rad(self.positions)
+        return radians(self.positions)
 
 
 @dataclass(frozen=True)

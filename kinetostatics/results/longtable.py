@@ -45,12 +45,15 @@ CONSTANTS_KEPT = 256    # distinct (value, length) pairs of constant columns hel
 SHARE_ROWS = 65_536
 
 
-def categorical(names: list[str], n: int) -> pd.Categorical:
-    """A categorical column with ``names[i]`` on the ``n`` rows of block ``i``."""
+def categorical(names: list[str], n: int, block: int | None = None) -> pd.Categorical:
+    """A categorical column with ``names[i]`` on the ``n`` rows of block ``i`` (``block``:
+    the rows of that block alone, with every block's names as categories)."""
     import pandas as pd
     cats = list(dict.fromkeys(names))
     kind = np.int8 if len(cats) < 127 else np.int16 if len(cats) < 32767 else np.int32
     codes = np.array([cats.index(x) for x in names], dtype=kind)
+    if block is not None:
+        return pd.Categorical.from_codes(np.full(n, codes[block]), categories=cats)
     return pd.Categorical.from_codes(np.repeat(codes, n), categories=cats)
 
 
@@ -239,6 +242,20 @@ class LongTable:
                 cols[c] = constant(same[c], n * k)
             else:                                   # no rows
                 cols[c] = np.empty(0)
+        return pd.DataFrame(cols, copy=False)
+
+
+    def block_frame(self, i: int) -> pd.DataFrame:
+        """Block ``i`` of the table over all its positions, as a DataFrame with the
+        columns and dtypes of :meth:`frame` (the name columns' categories: every block's
+        names), for a table written block by block."""
+        import pandas as pd
+        n = self.n
+        values = self.chunk(i, slice(0, n))
+        cols: dict[str, object] = {"position": np.array(self.positions, dtype=float)}
+        cols.update({c: categorical(names, n, i) for c, names in self.labels.items()})
+        cols.update({c: np.array(np.broadcast_to(np.asarray(values[c], dtype=float), (n,)))
+                     for c in self.floats})
         return pd.DataFrame(cols, copy=False)
 
 

@@ -156,10 +156,7 @@ def write_csv(df: pd.DataFrame | dict, path: str | Path, block: int | None = Non
     seps = _separators(len(names))
 
     def text(span: tuple[int, int, int]) -> bytes:
-        start, stop, offset = span
-        return csvtext.rows_text(_fields_of([d[start:stop] for d in data], seps,
-                                            [repeats.get(i) for i in range(len(data))],
-                                            offset))
+        return _columns_text(data, seps, repeats, span)
 
     def per_row() -> float:
         sample = np.linspace(0, rows - 1, 4096).astype(np.intp)
@@ -170,6 +167,15 @@ def write_csv(df: pd.DataFrame | dict, path: str | Path, block: int | None = Non
                         per_row, announce)
 
 
+def _columns_text(data: list, seps: list[str], repeats: dict, span: tuple[int, int, int]
+                  ) -> bytes:
+    """The CSV lines of the rows ``span`` = (start, stop, offset within the block) of the
+    columns ``data`` (``repeats``: column index -> the formatted chunks it repeats)."""
+    start, stop, offset = span
+    return csvtext.rows_text(_fields_of([d[start:stop] for d in data], seps,
+                                        [repeats.get(i) for i in range(len(data))], offset))
+
+
 def write_long_csv(table: LongTable, path: str | Path,
                    announce: Callable[[str], None] | None = None,
                    repeats: Repeats | None = None) -> Path:
@@ -177,11 +183,24 @@ def write_long_csv(table: LongTable, path: str | Path,
     text as ``write_csv(table.frame(), path)`` without the table ever being held
     (``repeats``: the formatted ``position`` chunks shared with other tables)."""
     names = table.columns
+    text = _long_text(table, repeats if repeats is not None else Repeats())
+
+    def per_row() -> float:
+        parts = [(i, slice(0, min(512, table.n))) for i in range(table.blocks)]
+        return sum(len(text(p)) for p in parts) / sum(p.stop for _, p in parts)
+
+    return _write_lines(Path(path), names, list(table.parts(CHUNK)), text,
+                        table.n * table.blocks, per_row, announce)
+
+
+def _long_text(table: LongTable, repeats: Repeats) -> Callable[[tuple[int, slice]], bytes]:
+    """The function giving the CSV lines of the chunk (block, positions) of a long table
+    (``repeats``: the formatted ``position`` chunks)."""
+    names = table.columns
     seps = _separators(len(names))
     nl = len(table.labels)
     labels = [[csvtext.format_label(x, seps[1 + j]) for x in block_names]
               for j, block_names in enumerate(table.labels.values())]
-    repeats = repeats if repeats is not None else Repeats()
 
     def text(span: tuple[int, slice]) -> bytes:
         i, part = span
@@ -194,13 +213,7 @@ def write_long_csv(table: LongTable, path: str | Path,
                             [repeats] + [None] * len(table.floats), part.start)
         return csvtext.rows_text(fields[:1] + [_repeat(labels[j][i], m) for j in range(nl)]
                                  + fields[1:])
-
-    def per_row() -> float:
-        parts = [(i, slice(0, min(512, table.n))) for i in range(table.blocks)]
-        return sum(len(text(p)) for p in parts) / sum(p.stop for _, p in parts)
-
-    return _write_lines(Path(path), names, list(table.parts(CHUNK)), text,
-                        table.n * table.blocks, per_row, announce)
+    return text
 
 
 def _threads() -> int:
@@ -235,22 +248,109 @@ def _write_lines(path: Path, names: list[str], spans: list, text: Callable[..., 
         if not names or not spans:
             return path
         if announce is not None and rows > WARN_ROWS:
-            size = per_row() * rows
-            announce(f"{path.name}: {rows:,} rows, about {size / 1e6:,.0f} MB of CSV and "
-                     f"{size / CSV_RATE:.0f} s to write (--format parquet is smaller and "
-                     "faster)")
-        threads = _threads()
-        if threads > 1 and len(spans) > 1 and rows * len(names) >= THREADED:
-            from concurrent.futures import ThreadPoolExecutor
-            with ThreadPoolExecutor(threads) as pool:
-                window = 4 * threads
-                for i in range(0, len(spans), window):
-                    for chunk in pool.map(text, spans[i:i + window]):
-                        fh.write(chunk)
-        else:
-            for span in spans:
-                fh.write(text(span))
+            _announce(announce, path, rows, per_row())
+        _write_spans(fh, spans, text, rows * len(names))
     return path
+
+
+def _announce(announce: Callable[[str], None], path: Path, rows: int, per_row: float) -> None:
+    size = per_row * rows
+    announce(f"{path.name}: {rows:,} rows, about {size / 1e6:,.0f} MB of CSV and "
+             f"{size / CSV_RATE:.0f} s to write (--format parquet is smaller and faster)")
+
+
+def _write_spans(fh, spans: list, text: Callable[..., bytes], fields: int) -> None:
+    """``text(span)`` of every span written in order (two threads, bounded read-ahead,
+    for a table of ``THREADED`` fields or more when a core is free)."""
+    threads = _threads()
+    if threads > 1 and len(spans) > 1 and fields >= THREADED:
+        from concurrent.futures import ThreadPoolExecutor
+        with ThreadPoolExecutor(threads) as pool:
+            window = 4 * threads
+            for i in range(0, len(spans), window):
+                for chunk in pool.map(text, spans[i:i + window]):
+                    fh.write(chunk)
+    else:
+        for span in spans:
+            fh.write(text(span))
+
+
+class CsvStream:
+    """One CSV table written block of rows after block of rows (a streamed write,
+    :mod:`kinetostatics.results.streamed`): the header, then each part's lines, the
+    text :func:`write_csv` or :func:`write_long_csv` gives for the whole table.
+
+    Parameters
+    ----------
+    path : Path
+    names : list of str
+        The columns.
+    rows : int
+        The table's rows in all (for the announcement of a table over ``WARN_ROWS``).
+    announce : callable, optional
+    """
+
+    def __init__(self, path: Path, names: list[str], rows: int,
+                 announce: Callable[[str], None] | None = None):
+        self.path, self.names, self.rows, self.announce = path, names, rows, announce
+        self.fh = path.open("wb")
+        self.fh.write(csvtext.header_text(names))
+        self.told = not (announce is not None and rows > WARN_ROWS)
+
+    def _tell(self, text: bytes, rows: int) -> None:
+        if not self.told and rows:
+            self.told = True
+            _announce(self.announce, self.path, self.rows, len(text) / rows)
+
+    def columns(self, cols: dict, repeats: Repeats) -> None:
+        """The next rows, as columns by name (one block: ``position`` formatted once per
+        chunk and shared through ``repeats``)."""
+        data = [np.asarray(v) if not hasattr(v, "categories") else v for v in cols.values()]
+        rows = len(data[0]) if data else 0
+        seps = _separators(len(data))
+        reps = {i: repeats for i, n in enumerate(cols) if n == "position"}
+        spans = list(_chunks(rows, rows))
+        if spans:
+            self._tell(_columns_text(data, seps, reps, spans[0]), spans[0][1])
+        _write_spans(self.fh, spans, lambda s: _columns_text(data, seps, reps, s),
+                     rows * len(data))
+
+    def block(self, table: LongTable, i: int, repeats: Repeats) -> None:
+        """The next rows: block ``i`` of a long table over all its positions."""
+        text = _long_text(table, repeats)
+        spans = [(i, slice(s, min(s + CHUNK, table.n))) for s in range(0, table.n, CHUNK)]
+        if spans:
+            self._tell(text(spans[0]), spans[0][1].stop)
+        _write_spans(self.fh, spans, text, table.n * len(self.names))
+
+    def close(self) -> None:
+        self.fh.close()
+
+
+class ParquetStream:
+    """One Parquet table written block of rows after block of rows: a row group per
+    part, the schema (dtypes, categories, pandas' metadata) of the first part, so that
+    reading it back gives what :func:`write_parquet` of the whole table gives."""
+
+    def __init__(self, path: Path):
+        parquet_available()
+        self.path = path
+        self.writer = None
+        self.schema = None
+
+    def frame(self, df: pd.DataFrame) -> None:
+        """The next rows, as a DataFrame."""
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+        if self.writer is None:
+            self.schema = pa.Schema.from_pandas(df, preserve_index=False)
+            self.writer = pq.ParquetWriter(self.path, self.schema)
+        self.writer.write_table(pa.Table.from_pandas(df, schema=self.schema,
+                                                     preserve_index=False))
+
+    def close(self) -> None:
+        if self.writer is not None:
+            self.writer.close()
 
 
 def parquet_available() -> None:

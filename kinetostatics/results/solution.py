@@ -120,6 +120,18 @@ class Solution:
             new.__dict__["path"] = path
         return new
 
+    @classmethod
+    def block_of(cls, solved: Solved, angles: dict[str, np.ndarray],
+                 largest_n: dict[int, float]) -> Solution:
+        """The Solution of a block of rows of a long sweep, whose tables are those rows of
+        the sweep's tables (a streamed write, :mod:`kinetostatics.results.streamed`):
+        ``angles``, the sweep's continuous body angles at these rows (they depend on the
+        rows before), and ``largest_n``, per prismatic joint (by its index) the sweep's
+        largest |N| (the ``offset`` column is left empty against it)."""
+        new = cls.of(solved)
+        new.__dict__.update(angles=angles, _largest_n=largest_n)
+        return new
+
     def __getattr__(self, name: str):
         d = self.__dict__
         source = d.get("_deferred")
@@ -259,7 +271,8 @@ class Solution:
     def _reactions_long(self) -> LongTable:
         n = self.positions.size
         joints = list(self.scene.joints)
-        largest: dict[int, float] = {}     # per prismatic joint: the largest |N|
+        # per prismatic joint: the largest |N| (of the whole sweep, for a block of it)
+        largest: dict[int, float] = dict(self.__dict__.get("_largest_n", {}))
 
         def chunk(i: int, part: slice) -> dict:
             r = self.joint_reactions[joints[i]]

@@ -11,23 +11,21 @@ if TYPE_CHECKING:
     from .solution import Solution
 
 
-def solution_summary(sol: Solution) -> dict:
+def solution_summary(sol: Solution, extremes: Extremes | None = None) -> dict:
     """:meth:`Solution.summary <kinetostatics.results.Solution.summary>`: everything that
     depends on the order of the motion (the mean by the trapezoid rule, the position of
     an extreme when several rows tie, the intervals between rows) is taken along
-    increasing driver position."""
+    increasing driver position.
+
+    ``extremes``: the largest reactions and smallest transmission angles gathered block
+    by block (:class:`Extremes`, a streamed write whose solution does not hold the
+    reactions and dyads over the sweep); default: taken from ``sol``'s arrays."""
     q = sol.driver_quantity
     order = sol.order
     me = np.asarray(sol.Me, dtype=float)[order]
     pos = sol.positions.astype(float)[order]
     locked = sol.self_locking
-    # rows where the mechanism locks (friction) have no settled Me or reactions, and
-    # rows flagged singular (at or near a dead point) no number to vouch for: the
-    # extremes and the mean are over the other rows, the counts below say how many
-    # were left out
-    out_rows = np.asarray(sol.singular, dtype=bool).copy()
-    if locked is not None:
-        out_rows |= locked
+    out_rows = left_out(sol.singular, locked)
     if out_rows.any() and not out_rows.all():
         keep = order[~out_rows[order]]
         me, pos = me[~out_rows[order]], pos[~out_rows[order]]
@@ -39,20 +37,16 @@ def solution_summary(sol: Solution) -> dict:
         mean = float(me.mean())
     out: dict = {"title": sol.scene.title, "positions": int(pos.size),
                  f"{q}_mean": mean, f"{q}_max": float(me.max()), f"{q}_min": float(me.min())}
-    rmax = {}
-    for name in sol.scene.joints:
-        fx, fy = sol.reaction(name)
-        f = np.broadcast_to(np.hypot(fx, fy), sol.positions.shape)[keep]
-        i = int(np.argmax(f))
-        rmax[name] = {"F": float(f[i]), "position": float(pos[i])}
-    out["reaction_max"] = rmax
-    if sol.kin.dyads:
+    if extremes is None:
+        extremes = Extremes(sol.scene, sol.kin.dyads)
+        extremes.add(sol, keep, pos)
+    out["reaction_max"] = {name: {"F": float(e.value), "position": float(e.at)}
+                           for name, e in extremes.reactions.items()}
+    if extremes.dyads:
         best = None
-        for dm in sol.kin.dyads:
-            t = np.broadcast_to(dm.transmission_angle, sol.positions.shape)[keep]
-            i = int(np.argmin(t))
-            if best is None or t[i] < best[0]:
-                best = (float(t[i]), float(pos[i]), dm.dyad.index + 1)
+        for e, index in extremes.dyads:
+            if best is None or e.value < best[0]:
+                best = (float(e.value), float(e.at), index)
         out["transmission_angle_min"] = best[0]
         out["transmission_angle_min_position"] = best[1]
         out["transmission_angle_min_dyad"] = best[2]
@@ -62,16 +56,69 @@ def solution_summary(sol: Solution) -> dict:
     out["rows_left_out"] = int(np.count_nonzero(out_rows)) if not out_rows.all() else 0
     # a dead point between two rows (a change point passed, a lever through its
     # pivot): the pairs of positions around it, both rows flagged singular
+    between, unassembled = extremes.dead if extremes.dead is not None else (
+        sol.kin.between, sol.kin.unassembled)
     pos_all = sol.positions.astype(float)
     out["dead_points_between_rows"] = [[float(pos_all[i]), float(pos_all[j])]
-                                       for i, j in sol.kin.between]
+                                       for i, j in between]
     # a dyad that cannot close somewhere between two rows: no motion joins them
     # (listed only when there is one)
-    if len(sol.kin.unassembled):
+    if len(unassembled):
         out["unassembled_between_rows"] = [[float(pos_all[i]), float(pos_all[j])]
-                                           for i, j in sol.kin.unassembled]
+                                           for i, j in unassembled]
     out["undefined_load_rows"] = int(np.count_nonzero(sol.undefined_load))
     if locked is not None:
         out["self_locking_rows"] = int(np.count_nonzero(locked))
     out["structure"] = sol.structure.describe()
     return out
+
+
+def left_out(singular: np.ndarray, locked: np.ndarray | None) -> np.ndarray:
+    """The rows the extremes and the mean leave out: rows where friction locks the
+    mechanism have no settled Me or reactions, and rows flagged singular (at or near a
+    dead point) no number to vouch for (the summary counts them)."""
+    out_rows = np.asarray(singular, dtype=bool).copy()
+    if locked is not None:
+        out_rows |= locked
+    return out_rows
+
+
+class Extreme:
+    """The first largest (``"max"``) or smallest (``"min"``) value along the kept rows,
+    gathered from parts of them in order: what ``argmax``/``argmin`` over all of them
+    picks (the first NaN, else the first of the tied extremes), and its position."""
+
+    def __init__(self, kind: str):
+        self.pick = np.argmax if kind == "max" else np.argmin
+        self.better = np.greater if kind == "max" else np.less
+        self.value: float | None = None
+        self.at: float | None = None
+
+    def add(self, values: np.ndarray, positions: np.ndarray) -> None:
+        """The next kept rows' values and driver positions."""
+        if values.size == 0:
+            return
+        i = int(self.pick(values))
+        v = values[i]
+        if self.value is None or (not np.isnan(self.value) and (
+                np.isnan(v) or self.better(v, self.value))):
+            self.value, self.at = v, positions[i]
+
+
+class Extremes:
+    """The summary's largest joint reactions and smallest transmission angles, gathered
+    over the kept rows of a solution, or of its blocks in order (:meth:`add`)."""
+
+    def __init__(self, scene, dyads: list, dead: tuple | None = None):
+        self.reactions = {name: Extreme("max") for name in scene.joints}
+        self.dyads = [(Extreme("min"), dm.dyad.index + 1) for dm in dyads]
+        self.dead = dead            # (between, unassembled) of a streamed sweep
+
+    def add(self, sol: Solution, keep: np.ndarray, pos: np.ndarray) -> None:
+        """``sol``'s rows ``keep`` (indices or a mask), at driver positions ``pos``."""
+        n = sol.positions.shape
+        for name, e in self.reactions.items():
+            fx, fy = sol.reaction(name)
+            e.add(np.broadcast_to(np.hypot(fx, fy), n)[keep], pos)
+        for (e, _), dm in zip(self.dyads, sol.kin.dyads, strict=True):
+            e.add(np.broadcast_to(dm.transmission_angle, n)[keep], pos)

@@ -36,4 +36,5 @@ def check_solve(scene: Scene, rows: int, what: str | None = None) -> None:
         return
     check_memory(solve_bytes(scene, rows),
                  what or f"the solve of {scene.title!r} at {rows:,} positions",
-                 "use fewer positions (driver.count, or a shorter positions list)")
+                 "use fewer positions (driver.count, or a shorter positions list), or write "
+                 "the tables block by block with solve --out DIR on the command line")

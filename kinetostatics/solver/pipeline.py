@@ -67,7 +67,8 @@ class Sweep:
         Checked by the floating-point trap first (tame numbers, no joint friction).
     """
 
-    def __init__(self, scene: Any, positions: Any = None, allow_repeats: bool = False):
+    def __init__(self, scene: Any, positions: Any = None, allow_repeats: bool = False,
+                 budget: bool = True):
         sc = load_scene(scene)
         if positions is not None:
             positions = given_positions(positions)
@@ -80,7 +81,8 @@ class Sweep:
         self.structure = analyse(sc, assemble=False)
         self.given = positions
         self.positions = sc.driver.positions if positions is None else positions
-        check_solve(sc, self.positions.size)    # the peak memory known before it is spent
+        if budget:      # (False: the caller checks its own estimate, e.g. a streamed write)
+            check_solve(sc, self.positions.size)    # the peak memory known before it is spent
         self.blocked = blockable(sc, self.positions.size)
         self.trusty = tame(sc, self.positions) and not has_friction(sc)
 
@@ -146,6 +148,16 @@ class Sweep:
             raise AssemblyError(f"the scene's numbers overflow ({exc}); check its "
                                 "dimensions and masses") from None
         return sol
+
+    def lean_in_blocks(self) -> LeanSolved:
+        """A blocked sweep (:attr:`blocked`) solved lean in blocks on the checked road, with
+        no fallback to one pass (a caller that streams its tables block by block:
+        :mod:`kinetostatics.results.streamed`); a refused block is refused here."""
+        try:
+            return _lean(*self.in_blocks(trapped_road=False))
+        except (OverflowError, ZeroDivisionError) as exc:
+            raise AssemblyError(f"the scene's numbers overflow ({exc}); check its "
+                                "dimensions and masses") from None
 
     def in_blocks(self, trapped_road: bool) -> tuple:
         """The sweep solved in blocks, lean (:class:`~kinetostatics.solver.blocks.Kept`:

@@ -217,3 +217,75 @@ def test_a_slipped_scene_shows_its_warning_in_the_report_and_the_json(tmp_path) 
                         capture_output=True, text=True)
     import json
     assert any("influence[0].runs" in w for w in json.loads(js.stdout)["warnings"])
+
+
+CLIP_ROTOR = """
+[units]
+mass = "g"
+length = "mm"
+[[rotor.unbalance]]
+mass = {big}
+radius = 100.0
+angle = 30.0
+z = 100.0
+[[rotor.unbalance]]
+mass = {small}
+radius = 100.0
+angle = 150.0
+z = 200.0
+[[rotor.planes]]
+z = 0.0
+radius = 100.0
+[[rotor.planes]]
+z = 300.0
+radius = 100.0
+"""
+
+CLIP_RUNS = """
+[units]
+mass = "g"
+vibration = "um"
+[[influence]]
+initial = [[170.0, 112.0], [53.0, 78.0]]
+runs = [
+  {{ masses = [[{big}, 0.0], [{small}, 90.0]], readings = [[235.0, 94.0], [58.0, 68.0]] }},
+  {{ plane = 2, mass = {big}, angle = 0.0, readings = [[185.0, 115.0], [77.0, 104.0]] }},
+]
+"""
+
+
+@pytest.mark.parametrize("scene", [CLIP_ROTOR, CLIP_RUNS], ids=["rotor", "trial run"])
+def test_a_clip_beside_a_weight_is_silent_a_slip_is_not(scene) -> None:
+    assert caught(scene.format(big=200.0, small=0.15))[1] == []     # a 0.15 g clip
+    # the weight typed in grams under mass = "kg" is 200 kg (1 kg or more): a slip, one
+    # warning
+    kg = scene.replace('mass = "g"', 'mass = "kg"')
+    msgs = caught(kg.format(big=200.0, small=0.15))[1]
+    assert len(msgs) == 1 and "200" in msgs[0]
+    # kilograms typed as grams: 0.2 mg beside 200 g (under a milligram): a slip
+    msgs = caught(scene.format(big=200.0, small=0.0002))[1]
+    assert len(msgs) == 1 and "times apart" in msgs[0]
+
+
+def test_a_trim_run_after_a_good_correction_is_silent() -> None:
+    """The correction left 0.05 um of 20 um (400 times less): the trim's reading is
+    small beside the runs' and its mass near the trial's; neither is a slip."""
+    text = """
+[units]
+mass = "g"
+vibration = "um"
+[[influence]]
+initial = [[20.0, 180.0]]
+runs = [{ plane = 1, mass = 20.0, angle = 0.0, readings = [[30.0, 120.0]] }]
+[[influence.trim]]
+plane = 1
+mass = 21.7
+angle = 290.0
+readings = [[0.05, 226.1]]
+"""
+    out, msgs = caught(text)
+    assert msgs == [] and out["warnings"] == []
+    coeffs = text.replace(
+        'runs = [{ plane = 1, mass = 20.0, angle = 0.0, readings = [[30.0, 120.0]] }]',
+        "coefficients = [[[0.9, 70.0]]]")
+    assert caught(coeffs)[1] == []

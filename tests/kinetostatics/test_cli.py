@@ -190,3 +190,18 @@ def test_bench_tables_quick():
                  "peak_MB", "cli_out_s", "best", "median", "start-up", "over_numpy",
                  "import balance", "balance solve rotor_two_plane"):
         assert word in r.stdout, word
+
+
+def test_a_mean_that_is_rounding_is_said_as_zero():
+    """The four-bar's Me over a whole cycle of conservative loads averages to rounding
+    (6.3e-16 N m beside a 21.8 N m peak): the text says 0, the JSON keeps the number."""
+    from kinetostatics import solve
+    from kinetostatics.cli import summary_text
+    from kinetostatics.results.output import summary_with_units
+
+    sol = solve("four_bar")
+    s = summary_with_units(sol.summary(), sol.scene.units, sol.scene.warnings, "deg")
+    assert 0 < abs(s["Me_mean"]) < 1e-12 * s["Me_max"]
+    assert "Me mean 0 N m (to rounding), min -16.6826 N m" in summary_text(s)
+    s["Me_mean"] = 1e-3                 # a small mean that is not rounding stays a number
+    assert "Me mean 0.001 N m, min" in summary_text(s)
