@@ -45,6 +45,7 @@ from collections.abc import Callable
 import numpy as np
 import pandas as pd
 
+from ..common.angles import radian_column
 from .accuracy import find_reference, fourbar_scene, slider_crank_reference_scene
 
 
@@ -122,7 +123,7 @@ def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001)) -> list[dict]:
                          lambda th: ref.slider_dyad(th, w2))):
         for n in sizes:
             scene = make(n)
-            th = np.deg2rad(np.linspace(0.0, 360.0, n))
+            th = radian_column(np.linspace(0.0, 360.0, n))
             repeat = 25 if n < 10_000 else 7 if n < 500_000 else 3
             jobs = {"reference": lambda th=th, hand=hand: hand(th)}
             for p in solve_paths():

@@ -15,6 +15,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Arc
 
+from ..common.angles import radian_column
 from ..model.scene import GROUND
 from ..results import Solution
 from .base import (
@@ -122,7 +123,7 @@ def _couple(ax: Axes, x: float, y: float, m: float, radius: float, color: str) -
     """A curved arrow of a couple: counterclockwise for m > 0."""
     ax.add_patch(Arc((x, y), 2 * radius, 2 * radius, theta1=20, theta2=300, color=color,
                      lw=1.3))
-    end = np.deg2rad(300 if m > 0 else 20)
+    end = radian_column(300 if m > 0 else 20)
     tip = np.array([x + radius * np.cos(end), y + radius * np.sin(end)])
     tangent = np.array([-np.sin(end), np.cos(end)]) * (1 if m > 0 else -1)
     ax.annotate("", tuple(tip + 0.25 * radius * tangent), tuple(tip),

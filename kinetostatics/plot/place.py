@@ -21,12 +21,13 @@ from matplotlib.path import Path
 from matplotlib.text import Annotation, Text
 from matplotlib.transforms import Bbox
 
+from ..common.angles import radian_column
 from .collide import drawn_paths
 from .style import figure_boxes, lay_out, text_extent
 
 __all__ = ["UNPLACED_TITLE", "declutter", "settle"]
 
-_DIRECTIONS = np.deg2rad(np.array([45, 135, 315, 225, 90, 270, 0, 180,
+_DIRECTIONS = radian_column(np.array([45, 135, 315, 225, 90, 270, 0, 180,
                                    22.5, 67.5, 112.5, 157.5, 202.5, 247.5, 292.5, 337.5]))
 _DISTANCES = (3.0, 6.0, 10.0, 15.0, 21.0, 28.0, 36.0, 46.0, 58.0, 72.0)      # points
 _LEADER = 12.0          # points: a label farther than this from its anchor gets a leader

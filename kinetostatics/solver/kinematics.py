@@ -131,6 +131,8 @@ class DyadMotion:
         2.60-2.61): tau, the angle between the force the dyad transmits and the velocity
         of the point it drives, and 180 - tau transmit alike; 0 is a dead centre."""
         s_, c_ = self._compute_tau()
+        # degrees kept (5/10): the solver's one angle result in degrees, read by the
+        # tables, the pictures and the summaries alike
         return np.rad2deg(np.arctan2(np.abs(s_), np.abs(c_)))
 
 

@@ -19,6 +19,7 @@ from collections.abc import Callable, Mapping
 
 import pandas as pd
 
+from ..common.angles import radian_value
 from ..model.errors import WorkbenchError
 from .variants import Exercise
 
@@ -332,8 +333,8 @@ def _resonance_scene(p: Mapping[str, float]) -> dict:
     3.22-3.28): alone, with the trial unbalance Q = m r at 0 deg, and at 180 deg (a
     ratio near 1 lets three readings fix the correction)."""
     q = float(p["trial_mass"]) * float(p["trial_radius"])
-    u = float(p["ratio"]) * q * complex(math.cos(math.radians(p["theta"])),
-                                        math.sin(math.radians(p["theta"])))
+    u = float(p["ratio"]) * q * complex(math.cos(radian_value(p["theta"])),
+                                        math.sin(radian_value(p["theta"])))
     k = float(p["k"])
     return {"title": "Resonance-speed balancing, three runs (exercise)",
             "resonance_test": [{

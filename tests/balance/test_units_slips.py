@@ -13,6 +13,7 @@ import pytest
 
 import balance
 from balance.errors import BalanceError, BalanceWarning
+from tests.balance._balance_cases import INFLUENCE_TWO_PLANE
 from tests.helpers import run_main
 
 # a single-plane influence scene: a 100 g trial mass at 0 deg
@@ -70,14 +71,8 @@ def test_the_issue_reproducers() -> None:
 
 
 def test_influence_trial_masses_1000_times_apart_warn_a_node_reading_not() -> None:
-    text = """
-[[influence]]
-initial = [[170.0, 112.0], [0.053, 78.0]]
-runs = [
-  { plane = 1, mass = 0.00115, angle = 0.0, readings = [[235.0, 94.0], [58.0, 68.0]] },
-  { plane = 2, mass = 1.15, angle = 0.0, readings = [[185.0, 115.0], [77.0, 104.0]] },
-]
-"""
+    text = INFLUENCE_TWO_PLANE.replace("[53.0, 78.0]", "[0.053, 78.0]").replace(
+        "plane = 1, mass = 1.15", "plane = 1, mass = 0.00115")
     _, msgs = caught(text)
     assert len(msgs) == 1 and "trial masses" in msgs[0]      # 0.053 is a node: no warning
 
