@@ -237,6 +237,8 @@ def main(argv: list[str] | None = None) -> int:
     except WorkbenchError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
+    except BrokenPipeError:
+        raise                   # the reader went away (| head): run_command's
     except OSError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2

@@ -211,3 +211,17 @@ def test_a_mean_that_is_rounding_is_said_as_zero():
     assert "Me mean 0 (to rounding), min -16.6826 N m" in summary_text(s)
     s["Me_mean"] = 1e-3                 # a small mean that is not rounding stays a number
     assert "Me mean 0.001 N m, min" in summary_text(s)
+
+
+@pytest.mark.parametrize("module, args", [("kinetostatics", ["solve", "four_bar", "--json"]),
+                                          ("balance", ["solve", "rotor_two_plane"])])
+def test_a_reader_that_goes_away_gets_no_error(module, args):
+    """``... | head -1``: the rest of the output is dropped without an error line or a
+    traceback (was: "error: [Errno 32] Broken pipe", exit 2)."""
+    env = dict(os.environ, MPLBACKEND="Agg")
+    p = subprocess.Popen([sys.executable, "-m", module, *args], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, cwd=ROOT, env=env)
+    p.stdout.readline()
+    p.stdout.close()            # the reader goes away before the writer is done
+    err = p.stderr.read().decode()
+    assert p.wait(timeout=120) == 0 and err == "", err
