@@ -138,7 +138,8 @@ class Driver:
     def __post_init__(self) -> None:
         # a crank's positions in radians, converted once when the driver is made (the file
         # and the tables give degrees, ``positions``); read-only: every user shares it
-        angles = radians(np.asarray(self.positions, dtype=float))
+        pos = self.positions
+        angles = radians(pos if type(pos) is np.ndarray else np.asarray(pos, dtype=float))
         angles.flags.writeable = False
         object.__setattr__(self, "angles", angles)
 
