@@ -31,173 +31,38 @@ demand: matplotlib is not loaded by ``import balance``).
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from kinetostatics.common.lazy import group, lazy_names
 
-if TYPE_CHECKING:
-    from .api import example_path, examples, solve, solve_results
-    from .errors import BalanceError, BalanceWarning
-    from .field.influence import (
-        InfluenceResult,
-        influence_balance,
-        influence_coefficients,
-        influence_single_plane,
-        influence_two_plane,
-        trim_balance,
-    )
-    from .field.influence_stats import NoiseModel
-    from .field.iso import (
-        GRADES,
-        IsoAllocation,
-        IsoCheck,
-        IsoTolerances,
-        iso_allocate,
-        iso_check,
-        iso_permissible_unbalance,
-        iso_tolerances,
-        kgm_to_gmm,
-        to_bearing_planes,
-    )
-    from .field.weights import Combined, Split, combine_weights, split_correction
-    from .machine import BalancingMachine, CoastDown, coast_down_study, pivot_reaction
-    from .mechanism import (
-        CounterRotatingPair,
-        Counterweight,
-        MechanismBalancing,
-        balanced_scene,
-        centre_of_mass,
-        h_vectors,
-        harmonic_amplitude,
-        shaking_force,
-        solve_mechanism_balancing,
-    )
-    from .model.scene import BalanceScene, load_scene
-    from .model.units import Units
-    from .resonance.methods import ResonanceResult, four_run, parallelogram, trial_runs
-    from .rotor.design import Correction, CorrectionPlane, RotorResult, Unbalance, balance_rotor
-    from .rotor.static_device import StaticDeviceResult, static_device
-    from .uncertainty import Interval
-
-# Every public name is imported when first asked for (PEP 562), so that ``import balance``
-# costs less than ``import numpy``: each method's module (and numpy) loads with its first use.
-_LAZY = {
-    "example_path": "api",
-    "examples": "api",
-    "solve": "api",
-    "solve_results": "api",
-    "BalanceError": "errors",
-    "BalanceWarning": "errors",
-    "InfluenceResult": "field.influence",
-    "influence_balance": "field.influence",
-    "influence_coefficients": "field.influence",
-    "influence_single_plane": "field.influence",
-    "influence_two_plane": "field.influence",
-    "trim_balance": "field.influence",
-    "NoiseModel": "field.influence_stats",
-    "GRADES": "field.iso",
-    "IsoAllocation": "field.iso",
-    "IsoCheck": "field.iso",
-    "IsoTolerances": "field.iso",
-    "iso_allocate": "field.iso",
-    "iso_check": "field.iso",
-    "iso_permissible_unbalance": "field.iso",
-    "iso_tolerances": "field.iso",
-    "kgm_to_gmm": "field.iso",
-    "to_bearing_planes": "field.iso",
-    "Combined": "field.weights",
-    "Split": "field.weights",
-    "combine_weights": "field.weights",
-    "split_correction": "field.weights",
-    "ResonanceResult": "resonance.methods",
-    "four_run": "resonance.methods",
-    "parallelogram": "resonance.methods",
-    "trial_runs": "resonance.methods",
-    "Correction": "rotor.design",
-    "CorrectionPlane": "rotor.design",
-    "RotorResult": "rotor.design",
-    "Unbalance": "rotor.design",
-    "balance_rotor": "rotor.design",
-    "StaticDeviceResult": "rotor.static_device",
-    "static_device": "rotor.static_device",
-    "BalanceScene": "model.scene",
-    "load_scene": "model.scene",
-    "Interval": "uncertainty",
-    "Units": "model.units",
-}
-
-__all__ = [
-    "GRADES",
-    "BalancingMachine",
-    "CoastDown",
-    "CounterRotatingPair",
-    "Counterweight",
-    "MechanismBalancing",
-    "balanced_scene",
-    "coast_down_study",
-    "pivot_reaction",
-    "centre_of_mass",
-    "h_vectors",
-    "harmonic_amplitude",
-    "shaking_force",
-    "solve_mechanism_balancing",
-    "BalanceError",
-    "BalanceScene",
-    "BalanceWarning",
-    "Combined",
-    "IsoTolerances",
-    "NoiseModel",
-    "Split",
-    "Units",
-    "combine_weights",
-    "iso_tolerances",
-    "split_correction",
-    "to_bearing_planes",
-    "trim_balance",
-    "Correction",
-    "CorrectionPlane",
-    "InfluenceResult",
-    "Interval",
-    "IsoAllocation",
-    "IsoCheck",
-    "ResonanceResult",
-    "RotorResult",
-    "StaticDeviceResult",
-    "Unbalance",
-    "balance_rotor",
-    "example_path",
-    "examples",
-    "four_run",
-    "influence_balance",
-    "influence_coefficients",
-    "influence_single_plane",
-    "influence_two_plane",
-    "iso_allocate",
-    "iso_check",
-    "iso_permissible_unbalance",
-    "kgm_to_gmm",
-    "load_scene",
-    "parallelogram",
-    "solve",
-    "solve_results",
-    "static_device",
-    "trial_runs",
-]
-
-
+# the virtual balancing machine loads pymunk: its names are looked up each time
 _MACHINE = ("BalancingMachine", "CoastDown", "pivot_reaction", "coast_down_study")
-# the static balancing of mechanisms needs pandas and the kinetostatic solver: imported
-# on first use, so that ``import balance`` costs little more than ``import numpy``
+# the static balancing of mechanisms needs pandas and the kinetostatic solver
 _MECHANISM = ("CounterRotatingPair", "Counterweight", "MechanismBalancing", "balanced_scene",
               "centre_of_mass", "h_vectors", "harmonic_amplitude", "shaking_force",
               "solve_mechanism_balancing")
-
-
-# every public name, imported on first use (the virtual balancing machine's names,
-# ``BalancingMachine``, ``CoastDown``, ``pivot_reaction``, ``coast_down_study``, load
-# pymunk and are looked up each time; the static balancing of mechanisms,
-# ``solve_mechanism_balancing``, ... pandas and the kinetostatic solver); a subpackage
-# asked for as an attribute is imported
-__getattr__, __dir__ = lazy_names(
-    __name__, {**_LAZY, **group(_MECHANISM, "mechanism"), **group(_MACHINE, "machine")},
-    globals(), __all__, kept=lambda name: name not in _MACHINE)
+# Every public name -> its module, imported when first asked for (PEP 562), so that
+# ``import balance`` costs less than ``import numpy``: each method's module (and numpy)
+# loads with its first use; a subpackage asked for as an attribute is imported.
+_NAMES = {
+    **group(("example_path", "examples", "solve", "solve_results"), "api"),
+    **group(("BalanceError", "BalanceWarning"), "errors"),
+    **group(("InfluenceResult", "influence_balance", "influence_coefficients",
+             "influence_single_plane", "influence_two_plane", "trim_balance"),
+            "field.influence"),
+    **group(("NoiseModel",), "field.influence_stats"),
+    **group(("GRADES", "IsoAllocation", "IsoCheck", "IsoTolerances", "iso_allocate", "iso_check",
+             "iso_permissible_unbalance", "iso_tolerances", "kgm_to_gmm", "to_bearing_planes"),
+            "field.iso"),
+    **group(("Combined", "Split", "combine_weights", "split_correction"), "field.weights"),
+    **group(("ResonanceResult", "four_run", "parallelogram", "trial_runs"), "resonance.methods"),
+    **group(("Correction", "CorrectionPlane", "RotorResult", "Unbalance", "balance_rotor"),
+            "rotor.design"),
+    **group(("StaticDeviceResult", "static_device"), "rotor.static_device"),
+    **group(("BalanceScene", "load_scene"), "model.scene"),
+    **group(("Interval",), "uncertainty"),
+    **group(("Units",), "model.units"),
+    **group(_MECHANISM, "mechanism"),
+    **group(_MACHINE, "machine"),
+}
+__all__ = sorted(_NAMES)
+__getattr__, __dir__ = lazy_names(__name__, _NAMES, globals(), __all__,
+                                  kept=lambda name: name not in _MACHINE)

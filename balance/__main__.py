@@ -23,6 +23,7 @@ from kinetostatics.common.cli import (
     dpi_argument,
     memory_argument,
     one_line,
+    run_command,
     stopped_cleanly,
 )
 
@@ -111,4 +112,4 @@ def _units_line(out: dict[str, Any]) -> str:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_command(main))

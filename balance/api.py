@@ -106,7 +106,8 @@ def solve(scene: Any) -> dict[str, Any]:
     Parameters
     ----------
     scene : pathlib.Path, str, dict or BalanceScene
-        A path, a string naming a ``.toml`` file, TOML text, or a parsed mapping.
+        What :func:`~balance.load_scene` reads (a path, a ``.toml`` file's name, TOML
+        text, a parsed mapping) or its result.
 
     Returns
     -------

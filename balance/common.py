@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from kinetostatics.common.angles import degree_value, radian_value
 from kinetostatics.model.tomlio import MIN_MAGNITUDE, as_float
 
 from .errors import BalanceError
@@ -32,13 +33,13 @@ def deg360_array(angles: ArrayLike) -> np.ndarray:
 
 def angle_of(z: complex) -> float:
     """Angle of a complex number (a plane vector) in degrees, in [0, 360)."""
-    return deg360(math.degrees(math.atan2(z.imag, z.real)))
+    return deg360(degree_value(math.atan2(z.imag, z.real)))
 
 
 def polar(magnitude: float, angle_deg: float) -> complex:
     """The plane vector of given magnitude and angle (deg from +x, ccw) as a complex number."""
-    return complex(magnitude * math.cos(math.radians(angle_deg)),
-                   magnitude * math.sin(math.radians(angle_deg)))
+    return complex(magnitude * math.cos(radian_value(angle_deg)),
+                   magnitude * math.sin(radian_value(angle_deg)))
 
 
 def check_number(value: object, name: str, *, positive: bool = False,
@@ -48,6 +49,19 @@ def check_number(value: object, name: str, *, positive: bool = False,
     the least magnitude other than zero, for a measured amplitude a method squares)."""
     return as_float(value, name, positive=positive, nonnegative=nonnegative, limit=math.inf,
                     smallest=smallest, error=BalanceError)
+
+
+def radius_ratio(top: object, top_name: str, bottom: object, bottom_name: str,
+                 neither: str) -> float:
+    """``top / bottom`` of two radii given together (both checked positive, ``top``
+    first), 1.0 when neither is given; one alone raises :class:`BalanceError` with the
+    message ``neither``."""
+    if (top is None) != (bottom is None):
+        raise BalanceError(neither)
+    if top is None:
+        return 1.0
+    return (check_number(top, top_name, positive=True)
+            / check_number(bottom, bottom_name, positive=True))
 
 
 def within(where: str, func: Any, *args: Any, **kwargs: Any) -> Any:

@@ -306,12 +306,8 @@ def plot_amplitude_circles(result: ResonanceResult, ax: Axes | None = None, *,
 
     Parameters
     ----------
-    result : ResonanceResult
-        From :func:`balance.parallelogram` or :func:`balance.trial_runs`.
-    ax : matplotlib.axes.Axes, optional
-        Where to draw.
-    unit : str
-        The amplitudes' unit.
+    result, ax, unit
+        As in :func:`plot_parallelogram`.
 
     Returns
     -------

@@ -27,9 +27,7 @@ not). The scene model (reading, checking, exceptions, bundled scenes) is
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
-from .common.lazy import lazy_names
+from .common.lazy import group, lazy_names
 from .model.errors import (
     AssemblyError,
     SceneError,
@@ -39,28 +37,18 @@ from .model.errors import (
     WorkbenchError,
 )
 
-if TYPE_CHECKING:
-    from .design.result import design
-    from .model.examples import cam_examples, example, examples, scene_path
-    from .model.scene import Scene, load_scene
-    from .motion.scene import simulate_motion
-    from .results import Solution
-    from .results.solving import solve, solve_many
-    from .solver.kinematics import Kinematics, solve_kinematics
-    from .solver.structure import Dyad, Structure, analyse
-
 # Imported when first asked for (PEP 562), so that ``import kinetostatics`` costs little
 # more than ``import numpy``: pandas, matplotlib, scipy and pymunk load with the first
 # table, picture, motion or cross-check that needs them.
 _LAZY = {
-    "cam_examples": "model.examples", "example": "model.examples",
-    "examples": "model.examples", "scene_path": "model.examples",
-    "Scene": "model.scene", "load_scene": "model.scene",
-    "simulate_motion": "motion.scene", "Solution": "results",
-    "Kinematics": "solver.kinematics", "solve_kinematics": "solver.kinematics",
-    "solve": "results.solving", "solve_many": "results.solving",
-    "Dyad": "solver.structure", "Structure": "solver.structure", "analyse": "solver.structure",
-    "design": "design.result",
+    **group(("cam_examples", "example", "examples", "scene_path"), "model.examples"),
+    **group(("Scene", "load_scene"), "model.scene"),
+    **group(("simulate_motion",), "motion.scene"),
+    **group(("Solution",), "results"),
+    **group(("Kinematics", "solve_kinematics"), "solver.kinematics"),
+    **group(("solve", "solve_many"), "results.solving"),
+    **group(("Dyad", "Structure", "analyse"), "solver.structure"),
+    **group(("design",), "design.result"),
 }
 
 __all__ = [

@@ -35,6 +35,7 @@ def _cmd_solve(args) -> int:
 def _solve(args) -> int:
     from .results import solve
     from .results.output import summary_with_units
+    from .results.text import summary_text
     if args.out and args.format == "parquet":
         from .results.output import parquet_available
         parquet_available()
@@ -61,35 +62,6 @@ def _solve(args) -> int:
         print(p)
     print(summary_text(summary))
     return 0
-
-
-def summary_text(summary: dict) -> str:
-    """A mechanism solve's labelled summary (:func:`kinetostatics.output.summary_with_units`)
-    as readable lines, every number with its unit, the warnings last."""
-    unit = summary["unit_of"]
-    q = "Fe" if "Fe_mean" in summary else "Me"
-    u, pu = unit[f"{q}_mean"], unit["reaction_max"]["position"]
-    lines = [f"{summary['title'] or 'scene'}: {summary['positions']} positions", *(
-        "  " + line for line in summary["structure"]),
-        f"  {q} mean {summary[q + '_mean']:.6g} {u}, min {summary[q + '_min']:.6g} {u}, "
-        f"max {summary[q + '_max']:.6g} {u}"]
-    lines += [f"  joint {j}: max |F| = {r['F']:.6g} N at {r['position']:g} {pu}"
-              for j, r in summary["reaction_max"].items()]
-    if summary.get("transmission_angle_min") is not None:
-        lines.append(f"  transmission angle min(tau, 180 - tau) = "
-                     f"{summary['transmission_angle_min']:.6g} deg at "
-                     f"{summary['transmission_angle_min_position']:g} {pu}")
-    lines.append(f"  singular rows {summary['singular_rows']}, undefined-load rows "
-                 f"{summary['undefined_load_rows']}")
-    scene = summary["scene_units"]
-    if any(scene[k] != v for k, v in (("length", "m"), ("mass", "kg"), ("angle", "deg"),
-                                      ("speed", "rad/s"), ("force", "N"))):
-        lines.append("  (the scene was typed in " + ", ".join(f"{k} {v}" for k, v in
-                                                              scene.items()) + "; the "
-                     "numbers above are SI)")
-    lines.append("warnings: " + ("; ".join(summary["warnings"]) or "none"))
-    return "\n".join(lines)
-
 
 
 def _cmd_demo(args) -> int:
@@ -265,6 +237,8 @@ def main(argv: list[str] | None = None) -> int:
     except WorkbenchError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
+    except BrokenPipeError:
+        raise                   # the reader went away (| head): run_command's
     except OSError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2

@@ -51,7 +51,8 @@ class ConcentrationError(WorkbenchError):
 
 @dataclass(frozen=True)
 class Concentration:
-    """Concentrated masses of one body.
+    """Concentrated masses of one body: point masses at chosen points that stand for it
+    (statically: eqs 2.3-2.4; dynamically: eqs 2.3-2.5).
 
     Attributes
     ----------

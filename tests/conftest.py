@@ -4,7 +4,9 @@
   pyplot.
 - Hypothesis runs derandomized by default (profile ``repeatable``): the same examples on
   every machine, so CI's verdict does not depend on luck. ``HYPOTHESIS_PROFILE=explore
-  python -m pytest`` searches with fresh random examples, ten times as many.
+  python -m pytest`` (a nightly run) searches with fresh random examples, ten times as
+  many in every property test, those that set their own count too
+  (:func:`_explore_more`).
 - Two tiers. ``python -m pytest -m "not slow"`` is the everyday line; the full suite is
   ``python -m pytest`` (on every core: ``-n auto`` in pyproject.toml). A test that uses
   one of :data:`SLOW_FIXTURES` is marked ``slow`` here (and ``kernel`` or ``browser``
@@ -31,8 +33,9 @@ from hypothesis import settings
 matplotlib.use("Agg")
 
 settings.register_profile("repeatable", derandomize=True, print_blob=True)
+EXPLORE_FACTOR = 10
 settings.register_profile("explore", derandomize=False, print_blob=True,
-                          max_examples=10 * settings.default.max_examples)
+                          max_examples=EXPLORE_FACTOR * settings.default.max_examples)
 PROFILE = os.environ.get("HYPOTHESIS_PROFILE", "repeatable")
 settings.load_profile(PROFILE)
 
@@ -105,10 +108,28 @@ def pytest_configure(config: pytest.Config) -> None:
     config.addinivalue_line("markers", "xdist_group(name): run on one xdist worker")
 
 
+def _explore_more(items: list[pytest.Item]) -> None:
+    """Profile ``explore``: ten times the examples of every property test that sets its
+    own count (hypothesis reads a test's settings when it runs; the others inherit the
+    profile's tenfold default)."""
+    done = set()                        # (a parametrized test's items share one function)
+    for item in items:
+        test = getattr(getattr(item, "obj", None), "__func__", getattr(item, "obj", None))
+        own = getattr(test, "_hypothesis_internal_use_settings", None)
+        if own is None or id(test) in done:
+            continue
+        done.add(id(test))
+        if own.max_examples != settings.default.max_examples:
+            test._hypothesis_internal_use_settings = settings(
+                own, max_examples=EXPLORE_FACTOR * own.max_examples)
+
+
 @pytest.hookimpl(tryfirst=True)      # before xdist's, which reads the xdist_group marks
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     """Mark ``slow`` (and ``kernel``/``browser``) every test that uses a slow fixture,
     and group the tests that share a per-scene session fixture."""
+    if PROFILE == "explore":
+        _explore_more(items)
     for item in items:
         used = set(getattr(item, "fixturenames", ()))
         scene = getattr(item, "callspec", None)

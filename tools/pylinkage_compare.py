@@ -21,56 +21,24 @@ import numpy as np
 
 import kinetostatics as ks
 
-SCENE = """
-title = "pylinkage's crank-rocker (crank 1, coupler 3.5, rocker 3, frame 4)"
-gravity = [0.0, -9.81]
-[ground]
-A = [0.0, 0.0]
-D = [4.0, 0.0]
-[driver]
-body = "crank"
-joint = "A"
-speed = 10.0
-start = 0.0
-stop = 360.0
-count = 361
-[[bodies]]
-name = "crank"
-mass = 1.0
-inertia = 0.1
-cog = [0.5, 0.0]
-points = { A = [0.0, 0.0], B = [1.0, 0.0] }
-[[bodies]]
-name = "coupler"
-mass = 3.5
-inertia = 3.6
-cog = [1.75, 0.0]
-points = { B = [0.0, 0.0], C = [3.5, 0.0] }
-[[bodies]]
-name = "rocker"
-mass = 3.0
-inertia = 2.25
-cog = [1.5, 0.0]
-points = { D = [0.0, 0.0], C = [3.0, 0.0] }
-[[joints]]
-name = "A"
-kind = "R"
-bodies = ["ground", "crank"]
-[[joints]]
-name = "B"
-kind = "R"
-bodies = ["crank", "coupler"]
-[[joints]]
-name = "C"
-kind = "R"
-bodies = ["coupler", "rocker"]
-[[joints]]
-name = "D"
-kind = "R"
-bodies = ["ground", "rocker"]
-[near]
-C = [3.5, 2.5]
-"""
+
+def four_bar_scene() -> dict:
+    """pylinkage's crank-rocker as a scene (links of 1 kg per metre, centres mid-link)."""
+    links = (("crank", "A", "B", 1.0, 0.1), ("coupler", "B", "C", 3.5, 3.6),
+             ("rocker", "D", "C", 3.0, 2.25))         # name, pins, length (m), inertia
+    pins = (("A", "ground", "crank"), ("B", "crank", "coupler"), ("C", "coupler", "rocker"),
+            ("D", "ground", "rocker"))
+    return {
+        "title": "pylinkage's crank-rocker (crank 1, coupler 3.5, rocker 3, frame 4)",
+        "gravity": [0.0, -9.81], "ground": {"A": [0.0, 0.0], "D": [4.0, 0.0]},
+        "driver": {"body": "crank", "joint": "A", "speed": 10.0, "start": 0.0, "stop": 360.0,
+                   "count": 361},
+        "bodies": [{"name": n, "mass": length, "inertia": i, "cog": [length / 2, 0.0],
+                    "points": {p: [0.0, 0.0], q: [length, 0.0]}}
+                   for n, p, q, length, i in links],
+        "joints": [{"name": j, "kind": "R", "bodies": [b1, b2]} for j, b1, b2 in pins],
+        "near": {"C": [3.5, 2.5]},
+    }
 
 
 def run_pylinkage(particles: int, iterations: int) -> dict:
@@ -107,8 +75,7 @@ def run_pylinkage(particles: int, iterations: int) -> dict:
 
 
 def run_design(evaluations: int, bounds, objectives, constraints) -> dict:
-    import tomllib
-    raw = tomllib.loads(SCENE)
+    raw = four_bar_scene()
     names = ["bodies.crank.points.B.0", "bodies.coupler.points.C.0",
              "bodies.rocker.points.C.0"]
     raw["design"] = {"seed": 1, "objectives": objectives, "constraints": constraints,

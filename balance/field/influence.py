@@ -40,7 +40,9 @@ from typing import Any
 
 import numpy as np
 
-from ..common import angle_of, check_number, deg360_array, polar
+from kinetostatics.common.angles import degree_column, radian_column
+
+from ..common import angle_of, check_number, deg360_array, polar, radius_ratio
 from ..errors import BalanceError
 from ..uncertainty import Interval, propagate
 from .influence_stats import (
@@ -207,7 +209,7 @@ def _mass(x: Any, where: str) -> complex:
 
 
 def _to_complex(amp: np.ndarray, phase_deg: np.ndarray) -> np.ndarray:
-    return amp * np.exp(1j * np.radians(phase_deg))
+    return amp * np.exp(1j * radian_column(phase_deg))
 
 
 # -------------------------------------------------------------------- solving
@@ -413,12 +415,8 @@ def influence_balance(initial: Any, runs: Iterable[tuple[Any, Any]] = (), *,
     """
     d = _prepare(initial, runs, trims, coefficients)
     model = noise if noise is not None else NoiseModel()
-    if (trial_radius is None) != (correction_radius is None):
-        raise BalanceError("give both trial_radius and correction_radius, or neither")
-    ratio = 1.0
-    if trial_radius is not None:
-        ratio = (check_number(trial_radius, "trial_radius", positive=True)
-                 / check_number(correction_radius, "correction_radius", positive=True))
+    ratio = radius_ratio(trial_radius, "trial_radius", correction_radius, "correction_radius",
+                         "give both trial_radius and correction_radius, or neither")
     alpha, W = _solve_batch(d.amps[None], d.phases[None], d)
     alpha, W = alpha[0], W[0]
     if not np.all(np.isfinite(W)):
@@ -453,14 +451,14 @@ def influence_balance(initial: Any, runs: Iterable[tuple[Any, Any]] = (), *,
         def batch(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             a = pts.reshape((-1,) + shape)
             Wb = solve(a, np.broadcast_to(d.phases, a.shape))
-            return np.abs(Wb), np.degrees(np.angle(Wb))
+            return np.abs(Wb), degree_column(np.angle(Wb))
 
         unc = propagate(batch, d.amps.ravel(), dd, "measured amplitudes")
     splits = None
     if split is not None:
         n, first = (split, 0.0) if isinstance(split, int | np.integer) else split
         splits = [split_correction(abs(w), angle_of(complex(w)), n, first) for w in Wc]
-    return InfluenceResult(masses=np.abs(Wc), angles=deg360_array(np.degrees(np.angle(Wc))),
+    return InfluenceResult(masses=np.abs(Wc), angles=deg360_array(degree_column(np.angle(Wc))),
                            corrections=Wc, coefficients=alpha, initial=V[0],
                            residual=residual, uncertainty=unc, intervals=intervals,
                            noise=model, condition_number=kappa, amplification=amp,
@@ -549,10 +547,8 @@ def influence_two_plane(initial: Any, trial_plane1: Any, trial_plane2: Any,
         Trial mass in plane 1 and its angle (deg).
     trial_mass2, trial_angle2 : float, optional
         The plane-2 trial mass and angle; default: the same as in plane 1.
-    dA : float, optional
-        Uncertainty on every amplitude, see :func:`influence_balance`.
-    noise : NoiseModel, optional
-        See :func:`influence_balance`.
+    dA, noise : optional
+        Uncertainty on every amplitude, or a noise model: see :func:`influence_balance`.
 
     Returns
     -------

@@ -30,6 +30,8 @@ from collections.abc import Callable
 
 import numpy as np
 
+from kinetostatics.common.angles import degree_column
+
 from ..common import deg360
 from ..model.noise import NoiseModel, parse_noise
 
@@ -103,9 +105,9 @@ def bootstrap_intervals(solve: Solver, amps: np.ndarray, phases: np.ndarray,
         lo, hi = np.percentile(mags, q)
         ang = None
         if abs(W[j]) > 0.0:
-            d = np.degrees(np.angle(Wb[ok, j] / W[j]))      # difference from the estimate
+            d = degree_column(np.angle(Wb[ok, j] / W[j]))      # difference from the estimate
             dlo, dhi = np.percentile(d, q) if d.size else (-180.0, 180.0)
-            c0 = np.degrees(np.angle(W[j]))
+            c0 = degree_column(np.angle(W[j]))
             if failed > tail or dhi - dlo >= 180.0:
                 ang = [0.0, 360.0]
             else:

@@ -28,7 +28,9 @@ from typing import Any
 
 import numpy as np
 
-from ..common import angle_of, check_number, deg360
+from kinetostatics.common.angles import radian_value
+
+from ..common import angle_of, check_number, deg360, radius_ratio
 from ..errors import BalanceError
 
 __all__ = ["Combined", "Placement", "Split", "combine_weights", "split_correction"]
@@ -123,12 +125,8 @@ def split_correction(mass: float, angle: float, positions: int, first: float = 0
         raise BalanceError(f"split: {n} position(s) cannot hold every correction angle; "
                            "give at least 3 equally spaced positions")
     phi0 = deg360(check_number(first, "split: first"))
-    if (radius is None) != (correction_radius is None):
-        raise BalanceError("split: give both radius and correction_radius, or neither")
-    scale = 1.0
-    if radius is not None:
-        scale = (check_number(correction_radius, "split: correction_radius", positive=True)
-                 / check_number(radius, "split: radius", positive=True))
+    scale = radius_ratio(correction_radius, "split: correction_radius", radius, "split: radius",
+                         "split: give both radius and correction_radius, or neither")
     delta = 360.0 / n
     rel = (theta - phi0) % 360.0                  # angle past position 1, [0, 360)
     k = int(rel // delta) % n                     # the position just below theta
@@ -140,6 +138,8 @@ def split_correction(mass: float, angle: float, positions: int, first: float = 0
         k = k if frac <= _ON_POSITION else (k + 1) % n
         placements.append(Placement(k + 1, deg360(phi0 + k * delta), m * scale))
     else:
+        # degrees kept (7-9/10): the law of sines on the positions' angles, which the
+        # split takes and gives in degrees (a field balancer's marks)
         d = math.radians(delta)
         below, above = math.radians(rel - k * delta), math.radians((k + 1) * delta - rel)
         m_k = m * math.sin(above) / math.sin(d)          # law of sines, see module doc
@@ -213,7 +213,7 @@ def combine_weights(weights: Iterable[Any], radius: float | None = None) -> Comb
         a = check_number(w[1], f"{where}: angle")
         r = check_number(w[2], f"{where}: radius", positive=True) if len(w) == 3 else 1.0
         with_radius.append(len(w) == 3)
-        vecs.append(m * r * complex(math.cos(math.radians(a)), math.sin(math.radians(a))))
+        vecs.append(m * r * complex(math.cos(radian_value(a)), math.sin(radian_value(a))))
     if any(with_radius) and not all(with_radius):
         raise BalanceError("combine: give a radius for every weight, or for none")
     if all(with_radius) and radius is None:

@@ -11,6 +11,8 @@ from typing import Any
 
 import numpy as np
 
+from kinetostatics.common.angles import degree_column, degree_value
+
 from ..errors import BalanceError
 from .unbalances import add_rigid, as_unbalances, spinning_rotor
 
@@ -162,8 +164,8 @@ def pivot_reaction(unbalances: Iterable[Any], speed: float, *, rotor_mass: float
     F = imp / dt
     expected = abs(U) * w * w                                      # eqs 3.3-3.5
     sl = slice(skip, n)
-    direction = np.degrees(np.angle(on_bearing * np.exp(-1j * ang)))
-    true = math.degrees(math.atan2(U.imag, U.real))
+    direction = degree_column(np.angle(on_bearing * np.exp(-1j * ang)))
+    true = degree_value(math.atan2(U.imag, U.real))
     dev = (direction[sl] - true + 180.0) % 360.0 - 180.0
     return PivotReaction(
         force=float(np.mean(F[sl])), expected=float(expected),

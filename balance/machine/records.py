@@ -8,6 +8,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from kinetostatics.common.angles import degree_value
+
 from ..errors import BalanceError
 from ..resonance.methods import ResonanceResult
 from ..rotor.design import Unbalance
@@ -99,7 +101,7 @@ def method_result(res: ResonanceResult, amps: dict, us: list[Unbalance], recs: l
         ang = float("nan")
     else:
         err = abs(res.unbalance - abs(U)) / abs(U)
-        true = math.degrees(math.atan2(U.imag, U.real)) + 180.0
+        true = degree_value(math.atan2(U.imag, U.real)) + 180.0
 
         def off(c: float) -> float:
             return float(abs((c - true + 180.0) % 360.0 - 180.0))

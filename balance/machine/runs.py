@@ -9,6 +9,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from kinetostatics.common.angles import degree_value
+
 from ..errors import BalanceError
 from ..rotor.design import Unbalance
 from .demodulation import envelope, peak
@@ -49,7 +51,7 @@ def record_steady(machine: BalancingMachine, us: list[Unbalance]) -> MachineReco
     A = np.column_stack([np.cos(w * t), np.sin(w * t), np.ones_like(t)])
     (a, b, _), *_ = np.linalg.lstsq(A, xs, rcond=None)
     return MachineRecord(t, xs, float(math.hypot(a, b)),
-                         float(math.degrees(math.atan2(b, a))), w, wall)
+                         float(degree_value(math.atan2(b, a))), w, wall)
 
 
 def record_coast(machine: BalancingMachine, us: list[Unbalance]) -> MachineRecord:
@@ -99,6 +101,6 @@ def record_coast(machine: BalancingMachine, us: list[Unbalance]) -> MachineRecor
                            "the run, not at the resonance; start higher, stop lower or "
                            "run longer")
     speed = np.gradient(th, t)
-    phase = -math.degrees(float(np.angle(C[k])))
+    phase = -degree_value(float(np.angle(C[k])))
     return MachineRecord(t, xs, Ap, phase, float(np.interp(tp, t, speed)), wall,
                          envelope=E, rotor_speed=speed, peak_time=tp)

@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from kinetostatics.common.angles import degree_value
 from kinetostatics.model.scene import Scene
 
 from ..common import deg360
@@ -105,6 +106,6 @@ def place(sc: Scene, spec: CounterweightSpec, ref: str, W: np.ndarray,
     d = W / m - v
     pos = p + d
     return Counterweight(spec.body, spec.about, r, m, (float(pos[0]), float(pos[1])),
-                         deg360(math.degrees(math.atan2(d[1], d[0]))))
+                         deg360(degree_value(math.atan2(d[1], d[0]))))
 
 

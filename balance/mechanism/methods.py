@@ -53,6 +53,7 @@ import math
 import numpy as np
 
 import kinetostatics as ks
+from kinetostatics.common.angles import degree_value
 from kinetostatics.model.errors import AssemblyError
 from kinetostatics.model.scene import Body, Scene
 from kinetostatics.solver.arith import full
@@ -244,8 +245,8 @@ def slider_crank_only(sc: Scene, lk: Linkage, roles: dict[str, CounterweightSpec
         pair = CounterRotatingPair(
             mass=amp / (2.0 * r_pair), radius=r_pair, axis=(float(lk.axis[0]),
                                                             float(lk.axis[1])),
-            co_angle=deg360(math.degrees(th_u - phi0 + math.pi)) if amp else 0.0,
-            counter_angle=deg360(math.degrees(th_u + phi0 + math.pi)) if amp else 0.0)
+            co_angle=deg360(degree_value(th_u - phi0 + math.pi)) if amp else 0.0,
+            counter_angle=deg360(degree_value(th_u + phi0 + math.pi)) if amp else 0.0)
         proc = ("eqs 3.46 and 3.52-3.53: the crank's counterweight balances the rotating "
                 "masses (me re = m_B l1); two masses me = m_C l1 A1 / (2 re) turning at "
                 "+omega and -omega about the crank axis cancel the piston's first harmonic")

@@ -79,6 +79,7 @@ def pair_motion(kin: Kinematics, pair: CounterRotatingPair):
     eps = full(crank.alpha, n)
     out = []
     for sign, phase in ((1.0, pair.co_angle), (-1.0, pair.counter_angle)):
+        # degrees kept (10/10): the pair's phases are degrees (CounterRotatingPair)
         ang = sign * th + math.radians(phase)
         c, s = np.cos(ang), np.sin(ang)
         x = pair.axis[0] + pair.radius * c

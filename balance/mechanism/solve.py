@@ -16,6 +16,7 @@ import numpy as np
 import pandas as pd
 
 import kinetostatics as ks
+from kinetostatics.common.angles import degree_value
 from kinetostatics.model.memory import check_memory
 from kinetostatics.model.scene import Scene
 from kinetostatics.model.tomlio import read_source
@@ -282,7 +283,7 @@ def _checks(res: MechanismBalancing, gk: Kinematics | None, u: np.ndarray | None
         fa = after["Fx"].to_numpy() * u[0] + after["Fy"].to_numpy() * u[1]
         out["first_harmonic_before"] = harmonic_amplitude(fb, 1)
         out["first_harmonic_after"] = harmonic_amplitude(fa, 1)
-        out["line_angle"] = deg360(math.degrees(math.atan2(u[1], u[0])))
+        out["line_angle"] = deg360(degree_value(math.atan2(u[1], u[0])))
         if res.method in ("first-harmonic", "counter-rotating", "full") and \
                 out["first_harmonic_after"] > CHECK * max(out["first_harmonic_before"], 1e-300):
             raise BalanceError(f"after {res.method} balancing the first harmonic of the "

@@ -11,7 +11,6 @@ Omega, ISO 21940-11) and are converted there, through :class:`~balance.model.uni
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -20,6 +19,7 @@ import numpy as np
 
 from kinetostatics.model.errors import SceneError
 from kinetostatics.model.tomlio import as_float, as_int, as_list, as_str, check_keys
+from kinetostatics.model.units import radians
 
 from ..common import within
 from .noise import parse_noise
@@ -244,7 +244,7 @@ def _iso(table: Any) -> dict:
                 if len(x) != 2:
                     raise SceneError(f"{w}.residual[{k}] must be U or [U, angle_deg]")
                 res.append(complex(as_float(x[0], f"{w}.residual[{k}][0]", nonnegative=True)
-                                   * np.exp(1j * math.radians(as_float(
+                                   * np.exp(1j * radians(as_float(
                                        x[1], f"{w}.residual[{k}][1]")))))
             else:
                 res.append(as_float(x, f"{w}.residual[{k}]", nonnegative=True))

@@ -9,6 +9,8 @@ from typing import Any
 
 import numpy as np
 
+from kinetostatics.model.units import radians
+
 from ..common import check_number
 from ..errors import BalanceError
 
@@ -30,7 +32,7 @@ class NoiseModel:
 
     def complex_sigma(self, amps: np.ndarray) -> np.ndarray:
         """Standard deviation of the complex reading, sqrt(sigma_A^2 + (A sigma_phase)^2)."""
-        return np.hypot(self.amplitude_sigma(amps), amps * np.radians(self.phase))
+        return np.hypot(self.amplitude_sigma(amps), amps * radians(self.phase))
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready: the noise model and confidence used."""

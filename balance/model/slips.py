@@ -7,10 +7,12 @@ after conversion (the rules and the :class:`~kinetostatics.model.slips.Slip` are
   weight angles: all within 2 pi degrees, spread over a degree, not all whole (radians
   typed for degrees); any angle beyond two turns (degrees typed under ``angle = "rad"``).
   A single angle (a split's, the static device's ``alpha``) is judged on the second only.
-- ``unbalance_mass``: a rotor's unbalance masses 300 times apart or more.
+- ``unbalance_mass``: a rotor's unbalance masses 300 times apart or more, the heavier
+  1 kg or more or the lighter under 1 mg (a 0.15 g clip beside a 200 g weight is real).
 - ``trial_mass``: a trial mass above 2 kg, or above a hundredth of ``[iso]`` rotor_mass
   when that is larger (grams typed as kilograms); an influence section's trial masses
-  300 times apart. A trim mass is never judged (a trim after a good correction is small).
+  300 times apart, on the same terms as the unbalance masses (one warning per section).
+  A trim mass is never judged (a trim after a good correction is small).
 - ``readings``: one run's largest reading 300 times off the median of the other runs'
   (resonance amplitudes, influence initial and trial runs; trims are not judged, and a
   small reading beside larger ones of its run, a node, is never judged).
@@ -41,6 +43,14 @@ RATIO = 300.0
 """Masses (readings) of one kind this many times apart look like one typed in another
 unit (g among kg is 1000)."""
 
+HEAVY = 1.0
+"""kg: of masses ``RATIO`` times apart, a heavier one this heavy looks like grams typed as
+kilograms (a 20 g unbalance typed ``20`` in a kg scene)."""
+
+LIGHTEST = 1e-6
+"""kg: of masses ``RATIO`` times apart, a lighter one under a milligram looks like
+kilograms typed as grams (no clip or trial weight is lighter)."""
+
 TRIAL_MASS = 2.0
 """kg: a heavier trial mass looks like grams typed as kilograms (unless the rotor's mass
 makes it plausible)."""
@@ -56,10 +66,15 @@ def _angles(where: str, deg: list[float], units: Any) -> list[Slip]:
 
 def _ratio(rule: str, where: str, si: list[float], quantity: str, units: Any,
            what: str) -> list[Slip]:
+    """Masses ``RATIO`` times apart, the heavier ``HEAVY`` or more (grams typed as
+    kilograms) or the lighter under ``LIGHTEST`` (kilograms typed as grams): a 0.15 g clip
+    beside a 200 g weight is real, and so is a 1.15 g trial beside a 200 g one."""
     mags = [abs(v) for v in si if v]
     if len(mags) < 2 or max(mags) < RATIO * min(mags):
         return []
     lo, hi = min(mags), max(mags)
+    if hi < HEAVY and lo >= LIGHTEST:
+        return []
     return [Slip(rule, where, typed(si, quantity, units, file=False),
                  f"the {what} range from {lo:.4g} to {hi:.4g} (SI), {hi / lo:.3g} times apart",
                  "one was typed in another unit (g for kg: 1000 times)")]
@@ -125,8 +140,9 @@ def _influence(where: str, spec: dict, u: Any, limit: float) -> list[Slip]:
     out = _angles(f"{where}.runs (phases and mass angles)",
                   phases + [a for _, a in masses], u)
     kg = [u.to_si(m, "mass") for m, _ in masses]
-    out += _ratio("trial_mass", f"{where}.runs.mass", kg, "mass", u, "trial masses")
-    out += _heavy(f"{where}.runs.mass", kg, limit, u)
+    # one slip, one warning: a heavy trial mass says it; else masses far apart
+    out += (_heavy(f"{where}.runs.mass", kg, limit, u)
+            or _ratio("trial_mass", f"{where}.runs.mass", kg, "mass", u, "trial masses"))
     out += _readings(f"{where}.readings", [[a for a, _ in spec["initial"]]]
                      + [[a for a, _ in vals] for _, vals in runs], u)
     return out

@@ -32,6 +32,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from kinetostatics.common.angles import radian_column
+
 __all__ = ["AmplitudeFit", "LR_RANGE", "fit_amplitudes"]
 
 LR_RANGE = (np.log(1e-4), np.log(1e4))
@@ -478,7 +480,7 @@ def fit_amplitudes(readings: np.ndarray, marks_deg: np.ndarray, sigma: np.ndarra
     """
     A = np.atleast_2d(np.asarray(readings, dtype=float))
     S = np.atleast_2d(np.asarray(sigma, dtype=float))
-    marks = np.radians(np.asarray(marks_deg, dtype=float))
+    marks = radian_column(np.asarray(marks_deg, dtype=float))
     B = A.shape[0]
     cols = {k: np.full((B, keep), np.nan) for k in
             ("rho", "theta", "a", "chi2", "rho_lo", "rho_hi", "theta_lo", "theta_hi")}

@@ -18,6 +18,8 @@ from typing import Any
 
 import numpy as np
 
+from kinetostatics.common.angles import degree_value
+
 from ..common import check_number, deg360
 from ..errors import BalanceError
 from .amplitude_fit import fit_amplitudes
@@ -33,7 +35,7 @@ WIDE = 0.25
 the unbalance uncorrected: the unbalance interval's half width over the estimate, or an
 angle half width beyond 2 asin(WIDE / 2) (14.4 deg)."""
 
-WIDE_ANGLE = math.degrees(2.0 * math.asin(WIDE / 2.0))
+WIDE_ANGLE = degree_value(2.0 * math.asin(WIDE / 2.0))
 
 FIT_RATIO = 0.25
 """Runs: a linear fit whose |(A1 A cos, A1 A sin)| / (A1 A) strays from 1 by more than
@@ -129,7 +131,7 @@ def check_model(noise: Any, confidence: Any, where: str) -> tuple[tuple[float, f
 def _angle_interval(lo: float, hi: float) -> list[float]:
     if math.isnan(lo) or math.isnan(hi):
         return [0.0, 360.0]
-    return [deg360(math.degrees(lo) + 180.0), deg360(math.degrees(hi) + 180.0)]
+    return [deg360(degree_value(lo) + 180.0), deg360(degree_value(hi) + 180.0)]
 
 
 def estimate(A1: float, marks: np.ndarray, amps: np.ndarray, mr: float, rc: float,
@@ -184,7 +186,7 @@ def estimate(A1: float, marks: np.ndarray, amps: np.ndarray, mr: float, rc: floa
                                                                 fit.theta_hi[0, j])}
 
     def corr_angle(j: int) -> float | None:
-        return None if A1 == 0.0 else deg360(math.degrees(fit.theta[0, j]) + 180.0)
+        return None if A1 == 0.0 else deg360(degree_value(fit.theta[0, j]) + 180.0)
 
     other = keep[1] if len(keep) > 1 and A1 > 0.0 else None
     if other is not None and _in_arc(corr_angle(other), interval(best)["angle"]):

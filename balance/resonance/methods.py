@@ -37,6 +37,7 @@ from typing import Any
 
 import numpy as np
 
+from kinetostatics.common.angles import degree_column, degree_value, radian_column
 from kinetostatics.model.tomlio import MIN_MAGNITUDE
 
 from ..common import check_number, deg360
@@ -164,7 +165,7 @@ def _runs_matrix(marks: np.ndarray) -> np.ndarray:
 
     A_k^2 - A1^2 = A^2 + 2 A1 A cos(theta_k - theta_u) (law of cosines, fig. 3.14).
     """
-    t = np.radians(marks)
+    t = radian_column(marks)
     return np.column_stack([np.ones_like(t), 2.0 * np.cos(t), 2.0 * np.sin(t)])
 
 
@@ -316,7 +317,7 @@ def parallelogram(A1: float, A2: float, A3: float, trial_mass: float, trial_radi
             notes.insert(0, f"{where}: cos phi = {cos_phi:.15g} exceeds 1 by at most "
                             f"{COS_TOLERANCE:g}; clipped")
         cos_out = cos_phi
-        phi = math.degrees(math.acos(min(1.0, max(-1.0, cos_phi))))   # eq. 3.31, [0, 180]
+        phi = degree_value(math.acos(min(1.0, max(-1.0, cos_phi))))   # eq. 3.31, [0, 180]
         angle, mirror = deg360(180.0 + phi), deg360(180.0 - phi)      # fig. 3.15
     unc = mirror_unc = None
     if dA is not None:
@@ -328,7 +329,7 @@ def parallelogram(A1: float, A2: float, A3: float, trial_mass: float, trial_radi
             # a corner where no parallelogram closes has no solution: never clipped
             mass = np.where((pts[:, 0] > 0.0) & (np.abs(cb) > 1.0 + COS_TOLERANCE), np.nan, mass)
             with np.errstate(invalid="ignore"):
-                phi_b = np.degrees(np.arccos(np.clip(cb, -1.0, 1.0)))
+                phi_b = degree_column(np.arccos(np.clip(cb, -1.0, 1.0)))
                 ang = np.where(pts[:, 0] > 0.0, 180.0 + phi_b, np.nan)
                 mir = np.where(pts[:, 0] > 0.0, 180.0 - phi_b, np.nan)
             return np.column_stack([mass, mass]), np.column_stack([ang, mir])
@@ -462,7 +463,7 @@ def trial_runs(A1: float, runs: Iterable[Any], trial_mass: float, trial_radius: 
             notes.append(f"{where}: the runs' linear fit does not fix the unbalance's angle "
                          "(its angular part vanishes); see the estimate")
         elif a1 > 0.0:
-            phi = deg360(math.degrees(math.atan2(c.imag, c.real)))  # theta_u
+            phi = deg360(degree_value(math.atan2(c.imag, c.real)))  # theta_u
             angle = deg360(phi + 180.0)
             fit = float(abs(c) / (a1 * A))
     unc = None
@@ -472,7 +473,7 @@ def trial_runs(A1: float, runs: Iterable[Any], trial_mass: float, trial_radius: 
         def batch(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             _, cb, Ab = _runs_core(pts[:, 0], pts[:, 1:], pinv)
             mass = m * r * pts[:, 0] / Ab / rc
-            ang = np.where(pts[:, 0] > 0.0, np.degrees(np.angle(cb)) + 180.0, np.nan)
+            ang = np.where(pts[:, 0] > 0.0, degree_column(np.angle(cb)) + 180.0, np.nan)
             return mass[:, None], ang[:, None]
 
         unc = propagate(batch, np.concatenate([[a1], amps]), d, "amplitudes A1 and runs")[0]

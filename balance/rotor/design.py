@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from kinetostatics.common.angles import radian_column, radian_value
 from kinetostatics.model.tomlio import suggest
 
 from ..common import RPM_TO_RAD_S, angle_of, check_number
@@ -51,7 +52,8 @@ are flagged as absurd."""
 
 @dataclass(frozen=True)
 class Unbalance:
-    """One eccentric mass: ``mass`` (kg) at ``radius`` (m), ``angle`` (deg), plane ``z`` (m)."""
+    """One eccentric mass: ``mass`` (kg) at ``radius`` (m) and ``angle`` (deg), in the
+    plane ``z`` (m)."""
 
     mass: float
     radius: float
@@ -61,8 +63,8 @@ class Unbalance:
     @property
     def U(self) -> complex:
         """The unbalance vector m r (kg m), eq. 3.3."""
-        return self.mass * self.radius * complex(math.cos(math.radians(self.angle)),
-                                                 math.sin(math.radians(self.angle)))
+        return self.mass * self.radius * complex(math.cos(radian_value(self.angle)),
+                                                 math.sin(radian_value(self.angle)))
 
 
 @dataclass(frozen=True)
@@ -283,7 +285,7 @@ def balance_rotor(unbalances: Iterable[Any], planes: Iterable[Any],
 
     m = np.array([u.mass for u in ub])
     r = np.array([u.radius for u in ub])
-    th = np.radians([u.angle for u in ub])
+    th = radian_column([u.angle for u in ub])
     z = np.array([u.z for u in ub])
     U = m * r * np.exp(1j * th)                  # eq. 3.3: U_j = m_j r_j
     Ud = complex(U.sum())                        # eq. 3.3: total unbalance U_d

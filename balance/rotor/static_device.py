@@ -12,6 +12,8 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from kinetostatics.common.angles import radian_value
+
 from ..common import check_number
 from ..errors import BalanceError
 
@@ -20,7 +22,8 @@ __all__ = ["StaticDeviceResult", "static_device"]
 
 @dataclass(frozen=True)
 class StaticDeviceResult:
-    """Result of :func:`static_device`.
+    """Result of :func:`static_device`: the disk's eccentricity and the correction mass
+    that balances it (seed 002, eqs 3.18-3.21).
 
     Attributes
     ----------
@@ -87,7 +90,7 @@ def static_device(disk_mass: float, comparison_mass: float, comparison_radius: f
     if not 0.0 < a <= 90.0:
         raise BalanceError(f"static_test: alpha must lie in (0, 90] deg, got {a:g}; it is the "
                            "dial angle at which the disk settles with the comparison mass")
-    t = math.radians(a)
+    t = radian_value(a)
     cot = 0.0 if a == 90.0 else math.cos(t) / math.sin(t)
     mr = mc * rc * cot                   # eq. 3.19: m r = m_c r_c cot(alpha)
     r = mr / m                           # eq. 3.20: r = (m_c / m) r_c cot(alpha)

@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ..common.angles import radian_column
 from ..model.scene import load_scene
 from ..results import solve
 from ..solver.kinematics import solve_kinematics
@@ -153,7 +154,7 @@ def bench_kinematics(sizes=(1_000, 100_000, 1_000_000), repeat: int = 3) -> pd.D
         st = analyse(sc)
         t = _best(lambda sc=sc, st=st: solve_kinematics(sc, st), repeat)
         kin = solve_kinematics(sc, st)
-        ref = fourbar_closed_form(np.deg2rad(sc.driver.positions), sc.driver.speed)
+        ref = fourbar_closed_form(radian_column(sc.driver.positions), sc.driver.speed)
         cpl, rck = kin.bodies["coupler"], kin.bodies["rocker"]
         cx, cy = rck.point((FB["c"], 0.0))
         got = {"Cx": cx, "Cy": cy, "w3": cpl.omega, "w4": rck.omega,
@@ -165,7 +166,7 @@ def bench_kinematics(sizes=(1_000, 100_000, 1_000_000), repeat: int = 3) -> pd.D
         st = analyse(sc)
         t = _best(lambda sc=sc, st=st: solve_kinematics(sc, st), repeat)
         kin = solve_kinematics(sc, st)
-        ref = slider_closed_form(np.deg2rad(sc.driver.positions), sc.driver.speed)
+        ref = slider_closed_form(radian_column(sc.driver.positions), sc.driver.speed)
         p = kin.bodies["piston"]
         got = {"x": np.broadcast_to(p.ox, (n,)), "v": np.broadcast_to(p.vx, (n,)),
                "a": np.broadcast_to(p.ax, (n,))}
@@ -233,7 +234,7 @@ def bench_reactions(n: int = 1_000_000, repeat: int = 3) -> pd.DataFrame:
     scene = fourbar_scene(n)
     t = _best(lambda: solve(scene).driver, repeat)
     sol = solve(scene)
-    ref = fourbar_matrix_solution(np.deg2rad(sol.positions), sol.scene.driver.speed)
+    ref = fourbar_matrix_solution(radian_column(sol.positions), sol.scene.driver.speed)
     got = np.column_stack([*sol.reaction("A"), *sol.reaction("B"), *sol.reaction("C"),
                            *sol.reaction("D"), sol.Me])
     scale = np.abs(ref).max(axis=0)
@@ -265,7 +266,7 @@ def bench_against_reference(path: str | Path, n: int = 200_001, repeat: int = 7)
     four-bar, side by side in one process (alternating runs, best of ``repeat``)."""
     ref = load_reference(path)
     scene = fourbar_scene(n)
-    th = np.deg2rad(np.linspace(0.0, 360.0, n))
+    th = radian_column(np.linspace(0.0, 360.0, n))
     sc = load_scene(scene)
     st = analyse(sc)
     jobs = {

@@ -1,8 +1,9 @@
 """Speed against a baseline measured in the same run: ``python -m kinetostatics bench``.
 
 Every figure is a ratio to its baseline, both timed side by side (alternating runs, in
-one process where they can share one), best and median of several runs: the machine
-may be shared, so a single run says little.
+one process where they can share one), best and median of several runs, in processor
+time (wall time for fresh processes): the machine may be shared, so a single run says
+little.
 
 * ``reference``: :func:`kinetostatics.solve` plus its ``driver`` table, on each solve
   path (``numpy``, and ``fast`` when the compiled kernels load: column ``path``), against
@@ -44,15 +45,24 @@ from collections.abc import Callable
 import numpy as np
 import pandas as pd
 
+from ..common.angles import radian_column
 from .accuracy import find_reference, fourbar_scene, slider_crank_reference_scene
 
 
 def side_by_side(jobs: dict[str, Callable[[], object]], repeat: int,
-                 batch: int = 1) -> dict[str, list]:
+                 batch: int = 1, clock: Callable[[], float] = time.process_time
+                 ) -> dict[str, list]:
     """Seconds of each job over ``repeat`` alternating rounds, the garbage collected
     before each. ``batch`` > 1: each round times that many calls in a row with the
     collector paused, as :mod:`timeit` does, and gives the time per call (a warm loop:
-    what a call costs when it follows others, its code and data in the caches)."""
+    what a call costs when it follows others, its code and data in the caches).
+
+    ``clock``: the process's processor time (user and system: page faults counted) by
+    default, which other processes sharing the machine do not lengthen (measured
+    2026-11-28 on the 2-core machine at a load of 8-11: wall-clock ratios of one job
+    to another varied 2-3x from run to run, processor-time ratios by about 10 %); a
+    job that waits on another process (a start-up in a fresh one) is timed by the
+    wall clock, ``time.perf_counter``."""
     times: dict[str, list] = {k: [] for k in jobs}
     for _ in range(repeat):
         for k, f in jobs.items():
@@ -61,10 +71,10 @@ def side_by_side(jobs: dict[str, Callable[[], object]], repeat: int,
             if batch > 1:
                 gc.disable()
             try:
-                t = time.perf_counter()
+                t = clock()
                 for _ in range(batch):
                     f()
-                times[k].append((time.perf_counter() - t) / batch)
+                times[k].append((clock() - t) / batch)
             finally:
                 if was:
                     gc.enable()
@@ -113,7 +123,7 @@ def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001)) -> list[dict]:
                          lambda th: ref.slider_dyad(th, w2))):
         for n in sizes:
             scene = make(n)
-            th = np.deg2rad(np.linspace(0.0, 360.0, n))
+            th = radian_column(np.linspace(0.0, 360.0, n))
             repeat = 25 if n < 10_000 else 7 if n < 500_000 else 3
             jobs = {"reference": lambda th=th, hand=hand: hand(th)}
             for p in solve_paths():
@@ -224,8 +234,9 @@ def bench_design(population: int = 1000, generations: int = 10, repeat: int = 2
     """``design`` on the bundled four_bar_design (``population`` x ``generations`` x 361
     rows, seed 1, nothing written) against ``solve_many`` of as many scenes of that
     mechanism as dicts (its variants within +-10 %: the bare stacked solve, no screen,
-    no optimiser): the seconds of each, their ratio, and ``design``'s rows per second.
-    Needs pymoo (the ``[design]`` extra); without it, no row."""
+    no optimiser), on each solve path (column ``path``): the seconds of each, their
+    ratio, and ``design``'s rows per second. Needs pymoo (the ``[design]`` extra);
+    without it, no row."""
     try:
         import pymoo  # noqa: F401
     except ImportError:
@@ -233,14 +244,18 @@ def bench_design(population: int = 1000, generations: int = 10, repeat: int = 2
     from ..design.result import design
     from ..results import solve_many
     dicts = four_bar_variants(population)
-    times = side_by_side({
-        "design": lambda: design("four_bar_design", population=population,
-                                 generations=generations, seed=1),
-        "many": lambda: [solve_many(dicts) for _ in range(generations)]}, repeat)
     rows = population * generations * 361
-    return [_row("design: rows per second (NSGA-II, one stacked solve a generation)",
-                 f"{population} x {generations} x 361", times, "design", "many",
-                 rows_per_second=rows / min(times["design"]))]
+    out = []
+    for p in solve_paths():
+        times = side_by_side({
+            "design": on_path(p, lambda: design("four_bar_design", population=population,
+                                                generations=generations, seed=1)),
+            "many": on_path(p, lambda: [solve_many(dicts) for _ in range(generations)])},
+            repeat)
+        out.append(_row("design: rows per second (NSGA-II, one stacked solve a generation)",
+                        f"{population} x {generations} x 361", times, "design", "many",
+                        path=p, rows_per_second=rows / min(times["design"])))
+    return out
 
 
 def _wall(args: list[str], env: dict) -> float:
@@ -265,7 +280,7 @@ def bench_start(repeat: int = 7) -> list[dict]:
                 py, "-m", "kinetostatics", "solve", "four_bar", "--out", out],
         }
         times = side_by_side({k: (lambda a=a: _wall(a, env)) for k, a in jobs.items()},
-                             repeat)
+                             repeat, clock=time.perf_counter)
     return [_row(k, "", times, k, "import numpy") for k in jobs if k != "import numpy"]
 
 

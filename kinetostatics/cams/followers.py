@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from ..common.angles import degree_column, degree_value
 from ..motion import golden_max
 from .laws import (
     SAMPLES,
@@ -156,7 +157,7 @@ def base_radius_translating(law: CamLaw, tau_adm: float, offset: float = 0.0) ->
 def check_tau(tau_adm: float) -> None:
     if not (0.0 < tau_adm < 0.5 * math.pi):
         raise CamError(f"the admissible transmission angle must lie in (0, 90) deg, got "
-                       f"{math.degrees(tau_adm):g} deg")
+                       f"{degree_value(tau_adm):g} deg")
 
 
 def _s0_required(law: CamLaw, tau_adm: float, offset: float) -> float:
@@ -228,14 +229,14 @@ def base_radius_oscillating(law: CamLaw, tau_adm: float, arm: float, pivot_dista
     b, d1, _, u, _ = follower_points(probe, *vals, beta0=grid[:, None])
     ok = np.min(tau_of(b, d1, u), axis=1) >= tau_adm
     if not np.any(ok):
-        raise CamError(f"no base radius keeps tau >= {math.degrees(tau_adm):g} deg with arm "
+        raise CamError(f"no base radius keeps tau >= {degree_value(tau_adm):g} deg with arm "
                        f"{arm:g} m and pivot distance {pivot_distance:g} m; change them")
     i = int(np.argmax(ok))
     lo, hi = (0.0 if i == 0 else grid[i - 1]), grid[i]
     while margin(hi) < 0.0:           # the sampled minimum may miss a sharp dip
         lo, hi = hi, hi + 0.25 * (hi - lo)
         if hi >= math.pi - law.stroke:
-            raise CamError(f"no base radius keeps tau >= {math.degrees(tau_adm):g} deg with "
+            raise CamError(f"no base radius keeps tau >= {degree_value(tau_adm):g} deg with "
                            f"arm {arm:g} m and pivot distance {pivot_distance:g} m")
     while hi - lo > 1e-12:
         mid = 0.5 * (lo + hi)
@@ -284,7 +285,7 @@ def profile(law: CamLaw, follower: Follower, phi: Any, rotation: str = "ccw") ->
     p = back(b)
     n = back(perp(t) / tn)
     rr = follower.roller_radius
-    cols: dict[str, np.ndarray] = {"angle": np.degrees(phi)}
+    cols: dict[str, np.ndarray] = {"angle": degree_column(phi)}
     for name, pt in (("pitch", p), ("profile", p - rr * n), ("outer", p + rr * n)):
         x, y = _mirror(follower, pt[0], pt[1], rotation)
         cols[f"x_{name}"], cols[f"y_{name}"] = x, y

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from ..common.angles import degree_column, degree_value
 from .followers import (
     Follower,
     TranslatingFollower,
@@ -77,8 +78,8 @@ def translating_follower_forces(load: Any, tau: Any, mu: float = 0.0, a: Any = 0
     if np.any(bad):
         i = int(np.argmax(bad.ravel()))
         raise CamError(f"the follower self-locks {_row(angles, i)}: transmission angle "
-                       f"{math.degrees(tau.ravel()[i]):.4g} deg <= critical "
-                       f"{math.degrees(math.atan(k.ravel()[i])):.4g} deg (eq. 1.44); enlarge "
+                       f"{degree_value(tau.ravel()[i]):.4g} deg <= critical "
+                       f"{degree_value(math.atan(k.ravel()[i])):.4g} deg (eq. 1.44); enlarge "
                        "the base radius, shorten the overhang a or lower the friction")
     f12 = load / den
     ct = f12 * np.cos(tau)
@@ -88,7 +89,7 @@ def translating_follower_forces(load: Any, tau: Any, mu: float = 0.0, a: Any = 0
 def _row(angles: Any, i: int) -> str:
     if angles is None:
         return f"at row {i}"
-    return f"at cam angle {math.degrees(float(np.ravel(angles)[i])):.6g} deg"
+    return f"at cam angle {degree_value(float(np.ravel(angles)[i])):.6g} deg"
 
 
 def critical_transmission_angle_oscillating(mu: float, pin_radius: float, arm: float) -> float:
@@ -112,9 +113,9 @@ def oscillating_follower_force(moment: Any, tau: Any, arm: float, mu: float = 0.
     bad = den <= 1e-12 * arm
     if np.any(bad):
         i = int(np.argmax(bad.ravel()))
-        cr = math.degrees(critical_transmission_angle_oscillating(mu, pin_radius, arm))
+        cr = degree_value(critical_transmission_angle_oscillating(mu, pin_radius, arm))
         raise CamError(f"the follower self-locks {_row(angles, i)}: transmission angle "
-                       f"{math.degrees(tau.ravel()[i]):.4g} deg <= critical {cr:.4g} deg "
+                       f"{degree_value(tau.ravel()[i]):.4g} deg <= critical {cr:.4g} deg "
                        "(eq. 1.48)")
     return moment / den
 
@@ -157,9 +158,9 @@ def cam_table(law: CamLaw, follower: Follower, count: int = 361, speed: float = 
     if isinstance(follower, TranslatingFollower):
         cols = {"s": s, "ds": ds, "dds": dds, "v": speed * ds, "a": speed**2 * dds}
     else:
-        cols = {"beta": np.degrees(s), "dbeta": ds, "ddbeta": dds, "omega2": speed * ds,
+        cols = {"beta": degree_column(s), "dbeta": ds, "ddbeta": dds, "omega2": speed * ds,
                 "eps2": speed**2 * dds}
-    table = pd.DataFrame({"angle": np.degrees(phi), **cols, "tau": np.degrees(tau),
-                          "pressure_angle": 90.0 - np.degrees(tau)})
+    table = pd.DataFrame({"angle": degree_column(phi), **cols, "tau": degree_column(tau),
+                          "pressure_angle": 90.0 - degree_column(tau)})
     prof = profile(law, follower, phi, rotation).drop(columns="angle")
     return pd.concat([table, prof], axis=1)

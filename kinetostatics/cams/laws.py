@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from ..common.angles import degree_value, radian_value
 from ..model.errors import WorkbenchError
 from ..model.tomlio import suggest
 
@@ -38,7 +39,7 @@ def _phase(phi: Any, stroke: float, span: float, name: str) -> np.ndarray:
     x = np.asarray(phi, dtype=float)
     tol = 1e-9 * span
     if x.size and (np.nanmin(x) < -tol or np.nanmax(x) > span + tol or np.isnan(x).any()):
-        raise CamError(f"{name}: cam angles must lie in the phase [0, {math.degrees(span):g}] "
+        raise CamError(f"{name}: cam angles must lie in the phase [0, {degree_value(span):g}] "
                        "deg (measured from its start)")
     return np.clip(x, 0.0, span)
 
@@ -229,7 +230,7 @@ class CamLaw:
             raise CamError("the program ends at the top: add a return so the cycle closes")
         total = sum(seg.angle for seg in fixed)
         if abs(total - TWO_PI) > 1e-9 * TWO_PI:
-            raise CamError(f"the segments' angles add up to {math.degrees(total):.6g} deg, "
+            raise CamError(f"the segments' angles add up to {degree_value(total):.6g} deg, "
                            "not 360")
         object.__setattr__(self, "segments", tuple(fixed))
 
@@ -243,12 +244,12 @@ class CamLaw:
         """
         if bottom_dwell_deg is None:
             bottom_dwell_deg = 360.0 - rise_deg - top_dwell_deg - return_deg
-        segs = [Segment("rise", math.radians(rise_deg), rise_law)]
+        segs = [Segment("rise", radian_value(rise_deg), rise_law)]
         if top_dwell_deg:
-            segs.append(Segment("dwell", math.radians(top_dwell_deg)))
-        segs.append(Segment("return", math.radians(return_deg), return_law))
+            segs.append(Segment("dwell", radian_value(top_dwell_deg)))
+        segs.append(Segment("return", radian_value(return_deg), return_law))
         if bottom_dwell_deg:
-            segs.append(Segment("dwell", math.radians(bottom_dwell_deg)))
+            segs.append(Segment("dwell", radian_value(bottom_dwell_deg)))
         return cls(stroke, tuple(segs))
 
     @property
@@ -290,7 +291,7 @@ class CamLaw:
             v, a = (0.0, 0.0) if seg.kind == "dwell" else law_peaks(seg.law, self.stroke,
                                                                      seg.angle)
             rows.append({"segment": i, "kind": seg.kind, "law": seg.law or "",
-                         "start": math.degrees(c), "angle": math.degrees(seg.angle),
+                         "start": degree_value(c), "angle": degree_value(seg.angle),
                          "ds_max": v, "dds_max": a})
         return pd.DataFrame(rows)
 

@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -11,10 +10,11 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from ..model.fields import CAM, read_number, section
 from ..model.memory import check_memory
 from ..model.slips import emit, read_checks
 from ..model.tomlio import as_float, as_int, as_list, as_str, check_keys, read_source, suggest
-from ..model.units import Units
+from ..model.units import Units, degrees, radians, rpm_to_rad_s
 from ..transmission.efficiency import mean_efficiency
 from .followers import (
     Follower,
@@ -45,7 +45,6 @@ from .laws import (
     ALIASES,
     LAW_COEFFICIENTS,
     LAWS,
-    TWO_PI,
     CamError,
     CamLaw,
     Segment,
@@ -59,7 +58,7 @@ from .laws import (
     sine_acceleration,
     zero_acceleration,
 )
-from .units import cam_slips, cam_to_contract_units
+from .units import cam_slips, cam_speed_slips, cam_to_contract_units
 
 # --------------------------------------------------------------------------- scenes
 
@@ -107,8 +106,13 @@ class CamScene:
     warnings: tuple[str, ...] = ()               # the suspected unit slips, as warned
 
 
-def _opt_float(table: dict, key: str, where: str, default: float = 0.0, **kw: bool) -> float:
-    return as_float(table[key], f"{where}.{key}", **kw) if key in table else default
+_CAM, _FOLLOWER = section(CAM, "cam"), section(CAM, "cam", "follower")
+_SEGMENT, _LOADS = section(CAM, "cam", "segments", "[]"), section(CAM, "cam", "loads")
+
+
+def _loads_number(table: dict, key: str, units: Units) -> float:
+    """A ``[cam.loads]`` number read through its declaration (bounds, default 0)."""
+    return read_number(table, _LOADS[key], "cam.loads", units)
 
 
 def load_cam_scene(source: Any) -> CamScene:
@@ -129,12 +133,12 @@ def load_cam_scene(source: Any) -> CamScene:
         raise CamError(f"cam scene: format must be 1, got {raw['format']!r}")
     title = as_str(raw["title"], "title") if "title" in raw else ""
     cam = check_keys(raw["cam"], CAM_KEYS, "cam", required=("follower", "segments"))
-    kind, fol, stroke = _follower_table(cam["follower"])
+    kind, fol, stroke = _follower_table(cam["follower"], units)
     try:
-        law = CamLaw(stroke, tuple(_segments(cam["segments"])))
+        law = CamLaw(stroke, tuple(_segments(cam["segments"], units)))
     except CamError as exc:
         raise CamError(f"cam.segments: {exc}") from None
-    speed = _speed(cam)
+    speed = _speed(cam, units)
     rotation = as_str(cam.get("rotation", "ccw"), "cam.rotation")
     if rotation not in ("ccw", "cw"):
         raise CamError(f"cam.rotation must be 'ccw' or 'cw', not {rotation!r}")
@@ -144,15 +148,16 @@ def load_cam_scene(source: Any) -> CamScene:
                        "(the admissible one, deg)")
     tau_adm = None
     if "transmission_angle" in cam:
-        tau_adm = math.radians(as_float(cam["transmission_angle"], "cam.transmission_angle",
-                                        positive=True))
+        tau_adm = radians(read_number(cam, _CAM["transmission_angle"], "cam", units))
         check_tau(tau_adm)
-    loads = _load_loads(cam.get("loads", {}), kind, stroke)
-    follower = _follower(kind, fol, cam, law, tau_adm, loads)
+    loads = _load_loads(cam.get("loads", {}), kind, stroke, units)
+    follower = _follower(kind, fol, cam, law, tau_adm, loads, units)
+    if "base_radius" not in cam:        # the speed judged on the base radius computed
+        texts += emit(cam_speed_slips(raw, units, follower.base_radius), quiet)
     return CamScene(title, law, follower, speed, rotation, count, loads, tau_adm, units, texts)
 
 
-def _follower_table(fol: Any) -> tuple[str, dict, float]:
+def _follower_table(fol: Any, units: Units) -> tuple[str, dict, float]:
     """The follower's kind, its checked table and its stroke (m, or rad)."""
     if not isinstance(fol, dict) or "kind" not in fol:
         check_keys(fol, (*fol, "kind") if isinstance(fol, dict) else (), "cam.follower",
@@ -169,12 +174,12 @@ def _follower_table(fol: Any) -> tuple[str, dict, float]:
                      required=("stroke",) if kind == "translating"
                      else ("stroke_angle", "arm", "pivot_distance"))
     if kind == "translating":
-        return kind, fol, as_float(fol["stroke"], "cam.follower.stroke", positive=True)
-    return kind, fol, math.radians(as_float(fol["stroke_angle"], "cam.follower.stroke_angle",
-                                            positive=True))
+        return kind, fol, read_number(fol, _FOLLOWER["stroke"], "cam.follower", units)
+    return kind, fol, radians(read_number(fol, _FOLLOWER["stroke_angle"], "cam.follower",
+                                          units))
 
 
-def _segments(items: Any) -> list[Segment]:
+def _segments(items: Any, units: Units) -> list[Segment]:
     """The program's segments, checked (angles in radians)."""
     segments = []
     for i, seg in enumerate(as_list(items, "cam.segments"), 1):
@@ -190,24 +195,24 @@ def _segments(items: Any) -> list[Segment]:
             law = law_name(law) if law is not None else None
         except CamError as exc:
             raise CamError(f"{where}.law: {exc}") from None
-        segments.append(Segment(skind, math.radians(as_float(seg["angle"], f"{where}.angle",
-                                                             positive=True)), law))
+        segments.append(Segment(skind, radians(read_number(seg, _SEGMENT["angle"], where,
+                                                           units)), law))
     return segments
 
 
-def _speed(cam: dict) -> float:
+def _speed(cam: dict, units: Units) -> float:
     """The cam's angular speed (rad/s), from ``speed`` or ``speed_rpm``."""
     if ("speed" in cam) == ("speed_rpm" in cam):
         raise CamError("cam: give exactly one of speed (rad/s) and speed_rpm")
     if "speed" in cam:
-        return as_float(cam["speed"], "cam.speed", positive=True)
-    return as_float(cam["speed_rpm"], "cam.speed_rpm", positive=True) * TWO_PI / 60.0
+        return read_number(cam, _CAM["speed"], "cam", units)
+    return rpm_to_rad_s(read_number(cam, _CAM["speed_rpm"], "cam", units))
 
 
 def _follower(kind: str, fol: dict, cam: dict, law: CamLaw, tau_adm: float | None,
-              loads: CamLoads) -> Follower:
+              loads: CamLoads, units: Units) -> Follower:
     """The follower, its base radius given or computed from the admissible angle."""
-    roller = _opt_float(cam, "roller_radius", "cam", nonnegative=True)
+    roller = read_number(cam, _CAM["roller_radius"], "cam", units)
     if kind == "translating":
         offset_raw = fol.get("offset", 0.0)
         if offset_raw == "optimal":
@@ -217,28 +222,28 @@ def _follower(kind: str, fol: dict, cam: dict, law: CamLaw, tau_adm: float | Non
         else:
             offset = as_float(offset_raw, "cam.follower.offset")
             r0 = (base_radius_translating(law, tau_adm, offset) if tau_adm is not None
-                  else as_float(cam["base_radius"], "cam.base_radius", positive=True))
+                  else read_number(cam, _CAM["base_radius"], "cam", units))
         if tau_adm is not None and loads.friction > 0.0:
             cr = float(np.max(critical_transmission_angle(
                 loads.friction, loads.guide_gap - np.array([0, law.stroke]),
                 loads.guide_length)))
             if tau_adm <= cr:
-                raise CamError(f"cam.transmission_angle {math.degrees(tau_adm):g} deg is not "
-                               f"above the critical angle {math.degrees(cr):.4g} deg (eqs "
+                raise CamError(f"cam.transmission_angle {degrees(tau_adm):g} deg is not "
+                               f"above the critical angle {degrees(cr):.4g} deg (eqs "
                                "1.44-1.45); raise it")
         return TranslatingFollower(r0, offset, roller)
-    arm = as_float(fol["arm"], "cam.follower.arm", positive=True)
-    dist = as_float(fol["pivot_distance"], "cam.follower.pivot_distance", positive=True)
+    arm = read_number(fol, _FOLLOWER["arm"], "cam.follower", units)
+    dist = read_number(fol, _FOLLOWER["pivot_distance"], "cam.follower", units)
     sense = as_str(fol.get("rise_sense", "same"), "cam.follower.rise_sense")
     if sense not in ("same", "opposite"):
         raise CamError(f"cam.follower.rise_sense must be 'same' or 'opposite', not "
                        f"{sense!r}")
     r0 = (base_radius_oscillating(law, tau_adm, arm, dist, sense) if tau_adm is not None
-          else as_float(cam["base_radius"], "cam.base_radius", positive=True))
+          else read_number(cam, _CAM["base_radius"], "cam", units))
     return OscillatingFollower(r0, arm, dist, roller, sense)
 
 
-def _load_loads(raw: Any, kind: str, stroke: float) -> CamLoads:
+def _load_loads(raw: Any, kind: str, stroke: float, units: Units) -> CamLoads:
     other = "oscillating" if kind == "translating" else "translating"
     if isinstance(raw, dict):
         for key in raw:
@@ -246,16 +251,10 @@ def _load_loads(raw: Any, kind: str, stroke: float) -> CamLoads:
                 raise CamError(f"cam.loads.{key} applies to an {other} follower, not a {kind} "
                                "one")
     tab = check_keys(raw, LOAD_KEYS[kind], "cam.loads")
-    w = "cam.loads"
     if kind == "translating":
-        loads = CamLoads(
-            force=_opt_float(tab, "force", w), mass=_opt_float(tab, "mass", w, nonnegative=True),
-            gravity=_opt_float(tab, "gravity", w),
-            spring_rate=_opt_float(tab, "spring_rate", w, nonnegative=True),
-            spring_preload=_opt_float(tab, "spring_preload", w),
-            friction=_opt_float(tab, "friction", w, nonnegative=True),
-            guide_length=_opt_float(tab, "guide_length", w, nonnegative=True),
-            guide_gap=_opt_float(tab, "guide_gap", w, nonnegative=True))
+        loads = CamLoads(*(_loads_number(tab, k, units) for k in (
+            "force", "mass", "gravity", "spring_rate", "spring_preload", "friction",
+            "guide_length", "guide_gap")))
         if loads.friction > 0.0:
             if loads.guide_length <= 0.0:
                 raise CamError("cam.loads: guide friction needs guide_length (b, m) > 0")
@@ -263,15 +262,15 @@ def _load_loads(raw: Any, kind: str, stroke: float) -> CamLoads:
                 raise CamError("cam.loads: guide friction needs guide_gap (a at the lowest "
                                "position, m)")
             if loads.guide_gap < stroke:
-                raise CamError(f"cam.loads.guide_gap {loads.guide_gap:g} m is less than the "
-                               f"stroke {stroke:g} m: the contact point would enter the guide")
+                raise CamError(f"cam.loads.guide_gap {units.quote(loads.guide_gap, 'length')} is "
+                               f"less than the stroke {units.quote(stroke, 'length')}: the "
+                               "contact point would enter the guide")
         return loads
-    loads = CamLoads(
-        force=_opt_float(tab, "moment", w), mass=_opt_float(tab, "inertia", w, nonnegative=True),
-        spring_rate=_opt_float(tab, "spring_rate", w, nonnegative=True),
-        spring_preload=_opt_float(tab, "spring_preload", w),
-        friction=_opt_float(tab, "friction", w, nonnegative=True),
-        pin_radius=_opt_float(tab, "pin_radius", w, nonnegative=True))
+    n = {k: _loads_number(tab, k, units) for k in ("moment", "inertia", "spring_rate",
+                                                     "spring_preload", "friction", "pin_radius")}
+    loads = CamLoads(force=n["moment"], mass=n["inertia"], spring_rate=n["spring_rate"],
+                     spring_preload=n["spring_preload"], friction=n["friction"],
+                     pin_radius=n["pin_radius"])
     return loads
 
 
@@ -361,9 +360,9 @@ def solve_cam(source: Any) -> CamResults:
         "follower": "translating" if translating else "oscillating",
         "base_radius": fol.base_radius,
         "working_base_radius": fol.base_radius - fol.roller_radius,
-        "transmission_angle_min": math.degrees(-tau_min),
-        "transmission_angle_min_at": math.degrees(tau_at),
-        "pressure_angle_max": 90.0 - math.degrees(-tau_min),
+        "transmission_angle_min": degrees(-tau_min),
+        "transmission_angle_min_at": degrees(tau_at),
+        "pressure_angle_max": 90.0 - degrees(-tau_min),
         ("velocity_max" if translating else "omega2_max"): w * vmax,
         ("acceleration_max" if translating else "eps2_max"): w * w * float(np.max(np.abs(dds))),
         "F12_max": float(np.max(f12)),
@@ -382,14 +381,14 @@ def solve_cam(source: Any) -> CamResults:
         summary.update(offset=fol.offset, s0=fol.s0, stroke=law.stroke)
         if ld.friction > 0.0:
             cr = critical_transmission_angle(ld.friction, ld.guide_gap - s, ld.guide_length)
-            summary["critical_angle_max"] = math.degrees(float(np.max(cr)))
+            summary["critical_angle_max"] = degrees(float(np.max(cr)))
     else:
-        summary.update(beta0=math.degrees(fol.beta0), stroke_angle=math.degrees(law.stroke))
+        summary.update(beta0=degrees(fol.beta0), stroke_angle=degrees(law.stroke))
         if ld.friction > 0.0:
-            summary["critical_angle_max"] = math.degrees(critical_transmission_angle_oscillating(
+            summary["critical_angle_max"] = degrees(critical_transmission_angle_oscillating(
                 ld.friction, ld.pin_radius, fol.arm))
     if sc.transmission_angle is not None:
-        summary["transmission_angle_admissible"] = math.degrees(sc.transmission_angle)
+        summary["transmission_angle_admissible"] = degrees(sc.transmission_angle)
     return CamResults(sc, motion, geometry, forces, summary)
 
 

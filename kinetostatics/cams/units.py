@@ -1,7 +1,8 @@
 """A ``[cam]`` scene's ``[units]``: the scene rewritten into the contract's units, once, where
 it is read (docs/cam-scenes.md, "Units"), and the checks for unit slips.
 
-Which quantity each field is: length: ``base_radius``, ``roller_radius``, the follower's
+Which quantity each field is (declared once, in :data:`kinetostatics.model.fields.CAM`):
+length: ``base_radius``, ``roller_radius``, the follower's
 ``stroke``, ``offset`` (a number), ``arm``, ``pivot_distance``, the loads' ``guide_length``,
 ``guide_gap`` and ``pin_radius``; angle: ``transmission_angle``, ``stroke_angle``, every
 segment's ``angle``; speed: ``speed`` (``speed_rpm`` stays rpm); force: a translating
@@ -13,73 +14,38 @@ length^2): its ``inertia``.
 
 from __future__ import annotations
 
-import copy
-import math
 from typing import Any
 
-from ..model.slips import DEG, Slip, angle_list_slip, tip_speed_slip, typed
-from ..model.units import Units, parse_units
+from ..model.fields import CAM, to_contract_units
+from ..model.slips import DEG, Slip, angle_list_slip, typed
+from ..model.units import Units, radians, rpm_to_rad_s
 
-__all__ = ["cam_slips", "cam_summary_units", "cam_to_contract_units"]
+__all__ = ["cam_slips", "cam_speed_slips", "cam_summary_units", "cam_to_contract_units"]
 
 
 def _num(x: Any) -> bool:
     return isinstance(x, int | float) and not isinstance(x, bool)
 
 
-def _scale(table: Any, key: str, f: float) -> None:
-    if isinstance(table, dict) and _num(table.get(key)) and f != 1.0:
-        table[key] = table[key] * f
-
-
 def cam_to_contract_units(raw: Any) -> tuple[Any, Units]:
     """The raw cam scene with its numbers in the contract's units (m, kg, N, N m, rad/s,
-    degrees), without ``[units]``, and the scene's units. A scene in the default units is
-    returned untouched.
+    degrees), without ``[units]``, and the scene's units: the declared fields
+    (:data:`kinetostatics.model.fields.CAM`) through the one units stage. A scene in the
+    default units is returned untouched.
 
     Raises
     ------
     SceneError
         A ``[units]`` that is not a table, or names an unknown quantity or unit.
     """
-    if not isinstance(raw, dict) or "units" not in raw:
-        return raw, Units()
-    units = parse_units(raw["units"])
-    out = {k: v for k, v in raw.items() if k != "units"}
-    cam = out.get("cam")
-    if units.is_default or not isinstance(cam, dict):
-        return out, units
-    out = copy.deepcopy(out)
-    cam = out["cam"]
-    f = units.file_factor
-    L, A = f("length"), f("angle")
-    for key in ("base_radius", "roller_radius"):
-        _scale(cam, key, L)
-    _scale(cam, "transmission_angle", A)
-    _scale(cam, "speed", f("speed"))
-    fol = cam.get("follower")
-    for key in ("stroke", "offset", "arm", "pivot_distance"):
-        _scale(fol, key, L)
-    _scale(fol, "stroke_angle", A)
-    segs = cam.get("segments")
-    for seg in segs if isinstance(segs, list) else ():
-        _scale(seg, "angle", A)
-    loads = cam.get("loads")
-    oscillating = isinstance(fol, dict) and fol.get("kind") == "oscillating"
-    if oscillating:
-        for key in ("moment", "spring_preload", "spring_rate"):
-            _scale(loads, key, f("moment"))
-        _scale(loads, "inertia", f("inertia"))
-        _scale(loads, "pin_radius", L)
-    else:
-        _scale(loads, "force", f("force"))
-        _scale(loads, "spring_preload", f("force"))
-        _scale(loads, "spring_rate", f("force") / L)
-        _scale(loads, "mass", f("mass"))
-        _scale(loads, "gravity", f("acceleration"))
-        _scale(loads, "guide_length", L)
-        _scale(loads, "guide_gap", L)
-    return out, units
+    return to_contract_units(raw, CAM)
+
+
+CAM_TIP_SPEED = 50.0
+"""m/s: a cam whose outline moves faster than this looks like rpm typed for rad/s (a
+racing engine's camshaft at 9000 rpm moves its 35 mm outline at 33 m/s; 3000 rpm typed as
+rad/s moves the bundled translating cam's 24 mm at 73 m/s, and spins its 4 mm roller at
+175 000 rpm)."""
 
 
 def cam_slips(raw: Any, units: Units) -> list[Slip]:
@@ -107,17 +73,29 @@ def cam_slips(raw: Any, units: Units) -> list[Slip]:
         if _num(a) and angle_list_slip([a * DEG]) is not None:
             out.append(Slip("angles", where, typed(a, "angle", units),
                             "beyond two turns", "write it in degrees, or angle = \"deg\""))
+    if _num(cam.get("base_radius")):
+        out += cam_speed_slips(raw, units, cam["base_radius"])
+    return out
+
+
+def cam_speed_slips(raw: dict, units: Units, base_radius: float) -> list[Slip]:
+    """The cam's speed judged on its outline (the base circle of ``base_radius``, given or
+    computed from the admissible transmission angle, the roller and the lift): faster
+    than :data:`CAM_TIP_SPEED` at its edge is rpm typed for rad/s."""
+    cam = raw["cam"]
+    fol = cam.get("follower") if isinstance(cam.get("follower"), dict) else {}
     w = cam.get("speed")
-    # the cam's outline: base circle, stroke and roller (an oscillating follower's stroke
-    # is an angle: its arm and pivot distance stand for the reach)
-    reach = [abs(x) for t, k in ((cam, "base_radius"), (cam, "roller_radius"),
-                                 (fol, "stroke"), (fol, "arm"), (fol, "pivot_distance"))
-             if _num(x := t.get(k))]
-    size = sum(reach)
-    if _num(w) and tip_speed_slip(w, size):
+    # the cam's outline: its base circle, the roller, and the lift at the roller (a
+    # translating follower's stroke; an oscillating one's arm times its swing)
+    lift = fol.get("stroke") if fol.get("kind") != "oscillating" else (
+        fol["arm"] * radians(fol["stroke_angle"])
+        if _num(fol.get("arm")) and _num(fol.get("stroke_angle")) else None)
+    size = abs(base_radius) + sum(abs(x) for x in (cam.get("roller_radius"), lift) if _num(x))
+    out = []
+    if _num(w) and abs(w) * size > CAM_TIP_SPEED:
         out.append(Slip("speed", "cam.speed", typed(w, "speed", units),
                         f"moves the cam's outline ({size:.3g} m) at {abs(w) * size:.3g} m/s",
-                        f"{w * math.pi / 30:.4g} rad/s (rpm typed for rad/s)"))
+                        f"{rpm_to_rad_s(w):.4g} rad/s (rpm typed for rad/s)"))
     return out
 
 

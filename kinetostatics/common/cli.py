@@ -100,3 +100,21 @@ def stopped_cleanly() -> Iterator[None]:
         yield
     finally:
         signal.signal(signal.SIGTERM, before)
+
+
+def run_command(main, argv: list[str] | None = None) -> int:
+    """``main(argv)``'s exit code, as a program's entry point runs it: when the reader
+    of standard output goes away (``... | head``), the rest of the output is dropped
+    without a word and the exit code is 0 (what was read was whole lines), not an
+    ``error: [Errno 32] Broken pipe`` line or a traceback at exit."""
+    try:
+        code = main(argv)
+        sys.stdout.flush()
+    except BrokenPipeError:
+        code = 0
+    else:
+        return code
+    # the interpreter flushes standard output again at exit: send it nowhere
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+    return code

@@ -33,6 +33,7 @@ from typing import Any
 
 import numpy as np
 
+from ..common.angles import radian_value
 from ..model.scene import GROUND, Scene
 from .errors import DesignError
 
@@ -182,7 +183,7 @@ def quantity(text: Any, scene: Scene, targets: Mapping[str, Any], where: str) ->
         if kind != "stroke" or not re.fullmatch(_NUMBER, angle):
             raise DesignError(f"{where}: {text!r}: only a stroke takes a direction, "
                               "as stroke:POINT@ANGLE (deg)")
-        direction = math.radians(float(angle))
+        direction = radian_value(float(angle))
     tg = None
     if kind == "path_error":
         tg = _targets(targets, spot, where)

@@ -8,7 +8,6 @@ the field and the fix. Unknown keys are refused with the nearest known key sugge
 
 from __future__ import annotations
 
-import math
 import warnings
 from typing import Any
 
@@ -16,11 +15,11 @@ import numpy as np
 
 from .errors import SceneError
 from .examples import SCENES
+from .fields import MECHANISM, read_number, section
 from .scene_types import GROUND, Body, Driver, Friction, Joint, Load, MassModel, Scene
 from .scene_units import to_contract_units
-from .slips import emit, mechanism_slips, read_checks, typed
+from .slips import emit, mechanism_slips, read_checks
 from .tomlio import (
-    MAX_MAGNITUDE,
     as_float,
     as_int,
     as_list,
@@ -31,7 +30,7 @@ from .tomlio import (
     read_source,
     suggest,
 )
-from .units import Units
+from .units import Units, rpm_to_rad_s
 
 MAX_COUNT = 10_000_000
 TOP_KEYS = ("title", "format", "units", "gravity", "ground", "driver", "bodies", "joints", "loads",
@@ -73,12 +72,12 @@ def load_scene(source: Any) -> Scene:
     title = str(top.get("title", ""))
     if "format" in top and top["format"] != 1:
         raise SceneError(f"format = {top['format']!r} is not supported; use format = 1")
-    gravity = as_vec2(top.get("gravity", [0.0, 0.0]), "gravity")
+    gravity = as_vec2(top["gravity"], "gravity") if "gravity" in top else (0.0, 0.0)
     ground = _ground(top.get("ground", {}))
     bodies = _bodies(top["bodies"], units)
-    joints = _joints(top["joints"], bodies, ground)
-    driver = _driver(top["driver"], bodies, joints)
-    loads = _loads(top.get("loads", []), bodies)
+    joints = _joints(top["joints"], bodies, ground, units)
+    driver = _driver(top["driver"], bodies, joints, units)
+    loads = _loads(top.get("loads", []), bodies, units)
     near = _near(top.get("near", {}), bodies, joints)
     motion = _motion(top.get("motion")) if "motion" in top else None
     balancing = top.get("balancing")
@@ -99,52 +98,28 @@ def _ground(table: Any) -> dict[str, tuple[float, float]]:
     return {str(k): plain_vec2(v) or as_vec2(v, f"ground.{k}") for k, v in table.items()}
 
 
-_BODY_PLAIN = frozenset(BODY_KEYS) - {"mass_model"}
+BODY = section(MECHANISM, "bodies", "[]")
+FRICTION = section(MECHANISM, "joints", "[]", "friction")
+JOINT = section(MECHANISM, "joints", "[]")
+DRIVER = section(MECHANISM, "driver")
+LOAD = section(MECHANISM, "loads", "[]")
+# the known keys as sets: an item within them is read at once; else check_keys names the
+# unknown key (or what is missing) with the nearest known one
+_BODY_KEYS, _R_KEYS, _T_KEYS, _DRIVER_KEYS, _LOAD_KEYS = (
+    frozenset(k) for k in (BODY_KEYS, JOINT_KEYS_R, JOINT_KEYS_T, DRIVER_KEYS, LOAD_KEYS))
+_number = read_number        # (the declared fields' reader, in kinetostatics.model.fields)
 
 
-def _plain_nonnegative(value: Any) -> float | None:
-    """``as_float(value, ..., nonnegative=True)`` of a Python float or int that passes,
-    else None (the long way then names what is wrong)."""
-    if type(value) in (float, int) and 0.0 <= value <= MAX_MAGNITUDE:
-        return float(value)         # (compared before float(): a huge int never raises here)
-    return None
+def _pair(table: dict, key: str, where: str) -> tuple[float, float]:
+    value = table[key]
+    return plain_vec2(value) or as_vec2(value, f"{where}.{key}")
 
 
-def _plain_body(item: Any, bodies: dict) -> Body | None:
-    """The :class:`Body` of a body written the usual way (a text name, numbers, pairs of
-    floats, no mass model), every rule of :func:`_bodies` met, told without building a
-    message; else None, and :func:`_bodies` checks the item the long way and names what
-    is wrong. It accepts only what the long way accepts, and gives the same Body."""
-    if type(item) is not dict or not item.keys() <= _BODY_PLAIN:
-        return None
-    name = item.get("name")
-    if type(name) is not str or not name.strip() or name == GROUND or name in bodies:
-        return None
-    mass = _plain_nonnegative(item.get("mass", 0.0))
-    if mass is None:
-        return None
-    inertia = _plain_nonnegative(item.get("inertia", 0.0))
-    if inertia is None:
-        return None
-    cog = None
-    if "cog" in item:
-        cog = plain_vec2(item["cog"])
-        if cog is None:
-            return None
-    if mass > 0.0 and cog is None:
-        return None
-    pts = item.get("points", {})
-    if type(pts) is not dict:
-        return None
-    points = {}
-    for pname, pval in pts.items():
-        if type(pname) is not str or pname == "cog":
-            return None
-        xy = plain_vec2(pval)
-        if xy is None:
-            return None
-        points[pname] = xy
-    return Body(name, mass, inertia, cog, points, None)
+def _text(value: Any, where: str, key: str) -> str:
+    """A non-blank text (``where.key`` named only when it is not)."""
+    if type(value) is str and value.strip():
+        return value
+    return as_str(value, f"{where}.{key}")
 
 
 def _bodies(items: Any, units: Units) -> dict[str, Body]:
@@ -153,45 +128,44 @@ def _bodies(items: Any, units: Units) -> dict[str, Body]:
         raise SceneError("[[bodies]] is empty: a mechanism needs at least the driver body")
     bodies: dict[str, Body] = {}
     for i, item in enumerate(items):
-        plain = _plain_body(item, bodies)
-        if plain is not None:
-            bodies[plain.name] = plain
-            continue
-        where = f"bodies[{i}]"
-        item = check_keys(item, BODY_KEYS, where, required=("name",))
-        name = as_str(item["name"], f"{where}.name")
-        where = f"body {name!r}"
-        if name == GROUND:
-            raise SceneError(f"{where}: 'ground' is reserved for the fixed body; rename it")
-        if name in bodies:
-            raise SceneError(f"{where}: the name is used twice; body names must be unique")
-        mass = as_float(item.get("mass", 0.0), f"{where}.mass")
-        inertia = as_float(item.get("inertia", 0.0), f"{where}.inertia")
-        for key, value, quantity in (("mass", mass, "mass"), ("inertia", inertia, "inertia")):
-            if value < 0.0:         # the value quoted as typed, in the scene's unit
-                raise SceneError(f"{where}.{key} must not be negative, got "
-                                 f"{typed(value, quantity, units)}")
-        cog = (plain_vec2(item["cog"]) or as_vec2(item["cog"], f"{where}.cog")
-               if "cog" in item else None)
-        if mass > 0.0 and cog is None:
-            raise SceneError(f"{where}: mass > 0 needs 'cog' (centre of mass, local coordinates)")
-        pts = item.get("points", {})
-        if not isinstance(pts, dict):
-            raise SceneError(f"{where}.points must be a table of name = [x, y]")
-        points = {}
-        for pname, pval in pts.items():
-            if pname == "cog":
-                raise SceneError(f"{where}.points: 'cog' is reserved for the centre of mass")
-            points[str(pname)] = plain_vec2(pval) or as_vec2(pval, f"{where}.points.{pname}")
-        model = None
-        if "mass_model" in item:
-            model = _mass_model(item["mass_model"], where, points, cog, mass)
-        bodies[name] = Body(name, mass, inertia, cog, points, model)
+        body = _body(item, i, bodies, units)
+        bodies[body.name] = body
     return bodies
 
 
+def _body(item: Any, i: int, bodies: dict, units: Units) -> Body:
+    """One ``[[bodies]]`` item, its numbers read through their declarations."""
+    if type(item) is not dict or not item.keys() <= _BODY_KEYS or "name" not in item:
+        item = check_keys(item, BODY_KEYS, f"bodies[{i}]", required=("name",))
+    name = item["name"]
+    if type(name) is not str or not name.strip():
+        as_str(name, f"bodies[{i}].name")
+    where = f"body {name!r}"
+    if name == GROUND:
+        raise SceneError(f"{where}: 'ground' is reserved for the fixed body; rename it")
+    if name in bodies:
+        raise SceneError(f"{where}: the name is used twice; body names must be unique")
+    mass = _number(item, BODY["mass"], where, units)
+    inertia = _number(item, BODY["inertia"], where, units)
+    cog = _pair(item, "cog", where) if "cog" in item else None
+    if mass > 0.0 and cog is None:
+        raise SceneError(f"{where}: mass > 0 needs 'cog' (centre of mass, local coordinates)")
+    pts = item.get("points", {})
+    if not isinstance(pts, dict):
+        raise SceneError(f"{where}.points must be a table of name = [x, y]")
+    points = {}
+    for pname, pval in pts.items():
+        if pname == "cog":
+            raise SceneError(f"{where}.points: 'cog' is reserved for the centre of mass")
+        points[str(pname)] = plain_vec2(pval) or as_vec2(pval, f"{where}.points.{pname}")
+    model = None
+    if "mass_model" in item:
+        model = _mass_model(item["mass_model"], where, points, cog, mass, units)
+    return Body(name, mass, inertia, cog, points, model)
+
+
 def _mass_model(table: Any, where: str, points: dict, cog: tuple | None,
-                mass: float) -> MassModel:
+                mass: float, units: Units) -> MassModel:
     w = f"{where}.mass_model"
     if not isinstance(table, dict):
         raise SceneError(f"{w} must be a table like "
@@ -220,7 +194,8 @@ def _mass_model(table: Any, where: str, points: dict, cog: tuple | None,
             raise SceneError(f"{w}: the two points coincide")
         off = abs(float((c - b)[0] * (g - b)[1] - (c - b)[1] * (g - b)[0])) / bc
         if off > 1e-9 * bc:
-            raise SceneError(f"{w}: the cog is {off:.3g} m off the line through "
+            raise SceneError(f"{w}: the cog is {units.quote(off, 'length', '.3g')} off the "
+                             f"line through "
                              f"{names[0]} and {names[1]}; static concentration needs it "
                              "on the line")
         t = float(np.dot(g - b, c - b)) / bc**2
@@ -236,178 +211,122 @@ def _mass_model(table: Any, where: str, points: dict, cog: tuple | None,
 
 
 def _point_exists(body: str, point: str, bodies: dict, ground: dict, where: str) -> None:
-    names = ground if body == GROUND else bodies[body].points
-    if point not in names and not (point == "cog" and body != GROUND):
-        known = list(names)
+    if not _end(body, point, bodies, ground):
+        known = list(ground if body == GROUND else bodies[body].points)
         raise SceneError(f"{where}: {point!r} is not a point of {body!r}{suggest(point, known)}; "
                          f"its points: {', '.join(known) or 'none'}")
 
 
-def _body_exists(name: Any, bodies: dict, where: str) -> str:
-    name = as_str(name, where)
+def _body_exists(name: Any, bodies: dict, where: str, key: str) -> str:
+    if type(name) is not str or not name.strip():
+        as_str(name, f"{where}.{key}")
     if name != GROUND and name not in bodies:
-        raise SceneError(f"{where}: unknown body {name!r}"
+        raise SceneError(f"{where}.{key}: unknown body {name!r}"
                          f"{suggest(name, [GROUND, *bodies])}")
     return name
 
 
-def _friction(table: Any, where: str, kind: str) -> Friction:
+def _friction(table: Any, where: str, kind: str, units: Units) -> Friction:
     keys = ("mu", "radius") if kind == "R" else ("mu", "length")
-    t = check_keys(table, keys, f"{where}.friction", required=keys[:2] if kind == "R"
-                   else ("mu",))
-    return Friction(as_float(t["mu"], f"{where}.friction.mu", nonnegative=True),
-                    as_float(t.get("radius", 0.0), f"{where}.friction.radius", nonnegative=True),
-                    as_float(t.get("length", 0.0), f"{where}.friction.length", nonnegative=True))
+    where = f"{where}.friction"
+    t = check_keys(table, keys, where, required=keys[:2] if kind == "R" else ("mu",))
+    return Friction(*(_number(t, FRICTION[k], where, units) for k in ("mu", "radius", "length")))
 
 
-_R_PLAIN = frozenset(JOINT_KEYS_R) - {"friction"}
-_T_PLAIN = frozenset(JOINT_KEYS_T) - {"friction"}
-
-
-def _plain_joint(item: Any, bodies: dict, ground: dict, joints: dict) -> Joint | None:
-    """The :class:`Joint` of a joint written the usual way (texts for its name, bodies
-    and points, a float ``line_angle``, known keys, no friction), every rule of
-    :func:`_joints` met, told without building a message; else None, and
-    :func:`_joints` checks the item the long way and names what is wrong. It accepts
-    only what the long way accepts, and gives the same Joint."""
-    if type(item) is not dict:
-        return None
-    kind, name = item.get("kind"), item.get("name")
-    if (type(kind) is not str or type(name) is not str or not name.strip()
-            or name in joints):
-        return None
-    angle = 0.0
-    if kind == "R":
-        pair = item.get("bodies")
-        if not item.keys() <= _R_PLAIN or type(pair) is not list or len(pair) != 2:
-            return None
-        pts = item.get("points", [name, name])
-        if type(pts) is not list or len(pts) != 2:
-            return None
-        b0, b1 = pair
-        p0, p1 = pts
-    elif kind == "T":
-        if not item.keys() <= _T_PLAIN:
-            return None
-        b0, b1 = item.get("guide"), item.get("slider")
-        p0, p1 = item.get("line_point"), item.get("slider_point")
-        if "line_angle" in item:
-            angle = item["line_angle"]
-            if type(angle) not in (float, int) or not -MAX_MAGNITUDE <= angle <= MAX_MAGNITUDE:
-                return None         # (compared before float(): a huge int never raises here)
-            angle = float(angle)
-    else:
-        return None
-    if (type(b0) is not str or type(b1) is not str or type(p0) is not str
-            or type(p1) is not str or b0 == b1
-            or not (b0.strip() and b1.strip() and p0.strip() and p1.strip())):
-        return None
-    for b, p in ((b0, p0), (b1, p1)):
-        if b == GROUND:
-            if p not in ground:
-                return None
-        elif b not in bodies or (p not in bodies[b].points and p != "cog"):
-            return None
-    return Joint(name, kind, (b0, b1), (p0, p1), angle, None)
-
-
-def _joints(items: Any, bodies: dict, ground: dict) -> dict[str, Joint]:
+def _joints(items: Any, bodies: dict, ground: dict, units: Units) -> dict[str, Joint]:
     items = as_list(items, "[[joints]]")
     joints: dict[str, Joint] = {}
     for i, item in enumerate(items):
-        plain = _plain_joint(item, bodies, ground, joints)
-        if plain is not None:
-            joints[plain.name] = plain
-            continue
-        where = f"joints[{i}]"
-        if not isinstance(item, dict):
-            raise SceneError(f"{where} must be a table")
-        kind = item.get("kind")
-        if kind not in ("R", "T"):
-            raise SceneError(f"{where}.kind must be \"R\" (revolute) or \"T\" (prismatic), "
-                             f"not {kind!r}")
-        item = check_keys(item, JOINT_KEYS_R if kind == "R" else JOINT_KEYS_T, where,
-                          required=("name",))
-        name = as_str(item["name"], f"{where}.name")
-        where = f"joint {name!r}"
-        if name in joints:
-            raise SceneError(f"{where}: the name is used twice; joint names must be unique")
-        fr = _friction(item["friction"], where, kind) if "friction" in item else None
-        if kind == "R":
-            if "bodies" not in item:
-                raise SceneError(f"{where}: missing required key 'bodies'")
-            bl = as_list(item["bodies"], f"{where}.bodies")
-            if len(bl) != 2:
-                raise SceneError(f"{where}.bodies must name two bodies")
-            b = tuple(_body_exists(x, bodies, f"{where}.bodies") for x in bl)
-            pts = item.get("points", [name, name])
-            pts = as_list(pts, f"{where}.points")
-            if len(pts) != 2:
-                raise SceneError(f"{where}.points must name one point on each body")
-            pts = tuple(as_str(p, f"{where}.points") for p in pts)
-            angle = 0.0
-        else:
-            for k in ("guide", "slider", "line_point", "slider_point"):
-                if k not in item:
-                    raise SceneError(f"{where}: missing required key {k!r}")
-            b = (_body_exists(item["guide"], bodies, f"{where}.guide"),
-                 _body_exists(item["slider"], bodies, f"{where}.slider"))
-            pts = (as_str(item["line_point"], f"{where}.line_point"),
-                   as_str(item["slider_point"], f"{where}.slider_point"))
-            angle = as_float(item.get("line_angle", 0.0), f"{where}.line_angle")
-        if b[0] == b[1]:
-            raise SceneError(f"{where} joins {b[0]!r} to itself; name two different bodies")
-        for body, p in zip(b, pts, strict=True):
-            _point_exists(body, p, bodies, ground, where)
-        joints[name] = Joint(name, kind, b, pts, angle, fr)
+        joint = _joint(item, i, bodies, ground, joints, units)
+        joints[joint.name] = joint
     if not joints:
         raise SceneError("[[joints]] is empty")
     return joints
 
 
-_DRIVER_PLAIN = frozenset(("body", "joint", "speed", "acceleration", "start", "stop", "count"))
+def _joint(item: Any, i: int, bodies: dict, ground: dict, joints: dict,
+           units: Units) -> Joint:
+    """One ``[[joints]]`` item: a revolute or a prismatic joint between two bodies."""
+    if not isinstance(item, dict):
+        raise SceneError(f"joints[{i}] must be a table")
+    kind = item.get("kind")
+    if kind not in ("R", "T"):
+        raise SceneError(f"joints[{i}].kind must be \"R\" (revolute) or \"T\" (prismatic), "
+                         f"not {kind!r}")
+    if not item.keys() <= (_R_KEYS if kind == "R" else _T_KEYS) or "name" not in item:
+        item = check_keys(item, JOINT_KEYS_R if kind == "R" else JOINT_KEYS_T, f"joints[{i}]",
+                          required=("name",))
+    name = item["name"]
+    if type(name) is not str or not name.strip():
+        as_str(name, f"joints[{i}].name")
+    if name in joints:
+        raise SceneError(f"joint {name!r}: the name is used twice; joint names must be unique")
+    fr = (_friction(item["friction"], f"joint {name!r}", kind, units) if "friction" in item
+          else None)
+    if kind == "R":
+        b, pts = item.get("bodies"), item.get("points", (name, name))
+        angle = 0.0
+    else:
+        b = (item.get("guide"), item.get("slider"))
+        pts = (item.get("line_point"), item.get("slider_point"))
+        angle = _number(item, JOINT["line_angle"], f"joint {name!r}", units)
+    # the ends as written, when each is a point of a body of the scene (the rule of
+    # _point_exists); else _ends names what is wrong
+    if not (type(b) in (list, tuple) and type(pts) in (list, tuple) and len(b) == 2
+            and len(pts) == 2 and b[0] != b[1] and _end(b[0], pts[0], bodies, ground)
+            and _end(b[1], pts[1], bodies, ground)):
+        _ends(item, kind, name, bodies, ground)
+    return Joint(name, kind, (b[0], b[1]), (pts[0], pts[1]), angle, fr)
 
 
-def _plain_float(value: Any) -> float | None:
-    """``as_float(value, ...)`` of a Python float or int that passes, else None (the
-    long way then names what is wrong)."""
-    if type(value) in (float, int) and -MAX_MAGNITUDE <= value <= MAX_MAGNITUDE:
-        return float(value)         # (compared before float(): a huge int never raises here)
-    return None
+def _end(body: Any, point: Any, bodies: dict, ground: dict) -> bool:
+    """True when ``body`` names the ground or a body, and ``point`` one of its points (or
+    a body's ``cog``)."""
+    if type(body) is not str or type(point) is not str or not point.strip():
+        return False
+    if body == GROUND:
+        return point in ground
+    b = bodies.get(body)
+    return b is not None and (point in b.points or point == "cog")
 
 
-def _plain_driver(table: Any, bodies: dict, joints: dict) -> Driver | None:
-    """The :class:`Driver` of a sweep written the usual way (texts for the body and the
-    joint, numbers for speed, acceleration, start and stop, a whole count), every rule
-    of :func:`_driver` met, told without building a message; else None, and
-    :func:`_driver` checks the table the long way and names what is wrong. It accepts
-    only what the long way accepts, and gives the same Driver."""
-    if type(table) is not dict or not table.keys() <= _DRIVER_PLAIN:
-        return None
-    body, jname, count = table.get("body"), table.get("joint"), table.get("count")
-    # a name among the bodies (joints) is a checked one: a non-blank text, not "ground"
-    if (type(body) is not str or type(jname) is not str or body not in bodies
-            or jname not in joints or set(joints[jname].bodies) != {body, GROUND}
-            or type(count) is not int or not 1 <= count <= MAX_COUNT):
-        return None
-    speed = _plain_float(table.get("speed"))
-    acc = _plain_float(table.get("acceleration", 0.0))
-    start = _plain_float(table.get("start"))
-    stop = _plain_float(table.get("stop"))
-    if speed is None or acc is None or start is None or stop is None:
-        return None
-    return Driver(body, jname, joints[jname].kind, speed, acc, _sweep(start, stop, count))
+def _ends(item: dict, kind: str, name: str, bodies: dict, ground: dict) -> None:
+    """Refuse a joint's ends that :func:`_end` does not accept, naming what is wrong."""
+    where = f"joint {name!r}"
+    if kind == "R":
+        if "bodies" not in item:
+            raise SceneError(f"{where}: missing required key 'bodies'")
+        bl = as_list(item["bodies"], f"{where}.bodies")
+        if len(bl) != 2:
+            raise SceneError(f"{where}.bodies must name two bodies")
+        b = (_body_exists(bl[0], bodies, where, "bodies"),
+             _body_exists(bl[1], bodies, where, "bodies"))
+        pts = as_list(item.get("points", [name, name]), f"{where}.points")
+        if len(pts) != 2:
+            raise SceneError(f"{where}.points must name one point on each body")
+        pts = (_text(pts[0], where, "points"), _text(pts[1], where, "points"))
+    else:
+        for k in ("guide", "slider", "line_point", "slider_point"):
+            if k not in item:
+                raise SceneError(f"{where}: missing required key {k!r}")
+        b = (_body_exists(item["guide"], bodies, where, "guide"),
+             _body_exists(item["slider"], bodies, where, "slider"))
+        pts = (_text(item["line_point"], where, "line_point"),
+               _text(item["slider_point"], where, "slider_point"))
+    if b[0] == b[1]:
+        raise SceneError(f"{where} joins {b[0]!r} to itself; name two different bodies")
+    for body, p in zip(b, pts, strict=True):
+        _point_exists(body, p, bodies, ground, where)
 
 
-def _driver(table: Any, bodies: dict, joints: dict) -> Driver:
-    plain = _plain_driver(table, bodies, joints)
-    if plain is not None:
-        return plain
-    t = check_keys(table, DRIVER_KEYS, "[driver]", required=("body", "joint"))
-    body = _body_exists(t["body"], bodies, "driver.body")
+def _driver(table: Any, bodies: dict, joints: dict, units: Units) -> Driver:
+    t = table
+    if type(t) is not dict or not t.keys() <= _DRIVER_KEYS or "body" not in t or "joint" not in t:
+        t = check_keys(table, DRIVER_KEYS, "[driver]", required=("body", "joint"))
+    body = _body_exists(t["body"], bodies, "driver", "body")
     if body == GROUND:
         raise SceneError("driver.body cannot be the ground")
-    jname = as_str(t["joint"], "driver.joint")
+    jname = _text(t["joint"], "driver", "joint")
     if jname not in joints:
         raise SceneError(f"driver.joint: unknown joint {jname!r}{suggest(jname, joints)}")
     joint = joints[jname]
@@ -421,32 +340,36 @@ def _driver(table: Any, bodies: dict, joints: dict) -> Driver:
         if kind != "R":
             raise SceneError("driver.speed_rpm is for a rotating driver; a sliding driver "
                              "takes 'speed' in m/s")
-        speed = as_float(t["speed_rpm"], "driver.speed_rpm") * math.pi / 30.0
+        speed = rpm_to_rad_s(_number(t, DRIVER["speed_rpm"], "driver", units))
     elif "speed" in t:
-        speed = as_float(t["speed"], "driver.speed")
+        speed = _number(t, DRIVER["speed"], "driver", units)
     else:
         raise SceneError("[driver]: missing required key 'speed' (rad/s or m/s) or 'speed_rpm'")
-    acc = as_float(t.get("acceleration", 0.0), "driver.acceleration")
-    has_range = [k for k in ("start", "stop", "count") if k in t]
+    acc = _number(t, DRIVER["acceleration"], "driver", units)
+    return Driver(body, jname, kind, speed, acc, _positions(t, units))
+
+
+def _positions(t: dict, units: Units) -> np.ndarray:
+    """The driver's positions: a ``positions`` list, or start/stop/count."""
     if "positions" in t:
-        if has_range:
+        if "start" in t or "stop" in t or "count" in t:
             raise SceneError("[driver]: give 'positions' or start/stop/count, not both")
         pos = as_list(t["positions"], "driver.positions")
         if not pos:
             raise SceneError("driver.positions is empty; list at least one position")
         if len(pos) > MAX_COUNT:
             raise SceneError(f"driver.positions has {len(pos):_} entries; at most {MAX_COUNT:_}")
-        positions = np.array([as_float(p, f"driver.positions[{i}]") for i, p in enumerate(pos)])
-    else:
+        return np.array([as_float(p, f"driver.positions[{i}]") for i, p in enumerate(pos)])
+    if "start" not in t or "stop" not in t or "count" not in t:
         missing = [k for k in ("start", "stop", "count") if k not in t]
-        if missing:
-            raise SceneError(f"[driver]: missing required key {missing[0]!r} "
-                             "(or give 'positions = [...]')")
-        start = as_float(t["start"], "driver.start")
-        stop = as_float(t["stop"], "driver.stop")
-        count = as_int(t["count"], "driver.count", lo=1, hi=MAX_COUNT)
-        positions = _sweep(start, stop, count)
-    return Driver(body, jname, kind, speed, acc, positions)
+        raise SceneError(f"[driver]: missing required key {missing[0]!r} "
+                         "(or give 'positions = [...]')")
+    start = _number(t, DRIVER["start"], "driver", units)
+    stop = _number(t, DRIVER["stop"], "driver", units)
+    count = t["count"]
+    if type(count) is not int or not 1 <= count <= MAX_COUNT:
+        count = as_int(count, "driver.count", lo=1, hi=MAX_COUNT)
+    return _sweep(start, stop, count)
 
 
 _SWEEPS: dict[tuple[str, str, int], np.ndarray] = {}
@@ -467,73 +390,46 @@ def _sweep(start: float, stop: float, count: int) -> np.ndarray:
     return done.copy()
 
 
-_FORCE_PLAIN = frozenset(("body", "point", "force"))
-
-
-def _plain_force(item: Any, bodies: dict) -> Load | None:
-    """The :class:`Load` of a force written the usual way (``body``, ``point`` and a pair
-    of floats ``force``, nothing else), every rule of :func:`_loads` met, told without
-    building a message; else None, and :func:`_loads` checks the item the long way and
-    names what is wrong. It accepts only what the long way accepts, and gives the same
-    Load."""
-    if type(item) is not dict or item.keys() != _FORCE_PLAIN:
-        return None
-    body, point = item["body"], item["point"]
-    if (type(body) is not str or type(point) is not str or body not in bodies
-            or not body.strip() or not point.strip()):
-        return None
-    force = plain_vec2(item["force"])
-    if force is None:
-        return None
-    b = bodies[body]
-    if point not in b.points and (point != "cog" or b.cog is None):
-        return None
-    return Load(body, point, force, 0.0, None, "always")
-
-
-def _loads(items: Any, bodies: dict) -> tuple[Load, ...]:
+def _loads(items: Any, bodies: dict, units: Units) -> tuple[Load, ...]:
     items = as_list(items, "[[loads]]")
-    loads = []
-    for i, item in enumerate(items):
-        plain = _plain_force(item, bodies)
-        if plain is not None:
-            loads.append(plain)
-            continue
-        where = f"loads[{i}]"
+    return tuple(_load(item, i, bodies, units) for i, item in enumerate(items))
+
+
+def _load(item: Any, i: int, bodies: dict, units: Units) -> Load:
+    """One ``[[loads]]`` item: a force, a ``resist`` force and/or a moment on a body."""
+    where = f"loads[{i}]"
+    if type(item) is not dict or not item.keys() <= _LOAD_KEYS or "body" not in item:
         item = check_keys(item, LOAD_KEYS, where, required=("body",))
-        body = _body_exists(item["body"], bodies, f"{where}.body")
-        if body == GROUND:
-            raise SceneError(f"{where}.body: a load on the ground does nothing; "
-                             "put it on a moving body")
-        if "force" in item and "resist" in item:
-            raise SceneError(f"{where}: give 'force' or 'resist', not both")
-        force = as_vec2(item["force"], f"{where}.force") if "force" in item else None
-        resist = (as_float(item["resist"], f"{where}.resist", nonnegative=True)
-                  if "resist" in item else None)
-        moment = as_float(item.get("moment", 0.0), f"{where}.moment")
-        point = None
-        if force is not None or resist is not None:
-            if "point" not in item:
-                raise SceneError(f"{where}: a force needs 'point' (a point of {body!r} or \"cog\")")
-        if "point" in item:
-            point = as_str(item["point"], f"{where}.point")
-            b = bodies[body]
-            if point != "cog" and point not in b.points:
-                raise SceneError(f"{where}.point: {point!r} is not a point of {body!r}"
-                                 f"{suggest(point, [*b.points, 'cog'])}")
-            if point == "cog" and b.cog is None:
-                raise SceneError(f"{where}.point: body {body!r} has no 'cog'")
-        if force is None and resist is None and "moment" not in item:
-            raise SceneError(f"{where}: give a 'force', a 'resist' force or a 'moment'")
-        when = as_str(item.get("when", "always"), f"{where}.when")
-        if when not in LOAD_WHEN:
-            raise SceneError(f"{where}.when: {when!r} is not one of {', '.join(LOAD_WHEN)}"
-                             f"{suggest(when, LOAD_WHEN)}")
-        if when == "resisting" and (force is None or moment):
-            raise SceneError(f"{where}.when = \"resisting\" applies to a constant 'force' "
-                             "alone (a 'resist' force always resists; give no 'moment')")
-        loads.append(Load(body, point, force, moment, resist, when))
-    return tuple(loads)
+    body = _body_exists(item["body"], bodies, where, "body")
+    if body == GROUND:
+        raise SceneError(f"{where}.body: a load on the ground does nothing; "
+                         "put it on a moving body")
+    if "force" in item and "resist" in item:
+        raise SceneError(f"{where}: give 'force' or 'resist', not both")
+    force = _pair(item, "force", where) if "force" in item else None
+    resist = _number(item, LOAD["resist"], where, units) if "resist" in item else None
+    moment = _number(item, LOAD["moment"], where, units)
+    point = None
+    if (force is not None or resist is not None) and "point" not in item:
+        raise SceneError(f"{where}: a force needs 'point' (a point of {body!r} or \"cog\")")
+    if "point" in item:
+        point = _text(item["point"], where, "point")
+        b = bodies[body]
+        if point != "cog" and point not in b.points:
+            raise SceneError(f"{where}.point: {point!r} is not a point of {body!r}"
+                             f"{suggest(point, [*b.points, 'cog'])}")
+        if point == "cog" and b.cog is None:
+            raise SceneError(f"{where}.point: body {body!r} has no 'cog'")
+    if force is None and resist is None and "moment" not in item:
+        raise SceneError(f"{where}: give a 'force', a 'resist' force or a 'moment'")
+    when = _text(item.get("when", "always"), where, "when")
+    if when not in LOAD_WHEN:
+        raise SceneError(f"{where}.when: {when!r} is not one of {', '.join(LOAD_WHEN)}"
+                         f"{suggest(when, LOAD_WHEN)}")
+    if when == "resisting" and (force is None or moment):
+        raise SceneError(f"{where}.when = \"resisting\" applies to a constant 'force' "
+                         "alone (a 'resist' force always resists; give no 'moment')")
+    return Load(body, point, force, moment, resist, when)
 
 
 def _near(table: Any, bodies: dict, joints: dict) -> dict[str, tuple[float, float]]:

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from .units import Units
+from .units import Units, radians
 
 GROUND = "ground"
 
@@ -70,8 +70,9 @@ class Joint:
 
     For ``R``: ``bodies`` and the names of the coinciding ``points`` on each.
     For ``T``: ``bodies = (guide, slider)``; the guide carries the line through
-    ``line_point`` at ``line_angle`` (deg, guide's local frame); ``slider_point`` of the
-    slider stays on it and the slider's angle is the guide's plus ``line_angle``.
+    ``line_point`` at ``line_angle`` (deg, guide's local frame; ``beta`` the same in
+    radians, converted once when the joint is made); ``slider_point`` of the slider stays
+    on it and the slider's angle is the guide's plus ``line_angle``.
     """
 
     name: str
@@ -80,6 +81,12 @@ class Joint:
     points: tuple[str, str]
     line_angle: float = 0.0
     friction: Friction | None = None
+    beta: float = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        # the line angle in radians, converted once where the joint is made: the model
+        # works in radians; the file and the tables say degrees (line_angle)
+        object.__setattr__(self, "beta", radians(self.line_angle))
 
     @property
     def guide(self) -> str:
@@ -88,12 +95,6 @@ class Joint:
     @property
     def slider(self) -> str:
         return self.bodies[1]
-
-    @property
-    def beta(self) -> float:
-        """The line angle in radians: the model works in radians, the scene file and the
-        tables in degrees; this is where a joint's angle is converted."""
-        return math.radians(self.line_angle)
 
     def other(self, body: str) -> str:
         """The body at the other side of the joint."""
@@ -119,8 +120,10 @@ class Joint:
 class Driver:
     """The driving element: a crank (``kind = "R"``) or a slider on a guide (``"T"``).
 
-    ``positions`` are in deg (R) or m (T); ``speed`` in rad/s or m/s; ``acceleration``
-    in rad/s^2 or m/s^2. Each row is a snapshot at the same speed and acceleration.
+    ``positions`` are in deg (R) or m (T), as the file and the tables give them; ``angles``
+    a crank's positions in radians (converted once, read-only); ``speed`` in rad/s or m/s;
+    ``acceleration`` in rad/s^2 or m/s^2. Each row is a snapshot at the same speed and
+    acceleration.
     """
 
     body: str
@@ -130,11 +133,15 @@ class Driver:
     acceleration: float
     positions: np.ndarray
 
-    @property
-    def angles(self) -> np.ndarray:
-        """A crank's positions in radians (the file and the tables give degrees; this is
-        where they are converted)."""
-        return np.deg2rad(self.positions)
+    angles: np.ndarray = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        # a crank's positions in radians, converted once when the driver is made (the file
+        # and the tables give degrees, ``positions``); read-only: every user shares it
+        pos = self.positions
+        angles = radians(pos if type(pos) is np.ndarray else np.asarray(pos, dtype=float))
+        angles.flags.writeable = False
+        object.__setattr__(self, "angles", angles)
 
 
 @dataclass(frozen=True)
@@ -160,12 +167,13 @@ class Load:
 class Scene:
     """A checked mechanism scene (``scene-format.md`` section 1).
 
-    Every number is in the contract's units (SI; degrees for the driver's positions and
-    ``line_angle``), whatever units the file named: ``raw`` is the mapping as read,
-    rewritten into those units (:mod:`kinetostatics.model.scene_units`), and ``units``
-    the file's ``[units]`` (for the output, which repeats them); ``warnings`` the
-    suspected unit slips found when it was read (:mod:`kinetostatics.model.slips`), which
-    every output repeats.
+    Every number is in the contract's units (SI; the driver's positions and ``line_angle``
+    in degrees as the file and the tables say them, with their radians beside them,
+    ``Driver.angles`` and ``Joint.beta``, converted once), whatever units the file
+    named: ``raw`` is the mapping as read, rewritten into those units
+    (:mod:`kinetostatics.model.scene_units`), and ``units`` the file's ``[units]`` (for
+    the output, which repeats them); ``warnings`` the suspected unit slips found when it
+    was read (:mod:`kinetostatics.model.slips`), which every output repeats.
     """
 
     title: str

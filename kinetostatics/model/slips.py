@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING, Any
 
 from .errors import SceneError, UnitWarning
 from .tomlio import suggest
-from .units import Units
+from .units import DEG, Units, degrees, rpm_to_rad_s
 
 if TYPE_CHECKING:
     from .scene_types import Scene
@@ -39,18 +39,19 @@ RULES: dict[str, str] = {
               "whole (radians typed for degrees); any angle beyond 720 deg (degrees typed "
               "under angle = \"rad\")",
     "speed": "an angular speed whose peripheral speed over the mechanism's size exceeds "
-             "400 m/s, or omega0 above three times the motor's no-load speed (rpm typed "
-             "for rad/s)",
+             "400 m/s (a cam's outline: 50 m/s), or omega0 above three times the motor's "
+             "no-load speed (rpm typed for rad/s)",
     "gravity": "gravity's magnitude outside 1..30 m/s^2 (not zero): m/s^2 typed under "
                "length = \"mm\" or the like",
     "mass": "a body heavier than 200 000 kg/m^3 over the cube of its size (kg typed under "
             "mass = \"t\", or grams typed as kilograms)",
     "lengths": "a point farther than 100 mechanism sizes from its body's joints "
                "(millimetres among metres)",
-    "unbalance_mass": "a rotor's unbalance masses 300 times apart or more (one typed in "
-                      "another unit)",
+    "unbalance_mass": "a rotor's unbalance masses 300 times apart or more, the heavier "
+                      "1 kg or more or the lighter under 1 mg (one typed in another unit)",
     "trial_mass": "a trial mass above 2 kg (or a hundredth of the rotor's mass): grams typed "
-                  "as kilograms; trial masses of one section 300 times apart",
+                  "as kilograms; trial masses of one section 300 times apart, the heavier "
+                  "1 kg or more or the lighter under 1 mg",
     "readings": "one run's readings 300 times off the other runs' (another vibration unit)",
     "correction": "a correction more than 100 times its trial mass",
 }
@@ -64,7 +65,6 @@ DENSEST = 2e5
 """m/s: an angular speed that moves the mechanism's outline faster than this looks like rpm
 typed for rad/s (no linkage runs near the speed of sound)."""
 
-DEG = math.pi / 180.0
 
 
 @dataclass(frozen=True)
@@ -133,12 +133,10 @@ def typed(values: float | Sequence[float], quantity: str, units: Units, *,
           file: bool = True) -> str:
     """Values in the contract's units (``file``: degrees for angles) or SI, written as
     typed: in the scene's unit, with its name (``"350 g"``, ``"[0, 0.5, ...] rad"``)."""
-    f = units.file_factor(quantity) if file else units.factor(quantity)
-    unit = {"moment": f"{units.force} {units.length}", "inertia": f"{units.mass} {units.length}^2",
-            "velocity": f"{units.length}/s", "acceleration": f"{units.length}/s^2"}.get(
-        quantity) or units.unit(quantity)
     if isinstance(values, int | float):
-        return f"{values / f:g} {unit}".rstrip()
+        return units.quote(values, quantity, file=file)
+    f = units.file_factor(quantity) if file else units.factor(quantity)
+    unit = units.unit(quantity)
     vals = [v / f for v in values]
     shown = ", ".join(f"{v:g}" for v in vals[:4]) + (", ..." if len(vals) > 4 else "")
     return f"[{shown}] {unit}".rstrip()
@@ -208,8 +206,8 @@ def _position_slips(scene: Scene, u: Units) -> list[Slip]:
                 abs(v - round(v)) <= 1e-9 for v in (pos if listed else ends)))):
         return [Slip("positions", field, typed(ends, "angle", u),
                      f"a sweep of {hi - lo:.4g} deg, all within 2 pi degrees",
-                     f"radians typed for degrees: [{lo * 180 / math.pi:.4g}, "
-                     f"{hi * 180 / math.pi:.4g}] deg")]
+                     f"radians typed for degrees: [{degrees(lo):.4g}, "
+                     f"{degrees(hi):.4g}] deg")]
     return []
 
 
@@ -231,7 +229,7 @@ def _speed_slips(scene: Scene, u: Units) -> list[Slip]:
         out.append(Slip("speed", "motion.omega0", typed(omega0, "speed", u),
                         f"{abs(omega0) / w0:.3g} times the motor's no-load speed "
                         f"{typed(w0, 'speed', u)}",
-                        f"{omega0 * math.pi / 30:.4g} rad/s (rpm typed for rad/s)"))
+                        f"{rpm_to_rad_s(omega0):.4g} rad/s (rpm typed for rad/s)"))
     if _num(w0) and tip_speed_slip(w0, size):
         out.append(_rpm_slip("motion.motor.no_load_speed", w0, size, u))
     return out
@@ -240,7 +238,7 @@ def _speed_slips(scene: Scene, u: Units) -> list[Slip]:
 def _rpm_slip(field: str, omega: float, size: float, u: Units) -> Slip:
     return Slip("speed", field, typed(omega, "speed", u),
                 f"moves the mechanism's outline ({size:.3g} m) at {abs(omega) * size:.3g} m/s",
-                f"{omega * math.pi / 30:.4g} rad/s (rpm typed for rad/s)")
+                f"{rpm_to_rad_s(omega):.4g} rad/s (rpm typed for rad/s)")
 
 
 def _gravity_slips(scene: Scene, u: Units) -> list[Slip]:
@@ -307,7 +305,7 @@ def _far_points(scene: Scene, u: Units) -> list[Slip]:
             continue
         for b, p in zip(j.bodies, j.points, strict=True):
             if b in joint_pts:
-                joint_pts[b].append(scene.bodies[b].points[p])
+                joint_pts[b].append(scene.bodies[b].local(p))     # "cog" too
     pts = [p for b in joint_pts.values() for p in b] + list(scene.ground.values())
     if len(pts) < 2:
         return []

@@ -198,16 +198,20 @@ def as_float(value: Any, where: str, *, positive: bool = False, nonnegative: boo
     if smallest is None:            # a positive quantity is divided by: keep it from 0
         smallest = MIN_MAGNITUDE if positive else 0.0
     t = type(value)
-    if t is float or t is int:      # the common case, checked without a detour
-        x = float(value)
-        if (-limit <= x <= limit and (not positive or x > 0.0)
+    if (t is float or t is int) and -limit <= value <= limit:   # the common case, at once
+        x = float(value)            # (compared first: a huge int never reaches float())
+        if ((not positive or x > 0.0)
                 and (not nonnegative or x >= 0.0) and (not nonzero or x != 0.0)
                 and (not smallest or x == 0.0 or not -smallest < x < smallest)):
             return x
     if isinstance(value, bool | np.bool_) or not isinstance(
             value, int | float | np.integer | np.floating):
         raise error(f"{where} must be a number, not {_typename(value)}")
-    x = float(value)
+    try:
+        x = float(value)
+    except OverflowError:           # an int beyond every float
+        raise error(f"{where} = {'-' if value < 0 else ''}{len(str(abs(value)))}-digit "
+                    f"number is out of range (at most {limit:g} in magnitude)") from None
     if not math.isfinite(x):
         raise error(f"{where} must be a finite number, not {value!r}")
     if abs(x) > limit:

@@ -33,8 +33,9 @@ from typing import Any
 
 from .errors import SceneError
 
-__all__ = ["BASE", "DEFAULTS", "FACTORS", "Units", "angle_slip", "convert", "labelled",
-           "parse_quantity", "parse_units", "ratio_slip", "unit_kind"]
+__all__ = ["BASE", "DEFAULTS", "DEG", "FACTORS", "Units", "angle_slip", "convert", "degrees",
+           "labelled", "parse_quantity", "parse_units", "radians", "ratio_slip",
+           "rpm_to_rad_s", "unit_kind"]
 
 FACTORS: dict[str, dict[str, float]] = {
     "length": {"m": 1.0, "mm": 1e-3, "cm": 1e-2, "in": 0.0254},
@@ -46,6 +47,30 @@ FACTORS: dict[str, dict[str, float]] = {
     "vibration": {"": 1.0, "um": 1e-6, "mils": 25.4e-6, "mm/s": 1e-3},
 }
 """SI value of one unit, per quantity (the scene's base quantities and balancing's own)."""
+
+DEG = FACTORS["angle"]["deg"]
+"""rad: one degree, pi/180. The degree's one home: every conversion between degrees and
+radians in the scene readers goes through :func:`radians` and :func:`degrees`."""
+
+
+def radians(deg: Any) -> Any:
+    """Degrees (a number or a numpy array) in radians: ``deg * pi/180``, bit for bit
+    ``math.radians`` and ``numpy.deg2rad``."""
+    return deg * DEG
+
+
+def degrees(rad: Any) -> Any:
+    """Radians (a number or a numpy array) in degrees: ``rad * 180/pi``, bit for bit
+    ``math.degrees`` and ``numpy.rad2deg``."""
+    return rad * (180.0 / math.pi)
+
+
+def rpm_to_rad_s(n: Any) -> Any:
+    """A speed in rpm in rad/s, as a ``speed_rpm`` key is read: ``n * pi / 30`` (the
+    rpm's one home beside ``FACTORS["speed"]["rpm"]``, the factor of ``[units] speed =
+    "rpm"``; the two differ in the last bit at most, and each keeps its results')."""
+    return n * math.pi / 30.0
+
 
 BASE = ("length", "mass", "angle", "speed", "force")
 """The quantities every scene kind may name in ``[units]``."""
@@ -159,7 +184,7 @@ class Units:
     :data:`FACTORS` for its quantity.
 
     The derived quantities: ``moment`` = force x length, ``inertia`` = mass x length^2,
-    ``velocity`` = length/s, ``acceleration`` = length/s^2.
+    ``velocity`` = length/s, ``acceleration`` = length/s^2, ``stiffness`` = force/length.
 
     >>> u = Units(length="mm", mass="g")
     >>> u.to_si(250.0, "length"), u.to_si(1.0, "inertia")
@@ -183,6 +208,7 @@ class Units:
             "velocity": f["length"],
             "acceleration": f["length"],
             "angular acceleration": 1.0,
+            "stiffness": f["force"] / f["length"],
         }
         if quantity in f:
             return f[quantity]
@@ -212,8 +238,27 @@ class Units:
         return value / self.factor(quantity)
 
     def unit(self, quantity: str) -> str:
-        """The scene's unit name of a base quantity."""
-        return getattr(self, quantity)
+        """The scene's unit name of a quantity, base (``"mm"``) or derived (``"N mm"``,
+        ``"g mm^2"``, ``"mm/s"``...)."""
+        derived = {"moment": f"{self.force} {self.length}",
+                   "inertia": f"{self.mass} {self.length}^2",
+                   "velocity": f"{self.length}/s", "acceleration": f"{self.length}/s^2",
+                   "angular acceleration": "rad/s^2",
+                   "stiffness": f"{self.force}/{self.length}"}
+        return derived.get(quantity) or getattr(self, quantity)
+
+    def quote(self, value: float, quantity: str, spec: str = "g", *,
+              file: bool = False) -> str:
+        """An SI number (``file``: in the contract's file units, degrees for an angle)
+        said in the scene's unit, for a message: the user reads the unit they typed.
+
+        >>> Units(length="mm").quote(0.00236, "length", ".3g")
+        '2.36 mm'
+        >>> Units(angle="rad").quote(90.0, "angle", file=True)
+        '1.5708 rad'
+        """
+        f = self.file_factor(quantity) if file else self.factor(quantity)
+        return f"{format(value / f, spec)} {self.unit(quantity)}".rstrip()
 
     @property
     def is_default(self) -> bool:

@@ -12,6 +12,7 @@ from collections.abc import Sequence
 import numpy as np
 import pandas as pd
 
+from ..common.angles import degree_value
 from .equation import (
     TWO_PI,
     Inertia,
@@ -226,7 +227,7 @@ def recurrence_convergence(inertia: Inertia, moment: Moment, phi0: float, omega0
         wall = _time.perf_counter() - tic
         wr = reference(g)
         err = np.abs(rec["omega"].to_numpy() - wr)
-        rows.append({"step": math.degrees(span / n), "steps": n, "max_error": float(err.max()),
+        rows.append({"step": degree_value(span / n), "steps": n, "max_error": float(err.max()),
                      "max_rel_error": float(np.max(err / wr)), "wall_time": wall})
     table = pd.DataFrame(rows)
     ok = table["max_error"] > 0.0

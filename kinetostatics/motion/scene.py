@@ -26,7 +26,7 @@ from ..model.errors import SceneError
 from ..model.memory import check_memory
 from ..model.scene import Scene, load_scene
 from ..model.tomlio import as_float, as_int, as_list, check_keys
-from ..model.units import Units, labelled
+from ..model.units import Units, degrees, labelled, radians
 from ..solver import arith as A
 from ..solver.continuity import check_distinct
 from ..solver.kinematics import solve_kinematics
@@ -84,7 +84,7 @@ def motion_spec(scene: Scene) -> MotionSpec:
             raise SceneError("motion.motor_table: angles must be strictly increasing")
         if table[-1, 0] - table[0, 0] > 360.0:
             raise SceneError("motion.motor_table spans more than 360 deg")
-        table[:, 0] = np.radians(table[:, 0])        # the file's degrees, once, here
+        table[:, 0] = radians(table[:, 0])        # the file's degrees, once, here
     flywheel = as_float(m.get("flywheel", 0.0), "motion.flywheel", nonnegative=True)
     omega0 = as_float(m["omega0"], "motion.omega0", positive=True)
     cycles = as_int(m["cycles"], "motion.cycles", lo=1, hi=100_000)
@@ -125,7 +125,7 @@ class ReducedMechanism:
     def evaluate(self, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(I_r, dI_r/dphi, M_r) at the driver angles ``phi`` (rad), one kinematic solve."""
         phi = np.atleast_1d(np.asarray(phi, dtype=float))
-        drv = replace(self.scene.driver, positions=np.rad2deg(phi.ravel()), speed=1.0,
+        drv = replace(self.scene.driver, positions=degrees(phi.ravel()), speed=1.0,
                       acceleration=0.0)
         sc = replace(self.scene, driver=drv)
         kin = solve_kinematics(sc, self.structure)
@@ -255,7 +255,7 @@ def simulate_motion(scene: Any, rtol: float = 1e-12) -> MotionResult:
     sc = load_scene(scene)
     spec = motion_spec(sc)
     check_motion_memory(spec.cycles, sc.driver.positions.size)
-    phi0 = math.radians(motion_start(sc))
+    phi0 = radians(motion_start(sc))
     red = ReducedMechanism(sc, phi0)
     red.prewarm()
     motor = _motor(spec)

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ..common.angles import degrees_text
+from ..common.angles import degree_value, degrees_text, radian_column
 from .equation import (
     TWO_PI,
     Inertia,
@@ -254,8 +254,8 @@ class MotionSolution:
             ``cycle`` (from 1), ``position`` (deg), ``time`` (s since the start),
             ``omega`` (rad/s), ``alpha`` (rad/s^2).
         """
-        start = math.degrees(self.phi0)
-        span = math.degrees(self.cycle)
+        start = degree_value(self.phi0)
+        span = degree_value(self.cycle)
         pos = (np.linspace(start, start + span, 361) if positions is None
                else np.asarray(positions, dtype=float))
         if np.any(pos < start - 1e-9) or np.any(pos > start + span + 1e-9):
@@ -263,7 +263,7 @@ class MotionSolution:
         n = self.complete_cycles
         cyc = np.repeat(np.arange(1, n + 1), pos.size)
         p = np.tile(pos, n)
-        phi = np.radians(p) + (cyc - 1) * self.cycle
+        phi = radian_column(p) + (cyc - 1) * self.cycle
         w, t, alpha = self.state(phi)
         return pd.DataFrame({"cycle": cyc, "position": p, "time": t, "omega": w,
                              "alpha": alpha})
@@ -278,10 +278,10 @@ class MotionSolution:
         n = self.complete_cycles
         steady = False
         if n >= 2:
-            start = math.degrees(self.phi0)
-            pos = (np.linspace(start, start + math.degrees(self.cycle), 361)
+            start = degree_value(self.phi0)
+            pos = (np.linspace(start, start + degree_value(self.cycle), 361)
                    if positions is None else np.asarray(positions, dtype=float))
-            phi = np.radians(pos) + (n - 1) * self.cycle
+            phi = radian_column(pos) + (n - 1) * self.cycle
             change = np.max(np.abs(self.omega(phi) - self.omega(phi - self.cycle)))
             steady = bool(change <= steady_tol * st["omega_mean"])
         out["steady"] = steady

@@ -19,7 +19,7 @@ from matplotlib.text import Text
 from .collide import collisions
 from .notation import notation_problems
 from .place import UNPLACED_TITLE
-from .style import SMALLEST_FONT, _undrawn_ticks, lay_out
+from .style import SMALLEST_FONT, lay_out, undrawn_ticks
 
 __all__ = ["LOWEST_DPI", "PictureAudit", "audit", "figure_texts", "not_placed"]
 
@@ -56,7 +56,7 @@ def figure_texts(fig: Figure) -> list[str]:
     """Every text a reader sees on the figure: titles, axis and tick labels, labels,
     legend entries and titles (hidden, empty and undrawn tick labels left out)."""
     lay_out(fig)
-    undrawn = _undrawn_ticks(fig)
+    undrawn = undrawn_ticks(fig)
     out = []
     for t in fig.findobj(Text):
         if id(t) in undrawn or not t.get_visible() or not t.get_text().strip():

@@ -12,6 +12,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.patches import Circle
 
+from ..common.angles import degree_column, degree_value, radian_column, radian_value
 from ..model.errors import WorkbenchError
 from .base import axes_or_new, legend_outside, vector_axes
 from .collide import GUIDE
@@ -75,7 +76,7 @@ def cam_shocks(law, speed: float = 1.0, grid: int = 72000) -> list[dict]:
         dv = float(speed * (b[1][0] - a[1][0]))
         da = float(speed**2 * (b[2][0] - a[2][0]))
         kind = "hard" if abs(dv) > 1e-6 * speed * scale1 else "soft"
-        out.append({"angle": round(math.degrees(0.5 * (lo + hi)), 6) % 360.0, "dv": dv,
+        out.append({"angle": round(degree_value(0.5 * (lo + hi)), 6) % 360.0, "dv": dv,
                     "da": da, "kind": kind})
     out.sort(key=lambda r: r["angle"])      # the jump at the cycle's end is at 0 deg
     return out
@@ -113,7 +114,7 @@ def plot_cam_motion(res) -> Figure:
         a.set_ylabel(lab)
         a.grid(True, alpha=0.3)
         a.axhline(0.0, color="0.5", lw=0.8)
-    bounds = np.degrees(_boundaries(law))
+    bounds = degree_column(_boundaries(law))
     lo, hi = axs[0].get_ylim()
     axs[0].set_ylim(lo, hi + 0.55 * (hi - lo))      # a band above the lift for the names
     texts = []
@@ -121,7 +122,7 @@ def plot_cam_motion(res) -> Figure:
         for a in axs:
             a.axvline(b, color="0.6", lw=0.8, ls=":", gid=GUIDE)   # a faint guide
         name = seg.kind if seg.law is None else f"{seg.kind}\n{seg.law}"
-        texts.append(axs[0].annotate(name, (b + 0.5 * math.degrees(seg.angle), 0.83),
+        texts.append(axs[0].annotate(name, (b + 0.5 * degree_value(seg.angle), 0.83),
                                      xycoords=("data", "axes fraction"), ha="center",
                                      va="center", fontsize=10, color="0.3",
                                      xytext=(0, 0), textcoords="offset points"))
@@ -174,8 +175,8 @@ def draw_cam(res, angle: float = 0.0, ax: Axes | None = None) -> Axes:
     sc, g = res.scene, res.geometry
     ang = g["angle"].to_numpy()
     k = int(np.argmin(np.abs(((ang - angle) + 180.0) % 360.0 - 180.0)))
-    phi = math.radians(float(ang[k]))
-    s, ds, dds = sc.law(np.radians(ang))
+    phi = radian_value(float(ang[k]))
+    s, ds, dds = sc.law(radian_column(ang))
     b = follower_points(sc.follower, s, ds, dds)[0]
     pitch = g[["x_pitch", "y_pitch"]].to_numpy().T
     mirror = np.array([[-1.0], [1.0]]) if sc.rotation == "cw" else np.ones((2, 1))
@@ -213,7 +214,7 @@ def draw_cam(res, angle: float = 0.0, ax: Axes | None = None) -> Axes:
         cx = mirror[0, 0] * fol.pivot_distance
         ax.plot([cx, bx], [0.0, by], color="tab:green", lw=4, label="follower arm")
         ax.plot(cx, 0.0, "^", color="k", ms=12, mfc="0.8")
-        rise = f"β = {math.degrees(s[k]):.4g}°"
+        rise = f"β = {degree_value(s[k]):.4g}°"
     ax.set_aspect("equal", adjustable="datalim")
     ax.margins(0.1)
     vector_axes(ax)
@@ -265,7 +266,7 @@ def plot_cam_diagram(res, transmission_angle: float | None = None,
         res.summary.get("transmission_angle_admissible")
     if tau_deg is None:
         raise WorkbenchError("plot_cam_diagram: give the admissible transmission angle")
-    tau = math.radians(float(tau_deg))
+    tau = radian_value(float(tau_deg))
     ax = axes_or_new(ax, figsize=(8.0, 6.5))
     m = res.motion
     p, s, ds = (m[c].to_numpy() for c in ("angle", "s", "ds"))

@@ -113,6 +113,47 @@ def instant_centres(sol: Solution, position: float | None = None, *,
     return pd.DataFrame(rows)
 
 
+def _kennedy_lines(ax: Axes, r, p: np.ndarray, names: list, numbers: dict, xy: dict,
+                   toward: dict, shown: set, size: float) -> int:
+    """Draw at most two three-centre lines through the centre ``r`` (at ``p``): for a
+    third element m, I_jm - I_km passes through I_jk (Kennedy, seed 001 eq. 2). Returns
+    how many were drawn."""
+    lines = 0
+    for m in names:             # Kennedy: I_jm - I_km passes through I_jk
+        if m in (r.j, r.k) or lines == 2:
+            continue
+        a, b = (_name(numbers, x, m) for x in (r.j, r.k))
+        if b in shown and a not in shown:
+            a, b = b, a
+        if a not in shown or np.hypot(*(xy[a] - p)) <= 1e-9 * size:
+            continue
+        if b in shown:
+            seg = np.array([xy[a], xy[b], p])
+            step = xy[b] - xy[a]
+        elif b in toward:       # the line through I_jm towards a centre at infinity
+            seg = np.array([xy[a], p])
+            step = toward[b] * size
+        else:
+            continue
+        t = (seg - xy[a]) @ step / (np.hypot(*step) ** 2 or 1.0)
+        ends = xy[a] + np.outer([min(t.min(), 0.0), max(t.max(), 0.0)], step)
+        ax.plot(ends[:, 0], ends[:, 1], "-.", color="tab:red", lw=0.8, alpha=0.7)
+        lines += 1
+    return lines
+
+
+def _rays(ax: Axes, sol: Solution, i: int, numbers: dict, xy: dict, near) -> None:
+    """Dotted rays from each body's centre relative to the ground (I0k, in view) to its
+    points: every velocity is perpendicular to its ray (seed 004 fig. 2)."""
+    for b in sol.scene.bodies:
+        key = _name(numbers, GROUND, b)
+        if key not in xy or key not in near.name.values:
+            continue
+        for p in sol.scene.bodies[b].points:
+            q = np.array(global_point(sol, b, p, i))
+            ax.plot([xy[key][0], q[0]], [xy[key][1], q[1]], ":", color="0.45", lw=0.9)
+
+
 def plot_instant_centres(sol: Solution, position: float | None = None, *,
                          row: int | None = None, ax: Axes | None = None,
                          reach: float = 2.5) -> Axes:
@@ -128,8 +169,9 @@ def plot_instant_centres(sol: Solution, position: float | None = None, *,
     Parameters
     ----------
     sol : Solution
-    position : float, optional
-        Driver position (nearest row); ``row`` picks a row by index instead.
+        A solved scene.
+    position, row : float or int, optional
+        The driver position (the nearest row is drawn), or a row index instead.
     ax : Axes, optional
     reach : float
         How far (in sizes of the mechanism) the view may grow to show a centre.
@@ -172,36 +214,10 @@ def plot_instant_centres(sol: Solution, position: float | None = None, *,
                                  fontweight="bold"))
         if at_joint:
             continue
-        lines = 0
-        for m in names:             # Kennedy: I_jm - I_km passes through I_jk
-            if m in (r.j, r.k) or lines == 2:
-                continue
-            a, b = (_name(numbers, x, m) for x in (r.j, r.k))
-            if b in shown and a not in shown:
-                a, b = b, a
-            if a not in shown or np.hypot(*(xy[a] - p)) <= 1e-9 * size:
-                continue
-            if b in shown:
-                seg = np.array([xy[a], xy[b], p])
-                step = xy[b] - xy[a]
-            elif b in toward:       # the line through I_jm towards a centre at infinity
-                seg = np.array([xy[a], p])
-                step = toward[b] * size
-            else:
-                continue
-            t = (seg - xy[a]) @ step / (np.hypot(*step) ** 2 or 1.0)
-            ends = xy[a] + np.outer([min(t.min(), 0.0), max(t.max(), 0.0)], step)
-            ax.plot(ends[:, 0], ends[:, 1], "-.", color="tab:red", lw=0.8, alpha=0.7)
-            lines += 1
+        lines = _kennedy_lines(ax, r, p, names, numbers, xy, toward, shown, size)
         if lines:
             crossed.append(r.name)
-    for b in sol.scene.bodies:
-        key = _name(numbers, GROUND, b)
-        if key not in xy or key not in near.name.values:
-            continue
-        for p in sol.scene.bodies[b].points:
-            q = np.array(global_point(sol, b, p, i))
-            ax.plot([xy[key][0], q[0]], [xy[key][1], q[1]], ":", color="0.45", lw=0.9)
+    _rays(ax, sol, i, numbers, xy, near)
     for r in far.itertuples():
         txt = (f"{r.name} at infinity, towards ({r.dir_x + 0.0:.3f}, {r.dir_y + 0.0:.3f})"
                if r.at_infinity else f"{r.name} far: ({reading(r.x)}, {reading(r.y)}) m")

@@ -137,6 +137,8 @@ def run_demo(args) -> int:
     matplotlib.use("Agg")
     from ..model.examples import scene_path
     from ..results import solve
+    from ..results.output import summary_with_units
+    from ..results.text import summary_text
     path = scene_path(args.scene or args.example)
     _refuse_cam_scene(path)
     sol = solve(path)
@@ -149,25 +151,10 @@ def run_demo(args) -> int:
         written = sol.to_csv(stage.path)
         written += write_pictures(sol, stage.path, at, dpi=getattr(args, "dpi", 150))
     written = [out / p.name for p in written]
-    s = sol.summary()
-    q = sol.driver_quantity
-    unit = "N m" if q == "Me" else "N"
     pu = position_unit(sol)
-    print(f"{s['title']}: {s['positions']} positions")
-    for line in s["structure"]:
-        print("  " + line)
-    mean, peak = s[q + "_mean"], max(abs(s[q + "_min"]), abs(s[q + "_max"]))
-    # a cycle mean at rounding level (no net work: no loads doing work over a turn)
-    mean_text = ("0 (to rounding)" if abs(mean) <= 1e-12 * peak
-                 else f"{mean:.4g} {unit}")
-    print(f"  {q} mean {mean_text}, min {s[q + '_min']:.4g} {unit}, "
-          f"max {s[q + '_max']:.4g} {unit}")
-    for j, r in s["reaction_max"].items():
-        print(f"  joint {j}: max |F| = {r['F']:.4g} N at {r['position']:g} {pu}")
-    if s.get("transmission_angle_min") is not None:
-        print(f"  transmission angle min(tau, 180 - tau) = {s['transmission_angle_min']:.4g} deg "
-              f"at {s['transmission_angle_min_position']:g} {pu} "
-              f"(dyad {s['transmission_angle_min_dyad']})")
+    q = sol.driver_quantity
+    print(summary_text(summary_with_units(sol.summary(), sol.scene.units,
+                                          sol.scene.warnings, pu)))
     if at:
         print(f"  pictures at {'φ' if pu == 'deg' else 's'} = {at[0]:g} {pu}, where "
               f"|{q}| is largest (the overview's drawing too)")

@@ -94,6 +94,7 @@ def collisions(fig: Figure, tolerance: float = 1.0) -> list[tuple[str, str]]:
     Parameters
     ----------
     fig : Figure
+        The figure, laid out and drawn here if it is not yet.
     tolerance : float
         Pixels by which a box may touch a path before it counts.
 

@@ -202,7 +202,7 @@ def plot_transmission(sol: Solution, ax: Axes | None = None, admissible: float =
     sol : Solution
         A solved scene (:func:`kinetostatics.solve`).
     ax : Axes, optional
-        Where to draw; a new figure when None.
+        Where to draw (a new figure when None).
     admissible : float
         The smallest admissible transmission angle (deg); outside the band is shaded.
 
@@ -339,18 +339,8 @@ def plot_speeds(sol: Solution, points: Sequence[str] | str | None = None, *,
 
 def plot_accelerations(sol: Solution, points: Sequence[str] | str | None = None, *,
                        component: str = "magnitude", ax: Axes | None = None) -> Axes:
-    """Acceleration of points over the sweep.
-
-    Parameters
-    ----------
-    sol : Solution
-        A solved scene (:func:`kinetostatics.solve`).
-    points : str or sequence of str, optional
-        ``"body.point"`` names (default: every named point, once per name).
-    component : str
-        ``"magnitude"``, ``"x"`` or ``"y"``.
-    ax : Axes, optional
-        Where to draw; a new figure when None.
+    """Acceleration of points over the sweep: ``points``, ``component`` (``"magnitude"``,
+    ``"x"`` or ``"y"``) and ``ax`` as in :func:`plot_speeds`.
 
     Returns
     -------

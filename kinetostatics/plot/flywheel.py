@@ -12,6 +12,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 
+from ..common.angles import degree_column, radian_column
 from ..model.errors import WorkbenchError
 from .base import axes_or_new
 from .notation import reading
@@ -51,14 +52,14 @@ def reduced_cycle(scene, n: int = 361, motor: float | np.ndarray | None = None
     if n < 3:
         raise WorkbenchError(f"reduced_cycle: n must be >= 3, not {n}")
     start = float(sc.driver.positions[0])
-    phi = np.deg2rad(start + np.linspace(0.0, 360.0, n))
+    phi = radian_column(start + np.linspace(0.0, 360.0, n))
     i_r, di_r, m_r = ReducedMechanism(sc, phi[0]).evaluate(phi)
     if motor is None:
         motor = -np.trapezoid(m_r, phi) / (2.0 * np.pi)
     m_m = np.broadcast_to(np.asarray(motor, dtype=float), phi.shape)
     m = m_m + m_r
     de = np.concatenate(([0.0], np.cumsum(0.5 * (m[1:] + m[:-1]) * np.diff(phi))))
-    return pd.DataFrame({"phi": np.rad2deg(phi), "I_r": i_r, "dI_r": di_r, "M_loads": m_r,
+    return pd.DataFrame({"phi": degree_column(phi), "I_r": i_r, "dI_r": di_r, "M_loads": m_r,
                          "M_motor": m_m, "M": m, "delta_E": de})
 
 

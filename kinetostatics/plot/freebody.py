@@ -15,6 +15,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Arc
 
+from ..common.angles import radian_column
 from ..model.scene import GROUND
 from ..results import Solution
 from .base import (
@@ -122,12 +123,69 @@ def _couple(ax: Axes, x: float, y: float, m: float, radius: float, color: str) -
     """A curved arrow of a couple: counterclockwise for m > 0."""
     ax.add_patch(Arc((x, y), 2 * radius, 2 * radius, theta1=20, theta2=300, color=color,
                      lw=1.3))
-    end = np.deg2rad(300 if m > 0 else 20)
+    end = radian_column(300 if m > 0 else 20)
     tip = np.array([x + radius * np.cos(end), y + radius * np.sin(end)])
     tangent = np.array([-np.sin(end), np.cos(end)]) * (1 if m > 0 else -1)
     ax.annotate("", tuple(tip + 0.25 * radius * tangent), tuple(tip),
                 arrowprops={"arrowstyle": "-|>", "color": color, "lw": 1.3,
                             "shrinkA": 0, "shrinkB": 0})
+
+
+def _force_arrows(ax: Axes, forces: list, sc: float, fmax: float, mmax: float, size: float,
+                  texts: list) -> tuple[dict, list]:
+    """Draw ``forces`` on ``ax`` as arrows from their points (``sc`` m per N) and their
+    couples as curved arrows; the inner reaction once, on the first body. Returns the
+    colours of the kinds drawn and the couples' legend handles."""
+    first_inner = True
+    kinds = {}
+    couples: list = []      # the couples: curved arrows, named in the legend
+    for f in forces:
+        col = {"reaction": REACTION_COLOR, "inner": "k"}.get(f["kind"],
+                                                          LOAD_COLORS.get(f["kind"], "0.3"))
+        if f["kind"] == "inner" and not first_inner:
+            continue        # the same force, reversed, on the second body: drawn once
+        mag = float(np.hypot(f["fx"], f["fy"]))
+        x, y = f["x"], f["y"]
+        if mag > 1e-12 * fmax:
+            tip = (x + sc * f["fx"], y + sc * f["fy"])
+            ax.annotate("", tip, (x, y), arrowprops={
+                "arrowstyle": "-|>", "color": col, "lw": 1.6, "shrinkA": 0, "shrinkB": 0,
+                "ls": "--" if f["kind"] == "inner" else "-"})
+            ax.update_datalim([(x, y), tip])
+            lab = f"{f['symbol']} {magnitude_text(mag)} N"
+            if f["kind"] == "reaction":     # which body acts on which, under it
+                lab += "\n" + f["label"].split(" ", 1)[1]
+            texts.append(ax.annotate(lab, tip,
+                                     xytext=(4 * f["fx"] / mag, 4 * f["fy"] / mag),
+                                     textcoords="offset points", fontsize=10, color=col,
+                                     ha="left" if f["fx"] >= 0 else "right",
+                                     va="bottom" if f["fy"] >= 0 else "top"))
+            kinds.setdefault(f["kind"], col)
+        if abs(f["m"]) > 1e-9 * max(mmax, fmax * size):      # not a rounding-level couple
+            r = 0.04 * size
+            _couple(ax, x, y, f["m"], r, col)
+            # each couple names its body (and a joint's couple its joint)
+            name = {"inertia": f"Mi {f['body']}"}.get(
+                f["kind"], "Me" if f["label"] == "Me" else
+                f"$M{couple_subscript(f.get('joint', ''))}$ on {f['body']}")
+            couples.append(Line2D([], [], color=col, lw=1.3, marker=r"$\circlearrowleft$"
+                                  if f["m"] > 0 else r"$\circlearrowright$", ms=9,
+                                  label=signed_text(name, f["m"], "N m")))
+        if f["kind"] == "inner":
+            first_inner = False
+    return kinds, couples
+
+
+def _force_legend(fig: Figure, ax: Axes, kinds: dict, couples: list) -> None:
+    """The legend under the diagram: the kinds of forces, then the couples."""
+    handles = [Line2D([], [], color=c, lw=1.6, ls="--" if k == "inner" else "-",
+                      label={"reaction": "outer joint reactions", "inner": "inner joint "
+                             "(on the first body; reversed on the other)"}.get(
+                                 k, f"{k} forces"))
+               for k, c in kinds.items()]
+    h, _ = ax.get_legend_handles_labels()
+    fig.legend(handles=h + handles + couples, fontsize=10, loc="outside lower left",
+               ncol=3 if couples else 4)
 
 
 def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
@@ -176,51 +234,8 @@ def dyad_free_body(sol: Solution, dyad=1, position: float | None = None, *,
     mmax = max((abs(f["m"]) for f in forces), default=0.0) or 1.0
     sc = round_scale(0.45 * size / fmax)      # m per N: 1, 2 or 5 x 10^k
     ref = 10.0 ** np.floor(np.log10(0.2 * size))      # m: the scale's length
-    first_inner = True
-    kinds = {}
-    couples: list = []      # the couples: curved arrows, named in the legend
-    for f in forces:
-        col = {"reaction": REACTION_COLOR, "inner": "k"}.get(f["kind"],
-                                                          LOAD_COLORS.get(f["kind"], "0.3"))
-        if f["kind"] == "inner" and not first_inner:
-            continue        # the same force, reversed, on the second body: drawn once
-        mag = float(np.hypot(f["fx"], f["fy"]))
-        x, y = f["x"], f["y"]
-        if mag > 1e-12 * fmax:
-            tip = (x + sc * f["fx"], y + sc * f["fy"])
-            ax.annotate("", tip, (x, y), arrowprops={
-                "arrowstyle": "-|>", "color": col, "lw": 1.6, "shrinkA": 0, "shrinkB": 0,
-                "ls": "--" if f["kind"] == "inner" else "-"})
-            ax.update_datalim([(x, y), tip])
-            lab = f"{f['symbol']} {magnitude_text(mag)} N"
-            if f["kind"] == "reaction":     # which body acts on which, under it
-                lab += "\n" + f["label"].split(" ", 1)[1]
-            texts.append(ax.annotate(lab, tip,
-                                     xytext=(4 * f["fx"] / mag, 4 * f["fy"] / mag),
-                                     textcoords="offset points", fontsize=10, color=col,
-                                     ha="left" if f["fx"] >= 0 else "right",
-                                     va="bottom" if f["fy"] >= 0 else "top"))
-            kinds.setdefault(f["kind"], col)
-        if abs(f["m"]) > 1e-9 * max(mmax, fmax * size):      # not a rounding-level couple
-            r = 0.04 * size
-            _couple(ax, x, y, f["m"], r, col)
-            # each couple names its body (and a joint's couple its joint)
-            name = {"inertia": f"Mi {f['body']}"}.get(
-                f["kind"], "Me" if f["label"] == "Me" else
-                f"$M{couple_subscript(f.get('joint', ''))}$ on {f['body']}")
-            couples.append(Line2D([], [], color=col, lw=1.3, marker=r"$\circlearrowleft$"
-                                  if f["m"] > 0 else r"$\circlearrowright$", ms=9,
-                                  label=signed_text(name, f["m"], "N m")))
-        if f["kind"] == "inner":
-            first_inner = False
-    handles = [Line2D([], [], color=c, lw=1.6, ls="--" if k == "inner" else "-",
-                      label={"reaction": "outer joint reactions", "inner": "inner joint "
-                             "(on the first body; reversed on the other)"}.get(
-                                 k, f"{k} forces"))
-               for k, c in kinds.items()]
-    h, _ = ax.get_legend_handles_labels()
-    fig.legend(handles=h + handles + couples, fontsize=10, loc="outside lower left",
-               ncol=3 if couples else 4)
+    kinds, couples = _force_arrows(ax, forces, sc, fmax, mmax, size, texts)
+    _force_legend(fig, ax, kinds, couples)
     ax.set_aspect("equal", adjustable="datalim")
     ax.margins(0.25)            # room for the labels around the arrows
     ax.autoscale_view()

@@ -6,6 +6,7 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.lines import Line2D
 
+from ..common.angles import radian_column
 from ..model.errors import WorkbenchError
 from .base import REACTION_COLOR, axes_or_new
 from .notation import reading
@@ -47,7 +48,7 @@ def draw_gear_pair(pair, ax: Axes | None = None) -> Axes:
     ax = axes_or_new(ax, figsize=(6, 6))
     o1, o2, p = (np.asarray(v, dtype=float) for v in (pair.O1, pair.O2, pair.P))
     r1, r2 = float(np.hypot(*(p - o1))), float(np.hypot(*(p - o2)))
-    cos_a = np.cos(np.deg2rad(pair.alpha_deg))
+    cos_a = np.cos(radian_column(pair.alpha_deg))
     t = np.linspace(0.0, 2.0 * np.pi, 361)
     texts: list = []            # placed clear of the circles and arrows (declutter)
     for o, r, c, k in ((o1, r1, "tab:blue", 1), (o2, r2, "tab:green", 2)):

@@ -106,6 +106,48 @@ def draw_body(ax: Axes, sol: Solution, name: str, i: int, color: str,
     return pts
 
 
+def _draw_joints(ax: Axes, sol: Solution, i: int, size: float) -> None:
+    """The pins (a ground pin on its triangle) and the sliders' guides at row ``i``."""
+    scene = sol.scene
+    for j in scene.joints.values():
+        if j.kind == "R":
+            b = j.bodies[1] if j.bodies[0] == GROUND else j.bodies[0]
+            xy = global_point(sol, b, j.point_on(b), i)
+            ax.plot(*xy, "o", color="k", mfc="white", ms=7, zorder=5)
+            if GROUND in j.bodies:
+                ax.plot(*xy, "^", color="k", ms=12, zorder=4, mfc="0.8")
+        else:
+            lo, hi = _guide_extent(sol, j, i, size)
+            gx, gy = global_point(sol, j.guide, j.points[0], i)
+            th = _guide_angle(sol, j, i)
+            u = np.array([np.cos(th), np.sin(th)])
+            ends = np.array([gx, gy]) + np.outer([lo, hi], u)
+            ax.plot(ends[:, 0], ends[:, 1], "--", color="0.4", lw=1)
+
+
+def _arrows(sol: Solution, i: int, forces: bool, loads: bool) -> list[tuple]:
+    """The arrows to draw at row ``i``: (label, x, y, fx, fy, colour) of the joint
+    reactions (``forces``) and of the nonzero loads (``loads``)."""
+    scene = sol.scene
+    n = sol.positions.size
+    arrows = []     # (label, x, y, fx, fy, color)
+    if forces:
+        for name in scene.joints:
+            r = sol.joint_reactions[name]
+            fx, fy = sol.reaction(name)
+            arrows.append((force_symbol(name), at_row(r.x, i, n), at_row(r.y, i, n), float(fx[i]),
+                           float(fy[i]), REACTION_COLOR))
+    if loads:
+        for ld in sol.loads:
+            fx, fy = at_row(ld.fx, i, n), at_row(ld.fy, i, n)
+            if fx == 0.0 and fy == 0.0:
+                continue
+            x, y = ld.position(sol.kin)
+            arrows.append((load_symbol(ld.kind, ld.body), at_row(x, i, n), at_row(y, i, n), fx, fy,
+                           LOAD_COLORS[ld.kind]))
+    return arrows
+
+
 def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | None = None,
                    ax: Axes | None = None, forces: bool = False, labels: bool = True,
                    force_scale: float | None = None, loads: bool = False) -> Axes:
@@ -138,7 +180,6 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
     """
     ax = axes_or_new(ax, figsize=(8.0, 6.0))
     i = row_index(sol, position, row)
-    n = sol.positions.size
     scene = sol.scene
     colors = body_colors()
     allpts = [xy for xy in scene.ground.values()]
@@ -150,35 +191,8 @@ def draw_mechanism(sol: Solution, position: float | None = None, *, row: int | N
     arr = np.array(allpts)
     size = float(np.ptp(arr, axis=0).max()) if len(arr) > 1 else 1.0
     size = size or 1.0
-    for j in scene.joints.values():
-        if j.kind == "R":
-            b = j.bodies[1] if j.bodies[0] == GROUND else j.bodies[0]
-            xy = global_point(sol, b, j.point_on(b), i)
-            ax.plot(*xy, "o", color="k", mfc="white", ms=7, zorder=5)
-            if GROUND in j.bodies:
-                ax.plot(*xy, "^", color="k", ms=12, zorder=4, mfc="0.8")
-        else:
-            lo, hi = _guide_extent(sol, j, i, size)
-            gx, gy = global_point(sol, j.guide, j.points[0], i)
-            th = _guide_angle(sol, j, i)
-            u = np.array([np.cos(th), np.sin(th)])
-            ends = np.array([gx, gy]) + np.outer([lo, hi], u)
-            ax.plot(ends[:, 0], ends[:, 1], "--", color="0.4", lw=1)
-    arrows = []     # (label, x, y, fx, fy, color)
-    if forces:
-        for name in scene.joints:
-            r = sol.joint_reactions[name]
-            fx, fy = sol.reaction(name)
-            arrows.append((force_symbol(name), at_row(r.x, i, n), at_row(r.y, i, n), float(fx[i]),
-                           float(fy[i]), REACTION_COLOR))
-    if loads:
-        for ld in sol.loads:
-            fx, fy = at_row(ld.fx, i, n), at_row(ld.fy, i, n)
-            if fx == 0.0 and fy == 0.0:
-                continue
-            x, y = ld.position(sol.kin)
-            arrows.append((load_symbol(ld.kind, ld.body), at_row(x, i, n), at_row(y, i, n), fx, fy,
-                           LOAD_COLORS[ld.kind]))
+    _draw_joints(ax, sol, i, size)
+    arrows = _arrows(sol, i, forces, loads)
     handles = []
     note = ""
     if arrows and singular_row(sol, i):

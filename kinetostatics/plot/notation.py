@@ -11,6 +11,8 @@ import re
 
 import numpy as np
 
+from ..common.angles import degree_column
+
 __all__ = ["GLOSS", "POLE", "direction_text", "gloss", "notation_problems", "number",
            "reading", "round_scale", "signed_text", "titled", "force_symbol",
            "couple_subscript", "load_symbol"]
@@ -126,7 +128,7 @@ def signed_text(name: str, value: float, unit: str, fmt: str = ".4g", *,
 
 def direction_text(v) -> str:
     """The direction of a vector as an angle from +x, 0 to 360 deg: ``"299.1°"``."""
-    a = float(np.degrees(np.arctan2(v[1], v[0]))) % 360.0
+    a = float(degree_column(np.arctan2(v[1], v[0]))) % 360.0
     s = number(a, ".1f")
     return ("0.0" if s == "360.0" else s) + "°"
 

@@ -10,6 +10,7 @@ named in a legend below the figure ("labels not placed"), never printed over ano
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Sequence
 
 import numpy as np
@@ -20,16 +21,22 @@ from matplotlib.path import Path
 from matplotlib.text import Annotation, Text
 from matplotlib.transforms import Bbox
 
+from ..common.angles import radian_column
 from .collide import drawn_paths
 from .style import figure_boxes, lay_out, text_extent
 
 __all__ = ["UNPLACED_TITLE", "declutter", "settle"]
 
-_DIRECTIONS = np.deg2rad(np.array([45, 135, 315, 225, 90, 270, 0, 180,
+_DIRECTIONS = radian_column(np.array([45, 135, 315, 225, 90, 270, 0, 180,
                                    22.5, 67.5, 112.5, 157.5, 202.5, 247.5, 292.5, 337.5]))
 _DISTANCES = (3.0, 6.0, 10.0, 15.0, 21.0, 28.0, 36.0, 46.0, 58.0, 72.0)      # points
 _LEADER = 12.0          # points: a label farther than this from its anchor gets a leader
 _PAD = 2.0              # pixels of free room around a placed label
+# a leader: matplotlib's plain annotation arrow ("simple", a head of nothing), a 0.7 pt line
+_LEADER_PROPS = {"width": 0.01, "headwidth": 0.01, "headlength": 0.01, "shrink": 0.0}
+_LEADERS: weakref.WeakSet[Annotation] = weakref.WeakSet()    # labels with a leader
+# the labels declutter keeps per Axes, placed again by settle
+_KEPT: weakref.WeakKeyDictionary[Axes, list[Text]] = weakref.WeakKeyDictionary()
 
 
 def _anchor(t: Annotation) -> np.ndarray | None:
@@ -95,18 +102,18 @@ class _Room:
 
 
 def _set_leader(t: Annotation, on: bool) -> None:
-    """A thin grey leader from the label to its anchor (or none)."""
+    """A thin grey leader from the label to its anchor (or none). The leader is the
+    annotation's own arrow without an arrow style: matplotlib then starts it at the corner
+    or side middle of the label nearest the anchor (the point the placing kept clear)."""
     if on:
-        t.arrowprops = {"arrowstyle": "-", "color": "0.45", "lw": 0.7,
-                        "shrinkA": 1, "shrinkB": 2}
-        t._arrow_relpos = (0.5, 0.5)
-        t.arrow_patch = FancyArrowPatch((0, 0), (1, 1), arrowstyle="-", color="0.45",
-                                        lw=0.7, shrinkA=1, shrinkB=2)
+        t.arrowprops = dict(_LEADER_PROPS)
+        t.arrow_patch = FancyArrowPatch((0, 0), (1, 1), color="0.45", lw=0.7)
         t.arrow_patch.set_figure(t.get_figure())
-    elif getattr(t, "_placed_leader", False):
+        _LEADERS.add(t)
+    elif t in _LEADERS:
         t.arrowprops = None
         t.arrow_patch = None
-    t._placed_leader = on
+        _LEADERS.discard(t)
 
 
 def _place_one(t: Annotation, room: _Room, renderer, scale: float) -> bool:
@@ -130,9 +137,6 @@ def _place_one(t: Annotation, room: _Room, renderer, scale: float) -> bool:
             t.set_va("bottom" if s > 0.3 else "top" if s < -0.3 else "center")
             _set_leader(t, far)
             tip = np.clip(a, [box.x0, box.y0], [box.x1, box.y1])
-            if far:     # the leader leaves the label at its point nearest the anchor
-                t._arrow_relpos = (float((tip[0] - box.x0) / box.width),
-                                   float((tip[1] - box.y0) / box.height))
             room.take(box.padded(-_PAD + 0.5), Path([a, tip]) if far else None)
             return True
     return False
@@ -211,12 +215,12 @@ def settle(fig) -> None:
     placed); the constrained layout is then frozen and the labels placed once more, so
     that the saved figure is the one measured.
     """
-    axes = [ax for ax in fig.axes if getattr(ax, "_clear_labels", None) is not None]
+    axes = [ax for ax in fig.axes if ax in _KEPT]
     r = lay_out(fig)
     for ax in fig.axes:
         _legend_off_data(ax, r)
     for ax in axes:
-        declutter(ax, ax._clear_labels, rounds=1, remember=False)
+        declutter(ax, _KEPT[ax], rounds=1, remember=False)
     lay_out(fig)
     for _ in range(3):
         if not any([_thin_ticks(ax, r) for ax in fig.axes]):
@@ -228,7 +232,7 @@ def settle(fig) -> None:
         lay_out(fig)
         fig.set_layout_engine("none")
     for ax in axes:
-        declutter(ax, ax._clear_labels, rounds=1, remember=False)
+        declutter(ax, _KEPT[ax], rounds=1, remember=False)
 
 
 def declutter(ax: Axes, texts: Sequence[Text], rounds: int = 1,
@@ -260,8 +264,8 @@ def declutter(ax: Axes, texts: Sequence[Text], rounds: int = 1,
     for t in movable:
         t.set_in_layout(False)
     if remember:
-        old = getattr(ax, "_clear_labels", [])
-        ax._clear_labels = old + [t for t in movable if all(t is not o for o in old)]
+        old = _KEPT.get(ax, [])
+        _KEPT[ax] = old + [t for t in movable if all(t is not o for o in old)]
     scale = fig.dpi / 72.0
     missing: list[Text] = []
     for _ in range(rounds):

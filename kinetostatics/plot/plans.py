@@ -338,12 +338,8 @@ def acceleration_plan(sol: Solution, position: float | None = None, *,
 
     Parameters
     ----------
-    sol : Solution
-    position : float, optional
-        Driver position (nearest row); ``row`` picks a row by index instead.
-    ax : Axes, optional
-    cog : bool
-        Add the centres of mass.
+    sol, position, row, ax, cog
+        As in :func:`velocity_plan`.
     components : bool
         Draw the normal and tangential parts of each body's first relative
         acceleration.

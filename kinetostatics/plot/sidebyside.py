@@ -12,9 +12,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..common.angles import radian_column
+
 __all__ = ["side_by_side"]
 
-_PARALLEL = np.sin(np.radians(6.0))     # arrows within 6 deg count as parallel
+_PARALLEL = np.sin(radian_column(6.0))     # arrows within 6 deg count as parallel
 _NEAR = 0.02                            # ... and as on one line within 2 % of the span
 
 

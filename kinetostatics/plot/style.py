@@ -13,7 +13,8 @@ from matplotlib.legend import Legend
 from matplotlib.text import Annotation, Text
 
 __all__ = ["LECTURE", "PROJECTOR", "SMALLEST_FONT", "drawn_extent", "figure_boxes", "lay_out",
-           "lecture_style", "overlapping_texts", "projector", "text_extent"]
+           "lecture_style", "overlapping_texts", "projector", "text_extent",
+           "undrawn_ticks"]
 
 #: The smallest font of a picture, in points at the figure's printed size.
 SMALLEST_FONT = 10.0
@@ -100,7 +101,7 @@ def lay_out(fig: Figure) -> RendererBase:
     return fig.canvas.get_renderer()
 
 
-def _undrawn_ticks(fig: Figure) -> set[int]:
+def undrawn_ticks(fig: Figure) -> set[int]:
     """Tick labels matplotlib keeps but does not draw (ticks outside the view)."""
     out = set()
     for ax in fig.findobj(Axes):       # insets included
@@ -135,7 +136,7 @@ def figure_boxes(fig: Figure, renderer) -> list[tuple[Text | Legend, object]]:
     counts as one box (its entries are laid out by matplotlib and never collide)."""
     out = []
     legends = fig.findobj(Legend)
-    inside = {id(t) for lg in legends for t in lg.findobj(Text)} | _undrawn_ticks(fig)
+    inside = {id(t) for lg in legends for t in lg.findobj(Text)} | undrawn_ticks(fig)
     for lg in legends:
         if lg.get_visible():
             out.append((lg, lg.get_window_extent(renderer)))

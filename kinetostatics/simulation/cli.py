@@ -57,13 +57,13 @@ def add_commands(sub) -> None:
                    help="run at this driver speed instead (rad/s or m/s)")
     c.add_argument("--error-bias", type=float, default=0.0,
                    help="joint error_bias (default 0; pymunk's own default is 0.9**60)")
-    c.add_argument("--no-ballast", action="store_true",
-                   help="never build the driver's side heavy for the solver (by default a "
-                        "run that diverges with the driver solved last is run once more "
-                        "with that ballast before the driver is solved first)")
-    c.add_argument("--public", action="store_true",
-                   help="only pymunk's public API in the stepping loop (slower)")
-    c.add_argument("--json", action="store_true", help="print one JSON object")
+    for switch, text in (
+            ("--no-ballast", "never build the driver's side heavy for the solver (by default "
+                             "a run that diverges with the driver solved last is run once "
+                             "more with that ballast before the driver is solved first)"),
+            ("--public", "only pymunk's public API in the stepping loop (slower)"),
+            ("--json", "print one JSON object")):
+        c.add_argument(switch, action="store_true", help=text)
     c.add_argument("--rows", metavar="CSV", help="write the per-position comparison as CSV")
     c.add_argument("--plot", metavar="PNG", help="write the comparison (or study) picture")
     c.add_argument("--dpi", type=dpi_argument, default=150,

@@ -41,6 +41,7 @@ from typing import Any
 
 import pymunk
 
+from ..common.angles import degree_value
 from ..model.scene import GROUND, Scene, load_scene
 from .ballast import ballast_plan, describe, start_state
 from .errors import SimulationError
@@ -196,7 +197,7 @@ class SimModel:
         d = self.scene.driver
         body = self.bodies[d.body]
         if d.kind == "R":
-            return math.degrees(body.angle)
+            return degree_value(body.angle)
         (lx, ly), (ux, uy) = self.line
         px, py = body.local_to_world(self.slider_local)
         return (px - lx) * ux + (py - ly) * uy

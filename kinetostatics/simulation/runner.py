@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from ..common.angles import radian_value
 from ..model.memory import check_memory
 from ..model.scene import Scene, load_scene
 from ..solver.footprint import solve_bytes
@@ -76,7 +77,7 @@ def plan(scene: Scene, *, dt: float | None, steps_per_revolution: int | None,
             duration = revolutions * period
         else:
             start = float(pos.min() if speed > 0 else pos.max())
-            duration = math.radians(span) / abs(speed)
+            duration = radian_value(span) / abs(speed)
         unit = period
     else:
         span = float(np.ptp(pos))

@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 import pymunk
 
+from ..common.angles import degree_column
 from .ballast import ballast_function
 from .drift import check_run, diverged
 from .errors import SimulationError
@@ -452,7 +453,7 @@ def _driver_positions(model: SimModel, pose: np.ndarray) -> np.ndarray:
     i = model.moving.index(model.scene.driver.body)
     th = pose[:, i, 2]
     if model.kind == "R":
-        return np.degrees(th)
+        return degree_column(th)
     (lx, ly), (ux, uy) = model.line
     sx, sy = model.slider_local
     px = pose[:, i, 0] + np.cos(th) * sx - np.sin(th) * sy

@@ -15,12 +15,13 @@ from itertools import combinations
 
 import numpy as np
 
+from ..common.angles import radian_value
 from ..model.scene import Scene
 from .reference import reference_solution, sweep_positions
 
 __all__ = ["first_guess_steps"]
 
-STEP_ANGLE = math.radians(0.1)
+STEP_ANGLE = radian_value(0.1)
 """The fastest body turns a tenth of a degree per step (3600 steps per revolution of a
 crank that is the fastest body: errors of 1e-6 to 1e-5 on the bundled scenes)."""
 

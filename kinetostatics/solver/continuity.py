@@ -185,6 +185,8 @@ def _turns(probe: _Probe, lo, hi, ends) -> np.ndarray:
     t = np.arange(1, SPLIT) / SPLIT
     for round_ in range(MAX_ROUNDS + 1):
         h = b - a
+        # degrees kept (1/10): the driver's positions are degrees (Scene) and the probe's
+        # step must be radians for the angle estimate
         hs = np.deg2rad(h) if probe.rad else h
         d = _wrap(thb - tha)
         bad = _needs_probe(d, _estimate(hs, ra, rb, pa, pb)) & (h > tiny)
@@ -255,6 +257,7 @@ def body_angles(kin: Kinematics) -> dict[str, np.ndarray]:
         if b == scene.driver.body and scene.driver.kind == "R":
             out[b] = pos.copy()
         elif np.ndim(kin.bodies[b].cos) == 0 and np.ndim(kin.bodies[b].sin) == 0:
+            # degrees kept (2/10): the body angle column is continuous in degrees
             a = np.full(n, float(np.rad2deg(kin.bodies[b].theta)))
             out[b] = _anchor(a) if n else a
         else:
@@ -274,7 +277,7 @@ def body_angles(kin: Kinematics) -> dict[str, np.ndarray]:
         else:               # at rest every omega is 0: the ratios at unit speed
             _, r, rp = probe(ps)
         h = np.diff(ps)
-        hs = np.deg2rad(h) if drv.kind == "R" else h
+        hs = np.deg2rad(h) if drv.kind == "R" else h     # degrees kept (3/10): as above
         step = np.diff(base, axis=1)
         check = _needs_probe(step, _estimate(hs, r[:, :-1], r[:, 1:], rp[:, :-1], rp[:, 1:]))
         iv = np.flatnonzero(check)
@@ -290,7 +293,7 @@ def body_angles(kin: Kinematics) -> dict[str, np.ndarray]:
             base = base + 2.0 * np.pi * np.concatenate(
                 [np.zeros((len(names), 1)), np.cumsum(extra, axis=1)], axis=1)
     for i, b in enumerate(names):
-        a = _anchor(np.rad2deg(base[i]))
+        a = _anchor(np.rad2deg(base[i]))     # degrees kept (4/10): anchored in degrees
         res = np.empty(n)
         res[order] = a
         out[b] = res

@@ -131,6 +131,8 @@ class DyadMotion:
         2.60-2.61): tau, the angle between the force the dyad transmits and the velocity
         of the point it drives, and 180 - tau transmit alike; 0 is a dead centre."""
         s_, c_ = self._compute_tau()
+        # degrees kept (5/10): the solver's one angle result in degrees, read by the
+        # tables, the pictures and the summaries alike
         return np.rad2deg(np.arctan2(np.abs(s_), np.abs(c_)))
 
 
@@ -170,14 +172,15 @@ class Kinematics:
 
 
 def _fmt_positions(scene: Scene, rows: np.ndarray, values: np.ndarray | None = None,
-                   unit: str = "m") -> str:
-    pos = scene.driver.positions
-    pu = "deg" if scene.driver.kind == "R" else "m"
+                   unit: str = "length") -> str:
+    # said in the scene's own units (a mm scene's gap in mm): the user reads what they typed
+    pos, units = scene.driver.positions, scene.units
+    quantity = "angle" if scene.driver.kind == "R" else "length"
     items = []
     for i, r in enumerate(rows[:6]):
-        s = f"{pos[r]:g} {pu}"
+        s = units.quote(float(pos[r]), quantity, file=True)
         if values is not None:
-            s += f" (by {values[i]:.3g} {unit})"
+            s += f" (by {units.quote(float(values[i]), unit, '.3g')})"
         items.append(s)
     more = f" and {rows.size - 6} more" if rows.size > 6 else ""
     return ", ".join(items) + more
@@ -466,8 +469,8 @@ def _refuse_coincident_pivots(scene: Scene, dyad: Dyad, reach: np.ndarray) -> No
         raise AssemblyError(
             f"dyad {dyad.label}: the pivots of its joints {o1.name!r} and {o2.name!r} "
             f"coincide at driver position(s) {_fmt_positions(scene, tiny)} (closer than "
-            f"1e-12 of the mechanism's size {scene.size:.4g} m); the dyad's angles are "
-            "undefined there: leave those positions out of the sweep")
+            f"1e-12 of the mechanism's size {scene.units.quote(scene.size, 'length', '.4g')}); "
+            "the dyad's angles are undefined there: leave those positions out of the sweep")
 
 
 def _choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver, pr) -> int:
@@ -482,8 +485,8 @@ def _choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver, pr) -> int:
         raise AssemblyError(
             f"dyad {dyad.label} cannot be assembled at the first driver position "
             f"{_fmt_positions(scene, np.array([0]))}: the links do not reach by "
-            f"{float(np.ravel(gap)[0]):.4g} m; change the lengths, the ground points or "
-            "the sweep's start")
+            f"{scene.units.quote(float(np.ravel(gap)[0]), 'length', '.4g')}; change the "
+            "lengths, the ground points or the sweep's start")
     org = [body_origin(pr[i], cs[i], ss[i]) for i in range(2)]
     # each body's cos, sin and origin in either assembly, as floats (read once)
     frames = {k: [[_at(v, r) for v in (*cs[i], *org[i])] for i in range(2)]

@@ -254,7 +254,7 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
         b = int(starts[hi - 1] + counts[hi - 1])
         try:
             sol = _trapped_run(trusty, stacker, structure, ks, lo, hi, counts[lo:hi],
-                               positions[a:b], compiled)
+                               positions[a:b], compiled, lean)
         except Exception:
             alone.extend(range(lo, hi))
             m2[a:b] = np.inf        # solved alone: nothing of it to probe here
@@ -326,18 +326,20 @@ def _trapped_run(trusty: bool, *args) -> Solved:
 
 
 def _solve_run(stacker: Stacker, structure, ks: np.ndarray, lo: int, hi: int,
-               counts: np.ndarray, positions: np.ndarray, compiled: bool = False
-               ) -> Solved:
+               counts: np.ndarray, positions: np.ndarray, compiled: bool = False,
+               kept: bool = False) -> Solved:
     """The stacked arrays of scenes ``lo`` to ``hi - 1`` (``counts`` rows each, at
     ``positions``), each dyad in its scene's assembly; a run too long for the cache (a
     long sweep) in blocks, gathered (:func:`~kinetostatics.solver.blocks.solve_blocks`),
     unless a load's threshold is its sweep's maximum (``resist``, ``when = "resisting"``:
     then in one pass, each scene's maximum over its own rows). ``compiled``: on the
     compiled path (:mod:`~kinetostatics.solver.fast`) unless a kernel meets a row the
-    numpy path must judge."""
+    numpy path must judge; ``kept`` there: only what the scenes' cut Solutions keep
+    (Me/Fe, the flags, the closeness to a dead centre: the rest of each tile in scratch,
+    :func:`~kinetostatics.solver.fast.solve.solve_run_compiled`)."""
     st = replace(structure, assembly=tuple(np.repeat(k[lo:hi], counts) for k in ks))
     if compiled:
-        sol = solve_run_compiled(stacker.runs(lo, hi, counts, positions), st)
+        sol = solve_run_compiled(stacker.runs(lo, hi, counts, positions), st, kept)
         if sol is not None:
             return sol
     if blocks.blockable(stacker.base, positions.size):    # (not a sweep's maxima)

@@ -208,7 +208,23 @@ def run_notebook(nb, timeout: float = 60.0, kernel: str = "python3",
             raise NotebookRunError(_stopped(made, nb, dead=True)) from None
         except CellExecutionError:
             raise NotebookRunError(_failed_cell(run, nb)) from None
+        except ValueError as exc:
+            if "Invalid Signature" not in str(exc):
+                raise
+            raise NotebookRunError(_broken_message(made, nb)) from None
     return _answers_read(run)
+
+
+def _broken_message(made: list, nb) -> str:
+    """Why a kernel's message arrived broken (signed wrongly): the kernel could not
+    finish sending it, most often because a thread of its own could not start within
+    the sandbox's memory limit."""
+    c = made[-1] if made else None
+    k = c.cell + 1 if c is not None else 0
+    where = cell_name(nb, k) if 0 < k <= len(nb.cells) else "a cell"
+    limit = f" of {c.limits.memory_mb} MB" if c is not None else ""
+    return (f"the kernel broke off a message in {where} (it could not start a thread: "
+            f"most often the memory limit{limit} was hit)")
 
 
 def _answers_read(run) -> tuple[str | None, dict[str, Any]]:

@@ -20,6 +20,7 @@ import textwrap
 from collections.abc import Mapping
 from typing import Any
 
+from ..common.angles import radian_column
 from .sheets import data_rows, format_value, key_values, leaked_values, question_rows
 
 __all__ = ["handout_pdf", "picture_figure", "picture_uri"]
@@ -64,7 +65,7 @@ def picture_figure(exercise, variant: Mapping):
         ax = fig.add_axes((0.12, 0.1, 0.58, 0.8))
         rmax = 0.0
         for k, u in enumerate(scene["rotor"]["unbalance"], 1):
-            t = np.radians(u["angle"])
+            t = radian_column(u["angle"])
             xy = (u["radius"] * np.cos(t), u["radius"] * np.sin(t))
             rmax = max(rmax, u["radius"])
             ax.annotate("", xy, (0, 0), arrowprops={"arrowstyle": "-|>"})

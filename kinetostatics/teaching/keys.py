@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from ..common.angles import degree_column
 from ..model.errors import WorkbenchError
 from ..model.tomlio import read_source
 from .questions import ANGLE_ATOL, ATOL_FRACTION, Question, is_mechanism, parse_question
@@ -184,7 +185,7 @@ def _reaction_value(q: Question, sol, psol, summ: dict) -> tuple[float, float]:
         full = np.broadcast_to(s0.N if q.q == "N" else s0.M, sol.positions.shape)
         return val, float(np.abs(full).max())
     return {"F": float(np.hypot(px[i], py[i])), "Fx": float(px[i]), "Fy": float(py[i]),
-            "Fangle": float(np.degrees(np.arctan2(py[i], px[i])) % 360.0)}[q.q], scale
+            "Fangle": float(degree_column(np.arctan2(py[i], px[i])) % 360.0)}[q.q], scale
 
 
 def _body_value(q: Question, sol, psol) -> tuple[float, float | None]:

@@ -13,11 +13,13 @@ name                      exercise
 
 from __future__ import annotations
 
+import inspect
 import math
 from collections.abc import Callable, Mapping
 
 import pandas as pd
 
+from ..common.angles import radian_value
 from ..model.errors import WorkbenchError
 from .variants import Exercise
 
@@ -52,11 +54,37 @@ ax.set_ylim(-0.16, 0.16)
 ax.set_title("the eccentric masses (end view)");"""
 
 
+_FACTORY_DOC = """Parameters
+----------
+seed : int, optional
+    The exercise's seed (default: a secret one; keep it private for marked work).
+
+Returns
+-------
+Exercise"""
+
+
+def _factory(make: Callable[..., Exercise]) -> Callable[..., Exercise]:
+    """An exercise factory of the library: its docstring ends with the Parameters and
+    Returns every factory shares (written once, here)."""
+    make.__doc__ = inspect.cleandoc(make.__doc__ or "") + "\n\n" + _FACTORY_DOC
+    return make
+
+
 def _bar(name: str, length: float, points: dict) -> dict:
     """A bar of STEEL_BAR kg/m along its local x axis, centre of mass at mid-length."""
     m = STEEL_BAR * length
     return {"name": name, "mass": m, "inertia": m * length * length / 12,
             "cog": [length / 2, 0.0], "points": points}
+
+
+def _pins(*joints: str) -> list[dict]:
+    """Revolute joints, each written ``"name body-body"``."""
+    out = []
+    for j in joints:
+        name, pair = j.split(" ")
+        out.append({"name": name, "kind": "R", "bodies": pair.split("-")})
+    return out
 
 
 def _lengths_data(p: dict, scene: dict) -> list:
@@ -68,6 +96,20 @@ def _lengths_data(p: dict, scene: dict) -> list:
              "mb": ("kg", "block mass")}
     sym = {"rpm": "n", "load": "P", "mp": "m_p", "mb": "m_b"}
     return [(sym.get(k, k), p[k], *words[k]) for k in words if k in p]
+
+
+def _prose(text: str) -> str:
+    """A paragraph written over several source lines, as one line of text."""
+    return " ".join(text.split())
+
+
+def _mechanism_exercise(seed: int | None, name: str, title: str, text: str, pos: float,
+                        template: Callable[[Mapping[str, float]], dict],
+                        **fields) -> Exercise:
+    """An exercise on a mechanism: its data are the lengths (and the rest of the drawn
+    values), its picture the mechanism at the driver position ``pos`` (deg)."""
+    return Exercise(template=template, seed=seed, title=title, text=text, name=name,
+                    data=_lengths_data, picture=MECHANISM_PICTURE.format(pos=pos), **fields)
 
 
 # ---------------------------------------------------------------- ready exercises
@@ -92,10 +134,7 @@ def _four_bar_scene(p: Mapping[str, float]) -> dict:
              "points": {"D": [0.0, 0.0], "C": [c, 0.0], "E": [0.6 * c, 0.0]}},
         ],
         "joints": [
-            {"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
-            {"name": "B", "kind": "R", "bodies": ["crank", "coupler"]},
-            {"name": "C", "kind": "R", "bodies": ["coupler", "rocker"]},
-            {"name": "D", "kind": "R", "bodies": ["ground", "rocker"]},
+            *_pins("A ground-crank", "B crank-coupler", "C coupler-rocker", "D ground-rocker"),
         ],
         "loads": [{"body": "rocker", "point": "E", "resist": float(p["load"])}],
         "near": {"C": [d, 0.8 * c]},
@@ -106,56 +145,35 @@ def _grashof_crank_rocker(scene: dict, key: dict) -> bool:
     return key.get("tau_min", 90.0) >= 25.0
 
 
+@_factory
 def four_bar_exercise(seed: int | None = None) -> Exercise:
     """The four-bar exercise of the sheets: a crank-rocker with lengths, speed and load
     drawn per student; asked: Me at 30 deg, the mean and largest Me, |F_B| max, |F_C|
     at 30 deg, the rocker's angle and angular velocity at 30 deg, the smallest
-    transmission angle. Variants with a transmission angle below 25 deg are redrawn.
-
-    Parameters
-    ----------
-    seed : int, optional
-        The exercise's seed (default: a secret one; keep it private for marked work).
-
-    Returns
-    -------
-    Exercise
-    """
-    text = ("A crank-rocker four-bar ABCD (crank AB = a, coupler BC = b, rocker CD = c, frame "
-            "AD = d; bars of 7.8 kg/m with their centres of mass at mid-length) turns at n "
-            "rpm, counter-clockwise. A force P resists the motion of the rocker's point E "
-            "(DE = 0.6 c); gravity acts. Find, by kinetostatics (course text 002, s. 2.3): "
-            "the equilibrating moment Me at φ = 30°, its mean and largest values over the "
-            "cycle, the largest reaction in B, the reaction in C at φ = 30°, the rocker's "
-            "angle and angular velocity at φ = 30°, and the smallest transmission angle "
-            "min(τ, 180° − τ).")
-    return Exercise(
-        template=_four_bar_scene,
+    transmission angle. Variants with a transmission angle below 25 deg are redrawn."""
+    text = _prose("""A crank-rocker four-bar ABCD (crank AB = a, coupler BC = b, rocker CD = c,
+        frame AD = d; bars of 7.8 kg/m with their centres of mass at mid-length) turns at n rpm,
+        counter-clockwise. A force P resists the motion of the rocker's point E (DE = 0.6 c);
+        gravity acts. Find, by kinetostatics (course text 002, s. 2.3): the equilibrating moment
+        Me at φ = 30°, its mean and largest values over the cycle, the largest reaction in B,
+        the reaction in C at φ = 30°, the rocker's angle and angular velocity at φ = 30°, and
+        the smallest transmission angle min(τ, 180° − τ).""")
+    return _mechanism_exercise(
+        seed, "four_bar", "Kinetostatics of a four-bar", text, 30, _four_bar_scene,
         ranges={"a": (0.08, 0.12, 0.005), "b": (0.26, 0.34, 0.01), "c": (0.20, 0.28, 0.01),
                 "d": (0.28, 0.34, 0.01), "rpm": (150.0, 400.0, 10.0),
                 "load": (100.0, 300.0, 10.0)},
         questions=["Me@30", "Me_mean", "Me_max", "Fmax[B]", "F[C]@30", "angle[rocker]@30",
                    "omega[rocker]@30", "tau_min"],
-        seed=seed, title="Kinetostatics of a four-bar", text=text,
-        check=_grashof_crank_rocker, name="four_bar", data=_lengths_data,
-        picture=MECHANISM_PICTURE.format(pos=30))
+        check=_grashof_crank_rocker)
 
 
+@_factory
 def rotor_exercise(seed: int | None = None) -> Exercise:
     """The rotor exercise of the sheets: three eccentric masses in three planes, two
     correction planes (dynamic balancing by design, seed 002 eqs 3.9-3.14); masses,
     radii and angles drawn per student; asked: both correction masses and angles and
-    the initial resultant force. Variants with a correction mass below 1 g are redrawn.
-
-    Parameters
-    ----------
-    seed : int, optional
-        The exercise's seed (default: a secret one).
-
-    Returns
-    -------
-    Exercise
-    """
+    the initial resultant force. Variants with a correction mass below 1 g are redrawn."""
     template = {
         "title": "Rotor, dynamic balancing (exercise)",
         "rotor": {
@@ -173,10 +191,10 @@ def rotor_exercise(seed: int | None = None) -> Exercise:
         ranges[f"rotor.unbalance.{k}.mass"] = (0.005, 0.030, 0.001)
         ranges[f"rotor.unbalance.{k}.radius"] = (0.06, 0.14, 0.01)
         ranges[f"rotor.unbalance.{k}.angle"] = (0.0, 355.0, 5.0)
-    text = ("A rigid rotor turning at 1500 rpm carries three eccentric masses m_k at radii "
-            "r_k, angles θ_k, in planes z_k. Balance it in the planes z = 0 and z = 0.30 m "
-            "with masses fixed at 0.12 m (course text 002, eqs 3.9-3.14): give both "
-            "correction masses and their angles, and the resultant inertia force before balancing.")
+    text = _prose("""A rigid rotor turning at 1500 rpm carries three eccentric masses m_k at
+        radii r_k, angles θ_k, in planes z_k. Balance it in the planes z = 0 and z = 0.30 m with
+        masses fixed at 0.12 m (course text 002, eqs 3.9-3.14): give both correction masses and
+        their angles, and the resultant inertia force before balancing.""")
 
     def big_enough(scene: dict, key: dict) -> bool:      # angles of tiny masses mean little
         return min(key["mass[1]"], key["mass[2]"]) >= 1e-3
@@ -220,9 +238,7 @@ def _slider_crank_scene(p: Mapping[str, float]) -> dict:
              "points": {"C": [0.0, 0.0]}},
         ],
         "joints": [
-            {"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
-            {"name": "B", "kind": "R", "bodies": ["crank", "rod"]},
-            {"name": "C", "kind": "R", "bodies": ["rod", "piston"]},
+            *_pins("A ground-crank", "B crank-rod", "C rod-piston"),
             {"name": "C-slide", "kind": "T", "guide": "ground", "slider": "piston",
              "line_point": "O", "line_angle": 0.0, "slider_point": "C"},
         ],
@@ -231,21 +247,12 @@ def _slider_crank_scene(p: Mapping[str, float]) -> dict:
     }
 
 
+@_factory
 def slider_crank_exercise(seed: int | None = None) -> Exercise:
     """A piston machine: a centred slider-crank with crank, rod, piston mass, speed and
     working force drawn per student; asked: Me at 60 deg, its mean and largest values,
     the reaction in B and the piston's normal force at 60 deg, the piston's speed and
-    acceleration at 60 deg, the smallest transmission angle.
-
-    Parameters
-    ----------
-    seed : int, optional
-        The exercise's seed (default: a secret one).
-
-    Returns
-    -------
-    Exercise
-    """
+    acceleration at 60 deg, the smallest transmission angle."""
     text = ("A centred slider-crank ABC (crank AB = r, connecting rod BC = l, steel bars "
             f"of {STEEL_BAR} kg/m with their centres of mass at mid-length; piston of mass "
             "m_p at C sliding on the x axis through A) turns at n rpm, counter-clockwise. "
@@ -254,14 +261,12 @@ def slider_crank_exercise(seed: int | None = None) -> Exercise:
             "mean and largest values over the cycle, the reaction in B and the normal "
             "force of the cylinder on the piston at φ = 60°, the piston's speed and "
             "acceleration at φ = 60°, and the smallest transmission angle min(τ, 180° − τ).")
-    return Exercise(
-        template=_slider_crank_scene,
+    return _mechanism_exercise(
+        seed, "slider_crank", "Kinetostatics of a slider-crank", text, 60, _slider_crank_scene,
         ranges={"r": (0.06, 0.12, 0.005), "l": (0.30, 0.45, 0.01), "rpm": (300.0, 900.0, 20.0),
                 "mp": (1.0, 4.0, 0.1), "load": (500.0, 3000.0, 50.0)},
         questions=["Me@60", "Me_mean", "Me_max", "F[B]@60", "N[C-slide]@60",
                    "v[piston.C]@60", "a[piston.C]@60", "tau_min"],
-        seed=seed, title="Kinetostatics of a slider-crank", text=text,
-        name="slider_crank", data=_lengths_data, picture=MECHANISM_PICTURE.format(pos=60),
         labels={"N[C-slide]@60": "normal force of the cylinder on the piston at phi = 60 deg, "
                                  "positive along +y"})
 
@@ -284,51 +289,39 @@ def _slotted_lever_scene(p: Mapping[str, float]) -> dict:
             _bar("lever", L, {"O4": [0.0, 0.0], "E": [L, 0.0]}),
         ],
         "joints": [
-            {"name": "O2", "kind": "R", "bodies": ["ground", "crank"]},
-            {"name": "A", "kind": "R", "bodies": ["crank", "block"]},
+            *_pins("O2 ground-crank", "A crank-block"),
             {"name": "A-slot", "kind": "T", "guide": "lever", "slider": "block",
              "line_point": "O4", "line_angle": 0.0, "slider_point": "A"},
-            {"name": "O4", "kind": "R", "bodies": ["ground", "lever"]},
+            *_pins("O4 ground-lever"),
         ],
         "loads": [{"body": "lever", "point": "E", "force": [-float(p["load"]), 0.0]}],
         "near": {"lever.E": [0.0, L]},
     }
 
 
+@_factory
 def slotted_lever_exercise(seed: int | None = None) -> Exercise:
     """A crank and slotted lever (quick return, RTR dyad) with the crank, the distance
     of the pivots, the lever, the block mass, the speed and the force drawn per
     student; asked: Me at 45 deg and its largest value, the normal force of the block
     on the slot and the reaction in O4 at 45 deg, the largest reaction in O4, the
-    lever's angle, angular velocity and angular acceleration at 45 deg.
-
-    Parameters
-    ----------
-    seed : int, optional
-        The exercise's seed (default: a secret one).
-
-    Returns
-    -------
-    Exercise
-    """
-    text = ("A crank O2A (length r, steel bar of 7.8 kg/m) turns at n rpm, counter-clockwise, "
-            "about O2, a distance e above the pivot O4 of a slotted lever O4E (length L, "
-            "steel bar of 7.8 kg/m); a block of mass m_b pinned to the crank at A slides in "
-            "the lever's slot along O4E. A horizontal force P acts at E in the -x "
-            "direction; gravity acts (-y). Find by kinetostatics: the equilibrating moment "
-            "Me at φ = 45° and its largest value over the cycle, the normal force of the "
-            "slot on the block and the reaction in O4 at φ = 45°, the largest reaction in "
-            "O4, and the lever's angle, angular velocity and angular acceleration at "
-            "φ = 45°.")
-    return Exercise(
-        template=_slotted_lever_scene,
+    lever's angle, angular velocity and angular acceleration at 45 deg."""
+    text = _prose("""A crank O2A (length r, steel bar of 7.8 kg/m) turns at n rpm,
+        counter-clockwise, about O2, a distance e above the pivot O4 of a slotted lever O4E
+        (length L, steel bar of 7.8 kg/m); a block of mass m_b pinned to the crank at A slides
+        in the lever's slot along O4E. A horizontal force P acts at E in the -x direction;
+        gravity acts (-y). Find by kinetostatics: the equilibrating moment Me at φ = 45° and its
+        largest value over the cycle, the normal force of the slot on the block and the reaction
+        in O4 at φ = 45°, the largest reaction in O4, and the lever's angle, angular velocity
+        and angular acceleration at φ = 45°.""")
+    return _mechanism_exercise(
+        seed, "slotted_lever", "Kinetostatics of a crank and slotted lever", text, 45,
+        _slotted_lever_scene,
         ranges={"r": (0.08, 0.14, 0.005), "e": (0.25, 0.40, 0.01), "L": (0.50, 0.70, 0.01),
                 "mb": (0.3, 1.0, 0.1), "rpm": (60.0, 240.0, 10.0),
                 "load": (100.0, 500.0, 10.0)},
         questions=["Me@45", "Me_max", "N[A-slot]@45", "F[O4]@45", "Fmax[O4]",
                    "angle[lever]@45", "omega[lever]@45", "alpha[lever]@45"],
-        seed=seed, title="Kinetostatics of a crank and slotted lever", text=text,
-        name="slotted_lever", data=_lengths_data, picture=MECHANISM_PICTURE.format(pos=45),
         labels={"N[A-slot]@45": "normal force of the slot on the block at phi = 45 deg, "
                                 "positive along the lever's left normal (O4E turned +90 deg)"})
 
@@ -340,8 +333,8 @@ def _resonance_scene(p: Mapping[str, float]) -> dict:
     3.22-3.28): alone, with the trial unbalance Q = m r at 0 deg, and at 180 deg (a
     ratio near 1 lets three readings fix the correction)."""
     q = float(p["trial_mass"]) * float(p["trial_radius"])
-    u = float(p["ratio"]) * q * complex(math.cos(math.radians(p["theta"])),
-                                        math.sin(math.radians(p["theta"])))
+    u = float(p["ratio"]) * q * complex(math.cos(radian_value(p["theta"])),
+                                        math.sin(radian_value(p["theta"])))
     k = float(p["k"])
     return {"title": "Resonance-speed balancing, three runs (exercise)",
             "resonance_test": [{
@@ -367,29 +360,19 @@ def _phi_clear(scene: dict, key: dict) -> bool:
     return 20.0 <= key["res_phi[1]"] <= 160.0
 
 
+@_factory
 def resonance_exercise(seed: int | None = None) -> Exercise:
     """Balancing at the resonance speed by the amplitude parallelogram (three runs, seed
     002 eqs 3.22-3.31): the trial mass, the radii and the three amplitudes drawn per
     student (from a hidden unbalance); asked: A, phi, the unbalance, the correction
-    mass and both candidate angles.
-
-    Parameters
-    ----------
-    seed : int, optional
-        The exercise's seed (default: a secret one).
-
-    Returns
-    -------
-    Exercise
-    """
-    text = ("A rotor swings on a balancing machine about an axis in correction plane II; "
-            "its amplitude at resonance is read three times: A1 without trial mass, A2 "
-            "with the trial mass m at radius r at the 0° mark, A3 with it at the 180° "
-            "mark. By the amplitude parallelogram (course text 002, eqs 3.22-3.31) find: the "
-            "amplitude A the trial mass alone would give, the angle φ between the "
-            "unbalance and the 0° mark, the unbalance m1 r1 of plane I, the correction "
-            "mass at radius r_c, and the two candidate angles of the correction mass, "
-            "180° + φ and its mirror 180° − φ (three runs cannot tell them apart).")
+    mass and both candidate angles."""
+    text = _prose("""A rotor swings on a balancing machine about an axis in correction plane II;
+        its amplitude at resonance is read three times: A1 without trial mass, A2 with the trial
+        mass m at radius r at the 0° mark, A3 with it at the 180° mark. By the amplitude
+        parallelogram (course text 002, eqs 3.22-3.31) find: the amplitude A the trial mass
+        alone would give, the angle φ between the unbalance and the 0° mark, the unbalance m1 r1
+        of plane I, the correction mass at radius r_c, and the two candidate angles of the
+        correction mass, 180° + φ and its mirror 180° − φ (three runs cannot tell them apart).""")
     return Exercise(
         template=_resonance_scene,
         ranges={"ratio": (0.7, 1.5, 0.05), "theta": (0.0, 355.0, 5.0),

@@ -198,18 +198,17 @@ _WORDS = {
 }
 _SCALES = {
     "Me": "the largest |Me| over the cycle", "Fe": "the largest |Fe| over the cycle",
-    "F": "the largest reaction in joint {arg}", "Fx": "the largest reaction in joint {arg}",
-    "Fy": "the largest reaction in joint {arg}", "Fmax": "the largest reaction in {arg}",
+    **dict.fromkeys(("F", "Fx", "Fy"), "the largest reaction in joint {arg}"),
+    "Fmax": "the largest reaction in {arg}",
     "N": "the largest |N| in {arg}", "M": "the largest |M| in {arg}",
     "omega": "the largest |omega| of the {arg}", "alpha": "the largest |alpha| of the {arg}",
     "x": "the point's x range plus its largest |x|",
     "y": "the point's y range plus its largest |y|",
     "v": "the point's largest speed", "a": "the point's largest acceleration",
     "mass": "the largest correction mass", "U": "the largest correction unbalance",
-    "initial_force": "the value", "initial_moment": "the value",
+    **dict.fromkeys(("initial_force", "initial_moment"), "the value"),
     "residual_force": "the initial force", "residual_moment": "the initial moment",
-    "shaking_before": "the shaking force before balancing",
-    "shaking_after": "the shaking force before balancing",
+    **dict.fromkeys(("shaking_before", "shaking_after"), "the shaking force before balancing"),
 }
 
 

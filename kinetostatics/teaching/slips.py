@@ -35,7 +35,7 @@ __all__ = ["SIGNED", "SLIPS", "answer_value", "slip_note", "slip_status"]
 
 _LEAD = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 _K, _M = 1e3, 1e-3
-_DEG = 180.0 / math.pi
+_DEG = 180.0 / math.pi      # degrees kept (6/10): the factor a deg/rad slip multiplies by
 _RPM = 60.0 / (2.0 * math.pi)
 SLIPS: dict[str, list[tuple[float, str]]] = {
     "N m": [(_K, "N mm instead of N m"), (_M, "kN m instead of N m")],

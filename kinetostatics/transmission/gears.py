@@ -39,6 +39,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from ..common.angles import radian_column, radian_value
 from ..model.errors import WorkbenchError
 
 __all__ = [
@@ -71,7 +72,7 @@ def _alpha(alpha_deg: Any) -> np.ndarray:
     if not np.all(np.isfinite(a)) or np.any(a < 0.0) or np.any(a >= 90.0):
         raise GearError(f"the pressure angle must lie in [0, 90) deg, not {alpha_deg} "
                         "(20 deg for standard gears)")
-    return np.radians(a)
+    return radian_column(a)
 
 
 def _moment(M: Any, name: str) -> np.ndarray:
@@ -311,7 +312,7 @@ def gear_pair(M2: Any, r_w1: float, r_w2: float, alpha_deg: float = 20.0,
         raise GearError("gear_pair takes one pair of radii (floats); M2 may be an array")
     r1, r2 = float(r1a), float(r2a)
     alpha = float(_alpha(alpha_deg))
-    e1, e2, O2, P = _pair_geometry(r1, r2, internal, math.radians(float(centre_angle_deg)),
+    e1, e2, O2, P = _pair_geometry(r1, r2, internal, radian_value(float(centre_angle_deg)),
                                    tuple(O1))
     w2 = np.array([-e2[1], e2[0]])              # k x e2: ccw tangent of gear 2 at P
     ft = m2 / r2                                 # eq. 2.52: r_w2 * (F12 . w2) = M2
@@ -421,7 +422,7 @@ def gear_train(M_out: Any, stages: Sequence[GearStage | tuple], alpha_deg: float
     for s in st:
         r1, r2 = _radii(s.r_w1, s.r_w2, s.internal)
         dist = float(r1 + r2) if not s.internal else abs(float(r2 - r1))
-        th = math.radians(float(s.centre_angle_deg))
+        th = radian_value(float(s.centre_angle_deg))
         x, y = shafts[-1]
         shafts.append((x + dist * math.cos(th), y + dist * math.sin(th)))
     # moments from the output back to the input (shaft equilibrium: M2_(k-1) = Me_k)

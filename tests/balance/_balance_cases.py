@@ -26,23 +26,11 @@ SCENES = {
 [rotor]
 speed_rpm = 1500                # forces and moments are reported in N and N m
 
-[[rotor.unbalance]]
-mass = 0.020
-radius = 0.10
-angle = 30.0
-z = 0.05
-
-[[rotor.unbalance]]
-mass = 0.015
-radius = 0.12
-angle = 150.0
-z = 0.15
-
-[[rotor.unbalance]]
-mass = 0.010
-radius = 0.08
-angle = 260.0
-z = 0.25
+unbalance = [
+    { mass = 0.020, radius = 0.10, angle = 30.0, z = 0.05 },
+    { mass = 0.015, radius = 0.12, angle = 150.0, z = 0.15 },
+    { mass = 0.010, radius = 0.08, angle = 260.0, z = 0.25 },
+]
 
 [[rotor.planes]]
 z = 0.0
@@ -76,6 +64,17 @@ A2 = 1071.9
 A3 = 495.0
 """,
 }
+
+# a two-plane influence section (two sensors, one trial run a plane): the base the scene
+# tests edit
+INFLUENCE_TWO_PLANE = """
+[[influence]]
+initial = [[170.0, 112.0], [53.0, 78.0]]
+runs = [
+  { plane = 1, mass = 1.15, angle = 0.0, readings = [[235.0, 94.0], [58.0, 68.0]] },
+  { plane = 2, mass = 1.15, angle = 0.0, readings = [[185.0, 115.0], [77.0, 104.0]] },
+]
+"""
 
 EXPECTED: dict[str, dict[str, Any]] = {
     "rotor_two_plane": {

@@ -13,6 +13,7 @@ import pytest
 import balance
 from balance import example_path, examples
 from kinetostatics.model.errors import WorkbenchError
+from tests.balance._balance_cases import INFLUENCE_TWO_PLANE
 
 FIELD_EXAMPLES = ("influence_two_plane", "influence_speeds", "trim_run", "iso_tolerance",
                   "split_combine")
@@ -95,16 +96,9 @@ def test_iso_example_by_hand() -> None:
 
 
 def test_iso_in_si_and_failing_check() -> None:
-    text = """
-[iso]
-grade = 2.5
-rotor_mass = 4.0
-speed_rpm = 6000.0
-bearings = [0.0, 0.4]
-cog = 0.2
-residual = [20e-6, 5e-6]
-"""
-    s = balance.solve(text)["iso"]
+    s = balance.solve({"iso": {"grade": 2.5, "rotor_mass": 4.0, "speed_rpm": 6000.0,
+                               "bearings": [0.0, 0.4], "cog": 0.2,
+                               "residual": [20e-6, 5e-6]}})["iso"]
     U = 1e-6 * 1000.0 * 2.5 * 4.0 / (6000.0 * math.pi / 30.0)            # kg m
     assert s["U_per"] == pytest.approx(U, rel=1e-12) and s["unbalance_unit"] == "kg m"
     assert s["check"]["ok"] is False
@@ -120,14 +114,7 @@ def test_split_and_combine_sections() -> None:
     assert cb["mass"] == pytest.approx(math.hypot(x, y), rel=1e-12)
 
 
-BASE = """
-[[influence]]
-initial = [[170.0, 112.0], [53.0, 78.0]]
-runs = [
-  { plane = 1, mass = 1.15, angle = 0.0, readings = [[235.0, 94.0], [58.0, 68.0]] },
-  { plane = 2, mass = 1.15, angle = 0.0, readings = [[185.0, 115.0], [77.0, 104.0]] },
-]
-"""
+BASE = INFLUENCE_TWO_PLANE
 
 
 @pytest.mark.parametrize("old, new, expected", [
@@ -178,17 +165,9 @@ def test_iso_scene_errors(body, expected) -> None:
 
 
 def test_iso_single_correction_plane_takes_the_whole_u_per() -> None:
-    text = """
-[iso]
-grade = 2.5
-rotor_mass = 30.0
-speed_rpm = 1800.0
-bearings = [0.0, 0.8]
-cog = 0.4
-planes = [0.35]
-residual = [300e-6]
-"""
-    s = balance.solve(text)["iso"]
+    s = balance.solve({"iso": {"grade": 2.5, "rotor_mass": 30.0, "speed_rpm": 1800.0,
+                               "bearings": [0.0, 0.8], "cog": 0.4, "planes": [0.35],
+                               "residual": [300e-6]}})["iso"]
     U = 1000.0 * 2.5 * 30.0 / (1800.0 * math.pi / 30.0) * 1e-6
     assert s["check"]["permissible"] == pytest.approx([U], rel=1e-12)
     assert s["check"]["ratio"] == pytest.approx([300e-6 / U], rel=1e-12)

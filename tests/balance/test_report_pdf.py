@@ -18,6 +18,13 @@ from balance.report import report_figures, report_scene
 matplotlib.use("Agg")
 
 
+def scenes(*names: str) -> list:
+    """The report's scenes as parameters: the first in the quick tier, the others ``slow``
+    (each PDF draws every picture of its report, 1.5-3.5 s of CPU)."""
+    return [pytest.param(n, marks=() if k == 0 else pytest.mark.slow)
+            for k, n in enumerate(names)]
+
+
 @pytest.fixture
 def pages(monkeypatch):
     """Every page figure the PDF writer saves: (size in inches, texts)."""
@@ -34,8 +41,8 @@ def pages(monkeypatch):
     return seen
 
 
-@pytest.mark.parametrize("name", ["influence_two_plane", "rotor_two_plane",
-                                  "resonance_example"])
+@pytest.mark.parametrize("name", scenes("influence_two_plane", "rotor_two_plane",
+                                        "resonance_example"))
 def test_pdf_is_an_a4_document_with_the_html_sections(tmp_path, pages, name):
     f = report_scene(SCENES.resolve(name), tmp_path / "r.pdf")
     raw = f.read_bytes()
@@ -83,8 +90,8 @@ def test_legends_carry_units():
                               for s in amplitudes), labels
 
 
-@pytest.mark.parametrize("name", ["influence_two_plane", "rotor_two_plane",
-                                  "resonance_example", "four_run"])
+@pytest.mark.parametrize("name", scenes("four_run", "influence_two_plane", "rotor_two_plane",
+                                        "resonance_example"))
 def test_pictures_heading_kept_with_its_picture_and_panels_at_full_width(tmp_path, pages,
                                                                          name):
     """The "Pictures" heading stands on the page of the first picture (never alone at a
@@ -105,23 +112,29 @@ def test_pictures_heading_kept_with_its_picture_and_panels_at_full_width(tmp_pat
                 height > 0.8 * (A4[1] - 2 * _MARGIN), (name, width, height)
 
 
-def test_report_figures_meet_the_picture_standard():
-    """Every picture of every bundled balancing report: no collision, at most one label
-    not placed, text >= 10 pt, the notation of docs/notation.md."""
+def _examples() -> list[str]:
+    from balance.api import examples
+    return list(examples())
+
+
+@pytest.mark.parametrize("name", scenes(*_examples()))
+def test_report_figures_meet_the_picture_standard(name):
+    """Every picture of every bundled balancing report (one example in the quick tier):
+    no collision, at most one label not placed, text >= 10 pt, the notation of
+    docs/notation.md."""
     import matplotlib.pyplot as plt
 
-    from balance.api import example_path, examples, results_to_dict, solve_results
+    from balance.api import example_path, results_to_dict, solve_results
     from kinetostatics.plot import lecture_style
     from kinetostatics.plot.audit import audit
     bad = {}
     with lecture_style():
-        for name in examples():
-            res = solve_results(str(example_path(name)))
-            for caption, fig in report_figures(res, results_to_dict(res)):
-                problems = audit(fig).problems
-                if problems:
-                    bad[f"{name}: {caption}"] = problems
-                plt.close(fig)
+        res = solve_results(str(example_path(name)))
+        for caption, fig in report_figures(res, results_to_dict(res)):
+            problems = audit(fig).problems
+            if problems:
+                bad[f"{name}: {caption}"] = problems
+            plt.close(fig)
     assert not bad, bad
 
 

@@ -7,14 +7,14 @@ from __future__ import annotations
 
 import cmath
 import math
-import subprocess
-import sys
 import warnings
 
 import pytest
 
 import balance
 from balance.errors import BalanceError, BalanceWarning
+from tests.balance._balance_cases import INFLUENCE_TWO_PLANE
+from tests.helpers import run_main
 
 # a single-plane influence scene: a 100 g trial mass at 0 deg
 INFLUENCE = """
@@ -71,14 +71,8 @@ def test_the_issue_reproducers() -> None:
 
 
 def test_influence_trial_masses_1000_times_apart_warn_a_node_reading_not() -> None:
-    text = """
-[[influence]]
-initial = [[170.0, 112.0], [0.053, 78.0]]
-runs = [
-  { plane = 1, mass = 0.00115, angle = 0.0, readings = [[235.0, 94.0], [58.0, 68.0]] },
-  { plane = 2, mass = 1.15, angle = 0.0, readings = [[185.0, 115.0], [77.0, 104.0]] },
-]
-"""
+    text = INFLUENCE_TWO_PLANE.replace("[53.0, 78.0]", "[0.053, 78.0]").replace(
+        "plane = 1, mass = 1.15", "plane = 1, mass = 0.00115")
     _, msgs = caught(text)
     assert len(msgs) == 1 and "trial masses" in msgs[0]      # 0.053 is a node: no warning
 
@@ -138,16 +132,14 @@ def test_a_correction_100_times_the_trial_mass_warns() -> None:
 def test_the_cli_prints_warning_lines_and_exits_0(tmp_path) -> None:
     path = tmp_path / "slip.toml"
     path.write_text(INFLUENCE.format(p0=4.3633, p1=2.7925, m=100.0))
-    out = subprocess.run([sys.executable, "-m", "balance", "solve", str(path)],
-                         capture_output=True, text=True)
+    out = run_main("balance", "solve", str(path))
     assert out.returncode == 0, out.stderr
     lines = out.stderr.strip().splitlines()
     assert lines and all(ln.startswith("warning: ") for ln in lines)
     assert sum("radians" in ln for ln in lines) == 1
     bad = tmp_path / "bad.toml"
     bad.write_text('[units]\nmass = "lb"\n' + rotor([30.0, 150.0]))
-    out = subprocess.run([sys.executable, "-m", "balance", "solve", str(bad)],
-                         capture_output=True, text=True)
+    out = run_main("balance", "solve", str(bad))
     assert out.returncode == 2 and out.stderr.startswith("error: ")
     assert len(out.stderr.strip().splitlines()) == 1
 
@@ -211,14 +203,84 @@ def test_a_slipped_scene_shows_its_warning_in_the_report_and_the_json(tmp_path) 
     path = tmp_path / "slip.toml"
     path.write_text(INFLUENCE.format(p0=4.3633, p1=2.7925, m=100.0))
     report = tmp_path / "slip.html"
-    out = subprocess.run([sys.executable, "-m", "balance", "solve", str(path), "--report",
-                          str(report)], capture_output=True, text=True)
+    out = run_main("balance", "solve", str(path), "--report", str(report))
     assert out.returncode == 0, out.stderr
     html = report.read_text()
     section = html[html.index("<h2>Warnings</h2>"):]
     section = section[:section.index("<h2>", 5)]
     assert "influence[0].runs" in section and "quiet" in section and "None" not in section
-    js = subprocess.run([sys.executable, "-m", "balance", "solve", str(path), "--json"],
-                        capture_output=True, text=True)
+    js = run_main("balance", "solve", str(path), "--json")
     import json
     assert any("influence[0].runs" in w for w in json.loads(js.stdout)["warnings"])
+
+
+CLIP_ROTOR = """
+[units]
+mass = "g"
+length = "mm"
+[[rotor.unbalance]]
+mass = {big}
+radius = 100.0
+angle = 30.0
+z = 100.0
+[[rotor.unbalance]]
+mass = {small}
+radius = 100.0
+angle = 150.0
+z = 200.0
+[[rotor.planes]]
+z = 0.0
+radius = 100.0
+[[rotor.planes]]
+z = 300.0
+radius = 100.0
+"""
+
+CLIP_RUNS = """
+[units]
+mass = "g"
+vibration = "um"
+[[influence]]
+initial = [[170.0, 112.0], [53.0, 78.0]]
+runs = [
+  {{ masses = [[{big}, 0.0], [{small}, 90.0]], readings = [[235.0, 94.0], [58.0, 68.0]] }},
+  {{ plane = 2, mass = {big}, angle = 0.0, readings = [[185.0, 115.0], [77.0, 104.0]] }},
+]
+"""
+
+
+@pytest.mark.parametrize("scene", [CLIP_ROTOR, CLIP_RUNS], ids=["rotor", "trial run"])
+def test_a_clip_beside_a_weight_is_silent_a_slip_is_not(scene) -> None:
+    assert caught(scene.format(big=200.0, small=0.15))[1] == []     # a 0.15 g clip
+    # the weight typed in grams under mass = "kg" is 200 kg (1 kg or more): a slip, one
+    # warning
+    kg = scene.replace('mass = "g"', 'mass = "kg"')
+    msgs = caught(kg.format(big=200.0, small=0.15))[1]
+    assert len(msgs) == 1 and "200" in msgs[0]
+    # kilograms typed as grams: 0.2 mg beside 200 g (under a milligram): a slip
+    msgs = caught(scene.format(big=200.0, small=0.0002))[1]
+    assert len(msgs) == 1 and "times apart" in msgs[0]
+
+
+def test_a_trim_run_after_a_good_correction_is_silent() -> None:
+    """The correction left 0.05 um of 20 um (400 times less): the trim's reading is
+    small beside the runs' and its mass near the trial's; neither is a slip."""
+    text = """
+[units]
+mass = "g"
+vibration = "um"
+[[influence]]
+initial = [[20.0, 180.0]]
+runs = [{ plane = 1, mass = 20.0, angle = 0.0, readings = [[30.0, 120.0]] }]
+[[influence.trim]]
+plane = 1
+mass = 21.7
+angle = 290.0
+readings = [[0.05, 226.1]]
+"""
+    out, msgs = caught(text)
+    assert msgs == [] and out["warnings"] == []
+    coeffs = text.replace(
+        'runs = [{ plane = 1, mass = 20.0, angle = 0.0, readings = [[30.0, 120.0]] }]',
+        "coefficients = [[[0.9, 70.0]]]")
+    assert caught(coeffs)[1] == []

@@ -8,6 +8,7 @@ mistake here cannot hide in both.
 
 from __future__ import annotations
 
+import copy
 import math
 from typing import Any
 
@@ -18,7 +19,8 @@ def four_bar(a: float, b: float, c: float, d: float, *,
              stop: float | None = None, count: int = 361,
              acceleration: float | None = None, gravity: list | None = None,
              coupler_point: list | None = None, loads: list | None = None,
-             near: list | None = None, friction: dict | None = None) -> dict[str, Any]:
+             near: list | None = None, friction: dict | None = None,
+             positions: list | None = None) -> dict[str, Any]:
     """A four-bar scene dict.
 
     Parameters
@@ -42,12 +44,17 @@ def four_bar(a: float, b: float, c: float, d: float, *,
         The hint for C (default: above D, 10 x the size away: the open assembly).
     friction : dict, optional
         Joint name -> its friction table.
+    positions : list, optional
+        The driver's positions (deg) in place of start, stop and count.
     """
     cogs = cogs if cogs is not None else ([a / 2, 0.0], [b / 2, 0.0], [c / 2, 0.0])
     driver: dict[str, Any] = {"body": "crank", "joint": "A", "speed": speed}
     if acceleration is not None:
         driver["acceleration"] = acceleration
-    driver.update(start=start, stop=start + 360.0 if stop is None else stop, count=count)
+    if positions is not None:
+        driver["positions"] = [float(p) for p in positions]
+    else:
+        driver.update(start=start, stop=start + 360.0 if stop is None else stop, count=count)
     coupler = {"B": [0.0, 0.0], "C": [b, 0.0]}
     if coupler_point is not None:
         coupler["P"] = list(coupler_point)
@@ -109,3 +116,30 @@ def offset_slider_crank(r: float, rod: float, e: float, angle: float, *, start: 
         if friction and j["name"] in friction:
             j["friction"] = dict(friction[j["name"]])
     return scene
+
+
+def with_friction(d: dict, mu: float, radius: float = 0.01,
+                  length: float | None = None) -> dict:
+    """A copy of the scene dict ``d`` with the friction coefficient ``mu`` in every joint:
+    pins of ``radius`` (m), sliders of ``length`` (m, left out when None)."""
+    d = copy.deepcopy(d)
+    for j in d["joints"]:
+        j["friction"] = {"mu": mu, "radius": radius} if j["kind"] == "R" else \
+            {"mu": mu, **({"length": length} if length is not None else {})}
+    return d
+
+
+def varied_slotted_lever(base: dict, r: float, h: float, e: float, beta: float,
+                         count: int) -> dict:
+    """A copy of the slotted-lever scene ``base`` (crank O2-A first, the lever third, its
+    slot the third joint) with the crank ``r``, O2 ``h`` above the lever's pivot, the
+    slot through S, ``e`` off the pivot at ``beta`` deg in the lever's frame, and
+    ``count`` rows."""
+    d = copy.deepcopy(base)
+    d["ground"]["O2"] = [0.0, h]
+    d["bodies"][0]["points"]["A"] = [r, 0.0]
+    d["bodies"][2]["points"]["S"] = [0.0, e]
+    d["joints"][2]["line_point"] = "S"
+    d["joints"][2]["line_angle"] = beta
+    d["driver"]["count"] = count
+    return d

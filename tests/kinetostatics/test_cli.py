@@ -8,13 +8,20 @@ import sys
 import pandas as pd
 import pytest
 
-from tests.helpers import OWN_CASES, ROOT
+from tests.helpers import OWN_CASES, ROOT, run_main
 
 
-def run(*args, cwd=None):
+def run_process(*args, cwd=None):
+    """``python -m kinetostatics`` in a subprocess (the entry point's smoke test, and the
+    benchmarks, which time start-up)."""
     env = dict(os.environ, MPLBACKEND="Agg")
     return subprocess.run([sys.executable, "-m", "kinetostatics", *args], capture_output=True,
                           text=True, cwd=cwd or ROOT, env=env, timeout=300)
+
+
+def run(*args, cwd=None):
+    """``python -m kinetostatics`` through its ``main`` in this process."""
+    return run_main("kinetostatics", *args, cwd=cwd)
 
 
 @pytest.mark.slow
@@ -32,7 +39,7 @@ def test_demo_writes_tables_and_picture(tmp_path):
 
 
 def test_solve_writes_contract_csv(tmp_path):
-    r = run("solve", str(OWN_CASES / "slider_crank.toml"), "--out", str(tmp_path))
+    r = run_process("solve", str(OWN_CASES / "slider_crank.toml"), "--out", str(tmp_path))
     assert r.returncode == 0, r.stderr
     rx = pd.read_csv(tmp_path / "reactions.csv")
     assert list(rx.columns[:7]) == ["position", "joint", "on", "by", "Fx", "Fy", "F"]
@@ -76,8 +83,7 @@ def test_bad_scene_exit_2_one_line(tmp_path, text, word):
 ])
 def test_bad_option_is_one_error_line(package, args):
     """argparse's mistakes too: one ``error:`` line (no usage lines above it), exit 2."""
-    r = subprocess.run([sys.executable, "-m", package, *args], capture_output=True,
-                       text=True, cwd=ROOT, timeout=300)
+    r = run_main(package, *args)
     assert r.returncode == 2
     assert r.stderr.startswith("error: ") and r.stderr.count("\n") == 1, r.stderr
     assert "--help" in r.stderr
@@ -95,7 +101,7 @@ def test_structure_command():
 
 @pytest.mark.slow
 def test_bench_quick():
-    r = run("bench", "--quick")
+    r = run_process("bench", "--quick")
     assert r.returncode == 0, r.stderr
     assert "positions_per_s" in r.stdout and "max_rel_error" in r.stdout
 
@@ -184,9 +190,38 @@ def test_parquet_without_pyarrow_is_one_error_line(tmp_path, monkeypatch, capsys
 @pytest.mark.slow
 def test_bench_tables_quick():
     """bench --tables reports solve, table and CSV times with peak memory (small sizes)."""
-    r = run("bench", "--tables", "--quick", "--repeat", "1")
+    r = run_process("bench", "--tables", "--quick", "--repeat", "1")
     assert r.returncode == 0, r.stderr
     for word in ("solve_s", "kinematics_s", "long_tables_over_solve", "csv_MB_per_s",
                  "peak_MB", "cli_out_s", "best", "median", "start-up", "over_numpy",
                  "import balance", "balance solve rotor_two_plane"):
         assert word in r.stdout, word
+
+
+def test_a_mean_that_is_rounding_is_said_as_zero():
+    """The four-bar's Me over a whole cycle of conservative loads averages to rounding
+    (6.3e-16 N m beside a 21.8 N m peak): the text says 0, the JSON keeps the number."""
+    from kinetostatics import solve
+    from kinetostatics.results.output import summary_with_units
+    from kinetostatics.results.text import summary_text
+
+    sol = solve("four_bar")
+    s = summary_with_units(sol.summary(), sol.scene.units, sol.scene.warnings, "deg")
+    assert 0 < abs(s["Me_mean"]) < 1e-12 * s["Me_max"]
+    assert "Me mean 0 (to rounding), min -16.6826 N m" in summary_text(s)
+    s["Me_mean"] = 1e-3                 # a small mean that is not rounding stays a number
+    assert "Me mean 0.001 N m, min" in summary_text(s)
+
+
+@pytest.mark.parametrize("module, args", [("kinetostatics", ["solve", "four_bar", "--json"]),
+                                          ("balance", ["solve", "rotor_two_plane"])])
+def test_a_reader_that_goes_away_gets_no_error(module, args):
+    """``... | head -1``: the rest of the output is dropped without an error line or a
+    traceback (was: "error: [Errno 32] Broken pipe", exit 2)."""
+    env = dict(os.environ, MPLBACKEND="Agg")
+    p = subprocess.Popen([sys.executable, "-m", module, *args], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, cwd=ROOT, env=env)
+    p.stdout.readline()
+    p.stdout.close()            # the reader goes away before the writer is done
+    err = p.stderr.read().decode()
+    assert p.wait(timeout=120) == 0 and err == "", err

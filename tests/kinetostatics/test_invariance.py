@@ -35,6 +35,12 @@ IDS = [p.stem for p in FILES]
 EXAMPLES = settings(max_examples=4, deadline=None)
 
 
+def each_scene(test):
+    """A property of every bundled scene (``path``), hypothesis drawing from ``data``
+    (four examples a scene)."""
+    return pytest.mark.parametrize("path", FILES, ids=IDS)(EXAMPLES(given(data=st.data())(test)))
+
+
 def raw(path) -> dict:
     with open(path, "rb") as fh:
         d = tomllib.load(fh)
@@ -74,9 +80,7 @@ TABLES = ("driver", "kinematics", "bodies", "reactions", "dyads", "frame", "redu
 
 # -- (a) order ------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("path", FILES, ids=IDS)
-@EXAMPLES
-@given(data=st.data())
+@each_scene
 def test_permuted_positions_give_the_sorted_rows(path, data) -> None:
     d = raw(path)
     pos = sweep(d)
@@ -163,9 +167,7 @@ def check_coarse_rows(d: dict, data) -> None:
             assert sf[shared[k - 1]:shared[k + 1] + 1].any(), f"row {shared[k]} flagged"
 
 
-@pytest.mark.parametrize("path", FILES, ids=IDS)
-@EXAMPLES
-@given(data=st.data())
+@each_scene
 def test_coarse_rows_are_the_fine_rows(path, data) -> None:
     check_coarse_rows(raw(path), data)
 
@@ -210,12 +212,9 @@ def mirrored(d: dict) -> dict:
     return m
 
 
-@pytest.mark.parametrize("path", FILES, ids=IDS)
-@EXAMPLES
-@given(data=st.data())
+@each_scene
 def test_the_mirror_image_gives_mirrored_results(path, data) -> None:
-    d = raw(path)
-    d = a_few_rows(d, data)
+    d = a_few_rows(raw(path), data)
     d["driver"]["speed"] = data.draw(st.floats(-50.0, 50.0).filter(lambda w: abs(w) > 0.1))
     d["driver"]["acceleration"] = data.draw(st.floats(-100.0, 100.0))
     sol, mir = ks.solve(d), ks.solve(mirrored(d))
@@ -244,25 +243,15 @@ def test_the_mirror_image_gives_mirrored_results(path, data) -> None:
 
 # -- (e) rest -------------------------------------------------------------------------------
 
-def with_friction(d: dict, mu: float) -> dict:
-    d = copy.deepcopy(d)
-    for j in d["joints"]:
-        j["friction"] = {"mu": mu, "radius": 0.01} if j["kind"] == "R" else {"mu": mu}
-    return d
-
-
-@pytest.mark.parametrize("path", FILES, ids=IDS)
-@EXAMPLES
-@given(data=st.data())
+@each_scene
 def test_speed_to_zero_is_continuous_with_rest(path, data) -> None:
-    d = raw(path)
-    d = a_few_rows(d, data)
+    d = a_few_rows(raw(path), data)
     # a resist load (or one on the working stroke only) has no direction at rest
     # (scene-format: flagged, zero): leave them out
     d["loads"] = [ld for ld in d.get("loads", []) if "resist" not in ld and "when" not in ld]
     acc = data.draw(st.sampled_from([-1.0, 1.0])) * data.draw(st.floats(1.0, 500.0))
     mu = data.draw(st.sampled_from([0.05, 0.2]), label="mu")
-    for scene in (d, with_friction(d, mu)):
+    for scene in (d, scenes.with_friction(d, mu)):
         scene["driver"]["acceleration"] = acc
         scene["driver"]["speed"] = 0.0
         rest = ks.solve(scene)
@@ -289,15 +278,12 @@ def test_speed_to_zero_is_continuous_with_rest(path, data) -> None:
 
 # -- (f) mass scale -------------------------------------------------------------------------
 
-@pytest.mark.parametrize("path", FILES, ids=IDS)
-@EXAMPLES
-@given(data=st.data())
+@each_scene
 def test_masses_times_k_scale_forces_by_k(path, data) -> None:
-    d = raw(path)
-    d = a_few_rows(d, data)
+    d = a_few_rows(raw(path), data)
     mu = data.draw(st.sampled_from([0.0, 0.1]), label="mu")
     if mu:
-        d = with_friction(d, mu)
+        d = scenes.with_friction(d, mu)
     k = 10.0 ** data.draw(st.floats(-3.0, 3.0), label="log10 k")
     e = copy.deepcopy(d)
     for b in e["bodies"]:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import replace
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -54,12 +55,17 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
     return sol
 
 
-def solve_run_compiled(scene: Scene, structure) -> Solved | None:
+def solve_run_compiled(scene: Scene, structure, kept: bool = False
+                       ) -> Solved | KeptRun | None:
     """A run of stacked scenes (:meth:`~kinetostatics.solver.stack.Stacker.runs`, each
     dyad's assembly an array over the rows) on the compiled path, or None (as
     :func:`solve_compiled`; the caller asks :func:`~kinetostatics.solver.fast.choice.wanted`
     once for the whole group first). Every row is the row its scene gives alone on the
-    compiled path, bit for bit: the same kernels, each number the scene's own."""
+    compiled path, bit for bit: the same kernels, each number the scene's own. ``kept``:
+    only what the scenes' cut Solutions keep of their run (a :class:`KeptRun`), the rest
+    of each tile in scratch (measured 2026-11-28, 1000 four-bars x 361: the sweep's
+    arrays over a run of 12 288 rows, some 170 streams with the geometry, cost 3-4x the
+    kernels' own time)."""
     if not_covered(scene) is not None:
         return None
     positions = scene.driver.positions
@@ -67,9 +73,27 @@ def solve_run_compiled(scene: Scene, structure) -> Solved | None:
     if kernels is None:
         return None
     try:
-        return solve_full(Plan(kernels, scene, structure, structure.assembly), positions)
+        plan = Plan(kernels, scene, structure, structure.assembly)
+        if kept:
+            return KeptRun(solve_lean(plan, positions), positions)
+        return solve_full(plan, positions)
     except Refused:
         return None
+
+
+class KeptRun:
+    """What a stacked solve (:func:`~kinetostatics.solver.many.solve_all`) reads of a run
+    solved lean on the compiled path, under a Solved's names: ``positions``, ``drive``,
+    ``undefined_load`` and ``kin.dyads`` (each dyad's ``closeness2`` and ``singular``)."""
+
+    path = "fast"
+
+    def __init__(self, sweep, positions: np.ndarray):
+        self.positions, self.drive, self.undefined_load = (positions, sweep.drive,
+                                                           sweep.undefined)
+        self.kin = SimpleNamespace(n=positions.size, dyads=[
+            SimpleNamespace(closeness2=c, singular=f)
+            for c, f in zip(sweep.closeness2, sweep.singular, strict=True)])
 
 
 def stack_left_alone(scene: Scene, rows: int) -> bool:

@@ -341,6 +341,15 @@ def test_follower_forces_limits_and_self_locking():
 
 # ----------------------------------------------------------------------------- scenes
 
+def segments_toml(*segments: tuple) -> str:
+    """``[[cam.segments]]`` tables, one per (kind, law, angle); a dwell has no law."""
+    tables = []
+    for kind, law, angle in segments:
+        rows = [f'kind = "{kind}"', *([f'law = "{law}"'] if law else []), f"angle = {angle!r}"]
+        tables.append("[[cam.segments]]\n" + "\n".join(rows) + "\n")
+    return "\n".join(tables)
+
+
 SEED_SCENE = """
 title = "Seed 002 s. 1.5"
 format = 1
@@ -356,24 +365,8 @@ kind = "translating"
 stroke = 0.010
 offset = 0.005
 
-[[cam.segments]]
-kind = "rise"
-law = "constant-acceleration"
-angle = 90.0
-
-[[cam.segments]]
-kind = "dwell"
-angle = 60.0
-
-[[cam.segments]]
-kind = "return"
-law = "harmonic"
-angle = 120.0
-
-[[cam.segments]]
-kind = "dwell"
-angle = 90.0
-
+""" + segments_toml(("rise", "constant-acceleration", 90.0), ("dwell", None, 60.0),
+                    ("return", "harmonic", 120.0), ("dwell", None, 90.0)) + """
 [cam.loads]
 force = 20.0
 mass = 0.2
@@ -466,20 +459,8 @@ def test_oscillating_scene():
     stroke_angle = 20.0
     arm = 0.06
     pivot_distance = 0.08
-    [[cam.segments]]
-    kind = "rise"
-    law = "cycloidal"
-    angle = 100.0
-    [[cam.segments]]
-    kind = "dwell"
-    angle = 40.0
-    [[cam.segments]]
-    kind = "return"
-    law = "cycloidal"
-    angle = 100.0
-    [[cam.segments]]
-    kind = "dwell"
-    angle = 120.0
+    """ + segments_toml(("rise", "cycloidal", 100.0), ("dwell", None, 40.0),
+                        ("return", "cycloidal", 100.0), ("dwell", None, 120.0)) + """
     [cam.loads]
     moment = 2.0
     inertia = 1e-3

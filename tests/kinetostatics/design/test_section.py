@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import subprocess
 import sys
 import tomllib
 
@@ -14,6 +13,7 @@ from hypothesis import strategies as st
 import kinetostatics as ks
 from kinetostatics.design import DesignError, read_design, toml_text
 from kinetostatics.design.paths import resolve, with_values
+from tests.helpers import run_main
 
 
 def _scene(**design) -> dict:
@@ -110,8 +110,7 @@ def test_cli_mistake_exit_2(tmp_path):
     scene = _scene(variables={"ground.D.0": [0.4, 0.2]})
     path = tmp_path / "bad.toml"
     path.write_text(toml_text(scene))
-    r = subprocess.run([sys.executable, "-m", "kinetostatics", "design", str(path), "--out",
-                        str(tmp_path / "out")], capture_output=True, text=True)
+    r = run_main("kinetostatics", "design", str(path), "--out", str(tmp_path / "out"))
     assert r.returncode == 2
     assert r.stderr.count("\n") == 1 and r.stderr.startswith("error: [design.variables] "
                                                             "'ground.D.0' = [0.4, 0.2]")

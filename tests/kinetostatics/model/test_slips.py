@@ -306,3 +306,20 @@ def typed_lengths_mm(d: dict) -> dict:
         if "moment" in ld:
             ld["moment"] *= 1000.0
     return out
+
+
+def test_an_assembly_error_is_said_in_the_scene_units() -> None:
+    """A mm scene that does not assemble says its gap in mm (2.36 mm, not 0.00236 m),
+    and its positions in the scene's angle unit."""
+    with open(ks.example("four_bar_mm"), "rb") as fh:
+        d = tomllib.load(fh)
+    d["ground"]["D"] = [552.36, 0.0]        # crank 100 + coupler 250 + rocker 200 = 550
+    with pytest.raises(ks.AssemblyError, match=r"at the first driver position 0 deg: the links "
+                                            r"do not reach by 2\.36 mm;"):
+        ks.solve(d)
+    d["units"]["angle"] = "rad"
+    d["ground"]["D"] = [450.0, 0.0]
+    d["driver"].update(start=0.0, stop=2 * math.pi)
+    with pytest.raises(ks.AssemblyError, match=r"at driver position\(s\) 1\.46608 rad \(by "
+                                            r"0\.658 mm\)"):
+        ks.solve(d)

@@ -5,15 +5,13 @@ from __future__ import annotations
 
 import json
 import math
-import subprocess
-import sys
 import tomllib
 import warnings
 
 import pytest
 
 import kinetostatics as ks
-from tests.helpers import to_toml
+from tests.helpers import run_main, to_toml
 
 
 def four_bar(**driver) -> dict:
@@ -55,8 +53,7 @@ def test_the_cli_prints_a_warning_line_and_keeps_exit_code_0(tmp_path) -> None:
     d = four_bar(start=0.0, stop=6.2832, count=20)
     path = tmp_path / "slip.toml"
     path.write_text(to_toml(d))
-    out = subprocess.run([sys.executable, "-m", "kinetostatics", "solve", str(path), "--out",
-                          str(tmp_path / "out")], capture_output=True, text=True)
+    out = run_main("kinetostatics", "solve", str(path), "--out", str(tmp_path / "out"))
     assert out.returncode == 0, out.stderr
     warn = [ln for ln in out.stderr.splitlines() if ln.startswith("warning:")]
     assert len(warn) == 1 and "degrees" in warn[0]
@@ -166,15 +163,13 @@ def test_bad_units_are_one_line_errors(table, text, tmp_path) -> None:
     if isinstance(table, dict):
         path = tmp_path / "bad.toml"
         path.write_text(to_toml(d))
-        out = subprocess.run([sys.executable, "-m", "kinetostatics", "solve", str(path)],
-                             capture_output=True, text=True)
+        out = run_main("kinetostatics", "solve", str(path))
         assert out.returncode == 2 and out.stderr.startswith("error: ")
         assert len(out.stderr.strip().splitlines()) == 1
 
 
 def test_summary_json_repeats_the_units(tmp_path) -> None:
-    out = subprocess.run([sys.executable, "-m", "kinetostatics", "solve", "four_bar_mm",
-                          "--out", str(tmp_path)], capture_output=True, text=True)
+    out = run_main("kinetostatics", "solve", "four_bar_mm", "--out", str(tmp_path))
     assert out.returncode == 0, out.stderr
     summary = json.loads((tmp_path / "summary.json").read_text())
     # the numbers are SI, said plainly with a unit per key; the scene's [units] stand
@@ -185,9 +180,8 @@ def test_summary_json_repeats_the_units(tmp_path) -> None:
     assert summary["scene_units"] == {"length": "mm", "mass": "g", "angle": "deg",
                                       "speed": "rpm", "force": "N"}
     assert summary["positions"] == 361 and summary["warnings"] == []
-    plain = json.loads(subprocess.run([sys.executable, "-m", "kinetostatics", "solve",
-                                       "four_bar", "--json"], capture_output=True,
-                                      text=True).stdout)      # stdout is the JSON alone
+    plain = json.loads(run_main("kinetostatics", "solve", "four_bar",
+                                "--json").stdout)      # stdout is the JSON alone
     assert plain["scene_units"]["length"] == "m"
 
 

@@ -187,14 +187,7 @@ def test_slider_crank_in_other_units(r, lam, e, ang, units):
 
 def slotted_lever(r, h, e, beta):
     with open(ks.example("slotted_lever"), "rb") as fh:
-        d = tomllib.load(fh)
-    d["ground"]["O2"] = [0.0, h]
-    d["bodies"][0]["points"]["A"] = [r, 0.0]
-    d["bodies"][2]["points"]["S"] = [0.0, e]
-    d["joints"][2]["line_point"] = "S"
-    d["joints"][2]["line_angle"] = beta
-    d["driver"]["count"] = 61
-    return d
+        return scenes.varied_slotted_lever(tomllib.load(fh), r, h, e, beta, 61)
 
 
 @settings(max_examples=6, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -265,49 +258,40 @@ CAM_UNITS = [{"length": "mm", "mass": "g", "speed": "rpm", "force": "kN"},
              {"length": "in", "angle": "rad"}]
 
 
+def _convert(table: dict, keys: tuple, convert) -> None:
+    """Each of ``keys`` that ``table`` holds, through ``convert`` (in place)."""
+    for key in keys:
+        if key in table:
+            table[key] = convert(table[key])
+
+
 def cam_in(d: dict, units: dict[str, str]) -> dict:
     """A cam scene (SI dict) rewritten in ``units``, by hand."""
     r = Rewrite(units)
     out = copy.deepcopy(d)
     out["units"] = dict(units)
     cam = out["cam"]
-    for key in ("base_radius", "roller_radius"):
-        if key in cam:
-            cam[key] = r.length(cam[key])
-    if "transmission_angle" in cam:
-        cam["transmission_angle"] = r.angle(cam["transmission_angle"])
-    if "speed" in cam:
-        cam["speed"] = r.speed(cam["speed"])
+    _convert(cam, ("base_radius", "roller_radius"), r.length)
+    _convert(cam, ("transmission_angle",), r.angle)
+    _convert(cam, ("speed",), r.speed)
     fol = cam["follower"]
     for key in ("stroke", "offset", "arm", "pivot_distance"):
-        if isinstance(fol.get(key), float):
+        if isinstance(fol.get(key), float):     # not "optimal"
             fol[key] = r.length(fol[key])
-    if "stroke_angle" in fol:
-        fol["stroke_angle"] = r.angle(fol["stroke_angle"])
+    _convert(fol, ("stroke_angle",), r.angle)
     for seg in cam["segments"]:
         seg["angle"] = r.angle(seg["angle"])
     ld = cam.get("loads", {})
     if fol["kind"] == "oscillating":
-        for key in ("moment", "spring_preload", "spring_rate"):
-            if key in ld:
-                ld[key] = r.moment(ld[key])
-        if "inertia" in ld:
-            ld["inertia"] = r.inertia(ld["inertia"])
-        if "pin_radius" in ld:
-            ld["pin_radius"] = r.length(ld["pin_radius"])
+        _convert(ld, ("moment", "spring_preload", "spring_rate"), r.moment)
+        _convert(ld, ("inertia",), r.inertia)
+        _convert(ld, ("pin_radius",), r.length)
     else:
-        for key in ("force", "spring_preload"):
-            if key in ld:
-                ld[key] = r.force(ld[key])
-        if "spring_rate" in ld:
-            ld["spring_rate"] = ld["spring_rate"] * r.L / r.F
-        if "mass" in ld:
-            ld["mass"] = r.mass(ld["mass"])
-        if "gravity" in ld:
-            ld["gravity"] = r.accel(ld["gravity"])
-        for key in ("guide_length", "guide_gap"):
-            if key in ld:
-                ld[key] = r.length(ld[key])
+        _convert(ld, ("force", "spring_preload"), r.force)
+        _convert(ld, ("spring_rate",), lambda k: k * r.L / r.F)
+        _convert(ld, ("mass",), r.mass)
+        _convert(ld, ("gravity",), r.accel)
+        _convert(ld, ("guide_length", "guide_gap"), r.length)
     return out
 
 

@@ -9,9 +9,6 @@ integrated in time by classical Runge-Kutta on the crank angle and speed.
 import copy
 import json
 import math
-import os
-import subprocess
-import sys
 import tomllib
 
 import numpy as np
@@ -19,7 +16,7 @@ import pytest
 
 import kinetostatics as ks
 from kinetostatics.model.errors import SceneError, WorkbenchError
-from tests.helpers import OWN_CASES, ROOT, to_toml
+from tests.helpers import OWN_CASES, run_main, to_toml
 
 
 def four_bar_motion(**motion):
@@ -227,9 +224,7 @@ def test_cli_motion_json(tmp_path):
     d = four_bar_motion(cycles=2)
     path = tmp_path / "m.toml"
     path.write_text(to_toml(d))
-    r = subprocess.run([sys.executable, "-m", "kinetostatics", "motion", str(path), "--json"],
-                       capture_output=True, text=True, cwd=ROOT, timeout=300,
-                       env=dict(os.environ))
+    r = run_main("kinetostatics", "motion", str(path), "--json")
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
     assert set(out) == {"summary", "motion"}

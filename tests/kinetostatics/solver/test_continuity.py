@@ -15,38 +15,17 @@ import pytest
 import kinetostatics as ks
 from kinetostatics.model.errors import SceneError
 from kinetostatics.solver.friction import against_motion
+from tests.kinetostatics import scenes
 
 
 def double_crank(positions=None, count=361, speed=10.0, acc=0.0, friction=None) -> dict:
     """A Grashof double crank: the ground link (0.1 m) is the shortest; crank 0.3,
     coupler 0.35, output crank 0.28 (0.1 + 0.35 <= 0.3 + 0.28): both cranks turn fully."""
-    drv = {"body": "crank", "joint": "A", "speed": speed, "acceleration": acc}
-    if positions is None:
-        drv.update(start=0.0, stop=360.0, count=count)
-    else:
-        drv["positions"] = [float(p) for p in positions]
-    joints = [{"name": "A", "kind": "R", "bodies": ["ground", "crank"]},
-              {"name": "B", "kind": "R", "bodies": ["crank", "coupler"]},
-              {"name": "C", "kind": "R", "bodies": ["coupler", "rocker"]},
-              {"name": "D", "kind": "R", "bodies": ["ground", "rocker"]}]
-    if friction:
-        for j in joints:
-            j["friction"] = {"mu": friction, "radius": 0.01}
-    return {
-        "driver": drv,
-        "ground": {"A": [0.0, 0.0], "D": [0.1, 0.0]},
-        "bodies": [
-            {"name": "crank", "mass": 1.0, "inertia": 1e-3, "cog": [0.1, 0.0],
-             "points": {"A": [0.0, 0.0], "B": [0.3, 0.0]}},
-            {"name": "coupler", "mass": 2.0, "inertia": 1e-2, "cog": [0.15, 0.02],
-             "points": {"B": [0.0, 0.0], "C": [0.35, 0.0]}},
-            {"name": "rocker", "mass": 1.5, "inertia": 5e-3, "cog": [0.1, 0.0],
-             "points": {"D": [0.0, 0.0], "C": [0.28, 0.0]}},
-        ],
-        "joints": joints,
-        "loads": [{"body": "rocker", "moment": -3.0}],
-        "near": {"C": [0.2, 0.3]},
-    }
+    pins = {j: {"mu": friction, "radius": 0.01} for j in "ABCD"} if friction else None
+    return scenes.four_bar(0.3, 0.35, 0.28, 0.1, cogs=([0.1, 0.0], [0.15, 0.02], [0.1, 0.0]),
+                           speed=speed, acceleration=acc, count=count, positions=positions,
+                           loads=[{"body": "rocker", "moment": -3.0}], near=[0.2, 0.3],
+                           friction=pins)
 
 
 def angles(sol, body: str) -> np.ndarray:

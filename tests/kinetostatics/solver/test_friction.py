@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 import kinetostatics as ks
 from kinetostatics.model.errors import SceneError
 from tests.helpers import OWN_CASES
+from tests.kinetostatics.scenes import with_friction
 
 
 def load(name):
@@ -103,11 +104,7 @@ def test_power_table_and_reduced_moments_with_friction(name):
 def test_summary_leaves_self_locking_rows_out():
     """With friction enough to lock the slider-crank near its dead centres, the summary
     counts the locked rows and takes Me and the reactions over the others."""
-    d = load("slider_crank")
-    for j in d["joints"]:
-        j["friction"] = {"mu": 1.3, "radius": 0.03} if j["kind"] == "R" else \
-            {"mu": 1.3, "length": 0.08}
-    sol = ks.solve(d)
+    sol = ks.solve(with_friction(load("slider_crank"), 1.3, radius=0.03, length=0.08))
     locked = sol.driver.self_locking.to_numpy()
     assert 0 < locked.sum() < locked.size
     s = sol.summary()

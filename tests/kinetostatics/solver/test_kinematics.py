@@ -101,36 +101,34 @@ def test_random_crank_rockers(a, b, c, d, cog3, cog4, m, load, branch):
     run_all_checks(sol)
 
 
+def random_with_angles(test):
+    """Ten random mechanisms whose angles (deg) may look like radians to the slip check:
+    its warning is meant and kept quiet."""
+    test = settings(max_examples=10, deadline=None,
+                    suppress_health_check=[HealthCheck.too_slow])(test)
+    return pytest.mark.filterwarnings(
+        "ignore::kinetostatics.model.errors.UnitWarning")(test)
+
+
 # a random line angle within 2 pi with decimals looks like radians: the slip warning is meant
-@pytest.mark.filterwarnings("ignore::kinetostatics.model.errors.UnitWarning")
-@settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@random_with_angles
 @given(r=st.floats(0.03, 0.15), lam=st.floats(0.15, 0.45), e=st.floats(-0.05, 0.05),
        ang=st.floats(-40, 40))
 def test_random_offset_slider_cranks(r, lam, e, ang):
     """RRT with an offset and an inclined guide line."""
     l = r / lam
     assume(abs(e) + r < 0.8 * l)
-    d = scenes.offset_slider_crank(r, l, e, ang)
-    sol = ks.solve(d)
-    run_all_checks(sol)
+    run_all_checks(ks.solve(scenes.offset_slider_crank(r, l, e, ang)))
 
 
 # a slot angle within +-20 deg with a fraction looks like radians to the slip check
-@pytest.mark.filterwarnings("ignore::kinetostatics.model.errors.UnitWarning")
-@settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@random_with_angles
 @given(r=st.floats(0.05, 0.14), h=st.floats(0.2, 0.4), e=st.floats(-0.03, 0.03),
        beta=st.floats(-20, 20))
 def test_random_slotted_levers(r, h, e, beta):
     """RTR with the slot offset from the pivot and at an angle in the lever's frame."""
     assume(r + abs(e) < 0.8 * h)
-    d = checks_dict("slotted_lever")
-    d["ground"]["O2"] = [0.0, h]
-    d["bodies"][0]["points"]["A"] = [r, 0.0]
-    d["bodies"][2]["points"]["S"] = [0.0, e]
-    d["joints"][2]["line_point"] = "S"
-    d["joints"][2]["line_angle"] = beta
-    d["driver"]["count"] = 2001
-    sol = ks.solve(d)
+    sol = ks.solve(scenes.varied_slotted_lever(checks_dict("slotted_lever"), r, h, e, beta, 2001))
     run_all_checks(sol)
 
 

@@ -13,6 +13,7 @@ import pytest
 
 import kinetostatics as ks
 from tests.helpers import OWN_CASES
+from tests.kinetostatics.scenes import with_friction
 
 SCENES = ["four_bar", "slider_crank", "slotted_lever", "scotch_yoke", "sliding_driver"]
 STATES = [(0.0, 5.0), (0.0, 0.0), (20.0, -3.0), (-7.0, 0.0), (1e-7, 4.0)]
@@ -136,11 +137,7 @@ def test_mass_models_reduce_consistently(model):
 
 
 def test_friction_reduces_with_the_self_locking_rows_left_empty():
-    d = load("slider_crank")
-    for j in d["joints"]:
-        j["friction"] = {"mu": 1.3, "radius": 0.03} if j["kind"] == "R" else \
-            {"mu": 1.3, "length": 0.08}
-    sol = ks.solve(d)
+    sol = ks.solve(with_friction(load("slider_crank"), 1.3, radius=0.03, length=0.08))
     locked = sol.driver.self_locking.to_numpy()
     m_red, m_fric, m_inertia, i_red, _di = columns(sol)
     assert np.isnan(m_fric[locked]).all() and np.isfinite(m_fric[~locked]).all()

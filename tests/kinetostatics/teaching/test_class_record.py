@@ -245,9 +245,6 @@ def test_copies_and_the_record(klass, tmp_path):
     assert canvas.set_index("SIS User ID").loc["bogdan", "slider_crank"] == "100.0"
 
 
-@pytest.mark.xfail(strict=False, reason="open (issue 35): the sandboxed kernel of a handed-out "
-                   "sheet sometimes dies with SIGABRT at %matplotlib inline or sends a message "
-                   "with an invalid signature on this machine")
 # ------------------------------------------- 2. work that does not run (kernels)
 def test_notebooks_that_do_not_run(klass, tmp_path):
     d = klass["dir"]

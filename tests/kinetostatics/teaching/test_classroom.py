@@ -119,9 +119,6 @@ def test_handout_shows_the_data_the_key_was_computed_from(classes):
 
 
 # ------------------------------------------------------------- run for real (kernel)
-@pytest.mark.xfail(strict=False, reason="open (issue 35): the sandboxed kernel of a handed-out "
-                   "sheet sometimes dies with SIGABRT at %matplotlib inline or sends a message "
-                   "with an invalid signature on this machine")
 @pytest.mark.parametrize("kind", KINDS)
 def test_executed_notebooks(kind, classes, tmp_path):
     """Unchanged scores 0; the key typed to 6 digits (angles minus 360) scores full."""
@@ -169,9 +166,6 @@ def test_a_kernel_that_dies_at_start_is_started_again(monkeypatch) -> None:
     assert len(starts) == 2
 
 
-@pytest.mark.xfail(strict=False, reason="open (issue 35): the sandboxed kernel of a handed-out "
-                   "sheet sometimes dies with SIGABRT at %matplotlib inline or sends a message "
-                   "with an invalid signature on this machine")
 def test_broken_notebooks_do_not_stop_the_class(classes, tmp_path):
     d = classes["four_bar"]
     key = _key(d)

@@ -351,6 +351,47 @@ def test_the_sandbox_shows_no_path_and_leaves_no_descriptor():
     assert fds[0] == fds[-1], fds
 
 
+@pytest.mark.slow
+def test_a_kernel_that_draws_stays_well_inside_the_memory_limit():
+    """The address-space limit counts reserved space: with the allocators capped
+    (S.ALLOCATORS) a kernel that drew a mechanism inline uses 0.54 GB of the 2048 MB
+    (measured; 2.23 GB without the caps, which killed the kernel's threads: the
+    grader read "Invalid Signature" and honest sheets were graded "did not run")."""
+    if S.find_bwrap() is None and os.environ.get("CI") != "true":
+        pytest.skip("bubblewrap (bwrap) is not installed: apt-get install bubblewrap")
+    from kinetostatics.teaching.execute import run_notebook
+
+    cells = ["%matplotlib inline\nimport kinetostatics as ks\n"
+             "from kinetostatics.plot import draw_mechanism\n"
+             "draw_mechanism(ks.solve(ks.example('four_bar')), 30);",
+             "peak = [ln for ln in open('/proc/self/status') if ln.startswith('VmPeak')][0]\n"
+             "answers = {'peak_mb': int(peak.split()[1]) / 1024}"]
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(c) for c in cells])
+    _, answers = run_notebook(nb, sandbox=S.sandbox_or_refuse())
+    assert answers["peak_mb"] < 0.45 * S.Limits().memory_mb, answers   # 530 MB measured
+
+
+def test_a_broken_message_names_the_cell_and_the_memory_limit(monkeypatch):
+    """A kernel that cannot start a thread breaks a message off: the grader's reason
+    says so, with the cell and the limit, not "ValueError: Invalid Signature"."""
+    from kinetostatics.teaching import execute as E
+    from kinetostatics.teaching.kernels import GradingClient
+
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell("x = [0] * 10**8")])
+
+    def broken(run, tmp, timeout, kernel, sandbox, made):
+        c = GradingClient(run, S.Limits(memory_mb=700))
+        c.cell = 0
+        made.append(c)
+        raise ValueError("Invalid Signature: b'00ff'")
+
+    monkeypatch.setattr(E, "_run_in", broken)
+    with pytest.raises(E.NotebookRunError) as got:
+        E.run_notebook(nb)
+    assert "cell 1 ('x = [0] * 10**8')" in str(got.value), got.value
+    assert "memory limit of 700 MB" in str(got.value) and "Signature" not in str(got.value)
+
+
 # ------------------------------------------------------------------ fast checks
 def test_without_bwrap_grading_refuses_in_one_line(tmp_path, monkeypatch):
     d = tmp_path / "class"
