@@ -16,7 +16,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ..solver.continuity import _anchor, _estimate, _needs_probe, _Probe, _row_ratios, _turns
+from ..solver.continuity import Probe, anchor, needs_probe, probed_turns, row_ratios, turn_estimate
 
 PERIOD = 2 * np.pi              # numpy.unwrap's default period and its derived bounds
 HIGH = PERIOD / 2
@@ -57,9 +57,9 @@ class SweepAngles:
         th = np.stack([np.broadcast_to(kin.bodies[b].theta, (m,)) for b in self.names])
         ps = self.positions[rows]
         if self.scene.driver.speed != 0.0:
-            r, rp = _row_ratios(kin, self.names)
+            r, rp = row_ratios(kin, self.names)
         else:
-            _, r, rp = _Probe(kin, self.names)(ps)
+            _, r, rp = Probe(kin, self.names)(ps)
         self._unwrap(rows, th)
         self._screen(rows, ps, th, r, rp)
 
@@ -72,7 +72,7 @@ class SweepAngles:
             if b == drv.body and drv.kind == "R":
                 self.fixed[b] = self.positions
             elif np.ndim(m.cos) == 0 and np.ndim(m.sin) == 0:
-                a = _anchor(np.full(1, float(np.rad2deg(m.theta))))
+                a = anchor(np.full(1, float(np.rad2deg(m.theta))))
                 self.fixed[b] = np.broadcast_to(a, (self.n,))
             else:
                 self.names.append(b)
@@ -115,7 +115,7 @@ class SweepAngles:
         h = np.diff(ps)
         hs = np.deg2rad(h) if self.scene.driver.kind == "R" else h
         step = np.diff(base, axis=1)
-        check = _needs_probe(step, _estimate(hs, r[:, :-1], r[:, 1:], rp[:, :-1], rp[:, 1:]))
+        check = needs_probe(step, turn_estimate(hs, r[:, :-1], r[:, 1:], rp[:, :-1], rp[:, 1:]))
         iv = np.flatnonzero(check)
         if iv.size:
             self.found.append((iv + start, ps[iv], ps[iv + 1], th[:, iv], r[:, iv],
@@ -131,7 +131,7 @@ class SweepAngles:
         out = dict(self.fixed)
         if self.names:
             if self.found and self.n > 1:
-                self._turns()
+                self.probed_turns()
             np.rad2deg(self.base, out=self.base)
             for i, b in enumerate(self.names):
                 a = self.base[i]
@@ -139,16 +139,16 @@ class SweepAngles:
                 out[b] = a
         return {b: out[b] for b in self.scene.bodies}
 
-    def _turns(self) -> None:
+    def probed_turns(self) -> None:
         """The probed turns added as whole turns to the rows after them (as
         ``base + 2 pi cumsum(extra)``: every row, with the running sum's own roundings)."""
         parts = list(zip(*self.found, strict=True))
         iv = np.concatenate(parts[0])
         lo, hi = np.concatenate(parts[1]), np.concatenate(parts[2])
         ends = tuple(tuple(np.concatenate(p, axis=1) for p in parts[k:k + 3]) for k in (3, 6))
-        probe = _Probe(SimpleNamespace(scene=self.scene, structure=self.structure),
+        probe = Probe(SimpleNamespace(scene=self.scene, structure=self.structure),
                        self.names)
-        true = _turns(probe, lo, hi, ends)
+        true = probed_turns(probe, lo, hi, ends)
         step = self.base[:, iv + 1] - self.base[:, iv]
         with np.errstate(invalid="ignore"):
             k = np.round((true - step) / (2.0 * np.pi))
