@@ -487,31 +487,8 @@ class Solution:
         """The seed's split of each dyad's outer revolute reactions (eqs 2.17-2.18, 2.22,
         2.26): ``Fn`` along the link from the outer joint to the inner joint, ``Ft``
         perpendicular to it (the link direction turned +90 deg), on the dyad body."""
-        import pandas as pd
-        n = self.positions.size
-        parts = []
-        for dm in self.kin.dyads:
-            d = dm.dyad
-            for i, (body, joint) in enumerate(zip(d.bodies, d.outer, strict=True)):
-                if joint.kind != "R":
-                    continue
-                p = dm.params[i]
-                ex = np.broadcast_to(dm.xx - p.px, (n,))
-                ey = np.broadcast_to(dm.xy - p.py, (n,))
-                length = np.hypot(ex, ey)
-                if length.min() <= 1e-12 * max(length.max(), 1e-300):
-                    continue            # the outer joint is the inner one: no link line
-                with np.errstate(invalid="ignore", divide="ignore"):
-                    ex, ey = ex / length, ey / length
-                fx, fy = self.reaction(joint.name)
-                if self.joint_reactions[joint.name].on != body:
-                    fx, fy = -fx, -fy
-                parts.append(pd.DataFrame({
-                    "position": self.positions, "dyad": d.index + 1, "joint": joint.name,
-                    "body": body, "Fn": fx * ex + fy * ey, "Ft": -fx * ey + fy * ex}))
-        if not parts:
-            return pd.DataFrame(columns=["position", "dyad", "joint", "body", "Fn", "Ft"])
-        return pd.concat(parts, ignore_index=True)
+        from .split import reaction_split_table
+        return reaction_split_table(self)
 
     @cached_property
     def powers(self) -> pd.DataFrame:

@@ -131,7 +131,7 @@ class SweepAngles:
         out = dict(self.fixed)
         if self.names:
             if self.found and self.n > 1:
-                self._turns()
+                self.probed_turns()
             np.rad2deg(self.base, out=self.base)
             for i, b in enumerate(self.names):
                 a = self.base[i]
@@ -139,7 +139,7 @@ class SweepAngles:
                 out[b] = a
         return {b: out[b] for b in self.scene.bodies}
 
-    def _turns(self) -> None:
+    def probed_turns(self) -> None:
         """The probed turns added as whole turns to the rows after them (as
         ``base + 2 pi cumsum(extra)``: every row, with the running sum's own roundings)."""
         parts = list(zip(*self.found, strict=True))

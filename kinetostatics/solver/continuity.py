@@ -125,20 +125,20 @@ def _wrap(d: np.ndarray) -> np.ndarray:
     return np.mod(d + np.pi, 2.0 * np.pi) - np.pi
 
 
-def _estimate(h, ra, rb, pa, pb):
+def turn_estimate(h, ra, rb, pa, pb):
     """Hermite estimate of the turn over an interval of length h."""
     with np.errstate(all="ignore"):
         return 0.5 * h * (ra + rb) + h * h * (pa - pb) / 12.0
 
 
-def _needs_probe(d, est) -> np.ndarray:
+def needs_probe(d, est) -> np.ndarray:
     """Intervals (any body) whose nearest turn d cannot be trusted."""
     with np.errstate(invalid="ignore"):
         bad = (np.abs(d) > TURN_CHECK) | ~(np.abs(est - d) <= TURN_CHECK)
     return bad.any(axis=0)
 
 
-class _Probe:
+class Probe:
     """The mechanism at unit driver speed, at any positions, in the sweep's assembly:
     theta, r = d theta / d phi and r' per body (rows: bodies)."""
 
@@ -169,7 +169,7 @@ def _split(first: np.ndarray, mid: np.ndarray, last: np.ndarray, keep: np.ndarra
     return full[:, :, :-1].reshape(nb, -1), full[:, :, 1:].reshape(nb, -1)
 
 
-def _turns(probe: _Probe, lo, hi, ends) -> np.ndarray:
+def probed_turns(probe: Probe, lo, hi, ends) -> np.ndarray:
     """The turn of every body over each interval (lo, hi), by zooming sub-samples.
 
     ``ends``: (theta, r, r') at lo and at hi, each (bodies, intervals). Returns
@@ -189,7 +189,7 @@ def _turns(probe: _Probe, lo, hi, ends) -> np.ndarray:
         # step must be radians for the angle estimate
         hs = np.deg2rad(h) if probe.rad else h
         d = _wrap(thb - tha)
-        bad = _needs_probe(d, _estimate(hs, ra, rb, pa, pb)) & (h > tiny)
+        bad = needs_probe(d, turn_estimate(hs, ra, rb, pa, pb)) & (h > tiny)
         if round_ == MAX_ROUNDS:
             bad[:] = False
         nan = ~np.isfinite(d).all(axis=0)
@@ -212,7 +212,7 @@ def _turns(probe: _Probe, lo, hi, ends) -> np.ndarray:
     return total
 
 
-def _row_ratios(kin: Kinematics, names: list[str]) -> tuple[np.ndarray, np.ndarray]:
+def row_ratios(kin: Kinematics, names: list[str]) -> tuple[np.ndarray, np.ndarray]:
     """r = d theta / d phi and r' = d r / d phi per body at the rows, from the rows' omega
     and alpha (a moving driver: omega = r phidot, alpha = r' phidot^2 + r phiddot)."""
     n = kin.n
@@ -224,7 +224,7 @@ def _row_ratios(kin: Kinematics, names: list[str]) -> tuple[np.ndarray, np.ndarr
     return r, (al - r * eps) / (w * w)
 
 
-def _anchor(a: np.ndarray) -> np.ndarray:
+def anchor(a: np.ndarray) -> np.ndarray:
     """Shift a continuous angle (deg) by whole turns so that its first value lies in
     (-180, 180]."""
     first = 180.0 - np.mod(180.0 - a[0], 360.0)
@@ -259,7 +259,7 @@ def body_angles(kin: Kinematics) -> dict[str, np.ndarray]:
         elif np.ndim(kin.bodies[b].cos) == 0 and np.ndim(kin.bodies[b].sin) == 0:
             # degrees kept (2/10): the body angle column is continuous in degrees
             a = np.full(n, float(np.rad2deg(kin.bodies[b].theta)))
-            out[b] = _anchor(a) if n else a
+            out[b] = anchor(a) if n else a
         else:
             names.append(b)
     if not names:
@@ -269,22 +269,22 @@ def body_angles(kin: Kinematics) -> dict[str, np.ndarray]:
     th = np.stack([np.broadcast_to(kin.bodies[b].theta, (n,))[order] for b in names])
     base = np.unwrap(th, axis=1)
     if n > 1:
-        probe = _Probe(kin, names)
+        probe = Probe(kin, names)
         drv = scene.driver
         if drv.speed != 0.0:
-            r, rp = _row_ratios(kin, names)
+            r, rp = row_ratios(kin, names)
             r, rp = r[:, order], rp[:, order]
         else:               # at rest every omega is 0: the ratios at unit speed
             _, r, rp = probe(ps)
         h = np.diff(ps)
         hs = np.deg2rad(h) if drv.kind == "R" else h     # degrees kept (3/10): as above
         step = np.diff(base, axis=1)
-        check = _needs_probe(step, _estimate(hs, r[:, :-1], r[:, 1:], rp[:, :-1], rp[:, 1:]))
+        check = needs_probe(step, turn_estimate(hs, r[:, :-1], r[:, 1:], rp[:, :-1], rp[:, 1:]))
         iv = np.flatnonzero(check)
         if iv.size:
             ends = ((th[:, iv], r[:, iv], rp[:, iv]),
                     (th[:, iv + 1], r[:, iv + 1], rp[:, iv + 1]))
-            true = _turns(probe, ps[iv], ps[iv + 1], ends)
+            true = probed_turns(probe, ps[iv], ps[iv + 1], ends)
             with np.errstate(invalid="ignore"):
                 k = np.round((true - step[:, iv]) / (2.0 * np.pi))
             k = np.where(np.isfinite(k), k, 0.0)
@@ -293,7 +293,7 @@ def body_angles(kin: Kinematics) -> dict[str, np.ndarray]:
             base = base + 2.0 * np.pi * np.concatenate(
                 [np.zeros((len(names), 1)), np.cumsum(extra, axis=1)], axis=1)
     for i, b in enumerate(names):
-        a = _anchor(np.rad2deg(base[i]))     # degrees kept (4/10): anchored in degrees
+        a = anchor(np.rad2deg(base[i]))     # degrees kept (4/10): anchored in degrees
         res = np.empty(n)
         res[order] = a
         out[b] = res

@@ -218,6 +218,8 @@ CLIP_ROTOR = """
 [units]
 mass = "g"
 length = "mm"
+[rotor]
+planes = [{{ z = 0.0, radius = 100.0 }}, {{ z = 300.0, radius = 100.0 }}]
 [[rotor.unbalance]]
 mass = {big}
 radius = 100.0
@@ -228,12 +230,6 @@ mass = {small}
 radius = 100.0
 angle = 150.0
 z = 200.0
-[[rotor.planes]]
-z = 0.0
-radius = 100.0
-[[rotor.planes]]
-z = 300.0
-radius = 100.0
 """
 
 CLIP_RUNS = """
