@@ -335,7 +335,7 @@ def _solve_run(stacker: Stacker, structure, ks: np.ndarray, lo: int, hi: int,
     then in one pass, each scene's maximum over its own rows). ``compiled``: on the
     compiled path (:mod:`~kinetostatics.solver.fast`) unless a kernel meets a row the
     numpy path must judge; ``kept`` there: only what the scenes' cut Solutions keep
-    (Me/Fe, the flags, the closeness to a dead centre: the rest of each tile in scratch,
+    (Me/Fe, the flags, the closeness to a dead centre,
     :func:`~kinetostatics.solver.fast.solve.solve_run_compiled`)."""
     st = replace(structure, assembly=tuple(np.repeat(k[lo:hi], counts) for k in ks))
     if compiled:

@@ -20,11 +20,11 @@ PATHS = ("auto", "numpy", "fast")
 AUTO_ROWS = 20_000      # below, numba's import and first call (0.2-0.3 s) outweigh the gain
 # Whether ``auto`` takes the compiled path at all. Off: the kernels, row by row and not
 # vectorised, do not beat the numpy path yet (measured 2026-11-28 on the 2-core machine
-# in processor time, the kernels composed in one call over tiles: four-bar solve +
-# driver table 0.84x against numpy's 0.93x the hand form at 2e5 rows, 0.44x against
-# 0.44x at 1e6, 4.8x against 3.9x at 2001; solve_many of 1000 x 361 rows 1.7x numpy's
-# time; the slider-crank 1.1-1.5x numpy's), so the compiled path runs only when asked
-# for (``fast``). docs/solve-paths.md, "Speed", says where the kernels' time goes.
+# in processor time, four-bar solve + driver table against the hand form: at 2e5 rows
+# 0.84-1.0x against numpy's 0.52-0.93x, at 2001 rows 4.8-6.0x against 3.8-3.9x;
+# solve_many of 1000 x 361 rows 1.7x numpy's time; the slider-crank 1.1-1.5x numpy's),
+# so the compiled path runs only when asked for (``fast``). docs/solve-paths.md,
+# "Speed", says where the kernels' time goes.
 AUTO_COMPILED = False
 _OPTION: dict[str, str | None] = {"path": None, "told": None}
 

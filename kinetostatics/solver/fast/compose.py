@@ -56,7 +56,8 @@ class Plan:
         self.loads = {b: body_loads_geometry(scene, b) for b in self.bodies}
         self.swept = {b: sw for b in self.bodies
                       if (sw := swept_loads_geometry(scene, b))[2]}
-        self.tables()
+        self.stats = {b: np.array([[0.0, np.inf]] * len(f)) for b, (_, _, f)
+                      in self.swept.items()}
 
     def check_swept(self) -> None:
         """Refuse (:class:`Refused`) a sweep whose top speed (power) of a ``resist``
@@ -67,72 +68,71 @@ class Plan:
                 if not least > RESIST_STILL * max(top, floor):
                     raise Refused("swept load")
 
-    def tables(self) -> None:
-        """The structure as :func:`~kinetostatics.solver.fast.tiles.sweep` reads it: each
-        dyad's kind and bodies as indices of the stacked motions (the ground 0), the
-        geometry as tuples of arrays (each with a stand-in, so that none is empty)."""
-        index = {b: i for i, b in enumerate((GROUND, *self.bodies))}
-        self.index = index
-        ops = [(L.KINDS[d.kind], index[d.outer[0].other(d.bodies[0])],
-                index[d.outer[1].other(d.bodies[1])], index[d.bodies[0]], index[d.bodies[1]])
-               for _, _, d in self.dyads]
-        self.ops = np.array(ops, dtype=np.int64).reshape(len(ops), self.k.OPS)
-        stand_in = np.zeros((L.PARAM, 1))
-        self.gd = (*(g for g, _, _ in self.dyads), stand_in)
-        self.gds = np.array([gs for _, gs, _ in self.dyads] + [0], dtype=np.int64)
-        loads = [(stand_in, 0, 0)] + [self.loads[b] for b in self.bodies]
-        self.gl = tuple(g for g, _, _ in loads)
-        self.gls = np.array([gs for _, gs, _ in loads], dtype=np.int64)
-        self.npoint = np.array([k for _, _, k in loads], dtype=np.int64)
-        swept = [self.swept.get(b, (stand_in, 0, [])) for b in (GROUND, *self.bodies)]
-        self.gsw = tuple(g for g, _, _ in swept)
-        self.gsws = np.array([gs for _, gs, _ in swept], dtype=np.int64)
-        self.nload = np.array([len(f) for _, _, f in swept], dtype=np.int64)
-        stats = np.zeros((len(swept), max(1, *self.nload), 2))
-        stats[:, :, 1] = np.inf
-        self.stats_all = stats
-        self.stats = {b: stats[index[b], :len(f)] for b, (_, _, f) in self.swept.items()}
-
     def buffers(self, width: int) -> dict:
-        """Arrays for ``width`` rows: every body's motion and load resultants, each dyad's
-        data and reactions, the driver's reaction, each stacked (its rows padded,
-        :func:`~kinetostatics.solver.fast.layout.padded_width`; the ground's motion
-        constant, what a kernel may leave unwritten zeroed)."""
+        """Arrays for ``width`` rows: each body's motion and load resultants, each dyad's
+        data and reactions, the driver's reaction (the ground's motion: constant): rows
+        of one slab, its rows padded (:func:`~kinetostatics.solver.fast.layout.padded_width`)."""
         stride = L.padded_width(width)
-        nb, nd = len(self.bodies) + 1, len(self.dyads)
+        sizes = ([("m", b, L.MOTION) for b in (GROUND, *self.bodies)]
+                 + [("a", b, 3) for b in (GROUND, *self.bodies)]
+                 + [("d", i, L.DYAD_OUT) for i in range(len(self.dyads))]
+                 + [("r", i, L.REACTIONS) for i in range(len(self.dyads))] + [("drv", 0, 7)])
         # (np.empty: memory a freed slab leaves is reused without faulting in fresh
-        # zeroed pages)
-        m = np.empty((nb, L.MOTION, stride))
-        m[0] = 0.0
-        m[0, L.C] = 1.0
-        out = {"m": m, "a": np.empty((nb, 3, stride)),
-               "d": np.zeros((max(nd, 1), L.DYAD_OUT, stride)),
-               "r": np.zeros((max(nd, 1), L.REACTIONS, stride)),
-               "drv": np.zeros((7, stride)), "u": np.zeros(stride, dtype=bool)}
-        out["a"][0] = 0.0
+        # zeroed pages; only what a kernel may leave unwritten is zeroed)
+        slab = np.empty((sum(k for _, _, k in sizes), stride))
+        out: dict = {"m": {}, "a": {}, "d": [], "r": [], "u": np.zeros(width, dtype=bool)}
+        row = 0
+        for part, key, k in sizes:
+            block = slab[row:row + k]
+            row += k
+            if part in ("d", "r", "drv"):
+                block[:] = 0.0
+            if part == "drv":
+                out["drv"] = block
+            elif isinstance(out[part], dict):
+                out[part][key] = block
+            else:
+                out[part].append(block)
+        out["m"][GROUND][:] = 0.0
+        out["m"][GROUND][L.C] = 1.0
         return out
 
-    def run(self, x: np.ndarray, lo: int, hi: int, buf: dict, lean=None) -> None:
-        """Rows ``lo`` to ``hi`` (``x``: the driver's angles in rad, or its positions) in
-        one compiled call: into ``buf`` at ``i``, or (``lean``: the arrays Me/Fe, the
-        undefined rows and the closeness kept, at ``i``) through ``buf``, one tile's
-        scratch. A crank's cos and sin are numpy's, in a pass of their own. Raises
-        :class:`Refused`."""
-        m = buf["m"]
-        drv = self.index[self.scene.driver.body]
-        cs = sn = x[:0]
-        if self.crank and lean is None:
-            np.cos(x[lo:hi], out=m[drv, L.C, lo:hi])
-            np.sin(x[lo:hi], out=m[drv, L.S, lo:hi])
-        elif self.crank:
-            cs, sn = np.cos(x[lo:hi]), np.sin(x[lo:hi])
-        drive, kept_u, close = lean if lean is not None else (x[:0], buf["u"][:0], buf["d"][0])
+    def run(self, x: np.ndarray, lo: int, hi: int, off: int, buf: dict) -> None:
+        """Rows ``lo`` to ``hi`` (``x``: the driver's angles in rad, or its positions),
+        into ``buf`` at ``i - off``; raises :class:`Refused`."""
+        k, m, a = self.k, buf["m"], buf["a"]
+        dname = self.scene.driver.body
         g, gs = self.driver
-        bad = self.k.sweep(lo, hi, lean is not None, x, cs, sn, self.crank, g, gs, self.speed,
-                           self.accel, drv, self.ops, self.gd, self.gds, self.gl, self.gls,
-                           self.npoint, self.gsw, self.gsws, self.nload, self.stats_all, m,
-                           buf["a"], buf["d"], buf["r"], buf["drv"], buf["u"], drive, kept_u,
-                           close)
+        if self.crank:      # (cos and sin in a pass of their own: numpy's, vectorised)
+            np.cos(x[lo:hi], out=m[dname][L.C, lo - off:hi - off])
+            np.sin(x[lo:hi], out=m[dname][L.S, lo - off:hi - off])
+        motion = k.crank_motion if self.crank else k.slider_motion
+        bad = motion(x, lo, hi, off, g, gs, self.speed, self.accel, m[dname])
+        for (g, gs, dyad), d in zip(self.dyads, buf["d"], strict=True):
+            (b1, b2), (j1, j2) = dyad.bodies, dyad.outer
+            args = (lo, hi, off, g, gs, m[j1.other(b1)], m[j2.other(b2)], m[b1], m[b2], d)
+            kernel = k.MOTION[dyad.kind]
+            if dyad.kind == "RTR":      # the guide's angle, then its cos and sin
+                kernel(0, *args)
+                th = d[L.D_TH, lo - off:hi - off]
+                np.cos(th, out=d[L.C1X, lo - off:hi - off])
+                np.sin(th, out=d[L.C1Y, lo - off:hi - off])
+            bad += kernel(1, *args)
+        for b, (g, gs, npoint) in self.loads.items():
+            bad += k.body_loads(lo, hi, off, g, gs, npoint, m[b], a[b])
+        buf["u"][lo - off:hi - off] = False
+        for b, (g, gs, floors) in self.swept.items():
+            bad += k.swept_loads(lo, hi, off, g, gs, len(floors), m[b], a[b], buf["u"],
+                                 self.stats[b])
+        for (g, gs, dyad), d, r in zip(self.dyads[::-1], buf["d"][::-1],
+                                             buf["r"][::-1], strict=True):
+            (b1, b2), (j1, j2) = dyad.bodies, dyad.outer
+            k1, k2 = j1.other(b1), j2.other(b2)
+            bad += k.REACTIONS[dyad.kind](lo, hi, off, g, gs, m[b1], m[b2], m[k1], m[k2], d,
+                                    a[b1], a[b2], a[k1], a[k2], r)
+        g, gs = self.driver
+        react = k.crank_reaction if self.crank else k.slider_reaction
+        bad += react(lo, hi, off, g, gs, m[dname], a[dname], buf["drv"])
         if bad:
             raise Refused(bad)
 
@@ -143,42 +143,44 @@ def driver_input(scene: Scene) -> np.ndarray:
     return drv.angles if drv.kind == "R" else np.asarray(drv.positions, dtype=float)
 
 
-def solve_full(plan: Plan, positions: np.ndarray) -> Solved:
-    """The whole sweep's Solved (every table's arrays), in one compiled call into arrays
-    over the whole sweep."""
+def solve_full(plan: Plan, positions: np.ndarray, block: int = BLOCK_ROWS) -> Solved:
+    """The whole sweep's Solved (every table's arrays), solved block by block into
+    arrays over the whole sweep."""
     n = positions.size
+    x = driver_input(plan.scene)
     buf = plan.buffers(n)
-    plan.run(driver_input(plan.scene), 0, n, buf)
+    for lo in range(0, n, block):
+        plan.run(x, lo, min(lo + block, n), 0, buf)
     plan.check_swept()
-    return _solution(plan, positions, _cut(plan, buf, n))
+    return _solution(plan, positions, _cut(buf, n))
 
 
-def _cut(plan: Plan, buf: dict, n: int) -> dict:
-    """The buffers' first ``n`` columns by body and by dyad (views: the rows are padded)."""
-    names = (GROUND, *plan.bodies)
-    nd = len(plan.dyads)
-    return {"m": {b: buf["m"][i, :, :n] for i, b in enumerate(names)},
-            "a": {b: buf["a"][i, :, :n] for i, b in enumerate(names)},
-            "d": [buf["d"][q, :, :n] for q in range(nd)],
-            "r": [buf["r"][q, :, :n] for q in range(nd)],
-            "drv": buf["drv"][:, :n], "u": buf["u"][:n]}
+def _cut(buf: dict, n: int) -> dict:
+    """The buffers' first ``n`` columns (views: the slab's rows are padded)."""
+    return {"m": {k: v[:, :n] for k, v in buf["m"].items()},
+            "a": {k: v[:, :n] for k, v in buf["a"].items()},
+            "d": [v[:, :n] for v in buf["d"]], "r": [v[:, :n] for v in buf["r"]],
+            "drv": buf["drv"][:, :n], "u": buf["u"]}
 
 
 def solve_lean(plan: Plan, positions: np.ndarray, block: int = BLOCK_ROWS) -> Kept:
     """A long sweep's :class:`~kinetostatics.solver.blocks.Kept`: Me/Fe and each dyad's
-    closeness to a dead centre, the rest of each tile in scratch arrays (one compiled
-    call a block of rows: a crank's cos and sin are worked out a block at a time)."""
+    closeness to a dead centre, the rest of each block in scratch arrays."""
     n = positions.size
     x = driver_input(plan.scene)
-    buf = plan.buffers(plan.k.TILE)
+    buf = plan.buffers(min(block, n))
     drive = np.empty(n)
     undefined = np.zeros(n, dtype=bool)
-    close = np.empty((max(len(plan.dyads), 1), n))
+    close = [np.empty(n) for _ in plan.dyads]
     for lo in range(0, n, block):
-        plan.run(x, lo, min(lo + block, n), buf, (drive, undefined, close))
+        hi = min(lo + block, n)
+        plan.run(x, lo, hi, lo, buf)
+        drive[lo:hi] = buf["drv"][0, :hi - lo]
+        undefined[lo:hi] = buf["u"][:hi - lo]
+        for c, d in zip(close, buf["d"], strict=True):
+            c[lo:hi] = d[L.CL2, :hi - lo]
     plan.check_swept()
     kind = plan.scene.driver.kind
-    close = list(close[:len(plan.dyads)])
     singular = [~(c > SINGULAR_WARN**2) for c in close]
     return Kept(plan.structure, DriverReaction(kind, drive), undefined, close, singular)
 

@@ -69,6 +69,6 @@ def kernels() -> ModuleType | None:
     os.environ["NUMBA_CACHE_DIR"] = str(folder)
     if "numba" in sys.modules:          # (loaded by someone else: its config read already)
         sys.modules["numba"].config.CACHE_DIR = str(folder)
-    from . import tiles as module
+    from . import kernels as module
     _STATE["kernels"] = module
     return module

@@ -62,10 +62,10 @@ def solve_run_compiled(scene: Scene, structure, kept: bool = False
     :func:`solve_compiled`; the caller asks :func:`~kinetostatics.solver.fast.choice.wanted`
     once for the whole group first). Every row is the row its scene gives alone on the
     compiled path, bit for bit: the same kernels, each number the scene's own. ``kept``:
-    only what the scenes' cut Solutions keep of their run (a :class:`KeptRun`), the rest
-    of each tile in scratch (measured 2026-11-28, 1000 four-bars x 361: the sweep's
-    arrays over a run of 12 288 rows, some 170 streams with the geometry, cost 3-4x the
-    kernels' own time)."""
+    only what the scenes' cut Solutions keep of their run (a :class:`KeptRun`): no
+    Solved and no arrays wrapped in motions and reactions (measured 2026-11-28, 1000
+    four-bars x 361 in runs of 12 288 rows: some 20 ms of the compiled solve_many's
+    150)."""
     if not_covered(scene) is not None:
         return None
     positions = scene.driver.positions
