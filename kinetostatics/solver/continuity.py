@@ -298,9 +298,3 @@ def body_angles(kin: Kinematics) -> dict[str, np.ndarray]:
         res[order] = a
         out[b] = res
     return out
-
-
-# The steps of body_angles under public names, for a caller that takes them block of rows
-# after block of rows (kinetostatics.results.sweepangles: a streamed solve --out).
-anchor, turn_estimate, needs_probe = _anchor, _estimate, _needs_probe
-Probe, row_ratios, probed_turns = _Probe, _row_ratios, _turns
