@@ -462,15 +462,16 @@ def test_the_private_import_finder_sees_siblings(tmp_path: Path) -> None:
 # -- radians inside ----------------------------------------------------------------------
 
 # Radians inside, degrees at the edge. The edge: the scene readers (model/ of both packages,
-# and the cam and motion kinds' readers, cams/scene.py and motion/scene.py, until they move
-# into model/), the writers (results/, balance/report/) and the one home of angles for
-# people, kinetostatics/common/angles.py (messages, picture labels, table columns, a
-# person's degree arguments). Elsewhere at most ten conversions remain (counted in code,
-# strings and comments aside: degrees/radians/deg2rad/rad2deg calls and 180/pi products),
-# each with a comment "degrees kept (k/10)" saying why. 127 in 46 files on 3ad9062.
+# and the cam and motion kinds' readers, cams/scene.py, cams/units.py (the cam's units
+# stage, which judges typed numbers) and motion/scene.py, until they move into model/),
+# the writers (results/, balance/report/) and the one home of angles for people,
+# kinetostatics/common/angles.py (messages, picture labels, table columns, a person's
+# degree arguments). Elsewhere at most ten conversions remain (counted in code, strings
+# and comments aside: degrees/radians/deg2rad/rad2deg calls and 180/pi products), each
+# with a comment "degrees kept (k/10)" saying why. 127 in 46 files on 3ad9062.
 DEGREE_EDGE = ("kinetostatics/model/", "balance/model/", "kinetostatics/cams/scene.py",
-               "kinetostatics/motion/scene.py", "kinetostatics/results/", "balance/report/",
-               "kinetostatics/common/angles.py")
+               "kinetostatics/cams/units.py", "kinetostatics/motion/scene.py",
+               "kinetostatics/results/", "balance/report/", "kinetostatics/common/angles.py")
 MAX_DEGREE_CONVERSIONS = 10
 
 
