@@ -1,8 +1,11 @@
 """The bench's design rows: one per solve path."""
 
+import pytest
+
 from kinetostatics.bench.speed import bench_design, solve_paths
 
 
+@pytest.mark.slow           # the fast row compiles the kernels on a fresh machine
 def test_bench_design_row():
     rows = bench_design(population=8, generations=1, repeat=1)
     assert [r["path"] for r in rows] == solve_paths()       # numpy, and fast with numba

@@ -30,6 +30,11 @@ from kinetostatics.solver.fast import choice, use
 
 numba = pytest.importorskip("numba")
 
+# the tests that run the compiled kernels: a fresh machine compiles them first (about 2
+# minutes of processor time for every dyad kind), so they stand in the slow tier; the
+# switch's rules that compile nothing stay quick
+slow_compile = pytest.mark.slow
+
 DATA = Path(__file__).resolve().parents[2] / "data" / "scenes"
 # every dyad kind and both drivers, from the bundled examples and the test scenes
 KINDS = {
@@ -132,6 +137,7 @@ def perturbed(source, seed: int, spread: float) -> dict:
     return d
 
 
+@slow_compile
 @pytest.mark.parametrize("name", list(KINDS))
 def test_the_examples_agree(name: str) -> None:
     a, b = both(KINDS[name])
@@ -144,6 +150,7 @@ def test_the_examples_agree(name: str) -> None:
         assert len(x) == len(y)
 
 
+@slow_compile
 @pytest.mark.parametrize("name", list(KINDS))
 @settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(seed=st.integers(0, 2**32 - 1), spread=st.floats(0.0, 0.15))
@@ -158,6 +165,7 @@ def test_random_geometry_agrees(name: str, seed: int, spread: float) -> None:
     agree(a, b)
 
 
+@slow_compile
 def test_a_refusal_is_the_numpy_paths() -> None:
     # a crank-rocker whose coupler cannot reach over part of the turn
     d = load_scene(ks.example("four_bar")).raw
@@ -170,6 +178,7 @@ def test_a_refusal_is_the_numpy_paths() -> None:
     assert type(b) is type(a) and str(b) == str(a)
 
 
+@slow_compile
 def test_a_long_sweep_is_lean_and_solved_again_alike() -> None:
     pos = np.linspace(0.0, 360.0, 40_001)[:-1]
     a, b = both(ks.example("four_bar"), pos)
@@ -183,6 +192,7 @@ def test_a_long_sweep_is_lean_and_solved_again_alike() -> None:
     assert b.singular.tolist() == a.singular.tolist()
 
 
+@slow_compile
 def test_solve_many_is_solve_bit_for_bit_on_the_compiled_path(path) -> None:
     from kinetostatics.bench.speed import four_bar_variants
     scenes = [load_scene(d) for d in four_bar_variants(40)]
@@ -196,6 +206,7 @@ def test_solve_many_is_solve_bit_for_bit_on_the_compiled_path(path) -> None:
             assert x.equals(y), t
 
 
+@slow_compile
 def test_the_switch(path) -> None:
     with pytest.raises(ValueError, match="solve path"):
         path("quick")
@@ -221,6 +232,7 @@ def test_import_and_a_small_solve_do_not_import_numba() -> None:
     assert out.stdout.split() == ["False", "numpy"]
 
 
+@slow_compile
 def test_the_environment_variable_forces_a_path(tmp_path) -> None:
     code = "import kinetostatics as ks; print(ks.solve(ks.example('four_bar')).path)"
     fast = _python(code, KINETOSTATICS_PATH="fast", NUMBA_CACHE_DIR=str(tmp_path))
