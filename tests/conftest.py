@@ -13,7 +13,7 @@
   where the fixture starts one), so nobody has to remember the mark; the remaining slow
   tests carry ``@pytest.mark.slow`` themselves.
 - Tests that read one fixture's state (the figures drawn for one scene, a class
-  generated for a module's tests, a JupyterLab server) run on one xdist worker
+  generated for a module's tests) run on one xdist worker
   (``--dist loadgroup`` with the groups of :func:`_group`), so each is made once.
 - The solve path: ``KINETOSTATICS_PATH=fast python -m pytest`` runs the suite on the
   compiled path (numba), ``numpy`` (or unset) on the numpy path. A test of the numpy
@@ -145,11 +145,18 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
                 raise pytest.UsageError(f"{item.nodeid} uses {name}: add it to "
                                         "SHARED_PER_SCENE in tests/conftest.py")
             item.add_marker(pytest.mark.xdist_group(f"{name}-{scene}"))
-#: Test modules whose tests share a costly module fixture (a class of 30 generated, a
-#: JupyterLab server): each runs on one xdist worker, so the fixture is made once.
+    # the slow tests first (a stable sort: the order is otherwise the collection's), so
+    # the workers start on the long ones and the short ones fill in at the end, instead
+    # of one worker finishing a run of long tests alone
+    items.sort(key=lambda item: item.get_closest_marker("slow") is None)
+
+
+#: Test modules whose tests share a costly module fixture (a class of 30 generated): each
+#: runs on one xdist worker, so the fixture is made once. (tests/test_browser.py is not
+#: one: its ten tests, 30-290 s each at a load of 10 on the 2-core machine, are spread
+#: over the workers, each starting its own JupyterLab server and Chromium, 20 s there.)
 SHARED_PER_MODULE = ("tests/kinetostatics/teaching/test_classroom.py",
-                     "tests/kinetostatics/teaching/test_class_record.py",
-                     "tests/test_browser.py")
+                     "tests/kinetostatics/teaching/test_class_record.py")
 
 
 def _group(nodeid: str) -> str | None:
