@@ -187,6 +187,9 @@ class Sandbox:
                 cmd += ["--ro-bind", str(p), str(p)]
         for name in _ETC:
             cmd += ["--ro-bind-try", f"/etc/{name}", f"/etc/{name}"]
+        # the private /tmp first: a root that lies under /tmp (a project or an environment
+        # there) is bound over it, not covered by it
+        cmd += ["--proc", "/proc", "--dev", "/dev", "--perms", "1777", "--tmpfs", "/tmp"]
         made: set[Path] = set()
         for r in roots:
             if not _under(r, [Path("/usr")]):
@@ -196,7 +199,6 @@ class Sandbox:
                         made.add(up)
                         cmd += ["--perms", "0755", "--dir", str(up)]
                 cmd += ["--ro-bind", str(r), str(r)]
-        cmd += ["--proc", "/proc", "--dev", "/dev", "--perms", "1777", "--tmpfs", "/tmp"]
         for h in self.hide:
             p = Path(h).resolve()
             if not p.exists():          # nothing to see, and nothing can be made there:

@@ -393,6 +393,18 @@ def test_a_broken_message_names_the_cell_and_the_memory_limit(monkeypatch):
 
 
 # ------------------------------------------------------------------ fast checks
+def test_a_project_under_tmp_is_bound_over_the_private_tmp(tmp_path, monkeypatch):
+    """The private /tmp is mounted before the Python environment and the project are
+    bound: a clone under /tmp (a CI checkout) was covered by it, and every kernel died
+    before it answered (measured: 19 sandbox tests failed on a clone in /tmp)."""
+    monkeypatch.setattr(S, "_PROJECT", Path("/tmp/some-clone"))
+    cmd = S.Sandbox().command(["true"], tmp_path)
+    tmpfs = next(i for i in range(len(cmd) - 1) if cmd[i:i + 2] == ["--tmpfs", "/tmp"])
+    binds = [i for i in range(len(cmd) - 2) if cmd[i] == "--ro-bind"
+             and cmd[i + 1] == "/tmp/some-clone"]
+    assert binds and all(tmpfs < i for i in binds), cmd
+
+
 def test_without_bwrap_grading_refuses_in_one_line(tmp_path, monkeypatch):
     d = tmp_path / "class"
     T.generate_class("slider_crank", ["ana"], d, seed=SEED)
