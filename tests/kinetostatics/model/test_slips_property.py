@@ -180,14 +180,16 @@ def bundled() -> list[tuple[str, Path]]:
 def test_every_bundled_scene_is_silent(path) -> None:
     """No warning at all (not only no slip) from reading or solving a bundled scene."""
     text = path.read_text()
+    read_with_warnings_as_errors(path, "cam" if "[cam]" in text else
+                                 "mechanism" if "[driver]" in text else "balancing")
+
+
+def read_with_warnings_as_errors(source, kind: str) -> None:
+    """Read (a cam, a mechanism) or solve (a balancing scene) ``source``, any warning
+    raised as an error."""
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        if "[cam]" in text:
-            load_cam_scene(path)
-        elif "[driver]" in text:
-            ks.load_scene(path)
-        else:
-            balance.solve(path)
+        {"cam": load_cam_scene, "mechanism": ks.load_scene}.get(kind, balance.solve)(source)
 
 
 def doc_scenes() -> list[tuple[str, str]]:
@@ -210,11 +212,5 @@ def doc_scenes() -> list[tuple[str, str]]:
                          ids=[n for n, _ in doc_scenes()])
 def test_every_complete_scene_of_the_docs_is_silent(text) -> None:
     raw = tomllib.loads(text)
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        if "cam" in raw:
-            load_cam_scene(text)
-        elif "driver" in raw:
-            ks.load_scene(text)
-        else:
-            balance.solve(text)
+    read_with_warnings_as_errors(text, "cam" if "cam" in raw else
+                                 "mechanism" if "driver" in raw else "balancing")
