@@ -207,7 +207,7 @@ CAM: tuple[Field, ...] = (
 )
 """A cam scene's number-bearing fields (docs/cam-scenes.md)."""
 
-_FIELD_RUNS = ("runs", "trim")
+_FIELD_RUNS = {"runs": "run", "trim": "trim run"}
 BALANCING: tuple[Field, ...] = (
     F("rotor.unbalance.[].mass", "mass", "nonnegative", REQUIRED, "an unbalance's mass"),
     F("rotor.unbalance.[].radius", "length", "nonnegative", REQUIRED, "its radius"),
@@ -230,11 +230,11 @@ BALANCING: tuple[Field, ...] = (
       "trial mass"),
     F("influence.[].coefficients.[].[].#1", "angle", "", "", "a stored coefficient's "
       "phase"),
-    *(f for key in _FIELD_RUNS for f in (
-        F(f"influence.[].{key}.[].angle", "angle", "", "", f"a {key[:-1]} mass's angle"),
+    *(f for key, one in _FIELD_RUNS.items() for f in (
+        F(f"influence.[].{key}.[].angle", "angle", "", "", f"a {one} mass's angle"),
         F(f"influence.[].{key}.[].readings.[].#1", "angle", "", REQUIRED,
-          f"a {key[:-1]} reading's phase"),
-        F(f"influence.[].{key}.[].masses.[].#1", "angle", "", "", f"a {key[:-1]}'s mass "
+          f"a {one} reading's phase"),
+        F(f"influence.[].{key}.[].masses.[].#1", "angle", "", "", f"a {one}'s mass "
           "angle, per plane"))),
     F("influence.[].phase_noise", "angle", "nonnegative", "0", "1-sigma of each phase"),
     F("influence.[].split.first", "angle", "", "0", "the first position's angle"),
