@@ -232,8 +232,14 @@ def _rotor(table: Any, units: Units) -> RotorSpec:
 
 def _static(table: Any, units: Units) -> StaticTestSpec:
     t = check_keys(table, STATIC_KEYS, "[static_test]", required=STATIC_KEYS)
-    return StaticTestSpec(**{k: read_number(t, STATIC[k], "static_test", units)
+    spec = StaticTestSpec(**{k: read_number(t, STATIC[k], "static_test", units)
                              for k in STATIC_KEYS})
+    if not 0.0 < spec.alpha <= 90.0:      # in degrees here, quoted as typed
+        raise SceneError(f"static_test.alpha must lie in (0, "
+                         f"{units.quote(90.0, 'angle', file=True)}], got "
+                         f"{units.quote(spec.alpha, 'angle', file=True)}; it is the dial angle "
+                         "at which the disk settles with the comparison mass")
+    return spec
 
 
 def _resonance(item: Any, i: int, units: Units) -> ResonanceSpec:

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import copy
 import tomllib
+import warnings
 
 import pytest
 
@@ -78,3 +79,62 @@ def test_the_readers_read_every_number_of_theirs_through_a_declaration() -> None
     assert set(mscene.MOTOR) == {"stall_moment", "no_load_speed"}
     assert section(MECHANISM, "motion")["flywheel"].fallback == 0.0
     assert section(BALANCING, "rotor", "unbalance", "[]")["z"].fallback == 0.0
+
+
+# ------------------------------------------------------------------ messages in the typed unit
+CAMS = ks.example("four_bar").parent / "cams"
+
+
+def mm_cam(name: str, **cam) -> dict:
+    """A bundled cam typed in mm (and rad for angles when ``rad``), with ``cam`` changed."""
+    with open(CAMS / f"{name}.toml", "rb") as fh:
+        d = tomllib.load(fh)
+    d["units"] = {"length": "mm"}
+    c = d["cam"]
+    for key in ("base_radius", "roller_radius"):
+        if key in c:
+            c[key] *= 1000.0
+    for key in ("stroke", "offset", "arm", "pivot_distance"):
+        if isinstance(c["follower"].get(key), float):
+            c["follower"][key] *= 1000.0
+    for key in ("guide_length", "guide_gap", "pin_radius"):
+        if key in c.get("loads", {}):
+            c["loads"][key] *= 1000.0
+    for k, v in cam.items():
+        (c["follower"] if k in ("offset", "arm", "pivot_distance") else c)[k] = v
+    return d
+
+
+@pytest.mark.parametrize(("scene", "match"), [
+    (mm_cam("translating_roller", roller_radius=100.0),
+     r"the roller radius 100 mm must lie in \[0, base radius \d+(\.\d+)? mm\)$"),
+    (mm_cam("oscillating_roller", pivot_distance=30.0),
+     r"no base radius keeps tau >= 45 deg with arm 60 mm and pivot distance 30 mm"),
+    (mm_cam("oscillating_roller", transmission_angle=95.0),
+     r"admissible transmission angle must lie in \(0, 90 deg\), got 95 deg$"),
+])
+def test_cam_follower_errors_quote_the_scene_units(scene, match) -> None:
+    from kinetostatics.cams import load_cam_scene
+    with pytest.raises(ks.WorkbenchError, match=match), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        load_cam_scene(scene)
+
+
+def test_rotor_notes_and_errors_quote_the_scene_units() -> None:
+    planes = '[[rotor.planes]]\nz = 240.0\nradius = 80.0\n[[rotor.planes]]\nz = {z}\nradius = 80.0\n'
+    text = ('[units]\nmass = "g"\nlength = "mm"\n[rotor]\n'
+            '[[rotor.unbalance]]\nmass = 20.0\nradius = 100.0\nangle = 0.0\nz = 0.0\n'
+            '[[rotor.unbalance]]\nmass = 20.0\nradius = 100.0\nangle = 180.0\nz = 500.0\n')
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        out = balance.solve(text + planes.format(z=260.0))
+    notes = out["rotor"]["warnings"]
+    assert any("planes are 20 mm apart" in n and "extent 500 mm" in n for n in notes), notes
+    assert any("corrections total 1e+05 g mm" in n and "(4000 g mm)" in n for n in notes), notes
+    assert len(seen) == len(notes)
+    with pytest.raises(balance.BalanceError, match=r"coincide \(z = 240 and 240 mm\)"):
+        balance.solve(text + planes.format(z=240.0))
+    with pytest.raises(ks.SceneError, match=r"alpha must lie in \(0, 1\.5708 rad\], got 2 rad"):
+        balance.solve('[units]\nangle = "rad"\n[static_test]\ndisk_mass = 5.0\n'
+                      'comparison_mass = 0.05\ncomparison_radius = 0.1\nalpha = 2.0\n'
+                      'correction_radius = 0.08\n')
