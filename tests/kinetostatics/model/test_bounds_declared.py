@@ -121,7 +121,8 @@ def test_cam_follower_errors_quote_the_scene_units(scene, match) -> None:
 
 
 def test_rotor_notes_and_errors_quote_the_scene_units() -> None:
-    planes = '[[rotor.planes]]\nz = 240.0\nradius = 80.0\n[[rotor.planes]]\nz = {z}\nradius = 80.0\n'
+    planes = ('[[rotor.planes]]\nz = 240.0\nradius = 80.0\n'
+              '[[rotor.planes]]\nz = {z}\nradius = 80.0\n')
     text = ('[units]\nmass = "g"\nlength = "mm"\n[rotor]\n'
             '[[rotor.unbalance]]\nmass = 20.0\nradius = 100.0\nangle = 0.0\nz = 0.0\n'
             '[[rotor.unbalance]]\nmass = 20.0\nradius = 100.0\nangle = 180.0\nz = 500.0\n')
