@@ -92,12 +92,13 @@ SI_TEXT = "SI: kg, m, kg m, N, N m, s; angles in degrees"
 
 
 def result_units(out: dict[str, Any], units: Units) -> dict[str, str]:
-    """The units of each section's numbers: SI for the course's methods and ``[iso]``; the
-    scene's own for the influence method, split and combine (linear in the masses and
-    readings, they answer in the units they were given)."""
+    """The units of each section's numbers: SI for the course's methods; the scene's own
+    for the influence method, split and combine (linear in the masses and readings, they
+    answer in the units they were given) and ``[iso]`` (computed in SI, its result written
+    back in the scene's units: docs/balancing.md)."""
     scene = (f"the scene's: mass {units.mass}, length {units.length}, unbalance "
              f"{units.unbalance}, readings {units.vibration or 'as typed'}; angles in degrees")
-    return {k: scene if k in ("influence", "split", "combine") else SI_TEXT
+    return {k: scene if k in ("influence", "split", "combine", "iso") else SI_TEXT
             for k in out if k not in ("warnings", "result_units", "scene_units")}
 
 
