@@ -274,3 +274,27 @@ def test_balancing_twins(name, si, want, system) -> None:
     x, y = si_numbers(a, {}), si_numbers(b, SYSTEMS[system])
     assert x and close(x, y, 1e-11), (x, y)        # measured: 2e-15
     assert math.isfinite(sum(x))
+
+
+# ------------------------------------------------------------------ one positions rule
+@pytest.mark.parametrize("system", [{}, {"length": "mm", "angle": "rad"}])
+def test_one_positions_rule_for_mechanism_and_motion_scenes(system) -> None:
+    """Any order is read, a repeat is refused with the same one line (in the unit typed)
+    by ``solve`` and by the motion of a ``[motion]`` scene."""
+    si = changed("four_bar_motion", sweep([90.0, 0.0, 180.0, 270.0]))
+    si["motion"]["cycles"] = 2
+    ks.solve(mechanism_in(si, system))
+    ks.simulate_motion(mechanism_in(si, system))
+    twice = mechanism_in(changed("four_bar_motion", sweep([90.0, 0.0, 90.0, 270.0])), system)
+    said = "1.5708 rad" if system else "90 deg"
+    told = []
+    for run in (ks.solve, ks.simulate_motion):
+        with pytest.raises(ks.SceneError) as exc:
+            run(copy.deepcopy(twice))
+        told.append(str(exc.value))
+    assert told[0] == told[1] and "\n" not in told[0]
+    assert told[0].startswith(f"driver positions: {said} is listed more than once (rows 1, 3)")
+    beyond = mechanism_in(changed("four_bar_motion", sweep([0.0, 10.0, 400.0])), system)
+    with pytest.raises(ks.SceneError, match=r"within one turn from the smallest position "
+                                            rf"\(0 {said.split()[1]}\)"):
+        ks.simulate_motion(beyond)
