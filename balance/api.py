@@ -80,9 +80,12 @@ def solve_results(scene: Any) -> dict[str, Any]:
     if sc.resonance_tests:
         out["resonance_test"] = [_resonance(spec) for spec in sc.resonance_tests]
     if sc.balancing is not None:
-        out["balancing"] = _mechanism_balancing(sc.raw)
+        out["balancing"] = _mechanism_balancing(sc.source or sc.raw)
     out.update(solve_field(sc.field_scene))
-    out["warnings"] = [*sc.warnings, *emit(correction_slips(out, sc), sc.quiet, BalanceWarning)]
+    # the mechanism's own slips (its reader judged and warned them) are the scene's too
+    mechanism = getattr(getattr(out.get("balancing"), "scene", None), "warnings", ())
+    out["warnings"] = [*sc.warnings, *mechanism,
+                       *emit(correction_slips(out, sc), sc.quiet, BalanceWarning)]
     out["result_units"] = result_units(out, sc.units)
     out["scene_units"] = sc.units
     return out
