@@ -58,6 +58,10 @@ def sweep(positions):
     return change
 
 
+def friction(radius: float):
+    return lambda d: d["joints"][0].update(friction={"mu": 0.1, "radius": radius})
+
+
 MECHANISMS = [
     # (name, SI scene, expected (field, rule) pairs)
     ("four_bar (RRR)", example("four_bar"), []),
@@ -85,6 +89,9 @@ MECHANISMS = [
      changed("four_bar_motion", lambda d: d["motion"].update(omega0=300.0)),
      [("motion.omega0", "speed")]),
     ("motion", example("four_bar_motion"), []),
+    ("eccentric pin radius 0.2 m", changed("four_bar", friction(0.2)), []),
+    ("pin radius 10 m (mm typed)", changed("four_bar", friction(10.0)),
+     [("joint 'A'.friction.radius", "lengths")]),
 ]
 
 
