@@ -313,3 +313,12 @@ def test_a_slipped_mechanism_balancing_scene_carries_its_warning() -> None:
     a, b = si["balancing"], mm["balancing"]
     for x, y in zip(a["counterweights"], b["counterweights"], strict=True):
         assert x["mass"] == pytest.approx(y["mass"], rel=1e-12)   # measured: 2e-16
+
+
+def test_the_report_names_each_warning_s_section_once() -> None:
+    from balance.report.text import result_warnings
+    out = {"rotor": {"warnings": ["rotor: the correction planes are 20 mm apart"]},
+           "influence": [{"warnings": ["the coefficients are ill-conditioned"]}]}
+    assert list(result_warnings(out)) == [
+        ("", "rotor: the correction planes are 20 mm apart"),
+        ("influence[0]", "the coefficients are ill-conditioned")]
