@@ -203,7 +203,8 @@ CAM: tuple[Field, ...] = (
     F("cam.roller_radius", "length", "nonnegative", "0", "the roller's radius"),
     F("cam.follower.stroke", "length", "positive", REQUIRED, "a translating follower's "
       "stroke"),
-    F("cam.follower.offset", "length", "", "0", "its offset (or \"auto\")"),
+    F("cam.follower.offset", "length", "", "0", "its offset (or \"optimal\", with "
+      "transmission_angle)"),
     F("cam.follower.stroke_angle", "angle", "positive", REQUIRED, "an oscillating "
       "follower's swing"),
     F("cam.follower.arm", "length", "positive", REQUIRED, "its arm"),
