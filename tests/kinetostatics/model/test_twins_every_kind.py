@@ -202,6 +202,18 @@ STATIC = {"static_test": {"disk_mass": 5.0, "comparison_mass": 0.05, "comparison
                           "alpha": 25.0, "correction_radius": 0.08}}
 RESONANCE = {"resonance_test": [{"trial_mass": 0.02, "trial_radius": 0.1,
                                  "correction_radius": 0.12, "A1": 4.0, "A2": 5.1, "A3": 3.3}]}
+
+
+def marks(angles) -> dict:
+    """A resonance test with runs at ``angles`` (its amplitudes from one unbalance)."""
+    u, trial = 0.002 * complex(math.cos(1.0), math.sin(1.0)), 0.02 * 0.1
+    runs = [{"angle": a, "A": abs(u + trial * complex(math.cos(math.radians(a)),
+                                                       math.sin(math.radians(a)))) * 1000}
+            for a in angles]
+    return {"resonance_test": [{"trial_mass": 0.02, "trial_radius": 0.1,
+                                "correction_radius": 0.12, "A1": abs(u) * 1000, "runs": runs}]}
+
+
 # a good correction (4.0 at 250 deg, trial 0.3 g: 0.0003 kg), then a trim run after it
 GOOD = influence(0.0003)["influence"][0]
 TRIM = {"influence": [{**GOOD, "trim": [{"plane": 1, "mass": 0.0003 * 1.01, "angle": 324.0,
@@ -218,6 +230,9 @@ BALANCING = [
     ("static device, alpha 0.4363", {"static_test": {**STATIC["static_test"], "alpha": 0.4363}},
      []),
     ("resonance, three runs", RESONANCE, []),
+    ("resonance, four marks", marks([0.0, 90.0, 180.0, 270.0]), []),
+    ("resonance, marks in radians", marks([0.0, 1.5708, 3.1416, 4.7124]),
+     [("resonance_test[0].runs.angle", "angles")]),
     ("influence, a 0.3 g fan trial", influence(0.0003), []),
     ("influence, 5 g typed as kg", influence(5.0), [("influence[0].runs.mass", "trial_mass")]),
     ("influence, phases in radians", influence(0.1, (4.3633, 2.7925)),
