@@ -23,8 +23,10 @@ from functools import partial
 import numpy as np
 
 from ..results.solving import solve_outcomes
+from ..solver.fast import wanted
 from .screen import loaded
 from .section import DesignSpec
+from .stacked import judge_stacked
 
 # the stacked solve keeps every run's arrays: each design's kinematics are read (the
 # feasibility, the transmission angle), which a lean solve would solve again (measured for
@@ -83,9 +85,68 @@ def evaluate(spec: DesignSpec, X: np.ndarray, executor: Executor | None = None,
 
 
 def evaluate_rows(spec: DesignSpec, X: np.ndarray) -> Evaluation:
-    """:func:`evaluate` in this process (a top-level function: an executor's task). The
-    designs the screen (:func:`~kinetostatics.design.screen.screen`) sets aside are not
-    solved; the others are, in one call."""
+    """:func:`evaluate` in this process (a top-level function: an executor's task): the
+    population judged from stacked arrays (:func:`~kinetostatics.design.stacked.
+    judge_stacked`, no Scene per design) where it can be, else, and for the designs it
+    leaves (a number not finite), one Solution per design (:func:`evaluate_scenes`).
+    On the compiled path (``[fast]``) every design is judged from the Solution
+    :func:`~kinetostatics.solve_many` gives it, as ``solve`` there solves it."""
+    X = np.asarray(X, dtype=float)
+    plan = spec.stack_plan
+    if plan is None or len(X) < 2 or wanted(len(X) * plan.base.driver.positions.size):
+        return evaluate_scenes(spec, X)
+    ev = _evaluate_stacked(spec, plan, X)
+    return evaluate_scenes(spec, X) if ev is None else ev
+
+
+def _evaluate_stacked(spec: DesignSpec, plan, X: np.ndarray) -> Evaluation | None:
+    """:func:`evaluate_rows` by :func:`~kinetostatics.design.stacked.judge_stacked` (and,
+    with ``full_turn`` over a partial sweep, the whole turn's too); None when the
+    population cannot be stacked."""
+    V = spec.set_values(X)
+    quantities = list({q.name: q for q in [c.quantity for c in spec.constraints]
+                       + [o.quantity for o in spec.objectives]}.values())
+    main = judge_stacked(plan, V, quantities)
+    turn = None
+    if main is not None and spec.turn_plan is not None:
+        turn = judge_stacked(spec.turn_plan, V, [])
+    if main is None or (spec.turn_plan is not None and turn is None):
+        return None
+    n = len(X)
+    values = np.full((n, len(spec.objectives)), np.nan)
+    limits = np.full((n, len(spec.constraints)), np.nan)
+    solved = np.zeros(n, dtype=bool)
+    reasons: list[str | None] = [None] * n
+    again = main.again | (turn.again if turn is not None else False)
+    for i in np.flatnonzero(~again).tolist():
+        why = main.reasons[i]
+        if why is None and turn is not None and turn.reasons[i] is not None:
+            why = f"full_turn: {turn.reasons[i]}"
+        if why is None:
+            solved[i] = True
+            why = _judged(spec, {k: v[i] for k, v in main.quantities.items()}, i, values,
+                          limits)
+        reasons[i] = why
+    feasible = np.array([r is None for r in reasons]) & ~again
+    ev = Evaluation(values, limits, solved, feasible, reasons)
+    redo = np.flatnonzero(again)
+    if redo.size:
+        _put(ev, redo, evaluate_scenes(spec, X[redo]))
+    return ev
+
+
+def _put(ev: Evaluation, rows: np.ndarray, part: Evaluation) -> None:
+    """Part's designs into ``ev`` at ``rows``."""
+    ev.values[rows], ev.limits[rows] = part.values, part.limits
+    ev.solved[rows], ev.feasible[rows] = part.solved, part.feasible
+    for i, r in zip(rows.tolist(), part.reasons, strict=True):
+        ev.reasons[i] = r
+
+
+def evaluate_scenes(spec: DesignSpec, X: np.ndarray) -> Evaluation:
+    """The designs ``X`` judged one Solution each: the designs the screen
+    (:func:`~kinetostatics.design.screen.screen`) sets aside are not solved; the others
+    are, in one call."""
     n = len(X)
     made = [spec.design_scene(x) for x in X]
     turns = [spec.turn_dict(d) for d, _ in made]
@@ -121,15 +182,20 @@ def _judge(spec: DesignSpec, sol, i: int, values: np.ndarray, limits: np.ndarray
     """Fill row ``i`` of the values and limits of a solved design; the first broken
     constraint, or None."""
     known: dict[str, float] = {}       # (a quantity both constrained and an objective: once)
-
-    def of(q) -> float:
+    for q in [c.quantity for c in spec.constraints] + [o.quantity for o in spec.objectives]:
         if q.name not in known:
             known[q.name] = q.of(sol)
-        return known[q.name]
+    return _judged(spec, known, i, values, limits)
+
+
+def _judged(spec: DesignSpec, known: dict, i: int, values: np.ndarray, limits: np.ndarray
+            ) -> str | None:
+    """Fill row ``i`` of the values and limits from the design's quantities by name
+    (``known``); the first broken constraint, or None."""
     for k, c in enumerate(spec.constraints):
-        limits[i, k] = of(c.quantity)
+        limits[i, k] = known[c.quantity.name]
     for k, o in enumerate(spec.objectives):
-        values[i, k] = of(o.quantity)
+        values[i, k] = known[o.quantity.name]
     if not np.isfinite(values[i]).all() or not np.isfinite(limits[i]).all():
         return "an objective is not finite"
     for k, c in enumerate(spec.constraints):
