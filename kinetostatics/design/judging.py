@@ -26,7 +26,9 @@ from ..results.solving import solve_outcomes
 from ..solver.fast import wanted
 from .screen import loaded
 from .section import DesignSpec
-from .stacked import judge_stacked
+from .stacked import REASONS, judge_stacked
+
+NOT_FINITE = "an objective is not finite"
 
 # the stacked solve keeps every run's arrays: each design's kinematics are read (the
 # feasibility, the transmission angle), which a lean solve would solve again (measured for
@@ -112,27 +114,45 @@ def _evaluate_stacked(spec: DesignSpec, plan, X: np.ndarray) -> Evaluation | Non
         turn = judge_stacked(spec.turn_plan, V, [])
     if main is None or (spec.turn_plan is not None and turn is None):
         return None
-    n = len(X)
-    values = np.full((n, len(spec.objectives)), np.nan)
-    limits = np.full((n, len(spec.constraints)), np.nan)
-    solved = np.zeros(n, dtype=bool)
-    reasons: list[str | None] = [None] * n
     again = main.again | (turn.again if turn is not None else False)
-    for i in np.flatnonzero(~again).tolist():
-        why = main.reasons[i]
-        if why is None and turn is not None and turn.reasons[i] is not None:
-            why = f"full_turn: {turn.reasons[i]}"
-        if why is None:
-            solved[i] = True
-            why = _judged(spec, {k: v[i] for k, v in main.quantities.items()}, i, values,
-                          limits)
-        reasons[i] = why
-    feasible = np.array([r is None for r in reasons]) & ~again
+    code = np.where(again, 0, main.why)
+    turned = (code == 0) & ~again & (turn.why != 0 if turn is not None else False)
+    solved = (code == 0) & ~turned & ~again
+    values = np.full((len(X), len(spec.objectives)), np.nan)
+    limits = np.full((len(X), len(spec.constraints)), np.nan)
+    for k, o in enumerate(spec.objectives):
+        values[solved, k] = main.quantities[o.quantity.name][solved]
+    for k, c in enumerate(spec.constraints):
+        limits[solved, k] = main.quantities[c.quantity.name][solved]
+    reasons = [REASONS[c] for c in code.tolist()]
+    for i in np.flatnonzero(turned).tolist():
+        reasons[i] = f"full_turn: {REASONS[turn.why[i]]}"
+    broken = _broken(spec, values, limits, solved)
+    for i in np.flatnonzero(broken >= 0).tolist():
+        b = int(broken[i])
+        reasons[i] = f"{spec.constraints[b].text} not kept" if b < len(spec.constraints) \
+            else NOT_FINITE
+    feasible = solved & (broken < 0)
     ev = Evaluation(values, limits, solved, feasible, reasons)
     redo = np.flatnonzero(again)
     if redo.size:
         _put(ev, redo, evaluate_scenes(spec, X[redo]))
     return ev
+
+
+def _broken(spec: DesignSpec, values: np.ndarray, limits: np.ndarray, solved: np.ndarray
+            ) -> np.ndarray:
+    """Per design solved, the first constraint it breaks (its index; the number of
+    constraints: a quantity not finite), else -1 (as :func:`_judged`, every design at
+    once: the same arithmetic, elementwise)."""
+    out = np.full(len(solved), -1)
+    bad = solved & ~(np.isfinite(values).all(axis=1) & np.isfinite(limits).all(axis=1))
+    out[bad] = len(spec.constraints)
+    for k in reversed(range(len(spec.constraints))):    # (the first broken one last)
+        with np.errstate(invalid="ignore"):
+            hit = solved & ~bad & (spec.constraints[k].excess(limits[:, k]) > 0)
+        out[hit] = k
+    return out
 
 
 def _put(ev: Evaluation, rows: np.ndarray, part: Evaluation) -> None:
@@ -197,7 +217,7 @@ def _judged(spec: DesignSpec, known: dict, i: int, values: np.ndarray, limits: n
     for k, o in enumerate(spec.objectives):
         values[i, k] = known[o.quantity.name]
     if not np.isfinite(values[i]).all() or not np.isfinite(limits[i]).all():
-        return "an objective is not finite"
+        return NOT_FINITE
     for k, c in enumerate(spec.constraints):
         if c.excess(limits[i, k]) > 0:
             return f"{c.text} not kept"
@@ -240,7 +260,7 @@ def excess(spec: DesignSpec, ev: Evaluation) -> np.ndarray:
     for k, c in enumerate(spec.constraints):
         col = ev.limits[:, k]
         ok = solved & np.isfinite(col)
-        g[ok, 1 + k] = [c.excess(v) for v in col[ok]]
+        g[ok, 1 + k] = c.excess(col[ok])      # (elementwise: each design's own number)
     g[~np.isfinite(g)] = 1.0
     return g
 

@@ -136,12 +136,21 @@ class RunSolution:
     positions: np.ndarray
 
 
+BETWEEN = "a dead point between rows (a change of branch)"
+UNASSEMBLED = "cannot be assembled between two rows"
+PASSES = "passes a dead centre (a row with sin tau below 1e-3)"
+# why a design is set aside or cannot be vouched for, by its code (0: vouched for), as
+# the screen and :func:`~kinetostatics.design.judging.unvouched` say it
+REASONS = (None, NOT_AT_FIRST_ROW, NOT_OVER_SWEEP, DEAD_CENTRE, BETWEEN, UNASSEMBLED, PASSES)
+
+
 @dataclass
 class Stacked:
-    """Per design of a population: why it is set aside or refused (None: vouched for),
-    whether to judge it again one by one (``again``) and its quantities by name."""
+    """Per design of a population: why it is set aside or cannot be vouched for (``why``,
+    a code of :data:`REASONS`; 0 when vouched for), whether to judge it again one by one
+    (``again``) and its quantities by name."""
 
-    reasons: list
+    why: np.ndarray
     again: np.ndarray
     quantities: dict
 
@@ -190,28 +199,11 @@ def judge_stacked(plan: Plan, V: np.ndarray, quantities: list) -> Stacked | None
                 values[q.name][lo:hi] = q.of_designs(run)
     dead = _dead_points(stacker, structure, ks, m2, positions, starts, counts)
     again |= passed & ~finite
-    reasons: list = [None] * m
-    for i in range(m):
-        reasons[i] = (None if again[i] else
-                      NOT_AT_FIRST_ROW if not ok[i] else
-                      NOT_OVER_SWEEP if not reach[i] else
-                      DEAD_CENTRE if not passed[i] else
-                      _vouched(dead[i], flagged[i]))
-    return Stacked(reasons, again, values)
-
-
-def _vouched(dead: tuple, flagged: bool) -> str | None:
-    """:func:`~kinetostatics.design.judging.unvouched` of a stacked design solved: its
-    dead points between rows (``dead``: between, ends, unassembled) and whether a row is
-    flagged singular (strict)."""
-    between, ends, unassembled = dead
-    if len(between):
-        return "a dead point between rows (a change of branch)"
-    if len(unassembled):
-        return "cannot be assembled between two rows"
-    if flagged or len(ends):
-        return "passes a dead centre (a row with sin tau below 1e-3)"
-    return None
+    between, unassembled, ends = (np.array([len(d[i]) for d in dead], dtype=bool)
+                                  for i in (0, 2, 1))
+    why = np.select([~ok, ~reach, ~passed, between, unassembled, flagged | ends],
+                    [1, 2, 3, 4, 5, 6], 0)
+    return Stacked(np.where(again, 0, why), again, values)
 
 
 def _dead_points(stacker: Stacker, structure, ks: np.ndarray, m2: np.ndarray,
@@ -274,8 +266,11 @@ class _RunRows:
         out = np.ones(self.m, dtype=bool)
         with np.errstate(all="ignore"):
             for a in arrays:
+                # one summing pass per array, per design (a NaN or an infinity makes its
+                # sum non-finite; a sum that overflows with every value finite, too: the
+                # design is then judged again one by one, where the solve looks closer)
                 if isinstance(a, np.ndarray):
-                    out &= self._per(np.isfinite(a), np.logical_and)
+                    out &= np.isfinite(self._per(a, np.add))
                 elif not math.isfinite(a):
                     out[:] = False
         return out
