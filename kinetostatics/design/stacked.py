@@ -223,8 +223,9 @@ class _RunRows:
         self.kin, self.sol, self.m, self.n = kin, sol, m, n
 
     def _per(self, a, op) -> np.ndarray:
-        return op.reduce(np.broadcast_to(a, (self.m * self.n,)).reshape(self.m, self.n),
-                         axis=1)
+        if not (isinstance(a, np.ndarray) and a.shape == (self.m * self.n,)):
+            a = np.broadcast_to(a, (self.m * self.n,))
+        return op.reduce(a.reshape(self.m, self.n), axis=1)
 
     def reach(self) -> np.ndarray:
         """Every row closes (the probe's measure is a number)."""
@@ -263,14 +264,16 @@ class _RunRows:
         arrays.append(sol.drive.value)
         for r in sol.joint_reactions.values():
             arrays += [v for v in (r.fx, r.fy, r.N, r.M) if v is not None]
-        out = np.ones(self.m, dtype=bool)
+        total = np.zeros(self.m * self.n)
         with np.errstate(all="ignore"):
             for a in arrays:
-                # one summing pass per array, per design (a NaN or an infinity makes its
-                # sum non-finite; a sum that overflows with every value finite, too: the
-                # design is then judged again one by one, where the solve looks closer)
-                if isinstance(a, np.ndarray):
-                    out &= np.isfinite(self._per(a, np.add))
-                elif not math.isfinite(a):
-                    out[:] = False
+                # every array added into one (a NaN or an infinity anywhere makes the
+                # row's total non-finite), then one sum per design; a total that
+                # overflows with every value finite also reads not finite: the design is
+                # then judged again one by one, where the solve looks closer
+                if isinstance(a, np.ndarray) and a.ndim:
+                    total += a
+                elif not math.isfinite(float(a)):
+                    return np.zeros(self.m, dtype=bool)
+            out = np.isfinite(np.add.reduce(total.reshape(self.m, self.n), axis=1))
         return out
