@@ -9,6 +9,12 @@ find no dead point and no gap between two rows (``dead_points_between_rows``: a 
 of assembly branch or a change point passed; ``unassembled_between_rows``). With
 ``full_turn`` and a sweep shorter than a turn, the design's whole turn is checked the
 same way. A design that is not feasible has no objectives (NaN) and the reason is kept.
+
+Two roads give the same numbers: from stacked arrays alone, the screen, the solve and
+every quantity in one pass per run (:mod:`~kinetostatics.design.stacked`, no Scene per
+design), where the variables allow; else one Solution per design
+(:func:`evaluate_scenes`: each design's Scene, the screen
+(:mod:`~kinetostatics.design.screen`), then :func:`~kinetostatics.solve_many`).
 """
 
 from __future__ import annotations
