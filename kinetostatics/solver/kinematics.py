@@ -228,19 +228,16 @@ def _solve2(a11, b12, a21, b22, r1, r2, det):
 
 
 def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
-               k: int | None = None, strict: bool = True, screened: bool = False
-               ) -> DyadMotion:
+               k: int | None = None, strict: bool = True, screened: bool = False) -> DyadMotion:
     """Positions, velocities and accelerations of a dyad's two bodies over the sweep.
 
     Adds both bodies' :class:`BodyMotion` to ``motions`` and returns the dyad data the
     reactions need. ``k`` is the dyad's assembly (seed 000 eqs 6.1, 8.1); ``None`` chooses
     it from the ``[near]`` hints at the first row of ``scene``. ``strict = False`` (used
     to probe between rows) returns whatever the closed form gives where the dyad cannot
-    close or is singular, instead of refusing. ``screened`` (with ``strict = False``):
-    ``closeness2`` and ``singular`` measured as a strict solve measures them (the rigid
-    bodies' constant) and ``probe2`` as a probe measures it (row by row): one pass over
-    rows some of which may not close gives both a screen's numbers and, on the rows that
-    do close, a strict solve's.
+    close or is singular, instead of refusing; ``screened`` with it: ``closeness2`` and
+    ``singular`` as a strict solve measures them, ``probe2`` as a probe does (one pass
+    gives a screen's numbers and, on the rows that close, a strict solve's).
 
     Raises
     ------
@@ -581,8 +578,7 @@ def solve_kinematics(scene: Scene, structure: Structure, positions=None,
         Refuse positions where a dyad cannot close or is exactly singular (the default);
         ``False`` probes such positions (between rows) without refusing.
     screened : bool
-        With ``strict = False``: each dyad's closeness to a dead centre both as a strict
-        solve measures it and as a probe does (:func:`solve_dyad`).
+        With ``strict = False``: both closeness measures (:func:`solve_dyad`).
     """
     if len(structure.assembly) == len(structure.dyads):
         assembly: tuple = structure.assembly
