@@ -71,7 +71,8 @@ def solve_results(scene: Any) -> dict[str, Any]:
                            "for a mechanism's reactions use kinetostatics.solve")
     out: dict[str, Any] = {}
     if sc.rotor is not None:
-        out["rotor"] = balance_rotor(sc.rotor.unbalances, sc.rotor.planes, sc.rotor.speed_rpm)
+        out["rotor"] = balance_rotor(sc.rotor.unbalances, sc.rotor.planes, sc.rotor.speed_rpm,
+                                     sc.units)
     if sc.static_test is not None:
         s = sc.static_test
         out["static_test"] = static_device(s.disk_mass, s.comparison_mass, s.comparison_radius,

@@ -27,10 +27,9 @@ from typing import Any
 
 from kinetostatics.model.errors import SceneError
 from kinetostatics.model.examples import BundledScenes
+from kinetostatics.model.fields import BALANCING, read_number, section
 from kinetostatics.model.slips import emit, read_checks
 from kinetostatics.model.tomlio import (
-    MIN_MAGNITUDE,
-    as_float,
     as_int,
     as_list,
     as_str,
@@ -164,8 +163,8 @@ def load_scene(source: Any) -> BalanceScene:
     title = as_str(top["title"], "title") if "title" in top else ""
     if "format" in top:
         as_int(top["format"], "format", lo=1, hi=1)
-    rotor = _rotor(top["rotor"]) if "rotor" in top else None
-    static = _static(top["static_test"]) if "static_test" in top else None
+    rotor = _rotor(top["rotor"], units) if "rotor" in top else None
+    static = _static(top["static_test"], units) if "static_test" in top else None
     tests: tuple[ResonanceSpec, ...] = ()
     if "resonance_test" in top:
         items = top["resonance_test"]
@@ -175,7 +174,7 @@ def load_scene(source: Any) -> BalanceScene:
         items = as_list(items, "resonance_test")
         if not items:
             raise SceneError("resonance_test is empty: give at least one [[resonance_test]]")
-        tests = tuple(_resonance(item, i) for i, item in enumerate(items))
+        tests = tuple(_resonance(item, i, units) for i, item in enumerate(items))
     balancing = top.get("balancing")
     if balancing is not None and not isinstance(balancing, dict):
         raise SceneError("[balancing] must be a table")
@@ -188,10 +187,20 @@ def load_scene(source: Any) -> BalanceScene:
     return scene
 
 
-def _rotor(table: Any) -> RotorSpec:
+ROTOR = section(BALANCING, "rotor")
+UNBALANCE = section(BALANCING, "rotor", "unbalance", "[]")
+PLANE = section(BALANCING, "rotor", "planes", "[]")
+STATIC = section(BALANCING, "static_test")
+RESONANCE = section(BALANCING, "resonance_test", "[]")
+RUN = section(BALANCING, "resonance_test", "[]", "runs", "[]")
+NOISE = section(BALANCING, "resonance_test", "[]", "noise")
+"""The declared fields (:data:`kinetostatics.model.fields.BALANCING`) each table's
+numbers are read through: their bounds, defaults and the units their messages quote."""
+
+
+def _rotor(table: Any, units: Units) -> RotorSpec:
     t = check_keys(table, ROTOR_KEYS, "[rotor]", required=("unbalance", "planes"))
-    speed = as_float(t["speed_rpm"], "rotor.speed_rpm", positive=True) if "speed_rpm" in t \
-        else None
+    speed = read_number(t, ROTOR["speed_rpm"], "rotor", units) if "speed_rpm" in t else None
     if isinstance(t["unbalance"], dict):
         raise SceneError("rotor.unbalance must be an array of tables: write "
                          "[[rotor.unbalance]], not [rotor.unbalance]")
@@ -203,12 +212,8 @@ def _rotor(table: Any) -> RotorSpec:
     for i, item in enumerate(items):
         w = f"rotor.unbalance[{i}]"
         u = check_keys(item, UNBALANCE_KEYS, w, required=("mass", "radius", "angle"))
-        unbalances.append(Unbalance(
-            mass=as_float(u["mass"], f"{w}.mass", nonnegative=True),
-            radius=as_float(u["radius"], f"{w}.radius", nonnegative=True),
-            angle=as_float(u["angle"], f"{w}.angle"),
-            z=as_float(u.get("z", 0.0), f"{w}.z"),
-        ))
+        unbalances.append(Unbalance(**{k: read_number(u, UNBALANCE[k], w, units)
+                                       for k in UNBALANCE_KEYS}))
     if isinstance(t["planes"], dict):
         raise SceneError("rotor.planes must be an array of tables: write [[rotor.planes]], "
                          "not [rotor.planes]")
@@ -220,39 +225,34 @@ def _rotor(table: Any) -> RotorSpec:
     for i, item in enumerate(items):
         w = f"rotor.planes[{i}]"
         p = check_keys(item, PLANE_KEYS, w, required=("radius",))
-        planes.append(CorrectionPlane(z=as_float(p.get("z", 0.0), f"{w}.z"),
-                                      radius=as_float(p["radius"], f"{w}.radius", positive=True)))
+        planes.append(CorrectionPlane(z=read_number(p, PLANE["z"], w, units),
+                                      radius=read_number(p, PLANE["radius"], w, units)))
     return RotorSpec(unbalances=tuple(unbalances), planes=tuple(planes), speed_rpm=speed)
 
 
-def _static(table: Any) -> StaticTestSpec:
+def _static(table: Any, units: Units) -> StaticTestSpec:
     t = check_keys(table, STATIC_KEYS, "[static_test]", required=STATIC_KEYS)
-    return StaticTestSpec(
-        disk_mass=as_float(t["disk_mass"], "static_test.disk_mass", positive=True),
-        comparison_mass=as_float(t["comparison_mass"], "static_test.comparison_mass",
-                                 positive=True),
-        comparison_radius=as_float(t["comparison_radius"], "static_test.comparison_radius",
-                                   positive=True),
-        alpha=as_float(t["alpha"], "static_test.alpha", smallest=MIN_MAGNITUDE),
-        correction_radius=as_float(t["correction_radius"], "static_test.correction_radius",
-                                   positive=True),
-    )
+    spec = StaticTestSpec(**{k: read_number(t, STATIC[k], "static_test", units)
+                             for k in STATIC_KEYS})
+    if not 0.0 < spec.alpha <= 90.0:      # in degrees here, quoted as typed
+        raise SceneError(f"static_test.alpha must lie in (0, "
+                         f"{units.quote(90.0, 'angle', file=True)}], got "
+                         f"{units.quote(spec.alpha, 'angle', file=True)}; it is the dial angle "
+                         "at which the disk settles with the comparison mass")
+    return spec
 
 
-def _resonance(item: Any, i: int) -> ResonanceSpec:
+def _resonance(item: Any, i: int, units: Units) -> ResonanceSpec:
     w = f"resonance_test[{i}]"
     t = check_keys(item, RESONANCE_KEYS, w,
                    required=("trial_mass", "trial_radius", "correction_radius", "A1"))
     plane = as_int(t.get("plane", 1), f"{w}.plane", lo=1, hi=2)
     common = dict(
         plane=plane,
-        trial_mass=as_float(t["trial_mass"], f"{w}.trial_mass", positive=True),
-        trial_radius=as_float(t["trial_radius"], f"{w}.trial_radius", positive=True),
-        correction_radius=as_float(t["correction_radius"], f"{w}.correction_radius",
-                                   positive=True),
-        A1=as_float(t["A1"], f"{w}.A1", nonnegative=True, smallest=MIN_MAGNITUDE),
-        dA=as_float(t["dA"], f"{w}.dA", nonnegative=True) if "dA" in t else None,
-        **_noise(t, w),
+        **{k: read_number(t, RESONANCE[k], w, units)
+           for k in ("trial_mass", "trial_radius", "correction_radius", "A1")},
+        dA=read_number(t, RESONANCE["dA"], w, units) if "dA" in t else None,
+        **_noise(t, w, units),
     )
     has_pair = "A2" in t or "A3" in t
     if "runs" in t:
@@ -262,35 +262,30 @@ def _resonance(item: Any, i: int) -> ResonanceSpec:
         for k, run in enumerate(as_list(t["runs"], f"{w}.runs")):
             rw = f"{w}.runs[{k}]"
             r = check_keys(run, RUN_KEYS, rw, required=RUN_KEYS)
-            runs.append((as_float(r["angle"], f"{rw}.angle"),
-                         as_float(r["A"], f"{rw}.A", positive=True, smallest=MIN_MAGNITUDE)))
+            runs.append((read_number(r, RUN["angle"], rw, units),
+                         read_number(r, RUN["A"], rw, units)))
         return ResonanceSpec(runs=tuple(runs), **common)
     for key in ("A2", "A3"):
         if key not in t:
             raise SceneError(f"{w}: missing required key {key!r} (or give runs = "
                              "[{angle = .., A = ..}, ...] instead of A2 and A3)")
-    return ResonanceSpec(A2=as_float(t["A2"], f"{w}.A2", positive=True,
-                                       smallest=MIN_MAGNITUDE),
-                         A3=as_float(t["A3"], f"{w}.A3", positive=True,
-                                       smallest=MIN_MAGNITUDE), **common)
+    return ResonanceSpec(A2=read_number(t, RESONANCE["A2"], w, units),
+                         A3=read_number(t, RESONANCE["A3"], w, units), **common)
 
 
-def _noise(t: dict, w: str) -> dict[str, float]:
+def _noise(t: dict, w: str, units: Units) -> dict[str, float]:
     """``noise = {relative, absolute}`` and ``confidence`` of a ``[[resonance_test]]``."""
     out: dict[str, float] = {}
     if "noise" in t:
         n = check_keys(t["noise"], NOISE_KEYS, f"{w}.noise")
-        if "relative" in n:
-            out["noise_relative"] = as_float(n["relative"], f"{w}.noise.relative",
-                                             nonnegative=True)
-        if "absolute" in n:
-            out["noise_absolute"] = as_float(n["absolute"], f"{w}.noise.absolute",
-                                             nonnegative=True)
+        for key in NOISE_KEYS:
+            if key in n:
+                out[f"noise_{key}"] = read_number(n, NOISE[key], f"{w}.noise", units)
         if out.get("noise_relative", 0.01) == 0.0 and out.get("noise_absolute", 0.0) == 0.0:
             raise SceneError(f"{w}.noise: relative and absolute are both 0; a reading "
                              "without noise has no likelihood: give the instrument's noise")
     if "confidence" in t:
-        c = as_float(t["confidence"], f"{w}.confidence", positive=True)
+        c = read_number(t, RESONANCE["confidence"], w, units)
         if not c < 1.0:
             raise SceneError(f"{w}.confidence must lie in (0, 1), got {c:g} (e.g. 0.95)")
         out["confidence"] = c

@@ -22,6 +22,7 @@ import numpy as np
 
 from kinetostatics.common.angles import radian_column, radian_value
 from kinetostatics.model.tomlio import suggest
+from kinetostatics.model.units import Units
 
 from ..common import RPM_TO_RAD_S, angle_of, check_number
 from ..errors import BalanceError, BalanceWarning
@@ -220,7 +221,7 @@ def _correction(k: int, plane: CorrectionPlane, Ue: complex, tol: float) -> Corr
 
 
 def balance_rotor(unbalances: Iterable[Any], planes: Iterable[Any],
-                  speed_rpm: float | None = None) -> RotorResult:
+                  speed_rpm: float | None = None, units: Units | None = None) -> RotorResult:
     """Correction masses that balance a rigid rotor by design (seed 002, s. 3.2).
 
     One correction plane gives static balancing: the correction vector closes the
@@ -246,6 +247,9 @@ def balance_rotor(unbalances: Iterable[Any], planes: Iterable[Any],
     speed_rpm : float, optional
         Speed (rpm, > 0). With it, forces and moments are in N and N m (U omega^2);
         without, the magnitudes are unbalances in kg m and kg m^2.
+    units : Units, optional
+        The scene's units, in which the messages quote lengths and unbalances (the
+        numbers given and returned stay SI).
 
     Returns
     -------
@@ -300,8 +304,14 @@ def balance_rotor(unbalances: Iterable[Any], planes: Iterable[Any],
         dz = z2 - z1
         extent = max(abs(z1), abs(z2), float(np.abs(z - z1).max()), float(np.abs(z - z2).max()))
         if dz == 0.0 or abs(dz) <= _COINCIDENT_TOL * extent:
-            raise BalanceError(f"rotor: correction planes 1 and 2 coincide (z = {z1!r} and "
-                               f"{z2!r} m); two-plane balancing needs planes at different z")
+            u = units or Units()
+            # the fewest digits that tell the two apart (the same when they are equal)
+            digits = next((p for p in range(6, 17) if format(u.from_si(z1, "length"), f".{p}g")
+                           != format(u.from_si(z2, "length"), f".{p}g")), 6)
+            raise BalanceError(f"rotor: correction planes 1 and 2 coincide (z = "
+                               f"{format(u.from_si(z1, 'length'), f'.{digits}g')} and "
+                               f"{u.quote(z2, 'length', f'.{digits}g')}); two-plane balancing "
+                               "needs planes at different z")
         Ue2 = -complex(((z - z1) * U).sum()) / dz  # eqs 3.12-3.13: moments about plane I
         Ue1 = -Ud - Ue2                            # eqs 3.10, 3.14: force balance
         Ue = [Ue1, Ue2]
@@ -310,7 +320,7 @@ def balance_rotor(unbalances: Iterable[Any], planes: Iterable[Any],
 
     corrections = tuple(_correction(k, p, ue, tol) for k, (p, ue) in enumerate(zip(pl, Ue,
                                                                                    strict=True)))
-    notes = _conditioning(pl, z, corrections, size)
+    notes = _conditioning(pl, z, corrections, size, units or Units())
     Ue_applied = np.array([c.vector for c in corrections])
     ze = np.array([p.z for p in pl])
     res_F = Ud + complex(Ue_applied.sum())                  # eq. 3.9 / 3.4 left-hand side
@@ -330,24 +340,35 @@ def balance_rotor(unbalances: Iterable[Any], planes: Iterable[Any],
 
 
 def _conditioning(pl: list[CorrectionPlane], z: np.ndarray, corrections: tuple[Correction, ...],
-                  size: float) -> tuple[str, ...]:
-    """Warnings, with their numbers, where the corrections are not to be trusted; each is
-    also issued as a BalanceWarning."""
+                  size: float, units: Units) -> tuple[str, ...]:
+    """Warnings, with their numbers in the scene's ``units``, where the corrections are not
+    to be trusted; each is also issued as a BalanceWarning."""
     notes = []
     if len(pl) == 2:
         z1, z2 = pl[0].z, pl[1].z
         extent = max(z.max(), z1, z2) - min(z.min(), z1, z2)
         if abs(z2 - z1) < CLOSE_PLANES * extent:
-            notes.append(f"rotor: the correction planes are {abs(z2 - z1):.3g} m apart, "
+            notes.append(f"rotor: the correction planes are "
+                         f"{units.quote(abs(z2 - z1), 'length', '.3g')} apart, "
                          f"{abs(z2 - z1) / extent:.2g} of the rotor's axial extent "
-                         f"{extent:.3g} m (under {CLOSE_PLANES:g}): the couple is corrected "
-                         "by a short lever and the corrections grow as extent / distance; "
-                         "place the planes further apart")
+                         f"{units.quote(extent, 'length', '.3g')} (under {CLOSE_PLANES:g}): "
+                         "the couple is corrected by a short lever and the corrections grow "
+                         "as extent / distance; place the planes further apart")
     total = sum(c.U for c in corrections)
     if size > 0.0 and total > LARGE_CORRECTION * size:
-        notes.append(f"rotor: the corrections total {total:.4g} kg m, {total / size:.3g} "
-                     f"times the unbalance they balance ({size:.4g} kg m): check the "
-                     "planes' positions and radii")
+        notes.append(f"rotor: the corrections total {_unbalance(total, units)}, "
+                     f"{total / size:.3g} times the unbalance they balance "
+                     f"({_unbalance(size, units, '.4g')}): check the planes' positions and "
+                     "radii")
     for note in notes:
         warnings.warn(note, BalanceWarning, stacklevel=3)
     return tuple(notes)
+
+
+def _unbalance(value: float, units: Units, spec: str = ".4g") -> str:
+    """An unbalance (kg m) in the scene's unit: its ``unbalance`` unit when it names one,
+    else its mass unit times its length unit (``"g mm"``)."""
+    if getattr(units, "unbalance", "kg m") != "kg m":
+        return units.quote(value, "unbalance", spec)
+    f = units.factor("mass") * units.factor("length")
+    return f"{format(value / f, spec)} {units.mass} {units.length}"

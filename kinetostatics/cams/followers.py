@@ -5,13 +5,14 @@ s. 1.3-1.4, eqs 1.27-1.38).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import InitVar, dataclass
 from typing import Any
 
 import numpy as np
 import pandas as pd
 
-from ..common.angles import degree_column, degree_value
+from ..common.angles import degree_column
+from ..model.units import Units
 from ..motion import golden_max
 from .laws import (
     SAMPLES,
@@ -22,23 +23,40 @@ from .laws import (
 
 # --------------------------------------------------------------------------- followers
 
+SI = Units()
+"""The contract's units: the messages' when no scene's are told."""
+
+
+def _len(x: float, units: Units | None) -> str:
+    """A length (m) for a message, in the scene's unit (SI without one)."""
+    return (units or SI).quote(x, "length")
+
+
+def _roller_check(rr: float, r0: float, units: Units | None) -> None:
+    if not 0.0 <= rr < r0:
+        raise CamError(f"the roller radius {_len(rr, units)} must lie in [0, base radius "
+                       f"{_len(r0, units)})")
+
+
 @dataclass(frozen=True)
 class TranslatingFollower:
-    """A translating follower (fig. 1.10): base radius r0, offset e, roller radius (m)."""
+    """A translating follower (fig. 1.10): base radius r0, offset e, roller radius (m).
+
+    ``units`` (not kept) only says the messages' unit: the scene's, SI without one."""
 
     base_radius: float
     offset: float = 0.0
     roller_radius: float = 0.0
+    units: InitVar[Units | None] = None
 
-    def __post_init__(self) -> None:
+    def __post_init__(self, units: Units | None) -> None:
         r0, e, rr = self.base_radius, self.offset, self.roller_radius
         if not (math.isfinite(r0) and math.isfinite(e) and math.isfinite(rr)):
             raise CamError("base radius, offset and roller radius must be finite numbers")
         if r0 <= abs(e):
-            raise CamError(f"the base radius {r0:g} m must exceed the offset |e| = {abs(e):g} m "
-                           "(eq. 1.27: s0 = sqrt(r0^2 - e^2))")
-        if not 0.0 <= rr < r0:
-            raise CamError(f"the roller radius {rr:g} m must lie in [0, base radius {r0:g} m)")
+            raise CamError(f"the base radius {_len(r0, units)} must exceed the offset |e| = "
+                           f"{_len(abs(e), units)} (eq. 1.27: s0 = sqrt(r0^2 - e^2))")
+        _roller_check(rr, r0, units)
 
     @property
     def s0(self) -> float:
@@ -48,25 +66,28 @@ class TranslatingFollower:
 
 @dataclass(frozen=True)
 class OscillatingFollower:
-    """An oscillating follower (fig. 1.12): base radius r0, arm L = CB, pivot distance d = AC."""
+    """An oscillating follower (fig. 1.12): base radius r0, arm L = CB, pivot distance d = AC.
+
+    ``units`` (not kept) only says the messages' unit: the scene's, SI without one."""
 
     base_radius: float
     arm: float
     pivot_distance: float
     roller_radius: float = 0.0
     rise_sense: str = "same"
+    units: InitVar[Units | None] = None
 
-    def __post_init__(self) -> None:
+    def __post_init__(self, units: Units | None) -> None:
         r0, L, d, rr = self.base_radius, self.arm, self.pivot_distance, self.roller_radius
         if not all(math.isfinite(v) for v in (r0, L, d, rr)):
             raise CamError("base radius, arm, pivot distance and roller radius must be finite")
         if L <= 0.0 or d <= 0.0:
             raise CamError("the arm and the pivot distance must be positive")
         if not abs(d - L) < r0 < d + L:
-            raise CamError(f"no triangle A-B0-C with r0 = {r0:g}, arm {L:g} and pivot distance "
-                           f"{d:g} m: r0 must lie in ({abs(d - L):g}, {d + L:g}) (eq. 1.35)")
-        if not 0.0 <= rr < r0:
-            raise CamError(f"the roller radius {rr:g} m must lie in [0, base radius {r0:g} m)")
+            raise CamError(f"no triangle A-B0-C with r0 = {_len(r0, units)}, arm "
+                           f"{_len(L, units)} and pivot distance {_len(d, units)}: r0 must lie "
+                           f"in ({_len(abs(d - L), units)}, {_len(d + L, units)}) (eq. 1.35)")
+        _roller_check(rr, r0, units)
         if self.rise_sense not in ("same", "opposite"):
             raise CamError(f"rise_sense must be 'same' or 'opposite', not {self.rise_sense!r}")
 
@@ -154,10 +175,17 @@ def base_radius_translating(law: CamLaw, tau_adm: float, offset: float = 0.0) ->
     return math.hypot(s0, offset)
 
 
-def check_tau(tau_adm: float) -> None:
+def check_tau(tau_adm: float, units: Units | None = None) -> None:
+    """Refuse an admissible transmission angle (rad) outside (0, 90) deg, quoted in the
+    scene's ``units`` (degrees without)."""
     if not (0.0 < tau_adm < 0.5 * math.pi):
-        raise CamError(f"the admissible transmission angle must lie in (0, 90) deg, got "
-                       f"{degree_value(tau_adm):g} deg")
+        raise CamError(f"the admissible transmission angle must lie in (0, "
+                       f"{_angle(0.5 * math.pi, units)}), got {_angle(tau_adm, units)}")
+
+
+def _angle(rad: float, units: Units | None) -> str:
+    """An angle (rad) for a message, in the scene's unit (degrees without one)."""
+    return (units or SI).quote(rad, "angle")
 
 
 def _s0_required(law: CamLaw, tau_adm: float, offset: float) -> float:
@@ -189,7 +217,7 @@ def optimal_offset(law: CamLaw, tau_adm: float) -> tuple[float, float]:
 
 
 def base_radius_oscillating(law: CamLaw, tau_adm: float, arm: float, pivot_distance: float,
-                            rise_sense: str = "same") -> float:
+                            rise_sense: str = "same", units: Units | None = None) -> float:
     """Smallest base radius r0 of an oscillating-follower cam with tau >= tau_adm (eq. 1.36).
 
     r0 follows from beta0 by eq. 1.35 and grows with it; the smallest beta0 that satisfies
@@ -205,12 +233,15 @@ def base_radius_oscillating(law: CamLaw, tau_adm: float, arm: float, pivot_dista
     arm, pivot_distance : float
         L = CB and d = AC, m.
     rise_sense : {"same", "opposite"}
+    units : Units, optional
+        The scene's units, in which the messages quote lengths and angles (SI without).
     """
-    check_tau(tau_adm)
+    check_tau(tau_adm, units)
     if arm <= 0.0 or pivot_distance <= 0.0:
         raise CamError("the arm and the pivot distance must be positive")
     if law.stroke >= math.pi:
-        raise CamError("the follower's swing must be below 180 deg")
+        raise CamError(f"the follower's swing must be below "
+                       f"{(units or SI).quote(math.pi, 'angle')}")
     probe = OscillatingFollower(0.5 * (abs(pivot_distance - arm) + pivot_distance + arm), arm,
                                 pivot_distance, rise_sense=rise_sense)
 
@@ -229,15 +260,17 @@ def base_radius_oscillating(law: CamLaw, tau_adm: float, arm: float, pivot_dista
     b, d1, _, u, _ = follower_points(probe, *vals, beta0=grid[:, None])
     ok = np.min(tau_of(b, d1, u), axis=1) >= tau_adm
     if not np.any(ok):
-        raise CamError(f"no base radius keeps tau >= {degree_value(tau_adm):g} deg with arm "
-                       f"{arm:g} m and pivot distance {pivot_distance:g} m; change them")
+        raise CamError(f"no base radius keeps tau >= {_angle(tau_adm, units)} with arm "
+                       f"{_len(arm, units)} and pivot distance {_len(pivot_distance, units)}; "
+                       "change them")
     i = int(np.argmax(ok))
     lo, hi = (0.0 if i == 0 else grid[i - 1]), grid[i]
     while margin(hi) < 0.0:           # the sampled minimum may miss a sharp dip
         lo, hi = hi, hi + 0.25 * (hi - lo)
         if hi >= math.pi - law.stroke:
-            raise CamError(f"no base radius keeps tau >= {degree_value(tau_adm):g} deg with "
-                           f"arm {arm:g} m and pivot distance {pivot_distance:g} m")
+            raise CamError(f"no base radius keeps tau >= {_angle(tau_adm, units)} with "
+                           f"arm {_len(arm, units)} and pivot distance "
+                           f"{_len(pivot_distance, units)}")
     while hi - lo > 1e-12:
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if margin(mid) >= 0.0 else (mid, hi)

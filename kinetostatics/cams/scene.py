@@ -149,7 +149,7 @@ def load_cam_scene(source: Any) -> CamScene:
     tau_adm = None
     if "transmission_angle" in cam:
         tau_adm = radians(read_number(cam, _CAM["transmission_angle"], "cam", units))
-        check_tau(tau_adm)
+        check_tau(tau_adm, units)
     loads = _load_loads(cam.get("loads", {}), kind, stroke, units)
     follower = _follower(kind, fol, cam, law, tau_adm, loads, units)
     if "base_radius" not in cam:        # the speed judged on the base radius computed
@@ -228,19 +228,19 @@ def _follower(kind: str, fol: dict, cam: dict, law: CamLaw, tau_adm: float | Non
                 loads.friction, loads.guide_gap - np.array([0, law.stroke]),
                 loads.guide_length)))
             if tau_adm <= cr:
-                raise CamError(f"cam.transmission_angle {degrees(tau_adm):g} deg is not "
-                               f"above the critical angle {degrees(cr):.4g} deg (eqs "
-                               "1.44-1.45); raise it")
-        return TranslatingFollower(r0, offset, roller)
+                raise CamError(f"cam.transmission_angle {units.quote(tau_adm, 'angle')} is "
+                               f"not above the critical angle "
+                               f"{units.quote(cr, 'angle', '.4g')} (eqs 1.44-1.45); raise it")
+        return TranslatingFollower(r0, offset, roller, units)
     arm = read_number(fol, _FOLLOWER["arm"], "cam.follower", units)
     dist = read_number(fol, _FOLLOWER["pivot_distance"], "cam.follower", units)
     sense = as_str(fol.get("rise_sense", "same"), "cam.follower.rise_sense")
     if sense not in ("same", "opposite"):
         raise CamError(f"cam.follower.rise_sense must be 'same' or 'opposite', not "
                        f"{sense!r}")
-    r0 = (base_radius_oscillating(law, tau_adm, arm, dist, sense) if tau_adm is not None
+    r0 = (base_radius_oscillating(law, tau_adm, arm, dist, sense, units) if tau_adm is not None
           else read_number(cam, _CAM["base_radius"], "cam", units))
-    return OscillatingFollower(r0, arm, dist, roller, sense)
+    return OscillatingFollower(r0, arm, dist, roller, sense, units)
 
 
 def _load_loads(raw: Any, kind: str, stroke: float, units: Units) -> CamLoads:

@@ -53,6 +53,9 @@ class Field:
         One line: what it is.
     key : str
         The last step of ``path`` (the key a reader looks up).
+    least : float
+        The least magnitude other than zero (``MIN_MAGNITUDE`` for a quantity divided by:
+        its square would underflow); 0: none (a positive field has ``MIN_MAGNITUDE``).
     fallback : float or None
         ``default`` as a number, or None.
     """
@@ -62,6 +65,7 @@ class Field:
     bound: str = ""
     default: str = ""
     doc: str = ""
+    least: float = 0.0
     key: str = field(init=False, repr=False, compare=False)
     fallback: float | None = field(init=False, repr=False, compare=False)
 
@@ -88,7 +92,8 @@ def section(fields: tuple[Field, ...], *where: str) -> dict[str, Field]:
 _BOUND_WORDS = {"nonnegative": "must not be negative", "positive": "must be positive"}
 
 
-def read_number(table: dict, fd: Field, where: str, units: Units) -> float:
+def read_number(table: dict, fd: Field, where: str, units: Units,
+                error: type[Exception] = SceneError) -> float:
     """The number of the declared field ``fd`` in ``table`` (its default when absent),
     within the field's bounds; a value out of them is quoted as typed, in the scene's unit
     ("got -350 g"). Every scene reader reads its declared numbers through this.
@@ -96,7 +101,8 @@ def read_number(table: dict, fd: Field, where: str, units: Units) -> float:
     Raises
     ------
     SceneError
-        Not a number, not finite, out of range, or out of the field's bounds.
+        Not a number, not finite, out of range, or out of the field's bounds (``error``
+        when told: a balancing scene's).
     """
     key = fd.key
     if key not in table:
@@ -105,21 +111,24 @@ def read_number(table: dict, fd: Field, where: str, units: Units) -> float:
     t = type(value)
     if (t is float or t is int) and -MAX_MAGNITUDE <= value <= MAX_MAGNITUDE and (
             not fd.bound or (value > 0 and (fd.bound != "positive" or value >= MIN_MAGNITUDE))
-            or (value == 0 and fd.bound == "nonnegative")):
+            or (value == 0 and fd.bound == "nonnegative")) and (
+            not fd.least or value == 0 or not -fd.least < value < fd.least):
         return float(value)     # the common case (compared before float(): a huge int)
-    x = as_float(value, f"{where}.{key}")
+    x = as_float(value, f"{where}.{key}", error=error)
     if fd.bound and (x < 0.0 or (x == 0.0 and fd.bound == "positive")):
         said = (units.quote(x, fd.quantity, file=True)
-                if fd.quantity and fd.quantity not in ROLES else f"{x:g}")
-        raise SceneError(f"{where}.{key} {_BOUND_WORDS[fd.bound]}, got {said}")
-    if fd.bound == "positive":      # a positive quantity is divided by: keep it from 0
-        return as_float(x, f"{where}.{key}", positive=True)
-    return x
+                if fd.quantity and fd.quantity not in ROLES
+                else f"{x:g} rpm" if fd.quantity == "rpm" else f"{x:g}")
+        raise error(f"{where}.{key} {_BOUND_WORDS[fd.bound]}, got {said}")
+    # a positive quantity is divided by: keep it from 0 (and a field with a least magnitude)
+    return as_float(x, f"{where}.{key}", positive=fd.bound == "positive",
+                    smallest=fd.least or None, error=error)
 
 
-def F(path: str, quantity: str, bound: str = "", default: str = "", doc: str = "") -> Field:
+def F(path: str, quantity: str, bound: str = "", default: str = "", doc: str = "",
+      least: float = 0.0) -> Field:
     """A :class:`Field` from a dotted path (``"bodies.[].mass"``)."""
-    return Field(tuple(path.split(".")), quantity, bound, default, doc)
+    return Field(tuple(path.split(".")), quantity, bound, default, doc, least)
 
 
 MECHANISM: tuple[Field, ...] = (
@@ -161,6 +170,8 @@ MECHANISM: tuple[Field, ...] = (
     F("motion.motor.stall_moment", "moment", "", REQUIRED, "the motor's moment at rest"),
     F("motion.motor.no_load_speed", "speed", "positive", REQUIRED, "the motor's speed "
       "without load"),
+    F("motion.target_delta", "", "positive", "", "the speed fluctuation delta the flywheel "
+      "is sized for (a 'motor' only)"),
     F("motion.motor_table.[].#0", "angle", "", REQUIRED, "a motor table row's crank angle"),
     F("motion.motor_table.[].#1", "moment", "", REQUIRED, "a motor table row's moment"),
     F("balancing.counterweights.[].radius", "length", "positive", "", "a counterweight's "
@@ -207,34 +218,48 @@ CAM: tuple[Field, ...] = (
 )
 """A cam scene's number-bearing fields (docs/cam-scenes.md)."""
 
-_FIELD_RUNS = ("runs", "trim")
+_FIELD_RUNS = {"runs": "run", "trim": "trim run"}
 BALANCING: tuple[Field, ...] = (
+    F("rotor.speed_rpm", "rpm", "positive", "", "the rotor's speed in rpm, whatever [units] "
+      "says"),
     F("rotor.unbalance.[].mass", "mass", "nonnegative", REQUIRED, "an unbalance's mass"),
     F("rotor.unbalance.[].radius", "length", "nonnegative", REQUIRED, "its radius"),
     F("rotor.unbalance.[].angle", "angle", "", REQUIRED, "its angle"),
-    F("rotor.unbalance.[].z", "length", "", REQUIRED, "its place along the axis"),
-    F("rotor.planes.[].z", "length", "", REQUIRED, "a correction plane's place"),
+    F("rotor.unbalance.[].z", "length", "", "0", "its place along the axis"),
+    F("rotor.planes.[].z", "length", "", "0", "a correction plane's place"),
     F("rotor.planes.[].radius", "length", "positive", REQUIRED, "its correction radius"),
     F("static_test.disk_mass", "mass", "positive", REQUIRED, "the disk's mass"),
     F("static_test.comparison_mass", "mass", "positive", REQUIRED, "the comparison mass"),
     F("static_test.comparison_radius", "length", "positive", REQUIRED, "its radius"),
     F("static_test.correction_radius", "length", "positive", REQUIRED, "the correction's "
       "radius"),
-    F("static_test.alpha", "angle", "", REQUIRED, "the device's angle"),
+    F("static_test.alpha", "angle", "", REQUIRED, "the device's angle", MIN_MAGNITUDE),
     F("resonance_test.[].trial_mass", "mass", "positive", REQUIRED, "the trial mass"),
     F("resonance_test.[].trial_radius", "length", "positive", REQUIRED, "its radius"),
     F("resonance_test.[].correction_radius", "length", "positive", REQUIRED, "the "
       "correction's radius"),
+    F("resonance_test.[].A1", "", "nonnegative", REQUIRED, "the amplitude without trial "
+      "mass (the readings' own unit)", MIN_MAGNITUDE),
+    *(F(f"resonance_test.[].{a}", "", "positive", "", f"the amplitude with the trial mass "
+        f"at {at} (instead of runs)") for a, at in (("A2", "0 deg"), ("A3", "180 deg"))),
+    F("resonance_test.[].dA", "", "nonnegative", "", "the uncertainty of every amplitude"),
+    F("resonance_test.[].noise.relative", "", "nonnegative", "0.01", "1-sigma noise of a "
+      "reading, relative"),
+    F("resonance_test.[].noise.absolute", "", "nonnegative", "0", "1-sigma noise of a "
+      "reading, in the readings' unit"),
+    F("resonance_test.[].confidence", "", "positive", "0.95", "the estimate's confidence, "
+      "below 1"),
     F("resonance_test.[].runs.[].angle", "angle", "", REQUIRED, "a run's trial mass angle"),
+    F("resonance_test.[].runs.[].A", "", "positive", REQUIRED, "the run's amplitude"),
     F("influence.[].initial.[].#1", "angle", "", REQUIRED, "a reading's phase without "
       "trial mass"),
     F("influence.[].coefficients.[].[].#1", "angle", "", "", "a stored coefficient's "
       "phase"),
-    *(f for key in _FIELD_RUNS for f in (
-        F(f"influence.[].{key}.[].angle", "angle", "", "", f"a {key[:-1]} mass's angle"),
+    *(f for key, one in _FIELD_RUNS.items() for f in (
+        F(f"influence.[].{key}.[].angle", "angle", "", "", f"a {one} mass's angle"),
         F(f"influence.[].{key}.[].readings.[].#1", "angle", "", REQUIRED,
-          f"a {key[:-1]} reading's phase"),
-        F(f"influence.[].{key}.[].masses.[].#1", "angle", "", "", f"a {key[:-1]}'s mass "
+          f"a {one} reading's phase"),
+        F(f"influence.[].{key}.[].masses.[].#1", "angle", "", "", f"a {one}'s mass "
           "angle, per plane"))),
     F("influence.[].phase_noise", "angle", "nonnegative", "0", "1-sigma of each phase"),
     F("influence.[].split.first", "angle", "", "0", "the first position's angle"),

@@ -12,8 +12,10 @@ created is removed again. A run killed outright leaves only its hidden staging f
 which the next run into that folder removes.
 
 A run that fails where an earlier run of its kind left results gets a note beside them,
-``FAILED.txt``, saying which run failed, why, and that the other files are older (the
-earlier files themselves are not touched); the next run that ends well removes it.
+``FAILED.txt``, saying which run failed, why, and that the other files are older; the
+earlier ``summary.json`` (the file that says "a run is here", which a script reads as
+current) is removed, the earlier tables are not touched; the next run that ends well
+removes the note.
 
 Used by every writer of the workbench: :meth:`kinetostatics.Solution.write`, the ``cam``
 and ``motion`` outputs, the balancing report, the grades files (docs/limits.md).
@@ -171,8 +173,9 @@ def failure_noted(target: str | Path | None, kind: Iterable[str], what: str = "r
 
     When the body raises and ``target`` holds files of this run ``kind``, ``FAILED.txt``
     is written beside them: the run, the time, the error, and that the other files are
-    from an earlier run. Nothing is written when there is no earlier result (a new folder
-    is not created for the note). A run that ends well removes the note
+    from an earlier run; the earlier ``summary.json`` is removed, so that no summary there
+    looks current. Nothing is written when there is no earlier result (a new folder is
+    not created for the note). A run that ends well removes the note
     (:meth:`StagedFolder.commit`). ``target`` None: nothing to do.
     """
     try:
@@ -190,12 +193,17 @@ def _note_failure(stage: StagedFolder, what: str, exc: BaseException) -> None:
     when = datetime.now(UTC).strftime("%Y-%m-%d %H:%M:%S UTC")
     old = datetime.fromtimestamp(max(p.stat().st_mtime for p in earlier), UTC)
     reason = " ".join(str(exc).split()) or type(exc).__name__
+    summaries = [p for p in earlier if p.name in LAST]
     text = (f"The {what} of {when} into this folder failed: {reason}\n"
             f"The other files here are from an earlier run (last written "
-            f"{old:%Y-%m-%d %H:%M:%S UTC}), not from the run that failed.\n")
+            f"{old:%Y-%m-%d %H:%M:%S UTC}), not from the run that failed"
+            + (f"; its {', '.join(p.name for p in summaries)} was removed" if summaries else "")
+            + ".\n")
     with contextlib.suppress(OSError):          # a full disk: the error is told anyway
         with atomic_file(stage.target / FAILED) as tmp:
             tmp.write_text(text, encoding="utf-8")
+        for p in summaries:
+            p.unlink(missing_ok=True)
 
 
 @contextlib.contextmanager

@@ -21,11 +21,12 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from .errors import SceneError, UnitWarning
+from .scene_types import GROUND
 from .tomlio import suggest
 from .units import DEG, Units, degrees, rpm_to_rad_s
 
 if TYPE_CHECKING:
-    from .scene_types import Scene
+    from .scene_types import Body, Scene
 
 __all__ = ["RULES", "Slip", "angle_list_slip", "emit", "mechanism_slips", "read_checks",
            "tip_speed_slip", "typed"]
@@ -43,8 +44,10 @@ RULES: dict[str, str] = {
              "no-load speed (rpm typed for rad/s)",
     "gravity": "gravity's magnitude outside 1..30 m/s^2 (not zero): m/s^2 typed under "
                "length = \"mm\" or the like",
-    "mass": "a body heavier than 200 000 kg/m^3 over the cube of its size (kg typed under "
-            "mass = \"t\", or grams typed as kilograms)",
+    "mass": "a body heavier than 200 000 kg/m^3 over the cube of its size, a point mass "
+            "(inertia 0, one point) over the size of the links it joins and no more than 300 "
+            "times the heaviest of them (kg typed under mass = \"t\", or grams typed as "
+            "kilograms)",
     "lengths": "a point farther than 100 mechanism sizes from its body's joints "
                "(millimetres among metres)",
     "unbalance_mass": "a rotor's unbalance masses 300 times apart or more, the heavier "
@@ -58,13 +61,25 @@ RULES: dict[str, str] = {
 """The rules' names (the keys of ``[checks] quiet``) and what each looks for."""
 
 TIP_SPEED = 400.0
-# a body's mass over the cube of its size above this is a slip (25 x steel's density: a
-# compact piston of 5.5 kg over 38 mm of points, 9.9e4 kg/m^3, is a real one; a mass
-# in kg typed under t, or grams typed as kilograms, is 1000 x too heavy)
-DENSEST = 2e5
 """m/s: an angular speed that moves the mechanism's outline faster than this looks like rpm
 typed for rad/s (no linkage runs near the speed of sound)."""
 
+DENSEST = 2e5
+"""kg/m^3: a body's mass over the cube of its size above this is a slip (25 x steel's
+density: a compact piston of 5.5 kg over 38 mm of points, 9.9e4 kg/m^3, is a real one; a
+mass in kg typed under t, or grams typed as kilograms, is 1000 x too heavy)."""
+
+LUMPED = 0.1
+"""A body whose own size (radius of gyration's diameter, points' box) is under this
+fraction of the links it joins is a point mass (the course's mass concentration): its
+size is theirs."""
+
+HEAVIER = 300.0
+"""A point mass over this many times the heaviest link it joins is a slip (grams typed as
+kilograms makes it 1000 times its real self)."""
+"""A body whose own size (radius of gyration's diameter, points' box) is under this
+fraction of the links it joins is a point mass (the course's mass concentration): its
+size is theirs."""
 
 
 @dataclass(frozen=True)
@@ -252,24 +267,56 @@ def _gravity_slips(scene: Scene, u: Units) -> list[Slip]:
 
 def _mass_slips(scene: Scene, u: Units) -> list[Slip]:
     out = []
-    floor = 1e-3 * scene.size
     for name, b in scene.bodies.items():
         if b.mass <= 0.0:
             continue
-        # the body's size: twice its radius of gyration, or its points' box's diagonal
-        extent = max(2.0 * math.sqrt(b.inertia / b.mass), floor)
+        # the body's size: twice its radius of gyration (zero for a point mass), or its
+        # points' box's diagonal
+        extent = 2.0 * math.sqrt(b.inertia / b.mass)
         if b.mass <= DENSEST * extent**3:
             continue                        # light enough for its radius of gyration
-        pts = list(b.points.values()) + ([b.cog] if b.cog is not None else [])
-        xs, ys = [p[0] for p in pts] or [0.0], [p[1] for p in pts] or [0.0]
-        extent = max(math.hypot(max(xs) - min(xs), max(ys) - min(ys)), extent)
+        extent = max(_box(b), extent)
+        reach, heaviest = _joined(scene, name)
+        why = None
+        if extent < LUMPED * reach:
+            # a point mass (the course's mass concentration, a piston as one point): it
+            # has no size of its own, so it is judged against the links it joins
+            extent = reach
+            if heaviest > 0.0 and b.mass > HEAVIER * heaviest:
+                why = (f"a point mass {b.mass / heaviest:.3g} times the heaviest link it "
+                       f"joins ({heaviest:.4g} kg)")
         density = b.mass / extent**3
         if density > DENSEST:
-            out.append(Slip("mass", f"body {name!r}.mass", typed(b.mass, "mass", u),
-                            f"{density:.3g} kg/m^3 over the cube of its size ({extent:.3g} m)",
+            why = f"{density:.3g} kg/m^3 over the cube of its size ({extent:.3g} m)"
+        if why is not None:
+            out.append(Slip("mass", f"body {name!r}.mass", typed(b.mass, "mass", u), why,
                             f"{b.mass / 1000:g} kg (kilograms typed under mass = \"t\", or "
                             "grams as kilograms)"))
     return out
+
+
+def _box(b: Body) -> float:
+    """The diagonal of the box of a body's points and centre of mass (m)."""
+    pts = list(b.points.values()) + ([b.cog] if b.cog is not None else [])
+    xs, ys = [p[0] for p in pts] or [0.0], [p[1] for p in pts] or [0.0]
+    return math.hypot(max(xs) - min(xs), max(ys) - min(ys))
+
+
+def _joined(scene: Scene, name: str) -> tuple[float, float]:
+    """The size (m) and the heaviest mass (kg) of the moving links a body shares a joint
+    with; the size is the largest own size (radius of gyration's diameter or points' box)
+    of them, or the mechanism's size when the body joins only the ground or point masses."""
+    sizes, masses = [0.0], [0.0]
+    for j in scene.joints.values():
+        if name in j.bodies:
+            other = j.other(name)
+            if other != GROUND and other != name:
+                o = scene.bodies[other]
+                gyration = 2.0 * math.sqrt(o.inertia / o.mass) if o.mass > 0.0 else 0.0
+                sizes.append(max(gyration, _box(o)))
+                masses.append(o.mass)
+    reach = max(sizes)
+    return (reach if reach > 0.0 else scene.size), max(masses)
 
 
 def _line_angle_slips(scene: Scene, u: Units) -> list[Slip]:

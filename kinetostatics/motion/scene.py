@@ -23,6 +23,7 @@ import numpy as np
 import pandas as pd
 
 from ..model.errors import SceneError
+from ..model.fields import MECHANISM, read_number, section
 from ..model.memory import check_memory
 from ..model.scene import Scene, load_scene
 from ..model.tomlio import as_float, as_int, as_list, check_keys
@@ -38,6 +39,12 @@ from .solution import DP5_C
 
 TWO_PI = 2.0 * math.pi
 KEY = 1e9          # cache key resolution: 1e-9 rad
+
+
+MOTION = section(MECHANISM, "motion")
+MOTOR = section(MECHANISM, "motion", "motor")
+"""The declared ``[motion]`` fields (:data:`kinetostatics.model.fields.MECHANISM`) its
+numbers are read through: bounds, defaults and the units their messages quote."""
 
 
 @dataclass(frozen=True)
@@ -67,8 +74,8 @@ def motion_spec(scene: Scene) -> MotionSpec:
     if "motor" in m:
         mt = check_keys(m["motor"], ("stall_moment", "no_load_speed"), "motion.motor",
                         required=("stall_moment", "no_load_speed"))
-        stall = as_float(mt["stall_moment"], "motion.motor.stall_moment")
-        no_load = as_float(mt["no_load_speed"], "motion.motor.no_load_speed", positive=True)
+        stall, no_load = (read_number(mt, MOTOR[k], "motion.motor", scene.units)
+                          for k in ("stall_moment", "no_load_speed"))
     else:
         rows = as_list(m["motor_table"], "motion.motor_table")
         if len(rows) < 2:
@@ -85,12 +92,10 @@ def motion_spec(scene: Scene) -> MotionSpec:
         if table[-1, 0] - table[0, 0] > 360.0:
             raise SceneError("motion.motor_table spans more than 360 deg")
         table[:, 0] = radians(table[:, 0])        # the file's degrees, once, here
-    flywheel = as_float(m.get("flywheel", 0.0), "motion.flywheel", nonnegative=True)
-    omega0 = as_float(m["omega0"], "motion.omega0", positive=True)
+    flywheel, omega0, target = (read_number(m, MOTION[k], "motion", scene.units)
+                                for k in ("flywheel", "omega0", "target_delta"))
     cycles = as_int(m["cycles"], "motion.cycles", lo=1, hi=100_000)
-    target = None
-    if "target_delta" in m:
-        target = as_float(m["target_delta"], "motion.target_delta", positive=True)
+    if target is not None:
         if table is not None:
             raise SceneError("motion.target_delta needs a speed-dependent 'motor': with a "
                              "motor_table there is no unique steady state")

@@ -72,8 +72,9 @@ def test_a_full_disk_leaves_earlier_results_whole(tmp_path: Path) -> None:
 
 
 def test_a_failed_run_marks_the_earlier_results(tmp_path: Path) -> None:
-    """Issue #30 item 8: a bad scene into a folder of earlier results leaves them whole
-    with FAILED.txt beside them; the next good run removes the note."""
+    """Issue #30 item 8: a bad scene into a folder of earlier results leaves their tables
+    with FAILED.txt beside them and no summary.json looking current; the next good run
+    removes the note."""
     out = tmp_path / "out"
     assert _run("solve", "four_bar", "--out", str(out)).returncode == 0
     before = _files(out)
@@ -82,7 +83,8 @@ def test_a_failed_run_marks_the_earlier_results(tmp_path: Path) -> None:
     r = _run("solve", str(bad), "--out", str(out))
     _one_error_line(r)
     after = _files(out)
-    assert "unknown key 'x'" in after.pop(FAILED).decode() and after == before
+    assert "unknown key 'x'" in after.pop(FAILED).decode()
+    assert before.pop("summary.json") and after == before
     assert _run("solve", "four_bar", "--out", str(out)).returncode == 0
     assert not (out / FAILED).exists()
     # a bad scene into a new folder makes no folder

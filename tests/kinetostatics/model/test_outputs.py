@@ -69,11 +69,14 @@ def test_failure_noted_marks_earlier_results_only(tmp_path: Path) -> None:
     assert not out.exists()                     # no folder made for the note
     out.mkdir()
     (out / "summary.json").write_text("old\n")
+    (out / "a.csv").write_text("old\n")
     with pytest.raises(ValueError), failure_noted(out, KIND, "solve"):
         raise ValueError("bad scene")
     note = (out / FAILED).read_text()
     assert "solve" in note and "bad scene" in note and "earlier run" in note
-    assert (out / "summary.json").read_text() == "old\n"
+    # no summary stays there looking current; the earlier tables stay, the note beside them
+    assert "summary.json was removed" in note and not (out / "summary.json").exists()
+    assert (out / "a.csv").read_text() == "old\n"
     with staged_folder(out, KIND) as stage:     # the next good run removes the note
         stage.file("summary.json").write_text("new\n")
     assert not (out / FAILED).exists()

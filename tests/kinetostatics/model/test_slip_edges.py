@@ -77,6 +77,14 @@ def mm(d):
     return d
 
 
+def piston(mass: float, inertia: float = 0.0) -> dict:
+    """The bundled slider-crank with its piston a point mass (the course's mass
+    concentration: inertia 0, its one joint point at its centre of mass)."""
+    d = ex("slider_crank")
+    d["bodies"][2].update(mass=mass, inertia=inertia, cog=[0.0, 0.0])
+    return d
+
+
 def rotor(masses, angles, units=None):
     ub = [
         {"mass": m, "radius": 0.1, "angle": a, "z": 0.1 * (i + 1)}
@@ -166,6 +174,17 @@ CASES = [
         ks.load_scene,
         (lambda d: (d["bodies"][0].update(mass=30.0, inertia=0.15), d)[1])(fb()),
         [],
+    ),
+    ("point-mass piston 1.5 kg", ks.load_scene, piston(1.5), []),
+    ("point-mass piston 1.5 kg in mm/g", ks.load_scene, mm(piston(1.5)), []),
+    ("point-mass piston 40 kg (a heavy ram)", ks.load_scene, piston(40.0), []),
+    ("near-point piston 3 kg, inertia 1e-6", ks.load_scene, piston(3.0, 1e-6), []),
+    ("point-mass piston 1500: grams as kg", ks.load_scene, piston(1500.0), ["mass"]),
+    (
+        "point-mass piston under mass = t",
+        ks.load_scene,
+        {**piston(1.5), "units": {"mass": "t"}},
+        ["mass"],
     ),
     (
         "speed_rpm 120000 on a 15 mm spindle",
