@@ -142,3 +142,21 @@ def test_dead_points_between_rows_give_unvouched_reasons(monkeypatch):
         assert ev.reasons[i] == unvouched(sol)
         assert not ev.solved[i]
     assert ev.solved[3]
+
+
+def test_a_sliding_driver_stacked():
+    """Fe, the frame's force with the driver's reaction along its line, a prismatic
+    joint's reactions: the same bits stacked as one Solution each."""
+    raw = tomllib.loads(ks.scene_path("sliding_driver").read_text())
+    raw["design"] = {
+        "objectives": ["min Fe_peak", "min Fe_rms", "min reaction_peak",
+                       "min frame_force_peak", "max stroke:crank.B@90"],
+        "constraints": ["transmission_min >= 10"],
+        "variables": {"bodies.rod.points.B.0": [0.15, 0.35],
+                      "bodies.crank.points.B.0": [0.05, 0.14], "ground.S0.1": [-0.05, 0.08]}}
+    spec = read_design(raw)
+    assert spec.stack_plan is not None
+    X = spec.lower + np.random.default_rng(0).random((300, 3)) * (spec.upper - spec.lower)
+    ev = evaluate_rows(spec, X)
+    _same(ev, evaluate_scenes(spec, X))
+    assert ev.solved.sum() > 60          # (measured: 122 of 300)
