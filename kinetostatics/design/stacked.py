@@ -38,13 +38,13 @@ import numpy as np
 
 from ..model.scene import Scene
 from ..results.solution import Solution
-from ..solver.deadpoints import dead_points_stacked
+from ..solver.deadpoints import dead_points_stacked, kin_measure2
 from ..solver.kinematics import SINGULAR_WARN, Kinematics, solve_kinematics
 from ..solver.many import RUN_ROWS, run_bounds
 from ..solver.pipeline import solve_rows
 from ..solver.solved import Solved
 from ..solver.stack import Stacker, assemblies, signature
-from ..solver.structure import analyse
+from ..solver.structure import Structure, analyse
 from .scenes import direct_places
 from .screen import DEAD_CENTRE, NOT_AT_FIRST_ROW, NOT_OVER_SWEEP
 
@@ -59,7 +59,7 @@ class Plan:
     places: list
     varied: list            # (body or None for ground, point): their hypot per design
     fixed_size: float
-    structure: object
+    structure: Structure
 
 
 def plan_of(base: Scene, raw: dict, paths: list) -> Plan | None:
@@ -163,8 +163,11 @@ def judge_stacked(plan: Plan, V: np.ndarray, quantities: list) -> Stacked | None
         return None
     m, n = len(V), plan.base.driver.positions.size
     structure = plan.structure
-    with np.errstate(all="ignore"):
-        ks, ok = assemblies(stacker, structure)
+    try:        # (refused, solve_many solves each design alone: so does the caller)
+        with np.errstate(all="ignore"):
+            ks, ok = assemblies(stacker, structure)
+    except Exception:
+        return None
     counts = np.full(m, n)
     starts = np.arange(m) * n
     positions = np.tile(plan.base.driver.positions, m)
@@ -197,7 +200,10 @@ def judge_stacked(plan: Plan, V: np.ndarray, quantities: list) -> Stacked | None
         with np.errstate(all="ignore"):
             for q in quantities:
                 values[q.name][lo:hi] = q.of_designs(run)
-    dead = _dead_points(stacker, structure, ks, m2, positions, starts, counts)
+    try:
+        dead = _dead_points(stacker, structure, ks, m2, positions, starts, counts)
+    except Exception:       # (as solve_many: each design alone)
+        return None
     again |= passed & ~finite
     between, unassembled, ends = (np.array([len(d[i]) for d in dead], dtype=bool)
                                   for i in (0, 2, 1))
@@ -251,7 +257,6 @@ class _RunRows:
 
     def measure2(self) -> np.ndarray:
         """The strict closeness per row, the smallest over the dyads."""
-        from ..solver.deadpoints import kin_measure2
         return kin_measure2(self.kin)
 
     def finite(self) -> np.ndarray:

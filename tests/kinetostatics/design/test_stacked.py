@@ -115,3 +115,48 @@ def test_masses_told_apart_are_not_stacked():
     X = np.array([[0.0], [1.5], [3.0]])
     assert stacked.stacker_of(spec.stack_plan, spec.set_values(X)) is None
     _same(evaluate_rows(spec, X), evaluate_scenes(spec, X))
+
+
+def test_dead_points_between_rows_give_unvouched_reasons(monkeypatch):
+    """A dead point between rows, a gap between rows and an end row near a dead point,
+    as the solver's search reports them, give the reasons (and the unsolved state)
+    :func:`~kinetostatics.design.judging.unvouched` gives a Solution holding them."""
+    from types import SimpleNamespace
+
+    from kinetostatics.design.judging import unvouched
+    spec = read_design("four_bar_design")
+    X = np.repeat(spec.bundled[None, :], 4, axis=0) * np.array([[1.0], [1.001], [1.002],
+                                                                 [1.003]])
+    pair, none = np.array([[10, 11]]), np.zeros(0, dtype=int)
+    empty = np.zeros((0, 2), dtype=int)
+    fake = [(pair, none, empty), (empty, none, pair), (empty, np.array([0]), empty),
+            (empty, none, empty)]
+    real = stacked.dead_points_stacked
+    monkeypatch.setattr(stacked, "dead_points_stacked",
+                        lambda *a: [f for f, _ in zip(fake, real(*a), strict=True)])
+    ev = evaluate_rows(spec, X)
+    for i, (between, ends, unassembled) in enumerate(fake[:3]):
+        kin = SimpleNamespace(between=between, unassembled=unassembled)
+        sol = SimpleNamespace(kin=kin, singular=np.isin(np.arange(361), ends),
+                              self_locking=None)
+        assert ev.reasons[i] == unvouched(sol)
+        assert not ev.solved[i]
+    assert ev.solved[3]
+
+
+def test_a_sliding_driver_stacked():
+    """Fe, the frame's force with the driver's reaction along its line, a prismatic
+    joint's reactions: the same bits stacked as one Solution each."""
+    raw = tomllib.loads(ks.scene_path("sliding_driver").read_text())
+    raw["design"] = {
+        "objectives": ["min Fe_peak", "min Fe_rms", "min reaction_peak",
+                       "min frame_force_peak", "max stroke:crank.B@90"],
+        "constraints": ["transmission_min >= 10"],
+        "variables": {"bodies.rod.points.B.0": [0.15, 0.35],
+                      "bodies.crank.points.B.0": [0.05, 0.14], "ground.S0.1": [-0.05, 0.08]}}
+    spec = read_design(raw)
+    assert spec.stack_plan is not None
+    X = spec.lower + np.random.default_rng(0).random((300, 3)) * (spec.upper - spec.lower)
+    ev = evaluate_rows(spec, X)
+    _same(ev, evaluate_scenes(spec, X))
+    assert ev.solved.sum() > 60          # (measured: 122 of 300)
