@@ -68,7 +68,9 @@ SHARED_ONCE = {"hostile": tuple(_SANDBOX + name for name in (
     "test_no_hostile_student_gets_a_key_value", "test_reading_the_key_or_the_seed_fails",
     "test_nothing_outside_the_sandbox_is_written", "test_the_loopback_service_is_not_reached",
     "test_a_limit_hit_is_a_flag_naming_it",
-    "test_no_background_process_outlives_its_notebook"))}
+    "test_no_background_process_outlives_its_notebook")),
+    "long_sweep_csv": ("tests/kinetostatics/test_tables.py::"
+                       "test_long_sweep_written_as_pandas_writes_it",)}
 
 
 def _import_every_module() -> None:
