@@ -60,6 +60,17 @@ SHARED_PER_SCENE = {"lecture_figures": (
     "tests/kinetostatics/plot/test_collisions.py::test_cli_pictures_lecture_size",
     "tests/kinetostatics/plot/test_pictures.py::test_every_new_picture_is_drawn",
     "tests/kinetostatics/plot/test_notation.py::test_every_cli_picture_meets_the_standard")}
+_SANDBOX = "tests/kinetostatics/teaching/test_sandbox.py::"
+#: Module fixtures made once for tests spread among a module's others: the tests that use
+#: each run on one worker (xdist group ``<fixture>``; collection checks the list is whole).
+SHARED_ONCE = {"hostile": tuple(_SANDBOX + name for name in (
+    "test_grading_finishes_and_the_honest_keep_full_marks",
+    "test_no_hostile_student_gets_a_key_value", "test_reading_the_key_or_the_seed_fails",
+    "test_nothing_outside_the_sandbox_is_written", "test_the_loopback_service_is_not_reached",
+    "test_a_limit_hit_is_a_flag_naming_it",
+    "test_no_background_process_outlives_its_notebook")),
+    "long_sweep_csv": ("tests/kinetostatics/test_tables.py::"
+                       "test_long_sweep_written_as_pandas_writes_it",)}
 
 
 def _import_every_module() -> None:
@@ -140,11 +151,13 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
             item.add_marker(pytest.mark.slow)
             for mark in FIXTURE_MARKS.get(name, ()):
                 item.add_marker(getattr(pytest.mark, mark))
-        for name in used.intersection(SHARED_PER_SCENE):
-            if item.nodeid.split("[")[0] not in SHARED_PER_SCENE[name]:
-                raise pytest.UsageError(f"{item.nodeid} uses {name}: add it to "
-                                        "SHARED_PER_SCENE in tests/conftest.py")
-            item.add_marker(pytest.mark.xdist_group(f"{name}-{scene}"))
+        for table, suffix in ((SHARED_PER_SCENE, f"-{scene}"), (SHARED_ONCE, "")):
+            for name in used.intersection(table):
+                if item.nodeid.split("[")[0] not in table[name]:
+                    raise pytest.UsageError(f"{item.nodeid} uses {name}: add it to "
+                                            "SHARED_PER_SCENE or SHARED_ONCE in "
+                                            "tests/conftest.py")
+                item.add_marker(pytest.mark.xdist_group(name + suffix))
     # the slow tests first (a stable sort: the order is otherwise the collection's), so
     # the workers start on the long ones and the short ones fill in at the end, instead
     # of one worker finishing a run of long tests alone
@@ -161,8 +174,8 @@ SHARED_PER_MODULE = ("tests/kinetostatics/teaching/test_classroom.py",
 
 def _group(nodeid: str) -> str | None:
     """The xdist group of a test id: ``<fixture>-<scene>`` for the tests of
-    :data:`SHARED_PER_SCENE`, the module for those of :data:`SHARED_PER_MODULE`, else
-    None."""
+    :data:`SHARED_PER_SCENE`, ``<fixture>`` for those of :data:`SHARED_ONCE`, the module
+    for those of :data:`SHARED_PER_MODULE`, else None."""
     base, _, param = nodeid.partition("[")
     module = base.split("::")[0]
     if module in SHARED_PER_MODULE:
@@ -170,6 +183,9 @@ def _group(nodeid: str) -> str | None:
     for name, tests in SHARED_PER_SCENE.items():
         if base in tests:
             return f"{name}-{param.rstrip(']')}"
+    for name, tests in SHARED_ONCE.items():
+        if base in tests:
+            return name
     return None
 
 

@@ -9,6 +9,12 @@ find no dead point and no gap between two rows (``dead_points_between_rows``: a 
 of assembly branch or a change point passed; ``unassembled_between_rows``). With
 ``full_turn`` and a sweep shorter than a turn, the design's whole turn is checked the
 same way. A design that is not feasible has no objectives (NaN) and the reason is kept.
+
+Two roads give the same numbers: from stacked arrays alone, the screen, the solve and
+every quantity in one pass per run (:mod:`~kinetostatics.design.stacked`, no Scene per
+design), where the variables allow; else one Solution per design
+(:func:`evaluate_scenes`: each design's Scene, the screen
+(:mod:`~kinetostatics.design.screen`), then :func:`~kinetostatics.solve_many`).
 """
 
 from __future__ import annotations
@@ -23,8 +29,12 @@ from functools import partial
 import numpy as np
 
 from ..results.solving import solve_outcomes
+from ..solver.fast import wanted
 from .screen import loaded
 from .section import DesignSpec
+from .stacked import REASONS, judge_stacked
+
+NOT_FINITE = "an objective is not finite"
 
 # the stacked solve keeps every run's arrays: each design's kinematics are read (the
 # feasibility, the transmission angle), which a lean solve would solve again (measured for
@@ -83,9 +93,86 @@ def evaluate(spec: DesignSpec, X: np.ndarray, executor: Executor | None = None,
 
 
 def evaluate_rows(spec: DesignSpec, X: np.ndarray) -> Evaluation:
-    """:func:`evaluate` in this process (a top-level function: an executor's task). The
-    designs the screen (:func:`~kinetostatics.design.screen.screen`) sets aside are not
-    solved; the others are, in one call."""
+    """:func:`evaluate` in this process (a top-level function: an executor's task): the
+    population judged from stacked arrays (:func:`~kinetostatics.design.stacked.
+    judge_stacked`, no Scene per design) where it can be, else, and for the designs it
+    leaves (a number not finite), one Solution per design (:func:`evaluate_scenes`).
+    On the compiled path (``[fast]``) every design is judged from the Solution
+    :func:`~kinetostatics.solve_many` gives it, as ``solve`` there solves it."""
+    X = np.asarray(X, dtype=float)
+    plan = spec.stack_plan
+    if plan is None or len(X) < 2 or wanted(len(X) * plan.base.driver.positions.size):
+        return evaluate_scenes(spec, X)
+    ev = _evaluate_stacked(spec, plan, X)
+    return evaluate_scenes(spec, X) if ev is None else ev
+
+
+def _evaluate_stacked(spec: DesignSpec, plan, X: np.ndarray) -> Evaluation | None:
+    """:func:`evaluate_rows` by :func:`~kinetostatics.design.stacked.judge_stacked` (and,
+    with ``full_turn`` over a partial sweep, the whole turn's too); None when the
+    population cannot be stacked."""
+    V = spec.set_values(X)
+    quantities = list({q.name: q for q in [c.quantity for c in spec.constraints]
+                       + [o.quantity for o in spec.objectives]}.values())
+    main = judge_stacked(plan, V, quantities)
+    turn = None
+    if main is not None and spec.turn_plan is not None:
+        turn = judge_stacked(spec.turn_plan, V, [])
+    if main is None or (spec.turn_plan is not None and turn is None):
+        return None
+    again = main.again | (turn.again if turn is not None else False)
+    code = np.where(again, 0, main.why)
+    turned = (code == 0) & ~again & (turn.why != 0 if turn is not None else False)
+    solved = (code == 0) & ~turned & ~again
+    values = np.full((len(X), len(spec.objectives)), np.nan)
+    limits = np.full((len(X), len(spec.constraints)), np.nan)
+    for k, o in enumerate(spec.objectives):
+        values[solved, k] = main.quantities[o.quantity.name][solved]
+    for k, c in enumerate(spec.constraints):
+        limits[solved, k] = main.quantities[c.quantity.name][solved]
+    reasons = [REASONS[c] for c in code.tolist()]
+    for i in np.flatnonzero(turned).tolist():
+        reasons[i] = f"full_turn: {REASONS[turn.why[i]]}"
+    broken = _broken(spec, values, limits, solved)
+    for i in np.flatnonzero(broken >= 0).tolist():
+        b = int(broken[i])
+        reasons[i] = f"{spec.constraints[b].text} not kept" if b < len(spec.constraints) \
+            else NOT_FINITE
+    feasible = solved & (broken < 0)
+    ev = Evaluation(values, limits, solved, feasible, reasons)
+    redo = np.flatnonzero(again)
+    if redo.size:
+        _put(ev, redo, evaluate_scenes(spec, X[redo]))
+    return ev
+
+
+def _broken(spec: DesignSpec, values: np.ndarray, limits: np.ndarray, solved: np.ndarray
+            ) -> np.ndarray:
+    """Per design solved, the first constraint it breaks (its index; the number of
+    constraints: a quantity not finite), else -1 (as :func:`_judged`, every design at
+    once: the same arithmetic, elementwise)."""
+    out = np.full(len(solved), -1)
+    bad = solved & ~(np.isfinite(values).all(axis=1) & np.isfinite(limits).all(axis=1))
+    out[bad] = len(spec.constraints)
+    for k in reversed(range(len(spec.constraints))):    # (the first broken one last)
+        with np.errstate(invalid="ignore"):
+            hit = solved & ~bad & (spec.constraints[k].excess(limits[:, k]) > 0)
+        out[hit] = k
+    return out
+
+
+def _put(ev: Evaluation, rows: np.ndarray, part: Evaluation) -> None:
+    """Part's designs into ``ev`` at ``rows``."""
+    ev.values[rows], ev.limits[rows] = part.values, part.limits
+    ev.solved[rows], ev.feasible[rows] = part.solved, part.feasible
+    for i, r in zip(rows.tolist(), part.reasons, strict=True):
+        ev.reasons[i] = r
+
+
+def evaluate_scenes(spec: DesignSpec, X: np.ndarray) -> Evaluation:
+    """The designs ``X`` judged one Solution each: the designs the screen
+    (:func:`~kinetostatics.design.screen.screen`) sets aside are not solved; the others
+    are, in one call."""
     n = len(X)
     made = [spec.design_scene(x) for x in X]
     turns = [spec.turn_dict(d) for d, _ in made]
@@ -121,17 +208,22 @@ def _judge(spec: DesignSpec, sol, i: int, values: np.ndarray, limits: np.ndarray
     """Fill row ``i`` of the values and limits of a solved design; the first broken
     constraint, or None."""
     known: dict[str, float] = {}       # (a quantity both constrained and an objective: once)
-
-    def of(q) -> float:
+    for q in [c.quantity for c in spec.constraints] + [o.quantity for o in spec.objectives]:
         if q.name not in known:
             known[q.name] = q.of(sol)
-        return known[q.name]
+    return _judged(spec, known, i, values, limits)
+
+
+def _judged(spec: DesignSpec, known: dict, i: int, values: np.ndarray, limits: np.ndarray
+            ) -> str | None:
+    """Fill row ``i`` of the values and limits from the design's quantities by name
+    (``known``); the first broken constraint, or None."""
     for k, c in enumerate(spec.constraints):
-        limits[i, k] = of(c.quantity)
+        limits[i, k] = known[c.quantity.name]
     for k, o in enumerate(spec.objectives):
-        values[i, k] = of(o.quantity)
+        values[i, k] = known[o.quantity.name]
     if not np.isfinite(values[i]).all() or not np.isfinite(limits[i]).all():
-        return "an objective is not finite"
+        return NOT_FINITE
     for k, c in enumerate(spec.constraints):
         if c.excess(limits[i, k]) > 0:
             return f"{c.text} not kept"
@@ -174,7 +266,7 @@ def excess(spec: DesignSpec, ev: Evaluation) -> np.ndarray:
     for k, c in enumerate(spec.constraints):
         col = ev.limits[:, k]
         ok = solved & np.isfinite(col)
-        g[ok, 1 + k] = [c.excess(v) for v in col[ok]]
+        g[ok, 1 + k] = c.excess(col[ok])      # (elementwise: each design's own number)
     g[~np.isfinite(g)] = 1.0
     return g
 

@@ -22,9 +22,9 @@ from .paths import Path
 def scene_maker(scene: Scene, raw: dict, paths: Sequence[Path]
                 ) -> Callable[[dict, Sequence[float]], Scene]:
     """A function (design's dict, the values of ``paths``) -> the design's Scene."""
-    if "units" in raw or not all(_direct(scene, raw, p) for p in paths):
+    where = direct_places(scene, raw, paths)
+    if where is None:
         return lambda design, values: load_scene(design)
-    where = [_place(raw, p) for p in paths]
 
     def make(design: dict, values: Sequence[float]) -> Scene:
         ground = dict(scene.ground)
@@ -45,6 +45,15 @@ def scene_maker(scene: Scene, raw: dict, paths: Sequence[Path]
                        bodies={**scene.bodies, **{n: replace(scene.bodies[n], **b)
                                                   for n, b in bodies.items()}})
     return make
+
+
+def direct_places(scene: Scene, raw: dict, paths: Sequence[Path]) -> list | None:
+    """Where each of ``paths`` sits in the Scene, (kind, ground point or body name, point
+    key, coordinate), when every one is a number ``load_scene`` copies as it is (and the
+    scene has no ``[units]``); else None."""
+    if "units" in raw or not all(_direct(scene, raw, p) for p in paths):
+        return None
+    return [_place(raw, p) for p in paths]
 
 
 def _set(pair: tuple[float, float], i: int, v: float) -> tuple[float, float]:

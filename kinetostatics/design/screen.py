@@ -1,5 +1,7 @@
 """A population's designs that cannot be feasible, told by one stacked kinematic pass
-before the solve: :func:`screen`.
+before the solve: :func:`screen` (for the designs judged one Solution each,
+:func:`~kinetostatics.design.judging.evaluate_scenes`; the stacked road,
+:mod:`~kinetostatics.design.stacked`, reads the same numbers from its one pass).
 
 Early in a search many designs cannot be assembled over their sweep; the stacked solve
 refuses a run of scenes that holds one and solves its scenes one by one (each design

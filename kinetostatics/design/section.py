@@ -108,6 +108,34 @@ class DesignSpec:
             values.append(values[i] * ratio)
         return chosen, values
 
+    def set_values(self, X: np.ndarray) -> np.ndarray:
+        """The numbers the designs ``X`` set (one row per design; the variables, then
+        the followers: each its variable's value times its ratio, as
+        :meth:`scene_dict` sets it)."""
+        X = np.asarray(X, dtype=float)
+        cols = [X[:, i] for i in range(X.shape[1])]
+        cols += [np.array([v * ratio for v in X[:, i].tolist()]) for _, i, ratio in self.follow]
+        return np.stack(cols, axis=1) if cols else np.zeros((len(X), 0))
+
+    @cached_property
+    def stack_plan(self):
+        """How a population is stacked without a Scene per design
+        (:func:`~kinetostatics.design.stacked.plan_of`), or None."""
+        from .stacked import plan_of
+        if self.turn_dict(self.raw) is not None and self.turn_plan is None:
+            return None
+        return plan_of(self.scene, self.raw, self._values(self.bundled)[0])
+
+    @cached_property
+    def turn_plan(self):
+        """The stacking plan of the designs' whole turns (``full_turn`` over a partial
+        sweep), else None."""
+        turn = self.turn_dict(self.raw)
+        if turn is None:
+            return None
+        from .stacked import plan_of
+        return plan_of(load_scene(turn), self.raw, self._values(self.bundled)[0])
+
     def design_scene(self, x: np.ndarray) -> tuple[dict, Scene]:
         """The design ``x``'s scene as a dict and as the Scene ``load_scene`` gives for
         it (:func:`~kinetostatics.design.scenes.scene_maker`)."""
@@ -117,7 +145,8 @@ class DesignSpec:
 
     def __getstate__(self) -> dict:
         state = dict(self.__dict__)
-        state.pop("_maker", None)       # (a closure: made again where it is needed)
+        for name in ("_maker", "stack_plan", "turn_plan"):   # (made again where needed)
+            state.pop(name, None)
         return state
 
     @cached_property

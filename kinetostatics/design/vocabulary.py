@@ -35,6 +35,7 @@ import numpy as np
 
 from ..common.angles import radian_value
 from ..model.scene import GROUND, Scene
+from ..solver.continuity import sweep_order
 from .errors import DesignError
 
 UNITS = {"Me_peak": "N m", "Fe_peak": "N", "Me_rms": "N m", "Fe_rms": "N",
@@ -97,6 +98,39 @@ class Quantity:
             return float(np.max(s) - np.min(s))
         return _path_error(x, y, self.targets)
 
+    def of_designs(self, run) -> np.ndarray:
+        """The quantity of each of the ``run.m`` designs stacked one after another, each
+        over ``run.n`` rows, in ``run.sol`` (the :class:`~kinetostatics.results.Solution`
+        of the stacked scene): the same numbers, bit for bit, as :meth:`of` gives each
+        design's own Solution (the same elementwise arrays, reduced per design along C
+        rows: max, min and the row sums of the trapezoid run alike)."""
+        k, sol, m, n = self.kind, run.sol, run.m, run.n
+        total = m * n
+        if k in ("Me_peak", "Fe_peak"):
+            return np.max(np.abs(sol.Me).reshape(m, n), axis=1)
+        if k in ("Me_rms", "Fe_rms"):
+            return _rms_rows(np.asarray(sol.Me, dtype=float).reshape(m, n), run.positions)
+        if k == "reaction_peak":
+            out = np.full(m, -np.inf)
+            for j in sol.scene.joints:
+                h = np.broadcast_to(np.hypot(*sol.reaction(j)), (total,)).reshape(m, n)
+                out = np.maximum(out, np.max(h, axis=1))
+            return out
+        if k == "transmission_min":
+            out = np.full(m, np.inf)
+            for dm in sol.kin.dyads:
+                out = np.minimum(out, np.min(dm.transmission_angle.reshape(m, n), axis=1))
+            return out
+        if k == "frame_force_peak":
+            return np.max(sol.frame["F"].to_numpy().reshape(m, n), axis=1)
+        x, y = (a.reshape(m, n) for a in self.path(sol))
+        if k == "stroke":
+            s = x * math.cos(self.direction) + y * math.sin(self.direction)
+            return np.max(s, axis=1) - np.min(s, axis=1)
+        t = self.targets
+        d2 = (x[:, None, :] - t[None, :, :1]) ** 2 + (y[:, None, :] - t[None, :, 1:]) ** 2
+        return np.sqrt(np.mean(np.min(d2, axis=2), axis=1))
+
     def path(self, sol) -> tuple[np.ndarray, np.ndarray]:
         """The global x, y (m) of the quantity's point over the rows."""
         body = sol.scene.bodies[self.body]
@@ -115,6 +149,16 @@ def _rms(sol) -> float:
     if pos.size > 1 and pos[-1] != pos[0]:
         return math.sqrt(float(np.trapezoid(me2, pos) / (pos[-1] - pos[0])))
     return math.sqrt(float(me2.mean()))
+
+
+def _rms_rows(me: np.ndarray, positions: np.ndarray) -> np.ndarray:
+    """:func:`_rms` of each row of ``me`` (designs x rows, all at ``positions``)."""
+    order = sweep_order(positions)
+    me2 = np.ascontiguousarray(me[:, order]) ** 2      # (C rows: each summed as alone)
+    pos = positions.astype(float)[order]
+    if pos.size > 1 and pos[-1] != pos[0]:
+        return np.sqrt(np.trapezoid(me2, pos, axis=1) / (pos[-1] - pos[0]))
+    return np.sqrt(me2.mean(axis=1))
 
 
 def _path_error(x: np.ndarray, y: np.ndarray, targets: np.ndarray) -> float:

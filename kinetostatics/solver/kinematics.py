@@ -59,6 +59,7 @@ class DyadMotion:
     n: int
     singular: np.ndarray | None = None  # |sin tau| <= 1e-3: near a dead centre
     closeness2: np.ndarray | None = None  # min(sin^2 tau, (pivot distance / size)^2)
+    probe2: np.ndarray | None = None    # closeness2 as a probe measures it (screened)
     inner_local: tuple | None = None    # revolute inner joint: its local point on each body
     slider_first: bool = False          # prismatic inner joint: body 1 is the slider
     nx: object = None                   # prismatic inner joint: left normal of the line
@@ -227,14 +228,16 @@ def _solve2(a11, b12, a21, b22, r1, r2, det):
 
 
 def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
-               k: int | None = None, strict: bool = True) -> DyadMotion:
+               k: int | None = None, strict: bool = True, screened: bool = False) -> DyadMotion:
     """Positions, velocities and accelerations of a dyad's two bodies over the sweep.
 
     Adds both bodies' :class:`BodyMotion` to ``motions`` and returns the dyad data the
     reactions need. ``k`` is the dyad's assembly (seed 000 eqs 6.1, 8.1); ``None`` chooses
     it from the ``[near]`` hints at the first row of ``scene``. ``strict = False`` (used
     to probe between rows) returns whatever the closed form gives where the dyad cannot
-    close or is singular, instead of refusing.
+    close or is singular, instead of refusing; ``screened`` with it: ``closeness2`` and
+    ``singular`` as a strict solve measures them, ``probe2`` as a probe does (one pass
+    gives a screen's numbers and, on the rows that close, a strict solve's).
 
     Raises
     ------
@@ -251,7 +254,8 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
     cs, ss, reach = _close(scene, dyad, solver, pr, k, strict)
     org = [body_origin(pr[i], cs[i], ss[i]) for i in range(2)]
     vs = _VelocitySystem(dyad, solver, pr, cs, org)
-    sin2 = _closeness2(vs, pr, reach, n, solver if strict else None)
+    sin2 = _closeness2(vs, pr, reach, n, solver if strict or screened else None)
+    probe2 = _closeness2(vs, pr, reach, n) if screened else None
     sing = ~(sin2 > SINGULAR_WARN**2)
     exact = np.flatnonzero(~(sin2 > SINGULAR_FAIL**2)) if sing.any() else ()
     if strict and len(exact):
@@ -265,7 +269,7 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
         motions[dyad.bodies[i]] = _body_motion(p, cs[i], org[i], qd[i], qdd[i])
     inner = dyad.inner
     return DyadMotion(dyad, pr, k, vs.xx, vs.xy, vs.c1, vs.c2, vs.det, n,
-                      singular=sing, closeness2=sin2,
+                      singular=sing, closeness2=sin2, probe2=probe2,
                       inner_local=tuple(solver.q) if inner.kind == "R" else None,
                       slider_first=inner.kind == "T" and solver.slider_first,
                       nx=vs.nx, ny=vs.ny)
@@ -557,7 +561,7 @@ def choose_assembly(scene: Scene, structure: Structure) -> tuple[int, ...]:
 
 
 def solve_kinematics(scene: Scene, structure: Structure, positions=None,
-                     strict: bool = True) -> Kinematics:
+                     strict: bool = True, screened: bool = False) -> Kinematics:
     """Motions of every body over the driver's sweep (vectorised, closed form).
 
     Parameters
@@ -573,6 +577,8 @@ def solve_kinematics(scene: Scene, structure: Structure, positions=None,
     strict : bool
         Refuse positions where a dyad cannot close or is exactly singular (the default);
         ``False`` probes such positions (between rows) without refusing.
+    screened : bool
+        With ``strict = False``: both closeness measures (:func:`solve_dyad`).
     """
     if len(structure.assembly) == len(structure.dyads):
         assembly: tuple = structure.assembly
@@ -589,6 +595,6 @@ def solve_kinematics(scene: Scene, structure: Structure, positions=None,
     kin = Kinematics(scene, structure, scene.driver.positions, motions)
     with np.errstate(all="ignore") if not strict else nullcontext():
         for dyad, k in zip(structure.dyads, assembly, strict=True):
-            kin.dyads.append(solve_dyad(scene, dyad, motions, k, strict))
+            kin.dyads.append(solve_dyad(scene, dyad, motions, k, strict, screened))
     kin.structure = replace(structure, assembly=tuple(d.k for d in kin.dyads))
     return kin

@@ -241,7 +241,7 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     counts = np.array([s.driver.positions.size for s in scenes])
     starts = np.cumsum(counts) - counts
     positions = np.concatenate([s.driver.positions for s in scenes])
-    bounds = _runs(starts, counts, RUN_ROWS)
+    bounds = run_bounds(starts, counts, RUN_ROWS)
     m2 = np.empty(positions.size)
     out: list[Any] = [None] * len(scenes)
     alone: list[int] = []
@@ -310,7 +310,7 @@ def _cut_run(sol: Solved, again: _Run, scenes: list, ks: np.ndarray,
             out[j].path = path
 
 
-def _runs(starts: np.ndarray, counts: np.ndarray, size: int) -> np.ndarray:
+def run_bounds(starts: np.ndarray, counts: np.ndarray, size: int) -> np.ndarray:
     """Runs of whole scenes of about ``size`` rows: the scene numbers where each run
     begins, and the number of scenes last (a scene joins the run its first row falls
     in, so a run holds at most ``size`` rows plus its last scene's)."""

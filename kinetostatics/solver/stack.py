@@ -131,6 +131,23 @@ class Stacker:
         self.near = {k: _pair(map(itemgetter(k), nears), m, v) for k, v in s0.near.items()}
         self.size = _col(np.fromiter(map(_size, scenes), float, m), s0.size)
 
+    @classmethod
+    def of_columns(cls, base: Scene, m: int, ground: dict, bodies: dict, size) -> Stacker:
+        """The stacker of ``m`` variants of ``base`` given by their numbers, without a
+        Scene per variant: ``ground`` {point: (x, y)}, ``bodies`` {name: (mass, inertia,
+        cog, {point: (x, y)})} and ``size`` (:attr:`Scene.size`) as :meth:`__init__` sets
+        them (each number the variants share a number, else an array over them). Every
+        variant shares ``base``'s driver, sweep, hints and all else (``scenes`` holds
+        ``base`` ``m`` times)."""
+        self = cls.__new__(cls)
+        self.scenes = [base] * m
+        self.base = base
+        self.ground = ground
+        self.bodies = bodies
+        self.near = dict(base.near)
+        self.size = size
+        return self
+
     def tame(self) -> bool:
         """Whether every scene of the stack is :func:`~kinetostatics.solver.trap.tame`
         (the numbers they share are the first scene's; the others told per array; the

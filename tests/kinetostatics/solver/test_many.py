@@ -275,7 +275,7 @@ def test_runs_of_whole_scenes_and_long_runs_in_blocks(alone_calls, monkeypatch) 
         d["driver"].update(start=3.0 * i, stop=3.0 * i + 360.0, count=count)
     # first rows 0, 30, 60, 260, 270, 631, 636, 649, 739: runs of the rows 0-39, 40-79,
     # 240-279 (371 rows: in blocks), 600-639, 640-679 and 720-759
-    assert many._runs(*_rows(scenes), 40).tolist() == [0, 2, 3, 5, 7, 8, 9]
+    assert many.run_bounds(*_rows(scenes), 40).tolist() == [0, 2, 3, 5, 7, 8, 9]
     sols = ks.solve_many(scenes)
     assert alone_calls == []
     for s, d in zip(sols, scenes, strict=True):
