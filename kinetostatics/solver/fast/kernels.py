@@ -418,7 +418,10 @@ def _dyad_motion(kind, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
             bad += b if t < nt else 0
         tile_out(m1, wm1, j0, nt)
         tile_out(m2, wm2, j0, nt)
-        tile_out(d, wd, j0, nt)
+        tile_out(d[:CL2 + 1], wd[:CL2 + 1], j0, nt)
+        # each side's parameter: P (rot), or the guide's u and the line's base point
+        tile_out(d[10:12 if rot1 else 14], wd[10:12 if rot1 else 14], j0, nt)
+        tile_out(d[14:16 if rot2 else 18], wd[14:16 if rot2 else 18], j0, nt)
     return bad
 
 

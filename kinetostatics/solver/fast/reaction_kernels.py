@@ -96,7 +96,8 @@ def body_loads(lo, hi, off, g, gs, npoint, m, acc):
         nt = min(TILE, hi - t0)
         j0 = t0 - off
         tile_geometry(wg, g, gs, t0, nt, t0 == lo)
-        tile_in(wm, m, j0, nt)
+        tile_in(wm[C:AL + 1], m[C:AL + 1], j0, nt)      # (no velocities read)
+        tile_in(wm[AX:AY + 1], m[AX:AY + 1], j0, nt)
         wa[:] = 0.0
         for q in range(npoint):
             b = 2 + L_POINT * q
@@ -187,6 +188,39 @@ def _generalised(rot, m, a, d, g, j, r, t):
 
 
 @body
+def _outer(rot, t, g, r, j, m, mk, a, ak, d, rr):
+    """Outer joint ``t``'s reaction, and what it loads the known body with (into ``ak``,
+    a tile's scratch: added to the known body's resultants unless it is the ground)."""
+    base = PARAM * t
+    if rot:
+        # eqs 2.19, 2.21, 2.28: the body's force balance gives the outer reaction
+        lx, ly = g[base + P_KX, r], g[base + P_KY, r]
+        kx, ky = mk[C, j] * lx - mk[S, j] * ly, mk[S, j] * lx + mk[C, j] * ly
+        _add(ak, j, a[0, j], a[1, j], kx, ky, 0.0, 1.0)
+        return
+    # an outer prismatic joint: normal force through the slider point and a couple about
+    # it (eqs 2.24-2.25, 2.36-2.37, 2.42-2.43); the slider point on the ground (where 0),
+    # the dyad body (1) or the known body (2), chosen by value (no branch: it vectorises)
+    where = g[O_WHERE + 3 * t, r]
+    lx, ly = g[O_X + 3 * t, r], g[O_Y + 3 * t, r]
+    sbx = m[OX, j] + (m[C, j] * lx - m[S, j] * ly)
+    sby = m[OY, j] + (m[S, j] * lx + m[C, j] * ly)
+    skx = mk[OX, j] + (mk[C, j] * lx - mk[S, j] * ly)
+    sky = mk[OY, j] + (mk[S, j] * lx + mk[C, j] * ly)
+    sx = lx if where == 0.0 else sbx if where == 1.0 else skx
+    sy = ly if where == 0.0 else sby if where == 1.0 else sky
+    ux, uy = d[10 + 4 * t, j], d[11 + 4 * t, j]
+    nx, ny = -uy, ux
+    fn = -(a[0, j] * nx + a[1, j] * ny)
+    fx, fy = fn * nx, fn * ny
+    cc = -(a[2, j] - ((sx - m[OX, j]) * a[1, j] - (sy - m[OY, j]) * a[0, j]))
+    _add(ak, j, fx, fy, sx - mk[OX, j], sy - mk[OY, j], cc, -1.0)
+    b = 4 + 6 * t
+    rr[b + R_FX, j], rr[b + R_FY, j], rr[b + R_N, j] = fx, fy, fn
+    rr[b + R_M, j], rr[b + R_SX, j], rr[b + R_SY, j] = cc, sx, sy
+
+
+@body
 def _reaction_row(rot1, rot2, inner_r, j, r, g, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
     """A dyad's reactions at one row (:func:`_dyad_reactions`)."""
     sfirst = g[I_SFIRST, r] != 0.0
@@ -224,41 +258,8 @@ def _reaction_row(rot1, rot2, inner_r, j, r, g, m1, m2, mk1, mk2, d, a1, a2, ak1
         _add(as_, j, fx, fy, sx, sy, mm, 1.0)
         _add(ag, j, fx, fy, xx - mg[OX, j], xy - mg[OY, j], mm, -1.0)
         rr[R_FX, j], rr[R_FY, j], rr[R_N, j], rr[R_M, j] = fx, fy, nn, mm
-    for t in range(2):
-        rot = rot1 if t == 0 else rot2
-        m = m1 if t == 0 else m2
-        mk = mk1 if t == 0 else mk2
-        a = a1 if t == 0 else a2
-        ak = ak1 if t == 0 else ak2
-        base = PARAM * t
-        ground = g[base + P_GROUND, r] != 0.0
-        if rot:
-            # eqs 2.19, 2.21, 2.28: the body's force balance gives the outer reaction
-            if not ground:
-                lx, ly = g[base + P_KX, r], g[base + P_KY, r]
-                kx, ky = mk[C, j] * lx - mk[S, j] * ly, mk[S, j] * lx + mk[C, j] * ly
-                _add(ak, j, a[0, j], a[1, j], kx, ky, 0.0, 1.0)
-            continue
-        # an outer prismatic joint: normal force through the slider point and a
-        # couple about it (eqs 2.24-2.25, 2.36-2.37, 2.42-2.43)
-        where = g[O_WHERE + 3 * t, r]
-        lx, ly = g[O_X + 3 * t, r], g[O_Y + 3 * t, r]
-        if where == 0.0:
-            sx, sy = lx, ly
-        else:
-            ms = m if where == 1.0 else mk
-            sx = ms[OX, j] + (ms[C, j] * lx - ms[S, j] * ly)
-            sy = ms[OY, j] + (ms[S, j] * lx + ms[C, j] * ly)
-        ux, uy = d[10 + 4 * t, j], d[11 + 4 * t, j]
-        nx, ny = -uy, ux
-        fn = -(a[0, j] * nx + a[1, j] * ny)
-        fx, fy = fn * nx, fn * ny
-        cc = -(a[2, j] - ((sx - m[OX, j]) * a[1, j] - (sy - m[OY, j]) * a[0, j]))
-        if not ground:
-            _add(ak, j, fx, fy, sx - mk[OX, j], sy - mk[OY, j], cc, -1.0)
-        b = 4 + 6 * t
-        rr[b + R_FX, j], rr[b + R_FY, j], rr[b + R_N, j] = fx, fy, fn
-        rr[b + R_M, j], rr[b + R_SX, j], rr[b + R_SY, j] = cc, sx, sy
+    _outer(rot1, 0, g, r, j, m1, mk1, a1, ak1, d, rr)
+    _outer(rot2, 1, g, r, j, m2, mk2, a2, ak2, d, rr)
     return nonfinite((rr[R_FX, j], rr[R_FY, j], rr[R_N, j], rr[R_M, j],
                 a1[0, j], a1[1, j], a2[0, j], a2[1, j],
                 rr[4, j], rr[5, j], rr[7, j], rr[10, j], rr[11, j], rr[13, j]))
@@ -295,7 +296,13 @@ def _dyad_reactions(kind, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, 
         for wm, m in ((wm1, m1), (wm2, m2), (wk1, mk1), (wk2, mk2)):
             tile_in(wm[C:S + 1], m[C:S + 1], j0, nt)
             tile_in(wm[OX:OY + 1], m[OX:OY + 1], j0, nt)
-        tile_in(wd, d, j0, nt)
+        # (only the rows a kind reads: the closing point, the velocity system, the
+        # normal; an outer prismatic joint's guide direction)
+        tile_in(wd[:NY + 1], d[:NY + 1], j0, nt)
+        if not rot1:
+            tile_in(wd[10:12], d[10:12], j0, nt)
+        if not rot2:
+            tile_in(wd[14:16], d[14:16], j0, nt)
         tile_in(wa1, a1, j0, nt)
         tile_in(wa2, a2, j0, nt)
         wak1[:] = 0.0
@@ -306,9 +313,15 @@ def _dyad_reactions(kind, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, 
             bad += f if t < nt else 0
         tile_out(a1, wa1, j0, nt)
         tile_out(a2, wa2, j0, nt)
-        tile_add(ak1, wak1, j0, nt)
-        tile_add(ak2, wak2, j0, nt)
-        tile_out(rr, wr, j0, nt)
+        if wg[P_GROUND, 0] == 0.0:
+            tile_add(ak1, wak1, j0, nt)
+        if wg[PARAM + P_GROUND, 0] == 0.0:
+            tile_add(ak2, wak2, j0, nt)
+        tile_out(rr[:4], wr[:4], j0, nt)
+        if not rot1:
+            tile_out(rr[4:10], wr[4:10], j0, nt)
+        if not rot2:
+            tile_out(rr[10:], wr[10:], j0, nt)
     return bad
 
 
