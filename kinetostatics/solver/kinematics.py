@@ -173,8 +173,10 @@ class Kinematics:
         out = np.zeros(self.n, dtype=bool)
         for d in self.dyads:
             out |= d.singular
-        out[self.between.ravel()] = True    # a dead point between two rows
-        out[self.ends] = True               # a dead point just beyond an end of the sweep
+        if self.between.size:
+            out[self.between.ravel()] = True    # a dead point between two rows
+        if self.ends.size:
+            out[self.ends] = True               # a dead point just beyond an end of the sweep
         return out
 
 
