@@ -89,6 +89,10 @@ def mul(a, b):
         if a == 0:
             return _times_zero(b, a, b)
         return b if a == 1 else a * b
+    elif ta is float and tb is float:       # (the general rules below, for two floats)
+        if a == 0.0 or b == 0.0:
+            return _times_zero(b if a == 0.0 else a, a, b)
+        return b if a == 1.0 else a if b == 1.0 else a * b
     if zero(a) or zero(b):
         return _times_zero(b if zero(a) else a, a, b)
     if isinstance(a, float | int) and a == 1:
@@ -162,7 +166,7 @@ def rotate(c, s, lx: float, ly: float):
 
 def iadd(acc, x, sign: float = 1.0) -> None:
     """acc += sign * x, in place (acc: an owned float array; x: array or scalar)."""
-    if type(x) is not _ARRAY and zero(x):
+    if type(x) is not _ARRAY and (x == 0.0 if type(x) is float else zero(x)):
         return
     if sign > 0:
         np.add(acc, x, out=acc)
@@ -172,10 +176,10 @@ def iadd(acc, x, sign: float = 1.0) -> None:
 
 def icross(acc, rx, ry, fx, fy, tmp, sign: float = 1.0) -> None:
     """acc += sign * (rx fy - ry fx), in place, with ``tmp`` as scratch (no allocation)."""
-    if not (zero(rx) or zero(fy)):
+    if type(rx) is _ARRAY and type(fy) is _ARRAY or not (zero(rx) or zero(fy)):
         np.multiply(rx, fy, out=tmp)
         iadd(acc, tmp, sign)
-    if not (zero(ry) or zero(fx)):
+    if type(ry) is _ARRAY and type(fx) is _ARRAY or not (zero(ry) or zero(fx)):
         np.multiply(ry, fx, out=tmp)
         iadd(acc, tmp, -sign)
 

@@ -150,10 +150,17 @@ class DyadSolver:
     def p_kind(self, i: int) -> str:
         return "rot" if self.dyad.outer[i].kind == "R" else "trans"
 
-    def positions(self, pr: tuple[Param, Param], k: int):
+    def positions(self, pr: tuple[Param, Param], k: int | None, first=None):
         """Per body (cos, sin) and the displacement s of a translating body, for assembly
         k, and the gap (m, > 0 where the dyad cannot close) or None when it closes
         everywhere.
+
+        ``k`` None (RRR and circle-line dyads, :attr:`picks`; ``first`` given): the
+        assembly is picked by ``first({1: two_1, -1: two_2})``, each the first row's
+        per body (cos, sin) and displacements (numbers) for that k, from the same arrays
+        as the sweep (the part of the closure that does not depend on k is worked out
+        once); ``first`` may give None (not settled there), and so does this method
+        when the dyad does not close at every row (the caller picks the other way).
 
         Sets ``reach``: the variable length the closure divides by, or None. With both
         outer joints revolute (RRR, RTR) the closure divides by the distance of the two
@@ -165,15 +172,35 @@ class DyadSolver:
         self.reach = None
         with quiet():
             if self.dyad.inner.kind == "R":
-                return self._inner_r(pr, k)
+                return self._inner_r(pr, k, first)
             return self._inner_t(pr, k)
 
-    def _inner_r(self, pr, k):
+    @property
+    def picks(self) -> bool:
+        """Whether :meth:`positions` picks the assembly itself (k None): a revolute inner
+        joint with a rotating body (RRR, RRT, TRR)."""
+        return self.dyad.inner.kind == "R" and "rot" in (self.p_kind(0), self.p_kind(1))
+
+    def _finish(self, close, k, first, gap, arrays):
+        """``close(k, *arrays)`` for assembly k, or for the one ``first`` picks from the
+        first row of ``arrays`` (None where the dyad does not close at every row, or
+        ``first`` does not settle it); the assembly used is kept as ``k``."""
+        if k is None:
+            if gap is not None:
+                return None
+            row = [float(a[0]) if type(a) is np.ndarray and a.ndim else a for a in arrays]
+            k = first({kk: close(kk, *row) for kk in (1, -1)})
+            if k is None:
+                return None
+        self.k = k
+        out, ss = close(k, *arrays)
+        return out, ss, gap
+
+    def _inner_r(self, pr, k, first=None):
         p1, p2 = pr
         (q1x, q1y), (q2x, q2y) = self.q
         a1 = (q1x - p1.local[0], q1y - p1.local[1])
         a2 = (q2x - p2.local[0], q2y - p2.local[1])
-        out = [None, None]
         if p1.kind == "rot" and p2.kind == "rot":
             # circle-circle (RRR, seed 000 ch. 5, eq. 5.1): Q = P1 + x e + k h J e
             # x * x, not x ** 2: a Python float's ** 2 (C pow) is not always x * x
@@ -192,14 +219,17 @@ class DyadSolver:
                 r1, r2 = np.sqrt(r1s), np.sqrt(r2s)
                 # (coincident pivots, d = 0: the circles are concentric, |r1 - r2| apart)
                 gap = np.maximum(d - (r1 + r2), abs(r1 - r2) - d)
-            kh = (k * inv) * np.sqrt(np.maximum(h2, 0.0))
-            xi = x * inv
-            tx = xi * ex - kh * ey                    # X - P1
-            ty = xi * ey + kh * ex
-            out[0] = _rot_angle(tx, ty, a1, r1s)
-            out[1] = _rot_angle(A.sub(A.add(p1.px, tx), p2.px), A.sub(A.add(p1.py, ty), p2.py),
-                                a2, r2s)
-            return out, (None, None), gap
+            root = np.sqrt(np.maximum(h2, 0.0))
+
+            def close(k, ex, ey, inv, root, xi, p1x, p1y, p2x, p2y):
+                kh = (k * inv) * root
+                tx = xi * ex - kh * ey                    # X - P1
+                ty = xi * ey + kh * ex
+                return [_rot_angle(tx, ty, a1, r1s),
+                        _rot_angle(A.sub(A.add(p1x, tx), p2x), A.sub(A.add(p1y, ty), p2y),
+                                   a2, r2s)], (None, None)
+            return self._finish(close, k, first, gap,
+                                (ex, ey, inv, root, x * inv, p1.px, p1.py, p2.px, p2.py))
         if p1.kind == "trans" and p2.kind == "trans":
             # line-line (TRT, seed 000 ch. 10): Q01 + s1 u1 = Q02 + s2 u2
             q01 = _trans_point(p1, self.q[0])
@@ -221,12 +251,17 @@ class DyadSolver:
         gap = None
         if _least(disc) < 0.0:
             gap = np.abs(A.sub(A.mul(pt.ux, wy), A.mul(pt.uy, wx))) - np.sqrt(rs)
-        s = k * np.sqrt(np.maximum(disc, 0.0)) - b
-        out[ir] = _rot_angle(A.add(wx, A.mul(s, pt.ux)), A.add(wy, A.mul(s, pt.uy)), ar, rs)
-        out[it] = (pt.c, pt.s)
-        ss = [None, None]
-        ss[it] = s
-        return out, tuple(ss), gap
+        root = np.sqrt(np.maximum(disc, 0.0))
+
+        def close(k, root, b, wx, wy, ux, uy, c, sn):
+            s = k * root - b
+            out = [None, None]
+            out[ir] = _rot_angle(A.add(wx, A.mul(s, ux)), A.add(wy, A.mul(s, uy)), ar, rs)
+            out[it] = (c, sn)
+            ss = [None, None]
+            ss[it] = s
+            return out, tuple(ss)
+        return self._finish(close, k, first, gap, (root, b, wx, wy, pt.ux, pt.uy, pt.c, pt.s))
 
     def _inner_t(self, pr, k):
         inner = self.dyad.inner

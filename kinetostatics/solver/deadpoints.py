@@ -51,7 +51,13 @@ def kin_measure2(kin: Kinematics) -> np.ndarray:
 
 
 def measure2(closeness2: list, n: int) -> np.ndarray:
-    """m^2 per row of ``n`` rows: the smallest of the dyads' ``closeness2``."""
+    """m^2 per row of ``n`` rows: the smallest of the dyads' ``closeness2`` (one dyad's
+    own array of ``n`` values as it is: min(inf, x) is x, NaN and -0.0 too; no caller
+    writes to it)."""
+    if len(closeness2) == 1:
+        c = closeness2[0]
+        if type(c) is np.ndarray and c.shape == (n,) and c.dtype == np.float64:
+            return c
     m2 = np.full(n, np.inf)
     for c in closeness2:
         np.minimum(m2, np.broadcast_to(c, (n,)), out=m2)

@@ -22,7 +22,6 @@ Coordinates are kept as separate x and y arrays (one element per position).
 
 from __future__ import annotations
 
-import math
 from contextlib import nullcontext
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
@@ -32,14 +31,21 @@ import numpy as np
 from ..model.errors import AssemblyError
 from ..model.scene import GROUND, Scene
 from . import arith as A
-from .closure import DyadSolver, Param, body_origin, dyad_param, take_rows
+from .assembly import (
+    SINGULAR_FAIL,
+    choose_branch,
+    first_row_assembly,
+    fmt_positions,
+    refuse_coincident_pivots,
+)
+from .closure import DyadSolver, Param, body_origin, dyad_param
 from .driver import BodyMotion, driver_motion, ground_motion
 
 if TYPE_CHECKING:
     from .structure import Dyad, Structure
 
 SINGULAR_WARN = 1e-3    # sin(transmission angle) below this: the row is flagged singular
-SINGULAR_FAIL = 1e-12   # below this the velocity system cannot be solved: refused
+# SINGULAR_FAIL (1e-12, .assembly): below it the velocity system cannot be solved: refused
 
 
 @dataclass
@@ -167,24 +173,11 @@ class Kinematics:
         out = np.zeros(self.n, dtype=bool)
         for d in self.dyads:
             out |= d.singular
-        out[self.between.ravel()] = True    # a dead point between two rows
-        out[self.ends] = True               # a dead point just beyond an end of the sweep
+        if self.between.size:
+            out[self.between.ravel()] = True    # a dead point between two rows
+        if self.ends.size:
+            out[self.ends] = True               # a dead point just beyond an end of the sweep
         return out
-
-
-def _fmt_positions(scene: Scene, rows: np.ndarray, values: np.ndarray | None = None,
-                   unit: str = "length") -> str:
-    # said in the scene's own units (a mm scene's gap in mm): the user reads what they typed
-    pos, units = scene.driver.positions, scene.units
-    quantity = "angle" if scene.driver.kind == "R" else "length"
-    items = []
-    for i, r in enumerate(rows[:6]):
-        s = units.quote(float(pos[r]), quantity, file=True)
-        if values is not None:
-            s += f" (by {units.quote(float(values[i]), unit, '.3g')})"
-        items.append(s)
-    more = f" and {rows.size - 6} more" if rows.size > 6 else ""
-    return ", ".join(items) + more
 
 
 def _column(pr: Param, xx, xy) -> tuple:
@@ -226,7 +219,6 @@ def _solve2(a11, b12, a21, b22, r1, r2, det):
             A.sub(A.mul(a11, r2), A.mul(r1, a21)) / det)
 
 
-
 def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
                k: int | None = None, strict: bool = True, screened: bool = False) -> DyadMotion:
     """Positions, velocities and accelerations of a dyad's two bodies over the sweep.
@@ -249,9 +241,16 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
     n = scene.driver.positions.size
     solver = DyadSolver(scene, dyad)
     pr = (dyad_param(scene, dyad, 0, motions), dyad_param(scene, dyad, 1, motions))
-    if k is None or solver.branches == 1:
-        k = _choose_branch(scene, dyad, solver, pr) if solver.branches == 2 else 1
-    cs, ss, reach = _close(scene, dyad, solver, pr, k, strict)
+    k = 1 if solver.branches == 1 else k
+    # (an assembly to choose: picked inside the closure where it can, from the sweep's
+    # own first row; else closed twice at that row, choose_branch)
+    closed = _close(scene, dyad, solver, pr, None, strict, lambda two: first_row_assembly(
+        scene, dyad, solver, pr, two)) if k is None and solver.picks else None
+    if closed is None:
+        k = choose_branch(scene, dyad, solver, pr) if k is None else k
+        closed = _close(scene, dyad, solver, pr, k, strict)
+    cs, ss, reach = closed
+    k = solver.k if k is None else k
     org = [body_origin(pr[i], cs[i], ss[i]) for i in range(2)]
     vs = _VelocitySystem(dyad, solver, pr, cs, org)
     sin2 = _closeness2(vs, pr, reach, n, solver if strict or screened else None)
@@ -261,7 +260,7 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
     if strict and len(exact):
         raise AssemblyError(
             f"dyad {dyad.label} is exactly singular (dead centre: transmission angle 0) at "
-            f"driver position(s) {_fmt_positions(scene, exact)}; its velocities are undefined "
+            f"driver position(s) {fmt_positions(scene, exact)}; its velocities are undefined "
             "there: leave those positions out of the sweep")
     qd = vs.solve(vs.r1, vs.r2)
     qdd = vs.solve(*_acceleration_rhs(vs, pr, qd))
@@ -275,24 +274,28 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
                       nx=vs.nx, ny=vs.ny)
 
 
-def _close(scene: Scene, dyad: Dyad, solver: DyadSolver, pr, k, strict: bool):
-    """Step 1, positions: each body's (cos, sin) and displacement for assembly k, and the
+def _close(scene: Scene, dyad: Dyad, solver: DyadSolver, pr, k, strict: bool, first=None):
+    """Step 1, positions: each body's (cos, sin) and displacement for assembly k (or the
+    one ``first`` picks, :meth:`DyadSolver.positions`: None if it does not), and the
     outer pivots' distance over the mechanism's size (or None); refuses (``strict``)
     rows where the links do not reach or the pivots coincide."""
     n = scene.driver.positions.size
-    cs, ss, gap = solver.positions(pr, k)
+    closed = solver.positions(pr, k, first)
+    if closed is None:
+        return None
+    cs, ss, gap = closed
     reach = solver.reach            # the pivots' distance (or None)
     if reach is not None:
         reach = A.full(reach / scene.size, n)
         if strict:
-            _refuse_coincident_pivots(scene, dyad, reach)
+            refuse_coincident_pivots(scene, dyad, reach)
     if gap is not None and strict:
         gap = A.full(gap, n)
         bad = np.flatnonzero(~(gap <= 1e-9 * scene.size))
         if bad.size:
             raise AssemblyError(
                 f"dyad {dyad.label} cannot be assembled at driver position(s) "
-                f"{_fmt_positions(scene, bad, gap[bad])}: the links do not reach; shorten "
+                f"{fmt_positions(scene, bad, gap[bad])}: the links do not reach; shorten "
                 "the sweep or change the lengths")
     return cs, ss, reach
 
@@ -445,92 +448,6 @@ def _inner_t_tau(pr, ux, uy):
                 A.sub(A.mul(ux, dy), A.mul(uy, dx)) / dn)
     pt = p2 if p1.kind == "rot" else p1
     return A.sub(A.mul(ux, pt.uy), A.mul(uy, pt.ux)), A.add(A.mul(ux, pt.ux), A.mul(uy, pt.uy))
-
-
-def hint_points(scene: Scene, dyad: Dyad):
-    """Hints that concern the dyad: (hint name, body, local point, target)."""
-    out = []
-    for key, target in scene.near.items():
-        if "." in key:
-            b, p = key.split(".", 1)
-            if b in dyad.bodies:
-                out.append((key, b, scene.bodies[b].local(p), target))
-        else:
-            j = scene.joints[key]
-            for b in dyad.bodies:
-                if b in j.bodies:
-                    out.append((key, b, scene.bodies[b].local(j.point_on(b)), target))
-                    break
-    return out
-
-
-def _refuse_coincident_pivots(scene: Scene, dyad: Dyad, reach: np.ndarray) -> None:
-    """Refuse rows where the dyad's outer pivots coincide (its closure divides by their
-    distance: closer than 1e-12 of the mechanism's size)."""
-    tiny = np.flatnonzero(~(reach > SINGULAR_FAIL))
-    if tiny.size:
-        o1, o2 = dyad.outer
-        raise AssemblyError(
-            f"dyad {dyad.label}: the pivots of its joints {o1.name!r} and {o2.name!r} "
-            f"coincide at driver position(s) {_fmt_positions(scene, tiny)} (closer than "
-            f"1e-12 of the mechanism's size {scene.units.quote(scene.size, 'length', '.4g')}); "
-            "the dyad's angles are undefined there: leave those positions out of the sweep")
-
-
-def _choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver, pr) -> int:
-    """The assembly k = +-1 whose hinted points lie closest at the first row (both
-    assemblies closed at once: the first row twice, with k = 1 and k = -1)."""
-    two = np.zeros(2, dtype=np.intp)
-    pr = (take_rows(pr[0], two), take_rows(pr[1], two))
-    cs, ss, gap = solver.positions(pr, np.array([1.0, -1.0]))
-    if solver.reach is not None and not _at(solver.reach / scene.size, 0) > SINGULAR_FAIL:
-        _refuse_coincident_pivots(scene, dyad, A.full(solver.reach / scene.size, 2)[:1])
-    if gap is not None and float(np.ravel(gap)[0]) > 1e-9 * scene.size:
-        raise AssemblyError(
-            f"dyad {dyad.label} cannot be assembled at the first driver position "
-            f"{_fmt_positions(scene, np.array([0]))}: the links do not reach by "
-            f"{scene.units.quote(float(np.ravel(gap)[0]), 'length', '.4g')}; change the "
-            "lengths, the ground points or the sweep's start")
-    org = [body_origin(pr[i], cs[i], ss[i]) for i in range(2)]
-    # each body's cos, sin and origin in either assembly, as floats (read once)
-    frames = {k: [[_at(v, r) for v in (*cs[i], *org[i])] for i in range(2)]
-              for k, r in ((1, 0), (-1, 1))}
-
-    def where(k, b, loc):
-        c, s, ox, oy = frames[k][dyad.bodies.index(b)]
-        return ox + c * loc[0] - s * loc[1], oy + s * loc[0] + c * loc[1]
-
-    def off2(p, t):
-        return (p[0] - t[0]) ** 2 + (p[1] - t[1]) ** 2
-    hints = hint_points(scene, dyad)
-    if hints:
-        dist = {k: sum(off2(where(k, b, loc), t) for _, b, loc, t in hints) for k in (1, -1)}
-        if abs(dist[1] - dist[-1]) > 1e-12 * scene.size ** 2:
-            return 1 if dist[1] < dist[-1] else -1
-    # no hint settles it: name the point that tells the two assemblies apart best
-    best = None
-    for b in dyad.bodies:
-        for pname, loc in scene.bodies[b].points.items():
-            p1, p2 = where(1, b, loc), where(-1, b, loc)
-            sep = math.hypot(p1[0] - p2[0], p1[1] - p2[1])
-            if best is None or sep > best[0] * (1.0 + 1e-9):
-                best = (sep, b, pname, p1, p2)
-    sep, b, pname, p1, p2 = best
-    inner = dyad.inner
-    key = f'"{b}.{pname}"'
-    if inner.kind == "R" and pname == inner.point_on(b):
-        key = inner.name
-    hinted = (f" (the hints {', '.join(h[0] for h in hints)} do not tell them apart)"
-              if hints else "")
-    raise AssemblyError(
-        f"dyad {dyad.label} has two assemblies at the first driver position{hinted}: point "
-        f"{b}.{pname} at ({p1[0]:.4g}, {p1[1]:.4g}) or ({p2[0]:.4g}, {p2[1]:.4g}); add a hint "
-        f"for the one you mean, e.g. [near] {key} = [{p1[0]:.4g}, {p1[1]:.4g}]")
-
-
-def _at(v, row: int) -> float:
-    """A value at one row, as a Python float (the same double the array holds)."""
-    return float(v[row]) if isinstance(v, np.ndarray) and v.ndim else float(v)
 
 
 def with_positions(scene: Scene, positions) -> Scene:

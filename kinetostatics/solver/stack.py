@@ -26,9 +26,10 @@ from operator import attrgetter, itemgetter
 import numpy as np
 
 from ..model.scene import GROUND, Body, Scene
+from .assembly import hint_points
 from .closure import DyadSolver, body_origin, dyad_param
 from .driver import driver_motion, ground_motion
-from .kinematics import SINGULAR_FAIL, hint_points, solve_dyad
+from .kinematics import SINGULAR_FAIL, solve_dyad
 from .structure import Structure
 from .trap import tame, tame_values
 

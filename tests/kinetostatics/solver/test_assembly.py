@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import math
 import tomllib
+from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -161,3 +163,59 @@ def test_assembly_chosen_at_the_first_row_even_for_one_position() -> None:
     for a in (90.0, 180.0, 270.0):
         assert ks.solve(scene, positions=[a]).structure.assembly == k0
     assert math.isfinite(float(np.asarray(ks.solve(scene, positions=[200.0]).Me)[0]))
+
+
+
+def _scene_dict(name: str) -> dict:
+    path = (ks.example(name) if name in ks.examples() else
+            Path(__file__).parents[2] / "data" / "scenes" / f"{name}.toml")
+    with open(path, "rb") as fh:
+        d = tomllib.load(fh)
+    d.pop("motion", None)
+    return d
+
+
+def _hints_at(scene, assembly: tuple) -> dict:
+    """Every hint of ``scene`` moved to where ``assembly`` puts its point at the first row."""
+    from kinetostatics.solver.kinematics import solve_kinematics
+    forced = replace(ks.analyse(scene), assembly=assembly)
+    kin = solve_kinematics(scene, forced, positions=scene.driver.positions[:1])
+    near = {}
+    for key in scene.near:
+        if "." in key:
+            b, p = key.split(".", 1)
+        else:
+            b = next(b for b in scene.joints[key].bodies if b != "ground")
+            p = scene.joints[key].point_on(b)
+        x, y = kin.bodies[b].point(scene.bodies[b].local(p))
+        near[key] = [float(np.ravel(x)[0]), float(np.ravel(y)[0])]
+    return near
+
+
+@pytest.mark.parametrize("name", ["four_bar", "slider_crank", "shaper", "trr_slider_crank"])
+def test_assembly_picked_inside_the_closure_is_the_two_row_choice(name: str) -> None:
+    """An RRR, RRT or TRR dyad picks its assembly from the sweep's own first row inside
+    the closure; with the hints where either assembly of the last dyad puts their
+    points, the pick is the one the closure of the first row twice (k = 1 and k = -1)
+    gives, and its motion is that of the assembly given (bit for bit)."""
+    from kinetostatics.solver.assembly import choose_branch
+    from kinetostatics.solver.closure import DyadSolver, dyad_param
+    from kinetostatics.solver.driver import driver_motion, ground_motion
+    from kinetostatics.solver.kinematics import solve_dyad
+    d = _scene_dict(name)
+    k0 = ks.analyse(ks.load_scene(d)).assembly
+    for flip in (1, -1):
+        want = (*k0[:-1], flip * k0[-1])
+        scene = ks.load_scene({**d, "near": _hints_at(ks.load_scene(d), want)})
+        motions = {"ground": ground_motion(), scene.driver.body: driver_motion(scene)}
+        for dyad, k in zip(ks.analyse(scene, assemble=False).dyads, want, strict=True):
+            solver = DyadSolver(scene, dyad)
+            pr = (dyad_param(scene, dyad, 0, motions), dyad_param(scene, dyad, 1, motions))
+            two_rows = choose_branch(scene, dyad, solver, pr) if solver.branches == 2 else 1
+            picked = dict(motions)
+            assert solve_dyad(scene, dyad, picked, None).k == two_rows == k
+            solve_dyad(scene, dyad, motions, k)
+            for b in dyad.bodies:
+                for f in motions[b].FIELDS:
+                    assert np.array_equal(getattr(picked[b], f), getattr(motions[b], f))
+    assert DyadSolver(scene, ks.analyse(scene).dyads[-1]).picks     # (the path tested)
