@@ -158,10 +158,33 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
                                             "SHARED_PER_SCENE or SHARED_ONCE in "
                                             "tests/conftest.py")
                 item.add_marker(pytest.mark.xdist_group(name + suffix))
-    # the slow tests first (a stable sort: the order is otherwise the collection's), so
+    # the longest tests first (a stable sort: the order is otherwise the collection's), so
     # the workers start on the long ones and the short ones fill in at the end, instead
-    # of one worker finishing a run of long tests alone
-    items.sort(key=lambda item: item.get_closest_marker("slow") is None)
+    # of one worker finishing a run of long tests alone (pytest-xdist sends the groups
+    # of shared fixtures first, the largest first, then the tests in this order)
+    items.sort(key=_cost_rank)
+
+
+#: Single tests measured among the longest (30-170 s each at a load of 5 on 2 cores,
+#: 2026-11-29), started with the browser's
+LONGEST = ("tests/kinetostatics/test_cli.py::test_bench_quick",
+           "tests/test_mutants.py::test_every_mutant_is_killed_by_a_quick_test",
+           "tests/kinetostatics/solver/test_fast.py::test_the_examples_agree",
+           "tests/kinetostatics/solver/test_fast.py::test_random_geometry_agrees",
+           "tests/kinetostatics/solver/test_fast.py::test_the_environment_variable_forces",
+           "tests/test_fuzz_scenes.py::test_mutated_scenes_through_the_api[four_bar_motion]",
+           "tests/test_fuzz_scenes.py::test_a_sample_through_the_command_line",
+           "tests/test_fuzz_scenes.py::test_resource_bombs_end_in_one_line",
+           "tests/kinetostatics/design/test_bench_design.py::test_bench_design_row")
+
+
+def _cost_rank(item: pytest.Item) -> int:
+    """0 for the browser's tests and :data:`LONGEST`, 1 for the other kernels', 2 for the
+    other slow tests, 3 for the quick tier."""
+    if item.get_closest_marker("browser") or item.nodeid.startswith(LONGEST):
+        return 0
+    return 1 if item.get_closest_marker("kernel") else \
+        2 if item.get_closest_marker("slow") else 3
 
 
 #: Test modules whose tests share a costly module fixture (a class of 30 generated): each

@@ -141,22 +141,40 @@ KERNEL_IDLE = """() => {
 DIALOG_TEXT = """() => [...document.querySelectorAll('.jp-Dialog')].map(d =>
     d.innerText.replace(/\\s+/g, ' ').trim())"""
 # a dialog that says the kernel died is the sheet's defect (the test fails with its text);
-# any other (a slow server's "Server Connection Error", a kernel choice asked while the
-# session starts) is the loaded machine's and is dismissed: it intercepted every click of
-# a Run All once in CI (load of a full suite on two cores)
+# any other is the loaded machine's (a slow server's "Server Connection Error", the kernel's
+# choice asked while the session starts) and is answered: it intercepted every click of a
+# Run All once in CI (load of a full suite on two cores), and once a dialog kept the focus
+# from the Escape key meant for it (a button is clicked now)
 KERNEL_DIED = re.compile(r"kernel .*(died|dead)|restarting", re.IGNORECASE)
+# the kernel's choice is accepted (its preselected kernel; Cancel would leave the sheet
+# without one); every other dialog is rejected (Cancel, Dismiss)
+KERNEL_CHOICE = re.compile(r"select kernel", re.IGNORECASE)
 
 
 def _clear_dialogs(page) -> list[str]:
-    """Dismiss every open JupyterLab dialog that is not a kernel's death; returns their
-    texts (a kernel's death fails the test with the dialog's text)."""
-    texts = page.evaluate(DIALOG_TEXT)
-    for text in texts:
+    """Answer every open JupyterLab dialog that is not a kernel's death (one coming up
+    behind another too); returns their texts (a kernel's death fails the test with the
+    dialog's text)."""
+    from playwright.sync_api import TimeoutError as PlaywrightTimeout
+    texts: list[str] = []
+    for _ in range(5):
+        dialog = page.query_selector(".jp-Dialog")
+        if dialog is None:
+            break
+        text = re.sub(r"\s+", " ", dialog.inner_text()).strip()
         if KERNEL_DIED.search(text):
             pytest.fail(f"JupyterLab said: {text}")
-        page.keyboard.press("Escape")           # the dialog's reject button
-    if texts:
-        page.locator(".jp-Dialog").first.wait_for(state="detached", timeout=UPDATE)
+        texts.append(text)
+        button = dialog.query_selector(
+            ".jp-mod-accept" if KERNEL_CHOICE.search(text) else ".jp-mod-reject")
+        try:
+            if button is not None:
+                button.click(timeout=CLICK)
+            else:
+                page.keyboard.press("Escape")
+            dialog.wait_for_element_state("hidden", timeout=UPDATE)
+        except PlaywrightTimeout:
+            raise AssertionError(f"a JupyterLab dialog stayed open: {text}") from None
     return texts
 
 
@@ -352,6 +370,7 @@ def test_sheet_in_a_real_browser(lab, browser, sheet):
 
     # a slider moved by drag (toward its farther end) changes the picture
     handle = page.locator(".widget-slider .noUi-handle").first
+    handle.scroll_into_view_if_needed()         # (the cell _state ran is at the end)
     value, low, top = handle.evaluate(HANDLE_RANGE)
     box = handle.bounding_box()
     dx = 60 if top - value >= value - low else -60
@@ -364,8 +383,11 @@ def test_sheet_in_a_real_browser(lab, browser, sheet):
     # rapid moves (away from the end the drag went to): the newest value computed, the
     # same number of axes
     handle.focus()
+    back = "ArrowLeft" if dx > 0 else "ArrowRight"
     for _ in range(4):
-        page.keyboard.press("ArrowLeft" if dx > 0 else "ArrowRight")
+        page.keyboard.press(back)
+    if handle.evaluate(HANDLE_RANGE)[0] == value:   # the drag went 4 steps: once more, so
+        page.keyboard.press(back)                   # the newest values are new ones
     _wait_settled(page)
     new_axes, new_values = _state(page)
     assert new_axes == axes, f"{sheet}: {new_axes} axes after rapid moves, {axes} before"
