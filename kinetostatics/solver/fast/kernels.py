@@ -464,13 +464,14 @@ def _known_acc(rot, p, k, j, xx, xy, qd, cx, cy):
 
 
 @body
-def _store_params(d, j, p1, rot1, p2, rot2):
-    """The two sides' parameters into the dyad's data (rows 10.. and 14..)."""
-    for b, p, rot in ((10, p1, rot1), (14, p2, rot2)):
-        if rot:
-            d[b, j], d[b + 1, j] = p[0], p[1]
-        else:
-            d[b, j], d[b + 1, j], d[b + 2, j], d[b + 3, j] = p[2], p[3], p[4], p[5]
+def _store_param(d, j, b, p, rot):
+    """A side's parameter into the dyad's data (rows 10.. and 14..): P (rot), or the
+    guide's u and the line's base point (trans). One call per side: a loop over a tuple
+    of both, its ``rot`` known at run time, kept LLVM from vectorising RRT and the like."""
+    if rot:
+        d[b, j], d[b + 1, j] = p[0], p[1]
+    else:
+        d[b, j], d[b + 1, j], d[b + 2, j], d[b + 3, j] = p[2], p[3], p[4], p[5]
 
 
 @body
@@ -547,7 +548,8 @@ def _dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d):
     d[XX, j], d[XY, j] = xx, xy
     d[C1X, j], d[C1Y, j], d[C2X, j], d[C2Y, j], d[DET, j] = c1x, c1y, c2x, c2y, det
     d[NX, j], d[NY, j], d[CL2, j] = nx, ny, sin2
-    _store_params(d, j, p1, rot1, p2, rot2)
+    _store_param(d, j, 10, p1, rot1)
+    _store_param(d, j, 14, p2, rot2)
     bad += nonfinite((m1[AX, j], m1[AY, j], m1[AL, j], m2[AX, j], m2[AY, j], m2[AL, j], xx, xy))
     return bad
 

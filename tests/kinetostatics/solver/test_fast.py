@@ -264,3 +264,26 @@ def test_without_numba_every_setting_solves_on_numpy(path, monkeypatch) -> None:
     with pytest.warns(RuntimeWarning, match="numba is not installed") as seen:
         paths = [solve(ks.example("four_bar")).path for _ in range(3)]
     assert paths == ["numpy"] * 3 and len(seen) == 1
+
+
+@slow_compile
+def test_the_kernels_max_and_min_are_numbas() -> None:
+    """jitbase.fmax / fmin (no branch: a loop that calls them still vectorises) give what
+    numba's max / min give, signed zeros and NaN included."""
+    from kinetostatics.solver.fast import loader
+    assert loader.kernels() is not None     # (numba loaded, its cache folder settled)
+    from numba import njit
+
+    from kinetostatics.solver.fast.jitbase import fmax, fmin
+
+    @njit
+    def pair(a, b):
+        return fmax(a, b), fmin(a, b), max(a, b), min(a, b)
+
+    nan = float("nan")
+    for a, b in [(-0.0, 0.0), (0.0, -0.0), (nan, 1.0), (1.0, nan), (-1.0, 2.0), (3.0, -4.0),
+                 (np.inf, -np.inf), (2.0, 2.0)]:
+        ours_max, ours_min, its_max, its_min = pair(a, b)
+        for x, y in ((ours_max, its_max), (ours_min, its_min)):
+            assert np.array_equal(np.float64(x), np.float64(y), equal_nan=True), (a, b)
+            assert np.signbit(x) == np.signbit(y), (a, b)
