@@ -3,14 +3,21 @@ first (no numba here at import).
 
 numba reads its cache folder when a kernel is decorated (``cache=True`` raises there when
 no folder is writable), so the folder is chosen before numba loads: ``NUMBA_CACHE_DIR``
-when set, else ``$XDG_CACHE_HOME/kinetostatics/numba`` (``~/.cache/...``). When nothing is
-writable the compiled path is off for the process, with one warning: the numpy path
-solves everything. The project ships no caches; the first use on a machine compiles each
+when set, else ``$XDG_CACHE_HOME/kinetostatics/numba`` (``~/.cache/...``), and in it a
+folder named by the kernels' sources (:func:`sources_key`). When nothing is writable the
+compiled path is off for the process, with one warning: the numpy path solves
+everything. The project ships no caches; the first use on a machine compiles each
 kernel once (0.5-4 s each), later processes load them from the folder.
+
+Why a folder per version of the sources: numba checks a cached kernel against its own
+file's time stamp and size only, so a kernel whose inlined helpers (another module of
+this package) changed would load stale from the cache, a wrong number with no warning.
+A new version of any file here gets a folder of its own.
 """
 
 from __future__ import annotations
 
+import hashlib
 import importlib.util
 import os
 import sys
@@ -42,13 +49,26 @@ def _writable(folder: Path) -> bool:
     return True
 
 
+def sources_key() -> str:
+    """A short hash of every source file of the compiled path (this package): the name
+    of the cache's folder for this version of the kernels."""
+    digest = hashlib.sha256()
+    for path in sorted(Path(__file__).parent.glob("*.py")):
+        digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
+    return "kernels-" + digest.hexdigest()[:16]
+
+
 def cache_folder() -> Path | None:
-    """The folder numba caches the compiled kernels in, or None when none is writable."""
+    """The folder numba caches the compiled kernels in (a folder per version of their
+    sources, :func:`sources_key`), or None when none is writable."""
     given = os.environ.get("NUMBA_CACHE_DIR")
     if given:
-        return Path(given) if _writable(Path(given)) else None
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    folder = Path(base) / "kinetostatics" / "numba"
+        base = Path(given)
+    else:
+        home = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"),
+                                                                ".cache")
+        base = Path(home) / "kinetostatics" / "numba"
+    folder = base / sources_key()
     return folder if _writable(folder) else None
 
 

@@ -255,6 +255,27 @@ def test_no_writable_cache_folder_solves_on_numpy_with_one_warning(tmp_path) -> 
     assert out.stdout.strip() == "['numpy', 'numpy', 'numpy'] 1 False"
 
 
+def test_the_cache_folder_is_named_by_every_kernel_source(tmp_path, monkeypatch) -> None:
+    """numba checks a cached kernel against its own file only: a change to any source of
+    the compiled path (an inlined helper's module too) must give another cache folder,
+    or the kernel loads stale from the cache."""
+    import shutil
+
+    from kinetostatics.solver.fast import loader
+    copy_ = tmp_path / "fast"
+    shutil.copytree(Path(loader.__file__).parent, copy_,
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    monkeypatch.setattr(loader, "__file__", str(copy_ / "loader.py"))
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "cache"))
+    before = loader.cache_folder()
+    assert before is not None and before.parent == tmp_path / "cache" and before.is_dir()
+    assert loader.cache_folder() == before                  # the same sources: the same
+    helper = copy_ / "jitbase.py"
+    helper.write_text(helper.read_text() + "\n# changed\n")
+    after = loader.cache_folder()
+    assert after != before and after.parent == before.parent
+
+
 def test_without_numba_every_setting_solves_on_numpy(path, monkeypatch) -> None:
     from kinetostatics.solver.fast import loader
     monkeypatch.setattr(loader, "installed", lambda: False)
