@@ -80,9 +80,12 @@ def solve_results(scene: Any) -> dict[str, Any]:
     if sc.resonance_tests:
         out["resonance_test"] = [_resonance(spec) for spec in sc.resonance_tests]
     if sc.balancing is not None:
-        out["balancing"] = _mechanism_balancing(sc.raw)
+        out["balancing"] = _mechanism_balancing(sc.source or sc.raw)
     out.update(solve_field(sc.field_scene))
-    out["warnings"] = [*sc.warnings, *emit(correction_slips(out, sc), sc.quiet, BalanceWarning)]
+    # the mechanism's own slips (its reader judged and warned them) are the scene's too
+    mechanism = getattr(getattr(out.get("balancing"), "scene", None), "warnings", ())
+    out["warnings"] = [*sc.warnings, *mechanism,
+                       *emit(correction_slips(out, sc), sc.quiet, BalanceWarning)]
     out["result_units"] = result_units(out, sc.units)
     out["scene_units"] = sc.units
     return out
@@ -92,12 +95,13 @@ SI_TEXT = "SI: kg, m, kg m, N, N m, s; angles in degrees"
 
 
 def result_units(out: dict[str, Any], units: Units) -> dict[str, str]:
-    """The units of each section's numbers: SI for the course's methods and ``[iso]``; the
-    scene's own for the influence method, split and combine (linear in the masses and
-    readings, they answer in the units they were given)."""
+    """The units of each section's numbers: SI for the course's methods; the scene's own
+    for the influence method, split and combine (linear in the masses and readings, they
+    answer in the units they were given) and ``[iso]`` (computed in SI, its result written
+    back in the scene's units: docs/balancing.md)."""
     scene = (f"the scene's: mass {units.mass}, length {units.length}, unbalance "
              f"{units.unbalance}, readings {units.vibration or 'as typed'}; angles in degrees")
-    return {k: scene if k in ("influence", "split", "combine") else SI_TEXT
+    return {k: scene if k in ("influence", "split", "combine", "iso") else SI_TEXT
             for k in out if k not in ("warnings", "result_units", "scene_units")}
 
 

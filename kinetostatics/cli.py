@@ -82,13 +82,15 @@ def _cmd_structure(args) -> int:
 
 
 def _cmd_motion(args) -> int:
-    from .motion.scene import simulate_motion
+    from .motion.scene import MOTION_UNITS, simulate_motion
     res = simulate_motion(scene_path(args.scene))
     if args.json:
         print(json.dumps(res.to_json()))
     else:
-        for k, v in res.summary.items():
-            print(f"{k}: {v}")
+        for k, v in res.summary.items():     # each number with its unit (SI)
+            unit = MOTION_UNITS.get(k, "1")
+            print(f"{k}: {v}" + ("" if unit == "1" or isinstance(v, bool) else f" {unit}"))
+        print("warnings: " + ("; ".join(res.warnings) or "none"))
         if not res.units.is_default:
             print(f"scene units: {res.units.describe()} (the numbers above are SI: rad/s, "
                   "s, kg m^2)")

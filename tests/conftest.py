@@ -60,6 +60,17 @@ SHARED_PER_SCENE = {"lecture_figures": (
     "tests/kinetostatics/plot/test_collisions.py::test_cli_pictures_lecture_size",
     "tests/kinetostatics/plot/test_pictures.py::test_every_new_picture_is_drawn",
     "tests/kinetostatics/plot/test_notation.py::test_every_cli_picture_meets_the_standard")}
+_SANDBOX = "tests/kinetostatics/teaching/test_sandbox.py::"
+#: Module fixtures made once for tests spread among a module's others: the tests that use
+#: each run on one worker (xdist group ``<fixture>``; collection checks the list is whole).
+SHARED_ONCE = {"hostile": tuple(_SANDBOX + name for name in (
+    "test_grading_finishes_and_the_honest_keep_full_marks",
+    "test_no_hostile_student_gets_a_key_value", "test_reading_the_key_or_the_seed_fails",
+    "test_nothing_outside_the_sandbox_is_written", "test_the_loopback_service_is_not_reached",
+    "test_a_limit_hit_is_a_flag_naming_it",
+    "test_no_background_process_outlives_its_notebook")),
+    "long_sweep_csv": ("tests/kinetostatics/test_tables.py::"
+                       "test_long_sweep_written_as_pandas_writes_it",)}
 
 
 def _import_every_module() -> None:
@@ -140,15 +151,40 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
             item.add_marker(pytest.mark.slow)
             for mark in FIXTURE_MARKS.get(name, ()):
                 item.add_marker(getattr(pytest.mark, mark))
-        for name in used.intersection(SHARED_PER_SCENE):
-            if item.nodeid.split("[")[0] not in SHARED_PER_SCENE[name]:
-                raise pytest.UsageError(f"{item.nodeid} uses {name}: add it to "
-                                        "SHARED_PER_SCENE in tests/conftest.py")
-            item.add_marker(pytest.mark.xdist_group(f"{name}-{scene}"))
-    # the slow tests first (a stable sort: the order is otherwise the collection's), so
+        for table, suffix in ((SHARED_PER_SCENE, f"-{scene}"), (SHARED_ONCE, "")):
+            for name in used.intersection(table):
+                if item.nodeid.split("[")[0] not in table[name]:
+                    raise pytest.UsageError(f"{item.nodeid} uses {name}: add it to "
+                                            "SHARED_PER_SCENE or SHARED_ONCE in "
+                                            "tests/conftest.py")
+                item.add_marker(pytest.mark.xdist_group(name + suffix))
+    # the longest tests first (a stable sort: the order is otherwise the collection's), so
     # the workers start on the long ones and the short ones fill in at the end, instead
-    # of one worker finishing a run of long tests alone
-    items.sort(key=lambda item: item.get_closest_marker("slow") is None)
+    # of one worker finishing a run of long tests alone (pytest-xdist sends the groups
+    # of shared fixtures first, the largest first, then the tests in this order)
+    items.sort(key=_cost_rank)
+
+
+#: Single tests measured among the longest (30-170 s each at a load of 5 on 2 cores,
+#: 2026-11-29), started with the browser's
+LONGEST = ("tests/kinetostatics/test_cli.py::test_bench_quick",
+           "tests/test_mutants.py::test_every_mutant_is_killed_by_a_quick_test",
+           "tests/kinetostatics/solver/test_fast.py::test_the_examples_agree",
+           "tests/kinetostatics/solver/test_fast.py::test_random_geometry_agrees",
+           "tests/kinetostatics/solver/test_fast.py::test_the_environment_variable_forces",
+           "tests/test_fuzz_scenes.py::test_mutated_scenes_through_the_api[four_bar_motion]",
+           "tests/test_fuzz_scenes.py::test_a_sample_through_the_command_line",
+           "tests/test_fuzz_scenes.py::test_resource_bombs_end_in_one_line",
+           "tests/kinetostatics/design/test_bench_design.py::test_bench_design_row")
+
+
+def _cost_rank(item: pytest.Item) -> int:
+    """0 for the browser's tests and :data:`LONGEST`, 1 for the other kernels', 2 for the
+    other slow tests, 3 for the quick tier."""
+    if item.get_closest_marker("browser") or item.nodeid.startswith(LONGEST):
+        return 0
+    return 1 if item.get_closest_marker("kernel") else \
+        2 if item.get_closest_marker("slow") else 3
 
 
 #: Test modules whose tests share a costly module fixture (a class of 30 generated): each
@@ -161,8 +197,8 @@ SHARED_PER_MODULE = ("tests/kinetostatics/teaching/test_classroom.py",
 
 def _group(nodeid: str) -> str | None:
     """The xdist group of a test id: ``<fixture>-<scene>`` for the tests of
-    :data:`SHARED_PER_SCENE`, the module for those of :data:`SHARED_PER_MODULE`, else
-    None."""
+    :data:`SHARED_PER_SCENE`, ``<fixture>`` for those of :data:`SHARED_ONCE`, the module
+    for those of :data:`SHARED_PER_MODULE`, else None."""
     base, _, param = nodeid.partition("[")
     module = base.split("::")[0]
     if module in SHARED_PER_MODULE:
@@ -170,6 +206,9 @@ def _group(nodeid: str) -> str | None:
     for name, tests in SHARED_PER_SCENE.items():
         if base in tests:
             return f"{name}-{param.rstrip(']')}"
+    for name, tests in SHARED_ONCE.items():
+        if base in tests:
+            return name
     return None
 
 

@@ -226,6 +226,7 @@ def solve_mechanism_balancing(scene: Any, *, method: str | None = None,
                            "counterweights (scene-format.md section 2)")
     raw["balancing"] = table
     sc = ks.load_scene(raw)
+    table = sc.raw["balancing"]     # in the contract's units, as the mechanism (a radius in mm)
     rows = sc.driver.positions.size      # the peak memory known before it is spent
     check_memory(BALANCING_FACTOR * solve_bytes(sc, rows),
                  f"the balancing of {sc.title!r} at {rows:,} positions",

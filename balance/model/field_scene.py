@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 
 from kinetostatics.model.errors import SceneError
+from kinetostatics.model.fields import BALANCING, read_number, section
 from kinetostatics.model.tomlio import as_float, as_int, as_list, as_str, check_keys
 from kinetostatics.model.units import radians
 
@@ -40,6 +41,16 @@ COMBINE_KEYS = ("weights", "radius")
 WEIGHT_KEYS = ("mass", "angle", "radius")
 ISO_KEYS = ("grade", "rotor_mass", "speed_rpm", "bearings", "cog", "planes", "narrow",
             "static_share", "residual")
+
+INFLUENCE = section(BALANCING, "influence", "[]")
+RUN = {key: section(BALANCING, "influence", "[]", key, "[]") for key in ("runs", "trim")}
+SPLIT = section(BALANCING, "split", "[]")
+COMBINE = section(BALANCING, "combine", "[]")
+WEIGHT = section(BALANCING, "combine", "[]", "weights", "[]")
+ISO = section(BALANCING, "iso")
+"""The declared fields (:data:`kinetostatics.model.fields.BALANCING`) each section's
+numbers are read through: bounds, defaults and the unit a message quotes (the masses and
+radii kept as typed, the angles in degrees)."""
 
 
 @dataclass(frozen=True)
@@ -84,7 +95,8 @@ def _pairs(value: Any, where: str, what: str = "[amplitude, phase_deg]") -> list
     return out
 
 
-def _run(item: Any, where: str) -> tuple[dict[int, tuple[float, float]], list]:
+def _run(item: Any, where: str, units: Units,
+         declared: dict) -> tuple[dict[int, tuple[float, float]], list]:
     """One run table: the masses per plane (1-based) and the readings."""
     t = check_keys(item, RUN_KEYS, where, required=("readings",))
     readings = _pairs(t["readings"], f"{where}.readings")
@@ -98,7 +110,7 @@ def _run(item: Any, where: str) -> tuple[dict[int, tuple[float, float]], list]:
         raise SceneError(f"{where}: missing required key 'mass' (with plane and angle), or "
                          "give masses = [[mass, angle], ...] per plane")
     plane = as_int(t.get("plane", 1), f"{where}.plane", lo=1)
-    mass = as_float(t["mass"], f"{where}.mass", positive=True)
+    mass = read_number(t, declared["mass"], where, units)
     return {plane: (mass, as_float(t.get("angle", 0.0), f"{where}.angle"))}, readings
 
 
@@ -125,17 +137,16 @@ def _planes(runs: list, trims: list, coefficients: list | None, where: str) -> i
     return max([max(r) for r, _ in runs + trims] + [len(coefficients[0]) if coefficients else 1])
 
 
-def _influence(item: Any, i: int) -> dict:
+def _influence(item: Any, i: int, units: Units) -> dict:
     w = f"influence[{i}]"
     t = check_keys(item, INFLUENCE_KEYS, w, required=("initial",))
     if ("runs" in t) == ("coefficients" in t):
         raise SceneError(f"{w}: give runs (trial runs) or coefficients (from an earlier "
                          "session), one of the two")
     initial = _pairs(t["initial"], f"{w}.initial")
-    runs = [_run(r, f"{w}.runs[{k}]") for k, r in enumerate(as_list(t.get("runs", []),
-                                                                       f"{w}.runs"))]
-    trims = [_run(r, f"{w}.trim[{k}]") for k, r in enumerate(as_list(t.get("trim", []),
-                                                                       f"{w}.trim"))]
+    runs, trims = ([_run(r, f"{w}.{key}[{k}]", units, RUN[key])
+                    for k, r in enumerate(as_list(t.get(key, []), f"{w}.{key}"))]
+                   for key in ("runs", "trim"))
     coefficients = None
     if "coefficients" in t:
         rows = as_list(t["coefficients"], f"{w}.coefficients")
@@ -151,8 +162,9 @@ def _influence(item: Any, i: int) -> dict:
         "trims": list(zip(_masses([r for r, _ in trims], n), [v for _, v in trims],
                           strict=True)),
         "coefficients": coefficients,
-        "noise": within(w, parse_noise, t.get("noise"), t.get("phase_noise"),
-                         t.get("confidence")),
+        "noise": within(w, parse_noise, t.get("noise"),
+                        read_number(t, INFLUENCE["phase_noise"], w, units)
+                        if "phase_noise" in t else None, t.get("confidence")),
     }
     if "points" in t:
         pts = [as_str(p, f"{w}.points[{k}]") for k, p in enumerate(as_list(t["points"],
@@ -160,11 +172,9 @@ def _influence(item: Any, i: int) -> dict:
         if len(pts) != len(initial):
             raise SceneError(f"{w}.points: {len(pts)} names for {len(initial)} readings")
         spec["points"] = pts
-    for key in ("trial_radius", "correction_radius"):
+    for key in ("trial_radius", "correction_radius", "dA"):
         if key in t:
-            spec[key] = as_float(t[key], f"{w}.{key}", positive=True)
-    if "dA" in t:
-        spec["dA"] = as_float(t["dA"], f"{w}.dA", nonnegative=True)
+            spec[key] = read_number(t, INFLUENCE[key], w, units)
     if "split" in t:
         s = t["split"]
         if isinstance(s, int) and not isinstance(s, bool):
@@ -176,45 +186,39 @@ def _influence(item: Any, i: int) -> dict:
     return spec
 
 
-def _split(item: Any, i: int) -> dict:
+def _split(item: Any, i: int, units: Units) -> dict:
     w = f"split[{i}]"
     t = check_keys(item, SPLIT_SECTION_KEYS, w, required=("mass", "angle", "positions"))
-    out = {"mass": as_float(t["mass"], f"{w}.mass", nonnegative=True),
+    out = {"mass": read_number(t, SPLIT["mass"], w, units),
            "angle": as_float(t["angle"], f"{w}.angle"),
            "positions": as_int(t["positions"], f"{w}.positions", lo=3, hi=MAX_HOLES),
            "first": as_float(t.get("first", 0.0), f"{w}.first")}
     for key in ("radius", "correction_radius"):
         if key in t:
-            out[key] = as_float(t[key], f"{w}.{key}", positive=True)
+            out[key] = read_number(t, SPLIT[key], w, units)
     return out
 
 
-def _combine(item: Any, i: int) -> dict:
+def _combine(item: Any, i: int, units: Units) -> dict:
     w = f"combine[{i}]"
     t = check_keys(item, COMBINE_KEYS, w, required=("weights",))
     weights = []
     for k, x in enumerate(as_list(t["weights"], f"{w}.weights")):
         ww = f"{w}.weights[{k}]"
         x = check_keys(x, WEIGHT_KEYS, ww, required=("mass", "angle"))
-        wt = (as_float(x["mass"], f"{ww}.mass", nonnegative=True),
-              as_float(x["angle"], f"{ww}.angle"))
-        weights.append(wt + ((as_float(x["radius"], f"{ww}.radius", positive=True),)
+        wt = (read_number(x, WEIGHT["mass"], ww, units), as_float(x["angle"], f"{ww}.angle"))
+        weights.append(wt + ((read_number(x, WEIGHT["radius"], ww, units),)
                              if "radius" in x else ()))
-    radius = as_float(t["radius"], f"{w}.radius", positive=True) if "radius" in t else None
+    radius = read_number(t, COMBINE["radius"], w, units) if "radius" in t else None
     return {"weights": weights, "radius": radius}
 
 
-def _iso(table: Any) -> dict:
+def _iso(table: Any, units: Units) -> dict:
     w = "iso"
     t = check_keys(table, ISO_KEYS, "[iso]", required=("grade", "rotor_mass", "speed_rpm"))
-    out: dict[str, Any] = {
-        "grade": as_float(t["grade"], f"{w}.grade", positive=True),
-        "rotor_mass": as_float(t["rotor_mass"], f"{w}.rotor_mass", positive=True),
-        "speed_rpm": as_float(t["speed_rpm"], f"{w}.speed_rpm", positive=True),
-        "narrow": bool(t.get("narrow", False)),
-        "static_share": as_float(t.get("static_share", 0.5), f"{w}.static_share",
-                                 positive=True),
-    }
+    out: dict[str, Any] = {k: read_number(t, ISO[k], w, units)
+                           for k in ("grade", "rotor_mass", "speed_rpm", "static_share")}
+    out["narrow"] = bool(t.get("narrow", False))
     if "narrow" in t and not isinstance(t["narrow"], bool):
         raise SceneError(f"{w}.narrow must be true or false")
     if "bearings" in t:
@@ -224,7 +228,7 @@ def _iso(table: Any) -> dict:
         out["bearings"] = tuple(as_float(x, f"{w}.bearings[{k}]") for k, x in enumerate(b))
         if "cog" not in t:
             raise SceneError(f"{w}: bearings need cog, the z of the centre of mass")
-        out["cog"] = as_float(t["cog"], f"{w}.cog")
+        out["cog"] = read_number(t, ISO["cog"], w, units)
     if "planes" in t:
         p = as_list(t["planes"], f"{w}.planes")
         if len(p) not in (1, 2):
@@ -270,11 +274,8 @@ def parse_field(top: Mapping[str, Any], units: Units | None = None) -> FieldScen
     """
     if units is None:
         units = parse_units(top.get("units"))
-    infl = tuple(_influence(x, i) for i, x in enumerate(_array_of_tables(top, "influence"))) \
-        if "influence" in top else ()
-    split = tuple(_split(x, i) for i, x in enumerate(_array_of_tables(top, "split"))) \
-        if "split" in top else ()
-    comb = tuple(_combine(x, i) for i, x in enumerate(_array_of_tables(top, "combine"))) \
-        if "combine" in top else ()
-    iso = _iso(top["iso"]) if "iso" in top else None
+    infl, split, comb = (tuple(read(x, i, units) for i, x in enumerate(_array_of_tables(
+        top, key))) if key in top else () for key, read in (
+            ("influence", _influence), ("split", _split), ("combine", _combine)))
+    iso = _iso(top["iso"], units) if "iso" in top else None
     return FieldScene(units=units, influence=infl, iso=iso, split=split, combine=comb)

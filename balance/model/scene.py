@@ -114,7 +114,9 @@ class BalanceScene:
     """A checked balancing scene; ``raw`` keeps the mapping as read, rewritten into its
     solvers' units (:mod:`balance.model.scene_units`); ``units`` is the file's ``[units]``;
     ``quiet`` the slip rules its ``[checks]`` silences and ``warnings`` the suspected unit
-    slips found when it was read (:mod:`balance.model.slips`)."""
+    slips found when it was read (:mod:`balance.model.slips`); ``source`` the mapping as
+    read, ``[units]`` and ``[checks]`` included (a mechanism's ``[balancing]`` is read from
+    it by the mechanism's own reader, which quotes and judges it as typed)."""
 
     title: str = ""
     rotor: RotorSpec | None = None
@@ -126,6 +128,7 @@ class BalanceScene:
     units: Units = field(default_factory=Units)
     quiet: frozenset[str] = field(default=frozenset(), compare=False)
     warnings: tuple[str, ...] = field(default=(), compare=False)
+    source: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def sections(self) -> tuple[str, ...]:
@@ -157,7 +160,8 @@ def load_scene(source: Any) -> BalanceScene:
     """
     if isinstance(source, BalanceScene):
         return source
-    raw, quiet = read_checks(read_source(source, "balancing scene", bundled=SCENES))
+    given = read_source(source, "balancing scene", bundled=SCENES)
+    raw, quiet = read_checks(given)
     raw, units = to_contract_units(raw)
     top = check_keys(raw, TOP_KEYS, "scene")
     title = as_str(top["title"], "title") if "title" in top else ""
@@ -180,7 +184,8 @@ def load_scene(source: Any) -> BalanceScene:
         raise SceneError("[balancing] must be a table")
     scene = BalanceScene(title=title, rotor=rotor, static_test=static, resonance_tests=tests,
                          balancing=balancing, raw=raw, field_scene=parse_field(top, units),
-                         units=units, quiet=quiet)
+                         units=units, quiet=quiet,
+                         source=given if isinstance(given, dict) else {})
     texts = emit(scene_slips(scene), quiet, BalanceWarning)
     if texts:
         object.__setattr__(scene, "warnings", texts)     # (a frozen dataclass, made here)

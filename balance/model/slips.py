@@ -92,7 +92,9 @@ def scene_slips(scene: BalanceScene) -> list[Slip]:
     if scene.static_test is not None:
         out += _angles("static_test.alpha", [scene.static_test.alpha], u)
     fs = scene.field_scene
-    limit = max(TRIAL_MASS, fs.iso["rotor_mass"] / 100.0 if fs.iso else 0.0)
+    # [iso] rotor_mass stays in the scene's unit (a field section): in kg here, so that the
+    # rule is the same whatever unit it was typed in
+    limit = max(TRIAL_MASS, u.to_si(fs.iso["rotor_mass"], "mass") / 100.0 if fs.iso else 0.0)
     for i, t in enumerate(scene.resonance_tests):
         w = f"resonance_test[{i}]"
         if t.runs is not None:

@@ -148,7 +148,10 @@ def result_warnings(out: dict[str, Any]) -> Iterator[tuple[str, str]]:
         if isinstance(node, dict):
             for key, value in node.items():
                 if key == "warnings" and isinstance(value, list):
-                    yield from ((where, str(w)) for w in value)
+                    # a note that names its section already ("rotor: ...") is not
+                    # prefixed twice
+                    yield from (("" if str(w).startswith(f"{where}: ") else where, str(w))
+                                for w in value)
                 else:
                     yield from walk(value, f"{where}.{key}" if where else key)
         elif isinstance(node, list):

@@ -52,8 +52,9 @@ def cam_slips(raw: Any, units: Units) -> list[Slip]:
     """The suspected unit slips of a cam scene (``raw`` in the contract's units), judged on
     the physical quantity (:mod:`kinetostatics.model.slips`): the segments' angles as a
     list (radians typed for degrees); any angle beyond two turns (degrees typed under
-    ``angle = "rad"``); a speed that moves the cam's outline faster than 400 m/s (rpm typed
-    for rad/s). A single small angle (a real 4.5 deg swing) is never judged alone."""
+    ``angle = "rad"``); a speed that moves the cam's outline faster than
+    :data:`CAM_TIP_SPEED` (rpm typed for rad/s). A single small angle (a real 4.5 deg
+    swing) is never judged alone."""
     cam = raw.get("cam") if isinstance(raw, dict) else None
     if not isinstance(cam, dict):
         return []

@@ -53,6 +53,10 @@ class Field:
         One line: what it is.
     key : str
         The last step of ``path`` (the key a reader looks up).
+    kept : bool
+        The value stays in the scene's unit where it is read (a balancing field section's
+        masses, radii and readings: those methods are linear in them); the units stage
+        leaves it as typed and a message quotes it as it is.
     least : float
         The least magnitude other than zero (``MIN_MAGNITUDE`` for a quantity divided by:
         its square would underflow); 0: none (a positive field has ``MIN_MAGNITUDE``).
@@ -66,6 +70,7 @@ class Field:
     default: str = ""
     doc: str = ""
     least: float = 0.0
+    kept: bool = False
     key: str = field(init=False, repr=False, compare=False)
     fallback: float | None = field(init=False, repr=False, compare=False)
 
@@ -116,7 +121,8 @@ def read_number(table: dict, fd: Field, where: str, units: Units,
         return float(value)     # the common case (compared before float(): a huge int)
     x = as_float(value, f"{where}.{key}", error=error)
     if fd.bound and (x < 0.0 or (x == 0.0 and fd.bound == "positive")):
-        said = (units.quote(x, fd.quantity, file=True)
+        said = (f"{x:g} {units.unit(fd.quantity)}" if fd.kept
+                else units.quote(x, fd.quantity, file=True)
                 if fd.quantity and fd.quantity not in ROLES
                 else f"{x:g} rpm" if fd.quantity == "rpm" else f"{x:g}")
         raise error(f"{where}.{key} {_BOUND_WORDS[fd.bound]}, got {said}")
@@ -126,9 +132,14 @@ def read_number(table: dict, fd: Field, where: str, units: Units,
 
 
 def F(path: str, quantity: str, bound: str = "", default: str = "", doc: str = "",
-      least: float = 0.0) -> Field:
+      least: float = 0.0, kept: bool = False) -> Field:
     """A :class:`Field` from a dotted path (``"bodies.[].mass"``)."""
-    return Field(tuple(path.split(".")), quantity, bound, default, doc, least)
+    return Field(tuple(path.split(".")), quantity, bound, default, doc, least, kept)
+
+
+def K(path: str, quantity: str, bound: str = "", default: str = "", doc: str = "") -> Field:
+    """A field kept in the scene's unit (:attr:`Field.kept`)."""
+    return F(path, quantity, bound, default, doc, kept=True)
 
 
 MECHANISM: tuple[Field, ...] = (
@@ -192,7 +203,8 @@ CAM: tuple[Field, ...] = (
     F("cam.roller_radius", "length", "nonnegative", "0", "the roller's radius"),
     F("cam.follower.stroke", "length", "positive", REQUIRED, "a translating follower's "
       "stroke"),
-    F("cam.follower.offset", "length", "", "0", "its offset (or \"auto\")"),
+    F("cam.follower.offset", "length", "", "0", "its offset (or \"optimal\", with "
+      "transmission_angle)"),
     F("cam.follower.stroke_angle", "angle", "positive", REQUIRED, "an oscillating "
       "follower's swing"),
     F("cam.follower.arm", "length", "positive", REQUIRED, "its arm"),
@@ -261,11 +273,27 @@ BALANCING: tuple[Field, ...] = (
           f"a {one} reading's phase"),
         F(f"influence.[].{key}.[].masses.[].#1", "angle", "", "", f"a {one}'s mass "
           "angle, per plane"))),
-    F("influence.[].phase_noise", "angle", "nonnegative", "0", "1-sigma of each phase"),
+    F("influence.[].phase_noise", "angle", "nonnegative", "1 deg", "1-sigma of each phase"),
     F("influence.[].split.first", "angle", "", "0", "the first position's angle"),
+    *(K(f"influence.[].{key}.[].mass", "mass", "positive", "", f"a {one}'s mass (or masses)")
+      for key, one in _FIELD_RUNS.items()),
+    K("influence.[].trial_radius", "length", "positive", "", "the trial masses' radius"),
+    K("influence.[].correction_radius", "length", "positive", "", "the corrections' radius"),
+    F("influence.[].dA", "", "nonnegative", "", "the uncertainty of every reading"),
     F("split.[].angle", "angle", "", REQUIRED, "the mass's angle"),
     F("split.[].first", "angle", "", "0", "the first position's angle"),
+    K("split.[].mass", "mass", "nonnegative", REQUIRED, "the mass to split"),
+    K("split.[].radius", "length", "positive", "", "its radius (with correction_radius)"),
+    K("split.[].correction_radius", "length", "positive", "", "the positions' radius"),
     F("combine.[].weights.[].angle", "angle", "", REQUIRED, "a weight's angle"),
+    K("combine.[].weights.[].mass", "mass", "nonnegative", REQUIRED, "a weight's mass"),
+    K("combine.[].weights.[].radius", "length", "positive", "", "its radius"),
+    K("combine.[].radius", "length", "positive", "", "the radius the sum is given at"),
+    F("iso.grade", "", "positive", REQUIRED, "the balance quality grade G (mm/s)"),
+    K("iso.rotor_mass", "mass", "positive", REQUIRED, "the rotor's mass"),
+    F("iso.speed_rpm", "rpm", "positive", REQUIRED, "its service speed in rpm"),
+    F("iso.static_share", "", "positive", "0.5", "a narrow rotor's static share of U_per"),
+    K("iso.cog", "length", "", "", "the z of the centre of mass (with bearings)"),
     F("iso.residual.[].#1", "angle", "", "", "a residual's phase"),
 )
 """A balancing scene's number-bearing fields converted where it is read (docs/balancing.md,
@@ -353,7 +381,7 @@ def convert(raw: dict, units: Units, fields: tuple[Field, ...]) -> dict:
     out = _copy(raw)
     for fd in fields:
         quantity = ROLES[fd.quantity](out) if fd.quantity in ROLES else fd.quantity
-        if quantity:
+        if quantity and not fd.kept:
             f = units.file_factor(quantity)
             if f != 1.0:
                 _scale_at(out, fd.path, f)
@@ -414,6 +442,7 @@ def markdown(fields: tuple[Field, ...]) -> str:
     """The declarations as the docs' table: field, quantity, bounds, default, doc."""
     rows = ["| field | quantity | bounds | default | meaning |", "|---|---|---|---|---|"]
     for fd in fields:
-        rows.append(f"| `{fd.name}` | {_QUANTITY_WORDS.get(fd.quantity, fd.quantity)} | "
+        kept = " (kept as typed)" if fd.kept else ""
+        rows.append(f"| `{fd.name}` | {_QUANTITY_WORDS.get(fd.quantity, fd.quantity)}{kept} | "
                     f"{fd.bound or ''} | {fd.default} | {fd.doc} |")
     return "\n".join(rows)

@@ -48,8 +48,9 @@ RULES: dict[str, str] = {
             "(inertia 0, one point) over the size of the links it joins and no more than 300 "
             "times the heaviest of them (kg typed under mass = \"t\", or grams typed as "
             "kilograms)",
-    "lengths": "a point farther than 100 mechanism sizes from its body's joints "
-               "(millimetres among metres)",
+    "lengths": "a point farther than 100 mechanism sizes from its body's joints, or a "
+               "joint's pin radius or bearing length over 10 mechanism sizes (millimetres "
+               "among metres)",
     "unbalance_mass": "a rotor's unbalance masses 300 times apart or more, the heavier "
                       "1 kg or more or the lighter under 1 mg (one typed in another unit)",
     "trial_mass": "a trial mass above 2 kg (or a hundredth of the rotor's mass): grams typed "
@@ -73,6 +74,9 @@ LUMPED = 0.1
 """A body whose own size (radius of gyration's diameter, points' box) is under this
 fraction of the links it joins is a point mass (the course's mass concentration): its
 size is theirs."""
+
+PIN = 10.0
+"""A joint's pin radius or bearing length over this many mechanism sizes is a slip."""
 
 HEAVIER = 300.0
 """A point mass over this many times the heaviest link it joins is a slip (grams typed as
@@ -193,6 +197,7 @@ def mechanism_slips(scene: Scene) -> list[Slip]:
     u = scene.units
     out = _position_slips(scene, u) + _speed_slips(scene, u) + _gravity_slips(scene, u)
     out += _mass_slips(scene, u) + _far_points(scene, u) + _line_angle_slips(scene, u)
+    out += _friction_slips(scene, u)
     if scene.motion is not None:
         out += _motor_table_slips(scene.motion, u)
     return out
@@ -339,6 +344,23 @@ def _motor_table_slips(motion: dict, u: Units) -> list[Slip]:
         return []
     return [Slip("angles", "motion.motor_table", typed(angles, "angle", u), why,
                  "write them in degrees, or angle = \"rad\" in [units]")]
+
+
+def _friction_slips(scene: Scene, u: Units) -> list[Slip]:
+    """A pin radius or a bearing length over ``PIN`` mechanism sizes: no pin (an eccentric
+    sheave's included) is larger than the mechanism it joins."""
+    out = []
+    for name, j in scene.joints.items():
+        fr = j.friction
+        for key, value in (("radius", fr.radius), ("length", fr.length)) if fr else ():
+            if value > PIN * scene.size:
+                out.append(Slip("lengths", f"joint {name!r}.friction.{key}",
+                                typed(value, "length", u, file=False),
+                                f"{value / scene.size:.3g} times the mechanism's size "
+                                f"({scene.size:.3g} m)",
+                                f"{typed(value / 1000, 'length', u, file=False)} "
+                                "(millimetres among metres)"))
+    return out
 
 
 def _num(x: Any) -> bool:

@@ -100,13 +100,16 @@ def motion_spec(scene: Scene) -> MotionSpec:
             raise SceneError("motion.target_delta needs a speed-dependent 'motor': with a "
                              "motor_table there is no unique steady state")
     pos = scene.driver.positions
-    check_distinct(pos, "deg")
+    u = scene.units         # the mechanism scene's rule, quoted as typed (deg or rad)
+    check_distinct(pos, u.unit("angle"), u.file_factor("angle"))
     start = motion_start(scene)
     if np.any(pos < start - 1e-9) or np.any(pos > start + 360.0 + 1e-9):
         first = "start" if "positions" not in scene.raw.get("driver", {}) else \
             "the smallest position"
         raise SceneError(f"[motion]: the sweep's positions must lie within one turn from "
-                         f"{first} ({start:g} deg), [{start:g}, {start + 360:g}] deg")
+                         f"{first} ({u.quote(start, 'angle', file=True)}), "
+                         f"[{u.quote(start, 'angle', file=True)}, "
+                         f"{u.quote(start + 360.0, 'angle', file=True)}]")
     return MotionSpec(stall, no_load, table, flywheel, omega0, cycles, target)
 
 

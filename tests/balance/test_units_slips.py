@@ -280,3 +280,45 @@ readings = [[0.05, 226.1]]
         'runs = [{ plane = 1, mass = 20.0, angle = 0.0, readings = [[30.0, 120.0]] }]',
         "coefficients = [[[0.9, 70.0]]]")
     assert caught(coeffs)[1] == []
+
+
+def mechanism_balancing(units: bool = False, **driver) -> dict:
+    """The bundled four-bar balancing scene (SI), or typed in mm/g (``units``)."""
+    import tomllib
+    with open(balance.example_path("four_bar_balancing"), "rb") as fh:
+        d = tomllib.load(fh)
+    d["driver"].update(driver)
+    if units:
+        from tests.kinetostatics.model.test_units_invariance import mechanism_in
+        d = mechanism_in(d, {"length": "mm", "mass": "g"})
+        for cw in d["balancing"].get("counterweights", []):
+            if "radius" in cw:
+                cw["radius"] *= 1000.0
+    return d
+
+
+def test_a_slipped_mechanism_balancing_scene_carries_its_warning() -> None:
+    """A mechanism's [balancing] read through balance: its mechanism's slip (3000 rpm typed
+    as rad/s) is in the result's warnings (the report's and JSON's source), a [checks]
+    quiet silences it, and the scene typed in mm/g is silent with the same numbers."""
+    import kinetostatics as ks
+    with pytest.warns(ks.UnitWarning) as seen:      # the mechanism reader's, warned once
+        out = balance.solve(mechanism_balancing(speed=2400.0))
+    assert len(out["warnings"]) == 1 and out["warnings"][0].startswith("driver.speed = 2400")
+    assert [str(w.message) for w in seen] == out["warnings"]
+    quiet = {**mechanism_balancing(speed=2400.0), "checks": {"quiet": ["speed"]}}
+    assert caught(quiet)[0]["warnings"] == []
+    si, mm = caught(mechanism_balancing())[0], caught(mechanism_balancing(units=True))[0]
+    assert si["warnings"] == mm["warnings"] == []
+    a, b = si["balancing"], mm["balancing"]
+    for x, y in zip(a["counterweights"], b["counterweights"], strict=True):
+        assert x["mass"] == pytest.approx(y["mass"], rel=1e-12)   # measured: 2e-16
+
+
+def test_the_report_names_each_warning_s_section_once() -> None:
+    from balance.report.text import result_warnings
+    out = {"rotor": {"warnings": ["rotor: the correction planes are 20 mm apart"]},
+           "influence": [{"warnings": ["the coefficients are ill-conditioned"]}]}
+    assert list(result_warnings(out)) == [
+        ("", "rotor: the correction planes are 20 mm apart"),
+        ("influence[0]", "the coefficients are ill-conditioned")]

@@ -59,8 +59,7 @@ def test_a_full_disk_leaves_earlier_results_whole(tmp_path: Path) -> None:
     assert "File too large" in r.stderr and str(out) in r.stderr
     after = _files(out)
     note = after.pop(FAILED).decode()
-    # every earlier table as it was; the earlier summary.json is gone (#30 item 8: it
-    # would look current)
+    # every earlier table as it was; no summary.json left looking current
     assert before.pop("summary.json") and after == before
     assert "failed" in note and "earlier run" in note
     # a new folder: none left behind

@@ -270,18 +270,32 @@ def test_released_loads_come_back_bit_for_bit(monkeypatch):
                                       check_exact=True)
 
 
+def _long_sweep():
+    scene = ks.load_scene(ks.example("slider_crank"))
+    return ks.solve(scene, np.linspace(0.0, 359.99, 40_001))
+
+
+@pytest.fixture(scope="module")
+def long_sweep_csv() -> dict[str, bytes]:
+    """pandas' bytes of every table of the long sweep (7 s of CPU; made once for both
+    writers' tests, tests/conftest.py: SHARED_ONCE), from a solve of its own: the tested
+    solution has built no table when it writes."""
+    sol = _long_sweep()
+    return {name: getattr(sol, name).to_csv(index=False, float_format="%.17g").encode()
+            for name in sol.FILES}
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("load", [0.0, 99.0])
-def test_long_sweep_written_as_pandas_writes_it(tmp_path, monkeypatch, load):
+def test_long_sweep_written_as_pandas_writes_it(tmp_path, monkeypatch, load, long_sweep_csv):
     """Many chunks per block, the position formatted once for every table, with the
     writer's threads (a core free) or without (a busy machine): still pandas' bytes."""
     monkeypatch.setattr(output.os, "getloadavg", lambda: (load, load, load))
-    scene = ks.load_scene(ks.example("slider_crank"))
-    sol = ks.solve(scene, np.linspace(0.0, 359.99, 40_001))
-    for path in sol.write(tmp_path):
-        if path.suffix == ".csv":
-            expected = getattr(sol, path.stem).to_csv(index=False, float_format="%.17g")
-            assert path.read_bytes() == expected.encode(), path.name
+    sol = _long_sweep()
+    written = [path for path in sol.write(tmp_path) if path.suffix == ".csv"]
+    assert {path.stem for path in written} == set(long_sweep_csv)
+    for path in written:
+        assert path.read_bytes() == long_sweep_csv[path.stem], path.name
 
 
 def test_rows_text_keeps_a_label_with_a_nul():

@@ -18,13 +18,13 @@ from . import loader
 
 PATHS = ("auto", "numpy", "fast")
 AUTO_ROWS = 20_000      # below, numba's import and first call (0.2-0.3 s) outweigh the gain
-# Whether ``auto`` takes the compiled path at all. Off: the kernels, row by row and not
-# vectorised, do not beat the numpy path yet (measured 2026-11-28 on the 2-core machine
-# in processor time, four-bar solve + driver table against the hand form: at 2e5 rows
-# 0.84-1.0x against numpy's 0.52-0.93x, at 2001 rows 4.8-6.0x against 3.8-3.9x;
-# solve_many of 1000 x 361 rows 1.7x numpy's time; the slider-crank 1.1-1.5x numpy's),
-# so the compiled path runs only when asked for (``fast``). docs/solve-paths.md,
-# "Speed", says where the kernels' time goes.
+# Whether ``auto`` takes the compiled path at all. Off: the kernels, vectorised in tiles,
+# win on long four-bar sweeps but not yet elsewhere (measured 2026-11-29 on the 2-core
+# machine in processor time, solve + driver table against the hand form: four-bar at
+# 2e5 / 1e6 rows 0.57x / 0.61x against numpy's 1.00x / 0.89x; slider-crank 2.3x / 0.80x
+# against 2.1x / 0.79x; at 2001 rows 4.7x against 4.2x; solve_many of 1000 x 361 rows
+# 1.6x numpy's time), so the compiled path runs only when asked for (``fast``).
+# docs/solve-paths.md, "Speed", says where the time goes.
 AUTO_COMPILED = False
 _OPTION: dict[str, str | None] = {"path": None, "told": None}
 

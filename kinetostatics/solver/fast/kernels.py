@@ -20,7 +20,18 @@ from __future__ import annotations
 
 import math
 
-from .jitbase import body, jit, nonfinite
+from .jitbase import (
+    TILE,
+    body,
+    fmax,
+    fmin,
+    jit,
+    nonfinite,
+    scratch,
+    tile_geometry,
+    tile_in,
+    tile_out,
+)
 from .layout import (
     AL,
     ASSEMBLY,
@@ -37,6 +48,8 @@ from .layout import (
     D_PY,
     D_TH,
     DET,
+    DYAD_GEOMETRY,
+    DYAD_OUT,
     I_BETA,
     I_CB,
     I_LX,
@@ -88,6 +101,7 @@ from .layout import (
     C,
     S,
 )
+from .layout import MOTION as BODY_ROWS
 from .reaction_kernels import REACTIONS, body_loads, crank_reaction, slider_reaction, swept_loads
 
 SINGULAR_WARN2 = 1e-6       # (1e-3)^2: kinematics.SINGULAR_WARN squared
@@ -117,7 +131,7 @@ def crank_motion(theta, lo, hi, off, g, gs, w, eps, m):
         m[VY, j] = -w * rax
         m[AX, j] = eps * ray + w2 * rax
         m[AY, j] = -eps * rax + w2 * ray
-        bad += nonfinite(c, s, m[OX, j], m[OY, j], m[AX, j], m[AY, j])
+        bad += nonfinite((c, s, m[OX, j], m[OY, j], m[AX, j], m[AY, j]))
     return bad
 
 
@@ -141,12 +155,12 @@ def slider_motion(pos, lo, hi, off, g, gs, w, eps, m):
         m[VY, j] = v * uy
         m[AX, j] = a * ux
         m[AY, j] = a * uy
-        bad += nonfinite(m[OX, j], m[OY, j])
+        bad += nonfinite((m[OX, j], m[OY, j]))
     return bad
 
 
 # -- a dyad's kinematics (seed 000 ch. 5-12) ---------------------------------------------
-@jit
+@body
 def _rot_angle(dx, dy, wx, wy):
     """cos, sin of the angle that turns the local vector l onto (dx, dy) (|d| = |l|),
     given (wx, wy) = l / |l|^2."""
@@ -215,8 +229,8 @@ def _close_r(kind, p1, p2, g, r, k):
         gap = -1.0
         if not h2 >= 0.0:
             r1, r2 = math.sqrt(r1s), math.sqrt(r2s)
-            gap = max(reach - (r1 + r2), abs(r1 - r2) - reach)
-        kh = (k * inv) * math.sqrt(max(h2, 0.0))
+            gap = fmax(reach - (r1 + r2), abs(r1 - r2) - reach)
+        kh = (k * inv) * math.sqrt(fmax(h2, 0.0))
         xi = x * inv
         tx, ty = xi * ex - kh * ey, xi * ey + kh * ex
         c1, s1 = _rot_angle(tx, ty, g[W1X, r], g[W1Y, r])
@@ -247,7 +261,7 @@ def _close_r(kind, p1, p2, g, r, k):
     gap = -1.0
     if not disc >= 0.0:
         gap = abs(ux * wy - uy * wx) - math.sqrt(rs)
-    s = k * math.sqrt(max(disc, 0.0)) - b
+    s = k * math.sqrt(fmax(disc, 0.0)) - b
     cr, sr = _rot_angle(wx + s * ux, wy + s * uy, g[W1X, r] if rot1 else g[W2X, r],
                         g[W1Y, r] if rot1 else g[W2Y, r])
     if rot1:
@@ -314,7 +328,7 @@ def _rtr_angle(p1, p2, g, r, k):
     gap = -1.0
     if not abs(y) <= 1.0:
         gap = abs(c) - dn if y == y else math.inf
-    x = math.asin(min(max(y, -1.0), 1.0))
+    x = math.asin(fmin(fmax(y, -1.0), 1.0))
     side = -x if k > 0 else x - math.pi
     return math.atan2(dy, dx) - g[I_BETA, r] + side, dn, gap
 
@@ -381,10 +395,33 @@ def _dyad_motion(kind, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
             p2 = _param(True, k2, j, g, r, PARAM)
             d[D_TH, j], d[CL2, j], d[XX, j] = _rtr_angle(p1, p2, g, r, g[ASSEMBLY, r])
         return 0
+    # in tiles (jitbase.TILE): the known bodies' motions (and RTR's guide angle) in, the
+    # tile worked out in the scratch array alone, the bodies' motions and the data out
+    w = scratch(4 * BODY_ROWS + DYAD_OUT + DYAD_GEOMETRY)
+    wk1, wk2 = w[:BODY_ROWS], w[BODY_ROWS:2 * BODY_ROWS]
+    wm1, wm2 = w[2 * BODY_ROWS:3 * BODY_ROWS], w[3 * BODY_ROWS:4 * BODY_ROWS]
+    wd = w[4 * BODY_ROWS:4 * BODY_ROWS + DYAD_OUT]
+    wg = w[4 * BODY_ROWS + DYAD_OUT:]
     bad = 0
-    for i in range(lo, hi):
-        j, r = i - off, i * gs
-        bad += _dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d)
+    for t0 in range(lo, hi, TILE):
+        nt = min(TILE, hi - t0)
+        j0 = t0 - off
+        tile_geometry(wg, g, gs, t0, nt, t0 == lo)
+        tile_in(wk1, k1, j0, nt)
+        tile_in(wk2, k2, j0, nt)
+        if rtr:
+            tile_in(wd[XX:XX + 1], d[XX:XX + 1], j0, nt)
+            tile_in(wd[C1X:C1Y + 1], d[C1X:C1Y + 1], j0, nt)
+            tile_in(wd[CL2:CL2 + 1], d[CL2:CL2 + 1], j0, nt)
+        for t in range(TILE):
+            b = _dyad_row(kind, rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
+            bad += b if t < nt else 0
+        tile_out(m1, wm1, j0, nt)
+        tile_out(m2, wm2, j0, nt)
+        tile_out(d[:CL2 + 1], wd[:CL2 + 1], j0, nt)
+        # each side's parameter: P (rot), or the guide's u and the line's base point
+        tile_out(d[10:12 if rot1 else 14], wd[10:12 if rot1 else 14], j0, nt)
+        tile_out(d[14:16 if rot2 else 18], wd[14:16 if rot2 else 18], j0, nt)
     return bad
 
 
@@ -406,7 +443,7 @@ def _closeness(inner_r, rtr, rot1, det, p1, p2, ux, uy, norm2, reach, gap, size)
     bad = 0
     if reach >= 0.0:
         rs = reach / size
-        sin2 = min(sin2, rs * rs) if sin2 == sin2 else sin2
+        sin2 = fmin(sin2, rs * rs) if sin2 == sin2 else sin2
         bad += 0 if rs > SINGULAR_FAIL else 1
     bad += 0 if gap <= 1e-9 * size else 1
     bad += 0 if sin2 > SINGULAR_FAIL2 else 1
@@ -511,7 +548,7 @@ def _dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d):
     d[C1X, j], d[C1Y, j], d[C2X, j], d[C2Y, j], d[DET, j] = c1x, c1y, c2x, c2y, det
     d[NX, j], d[NY, j], d[CL2, j] = nx, ny, sin2
     _store_params(d, j, p1, rot1, p2, rot2)
-    bad += nonfinite(m1[AX, j], m1[AY, j], m1[AL, j], m2[AX, j], m2[AY, j], m2[AL, j], xx, xy)
+    bad += nonfinite((m1[AX, j], m1[AY, j], m1[AL, j], m2[AX, j], m2[AY, j], m2[AL, j], xx, xy))
     return bad
 
 

@@ -7,7 +7,17 @@ from __future__ import annotations
 
 import math
 
-from .jitbase import body, jit, nonfinite
+from .jitbase import (
+    TILE,
+    body,
+    jit,
+    nonfinite,
+    scratch,
+    tile_add,
+    tile_geometry,
+    tile_in,
+    tile_out,
+)
 from .layout import (
     AL,
     AX,
@@ -19,6 +29,8 @@ from .layout import (
     D_LX,
     D_LY,
     DET,
+    DYAD_GEOMETRY,
+    DYAD_OUT,
     I_SFIRST,
     I_SX,
     I_SY,
@@ -64,6 +76,8 @@ from .layout import (
     C,
     S,
 )
+from .layout import MOTION as BODY_ROWS
+from .layout import REACTIONS as REACTION_ROWS
 
 
 # -- loads (seed 002 s. 2.1-2.2) ----------------------------------------------------------
@@ -71,28 +85,39 @@ from .layout import (
 def body_loads(lo, hi, off, g, gs, npoint, m, acc):
     """A body's load resultants [Fx, Fy, M about its origin]: forces at local points,
     each with the inertia force -m_k a_k of a mass there (the cog's, eq. 2.1, or a
-    concentrated mass, eq. 2.8), a couple, and the inertia couple -I_G eps (eq. 2.1)."""
+    concentrated mass, eq. 2.8), a couple, and the inertia couple -I_G eps (eq. 2.1).
+    In tiles (jitbase.TILE): the motion in, each point load a loop over the tile's rows
+    (it vectorises), the resultants out."""
+    w = scratch(BODY_ROWS + 3)
+    wm, wa = w[:BODY_ROWS], w[BODY_ROWS:]
+    wg = scratch(g.shape[0])
     bad = 0
-    for i in range(lo, hi):
-        j, r = i - off, i * gs
-        c, s = m[C, j], m[S, j]
-        om, al = m[OM, j], m[AL, j]
-        w2 = om * om
-        fx = fy = mo = 0.0
+    for t0 in range(lo, hi, TILE):
+        nt = min(TILE, hi - t0)
+        j0 = t0 - off
+        tile_geometry(wg, g, gs, t0, nt, t0 == lo)
+        tile_in(wm[C:AL + 1], m[C:AL + 1], j0, nt)      # (no velocities read)
+        tile_in(wm[AX:AY + 1], m[AX:AY + 1], j0, nt)
+        wa[:] = 0.0
         for q in range(npoint):
             b = 2 + L_POINT * q
-            lx, ly = g[b, r], g[b + 1, r]
-            rx, ry = c * lx - s * ly, s * lx + c * ly
-            mk = g[b + 4, r]
-            ax = (m[AX, j] - al * ry) - w2 * rx
-            ay = (m[AY, j] + al * rx) - w2 * ry
-            px, py = g[b + 2, r] - mk * ax, g[b + 3, r] - mk * ay
-            fx += px
-            fy += py
-            mo += rx * py - ry * px
-        acc[0, j], acc[1, j] = fx, fy
-        acc[2, j] = mo + g[L_M0, r] - g[L_I, r] * al
-        bad += nonfinite(acc[0, j], acc[1, j], acc[2, j])
+            for t in range(TILE):
+                c, s, al, om = wm[C, t], wm[S, t], wm[AL, t], wm[OM, t]
+                w2 = om * om
+                lx, ly = wg[b, t], wg[b + 1, t]
+                rx, ry = c * lx - s * ly, s * lx + c * ly
+                mk = wg[b + 4, t]
+                ax = (wm[AX, t] - al * ry) - w2 * rx
+                ay = (wm[AY, t] + al * rx) - w2 * ry
+                px, py = wg[b + 2, t] - mk * ax, wg[b + 3, t] - mk * ay
+                wa[0, t] += px
+                wa[1, t] += py
+                wa[2, t] += rx * py - ry * px
+        for t in range(TILE):
+            wa[2, t] = wa[2, t] + wg[L_M0, t] - wg[L_I, t] * wm[AL, t]
+            f = nonfinite((wa[0, t], wa[1, t], wa[2, t]))
+            bad += f if t < nt else 0
+        tile_out(acc, wa, j0, nt)
     return bad
 
 
@@ -138,7 +163,7 @@ def swept_loads(lo, hi, off, g, gs, nload, m, acc, undefined, stats):
             acc[0, j] += fx
             acc[1, j] += fy
             acc[2, j] += rx * fy - ry * fx
-        bad += nonfinite(acc[0, j], acc[1, j], acc[2, j])
+        bad += nonfinite((acc[0, j], acc[1, j], acc[2, j]))
     return bad
 
 
@@ -163,6 +188,84 @@ def _generalised(rot, m, a, d, g, j, r, t):
 
 
 @body
+def _outer(rot, t, g, r, j, m, mk, a, ak, d, rr):
+    """Outer joint ``t``'s reaction, and what it loads the known body with (into ``ak``,
+    a tile's scratch: added to the known body's resultants unless it is the ground)."""
+    base = PARAM * t
+    if rot:
+        # eqs 2.19, 2.21, 2.28: the body's force balance gives the outer reaction
+        lx, ly = g[base + P_KX, r], g[base + P_KY, r]
+        kx, ky = mk[C, j] * lx - mk[S, j] * ly, mk[S, j] * lx + mk[C, j] * ly
+        _add(ak, j, a[0, j], a[1, j], kx, ky, 0.0, 1.0)
+        return
+    # an outer prismatic joint: normal force through the slider point and a couple about
+    # it (eqs 2.24-2.25, 2.36-2.37, 2.42-2.43); the slider point on the ground (where 0),
+    # the dyad body (1) or the known body (2), chosen by value (no branch: it vectorises)
+    where = g[O_WHERE + 3 * t, r]
+    lx, ly = g[O_X + 3 * t, r], g[O_Y + 3 * t, r]
+    sbx = m[OX, j] + (m[C, j] * lx - m[S, j] * ly)
+    sby = m[OY, j] + (m[S, j] * lx + m[C, j] * ly)
+    skx = mk[OX, j] + (mk[C, j] * lx - mk[S, j] * ly)
+    sky = mk[OY, j] + (mk[S, j] * lx + mk[C, j] * ly)
+    sx = lx if where == 0.0 else sbx if where == 1.0 else skx
+    sy = ly if where == 0.0 else sby if where == 1.0 else sky
+    ux, uy = d[10 + 4 * t, j], d[11 + 4 * t, j]
+    nx, ny = -uy, ux
+    fn = -(a[0, j] * nx + a[1, j] * ny)
+    fx, fy = fn * nx, fn * ny
+    cc = -(a[2, j] - ((sx - m[OX, j]) * a[1, j] - (sy - m[OY, j]) * a[0, j]))
+    _add(ak, j, fx, fy, sx - mk[OX, j], sy - mk[OY, j], cc, -1.0)
+    b = 4 + 6 * t
+    rr[b + R_FX, j], rr[b + R_FY, j], rr[b + R_N, j] = fx, fy, fn
+    rr[b + R_M, j], rr[b + R_SX, j], rr[b + R_SY, j] = cc, sx, sy
+
+
+@body
+def _reaction_row(rot1, rot2, inner_r, j, r, g, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    """A dyad's reactions at one row (:func:`_dyad_reactions`)."""
+    sfirst = g[I_SFIRST, r] != 0.0
+    # the generalised forces: moment about the outer pivot, or force along the guide
+    q1 = _generalised(rot1, m1, a1, d, g, j, r, 0)
+    q2 = _generalised(rot2, m2, a2, d, g, j, r, 1)
+    c1x, c1y, c2x, c2y, det = d[C1X, j], d[C1Y, j], d[C2X, j], d[C2Y, j], d[DET, j]
+    xx, xy = d[XX, j], d[XY, j]
+    if inner_r:
+        # c1 . R = Q1, c2 . R = -Q2 (eqs 2.17, 2.22, 2.26): R on body 2 from body 1
+        rx = -((q1 * c2y + q2 * c1y) / det)
+        ry = (c1x * q2 + c2x * q1) / det
+        l1x, l1y, l2x, l2y = g[Q1X, r], g[Q1Y, r], g[Q2X, r], g[Q2Y, r]
+        b1x, b1y = m1[C, j] * l1x - m1[S, j] * l1y, m1[S, j] * l1x + m1[C, j] * l1y
+        b2x, b2y = m2[C, j] * l2x - m2[S, j] * l2y, m2[S, j] * l2x + m2[C, j] * l2y
+        _add(a1, j, rx, ry, b1x, b1y, 0.0, -1.0)
+        _add(a2, j, rx, ry, b2x, b2y, 0.0, 1.0)
+        rr[R_FX, j], rr[R_FY, j] = rx, ry
+    else:
+        # [n.c_i, w_i] (N, M) = -sigma_i Q_i, sigma +1 on the slider, -1 on the guide
+        nx, ny = d[NX, j], d[NY, j]
+        e1, e2 = nx * c1x + ny * c1y, nx * c2x + ny * c2y
+        w1 = 1.0 if rot1 else 0.0
+        w2 = 1.0 if rot2 else 0.0
+        s1, s2 = (1.0, -1.0) if sfirst else (-1.0, 1.0)
+        dd = e1 * w2 - w1 * e2
+        y1, y2 = -s1 * q1, -s2 * q2
+        nn = (y1 * w2 - w1 * y2) / dd
+        mm = (e1 * y2 - y1 * e2) / dd
+        fx, fy = nn * nx, nn * ny
+        ms, mg = (m1, m2) if sfirst else (m2, m1)
+        as_, ag = (a1, a2) if sfirst else (a2, a1)
+        lx, ly = g[I_SX, r], g[I_SY, r]
+        sx, sy = ms[C, j] * lx - ms[S, j] * ly, ms[S, j] * lx + ms[C, j] * ly
+        _add(as_, j, fx, fy, sx, sy, mm, 1.0)
+        _add(ag, j, fx, fy, xx - mg[OX, j], xy - mg[OY, j], mm, -1.0)
+        rr[R_FX, j], rr[R_FY, j], rr[R_N, j], rr[R_M, j] = fx, fy, nn, mm
+    _outer(rot1, 0, g, r, j, m1, mk1, a1, ak1, d, rr)
+    _outer(rot2, 1, g, r, j, m2, mk2, a2, ak2, d, rr)
+    return nonfinite((rr[R_FX, j], rr[R_FY, j], rr[R_N, j], rr[R_M, j],
+                a1[0, j], a1[1, j], a2[0, j], a2[1, j],
+                rr[4, j], rr[5, j], rr[7, j], rr[10, j], rr[11, j], rr[13, j]))
+
+
+@body
 def _dyad_reactions(kind, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
     """A dyad's joint reactions (seed 002 s. 2.3.1, eqs 2.16-2.43 in vector form, the
     numpy path's ``_solve_dyad``): the inner joint's from the two bodies' equations along
@@ -170,82 +273,55 @@ def _dyad_reactions(kind, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, 
     joint's from its body's remaining equations; the outer reactions load the known
     bodies (``ak1``, ``ak2``) with opposite sign."""
     rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
+    # in tiles (jitbase.TILE), as the dyad's motion: the motions (their angle and origin
+    # rows), the data and the dyad bodies' resultants in, the tile worked out in the
+    # scratch array alone, the reactions and resultants out; what the outer joints load
+    # the known bodies with is added to theirs after (in order: the same array twice
+    # when both outer joints are on one body)
+    w = scratch(4 * BODY_ROWS + DYAD_OUT + 12 + REACTION_ROWS + DYAD_GEOMETRY)
+    wm1, wm2 = w[:BODY_ROWS], w[BODY_ROWS:2 * BODY_ROWS]
+    wk1, wk2 = w[2 * BODY_ROWS:3 * BODY_ROWS], w[3 * BODY_ROWS:4 * BODY_ROWS]
+    b = 4 * BODY_ROWS
+    wd = w[b:b + DYAD_OUT]
+    b += DYAD_OUT
+    wa1, wa2, wak1, wak2 = w[b:b + 3], w[b + 3:b + 6], w[b + 6:b + 9], w[b + 9:b + 12]
+    b += 12
+    wr = w[b:b + REACTION_ROWS]
+    wg = w[b + REACTION_ROWS:]
     bad = 0
-    for i in range(lo, hi):
-        j, r = i - off, i * gs
-        sfirst = g[I_SFIRST, r] != 0.0
-        # the generalised forces: moment about the outer pivot, or force along the guide
-        q1 = _generalised(rot1, m1, a1, d, g, j, r, 0)
-        q2 = _generalised(rot2, m2, a2, d, g, j, r, 1)
-        c1x, c1y, c2x, c2y, det = d[C1X, j], d[C1Y, j], d[C2X, j], d[C2Y, j], d[DET, j]
-        xx, xy = d[XX, j], d[XY, j]
-        if inner_r:
-            # c1 . R = Q1, c2 . R = -Q2 (eqs 2.17, 2.22, 2.26): R on body 2 from body 1
-            rx = -((q1 * c2y + q2 * c1y) / det)
-            ry = (c1x * q2 + c2x * q1) / det
-            l1x, l1y, l2x, l2y = g[Q1X, r], g[Q1Y, r], g[Q2X, r], g[Q2Y, r]
-            b1x, b1y = m1[C, j] * l1x - m1[S, j] * l1y, m1[S, j] * l1x + m1[C, j] * l1y
-            b2x, b2y = m2[C, j] * l2x - m2[S, j] * l2y, m2[S, j] * l2x + m2[C, j] * l2y
-            _add(a1, j, rx, ry, b1x, b1y, 0.0, -1.0)
-            _add(a2, j, rx, ry, b2x, b2y, 0.0, 1.0)
-            rr[R_FX, j], rr[R_FY, j] = rx, ry
-        else:
-            # [n.c_i, w_i] (N, M) = -sigma_i Q_i, sigma +1 on the slider, -1 on the guide
-            nx, ny = d[NX, j], d[NY, j]
-            e1, e2 = nx * c1x + ny * c1y, nx * c2x + ny * c2y
-            w1 = 1.0 if rot1 else 0.0
-            w2 = 1.0 if rot2 else 0.0
-            s1, s2 = (1.0, -1.0) if sfirst else (-1.0, 1.0)
-            dd = e1 * w2 - w1 * e2
-            y1, y2 = -s1 * q1, -s2 * q2
-            nn = (y1 * w2 - w1 * y2) / dd
-            mm = (e1 * y2 - y1 * e2) / dd
-            fx, fy = nn * nx, nn * ny
-            ms, mg = (m1, m2) if sfirst else (m2, m1)
-            as_, ag = (a1, a2) if sfirst else (a2, a1)
-            lx, ly = g[I_SX, r], g[I_SY, r]
-            sx, sy = ms[C, j] * lx - ms[S, j] * ly, ms[S, j] * lx + ms[C, j] * ly
-            _add(as_, j, fx, fy, sx, sy, mm, 1.0)
-            _add(ag, j, fx, fy, xx - mg[OX, j], xy - mg[OY, j], mm, -1.0)
-            rr[R_FX, j], rr[R_FY, j], rr[R_N, j], rr[R_M, j] = fx, fy, nn, mm
-        for t in range(2):
-            rot = rot1 if t == 0 else rot2
-            m = m1 if t == 0 else m2
-            mk = mk1 if t == 0 else mk2
-            a = a1 if t == 0 else a2
-            ak = ak1 if t == 0 else ak2
-            base = PARAM * t
-            ground = g[base + P_GROUND, r] != 0.0
-            if rot:
-                # eqs 2.19, 2.21, 2.28: the body's force balance gives the outer reaction
-                if not ground:
-                    lx, ly = g[base + P_KX, r], g[base + P_KY, r]
-                    kx, ky = mk[C, j] * lx - mk[S, j] * ly, mk[S, j] * lx + mk[C, j] * ly
-                    _add(ak, j, a[0, j], a[1, j], kx, ky, 0.0, 1.0)
-                continue
-            # an outer prismatic joint: normal force through the slider point and a
-            # couple about it (eqs 2.24-2.25, 2.36-2.37, 2.42-2.43)
-            where = g[O_WHERE + 3 * t, r]
-            lx, ly = g[O_X + 3 * t, r], g[O_Y + 3 * t, r]
-            if where == 0.0:
-                sx, sy = lx, ly
-            else:
-                ms = m if where == 1.0 else mk
-                sx = ms[OX, j] + (ms[C, j] * lx - ms[S, j] * ly)
-                sy = ms[OY, j] + (ms[S, j] * lx + ms[C, j] * ly)
-            ux, uy = d[10 + 4 * t, j], d[11 + 4 * t, j]
-            nx, ny = -uy, ux
-            fn = -(a[0, j] * nx + a[1, j] * ny)
-            fx, fy = fn * nx, fn * ny
-            cc = -(a[2, j] - ((sx - m[OX, j]) * a[1, j] - (sy - m[OY, j]) * a[0, j]))
-            if not ground:
-                _add(ak, j, fx, fy, sx - mk[OX, j], sy - mk[OY, j], cc, -1.0)
-            b = 4 + 6 * t
-            rr[b + R_FX, j], rr[b + R_FY, j], rr[b + R_N, j] = fx, fy, fn
-            rr[b + R_M, j], rr[b + R_SX, j], rr[b + R_SY, j] = cc, sx, sy
-        bad += nonfinite(rr[R_FX, j], rr[R_FY, j], rr[R_N, j], rr[R_M, j],
-                    a1[0, j], a1[1, j], a2[0, j], a2[1, j],
-                    rr[4, j], rr[5, j], rr[7, j], rr[10, j], rr[11, j], rr[13, j])
+    for t0 in range(lo, hi, TILE):
+        nt = min(TILE, hi - t0)
+        j0 = t0 - off
+        tile_geometry(wg, g, gs, t0, nt, t0 == lo)
+        for wm, m in ((wm1, m1), (wm2, m2), (wk1, mk1), (wk2, mk2)):
+            tile_in(wm[C:S + 1], m[C:S + 1], j0, nt)
+            tile_in(wm[OX:OY + 1], m[OX:OY + 1], j0, nt)
+        # (only the rows a kind reads: the closing point, the velocity system, the
+        # normal; an outer prismatic joint's guide direction)
+        tile_in(wd[:NY + 1], d[:NY + 1], j0, nt)
+        if not rot1:
+            tile_in(wd[10:12], d[10:12], j0, nt)
+        if not rot2:
+            tile_in(wd[14:16], d[14:16], j0, nt)
+        tile_in(wa1, a1, j0, nt)
+        tile_in(wa2, a2, j0, nt)
+        wak1[:] = 0.0
+        wak2[:] = 0.0
+        for t in range(TILE):
+            f = _reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1,
+                              wa2, wak1, wak2, wr)
+            bad += f if t < nt else 0
+        tile_out(a1, wa1, j0, nt)
+        tile_out(a2, wa2, j0, nt)
+        if wg[P_GROUND, 0] == 0.0:
+            tile_add(ak1, wak1, j0, nt)
+        if wg[PARAM + P_GROUND, 0] == 0.0:
+            tile_add(ak2, wak2, j0, nt)
+        tile_out(rr[:4], wr[:4], j0, nt)
+        if not rot1:
+            tile_out(rr[4:10], wr[4:10], j0, nt)
+        if not rot2:
+            tile_out(rr[10:], wr[10:], j0, nt)
     return bad
 
 
@@ -259,7 +335,7 @@ def crank_reaction(lo, hi, off, g, gs, m, a, out):
         lx, ly = g[D_LX, r], g[D_LY, r]
         ax, ay = m[C, j] * lx - m[S, j] * ly, m[S, j] * lx + m[C, j] * ly
         out[0, j] = -(a[2, j] - (ax * a[1, j] - ay * a[0, j]))
-        bad += nonfinite(out[0, j], a[0, j], a[1, j])
+        bad += nonfinite((out[0, j], a[0, j], a[1, j]))
     return bad
 
 
@@ -285,7 +361,7 @@ def slider_reaction(lo, hi, off, g, gs, m, a, out):
         out[2, j] = -(a[2, j] - (ax * a[1, j] - ay * a[0, j]))
         out[3, j], out[4, j] = sx, sy
         out[5, j], out[6, j] = out[1, j] * nx, out[1, j] * ny
-        bad += nonfinite(out[0, j], out[1, j], out[2, j])
+        bad += nonfinite((out[0, j], out[1, j], out[2, j]))
     return bad
 
 

@@ -37,6 +37,25 @@ BALANCE_ERRORS = [
 ]
 
 
+FIELD = '[units]\nmass = "g"\nlength = "mm"\nangle = "rad"\n'
+RUNS = ("[[influence]]\ninitial = [[4.0, 1.0]]\n{extra}runs = [{{ plane = 1, mass = {m}, "
+        "angle = 0.0, readings = [[2.8, 2.0]] }}]\n")
+BALANCE_ERRORS += [     # the field sections: masses and radii kept as typed, angles in rad
+    (FIELD + RUNS.format(extra="", m=-350.0),
+     r"influence\[0\]\.runs\[0\]\.mass must be positive, got -350 g$"),
+    (FIELD + RUNS.format(extra="trial_radius = -100.0\n", m=350.0),
+     r"influence\[0\]\.trial_radius must be positive, got -100 mm$"),
+    (FIELD + RUNS.format(extra="phase_noise = -0.1\n", m=350.0),
+     r"influence\[0\]\.phase_noise must not be negative, got -0\.1 rad$"),
+    (FIELD + "[[split]]\nmass = -10.0\nangle = 0.1\npositions = 12\n",
+     r"split\[0\]\.mass must not be negative, got -10 g$"),
+    (FIELD + "[[combine]]\nweights = [{mass = -5.0, angle = 0.1}]\n",
+     r"combine\[0\]\.weights\[0\]\.mass must not be negative, got -5 g$"),
+    (FIELD + "[iso]\nrotor_mass = -5000.0\ngrade = 6.3\nspeed_rpm = 3000.0\n",
+     r"iso\.rotor_mass must be positive, got -5000 g$"),
+]
+
+
 @pytest.mark.parametrize(("text", "match"), BALANCE_ERRORS)
 def test_balancing_bounds_quote_the_typed_value(text, match) -> None:
     with pytest.raises(ks.SceneError, match=match):

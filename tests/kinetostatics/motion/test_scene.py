@@ -229,3 +229,22 @@ def test_cli_motion_json(tmp_path):
     out = json.loads(r.stdout)
     assert set(out) == {"summary", "motion"}
     assert set(out["motion"][0]) == {"cycle", "position", "time", "omega", "alpha"}
+
+
+def test_cli_motion_text_says_units_and_warnings(tmp_path):
+    """The text mode: each number with its unit, and the warnings (or "none") as a line;
+    a slip (300 rpm typed as rad/s) is there too, and the exit code stays 0."""
+    path = tmp_path / "m.toml"
+    path.write_text(to_toml(four_bar_motion(cycles=2)))
+    r = run_main("kinetostatics", "motion", str(path))
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    assert any(x.startswith("omega_mean: ") and x.endswith(" rad/s") for x in lines)
+    assert any(x.startswith("period: ") and x.endswith(" s") for x in lines)
+    assert "warnings: none" in lines
+    d = four_bar_motion(cycles=2)
+    d["motion"]["omega0"] = 300.0
+    path.write_text(to_toml(d))
+    r = run_main("kinetostatics", "motion", str(path))
+    assert r.returncode == 0 and "warning: motion.omega0 = 300 rad/s" in r.stderr
+    assert any(x.startswith("warnings: motion.omega0 = 300 rad/s") for x in r.stdout.splitlines())
