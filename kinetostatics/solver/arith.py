@@ -112,6 +112,8 @@ def add(a, b):
             return a if b == 0 else a + b
     elif tb is _ARRAY and (ta is float or ta is int):
         return b if a == 0 else a + b
+    elif ta is float and tb is float:       # (the general rules below, for two floats)
+        return a if b == 0.0 else b if a == 0.0 else a + b
     if zero(b):
         return a
     if zero(a):
@@ -129,6 +131,8 @@ def sub(a, b):
             return a if b == 0 else a - b
     elif tb is _ARRAY and (ta is float or ta is int):
         return -b if a == 0 else a - b
+    elif ta is float and tb is float:       # (the general rules below, for two floats)
+        return a if b == 0.0 else -b if a == 0.0 else a - b
     if zero(b):
         return a
     if zero(a):

@@ -16,7 +16,7 @@ import numpy as np
 from ..model.errors import AssemblyError
 from ..model.scene import Scene
 from . import arith as A
-from .closure import DyadSolver, body_origin, take_rows
+from .closure import DyadSolver, Param, body_origin, take_rows
 
 if TYPE_CHECKING:
     from .structure import Dyad
@@ -77,9 +77,11 @@ def first_row_assembly(scene: Scene, dyad: Dyad, solver: DyadSolver, pr, two: di
     coincide there (refused by :func:`choose_branch`)."""
     if solver.reach is not None and not _at(solver.reach, 0) / scene.size > SINGULAR_FAIL:
         return None
-    pr = (take_rows(pr[0], 0), take_rows(pr[1], 0))
-    return decide_assembly(scene, dyad, {k: [[_at(v, 0) for v in (*cs[i], *body_origin(
-        pr[i], cs[i], ss[i]))] for i in range(2)] for k, (cs, ss) in two.items()})
+    # (the parameters' first row, as the closure's numbers are: the fields an origin reads)
+    pr = [Param(p.kind, p.known, p.local, _first(p.px), _first(p.py), ux=_first(p.ux),
+                uy=_first(p.uy), bx=_first(p.bx), by=_first(p.by)) for p in pr]
+    return decide_assembly(scene, dyad, {k: [[*cs[i], *body_origin(pr[i], cs[i], ss[i])]
+                                             for i in range(2)] for k, (cs, ss) in two.items()})
 
 
 def choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver, pr) -> int:
@@ -143,3 +145,8 @@ def decide_assembly(scene: Scene, dyad: Dyad, frames: dict) -> int:
 def _at(v, row: int) -> float:
     """A value at one row, as a Python float (the same double the array holds)."""
     return float(v[row]) if isinstance(v, np.ndarray) and v.ndim else float(v)
+
+
+def _first(v):
+    """The first row of a per-row array; a number as it is."""
+    return float(v[0]) if type(v) is np.ndarray and v.ndim else v
