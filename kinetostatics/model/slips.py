@@ -353,7 +353,7 @@ def _friction_slips(scene: Scene, u: Units) -> list[Slip]:
     for name, j in scene.joints.items():
         fr = j.friction
         for key, value in (("radius", fr.radius), ("length", fr.length)) if fr else ():
-            if value > PIN * scene.size:
+            if value is not None and value > PIN * scene.size:
                 out.append(Slip("lengths", f"joint {name!r}.friction.{key}",
                                 typed(value, "length", u, file=False),
                                 f"{value / scene.size:.3g} times the mechanism's size "

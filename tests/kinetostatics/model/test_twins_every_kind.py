@@ -20,6 +20,7 @@ import balance
 import kinetostatics as ks
 from balance.errors import BalanceWarning
 from kinetostatics.cams import load_cam_scene, solve_cam
+from tests.kinetostatics import scenes
 from tests.kinetostatics.model.test_slips_property import close, numbers, rotor_in, slips_of
 from tests.kinetostatics.model.test_units_invariance import LENGTH, MASS, cam_in, mechanism_in
 
@@ -90,6 +91,7 @@ MECHANISMS = [
      [("motion.omega0", "speed")]),
     ("motion", example("four_bar_motion"), []),
     ("eccentric pin radius 0.2 m", changed("four_bar", friction(0.2)), []),
+    ("friction in every joint (RTT)", scenes.with_friction(example("scotch_yoke"), 0.05), []),
     ("pin radius 10 m (mm typed)", changed("four_bar", friction(10.0)),
      [("joint 'A'.friction.radius", "lengths")]),
 ]
