@@ -76,7 +76,7 @@ def _ratio(rule: str, where: str, si: list[float], quantity: str, units: Any,
     if hi < HEAVY and lo >= LIGHTEST:
         return []
     return [Slip(rule, where, typed(si, quantity, units, file=False),
-                 f"the {what} range from {lo:.4g} to {hi:.4g} (SI), {hi / lo:.3g} times apart",
+                 f"the {what} range from {lo:.4g} kg to {hi:.4g} kg, {hi / lo:.3g} times apart",
                  "one was typed in another unit (g for kg: 1000 times)")]
 
 
