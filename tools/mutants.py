@@ -82,7 +82,7 @@ MUTANTS = (
            (_S + "test_checks.py::test_finite_differences[trt_slotted_crank]",)),
     Mutant("assembly-branch",
            "the assembly k = +-1 whose hinted points lie farthest (seed 000 eq. 5.1)",
-           "kinetostatics/solver/kinematics.py",
+           "kinetostatics/solver/assembly.py",
            (("return 1 if dist[1] < dist[-1] else -1", "return -1 if dist[1] < dist[-1] else 1"),),
            SOLVER_TESTS,
            (_S + "test_assembly.py::test_structure_carries_the_assembly",)),
