@@ -89,7 +89,9 @@ def _cmd_motion(args) -> int:
     else:
         for k, v in res.summary.items():     # each number with its unit (SI)
             unit = MOTION_UNITS.get(k, "1")
-            print(f"{k}: {v}" + ("" if unit == "1" or isinstance(v, bool) else f" {unit}"))
+            # six digits, as solve's text (--json keeps every digit)
+            shown = f"{v:.6g}" if isinstance(v, float) else v
+            print(f"{k}: {shown}" + ("" if unit == "1" or isinstance(v, bool) else f" {unit}"))
         print("warnings: " + ("; ".join(res.warnings) or "none"))
         if not res.units.is_default:
             print(f"scene units: {res.units.describe()} (the numbers above are SI: rad/s, "

@@ -242,6 +242,11 @@ def test_cli_motion_text_says_units_and_warnings(tmp_path):
     assert any(x.startswith("omega_mean: ") and x.endswith(" rad/s") for x in lines)
     assert any(x.startswith("period: ") and x.endswith(" s") for x in lines)
     assert "warnings: none" in lines
+    # six digits, as solve's text; --json keeps every digit
+    full = json.loads(run_main("kinetostatics", "motion", str(path), "--json").stdout)
+    omega = full["summary"]["omega_mean"]
+    omega = omega["value"] if isinstance(omega, dict) else omega
+    assert f"omega_mean: {omega:.6g} rad/s" in lines and repr(omega) != f"{omega:.6g}"
     d = four_bar_motion(cycles=2)
     d["motion"]["omega0"] = 300.0
     path.write_text(to_toml(d))
