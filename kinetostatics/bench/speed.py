@@ -108,9 +108,12 @@ def on_path(path: str, job: Callable[[], object]) -> Callable[[], object]:
     return run
 
 
-def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001)) -> list[dict]:
+def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001),
+                    repeat: int | None = None) -> list[dict]:
     """solve(scene).driver on each solve path against ``fourbar_dyad`` (and
-    ``slider_dyad``) of the hand-written baseline, all timed side by side in one run."""
+    ``slider_dyad``) of the hand-written baseline, all timed side by side in one run
+    (``repeat``: the rounds of every size and of the warm rows; None: 25 below 10^4
+    positions, 7 below 5 10^5, else 3, and 15 for the warm rows)."""
     from ..results import solve
     from .accuracy import load_reference
     ref = load_reference(path)
@@ -124,12 +127,12 @@ def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001)) -> list[dict]:
         for n in sizes:
             scene = make(n)
             th = radian_column(np.linspace(0.0, 360.0, n))
-            repeat = 25 if n < 10_000 else 7 if n < 500_000 else 3
+            rounds = repeat or (25 if n < 10_000 else 7 if n < 500_000 else 3)
             jobs = {"reference": lambda th=th, hand=hand: hand(th)}
             for p in solve_paths():
                 jobs[p] = on_path(p, lambda s=scene: solve(s).driver)
                 jobs[p]()                   # (the compiled kernels loaded before timing)
-            times = side_by_side(jobs, repeat)
+            times = side_by_side(jobs, rounds)
             me = hand(th)["Me"]
             what = f"solve(scene).driver / hand-written {name}"
             for p in solve_paths():
@@ -137,14 +140,15 @@ def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001)) -> list[dict]:
                 err = float(np.abs(sol.Me - me).max() / np.abs(me).max())
                 rows.append(_row(what, n, times, p, "reference", path=p, error=err))
                 rows += _warm(n, what, {"reference": jobs["reference"], "solve": jobs[p]},
-                              err, path=p)
+                              err, rounds=repeat or 15, path=p)
     return rows
 
 
 WARM_BATCH = 20     # calls per round for the small sizes' warm row
 
 
-def _warm(n: int, what: str, jobs: dict, err: float, **extra) -> list[dict]:
+def _warm(n: int, what: str, jobs: dict, err: float, rounds: int = 15,
+          **extra) -> list[dict]:
     """A small size timed again in batches of ``WARM_BATCH`` calls (timeit's way)
     beside the single calls after a garbage collection: both rows are given. (Measured
     2026-11-27 for the four-bar at 2001 positions: 3.9-4.0x either way; 3.2-3.5x when
@@ -152,7 +156,7 @@ def _warm(n: int, what: str, jobs: dict, err: float, **extra) -> list[dict]:
     code, a few hundred small Python and numpy calls, then stays in the caches.)"""
     if n >= 10_000:
         return []
-    times = side_by_side(jobs, 15, batch=WARM_BATCH)
+    times = side_by_side(jobs, rounds, batch=WARM_BATCH)
     return [_row(f"{what} (warm, batches of {WARM_BATCH} calls)", n, times, "solve",
                  "reference", error=err, **extra)]
 
@@ -316,8 +320,11 @@ def bench_crosscheck(repeat: int = 3) -> list[dict]:
 
 def run_speed(quick: bool = False, reference: str | None = None) -> pd.DataFrame:
     """Every ratio of this module, printed as one table (``quick``: small sizes)."""
-    rows = bench_reference(str(reference or find_reference()),
-                           (2_001, 20_001) if quick else (2_001, 200_001, 1_000_001))
+    ref = str(reference or find_reference())
+    # quick: every row once more than a smoke run, 3 rounds each (25 and 7, and 15 warm
+    # rounds, took 68 s of the command's 120 s at a load of 12)
+    rows = (bench_reference(ref, (2_001, 20_001), repeat=3) if quick
+            else bench_reference(ref))
     rows += bench_many(100 if quick else 1000)
     rows += bench_start(3 if quick else 7)
     rows += bench_design(50, 2, repeat=1) if quick else bench_design()

@@ -24,18 +24,32 @@ def run(*args, cwd=None):
     return run_main("kinetostatics", *args, cwd=cwd)
 
 
-@pytest.mark.slow
-def test_demo_writes_tables_and_picture(tmp_path):
+def test_demo_writes_tables_and_picture(tmp_path, monkeypatch):
+    """``demo`` alone: the bundled four-bar's tables and summary, the key numbers
+    printed, its pictures drawn once into the run's folder. (The drawing is that of
+    ``demo SCENE``: tests/kinetostatics/plot/test_cli.py runs it for real and checks
+    these files and every picture; here it is recorded, not drawn again.)"""
+    import numpy as np
+
+    from kinetostatics import solve
+    from kinetostatics.plot import cli as plot_cli
+    drawn = []
+    monkeypatch.setattr(plot_cli, "write_pictures",
+                        lambda sol, out, positions=None, dpi=150:
+                        drawn.append((sol, out, dpi)) or [])
     r = run("demo", "--out", str(tmp_path))
     assert r.returncode == 0, r.stderr
     for name in ("reactions.csv", "driver.csv", "kinematics.csv", "bodies.csv",
-                 "summary.json", "overview.png"):
+                 "summary.json"):
         assert (tmp_path / name).is_file()
     assert "Me mean" in r.stdout
     s = json.loads((tmp_path / "summary.json").read_text())
     for key in ("Me_mean", "Me_max", "Me_min", "reaction_max", "transmission_angle_min",
                 "singular_rows"):
         assert key in s
+    # drawn once (at 150 dpi), into the run's staging folder inside --out, for the four-bar
+    assert len(drawn) == 1 and drawn[0][1].parent == tmp_path and drawn[0][2] == 150
+    assert np.array_equal(drawn[0][0].Me, solve("four_bar").Me)
 
 
 def test_solve_writes_contract_csv(tmp_path):

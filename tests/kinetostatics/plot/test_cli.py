@@ -3,6 +3,8 @@ one-line errors."""
 
 from __future__ import annotations
 
+import json
+
 import matplotlib.pyplot as plt
 import pytest
 
@@ -60,7 +62,15 @@ def test_demo_scene(tmp_path, capsys, monkeypatch):
     out = capsys.readouterr().out
     assert out.startswith("Crank and slotted lever")
     assert " deg\n" in out and "max |F| =" in out and " N at " in out
-    assert (tmp_path / "overview.png").exists() and (tmp_path / "reactions.csv").exists()
+    # the tables and summary beside the pictures (``demo`` alone, the four-bar, is
+    # checked the same way in tests/kinetostatics/test_cli.py with its drawing recorded)
+    for name in ("reactions.csv", "driver.csv", "kinematics.csv", "bodies.csv",
+                 "summary.json", "overview.png"):
+        assert (tmp_path / name).is_file(), name
+    assert "Me mean" in out
+    s = json.loads((tmp_path / "summary.json").read_text())
+    assert {"Me_mean", "Me_max", "Me_min", "reaction_max", "transmission_angle_min",
+            "singular_rows"} <= set(s)
     # every picture at one stated position (where |Me| is largest), the overview too;
     # the driver's free-body diagram named "driver", the dyads numbered from 1
     import numpy as np
