@@ -215,10 +215,10 @@ def _menu(page, menu: str, item) -> None:
 def _run_all(page) -> None:
     """Run every cell from the Run menu once the kernel is idle, and wait until none is
     pending. A Run All that marks no cell queued within RUN_START was lost (seen under
-    load, given as the kernel connected: every cell stayed ``[ ]``) and is given again,
-    up to three times; one that has not finished within RUN_TRY is given once more (the
-    kernel's cells then run again, with the same values). A dialog in the way is
-    dismissed first (``_clear_dialogs``)."""
+    load, given as the kernel connected: every cell stayed ``[ ]``) and is given again
+    on the page loaded again, up to three times; one that has not finished within
+    RUN_TRY is given once more (the kernel's cells then run again, with the same
+    values). A dialog in the way is dismissed first (``_clear_dialogs``)."""
     from playwright.sync_api import TimeoutError as PlaywrightTimeout
     page.locator(".jp-Notebook .jp-Cell").first.wait_for(timeout=RUN_ALL)
     page.wait_for_function(KERNEL_IDLE, timeout=RUN_ALL)
@@ -232,6 +232,11 @@ def _run_all(page) -> None:
                 if attempt == 2:
                     raise AssertionError("Run All given three times, no cell queued; "
                                          f"dialogs: {page.evaluate(DIALOG_TEXT)}") from None
+                # a page that took no Run All kept taking none (seen: three a minute apart,
+                # the first sheet of a fresh server at load 12): it is loaded again
+                page.reload(timeout=RUN_ALL)
+                page.locator(".jp-Notebook .jp-Cell").first.wait_for(timeout=RUN_ALL)
+                page.wait_for_function(KERNEL_IDLE, timeout=RUN_ALL)
         try:
             page.wait_for_function(ALL_RAN, timeout=wait)
             return
