@@ -274,19 +274,16 @@ def coverage(n: int, seed: int):
 
 
 @pytest.mark.slow
-def test_intervals_cover_the_truth_95_percent():
-    """Pooled over the nine cells, 9 x 120 draws: a band of 93-97 % is +-2.9 binomial
-    sigma (0.66 %). Measured: unbalance 95.3 %, angle 94.7 % (seed 100)."""
-    cells = coverage(120, seed=100)
-    cov_u = np.concatenate([c[0] for c in cells.values()]).mean()
-    cov_t = np.concatenate([c[1] for c in cells.values()]).mean()
-    assert 0.93 <= cov_u <= 0.97 and 0.93 <= cov_t <= 0.97
-
-
-@pytest.mark.slow
 def test_intervals_cover_the_truth_95_percent_in_every_cell():
     """1000 draws per cell (binomial sigma 0.69 %): each cell within 93-97 %. Measured
-    (seed 2024): unbalance 94.1-95.3 %, angle 94.8-96.8 % (about 25 s)."""
-    for key, (cov_u, cov_t) in coverage(1000, seed=2024).items():
+    (seed 2024): unbalance 94.1-95.3 %, angle 94.8-96.8 % (about 25 s). Pooled over the
+    nine cells, 9000 draws (sigma 0.23 %): within 94.3-95.7 % (+-2.9 sigma); measured
+    unbalance 94.82 %, angle 95.46 %. (The pooled check ran on 9 x 120 draws of its own,
+    93-97 %.)"""
+    cells = coverage(1000, seed=2024)
+    for key, (cov_u, cov_t) in cells.items():
         assert 0.93 <= cov_u.mean() <= 0.97, key
         assert 0.93 <= cov_t.mean() <= 0.97, key
+    cov_u = np.concatenate([c[0] for c in cells.values()]).mean()
+    cov_t = np.concatenate([c[1] for c in cells.values()]).mean()
+    assert 0.943 <= cov_u <= 0.957 and 0.943 <= cov_t <= 0.957, (cov_u, cov_t)
