@@ -43,6 +43,14 @@ CONSTANTS_KEPT = 256    # distinct (value, length) pairs of constant columns hel
 # loop of solves at 2e5 rows reuses its pages (34 against 42 ms a solve measured): the
 # copies are kept to sizes where neither weighs.
 SHARE_ROWS = 65_536
+# Whether a long table's columns (:func:`table_block`) are laid on transparent huge pages,
+# as numpy lays every large array where the kernel's setting is ``madvise``. Off: at
+# 1e6 positions the first tables of a process (about 650 MB of fresh pages) cost half the
+# time in pages of 4 kB, and later ones somewhat more (measured 2026-11-29 on the 2-core
+# machine, fresh processes, solve + driver, reactions and kinematics tables, processor
+# time: 0.95-1.04 s against 1.75-2.17 s the first time; 0.84-1.3 s against 0.54-1.28 s
+# repeated in one process). See docs/performance.md, "Result tables".
+HUGE_PAGES = True
 
 
 def categorical(names: list[str], n: int, block: int | None = None) -> pd.Categorical:
@@ -144,7 +152,7 @@ class TiledPositions:
         if blocks > self.most:
             return np.tile(self.positions, blocks)
         if self._buffer is None:
-            self._buffer = np.empty(self.n * self.most)
+            self._buffer = table_block(self.n * self.most)
             self._series = shared(self._buffer)
         n = self.n
         for i in range(self._filled, blocks):
@@ -247,6 +255,30 @@ class LongTable:
         return pd.DataFrame(cols, copy=False)
 
 
+def table_block(shape: int | tuple[int, ...]) -> np.ndarray:
+    """An uninitialised float array for a table's columns, asked of the kernel in pages of
+    4 kB unless :data:`HUGE_PAGES` (numpy asks for transparent huge pages on large arrays;
+    that choice is numpy's process-wide switch, turned off here for this one allocation
+    and put back)."""
+    switch = _huge_page_switch()
+    if HUGE_PAGES or switch is None:
+        return np.empty(shape)
+    was = switch(False)
+    try:
+        return np.empty(shape)
+    finally:
+        switch(was)
+
+
+def _huge_page_switch():
+    """numpy's ``_set_madvise_hugepage`` (private: None where it is missing)."""
+    try:
+        from numpy._core import multiarray
+    except ImportError:                                     # numpy < 2
+        from numpy.core import multiarray
+    return getattr(multiarray, "_set_madvise_hugepage", None)
+
+
 class FloatBlock:
     """The float columns of a :class:`LongTable` (those not given ``whole``), written in
     place chunk by chunk, in any order of chunks, each row once.
@@ -286,7 +318,7 @@ class FloatBlock:
     def _column(self, c: str) -> np.ndarray:
         """Column ``c`` as an array, the rows written as one value filled with it."""
         if self.block is None:
-            self.block = np.empty((len(self.names), self.size))
+            self.block = table_block((len(self.names), self.size))
         out = self.rows[c] = self.block[self.names.index(c)]
         value = self.same.pop(c, None)
         for rows in self.wrote.pop(c, ()):

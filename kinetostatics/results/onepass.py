@@ -56,25 +56,26 @@ def lean_frame(sol: Solution, name: str) -> pd.DataFrame | None:
     if (name not in PASSED or type(lean) is not LeanSolved or "kin" in d
             or sol.path != "numpy" or lean.full is not None):
         return None
-    table = sol.long_table(name)
-    fill = FloatBlock(table)
-    prismatic = first_trapped(_fill, sol, lean, table, fill, name)
+    state: dict = {}
+    first_trapped(_fill, sol, lean, name, state)
+    table, fill = state["table"], state["fill"]
     if name == "reactions":
-        _offsets(fill, prismatic, table.n)
+        _offsets(fill, state["prismatic"], table.n)
     return table.frame_of(fill)
 
 
-def _fill(sol: Solution, lean: LeanSolved, table: LongTable, fill: FloatBlock,
-          name: str) -> list[int]:
+def _fill(sol: Solution, lean: LeanSolved, name: str, state: dict) -> None:
     """Solve the sweep again block by block and write each block's rows of every block of
-    the table into ``fill``; the table's blocks whose ``N`` is an array (the prismatic
+    the table into one :class:`FloatBlock`; into ``state``: the whole table's definition
+    (its block names from the first block of rows: the whole solution's would solve it
+    again), the ``fill`` and the table's blocks whose ``N`` is an array (the prismatic
     joints of ``reactions``)."""
     scene, structure = lean.known["scene"], lean.known["structure"]
     positions = lean.positions
     n = positions.size
     _, structure, part = blocks_of_sweep(scene, structure, positions)
-    # the offset left for _offsets (it needs each joint's largest |N| over the sweep)
-    largest = dict.fromkeys(range(table.blocks), np.inf)
+    # each joint's largest |N| taken as infinite: the offset is left for _offsets
+    largest = dict.fromkeys(range(len(scene.joints)), np.inf)
     prismatic: list[int] = []
     for start in range(0, n, BLOCK_ROWS):
         rows = slice(start, min(start + BLOCK_ROWS, n))
@@ -84,13 +85,18 @@ def _fill(sol: Solution, lean: LeanSolved, table: LongTable, fill: FloatBlock,
         solved = (solve_block(sc, st, kin) if LOADS[name]
                   else Solved(sc, st, kin, None, {}, None, None))
         block = type(sol).block_of(solved, {}, largest).long_table(name)
+        if "fill" not in state:
+            table = state["table"] = LongTable(positions, block.labels, block.floats,
+                                               block.chunk, sol._tiled)
+            state["fill"] = FloatBlock(table)
+        fill = state["fill"]
         here = slice(0, rows.stop - rows.start)
-        for i in range(table.blocks):
+        for i in range(block.blocks):
             values = block.chunk(i, here)
             if start == 0 and name == "reactions" and np.ndim(values["N"]):
                 prismatic.append(i)
             fill.put(i, slice(i * n + rows.start, i * n + rows.stop), values)
-    return prismatic
+    state["prismatic"] = prismatic
 
 
 def _offsets(fill: FloatBlock, prismatic: list[int], n: int) -> None:
