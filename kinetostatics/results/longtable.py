@@ -44,12 +44,14 @@ CONSTANTS_KEPT = 256    # distinct (value, length) pairs of constant columns hel
 # copies are kept to sizes where neither weighs.
 SHARE_ROWS = 65_536
 # Whether a long table's columns (:func:`table_block`) are laid on transparent huge pages,
-# as numpy lays every large array where the kernel's setting is ``madvise``. Off: at
-# 1e6 positions the first tables of a process (about 650 MB of fresh pages) cost half the
-# time in pages of 4 kB, and later ones somewhat more (measured 2026-11-29 on the 2-core
-# machine, fresh processes, solve + driver, reactions and kinematics tables, processor
-# time: 0.95-1.04 s against 1.75-2.17 s the first time; 0.84-1.3 s against 0.54-1.28 s
-# repeated in one process). See docs/performance.md, "Result tables".
+# as numpy lays every large array where the kernel's setting is ``madvise``: kept on.
+# Measured 2026-11-29 on the 2-core machine (THP madvise, defrag madvise), four-bar
+# at 1e6, solve + driver, reactions and kinematics tables (630 MB), processor time, three
+# rounds in each of two fresh processes per setting, alternating: on 0.50-0.71 s, off
+# 0.78-0.83 s (the reactions and kinematics tables alone 0.36-0.57 s against 0.65-0.71 s:
+# 4 kB faults on every page). In one earlier series off won the first round of a process
+# (0.95-1.04 s against 1.75-2.17 s: the same 532 faults cost 0.07-1.4 s in turn) and lost the
+# later ones; which wins depends on the machine's memory, the default stays numpy's.
 HUGE_PAGES = True
 
 

@@ -21,8 +21,8 @@ its ``N`` and ``M`` columns are whole. The pass runs under the floating-point tr
 (:mod:`kinetostatics.solver.trap`) and, if the trap is touched, again with every check,
 as the re-solve does.
 
-Measured (2026-11-29, 2-core machine, four-bar at 1e6 positions, ``python -m
-kinetostatics bench --tables``): see ``docs/performance.md``, "Result tables".
+What it costs is measured by ``python -m kinetostatics bench --tables`` (the solve and
+these tables against the solve and the write floor of their bytes; README, "Speed").
 """
 
 from __future__ import annotations
