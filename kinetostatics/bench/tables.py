@@ -14,7 +14,9 @@ process (so that its peak memory is its own):
   (``np.empty`` and ``fill``, the best of three, right after the tables, in the same
   process: the least those tables' bytes can cost); ``over_floor``: the solve and those
   three tables over the solve and the floor, in wall time (``over_floor_cpu`` in
-  processor time, steadier on a busy machine). ``warm_*``: the same solve and tables
+  processor time, steadier on a busy machine; ``over_first_floor_cpu`` against the
+  first of the three fills, which meets fresh pages as the tables did). ``warm_*``: the
+  same solve and tables
   again in the same process, the first ones let go (the first tables of a process fault
   in fresh pages, the later ones reuse them);
 * ``peak_MB``: the process's peak resident memory with the solution and all four
@@ -118,12 +120,13 @@ def held_bytes(frames: list[pd.DataFrame]) -> int:
     """The bytes the tables' columns hold: each column's array (a categorical's codes),
     memory that several columns share counted once, a column of one value (a view of one
     number) as 8 bytes."""
-    spans = []
+    spans, held = [], []        # (held: an array made here keeps its address till the end)
     for df in frames:
         for c in df.columns:
             col = df[c]
             a = col.cat.codes.to_numpy() if isinstance(col.dtype, pd.CategoricalDtype) \
                 else col.to_numpy()
+            held.append(a)
             start = a.__array_interface__["data"][0]
             size = a.itemsize if a.ndim and a.strides[0] == 0 else a.nbytes
             spans.append((start, start + size))
@@ -148,7 +151,9 @@ def over_floor(row: dict, frames: list[pd.DataFrame]) -> dict:
     spent_cpu = sum(row[f"{k}_cpu_s"] for k in ("solve", *FLOORED))
     return {"tables_MB": size / 1e6, "floor_s": min(wall), "floor_cpu_s": min(cpu),
             "over_floor": spent / (row["solve_s"] + min(wall)),
-            "over_floor_cpu": spent_cpu / (row["solve_cpu_s"] + min(cpu))}
+            "over_floor_cpu": spent_cpu / (row["solve_cpu_s"] + min(cpu)),
+            "first_floor_cpu_s": cpu[0],
+            "over_first_floor_cpu": spent_cpu / (row["solve_cpu_s"] + cpu[0])}
 
 
 def measure_formatter(n: int) -> dict:
