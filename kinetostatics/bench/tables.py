@@ -76,8 +76,8 @@ def measure_tables(n: int, out: str) -> dict:
         _timed(row, name, lambda name=name: getattr(sol, name))
     row["long_tables_s"] = sum(row[f"{name}_s"] for name in LONG)
     row["long_tables_over_solve"] = row["long_tables_s"] / row["solve_s"]
-    row.update(over_floor(row, [getattr(sol, name) for name in FLOORED]))
     row["peak_MB"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    row.update(over_floor(row, [getattr(sol, name) for name in FLOORED]))
     size = 0
     t, cpu = time.perf_counter(), time.process_time()
     for name in TABLES:
