@@ -31,6 +31,7 @@ from .jitbase import (
     tile_geometry,
     tile_in,
     tile_out,
+    tile_rows,
 )
 from .layout import (
     AL,
@@ -404,10 +405,12 @@ def _dyad_motion(kind, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
     wg = w[4 * BODY_ROWS + DYAD_OUT:]
     bad = 0
     last = -1           # (the scene whose geometry the tile holds)
-    for t0 in range(lo, hi, TILE):
-        nt = min(TILE, hi - t0)
+    t0 = lo
+    while t0 < hi:
+        nt = tile_rows(gs, own, t0, hi)         # (a tile never spans two scenes)
         j0 = t0 - off
-        last = tile_geometry(wg, g, gs, own, t0, nt, last)
+        last = tile_geometry(wg, g, gs, own, t0, last)
+        t0 += nt
         tile_in(wk1, k1, j0, nt)
         tile_in(wk2, k2, j0, nt)
         if rtr:

@@ -17,6 +17,7 @@ from .jitbase import (
     tile_geometry,
     tile_in,
     tile_out,
+    tile_rows,
 )
 from .layout import (
     AL,
@@ -93,10 +94,12 @@ def body_loads(lo, hi, off, g, gs, own, npoint, m, acc):
     wg = scratch(g.shape[0])
     bad = 0
     last = -1           # (the scene whose geometry the tile holds)
-    for t0 in range(lo, hi, TILE):
-        nt = min(TILE, hi - t0)
+    t0 = lo
+    while t0 < hi:
+        nt = tile_rows(gs, own, t0, hi)         # (a tile never spans two scenes)
         j0 = t0 - off
-        last = tile_geometry(wg, g, gs, own, t0, nt, last)
+        last = tile_geometry(wg, g, gs, own, t0, last)
+        t0 += nt
         tile_in(wm[C:AL + 1], m[C:AL + 1], j0, nt)      # (no velocities read)
         tile_in(wm[AX:AY + 1], m[AX:AY + 1], j0, nt)
         wa[:] = 0.0
@@ -292,10 +295,12 @@ def _dyad_reactions(kind, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, 
     wg = w[b + REACTION_ROWS:]
     bad = 0
     last = -1           # (the scene whose geometry the tile holds)
-    for t0 in range(lo, hi, TILE):
-        nt = min(TILE, hi - t0)
+    t0 = lo
+    while t0 < hi:
+        nt = tile_rows(gs, own, t0, hi)         # (a tile never spans two scenes)
         j0 = t0 - off
-        last = tile_geometry(wg, g, gs, own, t0, nt, last)
+        last = tile_geometry(wg, g, gs, own, t0, last)
+        t0 += nt
         for wm, m in ((wm1, m1), (wm2, m2), (wk1, mk1), (wk2, mk2)):
             tile_in(wm[C:S + 1], m[C:S + 1], j0, nt)
             tile_in(wm[OX:OY + 1], m[OX:OY + 1], j0, nt)
