@@ -71,6 +71,11 @@ from .trap import first_trapped, positions_tame
 # faulted in (about 1800 page faults a call for 1000 scenes of 361 rows, 63-85 ms against
 # 61-68 ms fault-free with 11 000-15 500 rows)
 RUN_ROWS = 12_288
+# the compiled path's runs: its kernels go over blocks of a run (compose.ROWS) whatever
+# its length, and keep of it only Me/Fe, the flags and the closeness; longer runs share
+# each run's work in Python (the scenes' geometry, the plan) among more scenes
+# (measured 2026-11-29, 1000 four-bars x 361: 47 ms a call against 59 in runs of 12 288)
+FAST_RUN_ROWS = 49_152
 CHUNK_ROWS = 1_048_576  # rows per group (one Stacker, one dead-point screen for all)
 
 
@@ -241,7 +246,6 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     counts = np.array([s.driver.positions.size for s in scenes])
     starts = np.cumsum(counts) - counts
     positions = np.concatenate([s.driver.positions for s in scenes])
-    bounds = run_bounds(starts, counts, RUN_ROWS)
     m2 = np.empty(positions.size)
     out: list[Any] = [None] * len(scenes)
     alone: list[int] = []
@@ -250,6 +254,7 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     # the compiled path for the whole group when wanted (numba loaded here, once)
     compiled = not_covered(stacker.base) is None and wanted(positions.size) is not None
     scratch: dict = {}          # (the compiled path's buffers, reused run after run)
+    bounds = run_bounds(starts, counts, FAST_RUN_ROWS if compiled else RUN_ROWS)
     for lo, hi in zip(bounds[:-1].tolist(), bounds[1:].tolist(), strict=True):
         a = int(starts[lo])
         b = int(starts[hi - 1] + counts[hi - 1])
