@@ -31,6 +31,7 @@ from .jitbase import (
     tile_geometry,
     tile_in,
     tile_out,
+    tile_rows,
 )
 from .layout import (
     AL,
@@ -111,7 +112,7 @@ SINGULAR_FAIL = 1e-12
 
 # -- the driver (seed 000 ch. 4) ---------------------------------------------------------
 @jit
-def crank_motion(theta, lo, hi, off, g, gs, w, eps, m):
+def crank_motion(theta, lo, hi, off, g, gs, own, w, eps, m):
     """A crank turning about its ground joint P: o = P - R a, v_o = omega k x (o - P),
     a_o = eps k x (o - P) - omega^2 (o - P) (seed 000 ch. 4; the numpy path's
     ``driver_motion``). Its cos and sin (rows C, S of ``m``) are worked out before, in a
@@ -119,7 +120,7 @@ def crank_motion(theta, lo, hi, off, g, gs, w, eps, m):
     w2 = w * w
     bad = 0
     for i in range(lo, hi):
-        j, r = i - off, i * gs
+        j, r = i - off, own[i * gs]
         c, s = m[C, j], m[S, j]
         lx, ly = g[D_LX, r], g[D_LY, r]
         rax, ray = c * lx - s * ly, s * lx + c * ly
@@ -136,12 +137,12 @@ def crank_motion(theta, lo, hi, off, g, gs, w, eps, m):
 
 
 @jit
-def slider_motion(pos, lo, hi, off, g, gs, w, eps, m):
+def slider_motion(pos, lo, hi, off, g, gs, own, w, eps, m):
     """A slider on a ground guide (or carrying a guide along a ground point): its origin
     moves along the line, o = L + sign s u - R a (seed 000 ch. 4)."""
     bad = 0
     for i in range(lo, hi):
-        j, r = i - off, i * gs
+        j, r = i - off, own[i * gs]
         sign = g[T_SIGN, r]
         ux, uy = g[T_UX, r], g[T_UY, r]
         v, a = sign * w, sign * eps
@@ -375,7 +376,7 @@ def _body(rot, p, kb, j, c, s, lx, ly, ox, oy, qd, qdd, m, jo):
 
 
 @body
-def _dyad_motion(kind, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
+def _dyad_motion(kind, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
     """Positions, velocities and accelerations of a dyad of kind ``kind`` (seed 000
     ch. 5-12, the numpy path's ``solve_dyad``): its bodies' motions into ``m1``, ``m2``
     and its data (closing point, velocity system, closeness to a dead centre, parameters)
@@ -390,7 +391,7 @@ def _dyad_motion(kind, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
         # RTR, stage 0: the guide's angle (row D_TH), its cos and sin then worked out by
         # the caller in a pass of their own (rows C1X, C1Y) before stage 1
         for i in range(lo, hi):
-            j, r = i - off, i * gs
+            j, r = i - off, own[i * gs]
             p1 = _param(True, k1, j, g, r, 0)
             p2 = _param(True, k2, j, g, r, PARAM)
             d[D_TH, j], d[CL2, j], d[XX, j] = _rtr_angle(p1, p2, g, r, g[ASSEMBLY, r])
@@ -403,10 +404,13 @@ def _dyad_motion(kind, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
     wd = w[4 * BODY_ROWS:4 * BODY_ROWS + DYAD_OUT]
     wg = w[4 * BODY_ROWS + DYAD_OUT:]
     bad = 0
-    for t0 in range(lo, hi, TILE):
-        nt = min(TILE, hi - t0)
+    last = -1           # (the scene whose geometry the tile holds)
+    t0 = lo
+    while t0 < hi:
+        nt = tile_rows(gs, own, t0, hi)         # (a tile never spans two scenes)
         j0 = t0 - off
-        tile_geometry(wg, g, gs, t0, nt, t0 == lo)
+        last = tile_geometry(wg, g, gs, own, t0, last)
+        t0 += nt
         tile_in(wk1, k1, j0, nt)
         tile_in(wk2, k2, j0, nt)
         if rtr:
@@ -558,38 +562,38 @@ def _dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d):
 
 
 @jit
-def rrr_motion(stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
-    return _dyad_motion(7, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+def rrr_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
+    return _dyad_motion(7, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d)
 
 
 @jit
-def rrt_motion(stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
-    return _dyad_motion(5, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+def rrt_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
+    return _dyad_motion(5, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d)
 
 
 @jit
-def trr_motion(stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
-    return _dyad_motion(6, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+def trr_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
+    return _dyad_motion(6, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d)
 
 
 @jit
-def trt_motion(stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
-    return _dyad_motion(4, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+def trt_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
+    return _dyad_motion(4, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d)
 
 
 @jit
-def rtr_motion(stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
-    return _dyad_motion(3, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+def rtr_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
+    return _dyad_motion(3, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d)
 
 
 @jit
-def rtt_motion(stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
-    return _dyad_motion(1, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+def rtt_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
+    return _dyad_motion(1, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d)
 
 
 @jit
-def ttr_motion(stage, lo, hi, off, g, gs, k1, k2, m1, m2, d):
-    return _dyad_motion(2, stage, lo, hi, off, g, gs, k1, k2, m1, m2, d)
+def ttr_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
+    return _dyad_motion(2, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d)
 
 
 MOTION = {"RRR": rrr_motion, "RRT": rrt_motion, "TRR": trr_motion, "TRT": trt_motion,

@@ -4,8 +4,10 @@ A body's motion over a block of rows is one ``(10, rows)`` array, its rows in th
 of :attr:`BodyMotion.FIELDS <kinetostatics.solver.driver.BodyMotion.FIELDS>`; a dyad's
 solved data, its reactions, a body's load resultants are arrays of their own layout. The
 geometry of a kernel (local points, ground points, line angles, masses, the assembly) is
-one ``(k, 1)`` array, or ``(k, rows)`` for a stack of scenes whose numbers differ row by
-row (its stride over the rows is then 1, else 0).
+one ``(k, 1)`` array, or ``(k, scenes)`` for a stack of scenes whose numbers differ from
+scene to scene (a column per scene; its stride is then 1, else 0): a kernel reads row
+``i``'s from column ``own[i * stride]``, ``own`` each row's scene in the stack (``[0]``
+for one scene).
 """
 
 from __future__ import annotations
