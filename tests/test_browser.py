@@ -10,10 +10,16 @@ student sees:
 - on sheets 02 and 13, in depth (after a dialog came up; their every-slider check is made
   here, so each sheet is run once in the browser): a slider moved by drag changes the
   picture, and after rapid moves the kernel holds the newest values and the picture the
-  same number of axes as before (redrawn, never stacked).
+  same number of axes as before (redrawn, never stacked);
+- then, on the same run, every check tests/test_notebooks.py makes on a headless run
+  (tests/_shared_sheets.py: no error, a picture and a table, no nan, nothing on stderr,
+  every figure to the picture standard, every Explorer's sliders moved through its
+  Python API): the sheet, saved from the browser, gives its outputs, and the checks run
+  in its kernel. So each widget sheet is executed once in the suite.
 
 One JupyterLab server (one per xdist worker) serves the sheets (copied into a temporary
-folder, so the checkout's sheets stay without outputs). In CI (``CI=true``) the test must run: a
+folder, with the picture audit's cell first, so the checkout's sheets stay without
+outputs). In CI (``CI=true``) the test must run: a
 missing Chromium or Playwright fails it; elsewhere it is skipped with one line saying
 what to install.
 """
@@ -21,9 +27,9 @@ what to install.
 from __future__ import annotations
 
 import ast
+import json
 import os
 import re
-import shutil
 import socket
 import subprocess
 import sys
@@ -31,19 +37,23 @@ import time
 import urllib.request
 from pathlib import Path
 
+import nbformat
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
-CHROMIUM = Path(os.environ.get("KINETOSTATICS_CHROMIUM", "/usr/bin/chromium"))
+from tests import _shared_sheets as sheets
+
+ROOT = sheets.ROOT
+CHROMIUM = sheets.CHROMIUM
 FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
          "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 SHEETS = ["02_four_bar_kinetostatics.ipynb", "13_motion_flywheel.ipynb"]
 # every sheet with an interactive cell (an Explorer's widget)
-WIDGET_SHEETS = sorted(p.name for p in (ROOT / "notebooks").glob("*.ipynb")
-                       if "Explorer(" in p.read_text(encoding="utf-8"))
+WIDGET_SHEETS = sheets.WIDGET_SHEETS
 RUN_ALL = 600_000      # ms: stops a hung kernel only (a full run took 20-65 s, load 1-17)
 RUN_TRY = 240_000      # ms: one "Run All" that has not finished by then is given again once
                        # (under load a Run All given as the kernel connected was seen lost)
+RUN_START = 60_000     # ms: a Run All marks every cell queued at once (within 5 s measured)
+SAVE_AGAIN = 30         # s: a save not on disk by then is asked again (under 1 s measured)
 UPDATE = 300_000       # ms: one slider update (1.5-15 s measured)
 CLICK = 60_000         # ms: one click on the page (instant when nothing is in the way)
 WIDGET_ERRORS = re.compile(r"Error displaying widget|model not found|Could not find model|"
@@ -78,11 +88,14 @@ def _free_port() -> int:
 
 @pytest.fixture(scope="module")
 def lab(tmp_path_factory):
-    """One JupyterLab server over a copy of the two sheets: (base url, token)."""
+    """One JupyterLab server over a copy of the widget sheets, each with the picture
+    audit's cell first (tests/_shared_sheets.py): (base url, token, its folder)."""
     _requirements()
     home = tmp_path_factory.mktemp("lab")
     for name in WIDGET_SHEETS:
-        shutil.copy(ROOT / "notebooks" / name, home / name)
+        nb = nbformat.read(ROOT / "notebooks" / name, as_version=4)
+        nb.cells.insert(0, nbformat.v4.new_code_cell(sheets.AUDIT_HOOK))
+        nbformat.write(nb, home / name)
     port, token = _free_port(), "kinetostatics-browser-test"
     env = {k: v for k, v in os.environ.items() if k != "MPLBACKEND"}
     env["PYTHONPATH"] = os.pathsep.join([str(ROOT), *filter(None, [env.get("PYTHONPATH")])])
@@ -109,7 +122,7 @@ def lab(tmp_path_factory):
                 time.sleep(0.5)
         else:
             pytest.fail("JupyterLab did not answer within 300 s")
-        yield base, token
+        yield base, token, home
     finally:
         server.terminate()
         try:
@@ -132,6 +145,9 @@ ALL_RAN = """() => {
     const p = [...document.querySelectorAll('.jp-CodeCell .jp-InputPrompt')];
     return p.length > 0 && p.every(e => /\\[\\d+\\]/.test(e.textContent));
 }"""
+# a cell queued or run: a Run All was taken
+STARTED = """() => [...document.querySelectorAll('.jp-CodeCell .jp-InputPrompt')].some(
+    e => /\\[(\\*|\\d+)\\]/.test(e.textContent))"""
 KERNEL_IDLE = """() => {
     const e = document.querySelector('.jp-Notebook-ExecutionIndicator');
     return e !== null && e.getAttribute('data-status') === 'idle';
@@ -198,14 +214,24 @@ def _menu(page, menu: str, item) -> None:
 
 def _run_all(page) -> None:
     """Run every cell from the Run menu once the kernel is idle, and wait until none is
-    pending; a Run All that has not finished within RUN_TRY is given once more (the
+    pending. A Run All that marks no cell queued within RUN_START was lost (seen under
+    load, given as the kernel connected: every cell stayed ``[ ]``) and is given again,
+    up to three times; one that has not finished within RUN_TRY is given once more (the
     kernel's cells then run again, with the same values). A dialog in the way is
     dismissed first (``_clear_dialogs``)."""
     from playwright.sync_api import TimeoutError as PlaywrightTimeout
     page.locator(".jp-Notebook .jp-Cell").first.wait_for(timeout=RUN_ALL)
     page.wait_for_function(KERNEL_IDLE, timeout=RUN_ALL)
     for wait in (RUN_TRY, RUN_ALL):
-        _menu(page, "Run", re.compile(r"^Run All Cells"))
+        for attempt in range(3):
+            _menu(page, "Run", re.compile(r"^Run All Cells"))
+            try:
+                page.wait_for_function(STARTED, timeout=RUN_START)
+                break
+            except PlaywrightTimeout:
+                if attempt == 2:
+                    raise AssertionError("Run All given three times, no cell queued; "
+                                         f"dialogs: {page.evaluate(DIALOG_TEXT)}") from None
         try:
             page.wait_for_function(ALL_RAN, timeout=wait)
             return
@@ -284,7 +310,7 @@ HANDLE_RANGE = """(h) => ['aria-valuenow', 'aria-valuemin', 'aria-valuemax'].map
 
 def _open(browser, lab, sheet):
     """A new page on ``sheet`` in JupyterLab, its console gathered: (page, console)."""
-    base, token = lab
+    base, token, _ = lab
     page = browser.new_page(viewport={"width": 1400, "height": 1000})
     console: list[str] = []
     page.on("console", lambda m: console.append(f"{m.type}: {m.text}"))
@@ -326,6 +352,69 @@ def _move_every_slider(page, sheet: str, console: list[str]) -> None:
     assert not WIDGET_ERRORS.findall(text), sheet
 
 
+def _saved_outputs(page, home: Path, sheet: str) -> list:
+    """Save the sheet from the browser (Ctrl+S) and return the outputs of its cells
+    (the audit's first cell aside), once the saved file holds every cell of the sheet,
+    each run (a file saved before the Run All ended has a cell without a count; the one
+    empty cell Shift+Enter leaves at the end is never run)."""
+    _clear_dialogs(page)
+    cells = sum(c.cell_type == "code" for c in nbformat.read(ROOT / "notebooks" / sheet,
+                                                            as_version=4).cells)
+    start = time.monotonic()
+    asked = -SAVE_AGAIN
+    while True:
+        if time.monotonic() - asked >= SAVE_AGAIN:      # (a key press lost under load)
+            asked = time.monotonic()
+            page.locator(".jp-Notebook").click(position={"x": 5, "y": 5}, timeout=CLICK)
+            page.keyboard.press("Control+s")
+        time.sleep(0.5)
+        code = [c for c in nbformat.read(home / sheet, as_version=4).cells
+                if c.cell_type == "code"]
+        if len(code) > cells and all(c.execution_count is not None
+                                     for c in code if c.source.strip()):
+            return [o for c in code[1:] for o in c.outputs]
+        if time.monotonic() - start > UPDATE / 1000:
+            raise AssertionError(f"{sheet}: the saved sheet has {len(code)} code cells "
+                                 f"(the sheet {cells} and the audit's), or some not run; "
+                                 f"dialogs: {page.evaluate(DIALOG_TEXT)}")
+
+
+def _kernel_checks(lab, sheet: str) -> list[dict]:
+    """Run the headless checks of tests/_shared_sheets.py (every Explorer's sliders moved
+    through its Python API, the sheet's own checks) in the sheet's kernel, through a
+    client of its own (the page's cells stay as they are); returns the figures' audits."""
+    from jupyter_client.blocking import BlockingKernelClient
+    base, token, home = lab
+    with urllib.request.urlopen(f"{base}/api/sessions?token={token}", timeout=60) as r:
+        kernels = [s["kernel"]["id"] for s in json.load(r) if s["path"] == sheet]
+    assert len(kernels) == 1, (sheet, kernels)
+    client = BlockingKernelClient()
+    client.load_connection_file(str(home / ".jupyter" / "runtime" / f"kernel-{kernels[0]}.json"))
+    client.start_channels()
+    try:
+        client.wait_for_ready(timeout=UPDATE / 1000)
+        for code in [*sheets.checks_after(sheet), sheets.AUDIT_REPORT]:
+            said: list[str] = []
+            reply = client.execute_interactive(
+                code, timeout=sheets.CELL_TIMEOUT, allow_stdin=False,
+                output_hook=lambda m, said=said: said.append(m["content"]["text"])
+                if m["msg_type"] == "stream" else None)["content"]
+            assert reply["status"] == "ok", "\n".join(
+                [f"{sheet}: {reply.get('ename')}: {reply.get('evalue')}", code,
+                 *reply.get("traceback", [])])
+    finally:
+        client.stop_channels()
+    return sheets.audits_of("".join(said))
+
+
+def _headless_checks(page, lab, sheet: str) -> None:
+    """The checks of tests/test_notebooks.py on the browser's run of the sheet (which
+    then skips the sheet): its outputs as saved, the Explorers moved through their
+    API, every figure to the picture standard."""
+    outputs = _saved_outputs(page, lab[2], sheet)
+    sheets.check_run(sheet, outputs, _kernel_checks(lab, sheet))
+
+
 # the sheets of the in-depth test have their every slider moved there (each sheet is run
 # once in the browser)
 @pytest.mark.slow
@@ -334,10 +423,12 @@ def _move_every_slider(page, sheet: str, console: list[str]) -> None:
                          ids=[s[:2] for s in WIDGET_SHEETS if s not in SHEETS])
 def test_every_slider_of_every_widget_sheet(lab, browser, sheet):
     """Every slider of the sheet moved once (by keyboard): the picture changes, the
-    sheet still shows exactly one picture per explorer, no JavaScript error."""
+    sheet still shows exactly one picture per explorer, no JavaScript error; then the
+    headless checks on the same run (``_headless_checks``)."""
     page, console = _open(browser, lab, sheet)
     _run_all(page)
     _move_every_slider(page, sheet, console)
+    _headless_checks(page, lab, sheet)
     page.close()
 
 
@@ -348,7 +439,8 @@ def test_sheet_in_a_real_browser(lab, browser, sheet):
     """The sheet run after a dialog came up (a kernel restart asked), then: every widget
     renders, every slider moved by keyboard changes the picture (as in
     ``test_every_slider_of_every_widget_sheet``), a slider moved by drag too, and after
-    rapid moves the kernel holds the newest values, the picture its axes."""
+    rapid moves the kernel holds the newest values, the picture its axes; then the
+    headless checks on the same run (``_headless_checks``)."""
     page, console = _open(browser, lab, sheet)
     page.locator(".jp-Notebook .jp-Cell").first.wait_for(timeout=RUN_ALL)
     page.wait_for_function(KERNEL_IDLE, timeout=RUN_ALL)
@@ -398,4 +490,5 @@ def test_sheet_in_a_real_browser(lab, browser, sheet):
     text = page.locator(".jp-Notebook").inner_text()
     bad = WIDGET_ERRORS.findall(text) + [c for c in console if WIDGET_ERRORS.search(c)]
     assert not bad, f"{sheet}: {bad}"
+    _headless_checks(page, lab, sheet)
     page.close()

@@ -1,0 +1,181 @@
+"""What a run of a sheet must show, for the two tests that run the sheets.
+
+Each sheet is run once in a suite: a sheet with an interactive cell (an Explorer's
+widget) in JupyterLab by tests/test_browser.py, which makes the checks below in the same
+kernel after its own (the browser's) checks; every other sheet headless with nbclient by
+tests/test_notebooks.py, which runs the widget sheets too when the browser test is not
+part of the run (Chromium or Playwright missing, the test deselected).
+
+A run passes when no cell raises, the sheet shows at least one picture and one table,
+its outputs hold no ``nan`` or ``inf`` (a not-applicable cell shows a dash) and nothing
+on stderr (no warning), every figure a cell shows meets the picture standard
+(:data:`AUDIT_HOOK`), and every Explorer left in the kernel, moved slider by slider
+through its Python API, changes its picture and key numbers (:data:`EXPLORER_CHECK`).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
+#: every sheet with an interactive cell (an Explorer's widget): run in the browser
+WIDGET_SHEETS = sorted(p.name for p in NOTEBOOKS
+                       if "Explorer(" in p.read_text(encoding="utf-8"))
+CHROMIUM = Path(os.environ.get("KINETOSTATICS_CHROMIUM", "/usr/bin/chromium"))
+# s per cell: only stops a hung kernel, never a budget (a test asserts no wall time; the
+# slowest cell took 15 s at load 13 on 2 cores)
+CELL_TIMEOUT = 600
+
+# the topic sheets: each teaches with one interactive cell (an Explorer)
+TOPIC_SHEETS = {"01", "02", "03", "04", "05", "06", "07", "13", "14", "15", "16"}
+
+# a number that is not one, as pandas, numpy and Python print it
+_NOT_A_NUMBER = re.compile(r"(?<![A-Za-z0-9_])[-+]?(nan|inf|infinity)(?![A-Za-z0-9_])",
+                           re.IGNORECASE)
+_DATA_URI = re.compile(r"data:[\w/+.-]+;base64,[A-Za-z0-9+/=\s]*")
+
+# run first in the kernel: every figure a cell shows is measured against the picture
+# standard (kinetostatics.plot.audit) before the inline backend shows and closes it
+# (post_execute callbacks run in the order registered: this one before the backend's)
+AUDIT_HOOK = """
+def _install_audit():
+    import matplotlib.pyplot as plt
+    from kinetostatics.plot.audit import audit
+    ip = get_ipython()
+    found = []
+
+    def measure(where, fig):
+        a = audit(fig)
+        found.append({"where": where, "dpi": a.dpi, "font": a.smallest_font,
+                      "collisions": a.collisions, "not_placed": a.not_placed,
+                      "notation": a.notation, "problems": a.problems})
+
+    def before_show():
+        code = ip.user_ns["_ih"][-1].strip().splitlines() or [""]
+        for k in plt.get_fignums():
+            measure(f"cell {code[0][:60]!r} figure {k}", plt.figure(k))
+
+    ip.events.register("post_execute", before_show)
+    return found, measure
+
+
+_AUDITS, _AUDIT = _install_audit()
+del _install_audit
+"""
+AUDIT_REPORT = 'import json as _json; print("AUDITS " + _json.dumps(_AUDITS))'
+
+# run after a sheet, in its kernel: what its text promises about its own output
+SHEET_CHECKS = {
+    # 02: at every crank length of the slider no singular row is shown as a number:
+    # the extremes leave the rows out and say how many, the readout at a singular row
+    # says so (the change point at crank + frame = coupler + rocker: 0.15 m)
+    "02": """
+import numpy as _np
+_crank = explorer.slider("crank")
+_seen_singular = False
+for _c in _np.round(_np.arange(_crank.min, _crank.max + 1e-9, _crank.step), 4):
+    _n = explorer.set(crank=float(_c), phi=30.0)
+    if explorer.error is not None:
+        assert _c > limit, (_c, explorer.error)      # only past the Grashof limit
+        continue
+    _sol = explorer.result
+    _sing = _np.asarray(_sol.singular)
+    assert _n["rows near a dead point (left out)"] == int(_sing.sum()), (_c, _n)
+    _regular = _np.asarray(_sol.Me)[~_sing]
+    assert _n["Me max [N m]"] == _regular.max() and _n["Me min [N m]"] == _regular.min()
+    assert ("change point" in _n["turns fully (Grashof)"]) == bool(abs(_c - limit) < 1e-9)
+    if _sing.any():
+        _seen_singular = True
+        _at = float(_sol.positions[_sing][0])
+        _n = explorer.set(phi=_at)
+        assert _n["Me at φ [N m]"] == "singular (dead point)", (_c, _at, _n)
+        explorer.set(phi=30.0)
+assert _seen_singular, "the slider never reaches the change point"
+""",
+}
+
+# run after the sheet in the same kernel: move every slider of every Explorer (from the
+# sliders' starting values: a browser may have moved them before)
+EXPLORER_CHECK = """
+from kinetostatics.notebook import Explorer as _Explorer
+_explorers = [v for v in list(globals().values()) if isinstance(v, _Explorer)]
+assert _explorers or not {topic}, "this topic sheet has no interactive cell (Explorer)"
+for _e in _explorers:
+    _e.close()                          # no frontend: the API alone (no widget redraws)
+    _start = {_s.name: _s.value for _s in _e.sliders}
+    if _e.values != _start:
+        _e.set(**_start)
+    assert _e.error is None, _e.error
+    for _s in _e.sliders:
+        _v = _s.value + (_s.max - _s.value) / 2 if _s.value < _s.max else _s.min
+        _v = min(max(round(_v / _s.step) * _s.step, _s.min), _s.max)
+        _numbers, _png = dict(_e.numbers), _e.png(dpi=30)
+        _e.set(**{_s.name: _v})
+        assert _e.error is None, f"slider {_s.name} = {_v}: {_e.error}"
+        assert _e.png(dpi=30) != _png, f"slider {_s.name} = {_v} does not change the picture"
+        assert _e.numbers != _numbers, f"slider {_s.name} = {_v} changes no key number"
+        _e.table()                      # every key number is finite (raises otherwise)
+        _AUDIT(f"explorer {_s.name} = {_v}", _e.figure)
+"""
+
+
+def checks_after(name: str) -> list[str]:
+    """The code run in a sheet's kernel after the sheet (each a cell): every Explorer's
+    sliders moved, the sheet's own checks; then :data:`AUDIT_REPORT` gives the audits."""
+    cells = [EXPLORER_CHECK.replace("{topic}", str(name[:2] in TOPIC_SHEETS))]
+    if name[:2] in SHEET_CHECKS:
+        cells.append(SHEET_CHECKS[name[:2]])
+    return cells
+
+
+def audits_of(report: str) -> list[dict]:
+    """The audits printed by :data:`AUDIT_REPORT`."""
+    return json.loads(report.split("AUDITS ", 1)[1])
+
+
+def output_texts(outputs) -> list[str]:
+    """Every text a reader sees in the outputs (streams, plain text, HTML), without the
+    embedded images."""
+    texts = []
+    for o in outputs:
+        if o.get("output_type") == "stream":
+            texts.append(o["text"])
+        for mime in ("text/plain", "text/html", "text/markdown", "text/latex"):
+            if mime in o.get("data", {}):
+                texts.append(_DATA_URI.sub("", o["data"][mime]))
+    return texts
+
+
+def check_run(name: str, outputs: list, audits: list[dict]) -> None:
+    """The sheet ran; every picture it shows (the Explorer's after each slider move too)
+    meets the picture standard: 150 dpi, text >= 10 pt, no collision, at most one label
+    not placed, the notation of docs/notation.md. ``outputs``: the outputs of the sheet's
+    cells (nbformat), ``audits``: :func:`audits_of` the kernel's report."""
+    errors = [o for o in outputs if o.get("output_type") == "error"]
+    assert not errors, f"{name}: {errors}"
+    assert any("image/png" in o.get("data", {}) for o in outputs), \
+        f"{name} shows no picture"
+    assert any("<table" in o.get("data", {}).get("text/html", "") for o in outputs), \
+        f"{name} shows no table"
+    stderr = [o["text"] for o in outputs
+              if o.get("output_type") == "stream" and o.get("name") == "stderr"]
+    assert not stderr, f"{name} writes to stderr (a warning?): {stderr}"
+    bad = sorted({m.group(0) for t in output_texts(outputs) for m in _NOT_A_NUMBER.finditer(t)})
+    assert not bad, f"{name} shows {bad} in its outputs: show a dash where no value applies"
+    assert audits, f"{name}: no figure measured"
+    problems = {a["where"]: a["problems"] for a in audits if a["problems"]}
+    assert not problems, f"{name}: pictures below the standard: {problems}"
+
+
+def browser_ready() -> bool:
+    """Chromium and Playwright's Python package are there (tests/test_browser.py can
+    run)."""
+    try:
+        import playwright.sync_api  # noqa: F401
+    except ImportError:
+        return False
+    return CHROMIUM.exists()
