@@ -6,7 +6,10 @@
   every machine, so CI's verdict does not depend on luck. ``HYPOTHESIS_PROFILE=explore
   python -m pytest`` (a nightly run) searches with fresh random examples, ten times as
   many in every property test, those that set their own count too
-  (:func:`_explore_more`).
+  (:func:`_scale_examples`). The quick tier (``-m "not slow"``, where no profile is
+  named) runs the same property tests derandomized on a fifth of the examples (profile
+  ``quick``, at least ten each): every property is still tried, the full suite tries it
+  on all of them.
 - Two tiers. ``python -m pytest -m "not slow"`` is the everyday line; the full suite is
   ``python -m pytest`` (on every core: ``-n auto`` in pyproject.toml). A test that uses
   one of :data:`SLOW_FIXTURES` is marked ``slow`` here (and ``kernel`` or ``browser``
@@ -36,6 +39,10 @@ settings.register_profile("repeatable", derandomize=True, print_blob=True)
 EXPLORE_FACTOR = 10
 settings.register_profile("explore", derandomize=False, print_blob=True,
                           max_examples=EXPLORE_FACTOR * settings.default.max_examples)
+#: The quick tier's share of the examples, and the fewest a property test runs there.
+QUICK_SHARE, QUICK_FEWEST = 5, 10
+settings.register_profile("quick", derandomize=True, print_blob=True,
+                          max_examples=settings.default.max_examples // QUICK_SHARE)
 PROFILE = os.environ.get("HYPOTHESIS_PROFILE", "repeatable")
 settings.load_profile(PROFILE)
 
@@ -99,7 +106,7 @@ def pytest_sessionstart(session: pytest.Session) -> None:
                   not hasattr(config, "workerinput") and
                   bool(config.getoption("numprocesses")) and
                   config.getoption("dist") != "no")
-    if PROFILE == "repeatable" and not controller:
+    if PROFILE in ("repeatable", "quick") and not controller:
         _import_every_module()
 
 
@@ -115,14 +122,32 @@ def pytest_addoption(parser: pytest.Parser, pluginmanager: pytest.PytestPluginMa
                         help="ignored: pytest-xdist is not loaded")
 
 
+def _quick_tier(config: pytest.Config) -> bool:
+    """The run deselects the slow tests (``-m "not slow"``, alone or with more)."""
+    return "not slow" in " ".join((config.getoption("markexpr") or "").split())
+
+
 def pytest_configure(config: pytest.Config) -> None:
+    """The xdist_group mark, and the profile ``quick`` for the quick tier (before the
+    test modules are imported: their own settings inherit its count)."""
+    global PROFILE
     config.addinivalue_line("markers", "xdist_group(name): run on one xdist worker")
+    if "HYPOTHESIS_PROFILE" not in os.environ and _quick_tier(config):
+        PROFILE = "quick"
+        settings.load_profile(PROFILE)
 
 
-def _explore_more(items: list[pytest.Item]) -> None:
-    """Profile ``explore``: ten times the examples of every property test that sets its
-    own count (hypothesis reads a test's settings when it runs; the others inherit the
-    profile's tenfold default)."""
+def _examples(own: int) -> int:
+    """A property test's own count of examples under the loaded profile."""
+    if PROFILE == "explore":
+        return EXPLORE_FACTOR * own
+    return max(own // QUICK_SHARE, min(own, QUICK_FEWEST))
+
+
+def _scale_examples(items: list[pytest.Item]) -> None:
+    """Profiles ``explore`` and ``quick``: ten times, or a fifth of (at least ten), the
+    examples of every property test that sets its own count (hypothesis reads a test's
+    settings when it runs; the others inherit the profile's default)."""
     done = set()                        # (a parametrized test's items share one function)
     for item in items:
         test = getattr(getattr(item, "obj", None), "__func__", getattr(item, "obj", None))
@@ -132,15 +157,15 @@ def _explore_more(items: list[pytest.Item]) -> None:
         done.add(id(test))
         if own.max_examples != settings.default.max_examples:
             test._hypothesis_internal_use_settings = settings(
-                own, max_examples=EXPLORE_FACTOR * own.max_examples)
+                own, max_examples=_examples(own.max_examples))
 
 
 @pytest.hookimpl(tryfirst=True)      # before xdist's, which reads the xdist_group marks
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     """Mark ``slow`` (and ``kernel``/``browser``) every test that uses a slow fixture,
     and group the tests that share a per-scene session fixture."""
-    if PROFILE == "explore":
-        _explore_more(items)
+    if PROFILE in ("explore", "quick"):
+        _scale_examples(items)
     for item in items:
         used = set(getattr(item, "fixturenames", ()))
         scene = getattr(item, "callspec", None)
