@@ -55,6 +55,16 @@ SHARE_ROWS = 65_536
 HUGE_PAGES = True
 
 
+OFFSET_EMPTY = 1e-12     # offset = M / N is left empty where |N| <= 1e-12 max|N|
+
+
+def offsets(nn: np.ndarray, mm: np.ndarray, largest: float) -> np.ndarray:
+    """The ``reactions`` table's ``offset`` = M / N of a prismatic joint's rows, empty
+    (NaN) where ``|N| <= OFFSET_EMPTY * largest`` (``largest``: max |N| over the sweep)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(np.abs(nn) > OFFSET_EMPTY * largest, mm / nn, np.nan)
+
+
 def categorical(names: list[str], n: int, block: int | None = None) -> pd.Categorical:
     """A categorical column with ``names[i]`` on the ``n`` rows of block ``i`` (``block``:
     the rows of that block alone, with every block's names as categories)."""

@@ -36,7 +36,7 @@ from ..solver.kinematics import solve_kinematics
 from ..solver.pipeline import solve_block
 from ..solver.solved import Solved
 from ..solver.trap import first_trapped
-from .longtable import FloatBlock, LongTable
+from .longtable import FloatBlock, LongTable, offsets
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -101,7 +101,6 @@ def _fill(sol: Solution, lean: LeanSolved, name: str, state: dict) -> None:
 
 def _offsets(fill: FloatBlock, prismatic: list[int], n: int) -> None:
     """The ``offset`` of each prismatic joint's rows, from its whole ``N`` and ``M``."""
-    from .solution import offsets
     for i in prismatic:
         rows = slice(i * n, (i + 1) * n)
         nn, mm = fill.rows["N"][rows], fill.rows["M"][rows]

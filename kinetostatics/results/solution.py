@@ -29,20 +29,10 @@ from ..solver.reactions import DriverReaction, JointReaction
 from ..solver.solved import DEFERRED, Deferred, Solved, drive_values
 from ..solver.structure import Structure
 from . import longtable as tables
-from .longtable import LongTable, TiledPositions, shared
+from .longtable import LongTable, TiledPositions, offsets, shared
 
 if TYPE_CHECKING:
     import pandas as pd
-
-OFFSET_EMPTY = 1e-12     # offset = M / N is left empty where |N| <= 1e-12 max|N|
-
-
-def offsets(nn: np.ndarray, mm: np.ndarray, largest: float) -> np.ndarray:
-    """The ``reactions`` table's ``offset`` = M / N of a prismatic joint's rows, empty
-    (NaN) where ``|N| <= OFFSET_EMPTY * largest`` (``largest``: max |N| over the sweep)."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(np.abs(nn) > OFFSET_EMPTY * largest, mm / nn, np.nan)
-
 
 @dataclass
 class Solution:
