@@ -132,7 +132,9 @@ class DyadSolver:
                 if outer.kind != "R":
                     continue
                 ax, ay = self.b[i].local(outer.point_on(dyad.bodies[i]))
-                if np.any(_length(qx - ax, qy - ay) <= 1e-12 * scene.size):
+                link, least = _length(qx - ax, qy - ay), 1e-12 * scene.size
+                if (link <= least if type(link) is float and type(least) is float
+                        else np.any(link <= least)):
                     raise AssemblyError(
                         f"body {dyad.bodies[i]!r}: its joint points for {outer.name!r} and "
                         f"{inner.name!r} coincide; a dyad link needs a length")

@@ -98,7 +98,7 @@ def driver_motion(scene: Scene) -> BodyMotion:
         trig = scene.__dict__.get("driver_trig")    # (a stack's run: worked out per sweep)
         th, c, s = trig if trig is not None else (drv.angles, None, None)
         if trig is None:
-            c, s = np.cos(th), np.sin(th)
+            c, s = drv.trig()
         px, py = scene.ground[joint.point_on(GROUND)]
         rax, ray = A.rotate(c, s, *body.local(joint.point_on(drv.body)))   # o = P - R a
         w2 = w * w

@@ -531,13 +531,26 @@ def _plain_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion]) -> int
     if reach is not None and not float(reach) > PLAIN * size:
         return None
     org = [body_origin(pr[i], cs[i], ss[i]) for i in range(2)]
-    if not float(_closeness2(_VelocitySystem(dyad, solver, pr, cs, org), pr, None, 1,
-                             solver)[0]) > PLAIN:
+    if not _plain_sin2(dyad, solver, pr, cs, org) > PLAIN:
         return None
     for i, name in enumerate(dyad.bodies):
         motions[name] = BodyMotion(None, float(cs[i][0]), float(cs[i][1]), 0.0, 0.0,
                                    float(org[i][0]), float(org[i][1]), 0.0, 0.0, 0.0, 0.0)
     return solver.k if k is None else k
+
+
+def _plain_sin2(dyad: Dyad, solver: DyadSolver, pr, cs, org) -> float:
+    """sin^2 of a dyad's transmission angle at the first row (:func:`_closeness2`, numbers):
+    for a revolute inner joint at X, det(c1, c2)^2 / (|c1|^2 |c2|^2) of the velocity
+    columns (c = J (X - P) of a turning body, u of a translating one) worked out here."""
+    if dyad.inner.kind != "R":
+        return float(_closeness2(_VelocitySystem(dyad, solver, pr, cs, org), pr, None, 1,
+                                 solver)[0])
+    rx, ry = A.rotate(cs[0][0], cs[0][1], *solver.q[0])
+    xx, xy = org[0][0] + rx, org[0][1] + ry
+    (ax, ay), (bx, by) = (_column(p, xx, xy) for p in pr)
+    det = ax * by - ay * bx
+    return float(det * det / ((ax * ax + ay * ay) * (bx * bx + by * by)))
 
 
 def solve_kinematics(scene: Scene, structure: Structure, positions=None,
