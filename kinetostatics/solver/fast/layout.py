@@ -38,7 +38,7 @@ SIZE, NORM2, ASSEMBLY = 25, 26, 27
 # dyad body, 2 the known body) and its local (or ground) coordinates, per outer joint
 O_WHERE, O_X, O_Y = 28, 29, 30          # + 3 i
 # a revolute inner joint: each body's (q - p) / |q - p|^2, the closure's constant factors
-# (the numpy path's ``_rot_angle``: lx / r2 and ly / r2, worked out once)
+# (the numpy path's rotation angle, ``rot_angle`` here: lx / r2 and ly / r2, worked out once)
 W1X, W1Y, W2X, W2Y = 34, 35, 36, 37
 DYAD_GEOMETRY = 38
 
