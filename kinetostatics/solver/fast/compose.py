@@ -122,6 +122,10 @@ class Plan:
         g, gs = self.driver
         if self.crank:      # (cos and sin in a pass of their own: numpy's, vectorised)
             trig = self.scene.__dict__.get("driver_trig")   # (a stack's: per sweep)
+            if trig is None and self.scene.driver.sweep is not None:
+                # a sweep read from start, stop and count: its cos and sin shared with the
+                # same sweep's earlier scenes (Driver.trig; x is the driver's angles)
+                trig = (None, *self.scene.driver.trig())
             if trig is None:
                 np.cos(x[lo:hi], out=m[dname][L.C, lo - off:hi - off])
                 np.sin(x[lo:hi], out=m[dname][L.S, lo - off:hi - off])
