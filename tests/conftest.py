@@ -17,7 +17,8 @@
   tests carry ``@pytest.mark.slow`` themselves.
 - Tests that read one fixture's state (the figures drawn for one scene, a class
   generated for a module's tests) run on one xdist worker
-  (``--dist loadgroup`` with the groups of :func:`_group`), so each is made once.
+  (``--dist loadgroup`` with the groups of :func:`_group`), so each is made once; in
+  the quick tier each module's tests run on one worker, so its module fixtures are too.
 - The solve path: ``KINETOSTATICS_PATH=fast python -m pytest`` runs the suite on the
   compiled path (numba), ``numpy`` (or unset) on the numpy path. A test of the numpy
   path's own workings takes the fixture ``numpy_path``.
