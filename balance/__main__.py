@@ -26,12 +26,12 @@ from kinetostatics.common.cli import (
     run_command,
     stopped_cleanly,
 )
+from kinetostatics.common.jsontext import json_default
 
 from .api import example_path, examples, results_to_dict, solve_results
 from .errors import WorkbenchError
 from .model.scene import SCENES
 from .model.units import SI
-from .report.document import json_default
 from .report.text import result_warnings, summary_text
 
 

@@ -6,7 +6,10 @@
   every machine, so CI's verdict does not depend on luck. ``HYPOTHESIS_PROFILE=explore
   python -m pytest`` (a nightly run) searches with fresh random examples, ten times as
   many in every property test, those that set their own count too
-  (:func:`_explore_more`).
+  (:func:`_scale_examples`). The quick tier (``-m "not slow"``, where no profile is
+  named) runs the same property tests derandomized on a fifth of the examples (profile
+  ``quick``, at least ten each): every property is still tried, the full suite tries it
+  on all of them.
 - Two tiers. ``python -m pytest -m "not slow"`` is the everyday line; the full suite is
   ``python -m pytest`` (on every core: ``-n auto`` in pyproject.toml). A test that uses
   one of :data:`SLOW_FIXTURES` is marked ``slow`` here (and ``kernel`` or ``browser``
@@ -14,7 +17,8 @@
   tests carry ``@pytest.mark.slow`` themselves.
 - Tests that read one fixture's state (the figures drawn for one scene, a class
   generated for a module's tests) run on one xdist worker
-  (``--dist loadgroup`` with the groups of :func:`_group`), so each is made once.
+  (``--dist loadgroup`` with the groups of :func:`_group`), so each is made once; in
+  the quick tier each module's tests run on one worker, so its module fixtures are too.
 - The solve path: ``KINETOSTATICS_PATH=fast python -m pytest`` runs the suite on the
   compiled path (numba), ``numpy`` (or unset) on the numpy path. A test of the numpy
   path's own workings takes the fixture ``numpy_path``.
@@ -25,6 +29,7 @@ from __future__ import annotations
 import importlib
 import os
 import pkgutil
+import sys
 
 import matplotlib
 import pytest
@@ -32,10 +37,21 @@ from hypothesis import settings
 
 matplotlib.use("Agg")
 
+# The suite's processes (the xdist workers, the CLIs it starts) keep their bytecode even
+# where PYTHONDONTWRITEBYTECODE is set (this machine's and CI's environment): else each
+# compiles every module again and pytest rewrites every test's asserts again, 13.5 s of
+# CPU a process against 7.6 s (measured 2026-11-29; the quick tier starts three).
+sys.dont_write_bytecode = False
+os.environ.pop("PYTHONDONTWRITEBYTECODE", None)
+
 settings.register_profile("repeatable", derandomize=True, print_blob=True)
 EXPLORE_FACTOR = 10
 settings.register_profile("explore", derandomize=False, print_blob=True,
                           max_examples=EXPLORE_FACTOR * settings.default.max_examples)
+#: The quick tier's share of the examples, and the fewest a property test runs there.
+QUICK_SHARE, QUICK_FEWEST = 5, 10
+settings.register_profile("quick", derandomize=True, print_blob=True,
+                          max_examples=settings.default.max_examples // QUICK_SHARE)
 PROFILE = os.environ.get("HYPOTHESIS_PROFILE", "repeatable")
 settings.load_profile(PROFILE)
 
@@ -99,7 +115,7 @@ def pytest_sessionstart(session: pytest.Session) -> None:
                   not hasattr(config, "workerinput") and
                   bool(config.getoption("numprocesses")) and
                   config.getoption("dist") != "no")
-    if PROFILE == "repeatable" and not controller:
+    if PROFILE in ("repeatable", "quick") and not controller:
         _import_every_module()
 
 
@@ -115,14 +131,32 @@ def pytest_addoption(parser: pytest.Parser, pluginmanager: pytest.PytestPluginMa
                         help="ignored: pytest-xdist is not loaded")
 
 
+def _quick_tier(config: pytest.Config) -> bool:
+    """The run deselects the slow tests (``-m "not slow"``, alone or with more)."""
+    return "not slow" in " ".join((config.getoption("markexpr") or "").split())
+
+
 def pytest_configure(config: pytest.Config) -> None:
+    """The xdist_group mark, and the profile ``quick`` for the quick tier (before the
+    test modules are imported: their own settings inherit its count)."""
+    global PROFILE
     config.addinivalue_line("markers", "xdist_group(name): run on one xdist worker")
+    if "HYPOTHESIS_PROFILE" not in os.environ and _quick_tier(config):
+        PROFILE = "quick"
+        settings.load_profile(PROFILE)
 
 
-def _explore_more(items: list[pytest.Item]) -> None:
-    """Profile ``explore``: ten times the examples of every property test that sets its
-    own count (hypothesis reads a test's settings when it runs; the others inherit the
-    profile's tenfold default)."""
+def _examples(own: int) -> int:
+    """A property test's own count of examples under the loaded profile."""
+    if PROFILE == "explore":
+        return EXPLORE_FACTOR * own
+    return max(own // QUICK_SHARE, min(own, QUICK_FEWEST))
+
+
+def _scale_examples(items: list[pytest.Item]) -> None:
+    """Profiles ``explore`` and ``quick``: ten times, or a fifth of (at least ten), the
+    examples of every property test that sets its own count (hypothesis reads a test's
+    settings when it runs; the others inherit the profile's default)."""
     done = set()                        # (a parametrized test's items share one function)
     for item in items:
         test = getattr(getattr(item, "obj", None), "__func__", getattr(item, "obj", None))
@@ -132,15 +166,15 @@ def _explore_more(items: list[pytest.Item]) -> None:
         done.add(id(test))
         if own.max_examples != settings.default.max_examples:
             test._hypothesis_internal_use_settings = settings(
-                own, max_examples=EXPLORE_FACTOR * own.max_examples)
+                own, max_examples=_examples(own.max_examples))
 
 
 @pytest.hookimpl(tryfirst=True)      # before xdist's, which reads the xdist_group marks
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     """Mark ``slow`` (and ``kernel``/``browser``) every test that uses a slow fixture,
     and group the tests that share a per-scene session fixture."""
-    if PROFILE == "explore":
-        _explore_more(items)
+    if PROFILE in ("explore", "quick"):
+        _scale_examples(items)
     for item in items:
         used = set(getattr(item, "fixturenames", ()))
         scene = getattr(item, "callspec", None)
@@ -216,16 +250,19 @@ def _group(nodeid: str) -> str | None:
 def pytest_xdist_make_scheduler(config: pytest.Config, log):
     """``--dist loadgroup`` that also groups by :func:`_group` (pytest-xdist's own
     grouping renames the test ids, which pytest 9.2 no longer lets it do: its groups are
-    then silently ignored, pytest-xdist issue 1386)."""
+    then silently ignored, pytest-xdist issue 1386), and in the quick tier by module."""
     if config.getoption("dist") != "loadgroup":
         return None
     from xdist.scheduler import LoadGroupScheduling
+    # the quick tier hands out whole modules: a module fixture is then made once, not on
+    # each worker (measured: 5 s less CPU in all); the full suite spreads its long tests
+    by_module = _quick_tier(config)
 
     class SharedFixtureScheduling(LoadGroupScheduling):
         def _split_scope(self, nodeid: str) -> str:
             if "@" in nodeid:
                 return super()._split_scope(nodeid)
-            return _group(nodeid) or nodeid
+            return _group(nodeid) or (nodeid.split("::")[0] if by_module else nodeid)
 
     return SharedFixtureScheduling(config, log)
 

@@ -8,6 +8,17 @@ process (so that its peak memory is its own):
 * ``driver_s, reactions_s, kinematics_s, bodies_s``: building each table from the
   solver's arrays, and ``long_tables_s`` the three long ones together
   (``long_tables_over_solve`` their ratio to the solve);
+* ``tables_MB``: the bytes the ``driver``, ``reactions`` and ``kinematics`` tables hold
+  (a column shared by several tables, as ``position``, counted once; a column of one
+  value, 8 bytes); ``floor_s``: writing that many bytes into a fresh numpy array
+  (``np.empty`` and ``fill``, the best of three, right after the tables, in the same
+  process: the least those tables' bytes can cost); ``over_floor``: the solve and those
+  three tables over the solve and the floor, in wall time (``over_floor_cpu`` in
+  processor time, steadier on a busy machine; ``over_first_floor_cpu`` against the
+  first of the three fills, which meets fresh pages as the tables did). ``warm_*``: the
+  same solve and tables
+  again in the same process, the first ones let go (the first tables of a process fault
+  in fresh pages, the later ones reuse them);
 * ``peak_MB``: the process's peak resident memory with the solution and all four
   tables held;
 * ``csv_MB, csv_s, csv_MB_per_s``: writing the four tables as CSV (17 significant
@@ -49,6 +60,7 @@ import pandas as pd
 
 TABLES = ("driver", "reactions", "kinematics", "bodies")
 LONG = ("reactions", "kinematics", "bodies")
+FLOORED = ("driver", "reactions", "kinematics")     # the tables set against the write floor
 
 
 def measure_tables(n: int, out: str) -> dict:
@@ -58,16 +70,14 @@ def measure_tables(n: int, out: str) -> dict:
     from ..results.output import parquet_available, write_csv, write_parquet
     from .accuracy import fourbar_scene
     row: dict = {"positions": n}
-    t = time.perf_counter()
-    sol = solve(fourbar_scene(n))
-    row["solve_s"] = time.perf_counter() - t
+    scene = fourbar_scene(n)
+    sol = _timed(row, "solve", lambda: solve(scene))
     for name in TABLES:
-        t = time.perf_counter()
-        getattr(sol, name)
-        row[f"{name}_s"] = time.perf_counter() - t
+        _timed(row, name, lambda name=name: getattr(sol, name))
     row["long_tables_s"] = sum(row[f"{name}_s"] for name in LONG)
     row["long_tables_over_solve"] = row["long_tables_s"] / row["solve_s"]
     row["peak_MB"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    row.update(over_floor(row, [getattr(sol, name) for name in FLOORED]))
     size = 0
     t, cpu = time.perf_counter(), time.process_time()
     for name in TABLES:
@@ -87,7 +97,63 @@ def measure_tables(n: int, out: str) -> dict:
             write_parquet(getattr(sol, name), Path(out) / f"{name}.parquet")
         row["parquet_s"] = time.perf_counter() - t
     row.update(measure_formatter(n))
+    del sol
+    warm: dict = {}
+    sol = _timed(warm, "solve", lambda: solve(scene))
+    for name in FLOORED:
+        _timed(warm, name, lambda name=name: getattr(sol, name))
+    warm.update(over_floor(warm, [getattr(sol, name) for name in FLOORED]))
+    row.update({f"warm_{k}": v for k, v in warm.items()})
     return row
+
+
+def _timed(row: dict, name: str, job):
+    """``job()``, its wall and processor time into ``row`` (``name_s``, ``name_cpu_s``)."""
+    t, cpu = time.perf_counter(), time.process_time()
+    out = job()
+    row[f"{name}_s"] = time.perf_counter() - t
+    row[f"{name}_cpu_s"] = time.process_time() - cpu
+    return out
+
+
+def held_bytes(frames: list[pd.DataFrame]) -> int:
+    """The bytes the tables' columns hold: each column's array (a categorical's codes),
+    memory that several columns share counted once, a column of one value (a view of one
+    number) as 8 bytes."""
+    spans, held = [], []        # (held: an array made here keeps its address till the end)
+    for df in frames:
+        for c in df.columns:
+            col = df[c]
+            a = col.cat.codes.to_numpy() if isinstance(col.dtype, pd.CategoricalDtype) \
+                else col.to_numpy()
+            held.append(a)
+            start = a.__array_interface__["data"][0]
+            size = a.itemsize if a.ndim and a.strides[0] == 0 else a.nbytes
+            spans.append((start, start + size))
+    total, end = 0, 0
+    for a, b in sorted(spans):           # the union of the spans
+        total += max(0, b - max(a, end))
+        end = max(end, b)
+    return total
+
+
+def over_floor(row: dict, frames: list[pd.DataFrame]) -> dict:
+    """The write floor of the tables ``frames`` (:func:`held_bytes` written into a fresh
+    array, the best of three) and the solve and those tables over the solve and it."""
+    size = held_bytes(frames)
+    wall, cpu = [], []
+    for _ in range(3):
+        t, c = time.perf_counter(), time.process_time()
+        np.empty(size // 8).fill(1.0)
+        wall.append(time.perf_counter() - t)
+        cpu.append(time.process_time() - c)
+    spent = sum(row[f"{k}_s"] for k in ("solve", *FLOORED))
+    spent_cpu = sum(row[f"{k}_cpu_s"] for k in ("solve", *FLOORED))
+    return {"tables_MB": size / 1e6, "floor_s": min(wall), "floor_cpu_s": min(cpu),
+            "over_floor": spent / (row["solve_s"] + min(wall)),
+            "over_floor_cpu": spent_cpu / (row["solve_cpu_s"] + min(cpu)),
+            "first_floor_cpu_s": cpu[0],
+            "over_first_floor_cpu": spent_cpu / (row["solve_cpu_s"] + cpu[0])}
 
 
 def measure_formatter(n: int) -> dict:

@@ -16,7 +16,17 @@ import numpy as np
 from .errors import SceneError
 from .examples import SCENES
 from .fields import MECHANISM, read_number, section
-from .scene_types import GROUND, Body, Driver, Friction, Joint, Load, MassModel, Scene
+from .scene_types import (
+    GROUND,
+    TRIG_ROWS,
+    Body,
+    Driver,
+    Friction,
+    Joint,
+    Load,
+    MassModel,
+    Scene,
+)
 from .scene_units import to_contract_units
 from .slips import emit, mechanism_slips, read_checks
 from .tomlio import (
@@ -346,7 +356,12 @@ def _driver(table: Any, bodies: dict, joints: dict, units: Units) -> Driver:
     else:
         raise SceneError("[driver]: missing required key 'speed' (rad/s or m/s) or 'speed_rpm'")
     acc = _number(t, DRIVER["acceleration"], "driver", units)
-    return Driver(body, jname, kind, speed, acc, _positions(t, units))
+    driver = Driver(body, jname, kind, speed, acc, _positions(t, units))
+    if kind == "R" and "positions" not in t and driver.positions.size <= TRIG_ROWS:
+        # a linspace as read: its cos and sin shared with the same sweep's (Driver.trig)
+        key = (driver.positions[0].hex(), driver.positions[-1].hex(), driver.positions.size)
+        object.__setattr__(driver, "sweep", key)
+    return driver
 
 
 def _positions(t: dict, units: Units) -> np.ndarray:

@@ -43,6 +43,26 @@ CONSTANTS_KEPT = 256    # distinct (value, length) pairs of constant columns hel
 # loop of solves at 2e5 rows reuses its pages (34 against 42 ms a solve measured): the
 # copies are kept to sizes where neither weighs.
 SHARE_ROWS = 65_536
+# Whether a long table's columns (:func:`table_block`) are laid on transparent huge pages,
+# as numpy lays every large array where the kernel's setting is ``madvise``: kept on.
+# Measured 2026-11-29 on the 2-core machine (THP madvise, defrag madvise), four-bar
+# at 1e6, solve + driver, reactions and kinematics tables (630 MB), processor time, three
+# rounds in each of two fresh processes per setting, alternating: on 0.50-0.71 s, off
+# 0.78-0.83 s (the reactions and kinematics tables alone 0.36-0.57 s against 0.65-0.71 s:
+# 4 kB faults on every page). In one earlier series off won the first round of a process
+# (0.95-1.04 s against 1.75-2.17 s: the same 532 faults cost 0.07-1.4 s in turn) and lost the
+# later ones; which wins depends on the machine's memory, the default stays numpy's.
+HUGE_PAGES = True
+
+
+OFFSET_EMPTY = 1e-12     # offset = M / N is left empty where |N| <= 1e-12 max|N|
+
+
+def offsets(nn: np.ndarray, mm: np.ndarray, largest: float) -> np.ndarray:
+    """The ``reactions`` table's ``offset`` = M / N of a prismatic joint's rows, empty
+    (NaN) where ``|N| <= OFFSET_EMPTY * largest`` (``largest``: max |N| over the sweep)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(np.abs(nn) > OFFSET_EMPTY * largest, mm / nn, np.nan)
 
 
 def categorical(names: list[str], n: int, block: int | None = None) -> pd.Categorical:
@@ -144,7 +164,7 @@ class TiledPositions:
         if blocks > self.most:
             return np.tile(self.positions, blocks)
         if self._buffer is None:
-            self._buffer = np.empty(self.n * self.most)
+            self._buffer = table_block(self.n * self.most)
             self._series = shared(self._buffer)
         n = self.n
         for i in range(self._filled, blocks):
@@ -209,41 +229,29 @@ class LongTable:
                 yield i, slice(s, min(s + size, self.n))
 
     def frame(self) -> pd.DataFrame:
-        """The table as a DataFrame: each float column allocated once and filled in
-        place; a column of one value on every row held as that one value
-        (:func:`constant`), the ``position`` column shared (``tiled``)."""
-        import pandas as pd
-        n, k = self.n, self.blocks
-        out: dict[str, np.ndarray] = {}
-        same: dict[str, float] = {}      # columns of one value on every row so far
+        """The table as a DataFrame, in one pass over its bytes: the float columns filled
+        in place, chunk by chunk, into one block allocated once (:class:`FloatBlock`); a
+        column of one value on every row held as that one value (:func:`constant`), the
+        ``position`` column shared (``tiled``)."""
+        fill = FloatBlock(self)
+        n = self.n
         for i, part in self.parts():
-            rows = slice(i * n + part.start, i * n + part.stop)
-            for c, v in self.chunk(i, part).items():
-                if c in self.whole:
-                    continue
-                if c not in out:
-                    if np.ndim(v) == 0 and (rows.start == 0 or _same(same[c], v)):
-                        same[c] = float(v)
-                        continue
-                    out[c] = np.empty(n * k)
-                    if c in same:
-                        out[c][:rows.start] = same.pop(c)
-                out[c][rows] = v
+            fill.put(i, slice(i * n + part.start, i * n + part.stop), self.chunk(i, part))
+        return self.frame_of(fill)
+
+    def frame_of(self, fill: FloatBlock) -> pd.DataFrame:
+        """The DataFrame of the float columns ``fill`` holds (every row written), with
+        the ``position`` and name columns and the ``whole`` columns."""
+        import pandas as pd
+        k = self.blocks
         cols: dict[str, object] = {
             "position": self.tiled.column(k) if self.tiled is not None
             else np.tile(np.asarray(self.positions, dtype=float), k)}
-        cols.update({c: categorical(names, n) for c, names in self.labels.items()})
+        cols.update({c: categorical(names, self.n) for c, names in self.labels.items()})
+        filled = fill.columns()
         for c in self.floats:
-            if c in self.whole:
-                cols[c] = self.whole[c]()
-            elif c in out:
-                cols[c] = out[c]
-            elif c in same:
-                cols[c] = constant(same[c], n * k)
-            else:                                   # no rows
-                cols[c] = np.empty(0)
+            cols[c] = self.whole[c]() if c in self.whole else filled[c]
         return pd.DataFrame(cols, copy=False)
-
 
     def block_frame(self, i: int) -> pd.DataFrame:
         """Block ``i`` of the table over all its positions, as a DataFrame with the
@@ -257,6 +265,89 @@ class LongTable:
         cols.update({c: np.array(np.broadcast_to(np.asarray(values[c], dtype=float), (n,)))
                      for c in self.floats})
         return pd.DataFrame(cols, copy=False)
+
+
+def table_block(shape: int | tuple[int, ...]) -> np.ndarray:
+    """An uninitialised float array for a table's columns, asked of the kernel in pages of
+    4 kB unless :data:`HUGE_PAGES` (numpy asks for transparent huge pages on large arrays;
+    that choice is numpy's process-wide switch, turned off here for this one allocation
+    and put back)."""
+    switch = _huge_page_switch()
+    if HUGE_PAGES or switch is None:
+        return np.empty(shape)
+    was = switch(False)
+    try:
+        return np.empty(shape)
+    finally:
+        switch(was)
+
+
+def _huge_page_switch():
+    """numpy's ``_set_madvise_hugepage`` (private: None where it is missing)."""
+    try:
+        from numpy._core import multiarray
+    except ImportError:                                     # numpy < 2
+        from numpy.core import multiarray
+    return getattr(multiarray, "_set_madvise_hugepage", None)
+
+
+class FloatBlock:
+    """The float columns of a :class:`LongTable` (those not given ``whole``), written in
+    place chunk by chunk, in any order of chunks, each row once.
+
+    The columns are the rows of one 2-D array, allocated at the first chunk that is not
+    one value (a single allocation; rows of a column that stays one value are never
+    touched, so they take no memory). A column that is the same number on every row
+    written so far is kept as that number and becomes :func:`constant` (8 bytes); when
+    another value comes, the rows written as the number are filled with it first.
+    """
+
+    def __init__(self, table: LongTable):
+        self.size = table.n * table.blocks
+        self.names = [c for c in table.floats if c not in table.whole]
+        self.block: np.ndarray | None = None
+        self.rows: dict[str, np.ndarray] = {}       # columns written as arrays
+        self.same: dict[str, float] = {}            # columns of one value so far
+        self.wrote: dict[str, list[slice]] = {}     # ... and the rows written with it
+
+    def put(self, i: int, rows: slice, values: dict) -> None:
+        """``values`` (column -> array or number, as :attr:`LongTable.chunk` gives them)
+        into the rows ``rows`` of the whole table (``i``: the block, for the caller)."""
+        for c in self.names:
+            v = values[c]
+            out = self.rows.get(c)
+            if out is None:
+                if np.ndim(v) == 0:
+                    if c not in self.same:
+                        self.same[c], self.wrote[c] = float(v), [rows]
+                        continue
+                    if _same(self.same[c], v):
+                        self.wrote[c].append(rows)
+                        continue
+                out = self._column(c)
+            out[rows] = v
+
+    def _column(self, c: str) -> np.ndarray:
+        """Column ``c`` as an array, the rows written as one value filled with it."""
+        if self.block is None:
+            self.block = table_block((len(self.names), self.size))
+        out = self.rows[c] = self.block[self.names.index(c)]
+        value = self.same.pop(c, None)
+        for rows in self.wrote.pop(c, ()):
+            out[rows] = value
+        return out
+
+    def columns(self) -> dict[str, object]:
+        """Every column: an array, a :func:`constant`, or empty (a table of no rows)."""
+        out: dict[str, object] = {}
+        for c in self.names:
+            if c in self.rows:
+                out[c] = self.rows[c]
+            elif c in self.same:
+                out[c] = constant(self.same[c], self.size)
+            else:
+                out[c] = np.empty(0)
+        return out
 
 
 # -- short tables: columns of their own, laid into a DataFrame -----------------------

@@ -29,13 +29,10 @@ from ..solver.reactions import DriverReaction, JointReaction
 from ..solver.solved import DEFERRED, Deferred, Solved, drive_values
 from ..solver.structure import Structure
 from . import longtable as tables
-from .longtable import LongTable, TiledPositions, shared
+from .longtable import LongTable, TiledPositions, offsets, shared
 
 if TYPE_CHECKING:
     import pandas as pd
-
-OFFSET_EMPTY = 1e-12     # offset = M / N is left empty where |N| <= 1e-12 max|N|
-
 
 @dataclass
 class Solution:
@@ -225,7 +222,7 @@ class Solution:
         """``position, joint, on, by, Fx, Fy, F, N, M, offset``; on revolute rows N and M
         are 0 (a pin carries no couple) and offset is empty. ``joint``, ``on`` and ``by``
         are categorical; one block of rows per joint."""
-        return self.long_table("reactions").frame()
+        return self._long_frame("reactions")
 
     def _points(self):
         for name, body in self.scene.bodies.items():
@@ -237,7 +234,15 @@ class Solution:
     def kinematics(self) -> pd.DataFrame:
         """``position, body, point, x, y, vx, vy, ax, ay`` for every named point and cog
         (``body`` and ``point`` categorical), one block of rows per point."""
-        return self.long_table("kinematics").frame()
+        return self._long_frame("kinematics")
+
+    def _long_frame(self, name: str) -> pd.DataFrame:
+        """A long table as a DataFrame: of a lean long sweep, built while it is solved
+        again block by block (:mod:`kinetostatics.results.onepass`), else from the
+        solver's arrays (:meth:`LongTable.frame`)."""
+        from .onepass import lean_frame
+        frame = lean_frame(self, name)
+        return self.long_table(name).frame() if frame is None else frame
 
     @cached_property
     def bodies(self) -> pd.DataFrame:
@@ -281,9 +286,7 @@ class Solution:
                 largest[i] = np.abs(nn).max() if n else 0.0
             nn = nn[part]
             mm = np.broadcast_to(np.asarray(r.M, dtype=float), (n,))[part]
-            with np.errstate(divide="ignore", invalid="ignore"):
-                off = np.where(np.abs(nn) > OFFSET_EMPTY * largest[i], mm / nn, np.nan)
-            return {**out, "N": nn, "M": mm, "offset": off}
+            return {**out, "N": nn, "M": mm, "offset": offsets(nn, mm, largest[i])}
 
         return LongTable(self.positions,
                          {"joint": joints,

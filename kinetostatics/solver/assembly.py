@@ -71,22 +71,27 @@ def refuse_coincident_pivots(scene: Scene, dyad: Dyad, reach: np.ndarray) -> Non
             "the dyad's angles are undefined there: leave those positions out of the sweep")
 
 
-def first_row_assembly(scene: Scene, dyad: Dyad, solver: DyadSolver, pr, two: dict) -> int | None:
+def first_row_assembly(scene: Scene, dyad: Dyad, solver: DyadSolver, pr, two: dict,
+                       margin: float = 1e-12) -> int | None:
     """:func:`choose_branch` from ``two`` (per k, the first row's (cos, sin) and
     displacement of each body, :meth:`DyadSolver.positions`); None where the pivots
-    coincide there (refused by :func:`choose_branch`)."""
+    coincide there (refused by :func:`choose_branch`). ``margin``: as for
+    :func:`decide_assembly`."""
     if solver.reach is not None and not _at(solver.reach, 0) / scene.size > SINGULAR_FAIL:
         return None
     # (the parameters' first row, as the closure's numbers are: the fields an origin reads)
     pr = [Param(p.kind, p.known, p.local, _first(p.px), _first(p.py), ux=_first(p.ux),
                 uy=_first(p.uy), bx=_first(p.bx), by=_first(p.by)) for p in pr]
     return decide_assembly(scene, dyad, {k: [[*cs[i], *body_origin(pr[i], cs[i], ss[i])]
-                                             for i in range(2)] for k, (cs, ss) in two.items()})
+                                             for i in range(2)] for k, (cs, ss) in two.items()},
+                           margin)
 
 
-def choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver, pr) -> int:
+def choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver, pr,
+                  margin: float = 1e-12) -> int:
     """The assembly k = +-1 whose hinted points lie closest at the first row (both
-    assemblies closed at once: the first row twice, with k = 1 and k = -1)."""
+    assemblies closed at once: the first row twice, with k = 1 and k = -1); ``margin``:
+    as for :func:`decide_assembly`."""
     two = np.zeros(2, dtype=np.intp)
     pr = (take_rows(pr[0], two), take_rows(pr[1], two))
     cs, ss, gap = solver.positions(pr, np.array([1.0, -1.0]))
@@ -102,13 +107,14 @@ def choose_branch(scene: Scene, dyad: Dyad, solver: DyadSolver, pr) -> int:
     # each body's cos, sin and origin in either assembly, as floats (read once)
     return decide_assembly(scene, dyad, {
         k: [[_at(v, r) for v in (*cs[i], *org[i])] for i in range(2)]
-        for k, r in ((1, 0), (-1, 1))})
+        for k, r in ((1, 0), (-1, 1))}, margin)
 
 
-def decide_assembly(scene: Scene, dyad: Dyad, frames: dict) -> int:
+def decide_assembly(scene: Scene, dyad: Dyad, frames: dict, margin: float = 1e-12) -> int:
     """The assembly whose hinted points lie closest, from ``frames[k]``: each body's cos,
     sin and origin at the first row (floats) in assembly k; refused when no hint
-    settles it."""
+    settles it: the two sums of squared distances differ by ``margin`` of the
+    mechanism's size squared or less."""
 
     def where(k, b, loc):
         c, s, ox, oy = frames[k][dyad.bodies.index(b)]
@@ -119,7 +125,7 @@ def decide_assembly(scene: Scene, dyad: Dyad, frames: dict) -> int:
     hints = hint_points(scene, dyad)
     if hints:
         dist = {k: sum(off2(where(k, b, loc), t) for _, b, loc, t in hints) for k in (1, -1)}
-        if abs(dist[1] - dist[-1]) > 1e-12 * scene.size ** 2:
+        if abs(dist[1] - dist[-1]) > margin * scene.size ** 2:
             return 1 if dist[1] < dist[-1] else -1
     # no hint settles it: name the point that tells the two assemblies apart best
     best = None

@@ -132,7 +132,9 @@ class DyadSolver:
                 if outer.kind != "R":
                     continue
                 ax, ay = self.b[i].local(outer.point_on(dyad.bodies[i]))
-                if np.any(_length(qx - ax, qy - ay) <= 1e-12 * scene.size):
+                link, least = _length(qx - ax, qy - ay), 1e-12 * scene.size
+                if (link <= least if type(link) is float and type(least) is float
+                        else np.any(link <= least)):
                     raise AssemblyError(
                         f"body {dyad.bodies[i]!r}: its joint points for {outer.name!r} and "
                         f"{inner.name!r} coincide; a dyad link needs a length")
@@ -208,7 +210,7 @@ class DyadSolver:
             r1s, r2s = a1[0] * a1[0] + a1[1] * a1[1], a2[0] * a2[0] + a2[1] * a2[1]
             ex, ey = A.sub(p2.px, p1.px), A.sub(p2.py, p1.py)
             d2 = ex * ex + ey * ey
-            self.reach = np.sqrt(d2)
+            self.reach = _root(d2)
             inv = 1.0 / self.reach
             x = (d2 + (r1s - r2s)) * (0.5 * inv)
             h2 = r1s - x * x
@@ -219,7 +221,7 @@ class DyadSolver:
                 r1, r2 = np.sqrt(r1s), np.sqrt(r2s)
                 # (coincident pivots, d = 0: the circles are concentric, |r1 - r2| apart)
                 gap = np.maximum(d - (r1 + r2), abs(r1 - r2) - d)
-            root = np.sqrt(np.maximum(h2, 0.0))
+            root = _root(h2) if type(h2) is float else np.sqrt(np.maximum(h2, 0.0))
 
             def close(k, ex, ey, inv, root, xi, p1x, p1y, p2x, p2y):
                 kh = (k * inv) * root
@@ -251,7 +253,7 @@ class DyadSolver:
         gap = None
         if _least(disc) < 0.0:
             gap = np.abs(A.sub(A.mul(pt.ux, wy), A.mul(pt.uy, wx))) - np.sqrt(rs)
-        root = np.sqrt(np.maximum(disc, 0.0))
+        root = _root(disc) if type(disc) is float else np.sqrt(np.maximum(disc, 0.0))
 
         def close(k, root, b, wx, wy, ux, uy, c, sn):
             s = k * root - b
@@ -328,12 +330,25 @@ def _length(x, y):
 def _least(x) -> float:
     """The smallest value of an array (a number as it is): the ndarray method, without
     np.min's dispatch."""
+    if type(x) is float:
+        return x
     return x.min() if type(x) is np.ndarray else np.min(x)
 
 
 def _all_finite(x) -> bool:
     """No NaN and no infinity in x (an array or a number)."""
+    if type(x) is float:
+        return math.isfinite(x)
     return bool(np.isfinite(x).all()) if type(x) is np.ndarray else bool(np.all(np.isfinite(x)))
+
+
+def _root(x):
+    """np.sqrt(x); a positive Python float's by math.sqrt (the same double: both are
+    correctly rounded), a Python float (the first row of a sweep in numbers,
+    :func:`~kinetostatics.solver.kinematics.choose_assembly`, without numpy's scalars)."""
+    if type(x) is float and x > 0.0:
+        return math.sqrt(x)
+    return np.sqrt(x)
 
 
 def body_origin(pr: Param, cs, s):

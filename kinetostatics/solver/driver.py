@@ -71,8 +71,11 @@ class BodyMotion:
         return self.acc_arm(A.sub(x, self.ox), A.sub(y, self.oy))
 
     def take(self, index) -> BodyMotion:
-        """The motion at some rows only (scalars stay scalars)."""
+        """The motion at some rows only (scalars stay scalars); one row (an int
+        ``index``) as Python floats."""
         def t(a):
+            if type(index) is int:
+                return float(a[index]) if np.ndim(a) else float(a)
             return a[index] if np.ndim(a) else a
         th = None if self._theta is None else t(self._theta)
         return BodyMotion(th, *(t(getattr(self, f)) for f in self.FIELDS))
@@ -95,7 +98,7 @@ def driver_motion(scene: Scene) -> BodyMotion:
         trig = scene.__dict__.get("driver_trig")    # (a stack's run: worked out per sweep)
         th, c, s = trig if trig is not None else (drv.angles, None, None)
         if trig is None:
-            c, s = np.cos(th), np.sin(th)
+            c, s = drv.trig()
         px, py = scene.ground[joint.point_on(GROUND)]
         rax, ray = A.rotate(c, s, *body.local(joint.point_on(drv.body)))   # o = P - R a
         w2 = w * w
@@ -103,8 +106,32 @@ def driver_motion(scene: Scene) -> BodyMotion:
                           A.mul(w, ray), A.mul(-w, rax),
                           A.add(A.mul(eps, ray), A.mul(w2, rax)),
                           A.add(A.mul(-eps, rax), A.mul(w2, ray)))
+    return _sliding(scene, drv.positions, w, eps)
+
+
+def driver_at_first_row(scene: Scene) -> BodyMotion:
+    """The driving element at the scene's first row, in Python numbers (the doubles of
+    :func:`driver_motion`'s first row: the same operations): its angle and origin; a
+    crank's speeds left at zero (a first row's assembly reads positions alone)."""
+    drv = scene.driver
+    if drv.kind != "R":
+        return _sliding(scene, float(drv.positions[0]), float(drv.speed),
+                        float(drv.acceleration))
+    joint = scene.joints[drv.joint]
+    th = drv.angles[:1]             # (cos and sin of one row, as of a one-row sweep)
+    c, s = float(np.cos(th)[0]), float(np.sin(th)[0])
+    px, py = scene.ground[joint.point_on(GROUND)]
+    rax, ray = A.rotate(c, s, *scene.bodies[drv.body].local(joint.point_on(drv.body)))
+    return BodyMotion(float(th[0]), c, s, 0.0, 0.0, A.sub(float(px), rax),
+                      A.sub(float(py), ray), 0.0, 0.0, 0.0, 0.0)
+
+
+def _sliding(scene: Scene, pos, w: float, eps: float) -> BodyMotion:
+    """A sliding driver at positions ``pos`` (an array, or a number)."""
+    drv = scene.driver
+    joint = scene.joints[drv.joint]
+    body = scene.bodies[drv.body]
     beta = joint.beta
-    pos = drv.positions
     if joint.guide == GROUND:
         th = float(beta)
         ux, uy = float(np.cos(beta)), float(np.sin(beta))

@@ -54,7 +54,7 @@ from . import blocks
 from .blocks import LeanSolved
 from .deadpoints import dead_points_stacked, kin_measure2
 from .driver import BodyMotion
-from .fast import solve_run_compiled, stack_left_alone, wanted
+from .fast import solve_run_stacked, stack_left_alone, wanted
 from .fast.geometry import not_covered
 from .footprint import columns, solve_bytes
 from .kinematics import Kinematics, solve_kinematics
@@ -71,6 +71,11 @@ from .trap import first_trapped, positions_tame
 # faulted in (about 1800 page faults a call for 1000 scenes of 361 rows, 63-85 ms against
 # 61-68 ms fault-free with 11 000-15 500 rows)
 RUN_ROWS = 12_288
+# the compiled path's runs: its kernels go over blocks of a run (compose.ROWS) whatever
+# its length, and keep of it only Me/Fe, the flags and the closeness; longer runs share
+# each run's work in Python (the scenes' geometry, the plan) among more scenes
+# (measured 2026-11-29, 1000 four-bars x 361: 47 ms a call against 59 in runs of 12 288)
+FAST_RUN_ROWS = 49_152
 CHUNK_ROWS = 1_048_576  # rows per group (one Stacker, one dead-point screen for all)
 
 
@@ -241,7 +246,6 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     counts = np.array([s.driver.positions.size for s in scenes])
     starts = np.cumsum(counts) - counts
     positions = np.concatenate([s.driver.positions for s in scenes])
-    bounds = run_bounds(starts, counts, RUN_ROWS)
     m2 = np.empty(positions.size)
     out: list[Any] = [None] * len(scenes)
     alone: list[int] = []
@@ -249,12 +253,14 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     trusty = stacker.tame() and positions_tame(positions)
     # the compiled path for the whole group when wanted (numba loaded here, once)
     compiled = not_covered(stacker.base) is None and wanted(positions.size) is not None
+    scratch: dict = {}          # (the compiled path's buffers, reused run after run)
+    bounds = run_bounds(starts, counts, FAST_RUN_ROWS if compiled else RUN_ROWS)
     for lo, hi in zip(bounds[:-1].tolist(), bounds[1:].tolist(), strict=True):
         a = int(starts[lo])
         b = int(starts[hi - 1] + counts[hi - 1])
         try:
             sol = _trapped_run(trusty, stacker, structure, ks, lo, hi, counts[lo:hi],
-                               positions[a:b], compiled, lean)
+                               positions[a:b], compiled, lean, scratch)
         except Exception:
             alone.extend(range(lo, hi))
             m2[a:b] = np.inf        # solved alone: nothing of it to probe here
@@ -327,7 +333,7 @@ def _trapped_run(trusty: bool, *args) -> Solved:
 
 def _solve_run(stacker: Stacker, structure, ks: np.ndarray, lo: int, hi: int,
                counts: np.ndarray, positions: np.ndarray, compiled: bool = False,
-               kept: bool = False) -> Solved:
+               kept: bool = False, scratch: dict | None = None) -> Solved:
     """The stacked arrays of scenes ``lo`` to ``hi - 1`` (``counts`` rows each, at
     ``positions``), each dyad in its scene's assembly; a run too long for the cache (a
     long sweep) in blocks, gathered (:func:`~kinetostatics.solver.blocks.solve_blocks`),
@@ -335,13 +341,14 @@ def _solve_run(stacker: Stacker, structure, ks: np.ndarray, lo: int, hi: int,
     then in one pass, each scene's maximum over its own rows). ``compiled``: on the
     compiled path (:mod:`~kinetostatics.solver.fast`) unless a kernel meets a row the
     numpy path must judge; ``kept`` there: only what the scenes' cut Solutions keep
-    (Me/Fe, the flags, the closeness to a dead centre,
-    :func:`~kinetostatics.solver.fast.solve.solve_run_compiled`)."""
-    st = replace(structure, assembly=tuple(np.repeat(k[lo:hi], counts) for k in ks))
+    (Me/Fe, the flags, the closeness to a dead centre, in the buffers of ``scratch``,
+    :func:`~kinetostatics.solver.fast.stacked.solve_run_stacked`)."""
     if compiled:
-        sol = solve_run_compiled(stacker.runs(lo, hi, counts, positions), st, kept)
+        sol = solve_run_stacked(stacker, structure, ks, lo, hi, counts, positions, kept,
+                                scratch)
         if sol is not None:
             return sol
+    st = replace(structure, assembly=tuple(np.repeat(k[lo:hi], counts) for k in ks))
     if blocks.blockable(stacker.base, positions.size):    # (not a sweep's maxima)
         owner = np.repeat(np.arange(lo, hi), counts)
 

@@ -15,6 +15,7 @@ in a :class:`~kinetostatics.results.Solution`.
 from __future__ import annotations
 
 import math
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -84,7 +85,12 @@ class Sweep:
         if budget:      # (False: the caller checks its own estimate, e.g. a streamed write)
             check_solve(sc, self.positions.size)    # the peak memory known before it is spent
         self.blocked = blockable(sc, self.positions.size)
-        self.trusty = tame(sc, self.positions) and not has_friction(sc)
+
+    @cached_property
+    def trusty(self) -> bool:
+        """Checked by the floating-point trap first: tame numbers, no joint friction (told
+        when the numpy path solves: the compiled path does not ask)."""
+        return tame(self.scene, self.positions) and not has_friction(self.scene)
 
     def solve(self) -> Solved | LeanSolved:
         """The solve: trapped first where the numbers are tame, else (or if the trap was

@@ -177,6 +177,18 @@ class Stacker:
             sc.__dict__["driver_trig"] = self._trig(lo, hi, positions)
         return sc
 
+    def table(self, lo: int, hi: int, counts: np.ndarray, positions: np.ndarray) -> Scene:
+        """The run of :meth:`runs` with each number that differs from scene to scene an
+        array over the scenes ``lo`` to ``hi - 1`` (not over their rows): what the
+        compiled path's kernels read, a column per scene, with each row's scene
+        (:func:`~kinetostatics.solver.fast.stacked.solve_run_stacked`). Its driver, its
+        rows and their cos and sin are the run's."""
+        sc = self._build(lambda x: x[lo:hi], positions)
+        sc.__dict__["segments"] = counts
+        if sc.driver.kind == "R":
+            sc.__dict__["driver_trig"] = self._trig(lo, hi, positions)
+        return sc
+
     def _trig(self, lo: int, hi: int, positions: np.ndarray
               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """A crank's angles, their cos and sin over the run of scenes ``lo`` to

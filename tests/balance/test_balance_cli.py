@@ -177,8 +177,11 @@ def _html_check(text: str) -> list[bytes]:
             for b in re.findall(r'src="data:image/png;base64,([^"]+)"', text)]
 
 
-@pytest.mark.parametrize("name, n_pictures", [("influence_two_plane", 1), ("four_run", 2),
-                                              ("rotor_two_plane", 1), ("iso_tolerance", 1)])
+# the quick tier draws one report (iso_tolerance), the slow tier every kind (0.7-2.5 s each)
+@pytest.mark.parametrize("name, n_pictures", [
+    pytest.param("influence_two_plane", 1, marks=pytest.mark.slow),
+    pytest.param("four_run", 2, marks=pytest.mark.slow),
+    pytest.param("rotor_two_plane", 1, marks=pytest.mark.slow), ("iso_tolerance", 1)])
 def test_html_report(tmp_path, name: str, n_pictures: int) -> None:
     import io
 
@@ -199,6 +202,7 @@ def test_html_report(tmp_path, name: str, n_pictures: int) -> None:
         assert "ISO 21940-11 check: the residual unbalance is within tolerance" in text
 
 
+@pytest.mark.slow     # a PDF report through the command line (test_html_report keeps the smoke)
 def test_html_report_lists_the_warnings_and_pdf(tmp_path) -> None:
     f = tmp_path / "ill.toml"
     f.write_text(ILL)

@@ -30,7 +30,8 @@ def rotor(name: str):
     return balance.solve_results(balance.example_path(name))["rotor"]
 
 
-@pytest.mark.parametrize("name", ["rotor_two_plane", "rotor_static"])
+@pytest.mark.parametrize("name", ["rotor_two_plane",
+                                  pytest.param("rotor_static", marks=pytest.mark.slow)])
 def test_polygons(name: str, tmp_path) -> None:
     res = rotor(name)
     ax = plot.plot_unbalance_polygon(res)

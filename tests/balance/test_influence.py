@@ -133,6 +133,7 @@ def test_errors() -> None:
         influence_single_plane((-170.0, 112.0), (235.0, 94.0), 1.0)
 
 
+@pytest.mark.slow     # Monte-Carlo: 100 perturbed readings
 def test_uncertainty_of_the_published_case() -> None:
     dA = 2.0
     r = influence_two_plane(**PUBLISHED, dA=dA)

@@ -362,6 +362,7 @@ def labelled(ax: Axes) -> None:
     assert "(" in ax.get_xlabel() and "(" in ax.get_ylabel()
 
 
+@pytest.mark.slow     # every picture of a balancing (1.5 s)
 def test_plots(tmp_path):
     res = solve_mechanism_balancing(raw("slider_crank", method="counter-rotating",
                                         counterweights=CRANK_CW))

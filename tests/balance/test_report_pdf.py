@@ -67,6 +67,7 @@ def _results(name):
     return r, results_to_dict(r)
 
 
+@pytest.mark.slow     # a whole PDF (test_pdf_is_an_a4_document... keeps one in the quick tier)
 def test_residual_at_rounding_and_micrometres(tmp_path, pages):
     report_scene(SCENES.resolve("influence_two_plane"), tmp_path / "r.pdf")
     words = " ".join(t.get_text() for _, texts, _ in pages for t in texts)
@@ -75,6 +76,7 @@ def test_residual_at_rounding_and_micrometres(tmp_path, pages):
     assert "e-14" not in words
 
 
+@pytest.mark.slow     # every picture of a report drawn (1.3 s of CPU)
 def test_legends_carry_units():
     figs = report_figures(*_results("influence_two_plane"))
     labels = [t.get_text() for _, fig in figs for lg in fig.findobj(Legend)
@@ -90,6 +92,7 @@ def test_legends_carry_units():
                               for s in amplitudes), labels
 
 
+@pytest.mark.slow     # a whole PDF (test_pdf_is_an_a4_document... keeps one in the quick tier)
 @pytest.mark.parametrize("name", scenes("four_run", "influence_two_plane", "rotor_two_plane",
                                         "resonance_example"))
 def test_pictures_heading_kept_with_its_picture_and_panels_at_full_width(tmp_path, pages,

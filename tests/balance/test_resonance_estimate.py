@@ -75,11 +75,16 @@ def independent_fit(A, marks, sigma):
     return best
 
 
+# (the quick tier checks the three runs; each case of four or five, 15 multi-start fits
+# by scipy, costs 2.5-5 s of CPU: slow)
 @pytest.mark.parametrize(("ratio", "noise", "marks"), [
-    (10.0, 0.005, (0.0, 90.0, 180.0, 270.0)),     # a small trial mass
-    (1.0, 0.01, (0.0, 0.1, 180.0)),               # nearly coincident marks
+    pytest.param(10.0, 0.005, (0.0, 90.0, 180.0, 270.0),     # a small trial mass
+                 marks=pytest.mark.slow),
+    pytest.param(1.0, 0.01, (0.0, 0.1, 180.0),               # nearly coincident marks
+                 marks=pytest.mark.slow),
     (2.0, 0.01, (0.0, 180.0)),                    # three runs: exact fit or on the mark line
-    (1.0, 0.03, (0.0, 120.0, 240.0))])            # four runs, readings near zero
+    pytest.param(1.0, 0.03, (0.0, 120.0, 240.0),             # four runs, readings near zero
+                 marks=pytest.mark.slow)])
 def test_the_estimate_is_the_maximum_likelihood(ratio, noise, marks):
     theta, A = draws(ratio, noise, marks, 15, seed=11)
     fit = fit_amplitudes(A, np.array(marks), noise * A, Q95)

@@ -47,6 +47,7 @@ def _one_error_line(r) -> None:
     assert "internal error" not in r.stderr and "Traceback" not in r.stderr
 
 
+@pytest.mark.slow     # whole runs written and broken on purpose (1.6 s)
 @pytest.mark.skipif(not hasattr(os, "fork") or sys.platform == "darwin",
                     reason="RLIMIT_FSIZE as a full disk: Linux")
 def test_a_full_disk_leaves_earlier_results_whole(tmp_path: Path) -> None:
@@ -72,6 +73,7 @@ def test_a_full_disk_leaves_earlier_results_whole(tmp_path: Path) -> None:
     assert not (tmp_path / "cam").exists()
 
 
+@pytest.mark.slow     # whole runs written and broken on purpose (1.3 s)
 def test_a_failed_run_marks_the_earlier_results(tmp_path: Path) -> None:
     """Issue #30 item 8: a bad scene into a folder of earlier results leaves their tables
     with FAILED.txt beside them and no summary.json looking current; the next good run

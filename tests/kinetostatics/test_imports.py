@@ -42,10 +42,11 @@ def test_solve_out_writes_csv_without_pandas(tmp_path) -> None:
     assert (tmp_path / "dyads.csv").stat().st_size > 0
 
 
+# (a new interpreter each, 0.3-0.6 s: one in the quick tier)
 @pytest.mark.parametrize(("old", "new"), [
-    ("output", "results.output"), ("csvtext", "results.csvtext"),
-    ("longtable", "results.longtable"), ("bench_speed", "bench.speed"),
-    ("bench_tables", "bench.tables")])
+    ("output", "results.output"), *(pytest.param(*pair, marks=pytest.mark.slow) for pair in (
+        ("csvtext", "results.csvtext"), ("longtable", "results.longtable"),
+        ("bench_speed", "bench.speed"), ("bench_tables", "bench.tables")))])
 def test_moved_modules_answer_to_their_old_names_with_a_warning(old: str, new: str) -> None:
     """The modules moved into ``results/`` and ``bench/`` keep their old names for a
     release: the same module object, with a DeprecationWarning naming the new one."""

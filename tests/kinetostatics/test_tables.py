@@ -170,6 +170,14 @@ def test_table_benchmark_reports_its_fields(tmp_path, monkeypatch):
     assert all(np.isfinite(row[k]) and row[k] > 0 for k in times), row
     assert row["long_tables_s"] == pytest.approx(
         row["reactions_s"] + row["kinematics_s"] + row["bodies_s"])
+    for pre in ("", "warm_"):           # the solve and three tables over solve + floor
+        spent = sum(row[f"{pre}{k}_s"] for k in ("solve", "driver", "reactions", "kinematics"))
+        assert row[f"{pre}over_floor"] == pytest.approx(
+            spent / (row[f"{pre}solve_s"] + row[f"{pre}floor_s"]))
+        assert row[f"{pre}over_floor_cpu"] > 0 and row[f"{pre}over_first_floor_cpu"] > 0
+    # 648 bytes a row: kinematics 9 points x 6 floats, their position and names; reactions
+    # Fx, Fy, F of 4 pins and names (N, M and offset a view of one number); the driver
+    assert row["tables_MB"] == pytest.approx(648 * 2_000 / 1e6, abs=1e-4)
     monkeypatch.setitem(__import__("sys").modules, "pyarrow.parquet", None)
     assert np.isnan(measure_tables(1_000, str(tmp_path))["parquet_s"])
     monkeypatch.undo()
@@ -179,6 +187,28 @@ def test_table_benchmark_reports_its_fields(tmp_path, monkeypatch):
     monkeypatch.setattr(output, "write_parquet", broken)
     with pytest.raises(ValueError, match="a bug in the writer"):
         measure_tables(1_000, str(tmp_path))
+
+
+def test_held_bytes_count_shared_memory_once():
+    """The write floor's byte count: a column shared by several tables (a view of one
+    array) once, a column of one value 8 bytes, a categorical its codes."""
+    from kinetostatics.bench.tables import held_bytes
+    base = np.arange(100.0)
+    one = pd.DataFrame({"a": base, "b": np.broadcast_to(np.float64(2.0), (100,))},
+                       copy=False)
+    two = pd.DataFrame({"a": base[:50], "c": pd.Categorical(["x", "y"] * 25)}, copy=False)
+    assert np.shares_memory(one.a.to_numpy(), two.a.to_numpy())
+    assert held_bytes([one, two]) == 800 + 8 + 50
+    sol = ks.solve(OWN_CASES / "four_bar.toml")
+    k, r = sol.kinematics, sol.reactions
+    n = sol.positions.size
+    points, pins = len(k) // n, len(r) // n
+    assert points > pins and (r.N == 0).all()
+    # kinematics: x..ay of each point, the position held once (the reactions' a view of
+    # its first blocks), two int8 name columns; reactions: Fx, Fy, F of each pin, three
+    # int8 columns, N and M the one 0.0 (a view of it, shared), offset NaN
+    assert held_bytes([k, r]) == 8 * points * n * 7 + 2 * points * n + \
+        8 * pins * n * 3 + 3 * pins * n + 2 * 8
 
 
 # ------------------------------------------------------------------ memory

@@ -11,6 +11,7 @@ qualifies (:func:`~kinetostatics.solver.fast.choice.wanted`).
 
 from .choice import AUTO_ROWS, PATHS, path_setting, use, wanted
 from .solve import solve_compiled, solve_run_compiled, stack_left_alone
+from .stacked import solve_run_stacked
 
 __all__ = ["AUTO_ROWS", "PATHS", "path_setting", "solve_compiled", "solve_run_compiled",
-           "stack_left_alone", "use", "wanted"]
+           "solve_run_stacked", "stack_left_alone", "use", "wanted"]

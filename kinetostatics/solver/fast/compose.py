@@ -46,13 +46,23 @@ class Refused(Exception):
     the sweep is solved on the numpy path, whose message names the rows."""
 
 
-class Plan:
-    """The kernels and their geometry for one scene (or stack) and structure, each dyad
-    with its assembly ``ks`` (numbers, or arrays over a stack's rows)."""
+ONE_SCENE = np.zeros(1, dtype=np.int64)     # each row's scene, for one scene: column 0
 
-    def __init__(self, kernels, scene: Scene, structure, ks):
+
+class Plan:
+    """The kernels and their geometry for one scene (or a stack) and structure, each
+    dyad with its assembly ``ks`` (numbers, or arrays over a stack's scenes).
+
+    A stack (``owner`` given: each row's scene, counted from 0) holds each number that
+    differs from scene to scene as an array over its scenes
+    (:meth:`~kinetostatics.solver.stack.Stacker.table`): the kernels' geometry is a
+    column per scene, gathered per tile
+    (:func:`~kinetostatics.solver.fast.jitbase.tile_geometry`)."""
+
+    def __init__(self, kernels, scene: Scene, structure, ks, owner: np.ndarray | None = None):
         self.k = kernels
         self.scene, self.structure = scene, structure
+        self.own = ONE_SCENE if owner is None else owner
         drv = scene.driver
         self.crank = drv.kind == "R"
         self.speed, self.accel = float(drv.speed), float(drv.acceleration)
@@ -107,17 +117,26 @@ class Plan:
     def run(self, x: np.ndarray, lo: int, hi: int, off: int, buf: dict) -> None:
         """Rows ``lo`` to ``hi`` (``x``: the driver's angles in rad, or its positions),
         into ``buf`` at ``i - off``; raises :class:`Refused`."""
-        k, m, a = self.k, buf["m"], buf["a"]
+        k, m, a, own = self.k, buf["m"], buf["a"], self.own
         dname = self.scene.driver.body
         g, gs = self.driver
         if self.crank:      # (cos and sin in a pass of their own: numpy's, vectorised)
-            np.cos(x[lo:hi], out=m[dname][L.C, lo - off:hi - off])
-            np.sin(x[lo:hi], out=m[dname][L.S, lo - off:hi - off])
+            trig = self.scene.__dict__.get("driver_trig")   # (a stack's: per sweep)
+            if trig is None and self.scene.driver.sweep is not None:
+                # a sweep read from start, stop and count: its cos and sin shared with the
+                # same sweep's earlier scenes (Driver.trig; x is the driver's angles)
+                trig = (None, *self.scene.driver.trig())
+            if trig is None:
+                np.cos(x[lo:hi], out=m[dname][L.C, lo - off:hi - off])
+                np.sin(x[lo:hi], out=m[dname][L.S, lo - off:hi - off])
+            else:
+                m[dname][L.C, lo - off:hi - off] = trig[1][lo:hi]
+                m[dname][L.S, lo - off:hi - off] = trig[2][lo:hi]
         motion = k.crank_motion if self.crank else k.slider_motion
-        bad = motion(x, lo, hi, off, g, gs, self.speed, self.accel, m[dname])
+        bad = motion(x, lo, hi, off, g, gs, own, self.speed, self.accel, m[dname])
         for (g, gs, dyad), d in zip(self.dyads, buf["d"], strict=True):
             (b1, b2), (j1, j2) = dyad.bodies, dyad.outer
-            args = (lo, hi, off, g, gs, m[j1.other(b1)], m[j2.other(b2)], m[b1], m[b2], d)
+            args = (lo, hi, off, g, gs, own, m[j1.other(b1)], m[j2.other(b2)], m[b1], m[b2], d)
             kernel = k.MOTION[dyad.kind]
             if dyad.kind == "RTR":      # the guide's angle, then its cos and sin
                 kernel(0, *args)
@@ -126,20 +145,20 @@ class Plan:
                 np.sin(th, out=d[L.C1Y, lo - off:hi - off])
             bad += kernel(1, *args)
         for b, (g, gs, npoint) in self.loads.items():
-            bad += k.body_loads(lo, hi, off, g, gs, npoint, m[b], a[b])
+            bad += k.body_loads(lo, hi, off, g, gs, own, npoint, m[b], a[b])
         buf["u"][lo - off:hi - off] = False
         for b, (g, gs, floors) in self.swept.items():
-            bad += k.swept_loads(lo, hi, off, g, gs, len(floors), m[b], a[b], buf["u"],
+            bad += k.swept_loads(lo, hi, off, g, gs, own, len(floors), m[b], a[b], buf["u"],
                                  self.stats[b])
         for (g, gs, dyad), d, r in zip(self.dyads[::-1], buf["d"][::-1],
                                              buf["r"][::-1], strict=True):
             (b1, b2), (j1, j2) = dyad.bodies, dyad.outer
             k1, k2 = j1.other(b1), j2.other(b2)
-            bad += k.REACTIONS[dyad.kind](lo, hi, off, g, gs, m[b1], m[b2], m[k1], m[k2], d,
-                                    a[b1], a[b2], a[k1], a[k2], r)
+            bad += k.REACTIONS[dyad.kind](lo, hi, off, g, gs, own, m[b1], m[b2], m[k1], m[k2],
+                                          d, a[b1], a[b2], a[k1], a[k2], r)
         g, gs = self.driver
         react = k.crank_reaction if self.crank else k.slider_reaction
-        bad += react(lo, hi, off, g, gs, m[dname], a[dname], buf["drv"])
+        bad += react(lo, hi, off, g, gs, own, m[dname], a[dname], buf["drv"])
         if bad:
             raise Refused(bad)
 
@@ -150,16 +169,18 @@ def driver_input(scene: Scene) -> np.ndarray:
     return drv.angles if drv.kind == "R" else np.asarray(drv.positions, dtype=float)
 
 
-def solve_full(plan: Plan, positions: np.ndarray, block: int = ROWS) -> Solved:
+def solve_full(plan: Plan, positions: np.ndarray, block: int = ROWS, rows=None) -> Solved:
     """The whole sweep's Solved (every table's arrays), solved block by block into
-    arrays over the whole sweep."""
+    arrays over the whole sweep. ``rows``: a stack's (scene, structure) with each
+    number over its rows (the plan's hold them per scene), for the Solved."""
     n = positions.size
     x = driver_input(plan.scene)
     buf = plan.buffers(n)
     for lo in range(0, n, block):
         plan.run(x, lo, min(lo + block, n), 0, buf)
     plan.check_swept()
-    return _solution(plan, positions, _cut(buf, n))
+    scene, structure = rows or (plan.scene, plan.structure)
+    return _solution(plan, scene, structure, positions, _cut(buf, n))
 
 
 def _cut(buf: dict, n: int) -> dict:
@@ -170,12 +191,20 @@ def _cut(buf: dict, n: int) -> dict:
             "drv": buf["drv"][:, :n], "u": buf["u"]}
 
 
-def solve_lean(plan: Plan, positions: np.ndarray, block: int = ROWS) -> Kept:
+def solve_lean(plan: Plan, positions: np.ndarray, block: int = ROWS,
+               scratch: dict | None = None) -> Kept:
     """A long sweep's :class:`~kinetostatics.solver.blocks.Kept`: Me/Fe and each dyad's
-    closeness to a dead centre, the rest of each block in scratch arrays."""
+    closeness to a dead centre, the rest of each block in scratch arrays (``scratch``:
+    a dict that keeps them for the next sweep of the same scenes' structure: the runs
+    of a stack, each fresh array some 3 MB of pages faulted in)."""
     n = positions.size
     x = driver_input(plan.scene)
-    buf = plan.buffers(min(block, n))
+    width = min(block, n)
+    buf = None if scratch is None else scratch.get(width)
+    if buf is None:
+        buf = plan.buffers(width)
+        if scratch is not None:
+            scratch[width] = buf
     drive = np.empty(n)
     undefined = np.zeros(n, dtype=bool)
     close = [np.empty(n) for _ in plan.dyads]
@@ -203,16 +232,17 @@ def _param(scene: Scene, dyad, i: int, known: BodyMotion, m: np.ndarray, d: np.n
                  by=d[b + 3])
 
 
-def _solution(plan: Plan, positions: np.ndarray, buf: dict) -> Solved:
-    """The Solved over the rows of ``buf`` (arrays over the whole sweep), every array a
-    view of the kernels' output."""
-    scene, n = plan.scene, positions.size
+def _solution(plan: Plan, scene: Scene, structure, positions: np.ndarray, buf: dict
+              ) -> Solved:
+    """The Solved of ``scene`` and ``structure`` over the rows of ``buf`` (arrays over
+    the whole sweep), every array a view of the kernels' output."""
+    n = positions.size
     m = buf["m"]
     drv = scene.driver
     bodies = {GROUND: ground_motion(), drv.body: BodyMotion(drv.angles if drv.kind == "R"
                                                             else None, *m[drv.body])}
     dyads = []
-    for (g, gs, dyad), d in zip(plan.dyads, buf["d"], strict=True):
+    for i_d, ((g, gs, dyad), d) in enumerate(zip(plan.dyads, buf["d"], strict=True)):
         for b in dyad.bodies:
             bodies[b] = BodyMotion(None, *m[b])
         pr = tuple(_param(scene, dyad, i, bodies[dyad.outer[i].other(dyad.bodies[i])],
@@ -221,7 +251,7 @@ def _solution(plan: Plan, positions: np.ndarray, buf: dict) -> Solved:
         q = (tuple(g[L.Q1X:L.Q1Y + 1, 0]), tuple(g[L.Q2X:L.Q2Y + 1, 0])) if not gs else None
         if inner.kind == "R" and q is None:
             q = tuple(scene.bodies[b].local(inner.point_on(b)) for b in dyad.bodies)
-        k = int(g[L.ASSEMBLY, 0]) if not gs else g[L.ASSEMBLY]
+        k = int(g[L.ASSEMBLY, 0]) if not gs else structure.assembly[i_d]
         dyads.append(DyadMotion(
             dyad, pr, k, d[L.XX], d[L.XY], (d[L.C1X], d[L.C1Y]), (d[L.C2X], d[L.C2Y]),
             d[L.DET], n, singular=~(d[L.CL2] > SINGULAR_WARN**2), closeness2=d[L.CL2],
@@ -229,9 +259,8 @@ def _solution(plan: Plan, positions: np.ndarray, buf: dict) -> Solved:
             slider_first=inner.kind == "T" and inner.slider == dyad.bodies[0],
             nx=d[L.NX] if inner.kind == "T" else None,
             ny=d[L.NY] if inner.kind == "T" else None))
-    structure = plan.structure
     kin = Kinematics(scene, structure, positions, bodies, dyads)
-    reactions = _reactions(plan, buf)
+    reactions = _reactions(plan, scene, buf)
     r = buf["drv"]
     # (Me/Fe copied out: a stacked run's scenes keep it, not the slab it lies in)
     sol = Solved(scene, structure, kin, None, reactions,
@@ -240,10 +269,10 @@ def _solution(plan: Plan, positions: np.ndarray, buf: dict) -> Solved:
     return sol
 
 
-def _reactions(plan: Plan, buf: dict) -> dict:
+def _reactions(plan: Plan, scene: Scene, buf: dict) -> dict:
     """The joint reactions in the numpy path's order (dyads last to first, each its inner
     joint then its outer ones; the driver's joint last)."""
-    scene, a = plan.scene, buf["a"]
+    a = buf["a"]
     out: dict = {}
     for (_, _, dyad), d, r in zip(plan.dyads[::-1], buf["d"][::-1], buf["r"][::-1],
                                      strict=True):

@@ -1,9 +1,10 @@
 """The numbers each compiled kernel reads, from a scene (no numba here).
 
 Each kernel reads its geometry from one array (:mod:`~kinetostatics.solver.fast.layout`):
-``(k, 1)`` for a scene, ``(k, rows)`` when some number is an array over the rows (a
-stack of scenes, :mod:`~kinetostatics.solver.stack`), with the stride over the rows
-(0 or 1) beside it. :func:`not_covered` names what the kernels leave to the numpy path.
+``(k, 1)`` for a scene, ``(k, scenes)`` when some number is an array over the scenes of
+a stack (:meth:`~kinetostatics.solver.stack.Stacker.table`: a column per scene, each
+row's scene given to the kernels), with its stride (0 or 1) beside it.
+:func:`not_covered` names what the kernels leave to the numpy path.
 """
 
 from __future__ import annotations
@@ -35,13 +36,14 @@ def swept_load(ld) -> bool:
 
 
 def pack(values: dict[int, object], k: int) -> tuple[np.ndarray, int]:
-    """A geometry array of ``k`` rows from ``{row: number or array over the rows}`` (the
-    rows not given are 0) and its stride over the rows."""
+    """A geometry array of ``k`` rows from ``{row: number or array over the scenes}``
+    (the rows not given are 0; a column per scene of a stack) and its stride over the
+    rows' scenes (0: one column, every row's)."""
     n = max((v.shape[0] for v in values.values()
              if isinstance(v, np.ndarray) and v.ndim), default=0)
-    g = np.zeros((k, L.padded_width(n) if n else 1))    # (rows padded: layout.padded_width)
+    g = np.zeros((k, max(n, 1)))
     for row, v in values.items():
-        g[row, :max(n, 1)] = v
+        g[row] = v
     return g, 1 if n else 0
 
 

@@ -4,8 +4,10 @@ A body's motion over a block of rows is one ``(10, rows)`` array, its rows in th
 of :attr:`BodyMotion.FIELDS <kinetostatics.solver.driver.BodyMotion.FIELDS>`; a dyad's
 solved data, its reactions, a body's load resultants are arrays of their own layout. The
 geometry of a kernel (local points, ground points, line angles, masses, the assembly) is
-one ``(k, 1)`` array, or ``(k, rows)`` for a stack of scenes whose numbers differ row by
-row (its stride over the rows is then 1, else 0).
+one ``(k, 1)`` array, or ``(k, scenes)`` for a stack of scenes whose numbers differ from
+scene to scene (a column per scene; its stride is then 1, else 0): a kernel reads row
+``i``'s from column ``own[i * stride]``, ``own`` each row's scene in the stack (``[0]``
+for one scene).
 """
 
 from __future__ import annotations
@@ -36,7 +38,7 @@ SIZE, NORM2, ASSEMBLY = 25, 26, 27
 # dyad body, 2 the known body) and its local (or ground) coordinates, per outer joint
 O_WHERE, O_X, O_Y = 28, 29, 30          # + 3 i
 # a revolute inner joint: each body's (q - p) / |q - p|^2, the closure's constant factors
-# (the numpy path's ``_rot_angle``: lx / r2 and ly / r2, worked out once)
+# (the numpy path's rotation angle, ``rot_angle`` here: lx / r2 and ly / r2, worked out once)
 W1X, W1Y, W2X, W2Y = 34, 35, 36, 37
 DYAD_GEOMETRY = 38
 

@@ -17,6 +17,7 @@ from .jitbase import (
     tile_geometry,
     tile_in,
     tile_out,
+    tile_rows,
 )
 from .layout import (
     AL,
@@ -82,7 +83,7 @@ from .layout import REACTIONS as REACTION_ROWS
 
 # -- loads (seed 002 s. 2.1-2.2) ----------------------------------------------------------
 @jit
-def body_loads(lo, hi, off, g, gs, npoint, m, acc):
+def body_loads(lo, hi, off, g, gs, own, npoint, m, acc):
     """A body's load resultants [Fx, Fy, M about its origin]: forces at local points,
     each with the inertia force -m_k a_k of a mass there (the cog's, eq. 2.1, or a
     concentrated mass, eq. 2.8), a couple, and the inertia couple -I_G eps (eq. 2.1).
@@ -92,10 +93,13 @@ def body_loads(lo, hi, off, g, gs, npoint, m, acc):
     wm, wa = w[:BODY_ROWS], w[BODY_ROWS:]
     wg = scratch(g.shape[0])
     bad = 0
-    for t0 in range(lo, hi, TILE):
-        nt = min(TILE, hi - t0)
+    last = -1           # (the scene whose geometry the tile holds)
+    t0 = lo
+    while t0 < hi:
+        nt = tile_rows(gs, own, t0, hi)         # (a tile never spans two scenes)
         j0 = t0 - off
-        tile_geometry(wg, g, gs, t0, nt, t0 == lo)
+        last = tile_geometry(wg, g, gs, own, t0, last)
+        t0 += nt
         tile_in(wm[C:AL + 1], m[C:AL + 1], j0, nt)      # (no velocities read)
         tile_in(wm[AX:AY + 1], m[AX:AY + 1], j0, nt)
         wa[:] = 0.0
@@ -122,7 +126,7 @@ def body_loads(lo, hi, off, g, gs, npoint, m, acc):
 
 
 @jit
-def swept_loads(lo, hi, off, g, gs, nload, m, acc, undefined, stats):
+def swept_loads(lo, hi, off, g, gs, own, nload, m, acc, undefined, stats):
     """Loads whose rows are told by the whole sweep (the numpy path's
     ``applied_loads``), added to a body's resultants: a ``resist`` force (kind 1) of
     magnitude R against its point's velocity, a force (kind 2) acting ``when =
@@ -133,7 +137,7 @@ def swept_loads(lo, hi, off, g, gs, nload, m, acc, undefined, stats):
     the threshold over a row."""
     bad = 0
     for i in range(lo, hi):
-        j, r = i - off, i * gs
+        j, r = i - off, own[i * gs]
         c, s = m[C, j], m[S, j]
         om = m[OM, j]
         for q in range(nload):
@@ -266,7 +270,8 @@ def _reaction_row(rot1, rot2, inner_r, j, r, g, m1, m2, mk1, mk2, d, a1, a2, ak1
 
 
 @body
-def _dyad_reactions(kind, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+def _dyad_reactions(kind, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2,
+                    rr):
     """A dyad's joint reactions (seed 002 s. 2.3.1, eqs 2.16-2.43 in vector form, the
     numpy path's ``_solve_dyad``): the inner joint's from the two bodies' equations along
     their freedoms (a 2 x 2 system with the velocity system's columns), each outer
@@ -289,10 +294,13 @@ def _dyad_reactions(kind, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, 
     wr = w[b:b + REACTION_ROWS]
     wg = w[b + REACTION_ROWS:]
     bad = 0
-    for t0 in range(lo, hi, TILE):
-        nt = min(TILE, hi - t0)
+    last = -1           # (the scene whose geometry the tile holds)
+    t0 = lo
+    while t0 < hi:
+        nt = tile_rows(gs, own, t0, hi)         # (a tile never spans two scenes)
         j0 = t0 - off
-        tile_geometry(wg, g, gs, t0, nt, t0 == lo)
+        last = tile_geometry(wg, g, gs, own, t0, last)
+        t0 += nt
         for wm, m in ((wm1, m1), (wm2, m2), (wk1, mk1), (wk2, mk2)):
             tile_in(wm[C:S + 1], m[C:S + 1], j0, nt)
             tile_in(wm[OX:OY + 1], m[OX:OY + 1], j0, nt)
@@ -326,12 +334,12 @@ def _dyad_reactions(kind, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, 
 
 
 @jit
-def crank_reaction(lo, hi, off, g, gs, m, a, out):
+def crank_reaction(lo, hi, off, g, gs, own, m, a, out):
     """The equilibrating moment on a crank, from the moments about its ground joint
     (seed 002 eqs 2.47-2.48); the ground reaction is the crank's resultant force."""
     bad = 0
     for i in range(lo, hi):
-        j, r = i - off, i * gs
+        j, r = i - off, own[i * gs]
         lx, ly = g[D_LX, r], g[D_LY, r]
         ax, ay = m[C, j] * lx - m[S, j] * ly, m[S, j] * lx + m[C, j] * ly
         out[0, j] = -(a[2, j] - (ax * a[1, j] - ay * a[0, j]))
@@ -340,13 +348,13 @@ def crank_reaction(lo, hi, off, g, gs, m, a, out):
 
 
 @jit
-def slider_reaction(lo, hi, off, g, gs, m, a, out):
+def slider_reaction(lo, hi, off, g, gs, own, m, a, out):
     """The equilibrating force on a sliding driver along its line, the guide's normal
     force and couple about the slider point (seed 002 eqs 2.49-2.51): rows Fe, N, M,
     the slider point's x, y and the normal force's Fx, Fy."""
     bad = 0
     for i in range(lo, hi):
-        j, r = i - off, i * gs
+        j, r = i - off, own[i * gs]
         ux, uy = g[T_RUX, r], g[T_RUY, r]
         lx, ly = g[T_SX, r], g[T_SY, r]
         if g[T_ON, r] != 0.0:
@@ -366,38 +374,38 @@ def slider_reaction(lo, hi, off, g, gs, m, a, out):
 
 
 @jit
-def rrr_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(7, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+def rrr_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(7, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
 
 
 @jit
-def rrt_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(5, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+def rrt_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(5, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
 
 
 @jit
-def trr_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(6, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+def trr_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(6, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
 
 
 @jit
-def trt_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(4, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+def trt_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(4, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
 
 
 @jit
-def rtr_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(3, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+def rtr_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(3, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
 
 
 @jit
-def rtt_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(1, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+def rtt_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(1, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
 
 
 @jit
-def ttr_reactions(lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(2, lo, hi, off, g, gs, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+def ttr_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    return _dyad_reactions(2, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
 
 
 REACTIONS = {"RRR": rrr_reactions, "RRT": rrt_reactions, "TRR": trr_reactions,

@@ -52,6 +52,7 @@ def test_seeded_unbalances_are_recovered_at_dt_1e4(seed):
         abs(unbalance_vector(u)), rel=3e-4)               # measured 1.4e-5 to 8.7e-5
 
 
+@pytest.mark.slow     # a fine time step (the dt 1e-4 runs stay quick)
 def test_seeded_unbalance_is_recovered_at_dt_3e5():
     rng = np.random.default_rng(11)
     u = random_unbalance(rng)

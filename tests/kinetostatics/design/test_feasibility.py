@@ -7,6 +7,7 @@ import tomllib
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
+import pytest
 
 import kinetostatics as ks
 from kinetostatics.design import evaluate, read_design
@@ -49,6 +50,7 @@ def test_an_executor_gives_the_same_numbers():
     assert one.reasons == parts.reasons and (one.feasible == parts.feasible).all()
 
 
+@pytest.mark.slow     # two whole design runs written (1.8 s)
 def test_a_second_run_replaces_the_first_whole(tmp_path):
     raw = tomllib.loads(ks.scene_path("four_bar_design").read_text())
     raw["design"]["constraints"] = ["transmission_min >= 45", "full_turn"]

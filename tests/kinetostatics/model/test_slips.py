@@ -225,6 +225,7 @@ def test_every_rule_is_documented() -> None:
         assert f"`{rule}`" in doc, rule
 
 
+@pytest.mark.slow     # the quick tier keeps test_one_positions_rule_for_mechanism_and_motion_scenes
 def test_motion_positions_follow_the_mechanism_rule() -> None:
     """One positions rule for mechanism and [motion] scenes: any order (the same summary,
     rows in the list's order), a repeat refused with one line."""

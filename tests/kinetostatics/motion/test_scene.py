@@ -177,6 +177,7 @@ def test_summary_and_table_contract():
     assert np.abs(fd - last.alpha)[2:-2].max() < 1e-3 * np.abs(last.alpha).max()
 
 
+@pytest.mark.slow     # 60 cycles to the steady state (2.6 s)
 def test_flywheel_for_target_reproduces_delta():
     d = four_bar_motion(cycles=2, target_delta=0.05)
     res = ks.simulate_motion(d)

@@ -102,8 +102,10 @@ def _same_output(a: Path, b: Path, fmt: str) -> None:
             assert (a / f).read_bytes() == (b / f).read_bytes(), f
 
 
-@pytest.mark.parametrize(("name", "block"), [("four_bar", 15_000), ("sliding_driver", 9_999),
-                                             ("drag_link", 12_345)])
+# (one in the quick tier: each solves and writes 40 000 rows twice, 1-1.3 s)
+@pytest.mark.parametrize(("name", "block"), [
+    pytest.param("four_bar", 15_000, marks=pytest.mark.slow), ("sliding_driver", 9_999),
+    pytest.param("drag_link", 12_345, marks=pytest.mark.slow)])
 def test_streamed_files_are_the_one_shots(name: str, block: int, tmp_path: Path) -> None:
     """40 000 positions (a sweep the solver solves in blocks) in blocks of ``block``
     rows: every CSV file byte for byte, summary.json too."""

@@ -56,7 +56,8 @@ def _blow_up():
     ["crosscheck", "shaper", "--iterations", "3"],
     # 40 iterations at 7200 steps diverged with the driver solved last (2e-5 m) and now
     # run with it solved first (7.1e-6); 5 diverge either way (0.37 m)
-    ["crosscheck", "slotted_lever", "--iterations", "5", "--steps", "7200"],
+    pytest.param(["crosscheck", "slotted_lever", "--iterations", "5", "--steps", "7200"],
+                 marks=pytest.mark.slow),                     # (0.9 s)
 ])
 def test_cli_refuses_a_diverged_run(capsys, argv):
     assert main(argv) == 2

@@ -388,6 +388,7 @@ def test_the_package_names_are_its_modules_all():
     assert all(getattr(sim, n) is getattr(union[n], n) for n in union)
 
 
+@pytest.mark.slow     # a new interpreter per name (1.2 s)
 def test_public_names_load_lazily():
     import subprocess
     import sys

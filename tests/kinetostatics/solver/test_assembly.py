@@ -219,3 +219,62 @@ def test_assembly_picked_inside_the_closure_is_the_two_row_choice(name: str) -> 
                 for f in motions[b].FIELDS:
                     assert np.array_equal(getattr(picked[b], f), getattr(motions[b], f))
     assert DyadSolver(scene, ks.analyse(scene).dyads[-1]).picks     # (the path tested)
+
+
+def _full_road(scene, monkeypatch) -> tuple:
+    """choose_assembly by the one-row solve alone (the plain first row left out)."""
+    from kinetostatics.solver import kinematics
+    with monkeypatch.context() as m:
+        m.setattr(kinematics, "_plain_first_row", lambda *a: None)
+        return kinematics.choose_assembly(scene, ks.analyse(scene, assemble=False))
+
+
+@pytest.mark.parametrize("name", ["four_bar", "slider_crank", "shaper", "slotted_lever",
+                                  "scotch_yoke", "sliding_driver", "trr_slider_crank"])
+def test_plain_first_row_chooses_as_the_one_row_solve(name: str, monkeypatch) -> None:
+    """The short road of choose_assembly (the first row's positions in Python numbers)
+    takes, for every dyad kind of the bundled scenes and with the hints moved to either
+    assembly of the last dyad, the assembly the one-row solve takes."""
+    from kinetostatics.solver.kinematics import _plain_first_row
+    d = _scene_dict(name)
+    k0 = ks.analyse(ks.load_scene(d)).assembly
+    flips = (1, -1) if d.get("near") else (1,)
+    for flip in flips:
+        want = (*k0[:-1], flip * k0[-1])
+        near = _hints_at(ks.load_scene(d), want) if d.get("near") else {}
+        scene = ks.load_scene({**d, "near": near})
+        plain = _plain_first_row(scene, ks.analyse(scene, assemble=False))
+        assert plain is not None                    # (the road tested: decided there)
+        assert plain == _full_road(scene, monkeypatch) == (want if near else k0)
+
+
+def test_plain_first_row_leaves_refusals_to_the_one_row_solve() -> None:
+    """A first row the dyad cannot close, and two assemblies no hint tells apart: the
+    short road decides nothing, and the one-row solve refuses as before."""
+    from kinetostatics.solver.kinematics import _plain_first_row
+    d = _scene_dict("four_bar")
+    d["ground"]["D"] = [3.0, 0.0]
+    scene = ks.load_scene(d)
+    assert _plain_first_row(scene, ks.analyse(scene, assemble=False)) is None
+    with pytest.raises(AssemblyError, match=r"do not reach by 2\.45 m"):
+        ks.analyse(scene)
+    d = _scene_dict("four_bar")
+    d.pop("near")
+    scene = ks.load_scene(d)
+    assert _plain_first_row(scene, ks.analyse(scene, assemble=False)) is None
+    with pytest.raises(AssemblyError, match="has two assemblies"):
+        ks.analyse(scene)
+
+
+def test_driver_trig_is_numpy_cos_and_sin_shared_by_one_sweep() -> None:
+    """Driver.trig gives np.cos and np.sin of the angles, bit for bit; two scenes of the
+    same start/stop/count share them, a listed sweep or other positions do not."""
+    from kinetostatics.solver.kinematics import with_positions
+    d = _scene_dict("four_bar")
+    a, b = ks.load_scene(d), ks.load_scene(d)
+    c, s = a.driver.trig()
+    assert np.array_equal(c, np.cos(a.driver.angles)) and not c.flags.writeable
+    assert np.array_equal(s, np.sin(a.driver.angles)) and not s.flags.writeable
+    assert b.driver.trig()[0] is c
+    other = with_positions(a, a.driver.positions + 1.0).driver
+    assert other.sweep is None and np.array_equal(other.trig()[0], np.cos(other.angles))

@@ -207,6 +207,31 @@ def test_solve_many_is_solve_bit_for_bit_on_the_compiled_path(path) -> None:
 
 
 @slow_compile
+@pytest.mark.parametrize("name", list(KINDS))
+def test_a_stack_of_every_kind_is_each_scenes_solve(path, name: str) -> None:
+    """A stack's geometry is a column per scene, each row's scene given to the kernels:
+    scenes of unequal lengths (a tile's rows of one scene, tiles cut at each scene's
+    end) and a scene's numbers in every row of it, bit for bit as the scene alone."""
+    scenes = []
+    for seed in range(6):
+        d = perturbed(KINDS[name], seed, 0.03)
+        d["driver"]["count"] = int(d["driver"]["count"]) - 7 * seed     # 361, 354, ...
+        # (a resist or "resisting" load: each scene solved alone on this path)
+        d["loads"] = [ld for ld in d.get("loads", [])
+                      if "resist" not in ld and ld.get("when") != "resisting"]
+        scenes.append(load_scene(d))
+    path("fast")
+    from kinetostatics.solver.many import CutSolved, solve_all
+    assert all(type(a) is CutSolved for a in solve_all(scenes))     # (stacked, not alone)
+    many = ks.solve_many(scenes)
+    for m, sc in zip(many, scenes, strict=True):
+        one = solve(sc)
+        assert m.path == one.path == "fast"
+        for t in ("driver", "reactions", "kinematics", "dyads"):
+            assert getattr(m, t).equals(getattr(one, t)), t
+
+
+@slow_compile
 def test_the_switch(path) -> None:
     with pytest.raises(ValueError, match="solve path"):
         path("quick")

@@ -267,6 +267,7 @@ def test_runs_of_whole_scenes_and_long_runs_in_blocks(alone_calls, monkeypatch) 
     from kinetostatics.solver import blocks
 
     monkeypatch.setattr(many, "RUN_ROWS", 40)
+    monkeypatch.setattr(many, "FAST_RUN_ROWS", 40)      # (the compiled path's runs)
     monkeypatch.setattr(blocks, "BLOCK_ROWS", 64)
     scenes = variants("four_bar", 9, 0.05, seed=6)
     for i, (d, count) in enumerate(zip(scenes, (30, 30, 200, 10, 361, 5, 13, 90, 2),
@@ -298,6 +299,7 @@ def test_runs_are_lean_and_solved_again_once_when_read(alone_calls, monkeypatch)
     read, with the same numbers; a run whose scenes' driver tables only are read is not
     solved again."""
     monkeypatch.setattr(many, "RUN_ROWS", 543)
+    monkeypatch.setattr(many, "FAST_RUN_ROWS", 543)
     solved = []
     run = many._solve_run
 

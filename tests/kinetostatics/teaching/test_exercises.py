@@ -37,6 +37,7 @@ def _perfect(key: pd.DataFrame) -> pd.DataFrame:
     ("four_bar", "Fmax[B]", ["angle[rocker]@30"]),
     ("rotor", "mass[1]", ["angle[1]", "angle[2]"]),
 ])
+@pytest.mark.slow     # fifty variants solved and graded
 def test_fifty_variants_graded(which, off, angles, four_bar, rotor):
     ex, s = four_bar if which == "four_bar" else rotor
     assert len(s.variants) == 50 and s.variants["student"].is_unique

@@ -1,0 +1,51 @@
+"""A run of stacked scenes solved on the compiled path (no numba here): each number that
+differs from scene to scene handed to the kernels per scene, with each row's scene."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from ..solved import Solved
+from .choice import wanted
+from .compose import Plan, Refused, solve_full, solve_lean
+from .geometry import not_covered
+from .solve import KeptRun
+
+
+def solve_run_stacked(stacker, structure, ks: np.ndarray, lo: int, hi: int,
+                      counts: np.ndarray, positions: np.ndarray, kept: bool = False,
+                      scratch: dict | None = None) -> Solved | KeptRun | None:
+    """Scenes ``lo`` to ``hi - 1`` of ``stacker``
+    (:class:`~kinetostatics.solver.stack.Stacker`) one after another, ``counts`` rows
+    each at ``positions``, each dyad in its scene's assembly (``ks``: dyads x scenes),
+    on the compiled path; or None (the path is off, the run is not covered, or a kernel
+    met a row the numpy path must judge). Every row is the row its scene gives alone on
+    this path, bit for bit: the same kernels, each number the scene's own.
+
+    The kernels read the geometry per scene
+    (:meth:`~kinetostatics.solver.stack.Stacker.table`, a column per scene, gathered per
+    tile), not per row (measured 2026-11-29: a stack's geometry per row, some 100
+    numbers a row copied from arrays over the run, cost the RRR motion 107-226 ns a row
+    against 23 with one scene's). ``kept``: only what the scenes' cut Solutions keep of
+    their run (:class:`~kinetostatics.solver.fast.solve.KeptRun`: Me/Fe, the flags, the
+    closeness to a dead centre), solved in the buffers of ``scratch`` (kept there for
+    the group's next run); else the whole Solved, its scene and structure with each
+    number over the rows (:meth:`~kinetostatics.solver.stack.Stacker.runs`)."""
+    kernels = wanted(positions.size)
+    if kernels is None:
+        return None
+    table = stacker.table(lo, hi, counts, positions)
+    if not_covered(table) is not None:
+        return None
+    owner = np.repeat(np.arange(hi - lo, dtype=np.int64), counts)
+    try:
+        plan = Plan(kernels, table, structure, ks[:, lo:hi], owner)
+        if kept:
+            return KeptRun(solve_lean(plan, positions, scratch=scratch), positions)
+        rows = (stacker.runs(lo, hi, counts, positions),
+                replace(structure, assembly=tuple(np.repeat(k[lo:hi], counts) for k in ks)))
+        return solve_full(plan, positions, rows=rows)
+    except Refused:
+        return None

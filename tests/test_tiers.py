@@ -1,0 +1,45 @@
+"""The tiers' settings (tests/conftest.py): the quick tier (``-m "not slow"``) runs every
+property test on a fifth of its examples, at least ten; the full suite on all of them;
+``HYPOTHESIS_PROFILE=explore`` on ten times as many."""
+
+from __future__ import annotations
+
+import os
+from types import SimpleNamespace
+
+import pytest
+from hypothesis import settings
+
+from tests import conftest
+
+
+def _config(markexpr: str) -> SimpleNamespace:
+    return SimpleNamespace(getoption=lambda name: {"markexpr": markexpr}[name])
+
+
+@pytest.mark.parametrize(("markexpr", "quick"), [
+    ("not slow", True), ("not slow and not kernel", True), ("kernel and  not   slow", True),
+    ("", False), ("slow", False), ("kernel", False)])
+def test_the_quick_tier_is_the_run_without_the_slow_tests(markexpr: str, quick: bool) -> None:
+    assert conftest._quick_tier(_config(markexpr)) is quick
+
+
+def test_each_profile_scales_a_property_tests_own_count(monkeypatch) -> None:
+    monkeypatch.setattr(conftest, "PROFILE", "quick")
+    assert [conftest._examples(n) for n in (400, 100, 40, 12, 6)] == [80, 20, 10, 10, 6]
+    monkeypatch.setattr(conftest, "PROFILE", "explore")
+    assert conftest._examples(40) == 400
+
+
+def test_this_run_has_its_tiers_profile(request) -> None:
+    """The profile loaded is the one the tier asks for (the count every property test
+    without its own inherits)."""
+    named = os.environ.get("HYPOTHESIS_PROFILE")
+    want = named or ("quick" if conftest._quick_tier(request.config) else "repeatable")
+    assert conftest.PROFILE == want
+    base = settings.get_profile("repeatable").max_examples
+    count = {"quick": base // conftest.QUICK_SHARE, "repeatable": base,
+             "explore": conftest.EXPLORE_FACTOR * base}.get(want)
+    assert count is None or settings.default.max_examples == count
+    if want in ("quick", "repeatable"):
+        assert settings.default.derandomize
