@@ -223,8 +223,9 @@ def _cost_rank(item: pytest.Item) -> int:
 
 #: Test modules whose tests share a costly module fixture (a class of 30 generated): each
 #: runs on one xdist worker, so the fixture is made once. (tests/test_browser.py is not
-#: one: its ten tests, 30-290 s each at a load of 10 on the 2-core machine, are spread
-#: over the workers, each starting its own JupyterLab server and Chromium, 20 s there.)
+#: one: its eleven tests, one per widget sheet, each making the headless checks of the
+#: sheet on the browser's own run too, are spread over the workers, each starting its
+#: own JupyterLab server and Chromium, 20 s there.)
 SHARED_PER_MODULE = ("tests/kinetostatics/teaching/test_classroom.py",
                      "tests/kinetostatics/teaching/test_class_record.py")
 
