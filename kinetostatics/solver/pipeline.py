@@ -31,9 +31,10 @@ from .footprint import check_solve
 from .friction import has_friction, solve_with_friction
 from .kinematics import solve_kinematics
 from .loads import applied_loads, inertia_loads, resultants
+from .memo import record_of
 from .reactions import solve_reactions
 from .solved import Solved
-from .structure import analyse
+from .structure import Structure, analyse
 from .trap import FloatTrap, active, first_trapped, tame, trapped
 
 _sum = np.add.reduce
@@ -74,12 +75,16 @@ class Sweep:
         if positions is not None:
             positions = given_positions(positions)
         if not allow_repeats:
-            q = "angle" if sc.driver.kind == "R" else "length"
-            check_distinct(sc.driver.positions if positions is None else positions,
-                           sc.units.unit(q), sc.units.file_factor(q))
+            own = positions is None
+            record = record_of(sc) if own else {}
+            if not record.get("distinct"):         # (the scene's own sweep: checked once)
+                q = "angle" if sc.driver.kind == "R" else "length"
+                check_distinct(sc.driver.positions if own else positions,
+                               sc.units.unit(q), sc.units.file_factor(q))
+                record["distinct"] = True
         self.scene = sc
         # the assemblies are chosen at the scene's first row by the solve itself
-        self.structure = analyse(sc, assemble=False)
+        self.structure = structure_of(sc)
         self.given = positions
         self.positions = sc.driver.positions if positions is None else positions
         if budget:      # (False: the caller checks its own estimate, e.g. a streamed write)
@@ -179,6 +184,18 @@ class Sweep:
             args = (pos.size, part, solve_block, full, solved)
             return first_trapped(solve_blocks, *args) if trapped_road else solve_blocks(*args)
         return full, kept, again
+
+
+def structure_of(scene) -> Structure:
+    """The scene's decomposition (:func:`~kinetostatics.solver.structure.analyse`, no
+    assemblies), worked out once per scene object
+    (:func:`~kinetostatics.solver.memo.record_of`): the same object at each solve of the
+    scene, so that what is kept for it is found again."""
+    record = record_of(scene)
+    structure = record.get("structure")
+    if structure is None:
+        structure = record["structure"] = analyse(scene, assemble=False)
+    return structure
 
 
 def _lean(full, kept: Kept, again) -> LeanSolved:

@@ -26,6 +26,7 @@ AUTO_ROWS = 20_000      # below, numba's import and first call (0.2-0.3 s) outwe
 # 1.6x numpy's time), so the compiled path runs only when asked for (``fast``).
 # docs/solve-paths.md, "Speed", says where the time goes.
 AUTO_COMPILED = False
+AUTO_SMALL = False
 _OPTION: dict[str, str | None] = {"path": None, "told": None}
 
 
@@ -58,9 +59,11 @@ def wanted(rows: int):
     setting = path_setting()
     if setting == "numpy":
         return None
-    if setting == "auto" and (not AUTO_COMPILED
-                              or (rows < AUTO_ROWS and not loader.loaded())):
+    if setting == "auto" and not (AUTO_COMPILED and (
+            rows >= AUTO_ROWS or (AUTO_SMALL and loader.loaded()))):
         return None
+    if loader.loaded():
+        return loader.kernels()
     if setting == "fast" and not loader.installed() and _OPTION["told"] != "numba":
         _OPTION["told"] = "numba"
         warnings.warn("KINETOSTATICS_PATH=fast but numba is not installed (pip install "

@@ -49,6 +49,23 @@ class Refused(Exception):
 ONE_SCENE = np.zeros(1, dtype=np.int64)     # each row's scene, for one scene: column 0
 
 
+class Geometry:
+    """What the kernels read of a scene (or a stack) and its structure, each dyad in its
+    assembly ``ks``: the driver's geometry, each dyad's with the dyad, each body's load
+    resultants and its ``resist`` or ``when = "resisting"`` loads (those of the bodies
+    that have some). Nothing here changes as the kernels run (they read it only), so one
+    scene's may serve each of its solves
+    (:func:`~kinetostatics.solver.fast.solve.solve_compiled`)."""
+
+    def __init__(self, scene: Scene, structure, ks):
+        self.driver = driver_geometry(scene)
+        self.dyads = [(*dyad_geometry(scene, d, k), d)
+                      for d, k in zip(structure.dyads, ks, strict=True)]
+        self.loads = {b: body_loads_geometry(scene, b) for b in scene.bodies}
+        self.swept = {b: sw for b in scene.bodies
+                      if (sw := swept_loads_geometry(scene, b))[2]}
+
+
 class Plan:
     """The kernels and their geometry for one scene (or a stack) and structure, each
     dyad with its assembly ``ks`` (numbers, or arrays over a stack's scenes).
@@ -59,20 +76,19 @@ class Plan:
     column per scene, gathered per tile
     (:func:`~kinetostatics.solver.fast.jitbase.tile_geometry`)."""
 
-    def __init__(self, kernels, scene: Scene, structure, ks, owner: np.ndarray | None = None):
+    def __init__(self, kernels, scene: Scene, structure, ks, owner: np.ndarray | None = None,
+                 geometry: Geometry | None = None):
         self.k = kernels
         self.scene, self.structure = scene, structure
         self.own = ONE_SCENE if owner is None else owner
         drv = scene.driver
         self.crank = drv.kind == "R"
         self.speed, self.accel = float(drv.speed), float(drv.acceleration)
-        self.driver = driver_geometry(scene)
-        self.dyads = [(*dyad_geometry(scene, d, k), d)
-                      for d, k in zip(structure.dyads, ks, strict=True)]
+        if geometry is None:
+            geometry = Geometry(scene, structure, ks)
+        self.driver, self.dyads, self.loads, self.swept = (
+            geometry.driver, geometry.dyads, geometry.loads, geometry.swept)
         self.bodies = list(scene.bodies)
-        self.loads = {b: body_loads_geometry(scene, b) for b in self.bodies}
-        self.swept = {b: sw for b in self.bodies
-                      if (sw := swept_loads_geometry(scene, b))[2]}
         self.stats = {b: np.array([[0.0, np.inf]] * len(f)) for b, (_, _, f)
                       in self.swept.items()}
 

@@ -40,11 +40,16 @@ def pack(values: dict[int, object], k: int) -> tuple[np.ndarray, int]:
     (the rows not given are 0; a column per scene of a stack) and its stride over the
     rows' scenes (0: one column, every row's)."""
     n = max((v.shape[0] for v in values.values()
-             if isinstance(v, np.ndarray) and v.ndim), default=0)
-    g = np.zeros((k, max(n, 1)))
+             if type(v) is np.ndarray and v.ndim), default=0)
+    if not n:       # one scene: its numbers in a list, one array made of it (3 us, not 8)
+        column = [0.0] * k
+        for row, v in values.items():
+            column[row] = v
+        return np.array(column, dtype=float).reshape(k, 1), 0
+    g = np.zeros((k, n))
     for row, v in values.items():
         g[row] = v
-    return g, 1 if n else 0
+    return g, 1
 
 
 def _local(scene: Scene, body: str, point: str):
@@ -179,17 +184,22 @@ def body_loads_geometry(scene: Scene, name: str) -> tuple[np.ndarray, int, int]:
     return g, gs, len(points)
 
 
+NO_SWEPT_LOADS: tuple[np.ndarray, int, list] = (np.zeros((1, 1)), 0, [])  # (never run)
+
+
 def swept_loads_geometry(scene: Scene, name: str) -> tuple[np.ndarray, int, list]:
     """A body's ``resist`` and ``when = "resisting"`` loads for
     :func:`~kinetostatics.solver.fast.kernels.swept_loads` (per load: its point, kind,
     R, the force and the still threshold at the mechanism's own scale), and each one's
     floor of the top (:func:`~kinetostatics.solver.loads.motion_scales`)."""
+    mine = [ld for ld in scene.loads
+            if ld.body == name and ld.point is not None and swept_load(ld)]
+    if not mine:
+        return NO_SWEPT_LOADS
     vscale = motion_scales(scene)[0]
     v: dict[int, object] = {}
     floors = []
-    for ld in scene.loads:
-        if ld.body != name or ld.point is None or not swept_load(ld):
-            continue
+    for ld in mine:
         b = 7 * len(floors)
         v[b], v[b + 1] = scene.bodies[name].local(ld.point)
         if ld.resist is not None:

@@ -12,7 +12,8 @@ kernel once (0.5-4 s each), later processes load them from the folder.
 Why a folder per version of the sources: numba checks a cached kernel against its own
 file's time stamp and size only, so a kernel whose inlined helpers (another module of
 this package) changed would load stale from the cache, a wrong number with no warning.
-A new version of any file here gets a folder of its own.
+A new version of any file the kernels are compiled from (:func:`kernel_sources`) gets a
+folder of its own.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from __future__ import annotations
 import hashlib
 import importlib.util
 import os
+import re
 import sys
 import tempfile
 import warnings
@@ -49,11 +51,30 @@ def _writable(folder: Path) -> bool:
     return True
 
 
+def kernel_sources() -> list[Path]:
+    """The files numba compiles: the kernels module and the modules of this package it
+    imports, and theirs (the composing code, in Python, is left out: a change there
+    compiles nothing again)."""
+    here = Path(__file__).parent
+    seen: list[Path] = []
+    todo = ["kernels"]
+    while todo:
+        path = here / f"{todo.pop()}.py"
+        if path in seen:
+            continue
+        seen.append(path)
+        todo += _RELATIVE.findall(path.read_text(encoding="utf-8"))
+    return sorted(seen)
+
+
+_RELATIVE = re.compile(r"^\s*from \.(\w+) import", re.MULTILINE)
+
+
 def sources_key() -> str:
-    """A short hash of every source file of the compiled path (this package): the name
-    of the cache's folder for this version of the kernels."""
+    """A short hash of the kernels' source files (:func:`kernel_sources`): the name of
+    the cache's folder for this version of the kernels."""
     digest = hashlib.sha256()
-    for path in sorted(Path(__file__).parent.glob("*.py")):
+    for path in kernel_sources():
         digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
     return "kernels-" + digest.hexdigest()[:16]
 

@@ -11,9 +11,10 @@ from ...model.scene import Scene
 from ..blocks import BLOCK_ROWS, LeanSolved
 from ..deadpoints import dead_points_between_rows, dead_points_of_sweep, measure2
 from ..kinematics import choose_assembly, with_positions
+from ..memo import record_of
 from ..solved import Solved
 from .choice import wanted
-from .compose import Plan, Refused, solve_full, solve_lean
+from .compose import Geometry, Plan, Refused, solve_full, solve_lean
 from .geometry import not_covered, swept_load
 
 
@@ -30,21 +31,22 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
     kernels = wanted(n)
     if kernels is None:
         return None
-    if len(structure.assembly) != len(structure.dyads):
-        structure = replace(structure, assembly=choose_assembly(scene, structure))
+    structure, geometry = _assembled(scene, structure)
     full = with_positions(scene, positions) if given else scene
     try:
         if n >= 2 * BLOCK_ROWS:
-            sweep = solve_lean(Plan(kernels, full, structure, structure.assembly), positions)
+            sweep = solve_lean(Plan(kernels, full, structure, structure.assembly,
+                                    geometry=geometry), positions)
 
             def again() -> Solved:
-                return solve_full(Plan(kernels, full, structure, structure.assembly),
-                                  positions)
+                return solve_full(Plan(kernels, full, structure, structure.assembly,
+                                       geometry=geometry), positions)
             dead = dead_points_of_sweep(full, structure, positions,
                                         measure2(sweep.closeness2, n))
             sol = LeanSolved(full, sweep, positions, dead, again)
         else:
-            sol = solve_full(Plan(kernels, full, structure, structure.assembly), positions)
+            sol = solve_full(Plan(kernels, full, structure, structure.assembly,
+                                  geometry=geometry), positions)
             kin = sol.kin
             kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
                 full, structure, kin)
@@ -53,6 +55,24 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
         return None
     sol.path = "fast"       # (a LeanSolved's: its full solve's is set by _solution)
     return sol
+
+
+def _assembled(scene: Scene, structure) -> tuple:
+    """``structure`` with each dyad's assembly (chosen at the scene's first row) and the
+    kernels' :class:`~kinetostatics.solver.fast.compose.Geometry`, worked out once per
+    scene object (:func:`~kinetostatics.solver.memo.record_of`; the same numbers: each is
+    a function of the frozen scene alone, its positions aside) for the structure
+    :func:`~kinetostatics.solver.structure.analyse` gives it."""
+    record = record_of(scene)
+    kept = record.get("fast")
+    if kept is not None and kept[0] is structure:
+        return kept[1], kept[2]
+    given = structure
+    if len(structure.assembly) != len(structure.dyads):
+        structure = replace(structure, assembly=choose_assembly(scene, structure))
+    geometry = Geometry(scene, structure, structure.assembly)
+    record["fast"] = (given, structure, geometry)
+    return structure, geometry
 
 
 def solve_run_compiled(scene: Scene, structure, kept: bool = False

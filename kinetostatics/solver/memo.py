@@ -1,0 +1,30 @@
+"""What the solver works out once per scene object, kept while the scene lives.
+
+A :class:`~kinetostatics.model.scene.Scene` is frozen: what follows from it alone (its
+structure, each dyad's assembly at its first row, the compiled kernels' geometry) is the
+same at every solve of it. A caller that solves one scene again and again (other
+positions, a loop, a simulation's steps) gets them from here; a scene read anew (from a
+dict, a file) is a new object with a record of its own. The record goes with its scene
+(a weak reference: nothing here keeps a scene alive).
+"""
+
+from __future__ import annotations
+
+import weakref
+
+_RECORDS: dict[int, tuple[weakref.ref, dict]] = {}
+
+
+def record_of(scene: object) -> dict:
+    """The record kept for ``scene`` (a dict, empty at first), while ``scene`` lives."""
+    key = id(scene)
+    entry = _RECORDS.get(key)
+    if entry is not None and entry[0]() is scene:
+        return entry[1]
+    record: dict = {}
+
+    def gone(ref: weakref.ref, key: int = key) -> None:
+        if _RECORDS.get(key, (None,))[0] is ref:
+            del _RECORDS[key]
+    _RECORDS[key] = (weakref.ref(scene, gone), record)
+    return record
