@@ -40,7 +40,7 @@ def pack(values: dict[int, object], k: int) -> tuple[np.ndarray, int]:
     (the rows not given are 0; a column per scene of a stack) and its stride over the
     rows' scenes (0: one column, every row's)."""
     n = max((v.shape[0] for v in values.values()
-             if type(v) is np.ndarray and v.ndim), default=0)
+             if isinstance(v, np.ndarray) and v.ndim), default=0)
     if not n:       # one scene: its numbers in a list, one array made of it (3 us, not 8)
         column = [0.0] * k
         for row, v in values.items():
