@@ -13,12 +13,13 @@ whole sweep, wrapped without copies in the :class:`BodyMotion`, :class:`DyadMoti
 
 from __future__ import annotations
 
+import threading
 from dataclasses import replace
 
 import numpy as np
 
 from ...model.scene import GROUND, Scene
-from ..blocks import Kept
+from ..blocks import Kept, singular_rows
 from ..closure import Param
 from ..driver import BodyMotion, ground_motion
 from ..kinematics import SINGULAR_WARN, DyadMotion, Kinematics
@@ -105,29 +106,26 @@ class Plan:
         """Arrays for ``width`` rows: each body's motion and load resultants, each dyad's
         data and reactions, the driver's reaction (the ground's motion: constant): rows
         of one slab, its rows padded (:func:`~kinetostatics.solver.fast.layout.padded_width`)."""
-        stride = L.padded_width(width)
-        sizes = ([("m", b, L.MOTION) for b in (GROUND, *self.bodies)]
-                 + [("a", b, 3) for b in (GROUND, *self.bodies)]
-                 + [("d", i, L.DYAD_OUT) for i in range(len(self.dyads))]
-                 + [("r", i, L.REACTIONS) for i in range(len(self.dyads))] + [("drv", 0, 7)])
+        names = (GROUND, *self.bodies)
+        nd = len(self.dyads)
+        moving = (L.MOTION + 3) * len(names)
         # (np.empty: memory a freed slab leaves is reused without faulting in fresh
-        # zeroed pages; only what a kernel may leave unwritten is zeroed)
-        slab = np.empty((sum(k for _, _, k in sizes), stride))
-        out: dict = {"m": {}, "a": {}, "d": [], "r": [], "u": np.zeros(width, dtype=bool)}
-        row = 0
-        for part, key, k in sizes:
-            block = slab[row:row + k]
-            row += k
-            if part in ("d", "r", "drv"):
-                block[:] = 0.0
-            if part == "drv":
-                out["drv"] = block
-            elif isinstance(out[part], dict):
-                out[part][key] = block
-            else:
-                out[part].append(block)
-        out["m"][GROUND][:] = 0.0
-        out["m"][GROUND][L.C] = 1.0
+        # zeroed pages; only what a kernel may leave unwritten is zeroed: the rows after
+        # the bodies', the dyads' and the driver's, in one pass)
+        slab = np.empty((moving + (L.DYAD_OUT + L.REACTIONS) * nd + 7,
+                         L.padded_width(width)))
+        slab[moving:] = 0.0
+        a0, d0 = L.MOTION * len(names), moving
+        r0 = d0 + L.DYAD_OUT * nd
+        out: dict = {
+            "m": {b: slab[L.MOTION * i:L.MOTION * (i + 1)] for i, b in enumerate(names)},
+            "a": {b: slab[a0 + 3 * i:a0 + 3 * (i + 1)] for i, b in enumerate(names)},
+            "d": [slab[d0 + L.DYAD_OUT * i:d0 + L.DYAD_OUT * (i + 1)] for i in range(nd)],
+            "r": [slab[r0 + L.REACTIONS * i:r0 + L.REACTIONS * (i + 1)] for i in range(nd)],
+            "drv": slab[r0 + L.REACTIONS * nd:], "u": np.zeros(width, dtype=bool)}
+        ground = out["m"][GROUND]
+        ground[:] = 0.0
+        ground[L.C] = 1.0
         return out
 
     def run(self, x: np.ndarray, lo: int, hi: int, off: int, buf: dict) -> None:
@@ -189,14 +187,75 @@ def solve_full(plan: Plan, positions: np.ndarray, block: int = ROWS, rows=None) 
     """The whole sweep's Solved (every table's arrays), solved block by block into
     arrays over the whole sweep. ``rows``: a stack's (scene, structure) with each
     number over its rows (the plan's hold them per scene), for the Solved."""
+    scene, structure = rows or (plan.scene, plan.structure)
+    return _solution(plan, scene, structure, positions, solve_arrays(plan, positions, block))
+
+
+def solve_arrays(plan: Plan, positions: np.ndarray, block: int = ROWS) -> dict:
+    """The kernels' arrays over the whole sweep (:meth:`Plan.buffers`, cut to its rows),
+    solved block by block."""
     n = positions.size
     x = driver_input(plan.scene)
     buf = plan.buffers(n)
     for lo in range(0, n, block):
         plan.run(x, lo, min(lo + block, n), 0, buf)
     plan.check_swept()
-    scene, structure = rows or (plan.scene, plan.structure)
-    return _solution(plan, scene, structure, positions, _cut(buf, n))
+    return _cut(buf, n)
+
+
+class Unwrapped:
+    """A sweep solved in full on the compiled path whose arrays are wrapped in the
+    solver's objects (:class:`Kinematics`, the joint reactions) when first read, not
+    before (a :class:`~kinetostatics.solver.solved.Deferred`): the driver table reads
+    Me/Fe, the undefined-load rows and the dyads' singular rows alone, which it holds
+    from the start (measured 2026-11-30, four-bar at 2001 rows: the wrapping 23-45 us of
+    a 300-450 us call). The arrays are the kernels', solved once: wrapped later, the
+    same numbers."""
+
+    path = "fast"
+
+    def __init__(self, plan: Plan, positions: np.ndarray, buf: dict, dead: tuple):
+        drv = plan.scene.driver
+        # (Me/Fe copied out, as the Solved's)
+        self.known = {"scene": plan.scene, "structure": plan.structure, "self_locking": None,
+                      "drive": DriverReaction(drv.kind, buf["drv"][0].copy()),
+                      "undefined_load": buf["u"]}
+        self.positions = positions
+        self.plan, self.buf, self.dead = plan, buf, dead
+        self.full: dict | None = None
+        self.lock = threading.Lock()
+
+    def singular(self) -> np.ndarray:
+        """As :attr:`Kinematics.singular`, from each dyad's closeness to a dead centre."""
+        flags = [~(d[L.CL2] > SINGULAR_WARN**2) for d in self.buf["d"]]
+        return singular_rows(self.positions.size, flags, self.dead)
+
+    def give(self, name: str, have=()) -> dict:
+        """The kinematics and joint reactions, wrapped once."""
+        with self.lock:
+            if self.full is None:
+                k = self.known
+                sol = _solution(self.plan, k["scene"], k["structure"], self.positions,
+                                self.buf, k["drive"])
+                kin = sol.kin
+                kin.between, kin.ends, kin.unassembled = self.dead
+                kin.release()       # as the numpy path's solve: worked out again if asked
+                self.full = {"kin": kin, "joint_reactions": sol.joint_reactions}
+            return self.full
+
+    def solved(self) -> Solved:
+        full, k = self.give("kin"), self.known
+        sol = Solved(k["scene"], k["structure"], full["kin"], None, full["joint_reactions"],
+                     k["drive"], k["undefined_load"])
+        sol.path = "fast"
+        return sol
+
+    def __reduce__(self):
+        return _as_solved, (self.solved(),)
+
+
+def _as_solved(solved: Solved) -> Solved:
+    return solved
 
 
 def _cut(buf: dict, n: int) -> dict:
@@ -248,8 +307,8 @@ def _param(scene: Scene, dyad, i: int, known: BodyMotion, m: np.ndarray, d: np.n
                  by=d[b + 3])
 
 
-def _solution(plan: Plan, scene: Scene, structure, positions: np.ndarray, buf: dict
-              ) -> Solved:
+def _solution(plan: Plan, scene: Scene, structure, positions: np.ndarray, buf: dict,
+              drive: DriverReaction | None = None) -> Solved:
     """The Solved of ``scene`` and ``structure`` over the rows of ``buf`` (arrays over
     the whole sweep), every array a view of the kernels' output."""
     n = positions.size
@@ -277,10 +336,10 @@ def _solution(plan: Plan, scene: Scene, structure, positions: np.ndarray, buf: d
             ny=d[L.NY] if inner.kind == "T" else None))
     kin = Kinematics(scene, structure, positions, bodies, dyads)
     reactions = _reactions(plan, scene, buf)
-    r = buf["drv"]
-    # (Me/Fe copied out: a stacked run's scenes keep it, not the slab it lies in)
-    sol = Solved(scene, structure, kin, None, reactions,
-                 DriverReaction(drv.kind, r[0].copy()), buf["u"])
+    if drive is None:
+        # (Me/Fe copied out: a stacked run's scenes keep it, not the slab it lies in)
+        drive = DriverReaction(drv.kind, buf["drv"][0].copy())
+    sol = Solved(scene, structure, kin, None, reactions, drive, buf["u"])
     sol.path = "fast"
     return sol
 

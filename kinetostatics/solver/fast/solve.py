@@ -9,13 +9,14 @@ import numpy as np
 
 from ...model.scene import Scene
 from ..blocks import BLOCK_ROWS, LeanSolved
-from ..deadpoints import dead_points_between_rows, dead_points_of_sweep, measure2
+from ..deadpoints import dead_points_of_sweep, measure2
 from ..kinematics import choose_assembly, with_positions
 from ..memo import record_of
 from ..solved import Solved
 from .choice import wanted
-from .compose import Geometry, Plan, Refused, solve_full, solve_lean
+from .compose import Geometry, Plan, Refused, Unwrapped, solve_arrays, solve_full, solve_lean
 from .geometry import not_covered, swept_load
+from .layout import CL2
 
 
 def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
@@ -45,12 +46,13 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
                                         measure2(sweep.closeness2, n))
             sol = LeanSolved(full, sweep, positions, dead, again)
         else:
-            sol = solve_full(Plan(kernels, full, structure, structure.assembly,
-                                  geometry=geometry), positions)
-            kin = sol.kin
-            kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
-                full, structure, kin)
-            kin.release()           # as the numpy path's solve: worked out again if asked
+            plan = Plan(kernels, full, structure, structure.assembly, geometry=geometry)
+            buf = solve_arrays(plan, positions)
+            # (dead_points_between_rows of the kinematics the arrays make: their
+            # closeness to a dead centre, d[CL2], is each dyad's closeness2)
+            dead = dead_points_of_sweep(full, structure, positions,
+                                        measure2([d[CL2] for d in buf["d"]], n))
+            sol = Unwrapped(plan, positions, buf, dead)
     except Refused:
         return None
     sol.path = "fast"       # (a LeanSolved's: its full solve's is set by _solution)
