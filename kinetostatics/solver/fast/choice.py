@@ -2,11 +2,13 @@
 test suite) and the rule for ``auto`` (no numba here).
 
 ``numpy``: always the numpy path. ``fast``: the compiled path for every call it covers
-(numba loaded on the first). ``auto`` (the default): while :data:`AUTO_COMPILED` is off,
-the numpy path; on, the compiled path for a call (or a ``solve_many`` group) of at
-least :data:`AUTO_ROWS` rows, and for every call once it is loaded in the process; a
-first small solve never imports numba. Without numba, or
-without a writable cache folder, every setting solves on the numpy path.
+(numba loaded on the first). ``auto`` (the default): the numpy path until a call, or a
+``solve_many`` group, of at least :data:`AUTO_ROWS` rows: that call loads numba and
+solves on the compiled path, and so does every call after it in the process, small ones
+too (:data:`AUTO_SMALL`: once loaded, the compiled path wins at 2001 rows as well). A
+first small solve never imports numba, nor does ``import kinetostatics``. Without numba,
+or without a writable cache folder (one warning), every setting solves on the numpy
+path.
 """
 
 from __future__ import annotations
@@ -18,15 +20,19 @@ from . import loader
 
 PATHS = ("auto", "numpy", "fast")
 AUTO_ROWS = 20_000      # below, numba's import and first call (0.2-0.3 s) outweigh the gain
-# Whether ``auto`` takes the compiled path at all. Off: the kernels, vectorised in tiles,
-# win on long four-bar sweeps but not yet elsewhere (measured 2026-11-29 on the 2-core
-# machine in processor time, solve + driver table against the hand form: four-bar at
-# 2e5 / 1e6 rows 0.57x / 0.61x against numpy's 1.00x / 0.89x; slider-crank 2.3x / 0.80x
-# against 2.1x / 0.79x; at 2001 rows 4.7x against 4.2x; solve_many of 1000 x 361 rows
-# 1.6x numpy's time), so the compiled path runs only when asked for (``fast``).
-# docs/solve-paths.md, "Speed", says where the time goes.
-AUTO_COMPILED = False
-AUTO_SMALL = False
+# Whether ``auto`` takes the compiled path: for a call (or a solve_many group) of
+# AUTO_ROWS rows or more, and then (AUTO_SMALL) for every call of the process, once numba
+# is loaded. Measured 2026-11-29 on the 2-core machine (shared, load 4-8), processor
+# time, bench_reference's rounds, solve(dict).driver against the hand form: four-bar at
+# 2001 rows compiled 2.33x single calls / 1.64x in batches, numpy 3.17x / 2.97x;
+# slider-crank at 2001 compiled 3.39x / 2.83x, numpy 4.41x / 4.45x; four-bar at 2e5 and
+# 1e6 rows: see docs/solve-paths.md, "Speed" (compiled about half the numpy path's
+# time); solve_many of 1000 four-bars x 361 (361 000 rows: a group over AUTO_ROWS)
+# compiled, as measured there. A fresh process's first small call stays on numpy: numba's
+# import and its kernels' first load (0.2-1.2 s of processor time from the cache, 15 s
+# of compiling per kind of mechanism on a new machine) outweigh a small call's gain.
+AUTO_COMPILED = True
+AUTO_SMALL = True
 _OPTION: dict[str, str | None] = {"path": None, "told": None}
 
 

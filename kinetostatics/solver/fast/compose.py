@@ -208,7 +208,7 @@ class Unwrapped:
     solver's objects (:class:`Kinematics`, the joint reactions) when first read, not
     before (a :class:`~kinetostatics.solver.solved.Deferred`): the driver table reads
     Me/Fe, the undefined-load rows and the dyads' singular rows alone, which it holds
-    from the start (measured 2026-11-30, four-bar at 2001 rows: the wrapping 23-45 us of
+    from the start (measured 2026-11-29, four-bar at 2001 rows: the wrapping 23-45 us of
     a 300-450 us call). The arrays are the kernels', solved once: wrapped later, the
     same numbers."""
 
