@@ -217,9 +217,10 @@ class Unwrapped:
     def __init__(self, plan: Plan, positions: np.ndarray, buf: dict, dead: tuple):
         drv = plan.scene.driver
         # (Me/Fe copied out, as the Solved's)
+        # (the loads let go, None: computed again when asked, as a Solved's)
         self.known = {"scene": plan.scene, "structure": plan.structure, "self_locking": None,
                       "drive": DriverReaction(drv.kind, buf["drv"][0].copy()),
-                      "undefined_load": buf["u"]}
+                      "undefined_load": buf["u"], "_loads": None}
         self.positions = positions
         self.plan, self.buf, self.dead = plan, buf, dead
         self.full: dict | None = None
