@@ -69,7 +69,8 @@ def load_scene(source: Any) -> Scene:
     Returns
     -------
     Scene
-        The checked scene.
+        The checked scene (frozen). A dict of plain data whose content was read lately
+        gives the same Scene object again (:func:`snapshot`, :func:`keepable`).
 
     Raises
     ------
@@ -98,8 +99,9 @@ class _Snapshot(pickle.Pickler):
     scalars (anything else is refused: its pickle may leave out what it holds)."""
 
     def reducer_override(self, obj):
-        if type(obj) is np.ndarray or isinstance(obj, np.generic):
-            return NotImplemented
+        if type(obj) is np.ndarray or isinstance(obj, np.generic | np.dtype) or (
+                getattr(obj, "__module__", None) or "").startswith("numpy"):
+            return NotImplemented   # (an array's pickle names numpy's own rebuilders)
         raise TypeError(type(obj).__name__)
 
 
