@@ -14,6 +14,7 @@ import os
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 import kinetostatics as ks
@@ -127,3 +128,32 @@ def test_without_numba_auto_solves_on_numpy_and_says_nothing(monkeypatch, recwar
     finally:
         choice.use(None)
     assert not [w for w in recwarn if issubclass(w.category, RuntimeWarning)]
+
+
+@pytest.mark.slow
+@needs_numba
+def test_a_small_compiled_solve_wraps_its_arrays_when_first_read() -> None:
+    """A compiled sweep of 2001 rows holds the kernels' arrays and wraps them in its
+    kinematics and reactions when a table first reads them: whichever table comes first,
+    and pickled (every array given), the same tables bit for bit."""
+    import pickle
+
+    from kinetostatics.solver.pipeline import solve_arrays
+    d = load_scene(ks.example("four_bar")).raw
+    d["driver"] = {**d["driver"], "count": 2001}
+    choice.use("fast")
+    try:
+        first, second, sent = solve(d), solve(d), pickle.loads(pickle.dumps(solve(d)))
+        # the solver's arrays sent whole (solve_many's executor pickles them)
+        arrays = pickle.loads(pickle.dumps(solve_arrays(d)))
+    finally:
+        choice.use(None)
+    arrived = ks.Solution.of(arrays)
+    assert first.path == second.path == sent.path == arrived.path == "fast"
+    tables = ("driver", "reactions", "kinematics", "dyads", "bodies")
+    one = {t: getattr(first, t) for t in tables}                  # the driver table first
+    two = {t: getattr(second, t) for t in reversed(tables)}       # the bodies first
+    for t in tables:
+        assert one[t].equals(two[t]) and one[t].equals(getattr(sent, t)), t
+        assert one[t].equals(getattr(arrived, t)), t
+    assert np.array_equal(first.loads[0].fx, second.loads[0].fx)  # (let go, made again)
