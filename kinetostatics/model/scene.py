@@ -89,7 +89,10 @@ def load_scene(source: Any) -> Scene:
         scene = _read(pickle.loads(key))
         if keepable(scene):
             if len(_READ) >= READ_KEPT:
-                _READ.pop(next(iter(_READ)))
+                try:
+                    _READ.pop(next(iter(_READ)), None)  # the oldest (another thread at
+                except (StopIteration, RuntimeError):   # it too: one more or less)
+                    pass
             _READ[key] = scene
     return scene
 

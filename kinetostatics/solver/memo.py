@@ -29,10 +29,19 @@ def record_of(scene: object) -> dict:
         return entry[1]
     record: dict = {}
     if len(_RECORDS) >= KEPT:
-        del _RECORDS[next(iter(_RECORDS))]      # the oldest
+        forget_oldest(_RECORDS)
 
     def gone(ref: weakref.ref, key: int = key) -> None:
         if _RECORDS.get(key, (None,))[0] is ref:
-            del _RECORDS[key]
+            _RECORDS.pop(key, None)
     _RECORDS[key] = (weakref.ref(scene, gone), record)
     return record
+
+
+def forget_oldest(kept: dict) -> None:
+    """Drop the oldest entry of ``kept`` (another thread changing it at the same moment
+    may make it one more or one less: no harm)."""
+    try:
+        kept.pop(next(iter(kept)), None)
+    except (StopIteration, RuntimeError):
+        pass
