@@ -98,14 +98,14 @@ def test_a_touched_trap_passes_again_with_every_check(monkeypatch):
     text = scene_text("scotch_yoke")
     expected = bits(ks.solve(text).reactions)
     calls = []
-    real = onepass._fill
+    real = onepass.OnePass.run
 
     def touched(*args):
         calls.append(np.geterr())
         real(*args)
         if len(calls) == 1:
             np.float64(1.0) / np.float64(0.0)      # touches the trap of the first pass
-    monkeypatch.setattr(onepass, "_fill", touched)
+    monkeypatch.setattr(onepass.OnePass, "run", touched)
     assert bits(ks.solve(text).reactions) == expected
     assert len(calls) == 2 and calls[0]["divide"] == "call" and calls[1]["divide"] != "call"
 
