@@ -128,6 +128,7 @@ class Solution:
         if source is None or name not in DEFERRED:
             raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
         d.update(source.give(name, d))
+        d.pop("_onepass", None)     # (what a one-pass table kept: the arrays are whole now)
         if all(f in d for f in DEFERRED):
             d.pop("_deferred", None)    # (another thread may have done it too: the same)
         return d[name]
