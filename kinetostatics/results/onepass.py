@@ -46,7 +46,7 @@ from ..solver.driver import BodyMotion
 from ..solver.kinematics import solve_kinematics
 from ..solver.pipeline import solve_block
 from ..solver.trap import first_trapped
-from .longtable import FloatBlock, LongTable, offsets, table_block
+from .longtable import CHUNK, FloatBlock, LongTable, offsets, table_block
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -90,13 +90,14 @@ class OnePass:
         self.fills: dict[str, FloatBlock] = {}      # ... and its float columns
         self.prismatic: list[int] = []              # reactions' blocks with N an array
         self.motion: KeptMotion | None = None       # the bodies' motion, kept
+        self.built: set[str] = set()                # tables whose columns are written
         self.taken: set[str] = set()                # tables whose frame was made
 
     def has(self, name: str) -> bool:
         """Whether table ``name`` can be made from this pass without solving again."""
         if name in self.taken:
             return False
-        return name in self.fills or (name == "kinematics" and self.motion is not None)
+        return name in self.built or (name == "kinematics" and self.motion is not None)
 
     def run(self, name: str, other: bool = True) -> None:
         """Solve the sweep again block by block; write each block's rows into the
@@ -113,7 +114,7 @@ class OnePass:
         names = ("reactions", name) if name == "kinematics" and other else (name,)
         bodies = list(dict.fromkeys(b for b, _, _ in self.sol._points()))
         keep = KeptMotion(bodies, n) if name == "reactions" and other else None
-        self.prismatic = []
+        self.prismatic, self.motion = [], None
         for start in range(0, n, BLOCK_ROWS):
             rows = slice(start, min(start + BLOCK_ROWS, n))
             sc, st = part(rows, structure)
@@ -123,17 +124,30 @@ class OnePass:
             for table in names:
                 self._put(table, block.long_table(table), rows, n)
             if keep is not None:
+                if start == 0:      # the motion is kept in the kinematics table's room
+                    room = self._table("kinematics", block.long_table("kinematics"))
+                    keep.room = room.reserve().reshape(-1, n)
                 keep.put(kin.bodies, rows)
-        self.motion = keep if keep is not None and keep.whole else None
+        self.built.update(names)
+        if keep is not None and keep.whole:
+            self.motion = keep
+        elif keep is not None:
+            self.tables.pop("kinematics", None)
+            self.fills.pop("kinematics", None)
 
-    def _put(self, name: str, block: LongTable, rows: slice, n: int) -> None:
-        """Block of rows ``rows`` of table ``name`` (``block``: its definition over
-        those rows) into the table's columns."""
+    def _table(self, name: str, block: LongTable) -> FloatBlock:
+        """The columns of table ``name`` (``block``: its definition over a block of rows),
+        made at the first block."""
         if name not in self.fills:
             self.tables[name] = LongTable(self.lean.positions, block.labels, block.floats,
                                           block.chunk, self.sol._tiled)
             self.fills[name] = FloatBlock(self.tables[name])
-        fill = self.fills[name]
+        return self.fills[name]
+
+    def _put(self, name: str, block: LongTable, rows: slice, n: int) -> None:
+        """Block of rows ``rows`` of table ``name`` (``block``: its definition over
+        those rows) into the table's columns."""
+        fill = self._table(name, block)
         here = slice(0, rows.stop - rows.start)
         for i in range(block.blocks):
             values = block.chunk(i, here)
@@ -144,13 +158,26 @@ class OnePass:
     def frame(self, name: str) -> pd.DataFrame:
         """Table ``name`` as a DataFrame (made once: its columns are the table's)."""
         self.taken.add(name)
-        if name == "kinematics" and name not in self.fills:
-            motion, self.motion = self.motion, None
-            return self.sol._kinematics_long(motion.bodies()).frame()
         table, fill = self.tables.pop(name), self.fills.pop(name)
+        if name == "kinematics" and name not in self.built:
+            motion, self.motion = self.motion, None
+            self._kinematics_of(motion, table, fill)
         if name == "reactions":
             _offsets(fill, self.prismatic, table.n)
         return table.frame_of(fill)
+
+    def _kinematics_of(self, motion: KeptMotion, table: LongTable, fill: FloatBlock) -> None:
+        """The ``kinematics`` columns from the kept motion, a chunk of rows at a time: the
+        motion's rows of the chunk are copied out first, then the chunk's rows of every
+        point are written (over the motion's rows of that chunk, where it was kept in the
+        table's room, and nowhere else: rows of a later chunk stay as they were)."""
+        n = table.n
+        for start in range(0, n, CHUNK):
+            rows = slice(start, min(start + CHUNK, n))
+            block = self.sol._kinematics_long(motion.bodies(rows))
+            here = slice(0, rows.stop - rows.start)
+            for i in range(block.blocks):
+                fill.put(i, slice(i * n + rows.start, i * n + rows.stop), block.chunk(i, here))
 
 
 class KeptMotion:
@@ -161,10 +188,11 @@ class KeptMotion:
     that are one array in the first block and two in this one) leaves nothing kept
     (:attr:`whole` False): the table is then made by solving again."""
 
-    def __init__(self, bodies: list[str], n: int):
+    def __init__(self, bodies: list[str], n: int, room: np.ndarray | None = None):
         self.names, self.n = bodies, n
         self.layout: dict[tuple[str, str], object] = {}    # (body, field) -> row or number
         self.slab: np.ndarray | None = None
+        self.room = room        # rows of n values to keep the arrays in, if there are enough
         self.whole = True
 
     def put(self, motions: dict[str, BodyMotion], rows: slice) -> None:
@@ -204,15 +232,21 @@ class KeptMotion:
                 else:
                     self.whole = False
                     return
-        self.slab = table_block((len(rows), self.n))
+        room = self.room
+        fits = room is not None and room.shape[0] >= len(rows)
+        self.slab = room[:len(rows)] if fits else table_block((len(rows), self.n))
 
-    def bodies(self) -> dict[str, BodyMotion]:
-        """Each body's motion over the whole sweep."""
+    def bodies(self, rows: slice | None = None) -> dict[str, BodyMotion]:
+        """Each body's motion over the whole sweep (``rows``: over those rows, copied
+        out of where they are kept)."""
+        copies = {}
+        for v in self.layout.values():
+            if type(v) is int and v not in copies:
+                copies[v] = self.slab[v] if rows is None else self.slab[v, rows].copy()
         out = {}
         for b in self.names:
             values = [self.layout[b, f] for f in BodyMotion.FIELDS]
-            out[b] = BodyMotion(None, *(self.slab[v] if type(v) is int else v
-                                        for v in values))
+            out[b] = BodyMotion(None, *(copies[v] if type(v) is int else v for v in values))
         return out
 
 
