@@ -68,15 +68,13 @@ def lean_frame(sol: Solution, name: str) -> pd.DataFrame | None:
         d.pop(KEPT, None)               # (the arrays are whole: what a pass kept is moot)
         return None
     other = "reactions" if name == "kinematics" else "kinematics"
-    passed = d.get(KEPT)
+    passed = d.pop(KEPT, None)          # (taken: no two threads make a table of one pass)
     if passed is None or not passed.has(name):
         passed = OnePass(sol, lean)
         first_trapped(passed.run, name, other not in d)
     frame = passed.frame(name)
     if other not in d and passed.has(other):
         d[KEPT] = passed                # what the other table is made from
-    else:
-        d.pop(KEPT, None)
     return frame
 
 
