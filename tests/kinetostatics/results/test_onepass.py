@@ -17,6 +17,9 @@ from kinetostatics.results.longtable import FloatBlock, LongTable
 from kinetostatics.solver.blocks import BLOCK_ROWS, LeanSolved
 from kinetostatics.solver.driver import BodyMotion
 
+# the numpy path's own pass (the compiled path builds the tables from its own re-solve)
+pytestmark = pytest.mark.usefixtures("numpy_path")
+
 ROWS = 2 * BLOCK_ROWS + 5       # three blocks of rows, the last one short: solved lean
 # revolute joints only; a sliding driver; two prismatic joints (offset = M / N); an RTR dyad
 CASES = ("four_bar", "sliding_driver", "scotch_yoke", "slotted_lever")
