@@ -1,25 +1,24 @@
-"""The ``reactions`` and ``kinematics`` tables of a long sweep solved lean, both from one
-pass that solves the sweep again block by block and writes each block's rows straight
-into the tables' columns.
+"""The ``reactions`` and ``kinematics`` tables of a long sweep solved lean, each built in
+one pass that solves the sweep again block by block and writes each block's rows straight
+into the table's columns; the ``reactions`` pass keeps what the ``kinematics`` table is
+made of, so that the two cost one re-solve.
 
 A long sweep is solved lean (:class:`~kinetostatics.solver.blocks.LeanSolved`: of the
 solver's arrays only what the driver table and the dead points need). Its kinematics
 and joint reactions are otherwise solved again in full when first read, gathered into
 about 26 arrays over the sweep (200 MB at 1e6 positions, written and faulted in), and the
-tables are then computed from those. Here, when the first of the two tables is asked
-for, the sweep is solved again once, block by block, and while each block's arrays are
-fresh in the caches:
+tables are then computed from those. Here the sweep is solved again block by block
+(for ``kinematics`` the kinematics alone) and, while each block's arrays are fresh in the
+caches, the table's rows are computed and written into its columns (one
+:class:`~kinetostatics.results.longtable.FloatBlock`). The ``reactions`` pass also keeps
+the bodies' motion arrays (at 1e6 positions 16 for the four-bar, 128 MB) in the rows of
+the ``kinematics`` table's own array, which is not written yet; that table, if it is
+asked for later, is computed from them a chunk of rows at a time, each chunk's motion
+copied out before its rows are written over, without solving again and with no page
+beyond the table's own. (The ``kinematics`` pass keeps nothing for ``reactions``: the
+loads and reactions of a block cost what its kinematics cost, which a user of the
+``kinematics`` table alone would pay for nothing.)
 
-* the ``reactions`` table's rows are computed and written into its columns (one
-  :class:`~kinetostatics.results.longtable.FloatBlock`), whichever table was asked for
-  (the loads and reactions of a block cost about what its kinematics cost, and the table
-  is small: three columns a joint);
-* the ``kinematics`` table's rows likewise when it is the one asked for; when
-  ``reactions`` is, the bodies' motion arrays are kept instead (at 1e6 positions 128 MB
-  for the four-bar's three bodies, against 504 MB of table), and the ``kinematics``
-  table, if it is asked for later, is computed from them without solving again.
-
-Nothing else over the sweep is held, and the other table costs no second re-solve.
 Every row is computed by the same operations as from the full re-solve, on the solver's
 own blocks with the sweep's assemblies (:func:`~kinetostatics.solver.blocks.blocks_of_sweep`,
 as :mod:`kinetostatics.results.streamed` does): the same numbers, bit for bit (a kept
@@ -45,6 +44,7 @@ from ..solver.blocks import BLOCK_ROWS, LeanSolved, blocks_of_sweep
 from ..solver.driver import BodyMotion
 from ..solver.kinematics import solve_kinematics
 from ..solver.pipeline import solve_block
+from ..solver.solved import Solved
 from ..solver.trap import first_trapped
 from .longtable import CHUNK, FloatBlock, LongTable, offsets, table_block
 
@@ -98,18 +98,17 @@ class OnePass:
         return name in self.built or (name == "kinematics" and self.motion is not None)
 
     def run(self, name: str, other: bool = True) -> None:
-        """Solve the sweep again block by block; write each block's rows into the
-        columns of table ``name`` and, with ``other`` (the other table wanted too), into
-        the ``reactions`` columns when ``name`` is ``kinematics``, or keep the bodies'
-        motion when it is ``reactions`` (each table's definition from the first block of
-        rows: the whole solution's would solve it again)."""
+        """Solve the sweep again block by block (for ``kinematics`` the kinematics alone)
+        and write each block's rows into the columns of table ``name``; for
+        ``reactions``, with ``other`` (the ``kinematics`` table not made yet), keep the
+        bodies' motion too (each table's definition from the first block of rows: the
+        whole solution's would solve it again)."""
         scene, structure = self.lean.known["scene"], self.lean.known["structure"]
         positions = self.lean.positions
         n = positions.size
         _, structure, part = blocks_of_sweep(scene, structure, positions)
         # each joint's largest |N| taken as infinite: the offset is left for _offsets
         largest = dict.fromkeys(range(len(scene.joints)), np.inf)
-        names = ("reactions", name) if name == "kinematics" and other else (name,)
         bodies = list(dict.fromkeys(b for b, _, _ in self.sol._points()))
         keep = KeptMotion(bodies, n) if name == "reactions" and other else None
         self.prismatic, self.motion = [], None
@@ -118,15 +117,16 @@ class OnePass:
             sc, st = part(rows, structure)
             kin = solve_kinematics(sc, st)
             st = kin.structure
-            block = type(self.sol).block_of(solve_block(sc, st, kin), {}, largest)
-            for table in names:
-                self._put(table, block.long_table(table), rows, n)
+            solved = (solve_block(sc, st, kin) if name == "reactions"
+                      else Solved(sc, st, kin, None, {}, None, None))
+            block = type(self.sol).block_of(solved, {}, largest)
+            self._put(name, block.long_table(name), rows, n)
             if keep is not None:
                 if start == 0:      # the motion is kept in the kinematics table's room
                     room = self._table("kinematics", block.long_table("kinematics"))
                     keep.room = room.reserve().reshape(-1, n)
                 keep.put(kin.bodies, rows)
-        self.built.update(names)
+        self.built.add(name)
         if keep is not None and keep.whole:
             self.motion = keep
         elif keep is not None:
