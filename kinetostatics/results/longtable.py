@@ -327,10 +327,17 @@ class FloatBlock:
                 out = self._column(c)
             out[rows] = v
 
-    def _column(self, c: str) -> np.ndarray:
-        """Column ``c`` as an array, the rows written as one value filled with it."""
+    def reserve(self) -> np.ndarray:
+        """The array of every column (one row each), allocated now if it is not yet: its
+        memory is taken page by page as it is written (a caller may keep numbers of its
+        own in rows not written yet, and must have read them before it writes them)."""
         if self.block is None:
             self.block = table_block((len(self.names), self.size))
+        return self.block
+
+    def _column(self, c: str) -> np.ndarray:
+        """Column ``c`` as an array, the rows written as one value filled with it."""
+        self.reserve()
         out = self.rows[c] = self.block[self.names.index(c)]
         value = self.same.pop(c, None)
         for rows in self.wrote.pop(c, ()):

@@ -128,6 +128,7 @@ class Solution:
         if source is None or name not in DEFERRED:
             raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
         d.update(source.give(name, d))
+        d.pop("_onepass", None)     # (what a one-pass table kept: the arrays are whole now)
         if all(f in d for f in DEFERRED):
             d.pop("_deferred", None)    # (another thread may have done it too: the same)
         return d[name]
@@ -318,12 +319,16 @@ class Solution:
             hit = self.__dict__["_forces_shared"] = (shared(fx_all), shared(fy_all))
         return hit
 
-    def _kinematics_long(self) -> LongTable:
+    def _kinematics_long(self, bodies: dict | None = None) -> LongTable:
+        """The ``kinematics`` table from the bodies' motion (``bodies``: each body's
+        :class:`~kinetostatics.solver.driver.BodyMotion` over the sweep; default the
+        solution's own)."""
         points = list(self._points())
+        motions = self.kin.bodies if bodies is None else bodies
 
         def chunk(i: int, part: slice) -> dict:
             b, _, loc = points[i]
-            m = self.kin.bodies[b].take(part)
+            m = motions[b].take(part)
             # the arm itself, not (origin + arm) - origin: no rounding, whether the origin
             rx, ry = m.rotate(*loc)     # is a number or an array (a stack's rows)
             x, y = A.add(m.ox, rx), A.add(m.oy, ry)
