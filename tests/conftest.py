@@ -44,6 +44,13 @@ matplotlib.use("Agg")
 sys.dont_write_bytecode = False
 os.environ.pop("PYTHONDONTWRITEBYTECODE", None)
 
+# The solve path of the suite: numpy unless KINETOSTATICS_PATH says otherwise
+# (`KINETOSTATICS_PATH=fast python -m pytest` runs it on the compiled path). Under `auto` a
+# worker that once solved 2e4 rows has numba loaded and solves every later call compiled:
+# a test's path would hang on which tests ran before it in the same worker. The tests of
+# the paths and of the auto rule set theirs (test_fast.py, test_fast_auto.py).
+os.environ.setdefault("KINETOSTATICS_PATH", "numpy")
+
 settings.register_profile("repeatable", derandomize=True, print_blob=True)
 EXPLORE_FACTOR = 10
 settings.register_profile("explore", derandomize=False, print_blob=True,
