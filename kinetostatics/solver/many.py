@@ -54,7 +54,7 @@ from . import blocks
 from .blocks import LeanSolved
 from .deadpoints import dead_points_stacked, kin_measure2
 from .driver import BodyMotion
-from .fast import solve_run_stacked, stack_left_alone, wanted
+from .fast import solve_run_stacked, wanted
 from .fast.geometry import not_covered
 from .footprint import columns, solve_bytes
 from .kinematics import Kinematics, solve_kinematics
@@ -198,11 +198,6 @@ def _solve_group(members: list, out: list, lean: bool) -> None:
     for (or all of them, if it refuses) is solved alone."""
     if len(members) == 1:
         out[members[0][0]] = _alone(members[0][1])
-        return
-    rows = sum(sc.driver.positions.size for _, sc in members)
-    if stack_left_alone(members[0][1], rows):   # (the compiled path: each scene's own)
-        for i, sc in members:
-            out[i] = _alone(sc)
         return
     stacker = None
     try:

@@ -132,12 +132,14 @@ def swept_loads(lo, hi, off, g, gs, own, nload, m, acc, undefined, stats):
     magnitude R against its point's velocity, a force (kind 2) acting ``when =
     "resisting"`` (where its power is negative). A row stands still where the speed (the
     power's magnitude) is at most ``thr`` (1e-9 of the mechanism's own scale): the force
-    is zero there and the row is undefined. ``stats[q]`` gathers the largest speed and the
-    smallest speed of a moving row: the caller checks that the sweep's top does not move
-    the threshold over a row."""
+    is zero there and the row is undefined. ``stats[q, e]`` gathers the largest speed and
+    the smallest speed of a moving row of scene ``e`` (a stack's: each row's scene
+    ``own[i]``; one scene: 0): the caller checks that each sweep's top does not move its
+    scene's threshold over a row."""
     bad = 0
+    es = 1 if stats.shape[1] > 1 else 0
     for i in range(lo, hi):
-        j, r = i - off, own[i * gs]
+        j, r, e = i - off, own[i * gs], own[i * es]
         c, s = m[C, j], m[S, j]
         om = m[OM, j]
         for q in range(nload):
@@ -158,10 +160,10 @@ def swept_loads(lo, hi, off, g, gs, own, nload, m, acc, undefined, stats):
                 still = x <= thr
                 if still or not power < 0.0:
                     fx = fy = 0.0
-            if x > stats[q, 0] or not x == x:
-                stats[q, 0] = x
-            if not still and x < stats[q, 1]:
-                stats[q, 1] = x
+            if x > stats[q, e, 0] or not x == x:
+                stats[q, e, 0] = x
+            if not still and x < stats[q, e, 1]:
+                stats[q, e, 1] = x
             if still:
                 undefined[j] = True
             acc[0, j] += fx

@@ -9,7 +9,7 @@ import numpy as np
 
 from ..solved import Solved
 from .choice import wanted
-from .compose import Plan, Refused, solve_full, solve_lean
+from .compose import Plan, solve_full, solve_lean
 from .geometry import not_covered
 from .solve import KeptRun
 
@@ -20,9 +20,14 @@ def solve_run_stacked(stacker, structure, ks: np.ndarray, lo: int, hi: int,
     """Scenes ``lo`` to ``hi - 1`` of ``stacker``
     (:class:`~kinetostatics.solver.stack.Stacker`) one after another, ``counts`` rows
     each at ``positions``, each dyad in its scene's assembly (``ks``: dyads x scenes),
-    on the compiled path; or None (the path is off, the run is not covered, or a kernel
-    met a row the numpy path must judge). Every row is the row its scene gives alone on
-    this path, bit for bit: the same kernels, each number the scene's own.
+    on the compiled path; or None (the path is off, or the run is not covered). Every row
+    is the row its scene gives alone on this path, bit for bit: the same kernels, each
+    number the scene's own (a ``resist`` or ``when = "resisting"`` load's threshold too:
+    each scene's from its own sweep). A kernel that meets a row the numpy path must
+    judge, or a sweep's top that moves its threshold, raises
+    :class:`~kinetostatics.solver.fast.compose.Refused`: the run's scenes are then
+    solved one by one, each as :func:`~kinetostatics.solve` solves it (not the run on
+    the numpy path: its other scenes would differ from their solves in the last bits).
 
     The kernels read the geometry per scene
     (:meth:`~kinetostatics.solver.stack.Stacker.table`, a column per scene, gathered per
@@ -40,12 +45,9 @@ def solve_run_stacked(stacker, structure, ks: np.ndarray, lo: int, hi: int,
     if not_covered(table) is not None:
         return None
     owner = np.repeat(np.arange(hi - lo, dtype=np.int64), counts)
-    try:
-        plan = Plan(kernels, table, structure, ks[:, lo:hi], owner)
-        if kept:
-            return KeptRun(solve_lean(plan, positions, scratch=scratch), positions)
-        rows = (stacker.runs(lo, hi, counts, positions),
-                replace(structure, assembly=tuple(np.repeat(k[lo:hi], counts) for k in ks)))
-        return solve_full(plan, positions, rows=rows)
-    except Refused:
-        return None
+    plan = Plan(kernels, table, structure, ks[:, lo:hi], owner)
+    if kept:
+        return KeptRun(solve_lean(plan, positions, scratch=scratch), positions)
+    rows = (stacker.runs(lo, hi, counts, positions),
+            replace(structure, assembly=tuple(np.repeat(k[lo:hi], counts) for k in ks)))
+    return solve_full(plan, positions, rows=rows)

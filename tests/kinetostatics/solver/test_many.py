@@ -88,7 +88,7 @@ def test_resist_and_resisting_loads_stack(name, alone_calls, numpy_path) -> None
     """A ``resist`` load (the slider-crank's piston) and a force ``when = "resisting"``
     (the shaper's cut) take their thresholds from each scene's own sweep: stacked, with
     every table, flag and summary of each scene's own solve. (The numpy path: the
-    compiled one solves such scenes one by one, fast.solve.stack_left_alone.)"""
+    compiled one's, test_many_fast.py.)"""
     scenes = variants(name, 8, 0.05, seed=4)
     sols = ks.solve_many(scenes)
     assert alone_calls == []
