@@ -7,9 +7,13 @@ from dataclasses import replace
 
 import numpy as np
 
+from ...model.scene import GROUND
+from ..blocks import Kept
+from ..kinematics import SINGULAR_WARN
+from ..reactions import DriverReaction
 from ..solved import Solved
 from .choice import wanted
-from .compose import Plan, solve_full, solve_lean
+from .compose import Plan, Refused, solve_full, solve_lean
 from .geometry import not_covered
 from .solve import KeptRun
 
@@ -47,7 +51,49 @@ def solve_run_stacked(stacker, structure, ks: np.ndarray, lo: int, hi: int,
     owner = np.repeat(np.arange(hi - lo, dtype=np.int64), counts)
     plan = Plan(kernels, table, structure, ks[:, lo:hi], owner)
     if kept:
-        return KeptRun(solve_lean(plan, positions, scratch=scratch), positions)
+        sweep = fused_kept(plan, positions.size)
+        if sweep is None:
+            sweep = solve_lean(plan, positions, scratch=scratch)
+        return KeptRun(sweep, positions)
     rows = (stacker.runs(lo, hi, counts, positions),
             replace(structure, assembly=tuple(np.repeat(k[lo:hi], counts) for k in ks)))
     return solve_full(plan, positions, rows=rows)
+
+
+NO_SWEPT = (np.zeros((1, 1)), 0, [])         # (a body without swept loads)
+NO_STATS = np.zeros((1, 1, 2))
+
+
+def fused_kept(plan: Plan, n: int) -> Kept | None:
+    """What a run's scenes keep (Me, the undefined rows, the closeness to a dead
+    centre) of a crank and one dyad (not RTR), in one fused kernel over the run's ``n``
+    rows (:data:`~kinetostatics.solver.fast.kernels.KEPT`: every kernel of a block in
+    turn on each tile of 64 rows, its values in one scratch array; the numbers of the
+    kernels composed over blocks, bit for bit), or None for another structure (solved
+    by :func:`~kinetostatics.solver.fast.compose.solve_lean`). Raises
+    :class:`~kinetostatics.solver.fast.compose.Refused` as the composed kernels do."""
+    scene = plan.scene
+    trig = scene.__dict__.get("driver_trig")
+    if not plan.crank or len(plan.dyads) != 1 or trig is None:
+        return None
+    gy, gys, dyad = plan.dyads[0]
+    kernel = plan.k.KEPT.get(dyad.kind)
+    dname = scene.driver.body
+    order = (dname, *dyad.bodies)
+    known = [j.other(b) for j, b in zip(dyad.outer, dyad.bodies, strict=True)]
+    if (kernel is None or len(plan.bodies) != 3 or set(plan.bodies) != set(order)
+            or not set(known) <= {GROUND, dname}):
+        return None
+    swept = [plan.swept.get(b, NO_SWEPT) for b in order]
+    drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
+    bad = kernel(0, n, plan.own, trig[1], trig[2], *plan.driver, plan.speed, plan.accel,
+                 gy, gys, known[0] == dname, known[1] == dname,
+                 tuple(plan.loads[b][0] for b in order), tuple(plan.loads[b][1] for b in order),
+                 tuple(plan.loads[b][2] for b in order), tuple(sw[0] for sw in swept),
+                 tuple(sw[1] for sw in swept), tuple(len(sw[2]) for sw in swept),
+                 tuple(plan.stats.get(b, NO_STATS) for b in order), drive, close, undefined)
+    if bad:
+        raise Refused(bad)
+    plan.check_swept()
+    singular = [~(close > SINGULAR_WARN**2)]
+    return Kept(plan.structure, DriverReaction("R", drive), undefined, [close], singular)
