@@ -173,16 +173,30 @@ def _increasing(scenes: list) -> np.ndarray:
     :func:`~kinetostatics.solver.continuity.check_distinct` has nothing to refuse), told
     for all the scenes in one pass (only the rows not above their predecessor, about one
     per scene, are then placed in their scenes)."""
-    if not scenes:
-        return np.zeros(0, dtype=bool)
-    pos = [s.driver.positions for s in scenes]
+    ok = np.ones(len(scenes), dtype=bool)
+    # a sweep read from start, stop and count (Driver.sweep: the same bits for the same
+    # key) is told once per key; the other scenes' positions in one pass
+    told: dict = {}
+    rest = []
+    for i, s in enumerate(scenes):
+        key = s.driver.sweep
+        if key is None:
+            rest.append(i)
+            continue
+        up = told.get(key)
+        if up is None:
+            p = s.driver.positions
+            up = told[key] = bool((p[1:] > p[:-1]).all())
+        ok[i] = up
+    if not rest:
+        return ok
+    pos = [scenes[i].driver.positions for i in rest]
     counts = np.array([p.size for p in pos])
     starts = np.cumsum(counts) - counts
     allp = np.concatenate(pos).astype(float, copy=False)
     down = np.flatnonzero(~(allp[1:] > allp[:-1])) + 1     # row not above row - 1
     seg = np.searchsorted(starts, down, side="right") - 1   # the scene holding it
-    ok = np.ones(len(scenes), dtype=bool)
-    ok[seg[down != starts[seg]]] = False                    # (a scene's first row: no)
+    ok[np.asarray(rest)[seg[down != starts[seg]]]] = False  # (a scene's first row: no)
     return ok
 
 

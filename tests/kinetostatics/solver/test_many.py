@@ -383,6 +383,9 @@ def test_increasing_told_for_all_scenes_at_once() -> None:
     for _ in range(500):
         pos = [rng.choice([0.0, 1.0, 2.0, 3.0, np.nan], n) if rng.random() < 0.5
                else np.sort(rng.random(n)) for n in rng.integers(0, 6, rng.integers(1, 6))]
-        scenes = [SimpleNamespace(driver=SimpleNamespace(positions=p)) for p in pos]
+        # (a sweep read from start, stop and count: its key, the same bits for one key)
+        keys = [(p.size, p.tobytes()) if rng.random() < 0.3 else None for p in pos]
+        scenes = [SimpleNamespace(driver=SimpleNamespace(positions=p, sweep=k))
+                  for p, k in zip(pos, keys, strict=True)]
         want = [bool(np.all(p[1:] > p[:-1])) for p in pos]
         assert many._increasing(scenes).tolist() == want
