@@ -348,8 +348,9 @@ def _solve_run(stacker: Stacker, structure, ks: np.ndarray, lo: int, hi: int,
     long sweep) in blocks, gathered (:func:`~kinetostatics.solver.blocks.solve_blocks`),
     unless a load's threshold is its sweep's maximum (``resist``, ``when = "resisting"``:
     then in one pass, each scene's maximum over its own rows). ``compiled``: on the
-    compiled path (:mod:`~kinetostatics.solver.fast`) unless a kernel meets a row the
-    numpy path must judge; ``kept`` there: only what the scenes' cut Solutions keep
+    compiled path (:mod:`~kinetostatics.solver.fast`; a kernel that meets a row the numpy
+    path must judge raises, and the run's scenes are solved one by one); ``kept`` there:
+    only what the scenes' cut Solutions keep
     (Me/Fe, the flags, the closeness to a dead centre, in the buffers of ``scratch``,
     :func:`~kinetostatics.solver.fast.stacked.solve_run_stacked`)."""
     if compiled:
