@@ -373,8 +373,13 @@ def _saved_outputs(page, home: Path, sheet: str) -> list:
             page.locator(".jp-Notebook").click(position={"x": 5, "y": 5}, timeout=CLICK)
             page.keyboard.press("Control+s")
         time.sleep(0.5)
-        code = [c for c in nbformat.read(home / sheet, as_version=4).cells
-                if c.cell_type == "code"]
+        try:
+            code = [c for c in nbformat.read(home / sheet, as_version=4).cells
+                    if c.cell_type == "code"]
+        except ValueError:              # nbformat.reader.NotJSONError among them
+            # Jupyter's "atomic" save writes the file in place (a backup aside): read
+            # while the server writes, it is empty or cut short (seen once at load 7)
+            code = []
         if len(code) > cells and all(c.execution_count is not None
                                      for c in code if c.source.strip()):
             return [o for c in code[1:] for o in c.outputs]
