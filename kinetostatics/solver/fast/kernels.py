@@ -478,7 +478,7 @@ MOTION = {"RRR": rrr_motion, "RRT": rrt_motion, "TRR": trr_motion, "TRT": trt_mo
 
 # -- a crank and one dyad, fused: what solve_many keeps of a run ---------------------------
 @body
-def _crank_dyad_kept(kind, lo, hi, own, cs, sn, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls,
+def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls,
                      npt, gw, gws, nw, st, drive, close, undefined):
     """A crank and one dyad (not RTR: its guide's cos and sin are numpy's, in a pass of
     their own), rows ``lo`` to ``hi`` of a stack (``own``: each row's scene; a table per
@@ -492,7 +492,8 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, gd, gds, w, eps, gy, gys, k1d, k
     dead centre and the undefined rows are written (``drive``, ``close``,
     ``undefined``). ``k1d``, ``k2d``: whether each outer joint's known body is the
     driver (else the ground). The crank's cos and sin (``cs``, ``sn``) are worked out
-    before, in a pass of their own. Returns the count of rows the numpy path must
+    before, in a pass of their own: row ``i`` of scene ``e`` at ``i - ts[e]`` (one
+    sweep shared by the scenes, or the run's rows). Returns the count of rows the numpy path must
     judge."""
     rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
     R = BODY_ROWS
@@ -528,9 +529,10 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, gd, gds, w, eps, gy, gys, k1d, k
         l0 = tile_geometry(wl0, gl[0], gls[0], own, t0, l0)
         l1 = tile_geometry(wl1, gl[1], gls[1], own, t0, l1)
         l2 = tile_geometry(wl2, gl[2], gls[2], own, t0, l2)
+        c0 = t0 - ts[own[t0]]       # (the scene's row in its cos and sin)
         for t in range(nt):
-            wdrv[C, t] = cs[t0 + t]
-            wdrv[S, t] = sn[t0 + t]
+            wdrv[C, t] = cs[c0 + t]
+            wdrv[S, t] = sn[c0 + t]
         for t in range(TILE):
             f = crank_row(t, t, wgd, w, eps, wdrv)
             bad += f if t < nt else 0
@@ -581,44 +583,44 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, gd, gds, w, eps, gy, gys, k1d, k
 
 
 @jit
-def rrr_kept(lo, hi, own, cs, sn, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
+def rrr_kept(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
              nw, st, drive, close, undefined):
-    return _crank_dyad_kept(7, lo, hi, own, cs, sn, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
+    return _crank_dyad_kept(7, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
                             gls, npt, gw, gws, nw, st, drive, close, undefined)
 
 
 @jit
-def rrt_kept(lo, hi, own, cs, sn, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
+def rrt_kept(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
              nw, st, drive, close, undefined):
-    return _crank_dyad_kept(5, lo, hi, own, cs, sn, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
+    return _crank_dyad_kept(5, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
                             gls, npt, gw, gws, nw, st, drive, close, undefined)
 
 
 @jit
-def trr_kept(lo, hi, own, cs, sn, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
+def trr_kept(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
              nw, st, drive, close, undefined):
-    return _crank_dyad_kept(6, lo, hi, own, cs, sn, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
+    return _crank_dyad_kept(6, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
                             gls, npt, gw, gws, nw, st, drive, close, undefined)
 
 
 @jit
-def trt_kept(lo, hi, own, cs, sn, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
+def trt_kept(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
              nw, st, drive, close, undefined):
-    return _crank_dyad_kept(4, lo, hi, own, cs, sn, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
+    return _crank_dyad_kept(4, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
                             gls, npt, gw, gws, nw, st, drive, close, undefined)
 
 
 @jit
-def rtt_kept(lo, hi, own, cs, sn, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
+def rtt_kept(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
              nw, st, drive, close, undefined):
-    return _crank_dyad_kept(1, lo, hi, own, cs, sn, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
+    return _crank_dyad_kept(1, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
                             gls, npt, gw, gws, nw, st, drive, close, undefined)
 
 
 @jit
-def ttr_kept(lo, hi, own, cs, sn, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
+def ttr_kept(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
              nw, st, drive, close, undefined):
-    return _crank_dyad_kept(2, lo, hi, own, cs, sn, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
+    return _crank_dyad_kept(2, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
                             gls, npt, gw, gws, nw, st, drive, close, undefined)
 
 

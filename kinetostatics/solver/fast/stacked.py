@@ -45,16 +45,20 @@ def solve_run_stacked(stacker, structure, ks: np.ndarray, lo: int, hi: int,
     kernels = wanted(positions.size)
     if kernels is None:
         return None
-    table = stacker.table(lo, hi, counts, positions)
+    crank = stacker.base.driver.kind == "R"
+    table = stacker.table(lo, hi, counts, positions, trig=False)
     if not_covered(table) is not None:
         return None
     owner = np.repeat(np.arange(hi - lo, dtype=np.int64), counts)
     plan = Plan(kernels, table, structure, ks[:, lo:hi], owner)
+    if kept and crank:
+        sweep = fused_kept(plan, positions.size, stacker.sweeps(lo, hi, counts, positions))
+        if sweep is not None:
+            return KeptRun(sweep, positions)
+    if crank:       # (the composed kernels: the run's cos and sin over its rows)
+        table.__dict__["driver_trig"] = stacker.trig_rows(lo, hi, positions)
     if kept:
-        sweep = fused_kept(plan, positions.size)
-        if sweep is None:
-            sweep = solve_lean(plan, positions, scratch=scratch)
-        return KeptRun(sweep, positions)
+        return KeptRun(solve_lean(plan, positions, scratch=scratch), positions)
     rows = (stacker.runs(lo, hi, counts, positions),
             replace(structure, assembly=tuple(np.repeat(k[lo:hi], counts) for k in ks)))
     return solve_full(plan, positions, rows=rows)
@@ -64,17 +68,18 @@ NO_SWEPT = (np.zeros((1, 1)), 0, [])         # (a body without swept loads)
 NO_STATS = np.zeros((1, 1, 2))
 
 
-def fused_kept(plan: Plan, n: int) -> Kept | None:
+def fused_kept(plan: Plan, n: int, trig: tuple) -> Kept | None:
     """What a run's scenes keep (Me, the undefined rows, the closeness to a dead
     centre) of a crank and one dyad (not RTR), in one fused kernel over the run's ``n``
-    rows (:data:`~kinetostatics.solver.fast.kernels.KEPT`: every kernel of a block in
-    turn on each tile of 64 rows, its values in one scratch array; the numbers of the
+    rows (``trig``: the crank's cos and sin and where each scene's rows begin in them,
+    :meth:`~kinetostatics.solver.stack.Stacker.sweeps`;
+    :data:`~kinetostatics.solver.fast.kernels.KEPT`: every kernel of a block in turn on
+    each tile of 64 rows, its values in one scratch array; the numbers of the
     kernels composed over blocks, bit for bit), or None for another structure (solved
     by :func:`~kinetostatics.solver.fast.compose.solve_lean`). Raises
     :class:`~kinetostatics.solver.fast.compose.Refused` as the composed kernels do."""
     scene = plan.scene
-    trig = scene.__dict__.get("driver_trig")
-    if not plan.crank or len(plan.dyads) != 1 or trig is None:
+    if not plan.crank or len(plan.dyads) != 1:
         return None
     gy, gys, dyad = plan.dyads[0]
     kernel = plan.k.KEPT.get(dyad.kind)
@@ -86,7 +91,7 @@ def fused_kept(plan: Plan, n: int) -> Kept | None:
         return None
     swept = [plan.swept.get(b, NO_SWEPT) for b in order]
     drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
-    bad = kernel(0, n, plan.own, trig[1], trig[2], *plan.driver, plan.speed, plan.accel,
+    bad = kernel(0, n, plan.own, *trig, *plan.driver, plan.speed, plan.accel,
                  gy, gys, known[0] == dname, known[1] == dname,
                  tuple(plan.loads[b][0] for b in order), tuple(plan.loads[b][1] for b in order),
                  tuple(plan.loads[b][2] for b in order), tuple(sw[0] for sw in swept),
