@@ -478,6 +478,21 @@ MOTION = {"RRR": rrr_motion, "RRT": rrt_motion, "TRR": trr_motion, "TRT": trt_mo
 
 # -- a crank and one dyad, fused: what solve_many keeps of a run ---------------------------
 @body
+def _known_loads(wg, wad, wak1, wak2):
+    """What a dyad's outer joints load its known bodies with (``wak1``, ``wak2``, a
+    tile's) added to the driver's resultants ``wad`` in order, unless the known body is
+    the ground (as the composed reactions add them, ``tile_add``)."""
+    if wg[P_GROUND, 0] == 0.0:
+        for f in range(3):
+            for t in range(TILE):
+                wad[f, t] += wak1[f, t]
+    if wg[PARAM + P_GROUND, 0] == 0.0:
+        for f in range(3):
+            for t in range(TILE):
+                wad[f, t] += wak2[f, t]
+
+
+@body
 def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls,
                      npt, gw, gws, nw, st, drive, close, undefined):
     """A crank and one dyad (not RTR: its guide's cos and sin are numpy's, in a pass of
@@ -560,16 +575,7 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
             f = reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1, wa2,
                              wak1, wak2, wr)
             bad += f if t < nt else 0
-        # what the outer joints load the known bodies with: the driver's, in order (the
-        # ground's let go)
-        if wg[P_GROUND, 0] == 0.0:
-            for f in range(3):
-                for t in range(TILE):
-                    wad[f, t] += wak1[f, t]
-        if wg[PARAM + P_GROUND, 0] == 0.0:
-            for f in range(3):
-                for t in range(TILE):
-                    wad[f, t] += wak2[f, t]
+        _known_loads(wg, wad, wak1, wak2)
         for t in range(TILE):
             me = crank_moment(t, t, wgd, wdrv, wad)
             wr[0, t] = me
