@@ -14,8 +14,9 @@ little.
 * ``many``: :func:`kinetostatics.solve_many` on 1000 variants of the bundled four-bar
   (361 positions; every length, ground point and mass within +-10 %) against a loop of
   ``solve``, on each path (the compiled one also against the numpy path's loop),
-  given as Scene objects and as dicts: the speed-up (the loop's time over
-  solve_many's), with the largest difference of any table (0: the same numbers);
+  given as Scene objects and as dicts, and on as many variants of the slider-crank, the
+  shaper and the slotted lever: the speed-up (the loop's time over solve_many's), with
+  the largest difference of any table (0: the same numbers);
 * ``design``: :func:`kinetostatics.design` on the bundled ``four_bar_design`` (1000
   designs, 10 generations, 361 rows) against ``solve_many`` of as many four-bars: its
   kinetostatic rows per second (:func:`bench_design`; needs pymoo);
@@ -164,10 +165,17 @@ def _warm(n: int, what: str, jobs: dict, err: float, rounds: int = 15,
 def four_bar_variants(count: int = 1000, spread: float = 0.10, seed: int = 0) -> list[dict]:
     """``count`` variants of the bundled four-bar that assemble: every local point,
     ground point, mass and inertia scaled within 1 +- spread."""
+    return example_variants("four_bar", count, spread, seed)
+
+
+def example_variants(name: str, count: int = 1000, spread: float = 0.10, seed: int = 0
+                     ) -> list[dict]:
+    """``count`` variants of the bundled example ``name`` that assemble, as
+    :func:`four_bar_variants`."""
     from ..model.examples import example
     from ..model.scene import load_scene
     from ..results import solve
-    base = load_scene(example("four_bar")).raw
+    base = load_scene(example(name)).raw
     rng = np.random.default_rng(seed)
     out: list[dict] = []
     while len(out) < count:
@@ -187,12 +195,18 @@ def four_bar_variants(count: int = 1000, spread: float = 0.10, seed: int = 0) ->
     return out
 
 
-def bench_many(count: int = 1000, repeat: int = 3) -> list[dict]:
+OTHER_MANY = ("slider_crank", "shaper", "slotted_lever")   # (bench_many's other mechanisms)
+
+
+def bench_many(count: int = 1000, repeat: int = 3, others: tuple = OTHER_MANY
+               ) -> list[dict]:
     """solve_many against a loop of solve on the four-bar variants: given Scene objects,
     given dicts, and given dicts with each Solution's ``driver`` table built (the
     per-scene arrays of solve_many's Solutions are cut from the stacked ones when first
-    read: that cost counted too). ``error``: the largest difference of any table of
-    solve_many against solve alone, over the first 50 scenes (0: the same numbers)."""
+    read: that cost counted too); and given Scene objects, on the variants of each of
+    ``others`` (a ``resist`` load, a six-bar with a force ``when = "resisting"``, a
+    slotted lever). ``error``: the largest difference of any table of solve_many against
+    solve alone, over the first 50 scenes (0: the same numbers)."""
     from ..model.scene import load_scene
     from ..results import solve, solve_many
 
@@ -212,7 +226,7 @@ def bench_many(count: int = 1000, repeat: int = 3) -> list[dict]:
     rows = []
     for p in solve_paths():
         for label, items in (("Scene objects", scenes), ("dicts", dicts)):
-            on_path(p, lambda it=items: solve_many(it[:60]))()      # (kernels loaded)
+            on_path(p, lambda it=items: (solve_many(it[:60]), solve(it[0])))()  # (loaded)
             jobs = {"loop": on_path(p, lambda it=items: [solve(s) for s in it]),
                     "many": on_path(p, lambda it=items: solve_many(it))}
             if p != "numpy":        # (the compiled solve_many against the numpy loop too)
@@ -230,6 +244,17 @@ def bench_many(count: int = 1000, repeat: int = 3) -> list[dict]:
                                                           solve_many(dicts)])}, repeat)
         rows.append(_row("speed-up: loop of solve / solve_many (dicts, each driver table)",
                          f"{count} x 361", times, "loop", "many", path=p))
+    for name in others:
+        items = [load_scene(d) for d in example_variants(name, count)]
+        for p in solve_paths():
+            on_path(p, lambda it=items: (solve_many(it[:60]), solve(it[0])))()  # (loaded)
+            times = side_by_side({"loop": on_path(p, lambda it=items: [solve(s) for s in it]),
+                                  "many": on_path(p, lambda it=items: solve_many(it))},
+                                 repeat)
+            err = on_path(p, lambda it=items: largest_difference(solve_many(it[:50]),
+                                                                 it[:50]))()
+            rows.append(_row(f"speed-up: loop of solve / solve_many ({name}, Scene objects)",
+                             f"{count} x 361", times, "loop", "many", path=p, error=err))
     return rows
 
 

@@ -54,7 +54,7 @@ from . import blocks
 from .blocks import LeanSolved
 from .deadpoints import dead_points_stacked, kin_measure2
 from .driver import BodyMotion
-from .fast import solve_run_stacked, stack_left_alone, wanted
+from .fast import solve_run_stacked, wanted
 from .fast.geometry import not_covered
 from .footprint import columns, solve_bytes
 from .kinematics import Kinematics, solve_kinematics
@@ -173,16 +173,30 @@ def _increasing(scenes: list) -> np.ndarray:
     :func:`~kinetostatics.solver.continuity.check_distinct` has nothing to refuse), told
     for all the scenes in one pass (only the rows not above their predecessor, about one
     per scene, are then placed in their scenes)."""
-    if not scenes:
-        return np.zeros(0, dtype=bool)
-    pos = [s.driver.positions for s in scenes]
+    ok = np.ones(len(scenes), dtype=bool)
+    # a sweep read from start, stop and count (Driver.sweep: the same bits for the same
+    # key) is told once per key; the other scenes' positions in one pass
+    told: dict = {}
+    rest = []
+    for i, s in enumerate(scenes):
+        key = s.driver.sweep
+        if key is None:
+            rest.append(i)
+            continue
+        up = told.get(key)
+        if up is None:
+            p = s.driver.positions
+            up = told[key] = bool((p[1:] > p[:-1]).all())
+        ok[i] = up
+    if not rest:
+        return ok
+    pos = [scenes[i].driver.positions for i in rest]
     counts = np.array([p.size for p in pos])
     starts = np.cumsum(counts) - counts
     allp = np.concatenate(pos).astype(float, copy=False)
     down = np.flatnonzero(~(allp[1:] > allp[:-1])) + 1     # row not above row - 1
     seg = np.searchsorted(starts, down, side="right") - 1   # the scene holding it
-    ok = np.ones(len(scenes), dtype=bool)
-    ok[seg[down != starts[seg]]] = False                    # (a scene's first row: no)
+    ok[np.asarray(rest)[seg[down != starts[seg]]]] = False  # (a scene's first row: no)
     return ok
 
 
@@ -198,11 +212,6 @@ def _solve_group(members: list, out: list, lean: bool) -> None:
     for (or all of them, if it refuses) is solved alone."""
     if len(members) == 1:
         out[members[0][0]] = _alone(members[0][1])
-        return
-    rows = sum(sc.driver.positions.size for _, sc in members)
-    if stack_left_alone(members[0][1], rows):   # (the compiled path: each scene's own)
-        for i, sc in members:
-            out[i] = _alone(sc)
         return
     stacker = None
     try:
@@ -339,8 +348,9 @@ def _solve_run(stacker: Stacker, structure, ks: np.ndarray, lo: int, hi: int,
     long sweep) in blocks, gathered (:func:`~kinetostatics.solver.blocks.solve_blocks`),
     unless a load's threshold is its sweep's maximum (``resist``, ``when = "resisting"``:
     then in one pass, each scene's maximum over its own rows). ``compiled``: on the
-    compiled path (:mod:`~kinetostatics.solver.fast`) unless a kernel meets a row the
-    numpy path must judge; ``kept`` there: only what the scenes' cut Solutions keep
+    compiled path (:mod:`~kinetostatics.solver.fast`; a kernel that meets a row the numpy
+    path must judge raises, and the run's scenes are solved one by one); ``kept`` there:
+    only what the scenes' cut Solutions keep
     (Me/Fe, the flags, the closeness to a dead centre, in the buffers of ``scratch``,
     :func:`~kinetostatics.solver.fast.stacked.solve_run_stacked`)."""
     if compiled:

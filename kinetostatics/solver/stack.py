@@ -174,22 +174,39 @@ class Stacker:
         sc = self._build(lambda x: np.repeat(x[lo:hi], counts), positions)
         sc.__dict__["segments"] = counts    # each scene's rows (a sweep's maxima per scene)
         if sc.driver.kind == "R":
-            sc.__dict__["driver_trig"] = self._trig(lo, hi, positions)
+            sc.__dict__["driver_trig"] = self.trig_rows(lo, hi, positions)
         return sc
 
-    def table(self, lo: int, hi: int, counts: np.ndarray, positions: np.ndarray) -> Scene:
+    def table(self, lo: int, hi: int, counts: np.ndarray, positions: np.ndarray,
+              trig: bool = True) -> Scene:
         """The run of :meth:`runs` with each number that differs from scene to scene an
         array over the scenes ``lo`` to ``hi - 1`` (not over their rows): what the
         compiled path's kernels read, a column per scene, with each row's scene
-        (:func:`~kinetostatics.solver.fast.stacked.solve_run_stacked`). Its driver, its
-        rows and their cos and sin are the run's."""
+        (:func:`~kinetostatics.solver.fast.stacked.solve_run_stacked`). Its driver and
+        its rows are the run's (``trig``: their cos and sin too, ``driver_trig``)."""
         sc = self._build(lambda x: x[lo:hi], positions)
         sc.__dict__["segments"] = counts
-        if sc.driver.kind == "R":
-            sc.__dict__["driver_trig"] = self._trig(lo, hi, positions)
+        if sc.driver.kind == "R" and trig:
+            sc.__dict__["driver_trig"] = self.trig_rows(lo, hi, positions)
         return sc
 
-    def _trig(self, lo: int, hi: int, positions: np.ndarray
+    def sweeps(self, lo: int, hi: int, counts: np.ndarray, positions: np.ndarray
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """A crank's cos and sin for the run of scenes ``lo`` to ``hi - 1`` (at
+        ``positions``, ``counts`` rows each), and where each scene's rows begin in them:
+        the first scene's sweep once, each scene's rows from 0, when every scene sweeps
+        as the first, bit for bit (the usual case: no copy per row); else over the run's
+        rows (:meth:`trig_rows`), each scene from its first row in the run. Row ``i`` of
+        scene ``e`` (starting at run row ``s``) has cos ``c[i - start[e]]`` with
+        ``start[e]`` = ``s`` or 0."""
+        p0 = self.base.driver.positions
+        if p0.size and positions.size == p0.size * (hi - lo):
+            bits = positions.view(np.int64).reshape(hi - lo, p0.size)
+            if (bits == p0.view(np.int64)).all():
+                return (*self._trig0[1:], np.cumsum(counts) - counts)
+        return (*self.trig_rows(lo, hi, positions)[1:], np.zeros(hi - lo, dtype=np.int64))
+
+    def trig_rows(self, lo: int, hi: int, positions: np.ndarray
               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """A crank's angles, their cos and sin over the run of scenes ``lo`` to
         ``hi - 1`` (at ``positions``), worked out once per distinct sweep (variants of

@@ -90,7 +90,9 @@ class Plan:
         self.driver, self.dyads, self.loads, self.swept = (
             geometry.driver, geometry.dyads, geometry.loads, geometry.swept)
         self.bodies = list(scene.bodies)
-        self.stats = {b: np.array([[0.0, np.inf]] * len(f)) for b, (_, _, f)
+        # per load and scene (a stack's: each its own sweep's top), the top and least
+        scenes = 1 if owner is None else int(owner[-1]) + 1
+        self.stats = {b: np.tile([0.0, np.inf], (len(f), scenes, 1)) for b, (_, _, f)
                       in self.swept.items()}
 
     def check_swept(self) -> None:
@@ -98,8 +100,9 @@ class Plan:
         (``when = "resisting"``) load lifts its still threshold over a row the kernel took
         as moving (the numpy path tells those rows from the whole sweep)."""
         for b, (_, _, floors) in self.swept.items():
-            for (top, least), floor in zip(self.stats[b], floors, strict=True):
-                if not least > RESIST_STILL * max(top, floor):
+            for stats, floor in zip(self.stats[b], floors, strict=True):
+                top, least = stats[:, 0], stats[:, 1]
+                if not (least > RESIST_STILL * np.maximum(top, floor)).all():
                     raise Refused("swept load")
 
     def buffers(self, width: int) -> dict:

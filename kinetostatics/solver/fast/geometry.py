@@ -21,12 +21,9 @@ from . import layout as L
 
 def not_covered(scene: Scene) -> str | None:
     """Why the compiled path does not solve ``scene`` (solved on the numpy path), or
-    None: joint friction (solved by iteration), a ``resist`` load or a force acting
-    ``when = "resisting"`` in a stack of scenes (their thresholds are each scene's own)."""
+    None: joint friction (solved by iteration)."""
     if any(j.friction is not None for j in scene.joints.values()):
         return "joint friction"
-    if "segments" in scene.__dict__ and any(swept_load(ld) for ld in scene.loads):
-        return "a resist or when = \"resisting\" load in a stack of scenes"
     return None
 
 

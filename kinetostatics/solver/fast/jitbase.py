@@ -110,9 +110,9 @@ def tile_geometry(wg, g, gs, own, t0, last):
     23 with one scene's)."""
     a = own[t0 * gs]
     if a != last:
+        # (a slice filled: vectorised; a loop over the tile storing one value is not,
+        # LLVM's remark "value that could not be identified as reduction is used outside
+        # the loop": measured 2026-11-29, 28 rows for 1000 scenes 0.13 ms against 0.6-1.3)
         for f in range(wg.shape[0]):
-            v = g[f, a]
-            dst = wg[f]
-            for t in range(TILE):
-                dst[t] = v
+            wg[f, :] = g[f, a]
     return a

@@ -102,26 +102,36 @@ def body_loads(lo, hi, off, g, gs, own, npoint, m, acc):
         t0 += nt
         tile_in(wm[C:AL + 1], m[C:AL + 1], j0, nt)      # (no velocities read)
         tile_in(wm[AX:AY + 1], m[AX:AY + 1], j0, nt)
-        wa[:] = 0.0
-        for q in range(npoint):
-            b = 2 + L_POINT * q
-            for t in range(TILE):
-                c, s, al, om = wm[C, t], wm[S, t], wm[AL, t], wm[OM, t]
-                w2 = om * om
-                lx, ly = wg[b, t], wg[b + 1, t]
-                rx, ry = c * lx - s * ly, s * lx + c * ly
-                mk = wg[b + 4, t]
-                ax = (wm[AX, t] - al * ry) - w2 * rx
-                ay = (wm[AY, t] + al * rx) - w2 * ry
-                px, py = wg[b + 2, t] - mk * ax, wg[b + 3, t] - mk * ay
-                wa[0, t] += px
-                wa[1, t] += py
-                wa[2, t] += rx * py - ry * px
-        for t in range(TILE):
-            wa[2, t] = wa[2, t] + wg[L_M0, t] - wg[L_I, t] * wm[AL, t]
-            f = nonfinite((wa[0, t], wa[1, t], wa[2, t]))
-            bad += f if t < nt else 0
+        bad += tile_loads(wm, wa, wg, npoint, nt)
         tile_out(acc, wa, j0, nt)
+    return bad
+
+
+@body
+def tile_loads(wm, wa, wg, npoint, nt):
+    """A tile's load resultants ``wa`` (:func:`body_loads`) from its body's motion ``wm``
+    and its geometry ``wg`` (the tile's scene's in each column); the count of the
+    tile's first ``nt`` rows that are not finite."""
+    wa[:] = 0.0
+    for q in range(npoint):
+        b = 2 + L_POINT * q
+        for t in range(TILE):
+            c, s, al, om = wm[C, t], wm[S, t], wm[AL, t], wm[OM, t]
+            w2 = om * om
+            lx, ly = wg[b, t], wg[b + 1, t]
+            rx, ry = c * lx - s * ly, s * lx + c * ly
+            mk = wg[b + 4, t]
+            ax = (wm[AX, t] - al * ry) - w2 * rx
+            ay = (wm[AY, t] + al * rx) - w2 * ry
+            px, py = wg[b + 2, t] - mk * ax, wg[b + 3, t] - mk * ay
+            wa[0, t] += px
+            wa[1, t] += py
+            wa[2, t] += rx * py - ry * px
+    bad = 0
+    for t in range(TILE):
+        wa[2, t] = wa[2, t] + wg[L_M0, t] - wg[L_I, t] * wm[AL, t]
+        f = nonfinite((wa[0, t], wa[1, t], wa[2, t]))
+        bad += f if t < nt else 0
     return bad
 
 
@@ -132,43 +142,52 @@ def swept_loads(lo, hi, off, g, gs, own, nload, m, acc, undefined, stats):
     magnitude R against its point's velocity, a force (kind 2) acting ``when =
     "resisting"`` (where its power is negative). A row stands still where the speed (the
     power's magnitude) is at most ``thr`` (1e-9 of the mechanism's own scale): the force
-    is zero there and the row is undefined. ``stats[q]`` gathers the largest speed and the
-    smallest speed of a moving row: the caller checks that the sweep's top does not move
-    the threshold over a row."""
+    is zero there and the row is undefined. ``stats[q, e]`` gathers the largest speed and
+    the smallest speed of a moving row of scene ``e`` (a stack's: each row's scene
+    ``own[i]``; one scene: 0): the caller checks that each sweep's top does not move its
+    scene's threshold over a row."""
     bad = 0
+    es = 1 if stats.shape[1] > 1 else 0
     for i in range(lo, hi):
-        j, r = i - off, own[i * gs]
-        c, s = m[C, j], m[S, j]
-        om = m[OM, j]
-        for q in range(nload):
-            b = 7 * q
-            lx, ly = g[b, r], g[b + 1, r]
-            rx, ry = c * lx - s * ly, s * lx + c * ly
-            vx, vy = m[VX, j] - om * ry, m[VY, j] + om * rx
-            thr = g[b + 6, r]
-            if g[b + 2, r] == 1.0:
-                x = math.hypot(vx, vy)
-                still = x <= thr
-                fx = 0.0 if still else -g[b + 3, r] * vx / x
-                fy = 0.0 if still else -g[b + 3, r] * vy / x
-            else:
-                fx, fy = g[b + 4, r], g[b + 5, r]
-                power = fx * vx + fy * vy
-                x = abs(power)
-                still = x <= thr
-                if still or not power < 0.0:
-                    fx = fy = 0.0
-            if x > stats[q, 0] or not x == x:
-                stats[q, 0] = x
-            if not still and x < stats[q, 1]:
-                stats[q, 1] = x
-            if still:
-                undefined[j] = True
-            acc[0, j] += fx
-            acc[1, j] += fy
-            acc[2, j] += rx * fy - ry * fx
-        bad += nonfinite((acc[0, j], acc[1, j], acc[2, j]))
+        j = i - off
+        bad += swept_row(j, own[i * gs], own[i * es], j, g, nload, m, acc, undefined, stats)
     return bad
+
+
+@body
+def swept_row(j, r, e, u, g, nload, m, acc, undefined, stats):
+    """:func:`swept_loads` at row ``j`` of ``m`` and ``acc`` (geometry column ``r``, the
+    row of scene ``e`` of ``stats``, its flag ``undefined[u]``); 1 if not finite."""
+    c, s = m[C, j], m[S, j]
+    om = m[OM, j]
+    for q in range(nload):
+        b = 7 * q
+        lx, ly = g[b, r], g[b + 1, r]
+        rx, ry = c * lx - s * ly, s * lx + c * ly
+        vx, vy = m[VX, j] - om * ry, m[VY, j] + om * rx
+        thr = g[b + 6, r]
+        if g[b + 2, r] == 1.0:
+            x = math.hypot(vx, vy)
+            still = x <= thr
+            fx = 0.0 if still else -g[b + 3, r] * vx / x
+            fy = 0.0 if still else -g[b + 3, r] * vy / x
+        else:
+            fx, fy = g[b + 4, r], g[b + 5, r]
+            power = fx * vx + fy * vy
+            x = abs(power)
+            still = x <= thr
+            if still or not power < 0.0:
+                fx = fy = 0.0
+        if x > stats[q, e, 0] or not x == x:
+            stats[q, e, 0] = x
+        if not still and x < stats[q, e, 1]:
+            stats[q, e, 1] = x
+        if still:
+            undefined[u] = True
+        acc[0, j] += fx
+        acc[1, j] += fy
+        acc[2, j] += rx * fy - ry * fx
+    return nonfinite((acc[0, j], acc[1, j], acc[2, j]))
 
 
 # -- reactions (seed 002 s. 2.3) ----------------------------------------------------------
@@ -225,7 +244,7 @@ def _outer(rot, t, g, r, j, m, mk, a, ak, d, rr):
 
 
 @body
-def _reaction_row(rot1, rot2, inner_r, j, r, g, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+def reaction_row(rot1, rot2, inner_r, j, r, g, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
     """A dyad's reactions at one row (:func:`_dyad_reactions`)."""
     sfirst = g[I_SFIRST, r] != 0.0
     # the generalised forces: moment about the outer pivot, or force along the guide
@@ -316,7 +335,7 @@ def _dyad_reactions(kind, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, 
         wak1[:] = 0.0
         wak2[:] = 0.0
         for t in range(TILE):
-            f = _reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1,
+            f = reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1,
                               wa2, wak1, wak2, wr)
             bad += f if t < nt else 0
         tile_out(a1, wa1, j0, nt)
@@ -339,12 +358,18 @@ def crank_reaction(lo, hi, off, g, gs, own, m, a, out):
     (seed 002 eqs 2.47-2.48); the ground reaction is the crank's resultant force."""
     bad = 0
     for i in range(lo, hi):
-        j, r = i - off, own[i * gs]
-        lx, ly = g[D_LX, r], g[D_LY, r]
-        ax, ay = m[C, j] * lx - m[S, j] * ly, m[S, j] * lx + m[C, j] * ly
-        out[0, j] = -(a[2, j] - (ax * a[1, j] - ay * a[0, j]))
+        j = i - off
+        out[0, j] = crank_moment(j, own[i * gs], g, m, a)
         bad += nonfinite((out[0, j], a[0, j], a[1, j]))
     return bad
+
+
+@body
+def crank_moment(j, r, g, m, a):
+    """:func:`crank_reaction`'s Me at row ``j`` (geometry column ``r``)."""
+    lx, ly = g[D_LX, r], g[D_LY, r]
+    ax, ay = m[C, j] * lx - m[S, j] * ly, m[S, j] * lx + m[C, j] * ly
+    return -(a[2, j] - (ax * a[1, j] - ay * a[0, j]))
 
 
 @jit

@@ -15,7 +15,7 @@ from ..memo import record_of
 from ..solved import Solved
 from .choice import wanted
 from .compose import Geometry, Plan, Refused, Unwrapped, solve_arrays, solve_full, solve_lean
-from .geometry import not_covered, swept_load
+from .geometry import not_covered
 from .layout import CL2
 
 
@@ -117,11 +117,3 @@ class KeptRun:
             SimpleNamespace(closeness2=c, singular=f)
             for c, f in zip(sweep.closeness2, sweep.singular, strict=True)])
 
-
-def stack_left_alone(scene: Scene, rows: int) -> bool:
-    """Whether scenes like ``scene`` (a stack of ``rows`` rows in all) are solved one by
-    one rather than stacked: the compiled path is wanted and covers each scene alone but
-    not their stack (a ``resist`` or ``when = "resisting"`` load), so that each scene of
-    solve_many is, bit for bit, its solve."""
-    alone = not_covered(scene) is None and "segments" not in scene.__dict__
-    return alone and any(map(swept_load, scene.loads)) and wanted(rows) is not None

@@ -7,6 +7,10 @@ from dataclasses import replace
 
 import numpy as np
 
+from ...model.scene import GROUND
+from ..blocks import Kept
+from ..kinematics import SINGULAR_WARN
+from ..reactions import DriverReaction
 from ..solved import Solved
 from .choice import wanted
 from .compose import Plan, Refused, solve_full, solve_lean
@@ -20,9 +24,14 @@ def solve_run_stacked(stacker, structure, ks: np.ndarray, lo: int, hi: int,
     """Scenes ``lo`` to ``hi - 1`` of ``stacker``
     (:class:`~kinetostatics.solver.stack.Stacker`) one after another, ``counts`` rows
     each at ``positions``, each dyad in its scene's assembly (``ks``: dyads x scenes),
-    on the compiled path; or None (the path is off, the run is not covered, or a kernel
-    met a row the numpy path must judge). Every row is the row its scene gives alone on
-    this path, bit for bit: the same kernels, each number the scene's own.
+    on the compiled path; or None (the path is off, or the run is not covered). Every row
+    is the row its scene gives alone on this path, bit for bit: the same kernels, each
+    number the scene's own (a ``resist`` or ``when = "resisting"`` load's threshold too:
+    each scene's from its own sweep). A kernel that meets a row the numpy path must
+    judge, or a sweep's top that moves its threshold, raises
+    :class:`~kinetostatics.solver.fast.compose.Refused`: the run's scenes are then
+    solved one by one, each as :func:`~kinetostatics.solve` solves it (not the run on
+    the numpy path: its other scenes would differ from their solves in the last bits).
 
     The kernels read the geometry per scene
     (:meth:`~kinetostatics.solver.stack.Stacker.table`, a column per scene, gathered per
@@ -36,16 +45,60 @@ def solve_run_stacked(stacker, structure, ks: np.ndarray, lo: int, hi: int,
     kernels = wanted(positions.size)
     if kernels is None:
         return None
-    table = stacker.table(lo, hi, counts, positions)
+    crank = stacker.base.driver.kind == "R"
+    table = stacker.table(lo, hi, counts, positions, trig=False)
     if not_covered(table) is not None:
         return None
     owner = np.repeat(np.arange(hi - lo, dtype=np.int64), counts)
-    try:
-        plan = Plan(kernels, table, structure, ks[:, lo:hi], owner)
-        if kept:
-            return KeptRun(solve_lean(plan, positions, scratch=scratch), positions)
-        rows = (stacker.runs(lo, hi, counts, positions),
-                replace(structure, assembly=tuple(np.repeat(k[lo:hi], counts) for k in ks)))
-        return solve_full(plan, positions, rows=rows)
-    except Refused:
+    plan = Plan(kernels, table, structure, ks[:, lo:hi], owner)
+    if kept and crank:
+        sweep = fused_kept(plan, positions.size, stacker.sweeps(lo, hi, counts, positions))
+        if sweep is not None:
+            return KeptRun(sweep, positions)
+    if crank:       # (the composed kernels: the run's cos and sin over its rows)
+        table.__dict__["driver_trig"] = stacker.trig_rows(lo, hi, positions)
+    if kept:
+        return KeptRun(solve_lean(plan, positions, scratch=scratch), positions)
+    rows = (stacker.runs(lo, hi, counts, positions),
+            replace(structure, assembly=tuple(np.repeat(k[lo:hi], counts) for k in ks)))
+    return solve_full(plan, positions, rows=rows)
+
+
+NO_SWEPT = (np.zeros((1, 1)), 0, [])         # (a body without swept loads)
+NO_STATS = np.zeros((1, 1, 2))
+
+
+def fused_kept(plan: Plan, n: int, trig: tuple) -> Kept | None:
+    """What a run's scenes keep (Me, the undefined rows, the closeness to a dead
+    centre) of a crank and one dyad (not RTR), in one fused kernel over the run's ``n``
+    rows (``trig``: the crank's cos and sin and where each scene's rows begin in them,
+    :meth:`~kinetostatics.solver.stack.Stacker.sweeps`;
+    :data:`~kinetostatics.solver.fast.kernels.KEPT`: every kernel of a block in turn on
+    each tile of 64 rows, its values in one scratch array; the numbers of the
+    kernels composed over blocks, bit for bit), or None for another structure (solved
+    by :func:`~kinetostatics.solver.fast.compose.solve_lean`). Raises
+    :class:`~kinetostatics.solver.fast.compose.Refused` as the composed kernels do."""
+    scene = plan.scene
+    if not plan.crank or len(plan.dyads) != 1:
         return None
+    gy, gys, dyad = plan.dyads[0]
+    kernel = plan.k.KEPT.get(dyad.kind)
+    dname = scene.driver.body
+    order = (dname, *dyad.bodies)
+    known = [j.other(b) for j, b in zip(dyad.outer, dyad.bodies, strict=True)]
+    if (kernel is None or len(plan.bodies) != 3 or set(plan.bodies) != set(order)
+            or not set(known) <= {GROUND, dname}):
+        return None
+    swept = [plan.swept.get(b, NO_SWEPT) for b in order]
+    drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
+    bad = kernel(0, n, plan.own, *trig, *plan.driver, plan.speed, plan.accel,
+                 gy, gys, known[0] == dname, known[1] == dname,
+                 tuple(plan.loads[b][0] for b in order), tuple(plan.loads[b][1] for b in order),
+                 tuple(plan.loads[b][2] for b in order), tuple(sw[0] for sw in swept),
+                 tuple(sw[1] for sw in swept), tuple(len(sw[2]) for sw in swept),
+                 tuple(plan.stats.get(b, NO_STATS) for b in order), drive, close, undefined)
+    if bad:
+        raise Refused(bad)
+    plan.check_swept()
+    singular = [~(close > SINGULAR_WARN**2)]
+    return Kept(plan.structure, DriverReaction("R", drive), undefined, [close], singular)

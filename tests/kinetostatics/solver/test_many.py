@@ -88,7 +88,7 @@ def test_resist_and_resisting_loads_stack(name, alone_calls, numpy_path) -> None
     """A ``resist`` load (the slider-crank's piston) and a force ``when = "resisting"``
     (the shaper's cut) take their thresholds from each scene's own sweep: stacked, with
     every table, flag and summary of each scene's own solve. (The numpy path: the
-    compiled one solves such scenes one by one, fast.solve.stack_left_alone.)"""
+    compiled one's, test_many_fast.py.)"""
     scenes = variants(name, 8, 0.05, seed=4)
     sols = ks.solve_many(scenes)
     assert alone_calls == []
@@ -383,6 +383,9 @@ def test_increasing_told_for_all_scenes_at_once() -> None:
     for _ in range(500):
         pos = [rng.choice([0.0, 1.0, 2.0, 3.0, np.nan], n) if rng.random() < 0.5
                else np.sort(rng.random(n)) for n in rng.integers(0, 6, rng.integers(1, 6))]
-        scenes = [SimpleNamespace(driver=SimpleNamespace(positions=p)) for p in pos]
+        # (a sweep read from start, stop and count: its key, the same bits for one key)
+        keys = [(p.size, p.tobytes()) if rng.random() < 0.3 else None for p in pos]
+        scenes = [SimpleNamespace(driver=SimpleNamespace(positions=p, sweep=k))
+                  for p, k in zip(pos, keys, strict=True)]
         want = [bool(np.all(p[1:] > p[:-1])) for p in pos]
         assert many._increasing(scenes).tolist() == want

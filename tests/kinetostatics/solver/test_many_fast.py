@@ -1,0 +1,74 @@
+"""solve_many on the compiled path: every scene's Solution bit for bit its solve on that
+path, stacked (not solved one by one) whatever its loads."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import kinetostatics as ks
+from kinetostatics.model.scene import load_scene
+from kinetostatics.solver import many
+from kinetostatics.solver.fast import use
+
+from .test_many import alone_calls, assert_same, variants  # noqa: F401 (a fixture)
+
+numba = pytest.importorskip("numba")
+
+# the compiled kernels: a fresh machine compiles them first (slow tier, as test_fast.py)
+pytestmark = pytest.mark.slow
+
+
+@pytest.fixture
+def fast():
+    """The compiled path for one test, put back after."""
+    use("fast")
+    yield
+    use(None)
+
+
+def unequal(name: str, count: int, seed: int) -> list:
+    """``count`` read variants of a bundled example, each a few rows shorter than the
+    one before (a tile never spans two scenes: cut at each scene's end)."""
+    out = []
+    for i, d in enumerate(variants(name, count, 0.05, seed=seed)):
+        d["driver"]["count"] = int(d["driver"]["count"]) - 5 * i
+        out.append(load_scene(d))
+    return out
+
+
+@pytest.mark.parametrize("name", ["slider_crank", "shaper"])
+def test_resist_and_resisting_loads_stack(name, alone_calls, fast) -> None:  # noqa: F811
+    """A ``resist`` load (the slider-crank's piston) and a force ``when = "resisting"``
+    (the shaper's cut) stacked on the compiled path: each scene's still threshold is
+    checked against its own sweep's top, and every table, flag and undefined row is its
+    solve's on this path."""
+    scenes = unequal(name, 8, seed=4)
+    sols = ks.solve_many(scenes)
+    assert alone_calls == []                # all eight in one stacked pass
+    for s, sc in zip(sols, scenes, strict=True):
+        alone = ks.solve(sc)
+        assert s.path == alone.path == "fast"
+        assert_same(s, alone)
+        np.testing.assert_array_equal(s.undefined_load, alone.undefined_load)
+
+
+def test_a_refused_run_is_solved_scene_by_scene(alone_calls, fast, monkeypatch  # noqa: F811
+                                                ) -> None:
+    """A run a kernel refuses (here: the check of a sweep's top made to fail) is solved
+    scene by scene, each as its solve: not the run on the numpy path, whose numbers
+    differ from the compiled path's in the last bits."""
+    from kinetostatics.solver.fast import compose
+
+    scenes = unequal("slider_crank", 5, seed=2)
+
+    def refuse(self) -> None:
+        if "segments" in self.scene.__dict__:       # (a stack: not a scene alone)
+            raise compose.Refused("swept load")
+    monkeypatch.setattr(compose.Plan, "check_swept", refuse)
+    sols = ks.solve_many(scenes)
+    assert sorted(alone_calls) == sorted(sc.title for sc in scenes)
+    for s, sc in zip(sols, scenes, strict=True):
+        assert s.path == "fast"
+        assert_same(s, ks.solve(sc))
+    assert all(type(r) is not many.CutSolved for r in many.solve_all(scenes))
