@@ -43,6 +43,12 @@ matplotlib.use("Agg")
 # CPU a process against 7.6 s (measured 2026-11-29; the quick tier starts three).
 sys.dont_write_bytecode = False
 os.environ.pop("PYTHONDONTWRITEBYTECODE", None)
+# jsonschema (under nbformat, which kinetostatics.teaching imports) checks the "iri"
+# format with rfc3987_syntax where that is installed (JupyterLab's dependencies bring it),
+# which builds 38 lark grammars on import: 1.2 s of CPU in every process of the suite
+# (measured 2026-11-29). Nothing here validates that format: the import is declined (an
+# ImportError, which jsonschema expects), as where the package is not installed.
+sys.modules.setdefault("rfc3987_syntax", None)
 
 settings.register_profile("repeatable", derandomize=True, print_blob=True)
 EXPLORE_FACTOR = 10
