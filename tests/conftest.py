@@ -81,6 +81,7 @@ SHARED_PER_SCENE = {"lecture_figures": (
     "tests/kinetostatics/plot/test_collisions.py::test_no_collisions_on_any_cli_picture",
     "tests/kinetostatics/plot/test_collisions.py::test_cli_pictures_lecture_size",
     "tests/kinetostatics/plot/test_pictures.py::test_every_new_picture_is_drawn",
+    "tests/kinetostatics/plot/test_pictures.py::test_free_body_diagram_draws_the_forces",
     "tests/kinetostatics/plot/test_notation.py::test_every_cli_picture_meets_the_standard")}
 _SANDBOX = "tests/kinetostatics/teaching/test_sandbox.py::"
 #: Module fixtures made once for tests spread among a module's others: the tests that use
