@@ -43,6 +43,12 @@ matplotlib.use("Agg")
 # CPU a process against 7.6 s (measured 2026-11-29; the quick tier starts three).
 sys.dont_write_bytecode = False
 os.environ.pop("PYTHONDONTWRITEBYTECODE", None)
+# jsonschema (under nbformat, which kinetostatics.teaching imports) checks the "iri"
+# format with rfc3987_syntax where that is installed (JupyterLab's dependencies bring it),
+# which builds 38 lark grammars on import: 1.2 s of CPU in every process of the suite
+# (measured 2026-11-29). Nothing here validates that format: the import is declined (an
+# ImportError, which jsonschema expects), as where the package is not installed.
+sys.modules.setdefault("rfc3987_syntax", None)
 
 # The solve path of the suite: numpy unless KINETOSTATICS_PATH says otherwise
 # (`KINETOSTATICS_PATH=fast python -m pytest` runs it on the compiled path). Under `auto` a
@@ -82,6 +88,7 @@ SHARED_PER_SCENE = {"lecture_figures": (
     "tests/kinetostatics/plot/test_collisions.py::test_no_collisions_on_any_cli_picture",
     "tests/kinetostatics/plot/test_collisions.py::test_cli_pictures_lecture_size",
     "tests/kinetostatics/plot/test_pictures.py::test_every_new_picture_is_drawn",
+    "tests/kinetostatics/plot/test_pictures.py::test_free_body_diagram_draws_the_forces",
     "tests/kinetostatics/plot/test_notation.py::test_every_cli_picture_meets_the_standard")}
 _SANDBOX = "tests/kinetostatics/teaching/test_sandbox.py::"
 #: Module fixtures made once for tests spread among a module's others: the tests that use

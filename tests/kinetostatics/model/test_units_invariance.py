@@ -223,7 +223,7 @@ def test_motion_in_other_units():
     """[motion] (motor, flywheel, omega0) in mm/g/rpm and in inches/kN: the same motion."""
     with open(ks.example("four_bar_motion"), "rb") as fh:
         si = tomllib.load(fh)
-    si["motion"]["cycles"] = 4
+    si["motion"]["cycles"] = 2          # (each cycle 0.2 s of CPU a run, three runs)
     si["motion"].pop("target_delta")
     ref = simulate_motion(si)
     for units in UNIT_SETS[:2]:
@@ -242,7 +242,7 @@ def test_motor_table_in_radians():
         si = tomllib.load(fh)
     m = si["motion"]
     m.pop("motor"), m.pop("target_delta")
-    m["cycles"] = 3
+    m["cycles"] = 2                     # (each cycle 0.2 s of CPU a run, two runs)
     m["motor_table"] = [[0.0, 40.0], [90.0, 70.0], [200.0, 30.0], [300.0, 50.0]]
     ref = simulate_motion(si).summary
     rad = copy.deepcopy(si)

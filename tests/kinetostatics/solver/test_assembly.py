@@ -96,11 +96,15 @@ def test_reduced_mechanism_is_the_same_at_any_batch() -> None:
             np.testing.assert_allclose(got, want, rtol=0, atol=1e-12 * np.abs(want).max())
 
 
+# (slow: three integrations, 2.5 s of CPU; the quick tier checks the bug's cause,
+# test_reduced_mechanism_is_the_same_at_any_batch: a batch the integrator asks for that
+# starts where the hint picks the other assembly)
+@pytest.mark.slow
 def test_motion_does_not_depend_on_the_tolerance() -> None:
     """The old bug: rtol 1e-8 / 1e-10 / 1e-12 settled at 13.917 / 13.938 / 13.938 rad/s."""
     means = [ks.simulate_motion(shaper(cycles=5), rtol=r).summary["omega_mean"]
              for r in (1e-8, 1e-10, 1e-12)]
-    assert max(means) - min(means) <= 1e-7 * means[-1]    # measured 1e-7 rad/s apart
+    assert max(means) - min(means) <= 1e-7 * means[-1]    # measured 2.1e-7 rad/s apart
 
 
 @pytest.mark.slow
