@@ -29,7 +29,7 @@ from functools import partial
 import numpy as np
 
 from ..results.solving import solve_outcomes
-from ..solver.fast import wanted
+from ..solver.fast import path_setting, wanted
 from .screen import loaded
 from .section import DesignSpec
 from .stacked import REASONS, judge_stacked
@@ -97,14 +97,23 @@ def evaluate_rows(spec: DesignSpec, X: np.ndarray) -> Evaluation:
     population judged from stacked arrays (:func:`~kinetostatics.design.stacked.
     judge_stacked`, no Scene per design) where it can be, else, and for the designs it
     leaves (a number not finite), one Solution per design (:func:`evaluate_scenes`).
-    On the compiled path (``[fast]``) every design is judged from the Solution
-    :func:`~kinetostatics.solve_many` gives it, as ``solve`` there solves it."""
+    On the compiled path, when asked for (:func:`_compiled`), every design is judged from
+    the Solution :func:`~kinetostatics.solve_many` gives it, as ``solve`` there solves it."""
     X = np.asarray(X, dtype=float)
     plan = spec.stack_plan
-    if plan is None or len(X) < 2 or wanted(len(X) * plan.base.driver.positions.size):
+    if plan is None or len(X) < 2 or _compiled(len(X) * plan.base.driver.positions.size):
         return evaluate_scenes(spec, X)
     ev = _evaluate_stacked(spec, plan, X)
     return evaluate_scenes(spec, X) if ev is None else ev
+
+
+def _compiled(rows: int) -> bool:
+    """Whether the designs are judged on the compiled path: only when it is asked for
+    (``KINETOSTATICS_PATH=fast`` or ``use("fast")``). Under ``auto`` the stacked judge
+    stays (numpy's numbers): judging one Solution per design from the compiled
+    ``solve_many`` took 84 s of CPU against 19 s for ``design four_bar_design
+    --population 1000 --generations 100`` (docs/design.md, 2026-11-29)."""
+    return path_setting() == "fast" and wanted(rows) is not None
 
 
 def _evaluate_stacked(spec: DesignSpec, plan, X: np.ndarray) -> Evaluation | None:

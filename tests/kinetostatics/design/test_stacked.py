@@ -160,3 +160,28 @@ def test_a_sliding_driver_stacked():
     ev = evaluate_rows(spec, X)
     _same(ev, evaluate_scenes(spec, X))
     assert ev.solved.sum() > 60          # (measured: 122 of 300)
+
+
+@pytest.mark.parametrize("setting, stacked_judge", [("auto", True), ("numpy", True),
+                                                    ("fast", False)])
+def test_auto_judges_on_the_stack_even_with_the_compiled_path_loaded(monkeypatch, setting,
+                                                                      stacked_judge):
+    """Under ``auto`` the stacked judge stays, whatever ``auto`` does for a long sweep
+    (judging one Solution per design from the compiled ``solve_many`` is four times
+    slower); only ``fast`` asked for takes the compiled road."""
+    from kinetostatics.design import judging
+    from kinetostatics.solver.fast import use
+    monkeypatch.setattr(judging, "wanted", lambda rows: object())  # (numba loaded)
+    seen = []
+    real = judging._evaluate_stacked
+    monkeypatch.setattr(judging, "_evaluate_stacked",
+                        lambda *a: seen.append(1) or real(*a))
+    monkeypatch.setattr(judging, "evaluate_scenes", lambda spec, X: "one by one")
+    spec = read_design(_raw())
+    use(setting)
+    try:
+        ev = evaluate_rows(spec, _population(spec, 7, n=24))
+    finally:
+        use(None)
+    assert bool(seen) is stacked_judge
+    assert (ev == "one by one") is not stacked_judge
