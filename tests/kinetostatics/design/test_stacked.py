@@ -88,6 +88,7 @@ def test_the_stack_is_the_stack_of_the_scenes():
     assert bits(made.size) == bits(ref.size)
 
 
+@pytest.mark.usefixtures("numpy_path")      # (the stacked judge's own road)
 def test_designs_not_finite_are_judged_one_by_one(monkeypatch):
     """A design whose numbers the stacked pass cannot vouch finite is judged by its own
     Solution (the solve's own check and reason)."""
@@ -117,6 +118,7 @@ def test_masses_told_apart_are_not_stacked():
     _same(evaluate_rows(spec, X), evaluate_scenes(spec, X))
 
 
+@pytest.mark.usefixtures("numpy_path")      # (the stacked judge's own road)
 def test_dead_points_between_rows_give_unvouched_reasons(monkeypatch):
     """A dead point between rows, a gap between rows and an end row near a dead point,
     as the solver's search reports them, give the reasons (and the unsolved state)

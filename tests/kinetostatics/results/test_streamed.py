@@ -27,6 +27,9 @@ from kinetostatics.solver.structure import analyse
 from tests.helpers import ROOT
 
 SCENES = ROOT / "kinetostatics" / "scenes"
+# a streamed solve is the numpy path's (its blocks are solved there): so is the one-shot
+# it is compared with, whatever KINETOSTATICS_PATH says
+pytestmark = pytest.mark.usefixtures("numpy_path")
 
 
 def _raw(name: str, count: int) -> dict:
