@@ -424,8 +424,7 @@ def _saved_outputs(page, home: Path, sheet: str) -> list:
     """Save the sheet from the browser (Ctrl+S) and return the outputs of its cells
     (the audit's first cell aside), once the saved file holds every cell of the sheet,
     each run (a file saved before the Run All ended has a cell without a count; the one
-    empty cell Shift+Enter leaves at the end is never run; a file read half written is
-    read again)."""
+    empty cell Shift+Enter leaves at the end is never run)."""
     _clear_dialogs(page)
     cells = sum(c.cell_type == "code" for c in nbformat.read(ROOT / "notebooks" / sheet,
                                                             as_version=4).cells)
@@ -440,9 +439,9 @@ def _saved_outputs(page, home: Path, sheet: str) -> list:
         try:
             code = [c for c in nbformat.read(home / sheet, as_version=4).cells
                     if c.cell_type == "code"]
-        except nbformat.reader.NotJSONError:
-            # read while the server writes it (it writes the file in place: seen empty in
-            # CI at a load of 9): read again
+        except ValueError:              # nbformat.reader.NotJSONError among them
+            # Jupyter's "atomic" save writes the file in place (a backup aside): read
+            # while the server writes, it is empty or cut short (seen once at load 7)
             code = []
         if len(code) > cells and all(c.execution_count is not None
                                      for c in code if c.source.strip()):
