@@ -17,13 +17,13 @@ student sees:
   Python API): the sheet, saved from the browser, gives its outputs, and the checks run
   in its kernel. So each widget sheet is executed once in the suite.
 
-One JupyterLab server and one Chromium page with JupyterLab loaded (one each per xdist
-worker, for the session) serve the sheets (copied into a temporary folder, with the
-picture audit's cell first, so the checkout's sheets stay without outputs): each test
-opens its sheet in that page, and closes it and shuts its kernel down after, so the
-server and the page start once, not once a sheet. In CI (``CI=true``) the test must run:
-a missing Chromium or Playwright fails it; elsewhere it is skipped with one line saying
-what to install.
+One JupyterLab server (one per xdist worker, for the session) serves the sheets (copied
+into a temporary folder, with the picture audit's cell first, so the checkout's sheets
+stay without outputs) to one Chromium page with JupyterLab loaded (for the module's
+tests run one after another): each test opens its sheet in that page, and closes it and
+shuts its kernel down after, so the server and the page start once, not once a sheet.
+In CI (``CI=true``) the test must run: a missing Chromium or Playwright fails it;
+elsewhere it is skipped with one line saying what to install.
 """
 
 from __future__ import annotations
@@ -137,7 +137,11 @@ def lab(tmp_path_factory):
         log.close()
 
 
-@pytest.fixture(scope="session")
+# Chromium and its page last as long as the module's tests that run one after another,
+# not the session: Playwright's sync API marks its event loop as running between its
+# calls, and a test of another module run while it lives (on the same xdist worker) finds
+# a running loop (the Explorer then schedules its updates instead of computing them)
+@pytest.fixture(scope="module")
 def browser(lab):
     sync_playwright = _requirements()
     with sync_playwright() as p:
@@ -337,9 +341,9 @@ def _load_app(page, lab) -> None:
     page.evaluate("() => window.jupyterapp.restored")      # (a promise: awaited)
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def jupyterlab(lab, browser):
-    """One page with JupyterLab loaded, for the session: (page, its console messages).
+    """One page with JupyterLab loaded: (page, its console messages).
     Each test opens its sheet in it (``_open``); the fixture ``app`` closes it after."""
     page = browser.new_page(viewport={"width": 1400, "height": 1000})
     console: list[str] = []
