@@ -17,11 +17,13 @@ student sees:
   Python API): the sheet, saved from the browser, gives its outputs, and the checks run
   in its kernel. So each widget sheet is executed once in the suite.
 
-One JupyterLab server (one per xdist worker) serves the sheets (copied into a temporary
-folder, with the picture audit's cell first, so the checkout's sheets stay without
-outputs). In CI (``CI=true``) the test must run: a
-missing Chromium or Playwright fails it; elsewhere it is skipped with one line saying
-what to install.
+One JupyterLab server (one per xdist worker, for the session) serves the sheets (copied
+into a temporary folder, with the picture audit's cell first, so the checkout's sheets
+stay without outputs) to one Chromium page with JupyterLab loaded (for the module's
+tests run one after another): each test opens its sheet in that page, and closes it and
+shuts its kernel down after, so the server and the page start once, not once a sheet.
+In CI (``CI=true``) the test must run: a missing Chromium or Playwright fails it;
+elsewhere it is skipped with one line saying what to install.
 """
 
 from __future__ import annotations
@@ -86,10 +88,12 @@ def _free_port() -> int:
         return s.getsockname()[1]
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def lab(tmp_path_factory):
     """One JupyterLab server over a copy of the widget sheets, each with the picture
-    audit's cell first (tests/_shared_sheets.py): (base url, token, its folder)."""
+    audit's cell first (tests/_shared_sheets.py): (base url, token, its folder). It shows
+    its application object to the page (``window.jupyterapp``): the tests open and close
+    the sheets through its commands."""
     _requirements()
     home = tmp_path_factory.mktemp("lab")
     for name in WIDGET_SHEETS:
@@ -108,7 +112,8 @@ def lab(tmp_path_factory):
         [sys.executable, "-m", "jupyterlab", "--no-browser", "--allow-root", f"--port={port}",
          "--ip=127.0.0.1", f"--IdentityProvider.token={token}", f"--ServerApp.root_dir={home}",
          "--LabApp.news_url=", "--LabApp.check_for_updates_class="
-         "jupyterlab.NeverCheckForUpdate", "--LabApp.extension_manager=readonly"],
+         "jupyterlab.NeverCheckForUpdate", "--LabApp.extension_manager=readonly",
+         "--LabApp.expose_app_in_browser=True"],
         cwd=home, env=env, stdout=log, stderr=subprocess.STDOUT)
     base = f"http://127.0.0.1:{port}"
     try:
@@ -132,6 +137,10 @@ def lab(tmp_path_factory):
         log.close()
 
 
+# Chromium and its page last as long as the module's tests that run one after another,
+# not the session: Playwright's sync API marks its event loop as running between its
+# calls, and a test of another module run while it lives (on the same xdist worker) finds
+# a running loop (the Explorer then schedules its updates instead of computing them)
 @pytest.fixture(scope="module")
 def browser(lab):
     sync_playwright = _requirements()
@@ -212,7 +221,7 @@ def _menu(page, menu: str, item) -> None:
             page.keyboard.press("Escape")        # an open menu, before the dialogs' check
 
 
-def _run_all(page) -> None:
+def _run_all(page, lab, sheet: str) -> None:
     """Run every cell from the Run menu once the kernel is idle, and wait until none is
     pending. A Run All that marks no cell queued within RUN_START was lost (seen under
     load, given as the kernel connected: every cell stayed ``[ ]``) and is given again
@@ -233,9 +242,10 @@ def _run_all(page) -> None:
                     raise AssertionError("Run All given three times, no cell queued; "
                                          f"dialogs: {page.evaluate(DIALOG_TEXT)}") from None
                 # a page that took no Run All kept taking none (seen: three a minute apart,
-                # the first sheet of a fresh server at load 12): it is loaded again
-                page.reload(timeout=RUN_ALL)
-                page.locator(".jp-Notebook .jp-Cell").first.wait_for(timeout=RUN_ALL)
+                # the first sheet of a fresh server at load 12): it is loaded again, the
+                # sheet opened again (on the kernel it started)
+                _load_app(page, lab)
+                _open((page, None), sheet)
                 page.wait_for_function(KERNEL_IDLE, timeout=RUN_ALL)
         try:
             page.wait_for_function(ALL_RAN, timeout=wait)
@@ -313,14 +323,71 @@ HANDLE_RANGE = """(h) => ['aria-valuenow', 'aria-valuemin', 'aria-valuemax'].map
     a => parseFloat(h.getAttribute(a)))"""
 
 
-def _open(browser, lab, sheet):
-    """A new page on ``sheet`` in JupyterLab, its console gathered: (page, console)."""
+APP_READY = "() => window.jupyterapp !== undefined && window.jupyterapp.shell !== undefined"
+OPEN = ("(path) => window.jupyterapp.commands.execute('docmanager:open', "
+        "{path, factory: 'Notebook'})")
+# every document of the main area closed, its changes dropped (the test read what it
+# saved; a clean document closes without asking)
+CLOSE_ALL = """() => { for (const w of [...window.jupyterapp.shell.widgets('main')]) {
+    if (w.context) { w.context.model.dirty = false; } w.close(); } }"""
+NO_SHEET = "() => document.querySelectorAll('.jp-Notebook, .jp-Dialog').length === 0"
+
+
+def _load_app(page, lab) -> None:
+    """JupyterLab loaded in ``page`` on a fresh workspace (no sheet open)."""
     base, token, _ = lab
+    page.goto(f"{base}/lab?token={token}&reset", timeout=RUN_ALL)
+    page.wait_for_function(APP_READY, timeout=RUN_ALL)
+    page.evaluate("() => window.jupyterapp.restored")      # (a promise: awaited)
+
+
+@pytest.fixture(scope="module")
+def jupyterlab(lab, browser):
+    """One page with JupyterLab loaded: (page, its console messages).
+    Each test opens its sheet in it (``_open``); the fixture ``app`` closes it after."""
     page = browser.new_page(viewport={"width": 1400, "height": 1000})
     console: list[str] = []
     page.on("console", lambda m: console.append(f"{m.type}: {m.text}"))
     page.on("pageerror", lambda e: console.append(f"pageerror: {e}"))
-    page.goto(f"{base}/lab/tree/{sheet}?token={token}&reset", timeout=RUN_ALL)
+    _load_app(page, lab)
+    yield page, console
+    page.close()
+
+
+def _shut_kernels(lab) -> None:
+    """Every session of the server ended, its kernel shut down (the server answers when
+    the kernel is gone)."""
+    base, token, _ = lab
+    with urllib.request.urlopen(f"{base}/api/sessions?token={token}", timeout=60) as r:
+        sessions = json.load(r)
+    for session in sessions:
+        urllib.request.urlopen(urllib.request.Request(
+            f"{base}/api/sessions/{session['id']}?token={token}", method="DELETE"),
+            timeout=UPDATE / 1000).close()
+
+
+@pytest.fixture
+def app(jupyterlab, lab):
+    """The session's JupyterLab page for one test; after it, every sheet closed and every
+    kernel shut down, so the next test finds the page as loaded (a page that does not
+    close its sheets, or shows a dialog, is loaded again)."""
+    page, console = jupyterlab
+    console.clear()
+    yield page, console
+    try:
+        page.evaluate(CLOSE_ALL)
+        page.wait_for_function(NO_SHEET, timeout=CLICK)
+    except Exception:                   # noqa: BLE001 (any state: the page is loaded again)
+        _load_app(page, lab)
+    _shut_kernels(lab)
+
+
+def _open(app, sheet: str):
+    """``sheet`` opened in the session's JupyterLab page (``app``), its kernel started:
+    (page, console)."""
+    page, console = app
+    page.evaluate(OPEN, sheet)
+    page.locator(".jp-Notebook .jp-Cell").first.wait_for(timeout=RUN_ALL)
     return page, console
 
 
@@ -431,33 +498,32 @@ def _headless_checks(page, lab, sheet: str) -> None:
 @pytest.mark.browser
 @pytest.mark.parametrize("sheet", [s for s in WIDGET_SHEETS if s not in SHEETS],
                          ids=[s[:2] for s in WIDGET_SHEETS if s not in SHEETS])
-def test_every_slider_of_every_widget_sheet(lab, browser, sheet):
+def test_every_slider_of_every_widget_sheet(lab, app, sheet):
     """Every slider of the sheet moved once (by keyboard): the picture changes, the
     sheet still shows exactly one picture per explorer, no JavaScript error; then the
     headless checks on the same run (``_headless_checks``)."""
-    page, console = _open(browser, lab, sheet)
-    _run_all(page)
+    page, console = _open(app, sheet)
+    _run_all(page, lab, sheet)
     _move_every_slider(page, sheet, console)
     _headless_checks(page, lab, sheet)
-    page.close()
 
 
 @pytest.mark.slow
 @pytest.mark.browser
 @pytest.mark.parametrize("sheet", SHEETS, ids=[s[:2] for s in SHEETS])
-def test_sheet_in_a_real_browser(lab, browser, sheet):
+def test_sheet_in_a_real_browser(lab, app, sheet):
     """The sheet run after a dialog came up (a kernel restart asked), then: every widget
     renders, every slider moved by keyboard changes the picture (as in
     ``test_every_slider_of_every_widget_sheet``), a slider moved by drag too, and after
     rapid moves the kernel holds the newest values, the picture its axes; then the
     headless checks on the same run (``_headless_checks``)."""
-    page, console = _open(browser, lab, sheet)
+    page, console = _open(app, sheet)
     page.locator(".jp-Notebook .jp-Cell").first.wait_for(timeout=RUN_ALL)
     page.wait_for_function(KERNEL_IDLE, timeout=RUN_ALL)
     # a dialog in the way of Run All is dismissed (one intercepted every click in CI)
     _menu(page, "Kernel", re.compile(r"^Restart Kernel…"))
     page.locator(".jp-Dialog").first.wait_for(timeout=UPDATE)
-    _run_all(page)
+    _run_all(page, lab, sheet)
     assert page.locator(".jp-Dialog").count() == 0
 
     # every widget renders
@@ -501,4 +567,3 @@ def test_sheet_in_a_real_browser(lab, browser, sheet):
     bad = WIDGET_ERRORS.findall(text) + [c for c in console if WIDGET_ERRORS.search(c)]
     assert not bad, f"{sheet}: {bad}"
     _headless_checks(page, lab, sheet)
-    page.close()
