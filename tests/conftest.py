@@ -235,11 +235,12 @@ def _cost_rank(item: pytest.Item) -> int:
         2 if item.get_closest_marker("slow") else 3
 
 
-#: Test modules whose tests share a costly module fixture (a class of 30 generated): each
-#: runs on one xdist worker, so the fixture is made once. (tests/test_browser.py is not
-#: one: its eleven tests, one per widget sheet, each making the headless checks of the
-#: sheet on the browser's own run too, are spread over the workers, each starting its
-#: own JupyterLab server and Chromium, 20 s there.)
+#: Test modules whose tests share a costly module fixture (a class generated): each runs
+#: on one xdist worker, so the fixture is made once. (tests/test_browser.py is not one:
+#: its eleven tests, one per widget sheet, each making the headless checks of the sheet
+#: on the browser's own run too, some 355 s in all, are spread over the workers for
+#: balance; each worker starts one JupyterLab server for the session and one Chromium
+#: page while the module's tests run.)
 SHARED_PER_MODULE = ("tests/kinetostatics/teaching/test_classroom.py",
                      "tests/kinetostatics/teaching/test_class_record.py")
 
