@@ -4,8 +4,10 @@ sandbox (:mod:`~kinetostatics.teaching.sandbox`).
 
 The kernel speaks to the grader through Unix sockets in its scratch folder (Jupyter's
 ``ipc`` transport: a kernel without network has no TCP ports to offer). The grader
-reads no message larger than the output limit (ZeroMQ drops it), counts what the
-cells print and display, and stops the kernel when the count passes the limit.
+reads no message larger than the output limit (ZeroMQ drops it and the connection with
+it: the grader watches its output socket for that and stops the kernel, naming the
+limit), counts what the cells print and display, and stops the kernel when the count
+passes the limit.
 """
 
 from __future__ import annotations
@@ -115,9 +117,54 @@ class GradingClient(NotebookClient):
         self.stopped = ""
         self.printed = 0
         self.t0 = time.monotonic()
+        self.watch = None               # the output socket's monitor (:meth:`_dropped`)
 
     def _started(self, cell=None, cell_index=0, **_):
+        if self._dropped():             # in the cell before, which keeps the blame
+            from nbclient.exceptions import DeadKernelError
+            raise DeadKernelError(self.stopped)
         self.cell = int(cell_index)
+
+    def _dropped(self) -> bool:
+        """Whether a message larger than the output limit was dropped (ZeroMQ then drops
+        the connection of the output socket, which the monitor reports) while the
+        kernel lives (its death drops the connection too); then the kernel is stopped
+        with the reason. The monitor is set on the first call, once the kernel's client
+        has its channels."""
+        import zmq
+        from zmq.utils.monitor import recv_monitor_message
+
+        if self.stopped:
+            return True
+        if self.watch is None:
+            channel = getattr(getattr(self, "kc", None), "iopub_channel", None)
+            sock = getattr(channel, "socket", None)
+            if sock is None or not hasattr(self.manager, "sandbox"):
+                return False            # (no cap on messages without the sandbox)
+            address = f"inproc://ks-output-{id(self)}"
+            sock.monitor(address, zmq.EVENT_DISCONNECTED)
+            self.watch = zmq.Context.shadow(sock.context.underlying).socket(zmq.PAIR)
+            self.watch.connect(address)
+            return False
+        lost = False
+        while self.watch.poll(0):
+            lost |= recv_monitor_message(self.watch)["event"] == zmq.EVENT_DISCONNECTED
+        if lost and self.exit_code() is None:
+            self.stopped = (f"printed a message larger than the output limit "
+                            f"({self.limits.output_mb:g} MB): stopped")
+            self.kill()
+        return bool(self.stopped)
+
+    def _unwatch(self) -> None:
+        """Close the monitor (before the client's ZeroMQ context ends: an open socket
+        would hold its end for minutes)."""
+        if self.watch is not None:
+            self.watch.close(linger=0)
+            self.watch = None
+
+    async def _async_cleanup_kernel(self) -> None:
+        self._unwatch()
+        await super()._async_cleanup_kernel()
 
     def _cell_timeout(self, cell) -> int:
         left = self.limits.notebook_seconds - (time.monotonic() - self.t0)
@@ -131,6 +178,8 @@ class GradingClient(NotebookClient):
             len(v) if isinstance(v, str) else 64 for v in content.get("data", {}).values())
         size += sum(len(x) for x in content.get("traceback", []) if isinstance(x, str))
         self.printed += size
+        if self._dropped():
+            return None
         if self.printed > self.limits.output_mb * (1 << 20) and not self.stopped:
             self.stopped = (f"printed more than {self.limits.output_mb:g} MB (the output "
                             "limit): stopped")
@@ -167,6 +216,7 @@ class GradingClient(NotebookClient):
         """Make sure nothing of the kernel is left (and nbclient's exit hook, which
         cannot clean a kernel that never started, is not called at exit)."""
         self.kill()
+        self._unwatch()
         if hasattr(self.manager, "close_pipe"):
             self.manager.close_pipe()
         atexit.unregister(self._cleanup_kernel)

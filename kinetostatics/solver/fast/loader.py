@@ -52,12 +52,13 @@ def _writable(folder: Path) -> bool:
 
 
 def kernel_sources() -> list[Path]:
-    """The files numba compiles: the kernels module and the modules of this package it
-    imports, and theirs (the composing code, in Python, is left out: a change there
-    compiles nothing again)."""
+    """The files numba compiles: the kernels modules (the composed kernels and
+    ``solve_many``'s fused ones) and the modules of this package they import, and theirs
+    (the composing code, in Python, is left out: a change there compiles nothing
+    again)."""
     here = Path(__file__).parent
     seen: list[Path] = []
-    todo = ["kernels"]
+    todo = ["kernels", "fused_kernels"]
     while todo:
         path = here / f"{todo.pop()}.py"
         if path in seen:

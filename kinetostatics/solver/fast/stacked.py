@@ -73,7 +73,7 @@ def fused_kept(plan: Plan, n: int, trig: tuple) -> Kept | None:
     centre) of a crank and one dyad (not RTR), in one fused kernel over the run's ``n``
     rows (``trig``: the crank's cos and sin and where each scene's rows begin in them,
     :meth:`~kinetostatics.solver.stack.Stacker.sweeps`;
-    :data:`~kinetostatics.solver.fast.kernels.KEPT`: every kernel of a block in turn on
+    :data:`~kinetostatics.solver.fast.fused_kernels.KEPT`: every kernel of a block in turn on
     each tile of 64 rows, its values in one scratch array; the numbers of the
     kernels composed over blocks, bit for bit), or None for another structure (solved
     by :func:`~kinetostatics.solver.fast.compose.solve_lean`). Raises
@@ -81,8 +81,9 @@ def fused_kept(plan: Plan, n: int, trig: tuple) -> Kept | None:
     scene = plan.scene
     if not plan.crank or len(plan.dyads) != 1:
         return None
+    from .fused_kernels import KEPT  # (plan.k given: numba loaded, its cache settled)
     gy, gys, dyad = plan.dyads[0]
-    kernel = plan.k.KEPT.get(dyad.kind)
+    kernel = KEPT.get(dyad.kind)
     dname = scene.driver.body
     order = (dname, *dyad.bodies)
     known = [j.other(b) for j, b in zip(dyad.outer, dyad.bodies, strict=True)]

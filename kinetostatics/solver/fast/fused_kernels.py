@@ -1,0 +1,205 @@
+"""The fused kernels of ``solve_many``: a crank and one dyad (every kind but RTR) in one
+kernel per run, tile by tile: the driver's motion, the dyad's, each body's loads, the
+dyad's reactions and Me, every value of a tile in one scratch array, and only Me, the
+closeness to a dead centre and the undefined rows written out. The row helpers are the
+composed kernels' (:mod:`~kinetostatics.solver.fast.kernels`), in the same order: the
+same numbers, bit for bit.
+
+Imported by :func:`~kinetostatics.solver.fast.stacked.fused_kept` once the compiled path
+is loaded (the cache folder settled); the rules of the kernels module hold here.
+"""
+
+from __future__ import annotations
+
+from .jitbase import (
+    TILE,
+    body,
+    jit,
+    nonfinite,
+    scratch,
+    tile_geometry,
+    tile_rows,
+)
+from .kernels import crank_row, dyad_row
+from .layout import (
+    CL2,
+    DRIVER_GEOMETRY,
+    DYAD_GEOMETRY,
+    DYAD_OUT,
+    INNER_R,
+    P_GROUND,
+    PARAM,
+    ROT1,
+    ROT2,
+    C,
+    S,
+)
+from .layout import MOTION as BODY_ROWS
+from .layout import REACTIONS as REACTION_ROWS
+from .reaction_kernels import (
+    crank_moment,
+    reaction_row,
+    swept_row,
+    tile_loads,
+)
+
+
+# -- a crank and one dyad, fused: what solve_many keeps of a run ---------------------------
+@body
+def _known_loads(wg, wad, wak1, wak2):
+    """What a dyad's outer joints load its known bodies with (``wak1``, ``wak2``, a
+    tile's) added to the driver's resultants ``wad`` in order, unless the known body is
+    the ground (as the composed reactions add them, ``tile_add``)."""
+    if wg[P_GROUND, 0] == 0.0:
+        for f in range(3):
+            for t in range(TILE):
+                wad[f, t] += wak1[f, t]
+    if wg[PARAM + P_GROUND, 0] == 0.0:
+        for f in range(3):
+            for t in range(TILE):
+                wad[f, t] += wak2[f, t]
+
+
+@body
+def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls,
+                     npt, gw, gws, nw, st, drive, close, undefined):
+    """A crank and one dyad (not RTR: its guide's cos and sin are numpy's, in a pass of
+    their own), rows ``lo`` to ``hi`` of a stack (``own``: each row's scene; a table per
+    kernel, ``gd`` the driver's, ``gy`` the dyad's, ``gl`` each body's loads, ``gw`` its
+    swept loads with their ``st``; bodies in the order driver, the dyad's first, its
+    second): the driver's motion, the dyad's, each body's loads, the dyad's reactions
+    and Me, tile by tile, each tile's values in one scratch array, as
+    :func:`crank_motion`, :func:`dyad_row`, :func:`tile_loads`, :func:`swept_row`,
+    :func:`reaction_row` and :func:`crank_moment` compute them over blocks (the same
+    operations in the same order: the same numbers); only Me, the dyad's closeness to a
+    dead centre and the undefined rows are written (``drive``, ``close``,
+    ``undefined``). ``k1d``, ``k2d``: whether each outer joint's known body is the
+    driver (else the ground). The crank's cos and sin (``cs``, ``sn``) are worked out
+    before, in a pass of their own: row ``i`` of scene ``e`` at ``i - ts[e]`` (one
+    sweep shared by the scenes, or the run's rows). Returns the count of rows the numpy path must
+    judge."""
+    rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
+    R = BODY_ROWS
+    w_ = scratch(4 * R + 15 + DYAD_OUT + REACTION_ROWS + DYAD_GEOMETRY + DRIVER_GEOMETRY)
+    wdrv, wm1, wm2 = w_[R:2 * R], w_[2 * R:3 * R], w_[3 * R:4 * R]
+    o1, o2 = R if k1d else 0, R if k2d else 0       # (the ground's motion: rows 0..R)
+    wk1, wk2 = w_[o1:o1 + R], w_[o2:o2 + R]
+    b = 4 * R
+    wad, wa1, wa2, wak1, wak2 = (w_[b:b + 3], w_[b + 3:b + 6], w_[b + 6:b + 9],
+                                 w_[b + 9:b + 12], w_[b + 12:b + 15])
+    b += 15
+    wd = w_[b:b + DYAD_OUT]
+    b += DYAD_OUT
+    wr = w_[b:b + REACTION_ROWS]
+    b += REACTION_ROWS
+    wg = w_[b:b + DYAD_GEOMETRY]
+    wgd = w_[b + DYAD_GEOMETRY:]
+    for t in range(TILE):
+        w_[C, t] = 1.0                              # the ground: at rest
+    n0, n1, n2 = gl[0].shape[0], gl[1].shape[0], gl[2].shape[0]
+    wl = scratch(n0 + n1 + n2)
+    wl0, wl1, wl2 = wl[:n0], wl[n0:n0 + n1], wl[n0 + n1:]
+    e0 = 1 if st[0].shape[1] > 1 else 0
+    e1 = 1 if st[1].shape[1] > 1 else 0
+    e2 = 1 if st[2].shape[1] > 1 else 0
+    ld = ly = l0 = l1 = l2 = -1           # (the scene whose geometry each tile holds)
+    bad = 0
+    t0 = lo
+    while t0 < hi:
+        nt = tile_rows(1, own, t0, hi)          # (a tile never spans two scenes)
+        ld = tile_geometry(wgd, gd, gds, own, t0, ld)
+        ly = tile_geometry(wg, gy, gys, own, t0, ly)
+        l0 = tile_geometry(wl0, gl[0], gls[0], own, t0, l0)
+        l1 = tile_geometry(wl1, gl[1], gls[1], own, t0, l1)
+        l2 = tile_geometry(wl2, gl[2], gls[2], own, t0, l2)
+        c0 = t0 - ts[own[t0]]       # (the scene's row in its cos and sin)
+        for t in range(nt):
+            wdrv[C, t] = cs[c0 + t]
+            wdrv[S, t] = sn[c0 + t]
+        for t in range(TILE):
+            f = crank_row(t, t, wgd, w, eps, wdrv)
+            bad += f if t < nt else 0
+        for t in range(TILE):
+            f = dyad_row(kind, rot1, rot2, inner_r, False, t, t, wg, wk1, wk2, wm1, wm2, wd)
+            bad += f if t < nt else 0
+        bad += tile_loads(wdrv, wad, wl0, npt[0], nt)
+        bad += tile_loads(wm1, wa1, wl1, npt[1], nt)
+        bad += tile_loads(wm2, wa2, wl2, npt[2], nt)
+        if nw[0] + nw[1] + nw[2]:
+            for t in range(nt):
+                i = t0 + t
+                if nw[0]:
+                    bad += swept_row(t, own[i * gws[0]], own[i * e0], i - lo, gw[0], nw[0],
+                                     wdrv, wad, undefined, st[0])
+                if nw[1]:
+                    bad += swept_row(t, own[i * gws[1]], own[i * e1], i - lo, gw[1], nw[1],
+                                     wm1, wa1, undefined, st[1])
+                if nw[2]:
+                    bad += swept_row(t, own[i * gws[2]], own[i * e2], i - lo, gw[2], nw[2],
+                                     wm2, wa2, undefined, st[2])
+        wak1[:] = 0.0
+        wak2[:] = 0.0
+        for t in range(TILE):
+            f = reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1, wa2,
+                             wak1, wak2, wr)
+            bad += f if t < nt else 0
+        _known_loads(wg, wad, wak1, wak2)
+        for t in range(TILE):
+            me = crank_moment(t, t, wgd, wdrv, wad)
+            wr[0, t] = me
+            f = nonfinite((me, wad[0, t], wad[1, t]))
+            bad += f if t < nt else 0
+        for t in range(nt):
+            drive[t0 + t - lo] = wr[0, t]
+            close[t0 + t - lo] = wd[CL2, t]
+        t0 += nt
+    return bad
+
+
+@jit
+def rrr_kept(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
+             nw, st, drive, close, undefined):
+    return _crank_dyad_kept(7, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
+                            gls, npt, gw, gws, nw, st, drive, close, undefined)
+
+
+@jit
+def rrt_kept(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
+             nw, st, drive, close, undefined):
+    return _crank_dyad_kept(5, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
+                            gls, npt, gw, gws, nw, st, drive, close, undefined)
+
+
+@jit
+def trr_kept(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
+             nw, st, drive, close, undefined):
+    return _crank_dyad_kept(6, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
+                            gls, npt, gw, gws, nw, st, drive, close, undefined)
+
+
+@jit
+def trt_kept(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
+             nw, st, drive, close, undefined):
+    return _crank_dyad_kept(4, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
+                            gls, npt, gw, gws, nw, st, drive, close, undefined)
+
+
+@jit
+def rtt_kept(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
+             nw, st, drive, close, undefined):
+    return _crank_dyad_kept(1, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
+                            gls, npt, gw, gws, nw, st, drive, close, undefined)
+
+
+@jit
+def ttr_kept(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
+             nw, st, drive, close, undefined):
+    return _crank_dyad_kept(2, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
+                            gls, npt, gw, gws, nw, st, drive, close, undefined)
+
+
+# a crank and one dyad, fused, per dyad kind (RTR: its composed kernels)
+KEPT = {"RRR": rrr_kept, "RRT": rrt_kept, "TRR": trr_kept, "TRT": trt_kept, "RTT": rtt_kept,
+        "TTR": ttr_kept}
+
+__all__ = ["KEPT"]
