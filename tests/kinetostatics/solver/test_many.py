@@ -60,19 +60,6 @@ def variants(name: str, count: int, spread: float, seed: int = 0) -> list[dict]:
     return out
 
 
-@pytest.fixture
-def alone_calls(monkeypatch):
-    """The scenes solve_many solves alone (not stacked)."""
-    calls = []
-    solo = many._alone
-
-    def spy(sc):
-        calls.append(sc.title)
-        return solo(sc)
-    monkeypatch.setattr(many, "_alone", spy)
-    return calls
-
-
 @pytest.mark.parametrize("name", ["four_bar", "scotch_yoke", "sliding_driver",
                                   "slotted_lever"])
 def test_variants_stacked_equal_solve_alone(name, alone_calls) -> None:

@@ -11,7 +11,7 @@ from kinetostatics.model.scene import load_scene
 from kinetostatics.solver import many
 from kinetostatics.solver.fast import use
 
-from .test_many import alone_calls, assert_same, variants  # noqa: F401 (a fixture)
+from .test_many import assert_same, variants
 
 numba = pytest.importorskip("numba")
 
@@ -38,7 +38,7 @@ def unequal(name: str, count: int, seed: int) -> list:
 
 
 @pytest.mark.parametrize("name", ["slider_crank", "shaper"])
-def test_resist_and_resisting_loads_stack(name, alone_calls, fast) -> None:  # noqa: F811
+def test_resist_and_resisting_loads_stack(name, alone_calls, fast) -> None:
     """A ``resist`` load (the slider-crank's piston) and a force ``when = "resisting"``
     (the shaper's cut) stacked on the compiled path: each scene's still threshold is
     checked against its own sweep's top, and every table, flag and undefined row is its
@@ -53,7 +53,7 @@ def test_resist_and_resisting_loads_stack(name, alone_calls, fast) -> None:  # n
         np.testing.assert_array_equal(s.undefined_load, alone.undefined_load)
 
 
-def test_a_refused_run_is_solved_scene_by_scene(alone_calls, fast, monkeypatch  # noqa: F811
+def test_a_refused_run_is_solved_scene_by_scene(alone_calls, fast, monkeypatch
                                                 ) -> None:
     """A run a kernel refuses (here: the check of a sweep's top made to fail) is solved
     scene by scene, each as its solve: not the run on the numpy path, whose numbers
