@@ -61,7 +61,7 @@ from .kinematics import Kinematics, solve_kinematics
 from .pipeline import check_distinct, solve_arrays, solve_block
 from .reactions import DriverReaction
 from .solved import Solved
-from .stack import Rows, Stacker, assemblies, signature
+from .stack import Rows, Stacker, assemblies, stack_record
 from .structure import analyse
 from .trap import first_trapped, positions_tame
 
@@ -134,26 +134,26 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
                 loaded.append((i, load_scene(src)))
             except Exception as exc:        # solve would raise it for this scene
                 out[i] = exc
-    rows = sum(sc.driver.positions.size for _, sc in loaded)
-    if loaded and rows >= 100_000:      # the peak memory known before it is spent
-        largest = max((sc for _, sc in loaded), key=lambda sc: columns(sc))
-        check_memory(solve_bytes(largest, rows), f"solving {len(loaded):,} scene(s) of "
-                     f"{rows:,} positions in all", "solve fewer scenes or positions at a time")
     groups: dict[Any, list] = {}
+    alone = []
     for (i, sc), plain in zip(loaded, _increasing([sc for _, sc in loaded]), strict=True):
         try:
             if not plain:
                 q = "angle" if sc.driver.kind == "R" else "length"
                 check_distinct(sc.driver.positions, sc.units.unit(q),
                                sc.units.file_factor(q))
-            key = signature(sc) if sc.driver.positions.size else None
+            # (its signature's label and its numbers, told once per scene object)
+            label, nums = stack_record(sc) if sc.driver.positions.size else (None, None)
         except Exception as exc:
             out[i] = exc
             continue
-        if key is None:
-            out[i] = _alone(sc)
+        if label is None:
+            alone.append((i, sc))
         else:
-            groups.setdefault(key, []).append((i, sc))
+            groups.setdefault(label, []).append((i, sc, nums))
+    _check_memory(loaded, groups, alone)
+    for i, sc in alone:
+        out[i] = _alone(sc)
     for members in groups.values():
         chunk: list = []
         rows = 0
@@ -166,6 +166,20 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
         if chunk:
             _solve_group(chunk, out, lean)
     return out
+
+
+def _check_memory(loaded: list, groups: dict, alone: list) -> None:
+    """Refuse, before it is spent, the peak memory of solving the ``loaded`` scenes (the
+    widest scene's columns over all their rows; the scenes of one group share theirs)."""
+    rows = sum([sc.driver.positions.size for _, sc in loaded])
+    if not loaded or rows < 100_000:
+        return
+    widest = [m[0][1] for m in groups.values()] + [sc for _, sc in alone]
+    if not widest:          # (every scene refused: nothing will be solved)
+        return
+    largest = max(widest, key=columns)
+    check_memory(solve_bytes(largest, rows), f"solving {len(loaded):,} scene(s) of "
+                 f"{rows:,} positions in all", "solve fewer scenes or positions at a time")
 
 
 def _increasing(scenes: list) -> np.ndarray:
@@ -216,26 +230,26 @@ def _solve_group(members: list, out: list, lean: bool) -> None:
     stacker = None
     try:
         structure = analyse(members[0][1], assemble=False)
-        stacker = Stacker([sc for _, sc in members])
+        stacker = Stacker([m[1] for m in members], [m[2] for m in members])
         ks, ok = assemblies(stacker, structure)
     except Exception:
         ok = np.zeros(len(members), dtype=bool)
-    for (i, sc), good in zip(members, ok, strict=True):
+    for (i, sc, _), good in zip(members, ok, strict=True):
         if not good:
             out[i] = _alone(sc)
     kept = [m for m, good in zip(members, ok, strict=True) if good]
     if len(kept) < 2:
-        for i, sc in kept:
+        for i, sc, _ in kept:
             out[i] = _alone(sc)
         return
     ks = ks[:, ok]
-    scenes = [sc for _, sc in kept]
+    scenes = [m[1] for m in kept]
     try:
-        sols = _stacked(scenes, structure, ks,
-                        stacker if len(kept) == len(members) else Stacker(scenes), lean)
+        sols = _stacked(scenes, structure, ks, stacker if len(kept) == len(members)
+                        else Stacker(scenes, [m[2] for m in kept]), lean)
     except Exception:
         sols = [_alone(sc) for sc in scenes]
-    for (i, _), s in zip(kept, sols, strict=True):
+    for (i, _, _), s in zip(kept, sols, strict=True):
         out[i] = s
 
 

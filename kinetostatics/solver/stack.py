@@ -18,10 +18,11 @@ segment, searched alone along increasing position, the probes of all in one solv
 from __future__ import annotations
 
 import struct
+import weakref
 from dataclasses import replace
 from functools import cached_property
-from itertools import chain
-from operator import attrgetter, itemgetter
+from itertools import chain, count
+from typing import Any
 
 import numpy as np
 
@@ -30,6 +31,7 @@ from .assembly import hint_points
 from .closure import DyadSolver, body_origin, dyad_param
 from .driver import driver_motion, ground_motion
 from .kinematics import SINGULAR_FAIL, solve_dyad
+from .memo import forget_oldest
 from .structure import Structure
 from .trap import tame, tame_values
 
@@ -42,27 +44,6 @@ class Rows(np.ndarray):
 
     def __bool__(self) -> bool:
         return bool(self.view(np.ndarray).all())
-
-
-_mass, _inertia, _cog, _points = (attrgetter(f) for f in ("mass", "inertia", "cog", "points"))
-_size = attrgetter("size")
-
-
-def _col(v: np.ndarray, first):
-    """One parameter over the scenes (``v``, as floats): ``first`` (the first scene's
-    number itself) when every scene has the same bits, else the array."""
-    bits = v.view(np.int64)
-    if (bits == bits[0]).all():
-        return first
-    return v
-
-
-def _pair(pairs, m: int, first: tuple) -> tuple:
-    """A point's (x, y) over the ``m`` scenes, from an iterable of their pairs (as
-    :func:`_col`, each coordinate)."""
-    xy = np.fromiter(chain.from_iterable(pairs), float, 2 * m).reshape(m, 2)
-    return (_col(np.ascontiguousarray(xy[:, 0]), first[0]),
-            _col(np.ascontiguousarray(xy[:, 1]), first[1]))
 
 
 def signature(scene: Scene):
@@ -106,31 +87,92 @@ def signature(scene: Scene):
             tuple(loads), tuple(scene.near), struct.pack(f"{len(nums)}d", *nums))
 
 
+def _numbers(scene: Scene) -> list:
+    """The numbers a stack takes per scene (:class:`Stacker`), in its order: each ground
+    point's x and y, each body's mass, inertia, cog and points, each hint, the size."""
+    out: list = [*chain.from_iterable(scene.ground.values())]
+    for b in scene.bodies.values():
+        out += (b.mass, b.inertia)
+        if b.cog is not None:
+            out += b.cog
+        out += chain.from_iterable(b.points.values())
+    out += chain.from_iterable(scene.near.values())
+    out.append(scene.size)
+    return out
+
+
+# each scene's record (stack_record) while it lives, for the last RECORDS scenes read:
+# solve_many over the same scenes again (a study that changes its loads, a benchmark)
+# tells their structure and gathers their numbers once
+_RECORDS: dict[int, tuple[weakref.ref, tuple]] = {}
+_LABELS: dict[Any, int] = {}        # signature -> a label of its own (an int, quick to hash)
+RECORDS = 1 << 16
+
+
+def stack_record(scene: Scene) -> tuple[int | None, bytes]:
+    """What :func:`kinetostatics.solve_many` needs of a scene to stack it, worked out once
+    per scene object (kept while it lives; a Scene is frozen): a label of its
+    :func:`signature` (scenes of equal signatures get the same label; None for a scene
+    solved alone) and its numbers (:func:`_numbers`) packed as float64 bytes."""
+    key = id(scene)
+    hit = _RECORDS.get(key)
+    if hit is not None and hit[0]() is scene:
+        return hit[1]
+    sig = signature(scene)
+    label = None
+    if sig is not None:
+        label = _LABELS.get(sig)
+        if label is None:
+            if len(_LABELS) >= RECORDS:
+                _LABELS.clear()     # (a new label for a signature met again: no harm)
+            label = _LABELS[sig] = next(_LABEL)
+    nums = _numbers(scene)
+    rec = (label, struct.pack(f"{len(nums)}d", *nums))
+    if len(_RECORDS) >= RECORDS:
+        forget_oldest(_RECORDS)
+
+    def gone(ref: weakref.ref, key: int = key) -> None:
+        if _RECORDS.get(key, (None,))[0] is ref:
+            _RECORDS.pop(key, None)
+    _RECORDS[key] = (weakref.ref(scene, gone), rec)
+    return rec
+
+
+_LABEL = count(1)       # (a label is never given twice, the table cleared or not)
+
+
 class Stacker:
     """Builds stacked scenes of a list of scenes of one :func:`signature`."""
 
-    def __init__(self, scenes: list[Scene]):
+    def __init__(self, scenes: list[Scene], numbers: list[bytes] | None = None):
+        """``numbers``: each scene's packed numbers (:func:`stack_record`), when known."""
         self.scenes = scenes
         s0 = scenes[0]
         self.base = s0
         m = len(scenes)
-        # each parameter read for all the scenes by C-level iteration (map, fromiter):
-        # a few times quicker than a list comprehension per coordinate
-        grounds = [s.ground for s in scenes]
-        self.ground = {p: _pair(map(itemgetter(p), grounds), m, v)
-                       for p, v in s0.ground.items()}
+        if numbers is None:
+            numbers = [stack_record(s)[1] for s in scenes]
+        # every scene's numbers in one array (a row per scene, a column per number,
+        # read from the packed bytes in one pass); a column whose bits all the scenes
+        # share is the first scene's number itself, the others arrays over the scenes
+        table = np.frombuffer(b"".join(numbers), dtype=np.float64).reshape(m, -1)
+        bits = table.view(np.int64)
+        varies = (bits != bits[0]).any(axis=0).tolist()
+        cols = table.T.copy()           # (each column contiguous)
+        take = iter([cols[c] if v else x
+                     for c, (v, x) in enumerate(zip(varies, _numbers(s0), strict=True))]
+                    ).__next__
+
+        def pair():
+            return (take(), take())
+        self.ground = {p: pair() for p in s0.ground}
         self.bodies = {}
         for name, b in s0.bodies.items():
-            bs = list(map(itemgetter(name), [s.bodies for s in scenes]))
-            cog = None if b.cog is None else _pair(map(_cog, bs), m, b.cog)
-            points = list(map(_points, bs))
-            pts = {p: _pair(map(itemgetter(p), points), m, v) for p, v in b.points.items()}
-            self.bodies[name] = (_col(np.fromiter(map(_mass, bs), float, m), b.mass),
-                                 _col(np.fromiter(map(_inertia, bs), float, m), b.inertia),
-                                 cog, pts)
-        nears = [s.near for s in scenes]
-        self.near = {k: _pair(map(itemgetter(k), nears), m, v) for k, v in s0.near.items()}
-        self.size = _col(np.fromiter(map(_size, scenes), float, m), s0.size)
+            mass, inertia = take(), take()
+            cog = None if b.cog is None else pair()
+            self.bodies[name] = (mass, inertia, cog, {p: pair() for p in b.points})
+        self.near = {k: pair() for k in s0.near}
+        self.size = take()
 
     @classmethod
     def of_columns(cls, base: Scene, m: int, ground: dict, bodies: dict, size) -> Stacker:
