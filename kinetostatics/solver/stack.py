@@ -20,7 +20,7 @@ from __future__ import annotations
 import struct
 import weakref
 from dataclasses import replace
-from functools import cached_property
+from functools import cached_property, partial
 from itertools import chain, count
 from typing import Any
 
@@ -158,9 +158,13 @@ class Stacker:
         table = np.frombuffer(b"".join(numbers), dtype=np.float64).reshape(m, -1)
         bits = table.view(np.int64)
         varies = (bits != bits[0]).any(axis=0).tolist()
-        cols = table.T.copy()           # (each column contiguous)
-        take = iter([cols[c] if v else x
-                     for c, (v, x) in enumerate(zip(varies, _numbers(s0), strict=True))]
+        which = [c for c, v in enumerate(varies) if v]
+        # the numbers that vary, a row each (contiguous), repeated over a run's rows in
+        # one call (runs)
+        self.varying = table[:, which].T.copy()
+        self.vrows = list(self.varying)         # (the arrays the stack holds)
+        rows = iter(self.vrows)
+        take = iter([next(rows) if v else x for v, x in zip(varies, _numbers(s0), strict=True)]
                     ).__next__
 
         def pair():
@@ -185,6 +189,7 @@ class Stacker:
         self = cls.__new__(cls)
         self.scenes = [base] * m
         self.base = base
+        self.varying = None         # (each array its own)
         self.ground = ground
         self.bodies = bodies
         self.near = dict(base.near)
@@ -213,7 +218,17 @@ class Stacker:
         ``lo + j`` over ``counts[j]`` rows at driver positions ``positions`` (the same
         scene as :meth:`scene` with ``owner = np.repeat(np.arange(lo, hi), counts)``:
         each scene's numbers repeated, a few times quicker than taken row by row)."""
-        sc = self._build(lambda x: np.repeat(x[lo:hi], counts), positions)
+        expand = partial(_repeat, lo, hi, counts)
+        if self.varying is not None:
+            # every number that varies repeated over the rows in one call: its rows
+            # are the arrays np.repeat gives each one (the same numbers)
+            rep = np.repeat(self.varying[:, lo:hi], counts, axis=1)
+            row = {id(v): r for v, r in zip(self.vrows, rep, strict=True)}
+
+            def expand(x):
+                r = row.get(id(x))
+                return _repeat(lo, hi, counts, x) if r is None else r
+        sc = self._build(expand, positions)
         sc.__dict__["segments"] = counts    # each scene's rows (a sweep's maxima per scene)
         if sc.driver.kind == "R":
             sc.__dict__["driver_trig"] = self.trig_rows(lo, hi, positions)
@@ -302,6 +317,10 @@ class Stacker:
                      driver=replace(self.base.driver, positions=positions), raw={})
         sc.__dict__["size"] = at(self.size)       # the cached property, per row
         return sc
+
+
+def _repeat(lo: int, hi: int, counts: np.ndarray, x: np.ndarray) -> np.ndarray:
+    return np.repeat(x[lo:hi], counts)
 
 
 def assemblies(stacker: Stacker, structure: Structure) -> tuple[np.ndarray, np.ndarray]:
