@@ -83,9 +83,15 @@ def _candidates(m2: np.ndarray, starts: np.ndarray | None = None,
     rows = np.flatnonzero(m2 < SCREEN**2)       # (NaN is not below: never probed)
     if rows.size == 0:
         return none
-    seg = np.searchsorted(starts, rows, side="right") - 1   # the segment holding each
-    first = rows == starts[seg]
-    last = rows == starts[seg] + counts[seg] - 1
+    # the rows that begin or end a segment, marked over all rows (a pass over them
+    # instead of a binary search per row below the screen)
+    full = counts > 0
+    edge = np.zeros(n, dtype=np.int8)
+    edge[starts[full]] = 1
+    edge[(starts + counts - 1)[full]] |= 2
+    at = edge[rows]
+    first = (at & 1) != 0
+    last = (at & 2) != 0
     v = m2[rows]
     left = m2[np.maximum(rows - 1, 0)]
     right = m2[np.minimum(rows + 1, n - 1)]

@@ -211,28 +211,33 @@ class Stacker:
     def scene(self, owner: np.ndarray, positions: np.ndarray) -> Scene:
         """The stacked scene: row i is scene ``owner[i]`` at driver position
         ``positions[i]``."""
-        return self._build(lambda x: x[owner], positions)
+        return self._build(self._each(lambda x: x[owner], lambda t: t[:, owner]), positions)
 
     def runs(self, lo: int, hi: int, counts: np.ndarray, positions: np.ndarray) -> Scene:
         """The stacked scene of scenes ``lo`` to ``hi - 1`` one after another, scene
         ``lo + j`` over ``counts[j]`` rows at driver positions ``positions`` (the same
         scene as :meth:`scene` with ``owner = np.repeat(np.arange(lo, hi), counts)``:
         each scene's numbers repeated, a few times quicker than taken row by row)."""
-        expand = partial(_repeat, lo, hi, counts)
-        if self.varying is not None:
-            # every number that varies repeated over the rows in one call: its rows
-            # are the arrays np.repeat gives each one (the same numbers)
-            rep = np.repeat(self.varying[:, lo:hi], counts, axis=1)
-            row = {id(v): r for v, r in zip(self.vrows, rep, strict=True)}
-
-            def expand(x):
-                r = row.get(id(x))
-                return _repeat(lo, hi, counts, x) if r is None else r
+        expand = self._each(partial(_repeat, lo, hi, counts),
+                            lambda t: np.repeat(t[:, lo:hi], counts, axis=1))
         sc = self._build(expand, positions)
         sc.__dict__["segments"] = counts    # each scene's rows (a sweep's maxima per scene)
         if sc.driver.kind == "R":
             sc.__dict__["driver_trig"] = self.trig_rows(lo, hi, positions)
         return sc
+
+    def _each(self, expand, whole):
+        """``expand`` as a function of each number that varies: ``whole`` of the table of
+        them all (:attr:`varying`) in one call, its rows the arrays ``expand`` gives
+        each one (the same numbers); ``expand`` itself where there is no table."""
+        if self.varying is None:
+            return expand
+        row = dict(zip(map(id, self.vrows), whole(self.varying), strict=True))
+
+        def each(x):
+            r = row.get(id(x))
+            return expand(x) if r is None else r
+        return each
 
     def table(self, lo: int, hi: int, counts: np.ndarray, positions: np.ndarray,
               trig: bool = True) -> Scene:
