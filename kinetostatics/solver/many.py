@@ -127,30 +127,28 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
     table (an answer key) or sends the arrays elsewhere (pickled whole)."""
     out: list[Any] = [None] * len(items)
     loaded: list[tuple[int, Any]] = []
+    groups: dict[Any, list] = {}
+    alone = []
     with warnings.catch_warnings():     # said again by solve_many, naming the scene
         warnings.simplefilter("ignore", UnitWarning)
         for i, src in enumerate(items):
             try:
-                loaded.append((i, load_scene(src)))
+                sc = load_scene(src)
+                loaded.append((i, sc))
+                # its signature's label, its numbers and whether its positions increase
+                # (then none repeats), told once per scene object
+                label, nums, up = stack_record(sc)
+                if not up:
+                    q = "angle" if sc.driver.kind == "R" else "length"
+                    check_distinct(sc.driver.positions, sc.units.unit(q),
+                                   sc.units.file_factor(q))
             except Exception as exc:        # solve would raise it for this scene
                 out[i] = exc
-    groups: dict[Any, list] = {}
-    alone = []
-    for (i, sc), plain in zip(loaded, _increasing([sc for _, sc in loaded]), strict=True):
-        try:
-            if not plain:
-                q = "angle" if sc.driver.kind == "R" else "length"
-                check_distinct(sc.driver.positions, sc.units.unit(q),
-                               sc.units.file_factor(q))
-            # (its signature's label and its numbers, told once per scene object)
-            label, nums = stack_record(sc) if sc.driver.positions.size else (None, None)
-        except Exception as exc:
-            out[i] = exc
-            continue
-        if label is None:
-            alone.append((i, sc))
-        else:
-            groups.setdefault(label, []).append((i, sc, nums))
+                continue
+            if label is None:
+                alone.append((i, sc))
+            else:
+                groups.setdefault(label, []).append((i, sc, nums))
     _check_memory(loaded, groups, alone)
     for i, sc in alone:
         out[i] = _alone(sc)
@@ -180,38 +178,6 @@ def _check_memory(loaded: list, groups: dict, alone: list) -> None:
     largest = max(widest, key=columns)
     check_memory(solve_bytes(largest, rows), f"solving {len(loaded):,} scene(s) of "
                  f"{rows:,} positions in all", "solve fewer scenes or positions at a time")
-
-
-def _increasing(scenes: list) -> np.ndarray:
-    """Per scene, whether its driver positions strictly increase (then none repeats:
-    :func:`~kinetostatics.solver.continuity.check_distinct` has nothing to refuse), told
-    for all the scenes in one pass (only the rows not above their predecessor, about one
-    per scene, are then placed in their scenes)."""
-    ok = np.ones(len(scenes), dtype=bool)
-    # a sweep read from start, stop and count (Driver.sweep: the same bits for the same
-    # key) is told once per key; the other scenes' positions in one pass
-    told: dict = {}
-    rest = []
-    for i, s in enumerate(scenes):
-        key = s.driver.sweep
-        if key is None:
-            rest.append(i)
-            continue
-        up = told.get(key)
-        if up is None:
-            p = s.driver.positions
-            up = told[key] = bool((p[1:] > p[:-1]).all())
-        ok[i] = up
-    if not rest:
-        return ok
-    pos = [scenes[i].driver.positions for i in rest]
-    counts = np.array([p.size for p in pos])
-    starts = np.cumsum(counts) - counts
-    allp = np.concatenate(pos).astype(float, copy=False)
-    down = np.flatnonzero(~(allp[1:] > allp[:-1])) + 1     # row not above row - 1
-    seg = np.searchsorted(starts, down, side="right") - 1   # the scene holding it
-    ok[np.asarray(rest)[seg[down != starts[seg]]]] = False  # (a scene's first row: no)
-    return ok
 
 
 def _alone(sc) -> Solved | LeanSolved | Exception:

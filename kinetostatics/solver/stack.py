@@ -109,16 +109,19 @@ _LABELS: dict[Any, int] = {}        # signature -> a label of its own (an int, q
 RECORDS = 1 << 16
 
 
-def stack_record(scene: Scene) -> tuple[int | None, bytes]:
+def stack_record(scene: Scene) -> tuple[int | None, bytes, bool]:
     """What :func:`kinetostatics.solve_many` needs of a scene to stack it, worked out once
     per scene object (kept while it lives; a Scene is frozen): a label of its
     :func:`signature` (scenes of equal signatures get the same label; None for a scene
-    solved alone) and its numbers (:func:`_numbers`) packed as float64 bytes."""
+    solved alone, or without positions), its numbers (:func:`_numbers`) packed as
+    float64 bytes, and whether its driver positions strictly increase (then none
+    repeats: :func:`~kinetostatics.solver.continuity.check_distinct` has nothing to
+    refuse)."""
     key = id(scene)
     hit = _RECORDS.get(key)
     if hit is not None and hit[0]() is scene:
         return hit[1]
-    sig = signature(scene)
+    sig = signature(scene) if scene.driver.positions.size else None
     label = None
     if sig is not None:
         label = _LABELS.get(sig)
@@ -127,7 +130,7 @@ def stack_record(scene: Scene) -> tuple[int | None, bytes]:
                 _LABELS.clear()     # (a new label for a signature met again: no harm)
             label = _LABELS[sig] = next(_LABEL)
     nums = _numbers(scene)
-    rec = (label, struct.pack(f"{len(nums)}d", *nums))
+    rec = (label, struct.pack(f"{len(nums)}d", *nums), _increases(scene.driver))
     if len(_RECORDS) >= RECORDS:
         forget_oldest(_RECORDS)
 
@@ -138,6 +141,23 @@ def stack_record(scene: Scene) -> tuple[int | None, bytes]:
     return rec
 
 
+def _increases(driver) -> bool:
+    """Whether ``driver``'s positions strictly increase: told once per sweep read from
+    start, stop and count (:attr:`~kinetostatics.model.scene.Driver.sweep`: the same
+    bits for the same key), else from its positions."""
+    key = driver.sweep
+    up = _UP.get(key) if key is not None else None
+    if up is None:
+        p = driver.positions
+        up = bool((p[1:] > p[:-1]).all())
+        if key is not None:
+            if len(_UP) >= 64:
+                _UP.clear()
+            _UP[key] = up
+    return up
+
+
+_UP: dict[tuple, bool] = {}
 _LABEL = count(1)       # (a label is never given twice, the table cleared or not)
 
 

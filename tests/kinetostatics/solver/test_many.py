@@ -361,10 +361,12 @@ def test_signature_tells_numbers_by_their_bits(alone_calls) -> None:
     assert alone_calls == [load_scene(flipped).title]     # a group of its own, of one
 
 
-def test_increasing_told_for_all_scenes_at_once() -> None:
-    """Whether each scene's positions strictly increase, as told scene by scene (empty
-    and one-row sweeps, repeats, NaN, a scene starting below the last one's end)."""
+def test_increasing_told_per_scene_and_sweep() -> None:
+    """Whether each scene's positions strictly increase (stack_record, told once per sweep
+    key), as told scene by scene (empty and one-row sweeps, repeats, NaN)."""
     from types import SimpleNamespace
+
+    from kinetostatics.solver.stack import _increases
 
     rng = np.random.default_rng(8)
     for _ in range(500):
@@ -372,7 +374,7 @@ def test_increasing_told_for_all_scenes_at_once() -> None:
                else np.sort(rng.random(n)) for n in rng.integers(0, 6, rng.integers(1, 6))]
         # (a sweep read from start, stop and count: its key, the same bits for one key)
         keys = [(p.size, p.tobytes()) if rng.random() < 0.3 else None for p in pos]
-        scenes = [SimpleNamespace(driver=SimpleNamespace(positions=p, sweep=k))
-                  for p, k in zip(pos, keys, strict=True)]
+        drivers = [SimpleNamespace(positions=p, sweep=k) for p, k in zip(pos, keys, strict=True)]
         want = [bool(np.all(p[1:] > p[:-1])) for p in pos]
-        assert many._increasing(scenes).tolist() == want
+        assert [_increases(d) for d in drivers] == want
+        assert [_increases(d) for d in drivers] == want     # (told again: the same)
