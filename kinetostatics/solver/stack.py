@@ -90,13 +90,19 @@ def signature(scene: Scene):
 def _numbers(scene: Scene) -> list:
     """The numbers a stack takes per scene (:class:`Stacker`), in its order: each ground
     point's x and y, each body's mass, inertia, cog and points, each hint, the size."""
-    out: list = [*chain.from_iterable(scene.ground.values())]
+    out: list = []
+    put, add = out.extend, out.append
+    for xy in scene.ground.values():
+        put(xy)
     for b in scene.bodies.values():
-        out += (b.mass, b.inertia)
+        add(b.mass)
+        add(b.inertia)
         if b.cog is not None:
-            out += b.cog
-        out += chain.from_iterable(b.points.values())
-    out += chain.from_iterable(scene.near.values())
+            put(b.cog)
+        for xy in b.points.values():
+            put(xy)
+    for xy in scene.near.values():
+        put(xy)
     out.append(scene.size)
     return out
 
