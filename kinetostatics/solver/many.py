@@ -15,8 +15,11 @@ friction, a mass model), or whose run the stacked pass refuses, is solved alone;
 ``resist`` or ``when = "resisting"`` load takes its threshold from each scene's own rows.
 
 What costs per scene in a solve is done for all the scenes at once (each scene is read
-by :func:`~kinetostatics.model.scene.load_scene`, as solve reads it): the order of the
-positions is told in one pass, the assembly chosen per scene vectorised
+by :func:`~kinetostatics.model.scene.load_scene`, as solve reads it): what stacking needs
+of a scene (its signature's label, its numbers packed, whether its positions increase:
+:func:`~kinetostatics.solver.stack.stack_record`) is told once per scene object and kept
+while it lives, every scene's numbers read from one array
+(:class:`~kinetostatics.solver.stack.Stacker`), the assembly chosen per scene vectorised
 (:func:`~kinetostatics.solver.stack.assemblies`), the finite check left to the
 floating-point trap per run (:mod:`~kinetostatics.solver.trap`),
 and the dead points of every scene screened in one probe solve

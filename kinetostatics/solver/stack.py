@@ -168,7 +168,13 @@ _LABEL = count(1)       # (a label is never given twice, the table cleared or no
 
 
 class Stacker:
-    """Builds stacked scenes of a list of scenes of one :func:`signature`."""
+    """Builds stacked scenes of a list of scenes of one :func:`signature`.
+
+    Every scene's numbers (:func:`_numbers`, packed by :func:`stack_record`) are read
+    into one array in one pass; the numbers that vary are kept as one table
+    (:attr:`varying`, a row each), so that a run's stacked scene repeats them over its
+    rows, and a probe's takes them row by row, in one call each (the same numbers as
+    one call per number)."""
 
     def __init__(self, scenes: list[Scene], numbers: list[bytes] | None = None):
         """``numbers``: each scene's packed numbers (:func:`stack_record`), when known."""
