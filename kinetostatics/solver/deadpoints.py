@@ -179,7 +179,8 @@ def dead_points_of_sweep(scene: Scene, structure: Structure, positions: np.ndarr
 
 def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarray,
                         counts: np.ndarray,
-                        at: Callable[[np.ndarray, np.ndarray], Kinematics]) -> list[tuple]:
+                        at: Callable[[np.ndarray, np.ndarray], Kinematics],
+                        increasing: bool = False) -> list[tuple]:
     """:func:`dead_points_between_rows` of many sweeps at once: segment s holds rows
     ``starts[s]`` to ``starts[s] + counts[s]`` (one scene of a stack,
     :func:`kinetostatics.solve_many`), searched alone, with the probes of all segments in
@@ -197,6 +198,9 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     at : callable
         ``at(positions, owner)``: the kinematics at ``positions`` (row i of segment
         ``owner[i]``), ``strict = False``.
+    increasing : bool
+        Every segment's positions are known to increase (their order is then not told
+        again).
 
     Returns
     -------
@@ -213,7 +217,7 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     one = m == 1
     # the rows in increasing position (None: as they are, the usual case: then no
     # array over all the rows is taken in another order)
-    order = _segment_order(positions, starts)
+    order = None if increasing else _segment_order(positions, starts)
     m2 = m2u if order is None else m2u[order]
     pos = positions if order is None else positions[order]
     cand = _candidates(m2) if one else _candidates(m2, starts, counts)

@@ -151,7 +151,7 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
             if label is None:
                 alone.append((i, sc))
             else:
-                groups.setdefault(label, []).append((i, sc, nums))
+                groups.setdefault(label, []).append((i, sc, nums, up))
     _check_memory(loaded, groups, alone)
     for i, sc in alone:
         out[i] = _alone(sc)
@@ -203,27 +203,28 @@ def _solve_group(members: list, out: list, lean: bool) -> None:
         ks, ok = assemblies(stacker, structure)
     except Exception:
         ok = np.zeros(len(members), dtype=bool)
-    for (i, sc, _), good in zip(members, ok, strict=True):
+    for (i, sc, *_), good in zip(members, ok, strict=True):
         if not good:
             out[i] = _alone(sc)
     kept = [m for m, good in zip(members, ok, strict=True) if good]
     if len(kept) < 2:
-        for i, sc, _ in kept:
+        for i, sc, *_ in kept:
             out[i] = _alone(sc)
         return
     ks = ks[:, ok]
     scenes = [m[1] for m in kept]
     try:
         sols = _stacked(scenes, structure, ks, stacker if len(kept) == len(members)
-                        else Stacker(scenes, [m[2] for m in kept]), lean)
+                        else Stacker(scenes, [m[2] for m in kept]), lean,
+                        all(m[3] for m in kept))
     except Exception:
         sols = [_alone(sc) for sc in scenes]
-    for (i, _, _), s in zip(kept, sols, strict=True):
+    for (i, *_), s in zip(kept, sols, strict=True):
         out[i] = s
 
 
-def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bool
-             ) -> list[CutSolved | Solved | LeanSolved | Exception]:
+def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bool,
+             increasing: bool = False) -> list[CutSolved | Solved | LeanSolved | Exception]:
     """The solve of :func:`kinetostatics.solve` on the stacked scenes, cut per scene.
 
     The rows are solved in runs of whole scenes of about ``RUN_ROWS`` rows (as
@@ -234,6 +235,7 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     (:func:`dead_points_stacked`, the probes of all scenes in one solve); each scene's
     Solution is a light view: its Me/Fe and flags cut from its run's when first read,
     its kinematics and joint reactions from the run solved again (:class:`_Run`).
+    ``increasing``: every scene's positions are known to increase.
     """
     counts = np.array([s.driver.positions.size for s in scenes])
     starts = np.cumsum(counts) - counts
@@ -271,7 +273,7 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     def at(where: np.ndarray, who: np.ndarray) -> Kinematics:
         probe = replace(structure, assembly=tuple(k[who] for k in ks))
         return solve_kinematics(stacker.scene(who, where), probe, strict=False)
-    dead = dead_points_stacked(m2, positions, starts, counts, at)
+    dead = dead_points_stacked(m2, positions, starts, counts, at, increasing)
     for j in alone:
         out[j] = _alone(scenes[j])
     for j, one in enumerate(out):
@@ -296,16 +298,16 @@ def _cut_run(sol: Solved, again: _Run, scenes: list, ks: np.ndarray,
            [(f, _per_row(f, n_run)) for f in (np.asarray(dm.singular) for dm in sol.kin.dyads)])
     assemblies = ks[:, lo:hi].T.tolist()
     r0s = (starts[lo:hi] - a).tolist()
+    path = getattr(sol, "path", None)     # (set by the compiled path)
     for j, assembly, r0, n in zip(range(lo, hi), assemblies, r0s, counts[lo:hi].tolist(),
                                   strict=True):
         key = tuple(assembly)
         sj = structures.get(key)
         if sj is None:
             sj = structures[key] = replace(structure, assembly=key)
-        out[j] = CutSolved(scenes[j], sj, again, slice(r0, r0 + n), run)
-        path = getattr(sol, "path", None)     # (set by the compiled path)
+        out[j] = one = CutSolved(scenes[j], sj, again, slice(r0, r0 + n), run)
         if path is not None:
-            out[j].path = path
+            one.path = path
 
 
 def run_bounds(starts: np.ndarray, counts: np.ndarray, size: int) -> np.ndarray:
