@@ -292,4 +292,7 @@ def _per_segment(intervals: np.ndarray, order: np.ndarray | None, starts: np.nda
     else:
         pairs = np.stack([order[intervals], order[intervals + 1]], axis=1) - starts[owner, None]
     cuts = np.searchsorted(owner, np.arange(m + 1))
-    return [pairs[cuts[s]:cuts[s + 1]] for s in range(m)]
+    out = [np.zeros((0, 2), dtype=int)] * m        # (most segments: none, one array)
+    for s in np.flatnonzero(cuts[1:] > cuts[:-1]).tolist():
+        out[s] = pairs[cuts[s]:cuts[s + 1]]
+    return out
