@@ -14,8 +14,9 @@ little.
 * ``many``: :func:`kinetostatics.solve_many` on 1000 variants of the bundled four-bar
   (361 positions; every length, ground point and mass within +-10 %) against a loop of
   ``solve``, on each path (the compiled one also against the numpy path's loop),
-  given as Scene objects and as dicts, and on as many variants of the slider-crank, the
-  shaper and the slotted lever: the speed-up (the loop's time over solve_many's), with
+  given as Scene objects (the same ones every round, and new ones each round) and as
+  dicts, and on as many variants of the slider-crank, the shaper and the slotted lever:
+  the speed-up (the loop's time over solve_many's), with
   the largest difference of any table (0: the same numbers);
 * ``design``: :func:`kinetostatics.design` on the bundled ``four_bar_design`` (1000
   designs, 10 generations, 361 rows) against ``solve_many`` of as many four-bars: its
@@ -204,10 +205,11 @@ OTHER_MANY = ("slider_crank", "shaper", "slotted_lever")   # (bench_many's other
 
 def bench_many(count: int = 1000, repeat: int = 3, others: tuple = OTHER_MANY
                ) -> list[dict]:
-    """solve_many against a loop of solve on the four-bar variants: given Scene objects,
-    given dicts, and given dicts with each Solution's ``driver`` table built (the
-    per-scene arrays of solve_many's Solutions are cut from the stacked ones when first
-    read: that cost counted too); and given Scene objects, on the variants of each of
+    """solve_many against a loop of solve on the four-bar variants: given Scene objects
+    (the same every round, and new ones each round: :func:`_fresh_row`), given dicts,
+    and given dicts with each Solution's ``driver`` table built (the per-scene arrays of
+    solve_many's Solutions are cut from the stacked ones when first read: that cost
+    counted too); and given Scene objects, on the variants of each of
     ``others`` (a ``resist`` load, a six-bar with a force ``when = "resisting"``, a
     slotted lever). ``error``: the largest difference of any table of solve_many against
     solve alone, over the first 50 scenes (0: the same numbers)."""
@@ -243,6 +245,7 @@ def bench_many(count: int = 1000, repeat: int = 3, others: tuple = OTHER_MANY
             if p != "numpy":
                 rows.append(_row(f"speed-up: numpy loop of solve / solve_many ({label})",
                                  f"{count} x 361", times, "numpy loop", "many", path=p))
+        rows.append(_fresh_row(p, scenes, repeat))
         times = side_by_side({"loop": on_path(p, lambda: [solve(d).driver for d in dicts]),
                               "many": on_path(p, lambda: [s.driver for s in
                                                           solve_many(dicts)])}, repeat)
@@ -260,6 +263,21 @@ def bench_many(count: int = 1000, repeat: int = 3, others: tuple = OTHER_MANY
             rows.append(_row(f"speed-up: loop of solve / solve_many ({name}, Scene objects)",
                              f"{count} x 361", times, "loop", "many", path=p, error=err))
     return rows
+
+
+def _fresh_row(path: str, scenes: list, repeat: int) -> dict:
+    """The loop of solve over solve_many, each round on new Scene objects (shallow copies
+    of ``scenes``, made before the clock starts): what a first call costs, with nothing
+    told once per scene object kept from an earlier call (the solver's per-scene records,
+    ``solver.stack.stack_record``)."""
+    from ..results import solve, solve_many
+    sets = {k: [[copy.copy(s) for s in scenes] for _ in range(repeat)]
+            for k in ("loop", "many")}
+    times = side_by_side({"loop": on_path(path, lambda: [solve(s) for s in sets["loop"].pop()]),
+                          "many": on_path(path, lambda: solve_many(sets["many"].pop()))},
+                         repeat)
+    return _row("speed-up: loop of solve / solve_many (Scene objects, new ones each round)",
+                f"{len(scenes)} x 361", times, "loop", "many", path=path)
 
 
 def bench_design(population: int = 1000, generations: int = 10, repeat: int = 2
