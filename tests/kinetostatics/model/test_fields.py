@@ -4,7 +4,9 @@ with its quantity's factor (the factors by definition, not from the workbench)."
 
 from __future__ import annotations
 
+import dataclasses
 import math
+import pickle
 import re
 from pathlib import Path
 
@@ -99,5 +101,25 @@ def test_a_read_scene_holds_its_angles_in_radians(name) -> None:
     assert drv.angles is drv.angles and not drv.angles.flags.writeable
     with pytest.raises(ValueError, match="read-only"):
         drv.angles[0] = 0.0
+    typed = {j["name"]: j.get("line_angle", 0.0) for j in sc.raw["joints"]}
     for j in sc.joints.values():
-        assert j.beta == math.radians(j.line_angle)
+        assert j.beta == math.radians(typed[j.name] if j.kind == "T" else 0.0)
+        assert "line_angle" not in vars(j)          # the degrees are not kept
+
+
+def test_a_joint_given_degrees_or_read_for_them_warns_for_one_release() -> None:
+    """``Joint.line_angle`` (deg), given or read, is deprecated: ``beta`` (rad) is what the
+    joint holds; the old names still work and say so."""
+    sc = ks.load_scene("slotted_lever")
+    j = next(j for j in sc.joints.values() if j.kind == "T")
+    with pytest.warns(DeprecationWarning, match="read Joint.beta"):
+        assert j.line_angle == math.degrees(j.beta)
+    with pytest.warns(DeprecationWarning, match="give beta"):
+        old = mech_scene.Joint(j.name, "T", j.bodies, j.points, 30.0)
+    assert old.beta == math.radians(30.0)
+    with pytest.warns(DeprecationWarning, match="give beta"):
+        assert mech_scene.Joint(j.name, "T", j.bodies, j.points, line_angle=-5.0).beta \
+            == math.radians(-5.0)
+    moved = dataclasses.replace(old, friction=None)     # beta kept, no warning
+    assert moved.beta == old.beta and moved == old
+    assert pickle.loads(pickle.dumps(sc)).joints[j.name].beta == j.beta
