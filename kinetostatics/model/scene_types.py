@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import Any
 
@@ -161,6 +161,25 @@ class Driver:
         angles = radians(pos if type(pos) is np.ndarray else np.asarray(pos, dtype=float))
         angles.flags.writeable = False
         object.__setattr__(self, "angles", angles)
+
+    @property
+    def coordinates(self) -> np.ndarray:
+        """The driver's positions in SI: a crank's ``angles`` (rad), a slider's
+        ``positions`` (m)."""
+        return self.angles if self.kind == "R" else self.positions
+
+    def at(self, coordinates: np.ndarray) -> Driver:
+        """The same driver at other positions given in SI (rad or m): its
+        :attr:`coordinates` are ``coordinates`` to the bit. For positions never shown (the
+        probes between rows): a crank's ``positions`` are their degrees, not typed ones."""
+        x = np.asarray(coordinates, dtype=float)
+        if self.kind != "R":
+            return replace(self, positions=x)
+        out = replace(self, positions=degrees(x))
+        x = x.copy()
+        x.flags.writeable = False
+        object.__setattr__(out, "angles", x)        # (frozen: made here, set once)
+        return out
 
     def trig(self) -> tuple[np.ndarray, np.ndarray]:
         """``np.cos(angles)`` and ``np.sin(angles)``, read-only. A sweep read from start,

@@ -16,7 +16,15 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ..solver.continuity import Probe, anchor, needs_probe, probed_turns, row_ratios, turn_estimate
+from ..solver.continuity import (
+    Probe,
+    anchor,
+    needs_probe,
+    probed_turns,
+    row_ratios,
+    sweep_coordinates,
+    turn_estimate,
+)
 
 PERIOD = 2 * np.pi              # numpy.unwrap's default period and its derived bounds
 HIGH = PERIOD / 2
@@ -40,6 +48,7 @@ class SweepAngles:
     def __init__(self, scene, structure, positions: np.ndarray):
         self.scene, self.structure = scene, structure
         self.positions = positions
+        self.coordinates = sweep_coordinates(scene, positions)     # rad or m
         self.n = positions.size
         self.names: list[str] | None = None      # the bodies unwrapped (known at block 1)
         self.fixed: dict[str, np.ndarray] = {}
@@ -55,7 +64,7 @@ class SweepAngles:
             return
         m = rows.stop - rows.start
         th = np.stack([np.broadcast_to(kin.bodies[b].theta, (m,)) for b in self.names])
-        ps = self.positions[rows]
+        ps = self.coordinates[rows]
         if self.scene.driver.speed != 0.0:
             r, rp = row_ratios(kin, self.names)
         else:
@@ -113,9 +122,8 @@ class SweepAngles:
             base = np.concatenate([self.base[:, start - 1:start], base], axis=1)
             start -= 1
         h = np.diff(ps)
-        hs = np.deg2rad(h) if self.scene.driver.kind == "R" else h
         step = np.diff(base, axis=1)
-        check = needs_probe(step, turn_estimate(hs, r[:, :-1], r[:, 1:], rp[:, :-1], rp[:, 1:]))
+        check = needs_probe(step, turn_estimate(h, r[:, :-1], r[:, 1:], rp[:, :-1], rp[:, 1:]))
         iv = np.flatnonzero(check)
         if iv.size:
             self.found.append((iv + start, ps[iv], ps[iv + 1], th[:, iv], r[:, iv],

@@ -123,3 +123,19 @@ def test_a_joint_given_degrees_or_read_for_them_warns_for_one_release() -> None:
     moved = dataclasses.replace(old, friction=None)     # beta kept, no warning
     assert moved.beta == old.beta and moved == old
     assert pickle.loads(pickle.dumps(sc)).joints[j.name].beta == j.beta
+
+
+def test_a_driver_at_positions_in_si_holds_them_to_the_bit() -> None:
+    """``Driver.at`` (the probes between rows, in rad or m) keeps the coordinates given,
+    not their degrees read back (which lose a bit: 30 deg comes back 29.999999999999996)."""
+    crank = ks.load_scene("four_bar").driver
+    assert crank.coordinates is crank.angles
+    x = np.array([0.1, 1.0, np.deg2rad(30.0)])
+    moved = crank.at(x)
+    assert np.array_equal(moved.angles, x) and moved.coordinates is moved.angles
+    assert not moved.angles.flags.writeable and moved.sweep is None
+    assert np.array_equal(moved.positions, np.rad2deg(x))
+    assert not np.array_equal(np.deg2rad(np.rad2deg(x)), x)   # why the angles are kept
+    slider = ks.load_scene("sliding_driver").driver
+    assert slider.coordinates is slider.positions
+    assert np.array_equal(slider.at([0.01, 0.02]).coordinates, [0.01, 0.02])
