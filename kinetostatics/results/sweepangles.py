@@ -16,19 +16,41 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from ..model.units import degrees
 from ..solver.continuity import (
     Probe,
     anchor,
+    body_angles,
     needs_probe,
     probed_turns,
     row_ratios,
     sweep_coordinates,
+    sweep_order,
     turn_estimate,
 )
 
 PERIOD = 2 * np.pi              # numpy.unwrap's default period and its derived bounds
 HIGH = PERIOD / 2
 LOW = -HIGH
+
+
+def degree_angles(kin) -> dict[str, np.ndarray]:
+    """Every body's angle (deg) per row, as the ``bodies`` table shows it: the continuous
+    radians of :func:`~kinetostatics.solver.continuity.body_angles` in degrees, shifted by
+    whole turns so that the row of the smallest driver position lies in (-180, 180]; a
+    crank's angle is its positions as typed (the tables' labels, to the bit)."""
+    found = body_angles(kin)
+    pos = np.asarray(kin.positions, dtype=float)
+    drv = kin.scene.driver
+    at = int(sweep_order(pos)[0]) if pos.size else 0
+    out = {}
+    for b, a in found.items():
+        if b == drv.body and drv.kind == "R":
+            out[b] = pos.copy()
+        else:
+            a = degrees(a)
+            out[b] = anchor(a, at) if a.size else a
+    return out
 
 
 class SweepAngles:
@@ -135,7 +157,7 @@ class SweepAngles:
 
     def angles(self) -> dict[str, np.ndarray]:
         """Body name -> angles (deg) per row, in the scene's order of bodies (the arrays of
-        :func:`~kinetostatics.solver.continuity.body_angles`)."""
+        :func:`degree_angles`)."""
         out = dict(self.fixed)
         if self.names:
             if self.found and self.n > 1:

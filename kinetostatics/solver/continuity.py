@@ -236,18 +236,19 @@ def sweep_coordinates(scene, positions) -> np.ndarray:
     return replace(drv, positions=np.asarray(positions, dtype=float)).coordinates
 
 
-def anchor(a: np.ndarray) -> np.ndarray:
-    """Shift a continuous angle (deg) by whole turns so that its first value lies in
-    (-180, 180]."""
-    first = 180.0 - np.mod(180.0 - a[0], 360.0)
-    return a + (first - a[0])
+def anchor(a: np.ndarray, at: int = 0) -> np.ndarray:
+    """Shift a continuous angle (deg) by whole turns so that its value at row ``at`` lies
+    in (-180, 180]."""
+    first = 180.0 - np.mod(180.0 - a[at], 360.0)
+    return a + (first - a[at])
 
 
 def body_angles(kin: Kinematics) -> dict[str, np.ndarray]:
-    """Every moving body's angle (deg) over the sweep, continuous along increasing driver
-    position and following the true motion between rows; the row of the smallest driver
-    position lies in (-180, 180]. A rotating driver's angle is its position. Rows in the
-    sweep's own order.
+    """Every moving body's angle (rad) over the sweep, continuous along increasing driver
+    position and following the true motion between rows, as unwrapped from the row of
+    the smallest driver position (its own value there). A rotating driver's angle is its
+    :attr:`Driver.coordinates`. Rows in the sweep's own order. (The tables' degrees,
+    anchored in (-180, 180] at that row: :func:`kinetostatics.results.sweepangles.degree_angles`.)
 
     Parameters
     ----------
@@ -258,26 +259,25 @@ def body_angles(kin: Kinematics) -> dict[str, np.ndarray]:
     Returns
     -------
     dict
-        Body name -> angles (deg), one per row.
+        Body name -> angles (rad), one per row.
     """
     scene = kin.scene
     n = kin.n
     pos = np.asarray(kin.positions, dtype=float)
     out: dict[str, np.ndarray] = {}
     names = []
+    x = sweep_coordinates(scene, kin.positions)
     for b in scene.bodies:
         if b == scene.driver.body and scene.driver.kind == "R":
-            out[b] = pos.copy()
+            out[b] = x.copy()
         elif np.ndim(kin.bodies[b].cos) == 0 and np.ndim(kin.bodies[b].sin) == 0:
-            # degrees kept (2/10): the body angle column is continuous in degrees
-            a = np.full(n, float(np.rad2deg(kin.bodies[b].theta)))
-            out[b] = anchor(a) if n else a
+            out[b] = np.full(n, float(kin.bodies[b].theta))
         else:
             names.append(b)
     if not names:
         return out
     order = sweep_order(pos)
-    ps = sweep_coordinates(scene, kin.positions)[order]     # rad or m: the turns' scale
+    ps = x[order]           # rad or m: the turns' scale
     th = np.stack([np.broadcast_to(kin.bodies[b].theta, (n,))[order] for b in names])
     base = np.unwrap(th, axis=1)
     if n > 1:
@@ -304,8 +304,7 @@ def body_angles(kin: Kinematics) -> dict[str, np.ndarray]:
             base = base + 2.0 * np.pi * np.concatenate(
                 [np.zeros((len(names), 1)), np.cumsum(extra, axis=1)], axis=1)
     for i, b in enumerate(names):
-        a = anchor(np.rad2deg(base[i]))     # degrees kept (4/10): anchored in degrees
         res = np.empty(n)
-        res[order] = a
+        res[order] = base[i]
         out[b] = res
     return out
