@@ -136,10 +136,13 @@ class Joint:
 class Driver:
     """The driving element: a crank (``kind = "R"``) or a slider on a guide (``"T"``).
 
-    ``positions`` are in deg (R) or m (T), as the file and the tables give them; ``angles``
-    a crank's positions in radians (converted once, read-only); ``speed`` in rad/s or m/s;
-    ``acceleration`` in rad/s^2 or m/s^2. Each row is a snapshot at the same speed and
-    acceleration.
+    ``angles``: a crank's positions in radians, what the model computes with (converted
+    once, where the driver is made; read-only); :attr:`coordinates` the SI positions of
+    either kind (rad or m). ``positions``: the same positions as the file typed them, deg
+    (R) or m (T): the tables' row labels (the contract's tables repeat them bit for bit,
+    which their radians written back in degrees would not) and the values the messages
+    quote; never computed with in degrees. ``speed`` in rad/s or m/s; ``acceleration`` in
+    rad/s^2 or m/s^2. Each row is a snapshot at the same speed and acceleration.
     """
 
     body: str
