@@ -20,7 +20,7 @@ from __future__ import annotations
 import struct
 import weakref
 from dataclasses import replace
-from functools import cached_property, partial
+from functools import cached_property
 from itertools import chain, count
 from typing import Any
 
@@ -171,10 +171,10 @@ class Stacker:
     """Builds stacked scenes of a list of scenes of one :func:`signature`.
 
     Every scene's numbers (:func:`_numbers`, packed by :func:`stack_record`) are read
-    into one array in one pass; the numbers that vary are kept as one table
-    (:attr:`varying`, a row each), so that a run's stacked scene repeats them over its
-    rows, and a probe's takes them row by row, in one call each (the same numbers as
-    one call per number)."""
+    into one array in one pass. (Repeating the numbers that vary over a run's rows as one
+    table, in one call, was no quicker: measured 2026-11-29, the four-bar's solve_many
+    the same, the shaper's 5-10 % slower, its probes' table of some 50 numbers x 81 000
+    rows a fresh 32 MB array each round.)"""
 
     def __init__(self, scenes: list[Scene], numbers: list[bytes] | None = None):
         """``numbers``: each scene's packed numbers (:func:`stack_record`), when known."""
@@ -191,11 +191,7 @@ class Stacker:
         bits = table.view(np.int64)
         varies = (bits != bits[0]).any(axis=0).tolist()
         which = [c for c, v in enumerate(varies) if v]
-        # the numbers that vary, a row each (contiguous), repeated over a run's rows in
-        # one call (runs)
-        self.varying = table[:, which].T.copy()
-        self.vrows = list(self.varying)         # (the arrays the stack holds)
-        rows = iter(self.vrows)
+        rows = iter(table[:, which].T.copy())   # (the numbers that vary, each contiguous)
         take = iter([next(rows) if v else x for v, x in zip(varies, _numbers(s0), strict=True)]
                     ).__next__
 
@@ -221,7 +217,6 @@ class Stacker:
         self = cls.__new__(cls)
         self.scenes = [base] * m
         self.base = base
-        self.varying = None         # (each array its own)
         self.ground = ground
         self.bodies = bodies
         self.near = dict(base.near)
@@ -243,33 +238,18 @@ class Stacker:
     def scene(self, owner: np.ndarray, positions: np.ndarray) -> Scene:
         """The stacked scene: row i is scene ``owner[i]`` at driver position
         ``positions[i]``."""
-        return self._build(self._each(lambda x: x[owner], lambda t: t[:, owner]), positions)
+        return self._build(lambda x: x[owner], positions)
 
     def runs(self, lo: int, hi: int, counts: np.ndarray, positions: np.ndarray) -> Scene:
         """The stacked scene of scenes ``lo`` to ``hi - 1`` one after another, scene
         ``lo + j`` over ``counts[j]`` rows at driver positions ``positions`` (the same
         scene as :meth:`scene` with ``owner = np.repeat(np.arange(lo, hi), counts)``:
         each scene's numbers repeated, a few times quicker than taken row by row)."""
-        expand = self._each(partial(_repeat, lo, hi, counts),
-                            lambda t: np.repeat(t[:, lo:hi], counts, axis=1))
-        sc = self._build(expand, positions)
+        sc = self._build(lambda x: np.repeat(x[lo:hi], counts), positions)
         sc.__dict__["segments"] = counts    # each scene's rows (a sweep's maxima per scene)
         if sc.driver.kind == "R":
             sc.__dict__["driver_trig"] = self.trig_rows(lo, hi, positions)
         return sc
-
-    def _each(self, expand, whole):
-        """``expand`` as a function of each number that varies: ``whole`` of the table of
-        them all (:attr:`varying`) in one call, its rows the arrays ``expand`` gives
-        each one (the same numbers); ``expand`` itself where there is no table."""
-        if self.varying is None:
-            return expand
-        row = dict(zip(map(id, self.vrows), whole(self.varying), strict=True))
-
-        def each(x):
-            r = row.get(id(x))
-            return expand(x) if r is None else r
-        return each
 
     def table(self, lo: int, hi: int, counts: np.ndarray, positions: np.ndarray,
               trig: bool = True) -> Scene:
@@ -354,10 +334,6 @@ class Stacker:
                      driver=replace(self.base.driver, positions=positions), raw={})
         sc.__dict__["size"] = at(self.size)       # the cached property, per row
         return sc
-
-
-def _repeat(lo: int, hi: int, counts: np.ndarray, x: np.ndarray) -> np.ndarray:
-    return np.repeat(x[lo:hi], counts)
 
 
 def assemblies(stacker: Stacker, structure: Structure) -> tuple[np.ndarray, np.ndarray]:

@@ -97,8 +97,8 @@ def test_stacker_numbers_are_each_scenes_own() -> None:
 
 
 def test_a_run_and_a_probe_take_each_scenes_numbers() -> None:
-    """A run's stacked scene (its varying numbers repeated in one call) and a probe's
-    (taken row by row in one call) hold per row the numbers of the row's scene."""
+    """A run's stacked scene (each varying number repeated over its scene's rows) and a
+    probe's (taken row by row) hold per row the numbers of the row's scene."""
     scenes = [load_scene(d) for d in variants("four_bar", 5, 0.05, seed=4)]
     st = Stacker(scenes)
     counts = np.array([3, 1, 4, 2, 5])
