@@ -8,7 +8,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from ...model.scene import Scene
-from ..blocks import BLOCK_ROWS, Kept, LeanSolved
+from ..blocks import BLOCK_ROWS, LeanSolved
 from ..deadpoints import dead_points_of_sweep, measure2
 from ..kinematics import choose_assembly, with_positions
 from ..memo import record_of
@@ -17,6 +17,7 @@ from .choice import wanted
 from .compose import Geometry, Plan, Refused, Unwrapped, solve_arrays, solve_full, solve_lean
 from .geometry import not_covered
 from .layout import CL2
+from .short import fused_sweep
 
 
 def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
@@ -39,7 +40,7 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
             sweep = solve_lean(Plan(kernels, full, structure, structure.assembly,
                                     geometry=geometry), positions)
         else:
-            sweep = _fused(kernels, scene, full, structure, geometry, positions)
+            sweep = fused_sweep(kernels, scene, full, structure, geometry, positions)
         if sweep is not None:
             def again() -> Solved:
                 return solve_full(Plan(kernels, full, structure, structure.assembly,
@@ -59,37 +60,6 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
         return None
     sol.path = "fast"       # (a LeanSolved's: its full solve's is set by _solution)
     return sol
-
-
-def _fused(kernels, scene: Scene, full: Scene, structure, geometry, positions: np.ndarray
-           ) -> Kept | None:
-    """What the driver table and the dead points read of a short sweep (a
-    :class:`~kinetostatics.solver.blocks.Kept`: Me/Fe, the undefined rows, the closeness
-    to a dead centre) of a crank and one dyad, in the one fused kernel ``solve_many``
-    runs (:func:`~kinetostatics.solver.fast.stacked.fused_kept`: the composed kernels'
-    numbers, bit for bit), or None for another structure (solved by the composed
-    kernels, in full). The rest is solved when a table asks for it
-    (:class:`~kinetostatics.solver.blocks.LeanSolved`)."""
-    from .stacked import fused_kept       # (it imports this module)
-    plan = Plan(kernels, scene, structure, structure.assembly, geometry=geometry)
-    if not plan.crank or len(plan.dyads) != 1:
-        return None
-    plan.own = _OWNERS          # (each row's scene: the one, 0)
-    if full is scene and scene.driver.sweep is not None:
-        record = record_of(scene)
-        trig = record.get("trig")
-        if trig is None:
-            # the sweep's shared cos and sin (Driver.trig), writable copies: the arrays
-            # solve_many hands the kernel (one compiled signature for both)
-            trig = record["trig"] = (*(np.array(x) for x in scene.driver.trig()), _START)
-    else:
-        angles = full.driver.angles
-        trig = (np.cos(angles), np.sin(angles), _START)
-    return fused_kept(plan, positions.size, trig)
-
-
-_START = np.zeros(1, dtype=np.int64)     # where the one scene's rows begin in its cos, sin
-_OWNERS = np.zeros(2 * BLOCK_ROWS, dtype=np.int64)  # each row's scene: 0 (a short sweep)
 
 
 def _assembled(scene: Scene, structure) -> tuple:
