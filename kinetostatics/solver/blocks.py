@@ -44,8 +44,10 @@ class Unblockable(Exception):
 def blockable(scene: Scene, n: int) -> bool:
     """Whether a sweep of ``n`` rows of ``scene`` is solved in blocks: long enough to gain
     (at least two blocks), every load elementwise, no joint friction."""
+    if n < 2 * BLOCK_ROWS:
+        return False
     from .friction import has_friction
-    if n < 2 * BLOCK_ROWS or has_friction(scene):
+    if has_friction(scene):
         return False
     return all(ld.resist is None and ld.when != "resisting" for ld in scene.loads)
 

@@ -28,7 +28,8 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
     (:func:`~kinetostatics.solver.fast.geometry.not_covered`), or a kernel met a row the
     numpy path must judge (it refuses it with its message, or solves it)."""
     n = positions.size
-    if not_covered(scene) is not None:
+    kept = record_of(scene).get("fast")     # (kept for a scene the kernels cover)
+    if (kept is None or kept[0] is not structure) and not_covered(scene) is not None:
         return None
     kernels = wanted(n)
     if kernels is None:
