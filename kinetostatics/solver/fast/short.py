@@ -58,24 +58,17 @@ def fused_sweep(kernels, scene: Scene, full: Scene, structure, geometry,
 
 
 def fused_call(kernels, scene: Scene, structure, geometry) -> tuple | None:
-    """The fused kernel of ``scene`` (a crank and one dyad: the bodies the driver and the
-    dyad's two, each outer joint on the ground or the driver) and its arguments after
-    the rows' cos, sin and where they begin, before its outputs (as
+    """The fused kernel of ``scene`` (:func:`fused_kernel`) and its arguments after the
+    rows' cos, sin and where they begin, before its outputs (as
     :func:`~kinetostatics.solver.fast.stacked.fused_kept` gives them for a run), or None
-    for another structure, a dyad kind with no fused kernel (RTR) or ``resist`` loads
-    (their statistics are written per solve)."""
+    for another structure or ``resist`` loads (their statistics are written per solve)."""
     plan = Plan(kernels, scene, structure, structure.assembly, geometry=geometry)
-    if not plan.crank or len(plan.dyads) != 1 or plan.swept:
+    found = None if plan.swept else fused_kernel(plan)
+    if found is None:
         return None
-    from .fused_kernels import KEPT  # (kernels given: numba loaded, its cache settled)
-    gy, gys, dyad = plan.dyads[0]
-    kernel = KEPT.get(dyad.kind)
-    dname = scene.driver.body
-    order = (dname, *dyad.bodies)
-    known = [j.other(b) for j, b in zip(dyad.outer, dyad.bodies, strict=True)]
-    if (kernel is None or len(plan.bodies) != 3 or set(plan.bodies) != set(order)
-            or not set(known) <= {GROUND, dname}):
-        return None
+    kernel, order, known = found
+    gy, gys, _ = plan.dyads[0]
+    dname = order[0]
     loads = [plan.loads[b] for b in order]
     none = (np.zeros((1, 1)), 0, 0)      # (no swept loads: never read)
     fixed = (*plan.driver, plan.speed, plan.accel, gy, gys, known[0] == dname,
@@ -83,6 +76,26 @@ def fused_call(kernels, scene: Scene, structure, geometry) -> tuple | None:
              tuple(p for _, _, p in loads), (none[0],) * 3, (none[1],) * 3, (none[2],) * 3,
              (NO_STATS,) * 3)
     return kernel, fixed
+
+
+def fused_kernel(plan: Plan) -> tuple | None:
+    """The fused kernel of a plan's crank and one dyad
+    (:data:`~kinetostatics.solver.fast.fused_kernels.KEPT`: every kind but RTR), the
+    bodies in its order (the driver, the dyad's first, its second) and each outer
+    joint's known body; or None: another structure (more bodies, an outer joint on a body
+    other than the ground or the driver)."""
+    if not plan.crank or len(plan.dyads) != 1:
+        return None
+    from .fused_kernels import KEPT  # (plan.k given: numba loaded, its cache settled)
+    dyad = plan.dyads[0][2]
+    kernel = KEPT.get(dyad.kind)
+    dname = plan.scene.driver.body
+    order = (dname, *dyad.bodies)
+    known = [j.other(b) for j, b in zip(dyad.outer, dyad.bodies, strict=True)]
+    if (kernel is None or len(plan.bodies) != 3 or set(plan.bodies) != set(order)
+            or not set(known) <= {GROUND, dname}):
+        return None
+    return kernel, order, known
 
 
 def scene_trig(record: dict, scene: Scene) -> tuple[np.ndarray, np.ndarray]:
