@@ -94,15 +94,8 @@ class Sweep:
     @cached_property
     def trusty(self) -> bool:
         """Checked by the floating-point trap first: tame numbers, no joint friction (told
-        when the numpy path solves: the compiled path does not ask; of the scene's own
-        sweep, told once per scene object)."""
-        if self.given is not None:
-            return tame(self.scene, self.positions) and not has_friction(self.scene)
-        record = record_of(self.scene)
-        told = record.get("trusty")
-        if told is None:
-            told = record["trusty"] = tame(self.scene) and not has_friction(self.scene)
-        return told
+        when the numpy path solves: the compiled path does not ask)."""
+        return tame(self.scene, self.positions) and not has_friction(self.scene)
 
     def solve(self) -> Solved | LeanSolved:
         """The solve: trapped first where the numbers are tame, else (or if the trap was
