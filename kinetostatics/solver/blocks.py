@@ -44,8 +44,10 @@ class Unblockable(Exception):
 def blockable(scene: Scene, n: int) -> bool:
     """Whether a sweep of ``n`` rows of ``scene`` is solved in blocks: long enough to gain
     (at least two blocks), every load elementwise, no joint friction."""
+    if n < 2 * BLOCK_ROWS:
+        return False
     from .friction import has_friction
-    if n < 2 * BLOCK_ROWS or has_friction(scene):
+    if has_friction(scene):
         return False
     return all(ld.resist is None and ld.when != "resisting" for ld in scene.loads)
 
@@ -330,8 +332,12 @@ class LeanSolved:
 
     def solved(self) -> Solved:
         full = self.give("kin")
-        return Solved(self.known["scene"], self.known["structure"], full["kin"], None,
-                      full["joint_reactions"], full["drive"], full["undefined_load"])
+        sol = Solved(self.known["scene"], self.known["structure"], full["kin"], None,
+                     full["joint_reactions"], full["drive"], full["undefined_load"])
+        path = self.__dict__.get("path")        # (set by the compiled path)
+        if path is not None:
+            sol.path = path
+        return sol
 
     def __reduce__(self):
         return _solved, (self.solved(),)
@@ -346,11 +352,17 @@ def singular_rows(n: int, flags: list, dead: tuple) -> np.ndarray:
     from each dyad's singular rows (``flags``) and the dead points between and beyond
     the rows (``dead``: between, ends, unassembled), without the kinematics."""
     between, ends, _ = dead
-    out = np.zeros(n, dtype=bool)
-    for f in flags:
-        out |= f
-    out[between.ravel()] = True
-    out[ends] = True
+    first = flags[0] if len(flags) == 1 else None
+    if type(first) is np.ndarray and first.shape == (n,) and first.dtype == np.bool_:
+        out = first.copy()          # (one dyad: its rows as they are, the usual case)
+    else:
+        out = np.zeros(n, dtype=bool)
+        for f in flags:
+            out |= f
+    if between.size:                # (no dead point between or beyond the rows: usual)
+        out[between.ravel()] = True
+    if ends.size:
+        out[ends] = True
     return out
 
 

@@ -24,9 +24,10 @@ AUTO_ROWS = 20_000      # below, numba's import and first call (0.2-0.3 s) outwe
 # AUTO_ROWS rows or more, and then (AUTO_SMALL) for every call of the process, once numba
 # is loaded. Measured 2026-11-29 on the 2-core machine (shared, load 4-8), processor
 # time, bench_reference's rounds, solve(dict).driver against the hand form, compiled
-# against numpy: four-bar at 2001 rows 2.11-2.33x against 3.15-3.25x (single calls),
-# 1.53-1.64x against 2.63-2.97x (batches of 20); slider-crank at 2001 3.35-3.50x against
-# 4.41-4.53x; four-bar at 2e5 0.51-0.55x against 0.75-0.81x, at 1e6 0.57x against 0.77x;
+# against numpy: four-bar at 2001 rows 1.50-1.61x against 2.98-3.21x (single calls,
+# fast/short.py's fused kernel; 2.11-2.33x before it), 0.73-0.90x against 2.48-2.80x
+# (batches of 20); slider-crank at 2001 2.16-2.36x against 3.96-4.07x; four-bar at 2e5
+# 0.51-0.55x against 0.75-0.81x, at 1e6 0.57x against 0.77x;
 # slider-crank at 2e5 2.19-2.38x against 2.03-2.15x (the one loss, 5-10 %), at 1e6 1.07x
 # against 1.15x; solve_many of 1000 four-bars x 361 (a group over AUTO_ROWS) 7.3x a loop
 # of solve against 5.9x (docs/solve-paths.md, "Speed"). A fresh process's small calls

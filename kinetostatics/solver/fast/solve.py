@@ -17,6 +17,7 @@ from .choice import wanted
 from .compose import Geometry, Plan, Refused, Unwrapped, solve_arrays, solve_full, solve_lean
 from .geometry import not_covered
 from .layout import CL2
+from .short import fused_sweep
 
 
 def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
@@ -27,7 +28,8 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
     (:func:`~kinetostatics.solver.fast.geometry.not_covered`), or a kernel met a row the
     numpy path must judge (it refuses it with its message, or solves it)."""
     n = positions.size
-    if not_covered(scene) is not None:
+    kept = record_of(scene).get("fast")     # (kept for a scene the kernels cover)
+    if (kept is None or kept[0] is not structure) and not_covered(scene) is not None:
         return None
     kernels = wanted(n)
     if kernels is None:
@@ -38,7 +40,9 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
         if n >= 2 * BLOCK_ROWS:
             sweep = solve_lean(Plan(kernels, full, structure, structure.assembly,
                                     geometry=geometry), positions)
-
+        else:
+            sweep = fused_sweep(kernels, scene, full, structure, geometry, positions)
+        if sweep is not None:
             def again() -> Solved:
                 return solve_full(Plan(kernels, full, structure, structure.assembly,
                                        geometry=geometry), positions)

@@ -1,0 +1,114 @@
+"""A short sweep of one scene, a crank and one dyad, in ``solve_many``'s fused kernel:
+what the driver table and the dead points read (no numba here: the kernels come in the
+plan, loaded).
+
+A single call's costs are mostly fixed ones at a few thousand rows (measured
+2026-11-29, the four-bar at 2001 rows, processor time, each call after a garbage
+collection as the bench times it: the composed kernels and their slab 420-450 us of
+a 820 us call, Python and dispatch mostly; the fused kernel 130 us): one kernel writes
+Me/Fe, the undefined rows and the closeness to a dead centre, the same numbers as the
+composed kernels, bit for bit (:mod:`~kinetostatics.solver.fast.fused_kernels`). Its
+arguments but the rows' are worked out once per scene object
+(:func:`~kinetostatics.solver.memo.record_of`); the rest of the solve, which the other
+tables read, is solved when one asks for it
+(:class:`~kinetostatics.solver.blocks.LeanSolved`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...model.scene import GROUND, Scene
+from ..blocks import BLOCK_ROWS, Kept
+from ..kinematics import SINGULAR_WARN
+from ..memo import record_of
+from ..reactions import DriverReaction
+from .compose import Plan, Refused
+
+START = np.zeros(1, dtype=np.int64)     # where the one scene's rows begin in its cos, sin
+OWNERS = np.zeros(2 * BLOCK_ROWS, dtype=np.int64)  # each row's scene: 0 (a short sweep)
+NO_STATS = np.zeros((1, 1, 2))          # (a body without swept loads: never written)
+
+
+def fused_sweep(kernels, scene: Scene, full: Scene, structure, geometry,
+                positions: np.ndarray) -> Kept | None:
+    """The :class:`~kinetostatics.solver.blocks.Kept` of ``full`` (``scene`` at
+    ``positions``: itself for its own sweep) of fewer than ``2 * BLOCK_ROWS`` rows: Me,
+    the undefined rows and the dyad's closeness to a dead centre from the fused kernel;
+    or None: not a crank and one dyad the fused kernels cover, or a ``resist`` load
+    (solved by the composed kernels). Raises
+    :class:`~kinetostatics.solver.fast.compose.Refused` as they do."""
+    record = record_of(scene)
+    kept = record.get("fused")
+    if kept is None or kept[0] is not structure or kept[1] is not kernels:
+        kept = record["fused"] = (structure, kernels,
+                                  fused_call(kernels, scene, structure, geometry))
+    call = kept[2]
+    if call is None:
+        return None
+    kernel, fixed = call
+    cs, sn = scene_trig(record, scene) if full is scene else _trig(full)
+    n = positions.size
+    drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
+    bad = kernel(0, n, OWNERS, cs, sn, START, *fixed, drive, close, undefined)
+    if bad:
+        raise Refused(bad)
+    return Kept(structure, DriverReaction("R", drive), undefined, [close],
+                [~(close > SINGULAR_WARN**2)])
+
+
+def fused_call(kernels, scene: Scene, structure, geometry) -> tuple | None:
+    """The fused kernel of ``scene`` (:func:`fused_kernel`) and its arguments after the
+    rows' cos, sin and where they begin, before its outputs (as
+    :func:`~kinetostatics.solver.fast.stacked.fused_kept` gives them for a run), or None
+    for another structure or ``resist`` loads (their statistics are written per solve)."""
+    plan = Plan(kernels, scene, structure, structure.assembly, geometry=geometry)
+    found = None if plan.swept else fused_kernel(plan)
+    if found is None:
+        return None
+    kernel, order, known = found
+    gy, gys, _ = plan.dyads[0]
+    dname = order[0]
+    loads = [plan.loads[b] for b in order]
+    none = (np.zeros((1, 1)), 0, 0)      # (no swept loads: never read)
+    fixed = (*plan.driver, plan.speed, plan.accel, gy, gys, known[0] == dname,
+             known[1] == dname, tuple(g for g, _, _ in loads), tuple(gs for _, gs, _ in loads),
+             tuple(p for _, _, p in loads), (none[0],) * 3, (none[1],) * 3, (none[2],) * 3,
+             (NO_STATS,) * 3)
+    return kernel, fixed
+
+
+def fused_kernel(plan: Plan) -> tuple | None:
+    """The fused kernel of a plan's crank and one dyad
+    (:data:`~kinetostatics.solver.fast.fused_kernels.KEPT`: every kind but RTR), the
+    bodies in its order (the driver, the dyad's first, its second) and each outer
+    joint's known body; or None: another structure (more bodies, an outer joint on a body
+    other than the ground or the driver)."""
+    if not plan.crank or len(plan.dyads) != 1:
+        return None
+    from .fused_kernels import KEPT  # (plan.k given: numba loaded, its cache settled)
+    dyad = plan.dyads[0][2]
+    kernel = KEPT.get(dyad.kind)
+    dname = plan.scene.driver.body
+    order = (dname, *dyad.bodies)
+    known = [j.other(b) for j, b in zip(dyad.outer, dyad.bodies, strict=True)]
+    if (kernel is None or len(plan.bodies) != 3 or set(plan.bodies) != set(order)
+            or not set(known) <= {GROUND, dname}):
+        return None
+    return kernel, order, known
+
+
+def scene_trig(record: dict, scene: Scene) -> tuple[np.ndarray, np.ndarray]:
+    """The cos and sin of the scene's own sweep, kept in its record: writable copies of
+    :meth:`~kinetostatics.model.scene_types.Driver.trig`'s (shared by the scenes of
+    one sweep), the arrays ``solve_many`` hands the kernel (one compiled signature)."""
+    trig = record.get("trig")
+    if trig is None:
+        trig = record["trig"] = (_trig(scene) if scene.driver.sweep is None
+                                 else tuple(np.array(x) for x in scene.driver.trig()))
+    return trig
+
+
+def _trig(scene: Scene) -> tuple[np.ndarray, np.ndarray]:
+    angles = scene.driver.angles
+    return np.cos(angles), np.sin(angles)
