@@ -94,6 +94,9 @@ def _reactions(sol: Solution, again, positions: np.ndarray) -> tuple[LongTable, 
             prismatic = [i for i, j in enumerate(joints) if reactions[j].N is not None]
             if prismatic:
                 fill.array("offset")
+            for i in set(range(len(joints))) - set(prismatic):   # a pin: no N, M, offset
+                fill.put(i, slice(i * n, (i + 1) * n), {"N": 0.0, "M": 0.0, "offset": np.nan},
+                         ("N", "M", "offset"))
         w = hi - lo
         for i, j in enumerate(joints):
             r = reactions[j]
@@ -105,10 +108,7 @@ def _reactions(sol: Solution, again, positions: np.ndarray) -> tuple[LongTable, 
                 else:
                     np.negative(value, out=out)
             np.hypot(fx, fy, out=f_all[rows])
-            if r.N is None:
-                fill.put(i, rows, {"N": 0.0, "M": 0.0, "offset": np.nan},
-                         ("N", "M", "offset"))
-            else:
+            if r.N is not None:
                 fill.put(i, rows, {c: np.broadcast_to(np.asarray(v, dtype=float), (w,))
                                    for c, v in (("N", r.N), ("M", r.M))}, ("N", "M"))
     fill_offsets(fill, prismatic, n)
