@@ -27,7 +27,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .longtable import KINEMATICS_FLOATS, REACTIONS_FLOATS, FloatBlock, LongTable
+from .longtable import (
+    KINEMATICS_FLOATS,
+    REACTIONS_FLOATS,
+    FloatBlock,
+    LongTable,
+    fill_offsets,
+)
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -78,7 +84,6 @@ def _kinematics(sol: Solution, again, positions: np.ndarray) -> tuple[LongTable,
 def _reactions(sol: Solution, again, positions: np.ndarray) -> tuple[LongTable, FloatBlock]:
     """The ``reactions`` table's definition and its float columns, written block by
     block (``F``: numpy's ``hypot`` of the columns just written, in place)."""
-    from .onepass import fill_offsets
     joints = list(sol.scene.joints)
     n = positions.size
     table = fill = None

@@ -369,6 +369,14 @@ class FloatBlock:
         return out
 
 
+def fill_offsets(fill: FloatBlock, prismatic: list[int], n: int) -> None:
+    """The ``offset`` of each prismatic joint's rows, from its whole ``N`` and ``M``."""
+    for i in prismatic:
+        rows = slice(i * n, (i + 1) * n)
+        nn, mm = fill.rows["N"][rows], fill.rows["M"][rows]
+        fill.rows["offset"][rows] = offsets(nn, mm, np.abs(nn).max() if n else 0.0)
+
+
 # -- short tables: columns of their own, laid into a DataFrame -----------------------
 def table_column(value: object, n: int, dtype: type = float) -> np.ndarray:
     """A table column of its own (a copy: the table never shares the solver's arrays)."""

@@ -47,7 +47,7 @@ from ..solver.kinematics import solve_kinematics
 from ..solver.pipeline import solve_block
 from ..solver.solved import Solved
 from ..solver.trap import first_trapped
-from .longtable import CHUNK, FloatBlock, LongTable, offsets, table_block
+from .longtable import CHUNK, FloatBlock, LongTable, fill_offsets, table_block
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -250,11 +250,3 @@ class KeptMotion:
             values = [self.layout[b, f] for f in BodyMotion.FIELDS]
             out[b] = BodyMotion(None, *(copies[v] if type(v) is int else v for v in values))
         return out
-
-
-def fill_offsets(fill: FloatBlock, prismatic: list[int], n: int) -> None:
-    """The ``offset`` of each prismatic joint's rows, from its whole ``N`` and ``M``."""
-    for i in prismatic:
-        rows = slice(i * n, (i + 1) * n)
-        nn, mm = fill.rows["N"][rows], fill.rows["M"][rows]
-        fill.rows["offset"][rows] = offsets(nn, mm, np.abs(nn).max() if n else 0.0)

@@ -20,13 +20,13 @@ from .compose import (
     Plan,
     Refused,
     Unwrapped,
+    block_reactions,
+    cut_rows,
     driver_input,
     solve_arrays,
     solve_full,
     solve_lean,
 )
-from .compose import _cut as cut_rows
-from .compose import _reactions as joint_reactions
 from .geometry import not_covered
 from .layout import CL2
 from .loader import kernels as loaded_kernels
@@ -101,7 +101,7 @@ class SolvedAgain:
             hi = min(lo + block, n)
             plan.run(x, lo, hi, lo, buf)
             rows = cut_rows(buf, hi - lo)
-            yield lo, hi, rows["m"], joint_reactions(plan, plan.scene, rows)
+            yield lo, hi, rows["m"], block_reactions(plan, plan.scene, rows)
         plan.check_swept()
 
 
