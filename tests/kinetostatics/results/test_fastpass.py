@@ -39,15 +39,28 @@ def fast():
 
 @pytest.mark.parametrize("order", [("reactions", "kinematics"), ("kinematics", "reactions")])
 @pytest.mark.parametrize("case", CASES)
-def test_tables_equal_those_of_the_full_re_solve_bit_for_bit(fast, case, order):
+def test_tables_equal_those_of_the_full_re_solve_bit_for_bit(fast, case, order, monkeypatch):
     """Each table, built in one pass, equals the one the full re-solve's arrays give:
     the same columns, dtypes and bits (NaN offsets and -0.0 included), in either order;
-    the full re-solve is never made."""
+    after ``reactions`` the sweep is not solved again for ``kinematics`` (the pass kept
+    the bodies' motion in that table's room); the full re-solve is never made."""
     text = scene_text(case)
     sol = ks.solve(text)
     lean = sol.__dict__["_deferred"]
     assert sol.path == "fast" and type(lean) is LeanSolved
-    tables = {name: getattr(sol, name) for name in order}
+    passes = []
+    real = SolvedAgain.blocks
+    monkeypatch.setattr(SolvedAgain, "blocks",
+                        lambda *a: passes.append(1) or real(*a))
+    tables = {order[0]: getattr(sol, order[0])}
+    kept = sol.__dict__.get(fastpass.KEPT)
+    if order[0] == "reactions":         # the bodies' motion kept in the kinematics' room
+        assert kept.whole and np.shares_memory(kept.slab, kept.fill.block)
+    else:
+        assert kept is None
+    tables[order[1]] = getattr(sol, order[1])
+    assert len(passes) == (1 if order[0] == "reactions" else 2)
+    assert fastpass.KEPT not in sol.__dict__
     assert "kin" not in sol.__dict__ and lean.full is None
     full = ks.solve(text)
     full.kin                            # noqa: B018 (the full re-solve: the tables from it)
@@ -122,6 +135,6 @@ def test_the_pass_solves_no_array_over_the_sweep(fast, monkeypatch):
     real = fastpass.compiled_frame
     monkeypatch.setattr(fastpass, "compiled_frame", lambda *a: calls.append(a[2]) or real(*a))
     sol.kinematics                      # noqa: B018
-    sol.reactions                       # noqa: B018
-    assert calls == ["kinematics", "reactions"]
+    sol.reactions                       # noqa: B018 (kinematics made: nothing kept)
+    assert calls == ["kinematics", "reactions"] and fastpass.KEPT not in sol.__dict__
     assert sol.__dict__["_deferred"].full is None
