@@ -15,13 +15,11 @@ import warnings
 from typing import Any
 
 from kinetostatics.common.cli import (
-    MEMORY_HELP,
-    MEMORY_LINE,
-    TERMINATED_LINE,
     OneLineParser,
     Terminated,
-    dpi_argument,
-    memory_argument,
+    add_dpi_option,
+    add_memory_option,
+    failure_code,
     one_line,
     run_command,
     stopped_cleanly,
@@ -44,9 +42,8 @@ def _parser() -> argparse.ArgumentParser:
     s.add_argument("--json", action="store_true", help="print the result dict as JSON")
     s.add_argument("--report", metavar="FILE",
                    help="write a balancing report: FILE.html (pictures embedded) or FILE.pdf")
-    s.add_argument("--dpi", type=dpi_argument, default=150,
-                   help="dots per inch of the report's pictures (default 150)")
-    s.add_argument("--memory", type=memory_argument, metavar="SIZE", help=MEMORY_HELP)
+    add_dpi_option(s, "dots per inch of the report's pictures (default 150)")
+    add_memory_option(s)
     sub.add_parser("examples", help="list the bundled example scenes")
     return p
 
@@ -72,15 +69,8 @@ def main(argv: list[str] | None = None) -> int:
             from .report.document import write_report
 
             write_report(args.report, results, out, SCENES.resolve(args.scene), dpi=args.dpi)
-    except Terminated:
-        print(f"error: {TERMINATED_LINE}", file=sys.stderr)
-        return 143
-    except WorkbenchError as exc:
-        print(f"error: {one_line(exc)}", file=sys.stderr)
-        return 2
-    except MemoryError:
-        print(f"error: {MEMORY_LINE}", file=sys.stderr)
-        return 2
+    except (Terminated, WorkbenchError, MemoryError) as exc:
+        return failure_code(exc)
     except Exception as exc:  # a bug, still one line (the contract: never a traceback)
         print(f"error: internal error, please report: {type(exc).__name__}: {one_line(exc)}",
               file=sys.stderr)

@@ -12,13 +12,11 @@ import warnings
 
 from . import scene_path
 from .common.cli import (
-    MEMORY_HELP,
-    MEMORY_LINE,
-    TERMINATED_LINE,
     OneLineParser,
     Terminated,
-    dpi_argument,
-    memory_argument,
+    add_dpi_option,
+    add_memory_option,
+    failure_code,
     print_warning,
     stopped_cleanly,
 )
@@ -174,16 +172,15 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
                    "Me, polar diagrams, mechanism with loads, plans, force polygons")
     s.add_argument("--plot-at", metavar="POS", type=float, nargs="+",
                    help="driver positions (deg, or m) of those pictures (default: max |Me|)")
-    s.add_argument("--dpi", type=dpi_argument, default=150, help="dots per inch of the pictures "
-                   "(default 150, the lecture-room size; 200 or more for a large room)")
-    s.add_argument("--memory", type=memory_argument, metavar="SIZE", help=MEMORY_HELP)
+    add_dpi_option(s, "dots per inch of the pictures (default 150, the lecture-room size; "
+                   "200 or more for a large room)")
+    add_memory_option(s)
     s.set_defaults(func=_cmd_solve)
     d = sub.add_parser("demo", help="solve a scene; write its tables and pictures")
     d.add_argument("scene", nargs="?", help="bundled scene name or scene file")
     d.add_argument("--example", help="bundled scene (default four_bar); not with a scene")
     d.add_argument("--out", default="demo-out", help="output folder (default demo-out)")
-    d.add_argument("--dpi", type=dpi_argument, default=150, help="dots per inch of the pictures "
-                   "(default 150)")
+    add_dpi_option(d, "dots per inch of the pictures (default 150)")
     d.set_defaults(func=_cmd_demo)
     t = sub.add_parser("structure", help="print the driver and the dyads of a scene")
     t.add_argument("scene")
@@ -201,12 +198,12 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
     m.add_argument("scene")
     m.add_argument("--json", action="store_true", help="print summary and motion table as JSON")
     m.add_argument("--out", help="CSV file for the motion table")
-    m.add_argument("--memory", type=memory_argument, metavar="SIZE", help=MEMORY_HELP)
+    add_memory_option(m)
     m.set_defaults(func=_cmd_motion)
     c = sub.add_parser("cam", help="solve a [cam] scene (docs/cam-scenes.md)")
     c.add_argument("scene")
     c.add_argument("--out", help="folder for motion.csv, geometry.csv, forces.csv, summary.json")
-    c.add_argument("--memory", type=memory_argument, metavar="SIZE", help=MEMORY_HELP)
+    add_memory_option(c)
     c.set_defaults(func=_cmd_cam)
     from .design.cli import add_command as add_design_command
     add_design_command(sub)
@@ -235,18 +232,8 @@ def main(argv: list[str] | None = None) -> int:
             warnings.simplefilter("default")
             warnings.showwarning = print_warning
             return args.func(args)
-    except Terminated:
-        print(f"error: {TERMINATED_LINE}", file=sys.stderr)
-        return 143
-    except WorkbenchError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
     except BrokenPipeError:
         raise                   # the reader went away (| head): run_command's
-    except OSError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
-    except MemoryError:
-        print(f"error: {MEMORY_LINE}", file=sys.stderr)
-        return 2
+    except (Terminated, WorkbenchError, OSError, MemoryError) as exc:
+        return failure_code(exc)
 

@@ -154,7 +154,7 @@ def bench_kinematics(sizes=(1_000, 100_000, 1_000_000), repeat: int = 3) -> pd.D
         st = analyse(sc)
         t = _best(lambda sc=sc, st=st: solve_kinematics(sc, st), repeat)
         kin = solve_kinematics(sc, st)
-        ref = fourbar_closed_form(radian_column(sc.driver.positions), sc.driver.speed)
+        ref = fourbar_closed_form(sc.driver.angles, sc.driver.speed)
         cpl, rck = kin.bodies["coupler"], kin.bodies["rocker"]
         cx, cy = rck.point((FB["c"], 0.0))
         got = {"Cx": cx, "Cy": cy, "w3": cpl.omega, "w4": rck.omega,
@@ -166,7 +166,7 @@ def bench_kinematics(sizes=(1_000, 100_000, 1_000_000), repeat: int = 3) -> pd.D
         st = analyse(sc)
         t = _best(lambda sc=sc, st=st: solve_kinematics(sc, st), repeat)
         kin = solve_kinematics(sc, st)
-        ref = slider_closed_form(radian_column(sc.driver.positions), sc.driver.speed)
+        ref = slider_closed_form(sc.driver.angles, sc.driver.speed)
         p = kin.bodies["piston"]
         got = {"x": np.broadcast_to(p.ox, (n,)), "v": np.broadcast_to(p.vx, (n,)),
                "a": np.broadcast_to(p.ax, (n,))}

@@ -70,6 +70,16 @@ def memory_argument(text: str) -> str:
     return text
 
 
+def add_memory_option(parser: argparse.ArgumentParser) -> None:
+    """``--memory SIZE``, the run's memory budget (every command that solves)."""
+    parser.add_argument("--memory", type=memory_argument, metavar="SIZE", help=MEMORY_HELP)
+
+
+def add_dpi_option(parser: argparse.ArgumentParser, help: str) -> None:
+    """``--dpi``, the pictures' dots per inch (50 to 600, default 150)."""
+    parser.add_argument("--dpi", type=dpi_argument, default=150, help=help)
+
+
 class Terminated(BaseException):
     """The run was asked to stop (SIGTERM: ``kill``, a time limit): raised in the main
     thread so that every writer cleans up as after an interrupt (its staging files
@@ -100,6 +110,18 @@ def stopped_cleanly() -> Iterator[None]:
         yield
     finally:
         signal.signal(signal.SIGTERM, before)
+
+
+def failure_code(exc: BaseException) -> int:
+    """Print the one ``error: ...`` line of a run stopped by ``exc`` (a stop by SIGTERM,
+    memory run out, a user's mistake or an unwritable file) and return its exit code:
+    143 after SIGTERM, 2 otherwise."""
+    if isinstance(exc, Terminated):
+        print(f"error: {TERMINATED_LINE}", file=sys.stderr)
+        return 143
+    print(f"error: {MEMORY_LINE if isinstance(exc, MemoryError) else one_line(exc)}",
+          file=sys.stderr)
+    return 2
 
 
 def run_command(main, argv: list[str] | None = None) -> int:

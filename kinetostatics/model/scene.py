@@ -42,7 +42,7 @@ from .tomlio import (
     read_source,
     suggest,
 )
-from .units import Units, rpm_to_rad_s
+from .units import Units, radians, rpm_to_rad_s
 
 MAX_COUNT = 10_000_000
 TOP_KEYS = ("title", "format", "units", "gravity", "ground", "driver", "bodies", "joints", "loads",
@@ -342,14 +342,16 @@ def _joint(item: Any, i: int, bodies: dict, ground: dict, joints: dict,
     else:
         b = (item.get("guide"), item.get("slider"))
         pts = (item.get("line_point"), item.get("slider_point"))
-        angle = _number(item, JOINT["line_angle"], f"joint {name!r}", units)
+        # the line angle read in degrees (the contract's unit for a file's angles) and
+        # held in radians: the one conversion, here
+        angle = radians(_number(item, JOINT["line_angle"], f"joint {name!r}", units))
     # the ends as written, when each is a point of a body of the scene (the rule of
     # _point_exists); else _ends names what is wrong
     if not (type(b) in (list, tuple) and type(pts) in (list, tuple) and len(b) == 2
             and len(pts) == 2 and b[0] != b[1] and _end(b[0], pts[0], bodies, ground)
             and _end(b[1], pts[1], bodies, ground)):
         _ends(item, kind, name, bodies, ground)
-    return Joint(name, kind, (b[0], b[1]), (pts[0], pts[1]), angle, fr)
+    return Joint(name, kind, (b[0], b[1]), (pts[0], pts[1]), friction=fr, beta=angle)
 
 
 def _end(body: Any, point: Any, bodies: dict, ground: dict) -> bool:

@@ -9,13 +9,14 @@ them from).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+import warnings
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import Any
 
 import numpy as np
 
-from .units import Units, radians
+from .units import Units, degrees, radians
 
 GROUND = "ground"
 
@@ -64,29 +65,44 @@ class Body:
         return self.points[point]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Joint:
     """A revolute (``R``) or prismatic (``T``) joint between two bodies.
 
     For ``R``: ``bodies`` and the names of the coinciding ``points`` on each.
     For ``T``: ``bodies = (guide, slider)``; the guide carries the line through
-    ``line_point`` at ``line_angle`` (deg, guide's local frame; ``beta`` the same in
-    radians, converted once when the joint is made); ``slider_point`` of the slider stays
-    on it and the slider's angle is the guide's plus ``line_angle``.
+    ``line_point`` at ``beta`` (rad, guide's local frame; the file's ``line_angle`` in
+    degrees, converted once where the scene is read); ``slider_point`` of the slider stays
+    on it and the slider's angle is the guide's plus ``beta``.
+
+    ``line_angle`` (deg), as the fifth argument or by name, and the attribute
+    ``line_angle`` are deprecated (for one release): give and read ``beta`` (rad).
     """
 
     name: str
     kind: str
     bodies: tuple[str, str]
     points: tuple[str, str]
-    line_angle: float = 0.0
     friction: Friction | None = None
-    beta: float = field(init=False, repr=False, compare=False)
+    beta: float = 0.0
 
-    def __post_init__(self) -> None:
-        # the line angle in radians, converted once where the joint is made: the model
-        # works in radians; the file and the tables say degrees (line_angle)
-        object.__setattr__(self, "beta", radians(self.line_angle))
+    def __init__(self, name: str, kind: str, bodies: tuple[str, str],
+                 points: tuple[str, str], line_angle: float | None = None,
+                 friction: Friction | None = None, beta: float = 0.0) -> None:
+        if line_angle is not None:
+            warnings.warn("Joint(line_angle=...) in degrees is deprecated and goes in the "
+                          "next release; give beta (rad)", DeprecationWarning, stacklevel=2)
+            beta = radians(line_angle)
+        for key, value in (("name", name), ("kind", kind), ("bodies", bodies),
+                           ("points", points), ("friction", friction), ("beta", beta)):
+            object.__setattr__(self, key, value)    # (frozen: set once, here)
+
+    @property
+    def line_angle(self) -> float:
+        """The line angle in degrees (``beta`` written in degrees); deprecated."""
+        warnings.warn("Joint.line_angle (deg) is deprecated and goes in the next release; "
+                      "read Joint.beta (rad)", DeprecationWarning, stacklevel=2)
+        return degrees(self.beta)
 
     @property
     def guide(self) -> str:
@@ -120,10 +136,13 @@ class Joint:
 class Driver:
     """The driving element: a crank (``kind = "R"``) or a slider on a guide (``"T"``).
 
-    ``positions`` are in deg (R) or m (T), as the file and the tables give them; ``angles``
-    a crank's positions in radians (converted once, read-only); ``speed`` in rad/s or m/s;
-    ``acceleration`` in rad/s^2 or m/s^2. Each row is a snapshot at the same speed and
-    acceleration.
+    ``angles``: a crank's positions in radians, what the model computes with (converted
+    once, where the driver is made; read-only); :attr:`coordinates` the SI positions of
+    either kind (rad or m). ``positions``: the same positions as the file typed them, deg
+    (R) or m (T): the tables' row labels (the contract's tables repeat them bit for bit,
+    which their radians written back in degrees would not) and the values the messages
+    quote; never computed with in degrees. ``speed`` in rad/s or m/s; ``acceleration`` in
+    rad/s^2 or m/s^2. Each row is a snapshot at the same speed and acceleration.
     """
 
     body: str
@@ -145,6 +164,25 @@ class Driver:
         angles = radians(pos if type(pos) is np.ndarray else np.asarray(pos, dtype=float))
         angles.flags.writeable = False
         object.__setattr__(self, "angles", angles)
+
+    @property
+    def coordinates(self) -> np.ndarray:
+        """The driver's positions in SI: a crank's ``angles`` (rad), a slider's
+        ``positions`` (m)."""
+        return self.angles if self.kind == "R" else self.positions
+
+    def at(self, coordinates: np.ndarray) -> Driver:
+        """The same driver at other positions given in SI (rad or m): its
+        :attr:`coordinates` are ``coordinates`` to the bit. For positions never shown (the
+        probes between rows): a crank's ``positions`` are their degrees, not typed ones."""
+        x = np.asarray(coordinates, dtype=float)
+        if self.kind != "R":
+            return replace(self, positions=x)
+        out = replace(self, positions=degrees(x))
+        x = x.copy()
+        x.flags.writeable = False
+        object.__setattr__(out, "angles", x)        # (frozen: made here, set once)
+        return out
 
     def trig(self) -> tuple[np.ndarray, np.ndarray]:
         """``np.cos(angles)`` and ``np.sin(angles)``, read-only. A sweep read from start,
@@ -192,11 +230,12 @@ class Load:
 class Scene:
     """A checked mechanism scene (``scene-format.md`` section 1).
 
-    Every number is in the contract's units (SI; the driver's positions and ``line_angle``
-    in degrees as the file and the tables say them, with their radians beside them,
-    ``Driver.angles`` and ``Joint.beta``, converted once), whatever units the file
-    named: ``raw`` is the mapping as read, rewritten into those units
-    (:mod:`kinetostatics.model.scene_units`), and ``units`` the file's ``[units]`` (for
+    Every number is SI and every angle radians (``Joint.beta``, ``Driver.angles``:
+    converted once, where the scene is read), whatever units the file named; a crank's
+    positions as typed (deg, ``Driver.positions``) stay beside their radians as the
+    tables' row labels alone. ``raw`` is the mapping as read, rewritten into the
+    contract's units (a file's: degrees for its angles;
+    :mod:`kinetostatics.model.scene_units`), and ``units`` the file's ``[units]`` (for
     the output, which repeats them); ``warnings`` the suspected unit slips found when it
     was read (:mod:`kinetostatics.model.slips`), which every output repeats.
     """

@@ -325,12 +325,12 @@ def _joined(scene: Scene, name: str) -> tuple[float, float]:
 
 
 def _line_angle_slips(scene: Scene, u: Units) -> list[Slip]:
-    lines = {n: j.line_angle for n, j in scene.joints.items() if j.kind == "T"}
-    why = angle_list_slip([a * DEG for a in lines.values()])
+    lines = {n: j.beta for n, j in scene.joints.items() if j.kind == "T"}
+    why = angle_list_slip(list(lines.values()))
     if why is None:
         return []
     field = "line_angle of " + ", ".join(f"joint {n!r}" for n in lines)
-    return [Slip("angles", field, typed(list(lines.values()), "angle", u), why,
+    return [Slip("angles", field, typed(list(lines.values()), "angle", u, file=False), why,
                  "write them in the unit [units] names for angles")]
 
 

@@ -22,7 +22,7 @@ import numpy as np
 from ..model.errors import WorkbenchError
 from ..model.scene import GROUND, Scene
 from ..solver import arith as A
-from ..solver.continuity import body_angles, sweep_order
+from ..solver.continuity import sweep_order
 from ..solver.kinematics import Kinematics
 from ..solver.loads import PointLoad
 from ..solver.reactions import DriverReaction, JointReaction
@@ -30,6 +30,7 @@ from ..solver.solved import DEFERRED, Deferred, Solved, drive_values
 from ..solver.structure import Structure
 from . import longtable as tables
 from .longtable import LongTable, TiledPositions, offsets, shared
+from .sweepangles import degree_angles
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -363,11 +364,12 @@ class Solution:
     def angles(self) -> dict[str, np.ndarray]:
         """Every body's angle (deg) per row: continuous along increasing driver position
         and following the true motion between rows, however far apart
-        (:func:`kinetostatics.solver.continuity.body_angles`).
+        (:func:`kinetostatics.solver.continuity.body_angles`, in degrees:
+        :func:`kinetostatics.results.sweepangles.degree_angles`).
 
         The arrays are views of one array laid out as the ``bodies`` table's ``angle``
         column (body after body, in the scene's order), which that table shares."""
-        found = body_angles(self.kin)
+        found = degree_angles(self.kin)
         n = self.positions.size
         whole = np.empty(n * len(self.scene.bodies))
         out = {}

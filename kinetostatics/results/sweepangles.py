@@ -16,11 +16,41 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ..solver.continuity import Probe, anchor, needs_probe, probed_turns, row_ratios, turn_estimate
+from ..model.units import degrees
+from ..solver.continuity import (
+    Probe,
+    anchor,
+    body_angles,
+    needs_probe,
+    probed_turns,
+    row_ratios,
+    sweep_coordinates,
+    sweep_order,
+    turn_estimate,
+)
 
 PERIOD = 2 * np.pi              # numpy.unwrap's default period and its derived bounds
 HIGH = PERIOD / 2
 LOW = -HIGH
+
+
+def degree_angles(kin) -> dict[str, np.ndarray]:
+    """Every body's angle (deg) per row, as the ``bodies`` table shows it: the continuous
+    radians of :func:`~kinetostatics.solver.continuity.body_angles` in degrees, shifted by
+    whole turns so that the row of the smallest driver position lies in (-180, 180]; a
+    crank's angle is its positions as typed (the tables' labels, to the bit)."""
+    found = body_angles(kin)
+    pos = np.asarray(kin.positions, dtype=float)
+    drv = kin.scene.driver
+    at = int(sweep_order(pos)[0]) if pos.size else 0
+    out = {}
+    for b, a in found.items():
+        if b == drv.body and drv.kind == "R":
+            out[b] = pos.copy()
+        else:
+            a = degrees(a)
+            out[b] = anchor(a, at) if a.size else a
+    return out
 
 
 class SweepAngles:
@@ -40,6 +70,7 @@ class SweepAngles:
     def __init__(self, scene, structure, positions: np.ndarray):
         self.scene, self.structure = scene, structure
         self.positions = positions
+        self.coordinates = sweep_coordinates(scene, positions)     # rad or m
         self.n = positions.size
         self.names: list[str] | None = None      # the bodies unwrapped (known at block 1)
         self.fixed: dict[str, np.ndarray] = {}
@@ -55,7 +86,7 @@ class SweepAngles:
             return
         m = rows.stop - rows.start
         th = np.stack([np.broadcast_to(kin.bodies[b].theta, (m,)) for b in self.names])
-        ps = self.positions[rows]
+        ps = self.coordinates[rows]
         if self.scene.driver.speed != 0.0:
             r, rp = row_ratios(kin, self.names)
         else:
@@ -113,9 +144,8 @@ class SweepAngles:
             base = np.concatenate([self.base[:, start - 1:start], base], axis=1)
             start -= 1
         h = np.diff(ps)
-        hs = np.deg2rad(h) if self.scene.driver.kind == "R" else h
         step = np.diff(base, axis=1)
-        check = needs_probe(step, turn_estimate(hs, r[:, :-1], r[:, 1:], rp[:, :-1], rp[:, 1:]))
+        check = needs_probe(step, turn_estimate(h, r[:, :-1], r[:, 1:], rp[:, :-1], rp[:, 1:]))
         iv = np.flatnonzero(check)
         if iv.size:
             self.found.append((iv + start, ps[iv], ps[iv + 1], th[:, iv], r[:, iv],
@@ -127,7 +157,7 @@ class SweepAngles:
 
     def angles(self) -> dict[str, np.ndarray]:
         """Body name -> angles (deg) per row, in the scene's order of bodies (the arrays of
-        :func:`~kinetostatics.solver.continuity.body_angles`)."""
+        :func:`degree_angles`)."""
         out = dict(self.fixed)
         if self.names:
             if self.found and self.n > 1:

@@ -34,7 +34,7 @@ def _error(msg: str) -> Exception:
 
 def add_commands(sub) -> None:
     """Add the ``crosscheck`` subcommand to an argparse subparsers object."""
-    from ..common.cli import dpi_argument  # the --dpi of every command that draws
+    from ..common.cli import add_dpi_option  # the --dpi of every command that draws
     c = sub.add_parser(
         "crosscheck", help="simulate a scene in pymunk and compare with kinetostatics",
         description="Simulate a mechanism scene in pymunk at its driver's constant speed "
@@ -66,8 +66,7 @@ def add_commands(sub) -> None:
         c.add_argument(switch, action="store_true", help=text)
     c.add_argument("--rows", metavar="CSV", help="write the per-position comparison as CSV")
     c.add_argument("--plot", metavar="PNG", help="write the comparison (or study) picture")
-    c.add_argument("--dpi", type=dpi_argument, default=150,
-                   help="dots per inch of the --plot picture (default 150)")
+    add_dpi_option(c, "dots per inch of the --plot picture (default 150)")
     c.add_argument("--study", action="store_true",
                    help="sweep dt and iterations: wall time per revolution against error")
     c.add_argument("--study-steps", metavar="LIST",

@@ -139,20 +139,24 @@ def needs_probe(d, est) -> np.ndarray:
 
 
 class Probe:
-    """The mechanism at unit driver speed, at any positions, in the sweep's assembly:
-    theta, r = d theta / d phi and r' per body (rows: bodies)."""
+    """The mechanism at unit driver speed, at any driver positions in SI (rad or m), in
+    the sweep's assembly: theta, r = d theta / d phi and r' per body (rows: bodies)."""
 
     def __init__(self, kin: Kinematics, names: list[str]):
-        drv = kin.scene.driver
-        self.scene = replace(kin.scene, driver=replace(drv, speed=1.0, acceleration=0.0))
-        self.structure = kin.structure
+        from .kinematics import choose_assembly
+        self.driver = replace(kin.scene.driver, speed=1.0, acceleration=0.0)
+        self.scene = replace(kin.scene, driver=self.driver)
+        structure = kin.structure
+        if len(structure.assembly) != len(structure.dyads):      # (the sweep's first row)
+            structure = replace(structure, assembly=choose_assembly(self.scene, structure))
+        self.structure = structure
         self.names = names
-        self.rad = drv.kind == "R"
 
-    def __call__(self, positions: np.ndarray):
+    def __call__(self, coordinates: np.ndarray):
         from .kinematics import solve_kinematics
-        k = solve_kinematics(self.scene, self.structure, positions=positions, strict=False)
-        n = positions.size
+        scene = replace(self.scene, driver=self.driver.at(coordinates))
+        k = solve_kinematics(scene, self.structure, strict=False)
+        n = coordinates.size
         th = np.stack([np.broadcast_to(k.bodies[b].theta, (n,)) for b in self.names])
         th = np.where(open_rows(k)[None, :], np.nan, th)    # no motion there
         r = np.stack([np.broadcast_to(k.bodies[b].omega, (n,)) for b in self.names])
@@ -172,6 +176,7 @@ def _split(first: np.ndarray, mid: np.ndarray, last: np.ndarray, keep: np.ndarra
 def probed_turns(probe: Probe, lo, hi, ends) -> np.ndarray:
     """The turn of every body over each interval (lo, hi), by zooming sub-samples.
 
+    ``lo``, ``hi``: the driver's positions in SI (rad or m, :attr:`Driver.coordinates`);
     ``ends``: (theta, r, r') at lo and at hi, each (bodies, intervals). Returns
     (bodies, intervals); NaN where the mechanism cannot close inside an interval."""
     nb, m = ends[0][0].shape[0], lo.size
@@ -185,11 +190,8 @@ def probed_turns(probe: Probe, lo, hi, ends) -> np.ndarray:
     t = np.arange(1, SPLIT) / SPLIT
     for round_ in range(MAX_ROUNDS + 1):
         h = b - a
-        # degrees kept (1/10): the driver's positions are degrees (Scene) and the probe's
-        # step must be radians for the angle estimate
-        hs = np.deg2rad(h) if probe.rad else h
         d = _wrap(thb - tha)
-        bad = needs_probe(d, turn_estimate(hs, ra, rb, pa, pb)) & (h > tiny)
+        bad = needs_probe(d, turn_estimate(h, ra, rb, pa, pb)) & (h > tiny)
         if round_ == MAX_ROUNDS:
             bad[:] = False
         nan = ~np.isfinite(d).all(axis=0)
@@ -224,18 +226,29 @@ def row_ratios(kin: Kinematics, names: list[str]) -> tuple[np.ndarray, np.ndarra
     return r, (al - r * eps) / (w * w)
 
 
-def anchor(a: np.ndarray) -> np.ndarray:
-    """Shift a continuous angle (deg) by whole turns so that its first value lies in
-    (-180, 180]."""
-    first = 180.0 - np.mod(180.0 - a[0], 360.0)
-    return a + (first - a[0])
+def sweep_coordinates(scene, positions) -> np.ndarray:
+    """A sweep's driver positions (deg or m, the tables' labels) in SI, rad or m: the
+    scene's own :attr:`Driver.coordinates`, or those of its driver at ``positions``
+    (converted where drivers are made, :mod:`kinetostatics.model`)."""
+    drv = scene.driver
+    if positions is drv.positions:
+        return drv.coordinates
+    return replace(drv, positions=np.asarray(positions, dtype=float)).coordinates
+
+
+def anchor(a: np.ndarray, at: int = 0) -> np.ndarray:
+    """Shift a continuous angle (deg) by whole turns so that its value at row ``at`` lies
+    in (-180, 180]."""
+    first = 180.0 - np.mod(180.0 - a[at], 360.0)
+    return a + (first - a[at])
 
 
 def body_angles(kin: Kinematics) -> dict[str, np.ndarray]:
-    """Every moving body's angle (deg) over the sweep, continuous along increasing driver
-    position and following the true motion between rows; the row of the smallest driver
-    position lies in (-180, 180]. A rotating driver's angle is its position. Rows in the
-    sweep's own order.
+    """Every moving body's angle (rad) over the sweep, continuous along increasing driver
+    position and following the true motion between rows, as unwrapped from the row of
+    the smallest driver position (its own value there). A rotating driver's angle is its
+    :attr:`Driver.coordinates`. Rows in the sweep's own order. (The tables' degrees,
+    anchored in (-180, 180] at that row: :func:`kinetostatics.results.sweepangles.degree_angles`.)
 
     Parameters
     ----------
@@ -246,26 +259,25 @@ def body_angles(kin: Kinematics) -> dict[str, np.ndarray]:
     Returns
     -------
     dict
-        Body name -> angles (deg), one per row.
+        Body name -> angles (rad), one per row.
     """
     scene = kin.scene
     n = kin.n
     pos = np.asarray(kin.positions, dtype=float)
     out: dict[str, np.ndarray] = {}
     names = []
+    x = sweep_coordinates(scene, kin.positions)
     for b in scene.bodies:
         if b == scene.driver.body and scene.driver.kind == "R":
-            out[b] = pos.copy()
+            out[b] = x.copy()
         elif np.ndim(kin.bodies[b].cos) == 0 and np.ndim(kin.bodies[b].sin) == 0:
-            # degrees kept (2/10): the body angle column is continuous in degrees
-            a = np.full(n, float(np.rad2deg(kin.bodies[b].theta)))
-            out[b] = anchor(a) if n else a
+            out[b] = np.full(n, float(kin.bodies[b].theta))
         else:
             names.append(b)
     if not names:
         return out
     order = sweep_order(pos)
-    ps = pos[order]
+    ps = x[order]           # rad or m: the turns' scale
     th = np.stack([np.broadcast_to(kin.bodies[b].theta, (n,))[order] for b in names])
     base = np.unwrap(th, axis=1)
     if n > 1:
@@ -277,9 +289,8 @@ def body_angles(kin: Kinematics) -> dict[str, np.ndarray]:
         else:               # at rest every omega is 0: the ratios at unit speed
             _, r, rp = probe(ps)
         h = np.diff(ps)
-        hs = np.deg2rad(h) if drv.kind == "R" else h     # degrees kept (3/10): as above
         step = np.diff(base, axis=1)
-        check = needs_probe(step, turn_estimate(hs, r[:, :-1], r[:, 1:], rp[:, :-1], rp[:, 1:]))
+        check = needs_probe(step, turn_estimate(h, r[:, :-1], r[:, 1:], rp[:, :-1], rp[:, 1:]))
         iv = np.flatnonzero(check)
         if iv.size:
             ends = ((th[:, iv], r[:, iv], rp[:, iv]),
@@ -293,8 +304,7 @@ def body_angles(kin: Kinematics) -> dict[str, np.ndarray]:
             base = base + 2.0 * np.pi * np.concatenate(
                 [np.zeros((len(names), 1)), np.cumsum(extra, axis=1)], axis=1)
     for i, b in enumerate(names):
-        a = anchor(np.rad2deg(base[i]))     # degrees kept (4/10): anchored in degrees
         res = np.empty(n)
-        res[order] = a
+        res[order] = base[i]
         out[b] = res
     return out

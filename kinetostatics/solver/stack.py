@@ -82,7 +82,7 @@ def signature(scene: Scene):
         if j.friction is not None:
             return None
         joints.append((j.name, j.kind, j.bodies, j.points))
-        nums.append(j.line_angle)
+        nums.append(j.beta)
     bodies = []
     for b in scene.bodies.values():
         if b.mass_model is not None:

@@ -134,8 +134,7 @@ def _scene_tame(scene) -> bool:
         for p in b.points.values():
             nums += p
     for j in scene.joints.values():
-        if j.line_angle is not None:
-            nums.append(j.line_angle)
+        nums.append(j.beta)
     for p in scene.near.values():
         nums += p
     for ld in scene.loads:

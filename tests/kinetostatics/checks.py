@@ -69,7 +69,7 @@ def loop_closure(sol) -> float:
             b = t.point(j.bodies[1], j.points[1])
             worst = max(worst, float(np.hypot(a["x"] - b["x"], a["y"] - b["y"]).max()))
         else:
-            ang = t.angle(j.guide) + np.deg2rad(j.line_angle)
+            ang = t.angle(j.guide) + j.beta
             ux, uy = np.cos(ang), np.sin(ang)
             lp = t.point(j.guide, j.points[0])
             sp = t.point(j.slider, j.points[1])
@@ -122,7 +122,7 @@ def _driver_power(sol, t) -> np.ndarray:
         j = sc.joints[drv.joint]
         sp = t.point(j.slider if j.slider != GROUND else j.guide,
                      j.points[1] if j.slider != GROUND else j.points[0])
-        beta = np.deg2rad(j.line_angle) if j.guide == GROUND else 0.0
+        beta = j.beta if j.guide == GROUND else 0.0
         p = sol.Me * (np.cos(beta) * sp["vx"] + np.sin(beta) * sp["vy"])
     return p
 
@@ -187,7 +187,7 @@ def matrix_solution(sol):
                 put(b1, c + comp, fx, fy, x, y, -1.0)
             geo[name] = (x, y)
         else:
-            ang = t.angle(j.guide) + np.deg2rad(j.line_angle)
+            ang = t.angle(j.guide) + j.beta
             nx, ny = -np.sin(ang), np.cos(ang)
             sp = t.point(j.slider, j.points[1])
             x, y = sp["x"], sp["y"]
@@ -203,7 +203,7 @@ def matrix_solution(sol):
     else:
         j = sc.joints[drv.joint]
         if j.guide == GROUND:
-            beta = np.deg2rad(j.line_angle)
+            beta = j.beta
             sp = t.point(drv.body, j.points[1])
         else:
             beta = 0.0
@@ -286,7 +286,7 @@ def body_equilibrium(sol) -> float:
         res[drv.body][2] += sol.Me
     else:
         j = sc.joints[drv.joint]
-        beta = np.deg2rad(j.line_angle) if j.guide == GROUND else 0.0
+        beta = j.beta if j.guide == GROUND else 0.0
         sp = t.point(drv.body, j.points[1]) if j.guide == GROUND else \
             t.point(GROUND, j.points[1])
         add(drv.body, sol.Me * np.cos(beta), sol.Me * np.sin(beta), sp["x"], sp["y"])
@@ -362,7 +362,7 @@ def friction_power(sol) -> np.ndarray:
             normal = np.abs(0.5 * nn - mm / fr.length) + np.abs(0.5 * nn + mm / fr.length)
         else:
             normal = np.abs(nn)
-        ang = t.angle(j.guide) + np.deg2rad(j.line_angle)
+        ang = t.angle(j.guide) + j.beta
         ux, uy = np.cos(ang), np.sin(ang)
         sp = t.point(j.slider, j.points[1])
         lp = t.point(j.guide, j.points[0])

@@ -87,7 +87,7 @@ class ForwardMechanism:
                 gam.append(g)
                 continue
             # prismatic: theta_s - theta_g - beta = 0 and n . (P_S - P_L) = 0
-            beta = math.radians(j.line_angle)
+            beta = j.beta
             _, thg, ig = self._state(q, j.guide)
             _, ths, is_ = self._state(q, j.slider)
             Jt = np.zeros((2, self.nq))

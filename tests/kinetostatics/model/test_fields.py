@@ -4,7 +4,9 @@ with its quantity's factor (the factors by definition, not from the workbench)."
 
 from __future__ import annotations
 
+import dataclasses
 import math
+import pickle
 import re
 from pathlib import Path
 
@@ -99,5 +101,41 @@ def test_a_read_scene_holds_its_angles_in_radians(name) -> None:
     assert drv.angles is drv.angles and not drv.angles.flags.writeable
     with pytest.raises(ValueError, match="read-only"):
         drv.angles[0] = 0.0
+    typed = {j["name"]: j.get("line_angle", 0.0) for j in sc.raw["joints"]}
     for j in sc.joints.values():
-        assert j.beta == math.radians(j.line_angle)
+        assert j.beta == math.radians(typed[j.name] if j.kind == "T" else 0.0)
+        assert "line_angle" not in vars(j)          # the degrees are not kept
+
+
+def test_a_joint_given_degrees_or_read_for_them_warns_for_one_release() -> None:
+    """``Joint.line_angle`` (deg), given or read, is deprecated: ``beta`` (rad) is what the
+    joint holds; the old names still work and say so."""
+    sc = ks.load_scene("slotted_lever")
+    j = next(j for j in sc.joints.values() if j.kind == "T")
+    with pytest.warns(DeprecationWarning, match="read Joint.beta"):
+        assert j.line_angle == math.degrees(j.beta)
+    with pytest.warns(DeprecationWarning, match="give beta"):
+        old = mech_scene.Joint(j.name, "T", j.bodies, j.points, 30.0)
+    assert old.beta == math.radians(30.0)
+    with pytest.warns(DeprecationWarning, match="give beta"):
+        assert mech_scene.Joint(j.name, "T", j.bodies, j.points, line_angle=-5.0).beta \
+            == math.radians(-5.0)
+    moved = dataclasses.replace(old, friction=None)     # beta kept, no warning
+    assert moved.beta == old.beta and moved == old
+    assert pickle.loads(pickle.dumps(sc)).joints[j.name].beta == j.beta
+
+
+def test_a_driver_at_positions_in_si_holds_them_to_the_bit() -> None:
+    """``Driver.at`` (the probes between rows, in rad or m) keeps the coordinates given,
+    not their degrees read back (which lose a bit: 30 deg comes back 29.999999999999996)."""
+    crank = ks.load_scene("four_bar").driver
+    assert crank.coordinates is crank.angles
+    x = np.array([0.1, 1.0, np.deg2rad(30.0)])
+    moved = crank.at(x)
+    assert np.array_equal(moved.angles, x) and moved.coordinates is moved.angles
+    assert not moved.angles.flags.writeable and moved.sweep is None
+    assert np.array_equal(moved.positions, np.rad2deg(x))
+    assert not np.array_equal(np.deg2rad(np.rad2deg(x)), x)   # why the angles are kept
+    slider = ks.load_scene("sliding_driver").driver
+    assert slider.coordinates is slider.positions
+    assert np.array_equal(slider.at([0.01, 0.02]).coordinates, [0.01, 0.02])

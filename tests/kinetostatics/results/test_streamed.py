@@ -19,8 +19,7 @@ import kinetostatics as ks
 from kinetostatics.model.scene import load_scene
 from kinetostatics.results import streamed
 from kinetostatics.results.streamed import StreamedSolve, open_solve
-from kinetostatics.results.sweepangles import SweepAngles
-from kinetostatics.solver.continuity import body_angles
+from kinetostatics.results.sweepangles import SweepAngles, degree_angles
 from kinetostatics.solver.kinematics import solve_kinematics, with_positions
 from kinetostatics.solver.pipeline import Sweep
 from kinetostatics.solver.structure import analyse
@@ -68,7 +67,8 @@ def _scene_raw(name: str) -> dict:
 @pytest.mark.parametrize("name", [*sorted(p.stem for p in SCENES.glob("*.toml")), "drag_link"])
 def test_angles_gathered_over_blocks_are_the_whole_sweeps(name: str) -> None:
     """Coarse sweeps (2-40 rows, so that turns between rows are probed) fed in blocks of
-    1, 2, 3, 7 and all rows: the angles of body_angles over the whole sweep, bit for bit."""
+    1, 2, 3, 7 and all rows: the angles of degree_angles (body_angles in degrees) over
+    the whole sweep, bit for bit."""
     probed = 0
     for count in (2, 3, 4, 6, 17, 40):
         raw = _scene_raw(name)
@@ -76,7 +76,7 @@ def test_angles_gathered_over_blocks_are_the_whole_sweeps(name: str) -> None:
         scene = load_scene(raw)
         kin = solve_kinematics(scene, analyse(scene))
         pos = scene.driver.positions
-        whole = body_angles(kin)
+        whole = degree_angles(kin)
         for block in (1, 2, 3, 7, count):
             gathered = SweepAngles(scene, kin.structure, pos)
             for start in range(0, count, block):

@@ -278,3 +278,20 @@ def test_probe_copies_do_not_change_the_scene() -> None:
     before = copy.deepcopy(d)
     assert len(ks.solve(d).bodies) == 9
     assert d == before
+
+
+@pytest.mark.parametrize("positions", [None, [200.0, 10.0, 100.0, 330.0]])
+def test_the_solver_keeps_angles_in_radians_and_the_table_shows_degrees(positions) -> None:
+    """body_angles is radians (a crank's angle is its Driver.angles, to the bit); the
+    bodies table shows those angles in degrees, moved by whole turns (the anchor) and a
+    crank's positions as typed."""
+    from kinetostatics.solver.continuity import body_angles
+    sol = ks.solve(double_crank(positions=positions, count=13))
+    rad = body_angles(sol.kin)
+    drv = sol.scene.driver
+    assert np.array_equal(rad[drv.body], drv.angles)
+    assert np.array_equal(angles(sol, drv.body), drv.positions)
+    for b in sol.scene.bodies:
+        turns = (np.rad2deg(rad[b]) - angles(sol, b)) / 360.0
+        assert np.allclose(turns, np.round(turns), rtol=0.0, atol=1e-14)   # measured 8e-17
+        assert np.all(np.abs(np.diff(np.round(turns))) == 0)
