@@ -143,9 +143,13 @@ class KeptMotion:
         local = [(float(lx), float(ly)) for _, _, (lx, ly) in self.points]
         where = {b: k for k, b in enumerate(self.bodies)}
         point_rows = self.kernels.point_rows
+        # (a row longer than the chunk: the kernel sees the layout of the solve's buffer,
+        # one compiled signature for both roads)
+        scratch = np.empty((slab.shape[0], KEPT_CHUNK + 8))
         for lo in range(0, n, KEPT_CHUNK):
             hi = min(lo + KEPT_CHUNK, n)
-            motion = slab[:, lo:hi].copy()          # (before the chunk's rows are written)
+            motion = scratch[:, :hi - lo]
+            motion[...] = slab[:, lo:hi]            # (before the chunk's rows are written)
             for i, ((b, _, _), (lx, ly)) in enumerate(zip(self.points, local, strict=True)):
                 k = where[b]
                 point_rows(motion[MOTION_ROWS * k:MOTION_ROWS * (k + 1)], hi - lo, lx, ly,
