@@ -6,9 +6,12 @@ process (so that its peak memory is its own):
 
 * ``solve_s``: ``kinetostatics.solve`` (kinematics, loads, reactions, Me);
 * ``driver_s, reactions_s, kinematics_s, bodies_s``: building each table, in that
-  order (the sweep is solved lean: the first of ``reactions`` and ``kinematics`` solves
-  its blocks again once for both, :mod:`kinetostatics.results.onepass`; ``bodies`` solves
-  it again in full), and ``long_tables_s`` the three long ones together
+  order (the sweep is solved lean: on the numpy path the first of ``reactions`` and
+  ``kinematics`` solves its blocks again once for both,
+  :mod:`kinetostatics.results.onepass`; on the compiled path, the default at 1e6
+  positions where numba is installed, each is a pass of the kernels of its own,
+  :mod:`kinetostatics.results.fastpass`; ``bodies`` solves it again in full), and
+  ``long_tables_s`` the three long ones together
   (``long_tables_over_solve`` their ratio to the solve);
 * ``tables_MB``: the bytes the ``driver``, ``reactions`` and ``kinematics`` tables hold
   (a column shared by several tables, as ``position``, counted once; a column of one

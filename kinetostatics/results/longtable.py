@@ -55,6 +55,10 @@ SHARE_ROWS = 65_536
 HUGE_PAGES = True
 
 
+# the float columns of the long tables, in order
+REACTIONS_FLOATS = ("Fx", "Fy", "F", "N", "M", "offset")
+KINEMATICS_FLOATS = ("x", "y", "vx", "vy", "ax", "ay")
+
 OFFSET_EMPTY = 1e-12     # offset = M / N is left empty where |N| <= 1e-12 max|N|
 
 
@@ -310,10 +314,11 @@ class FloatBlock:
         self.same: dict[str, float] = {}            # columns of one value so far
         self.wrote: dict[str, list[slice]] = {}     # ... and the rows written with it
 
-    def put(self, i: int, rows: slice, values: dict) -> None:
+    def put(self, i: int, rows: slice, values: dict, names=None) -> None:
         """``values`` (column -> array or number, as :attr:`LongTable.chunk` gives them)
-        into the rows ``rows`` of the whole table (``i``: the block, for the caller)."""
-        for c in self.names:
+        into the rows ``rows`` of the whole table (``i``: the block, for the caller;
+        ``names``: those columns only, default every one)."""
+        for c in self.names if names is None else names:
             v = values[c]
             out = self.rows.get(c)
             if out is None:
@@ -335,6 +340,13 @@ class FloatBlock:
             self.block = table_block((len(self.names), self.size))
         return self.block
 
+    def array(self, c: str) -> np.ndarray:
+        """Column ``c`` as an array (its row of :meth:`reserve`), from now on, for a
+        caller that writes its rows in place (the rows written so far as one value
+        filled with it)."""
+        out = self.rows.get(c)
+        return self._column(c) if out is None else out
+
     def _column(self, c: str) -> np.ndarray:
         """Column ``c`` as an array, the rows written as one value filled with it."""
         self.reserve()
@@ -355,6 +367,14 @@ class FloatBlock:
             else:
                 out[c] = np.empty(0)
         return out
+
+
+def fill_offsets(fill: FloatBlock, prismatic: list[int], n: int) -> None:
+    """The ``offset`` of each prismatic joint's rows, from its whole ``N`` and ``M``."""
+    for i in prismatic:
+        rows = slice(i * n, (i + 1) * n)
+        nn, mm = fill.rows["N"][rows], fill.rows["M"][rows]
+        fill.rows["offset"][rows] = offsets(nn, mm, np.abs(nn).max() if n else 0.0)
 
 
 # -- short tables: columns of their own, laid into a DataFrame -----------------------

@@ -26,9 +26,10 @@ motion array holds the block's values; a value that is one number in every block
 that number, so the arithmetic that skips exact zeros takes the same road). The one
 column that depends on the whole sweep, ``offset`` = M / N of a prismatic joint (left
 empty where ``|N|`` is at most 1e-12 of its largest over the sweep), is worked out once
-its ``N`` and ``M`` columns are whole. The pass runs under the floating-point trap
-(:mod:`kinetostatics.solver.trap`) and, if the trap is touched, again with every check,
-as the re-solve does.
+its ``N`` and ``M`` columns are whole (:func:`fill_offsets`). The pass runs under the
+floating-point trap (:mod:`kinetostatics.solver.trap`) and, if the trap is touched, again
+with every check, as the re-solve does. A sweep solved lean on the compiled path is
+passed by :mod:`kinetostatics.results.fastpass` (its kernels, table by table).
 
 What it costs is measured by ``python -m kinetostatics bench --tables`` (the solve and
 these tables against the solve and the write floor of their bytes; README, "Speed").
@@ -46,7 +47,7 @@ from ..solver.kinematics import solve_kinematics
 from ..solver.pipeline import solve_block
 from ..solver.solved import Solved
 from ..solver.trap import first_trapped
-from .longtable import CHUNK, FloatBlock, LongTable, offsets, table_block
+from .longtable import CHUNK, FloatBlock, LongTable, fill_offsets, table_block
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -64,9 +65,12 @@ def lean_frame(sol: Solution, name: str) -> pd.DataFrame | None:
     d = sol.__dict__
     lean = d.get("_deferred")
     if (name not in PASSED or type(lean) is not LeanSolved or "kin" in d
-            or sol.path != "numpy" or lean.full is not None):
+            or sol.path not in ("numpy", "fast") or lean.full is not None):
         d.pop(KEPT, None)               # (the arrays are whole: what a pass kept is moot)
         return None
+    if sol.path == "fast":              # solved again by the kernels, table by table
+        from .fastpass import compiled_frame
+        return compiled_frame(sol, lean, name)
     other = "reactions" if name == "kinematics" else "kinematics"
     passed = d.pop(KEPT, None)          # (taken: no two threads make a table of one pass)
     if passed is None or not passed.has(name):
@@ -107,7 +111,7 @@ class OnePass:
         positions = self.lean.positions
         n = positions.size
         _, structure, part = blocks_of_sweep(scene, structure, positions)
-        # each joint's largest |N| taken as infinite: the offset is left for _offsets
+        # each joint's largest |N| taken as infinite: the offset is left for fill_offsets
         largest = dict.fromkeys(range(len(scene.joints)), np.inf)
         bodies = list(dict.fromkeys(b for b, _, _ in self.sol._points()))
         keep = KeptMotion(bodies, n) if name == "reactions" and other else None
@@ -161,7 +165,7 @@ class OnePass:
             motion, self.motion = self.motion, None
             self._kinematics_of(motion, table, fill)
         if name == "reactions":
-            _offsets(fill, self.prismatic, table.n)
+            fill_offsets(fill, self.prismatic, table.n)
         return table.frame_of(fill)
 
     def _kinematics_of(self, motion: KeptMotion, table: LongTable, fill: FloatBlock) -> None:
@@ -246,11 +250,3 @@ class KeptMotion:
             values = [self.layout[b, f] for f in BodyMotion.FIELDS]
             out[b] = BodyMotion(None, *(copies[v] if type(v) is int else v for v in values))
         return out
-
-
-def _offsets(fill: FloatBlock, prismatic: list[int], n: int) -> None:
-    """The ``offset`` of each prismatic joint's rows, from its whole ``N`` and ``M``."""
-    for i in prismatic:
-        rows = slice(i * n, (i + 1) * n)
-        nn, mm = fill.rows["N"][rows], fill.rows["M"][rows]
-        fill.rows["offset"][rows] = offsets(nn, mm, np.abs(nn).max() if n else 0.0)

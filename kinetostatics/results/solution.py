@@ -294,7 +294,7 @@ class Solution:
                          {"joint": joints,
                           "on": [self.joint_reactions[j].on for j in joints],
                           "by": [self.joint_reactions[j].by for j in joints]},
-                         ("Fx", "Fy", "F", "N", "M", "offset"), chunk, self._tiled,
+                         tables.REACTIONS_FLOATS, chunk, self._tiled,
                          {"Fx": lambda: self._force_columns()[0],
                           "Fy": lambda: self._force_columns()[1]})
 
@@ -339,7 +339,7 @@ class Solution:
 
         return LongTable(self.positions, {"body": [b for b, _, _ in points],
                                           "point": [p for _, p, _ in points]},
-                         ("x", "y", "vx", "vy", "ax", "ay"), chunk, self._tiled)
+                         tables.KINEMATICS_FLOATS, chunk, self._tiled)
 
     def _bodies_long(self) -> LongTable:
         n = self.positions.size

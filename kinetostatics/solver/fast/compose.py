@@ -383,3 +383,8 @@ def _reactions(plan: Plan, scene: Scene, buf: dict) -> dict:
 def with_assembly(structure, ks) -> object:
     """The structure with each dyad's assembly (numbers)."""
     return replace(structure, assembly=tuple(int(k) for k in ks))
+
+
+# the block's views and its joint reactions, for the sweep solved again block by block
+# (:class:`~kinetostatics.solver.fast.solve.SolvedAgain`, the one-pass tables)
+cut_rows, block_reactions = _cut, _reactions

@@ -100,6 +100,7 @@ from .reaction_kernels import (
     slider_reaction,
     swept_loads,
 )
+from .table_kernels import point_rows
 
 SINGULAR_WARN2 = 1e-6       # (1e-3)^2: kinematics.SINGULAR_WARN squared
 SINGULAR_FAIL2 = 1e-24      # (1e-12)^2
@@ -470,4 +471,4 @@ MOTION = {"RRR": rrr_motion, "RRT": rrt_motion, "TRR": trr_motion, "TRT": trt_mo
 
 
 __all__ = ["MOTION", "REACTIONS", "body_loads", "swept_loads", "crank_motion",
-           "crank_reaction", "slider_motion", "slider_reaction"]
+           "crank_reaction", "slider_motion", "slider_reaction", "point_rows"]

@@ -14,9 +14,22 @@ from ..kinematics import choose_assembly, with_positions
 from ..memo import record_of
 from ..solved import Solved
 from .choice import wanted
-from .compose import Geometry, Plan, Refused, Unwrapped, solve_arrays, solve_full, solve_lean
+from .compose import (
+    ROWS,
+    Geometry,
+    Plan,
+    Refused,
+    Unwrapped,
+    block_reactions,
+    cut_rows,
+    driver_input,
+    solve_arrays,
+    solve_full,
+    solve_lean,
+)
 from .geometry import not_covered
 from .layout import CL2
+from .loader import kernels as loaded_kernels
 from .short import fused_sweep
 
 
@@ -61,6 +74,39 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
         return None
     sol.path = "fast"       # (a LeanSolved's: its full solve's is set by _solution)
     return sol
+
+
+class SolvedAgain:
+    """A sweep solved lean on the compiled path, solved again a block of rows at a time
+    into one scratch buffer (the tables built in one pass,
+    :mod:`kinetostatics.results.fastpass`): per block, each body's motion and each
+    joint's reaction over the block's rows, the numbers of the full re-solve bit for bit
+    (the same kernels, row by row, with the sweep's assemblies).
+
+    ``scene``: the sweep's scene (its own positions), ``structure`` with the assemblies
+    it was solved with."""
+
+    def __init__(self, scene: Scene, structure):
+        self.kernels = loaded_kernels()
+        self.plan = Plan(self.kernels, scene, structure, structure.assembly)
+
+    def blocks(self, block: int = ROWS):
+        """``(lo, hi, motions, reactions)`` per block of rows ``lo`` to ``hi``: body ->
+        its motion, a ``(10, hi - lo)`` array (:mod:`~kinetostatics.solver.fast.layout`),
+        and joint -> :class:`~kinetostatics.solver.reactions.JointReaction`, views of
+        the scratch buffer (the next block writes over them). Raises
+        :class:`~kinetostatics.solver.fast.compose.Refused` where a kernel refuses a row
+        (never expected: the sweep was solved by the same kernels)."""
+        plan = self.plan
+        x = driver_input(plan.scene)
+        n = x.size
+        buf = plan.buffers(min(block, n))
+        for lo in range(0, n, block):
+            hi = min(lo + block, n)
+            plan.run(x, lo, hi, lo, buf)
+            rows = cut_rows(buf, hi - lo)
+            yield lo, hi, rows["m"], block_reactions(plan, plan.scene, rows)
+        plan.check_swept()
 
 
 def _assembled(scene: Scene, structure) -> tuple:

@@ -1,0 +1,140 @@
+"""The ``reactions`` and ``kinematics`` tables of a long sweep solved lean on the compiled
+path, each built in one pass while the kernels solve the sweep again block by block
+(issue 31, item 6): the same tables, bit for bit, as from the compiled path's full
+re-solve, which is never made."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import kinetostatics as ks
+from kinetostatics.results import fastpass
+from kinetostatics.solver.blocks import LeanSolved
+from kinetostatics.solver.driver import BodyMotion
+from kinetostatics.solver.fast import loader, use
+from kinetostatics.solver.fast.compose import Refused
+from kinetostatics.solver.fast.solve import SolvedAgain
+
+from .test_onepass import bits, scene_text
+
+pytest.importorskip("numba")
+pytestmark = pytest.mark.slow       # (the kernels compiled first on a fresh machine)
+
+# every dyad kind the bundled examples hold and both drivers: revolute joints only, a
+# sliding driver, prismatic joints (offset = M / N) inner and outer, an RTR dyad, six bars
+CASES = ("four_bar", "sliding_driver", "slider_crank", "scotch_yoke", "slotted_lever",
+         "shaper")
+
+
+@pytest.fixture
+def fast():
+    """The compiled path for one test (skipped where its kernels do not load)."""
+    if loader.kernels() is None:
+        pytest.skip("the compiled kernels do not load here")
+    use("fast")
+    yield
+    use(None)
+
+
+@pytest.mark.parametrize("order", [("reactions", "kinematics"), ("kinematics", "reactions")])
+@pytest.mark.parametrize("case", CASES)
+def test_tables_equal_those_of_the_full_re_solve_bit_for_bit(fast, case, order, monkeypatch):
+    """Each table, built in one pass, equals the one the full re-solve's arrays give:
+    the same columns, dtypes and bits (NaN offsets and -0.0 included), in either order;
+    after ``reactions`` the sweep is not solved again for ``kinematics`` (the pass kept
+    the bodies' motion in that table's room); the full re-solve is never made."""
+    text = scene_text(case)
+    sol = ks.solve(text)
+    lean = sol.__dict__["_deferred"]
+    assert sol.path == "fast" and type(lean) is LeanSolved
+    passes = []
+    real = SolvedAgain.blocks
+    monkeypatch.setattr(SolvedAgain, "blocks",
+                        lambda *a: passes.append(1) or real(*a))
+    tables = {order[0]: getattr(sol, order[0])}
+    kept = sol.__dict__.get(fastpass.KEPT)
+    if order[0] == "reactions":         # the bodies' motion kept in the kinematics' room
+        assert kept.whole and np.shares_memory(kept.slab, kept.fill.block)
+    else:
+        assert kept is None
+    tables[order[1]] = getattr(sol, order[1])
+    assert len(passes) == (1 if order[0] == "reactions" else 2)
+    assert fastpass.KEPT not in sol.__dict__
+    assert "kin" not in sol.__dict__ and lean.full is None
+    full = ks.solve(text)
+    full.kin                            # noqa: B018 (the full re-solve: the tables from it)
+    assert full.path == "fast" and "kin" in full.__dict__
+    for name, table in tables.items():
+        assert bits(table) == bits(getattr(full, name)), name
+
+
+def test_a_refused_block_takes_the_full_re_solve(fast, monkeypatch):
+    """Where the kernels refuse a block of the pass (never expected), the table comes
+    from the full re-solve: the same table."""
+    text = scene_text("scotch_yoke")
+    expected = bits(ks.solve(text).reactions)
+
+    def refused(self, block=0):
+        raise Refused("a block")
+        yield
+    monkeypatch.setattr(SolvedAgain, "blocks", refused)
+    sol = ks.solve(text)
+    assert bits(sol.reactions) == expected
+    assert "joint_reactions" in sol.__dict__       # (given by the full re-solve)
+
+
+def test_the_table_holds_one_block_of_columns(fast):
+    """The float columns are the rows of one array (the table's own), the ``position``
+    column shared with the other long tables; a pin's N, M and offset one number each."""
+    sol = ks.solve(scene_text("four_bar"))
+    r, k = sol.reactions, sol.kinematics
+    def at(column) -> int:
+        return column.to_numpy().__array_interface__["data"][0]
+    assert at(r.F) - at(r.Fx) == 2 * 8 * len(r)         # rows 0 and 2 of one array
+    assert at(k.ay) - at(k.x) == 5 * 8 * len(k)         # rows 0 and 5 of another
+    assert np.shares_memory(r.position.to_numpy(), k.position.to_numpy())
+    assert r.N.to_numpy().strides == (0,) and np.isnan(r.offset.to_numpy()).all()
+
+
+# the four roads of arith.rotate: the origin, ly = 0, lx = 0 (each with a 1 that mul
+# skips), any point; and -0.0, which x + 0.0 would turn into +0.0
+LOCAL = [(0.0, 0.0), (-0.0, 0.0), (0.3, 0.0), (1.0, 0.0), (0.0, -0.2), (0.0, -1.0),
+         (0.25, -0.4)]
+
+
+@pytest.mark.parametrize("lx, ly", LOCAL)
+def test_point_rows_is_the_numpy_paths_arithmetic(fast, lx, ly):
+    """The kernel's six columns are BodyMotion.point, vel_arm and acc_arm, bit for bit,
+    at a local point on each road of the arithmetic, on motions with signed zeros."""
+    rng = np.random.default_rng(7)
+    w = 301
+    m = rng.standard_normal((10, w + 8))[:, :w]     # (rows padded, as the solve's buffer)
+    theta = rng.uniform(-4, 4, w)
+    m[0], m[1] = np.cos(theta), np.sin(theta)
+    m[4:, :5] = -0.0                    # an origin, velocity and acceleration of -0.0
+    m[:2, 5:9] = [[1.0, 0.0, -1.0, 0.0], [0.0, 1.0, 0.0, -1.0]]
+    body = BodyMotion(None, *m)
+    rx, ry = body.rotate(lx, ly)
+    x, y = body.point((lx, ly))
+    expected = [x, y, *body.vel_arm(rx, ry), *body.acc_arm(rx, ry)]
+    out = np.full((6, w + 9), 7.0)
+    loader.kernels().point_rows(m, w, lx, ly, out, 4)
+    for c in range(6):
+        want = np.broadcast_to(expected[c], (w,))
+        assert out[c, 4:4 + w].tobytes() == np.ascontiguousarray(want).tobytes(), c
+    assert (out[:, :4] == 7.0).all() and (out[:, 4 + w:] == 7.0).all()
+
+
+def test_the_pass_solves_no_array_over_the_sweep(fast, monkeypatch):
+    """The pass goes through the scratch buffer block by block: no full re-solve, and
+    one call of the kinematics kernel per point and block."""
+    text = scene_text("four_bar")
+    sol = ks.solve(text)
+    calls = []
+    real = fastpass.compiled_frame
+    monkeypatch.setattr(fastpass, "compiled_frame", lambda *a: calls.append(a[2]) or real(*a))
+    sol.kinematics                      # noqa: B018
+    sol.reactions                       # noqa: B018 (kinematics made: nothing kept)
+    assert calls == ["kinematics", "reactions"] and fastpass.KEPT not in sol.__dict__
+    assert sol.__dict__["_deferred"].full is None
