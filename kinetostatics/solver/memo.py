@@ -13,28 +13,47 @@ from __future__ import annotations
 
 import weakref
 
-_RECORDS: dict[int, tuple[weakref.ref, dict]] = {}
+
+class Kept:
+    """Values kept per live object, by identity (a weak reference: nothing here keeps an
+    object alive), for the last ``size`` objects given one; an object gone takes its value
+    with it, and a new object at a dead one's address never gets the dead one's value."""
+
+    def __init__(self, size: int) -> None:
+        self.size = size
+        self.entries: dict[int, tuple[weakref.ref, object]] = {}
+
+    def get(self, obj: object) -> object | None:
+        """The value kept for ``obj``, or None."""
+        entry = self.entries.get(id(obj))
+        return entry[1] if entry is not None and entry[0]() is obj else None
+
+    def put(self, obj: object, value: object) -> None:
+        """Keep ``value`` for ``obj`` while it lives (the oldest entry dropped when full)."""
+        key, entries = id(obj), self.entries
+        if len(entries) >= self.size:
+            forget_oldest(entries)
+
+        def gone(ref: weakref.ref, key: int = key) -> None:
+            if entries.get(key, (None,))[0] is ref:
+                entries.pop(key, None)
+        entries[key] = (weakref.ref(obj, gone), value)
+
+
 # The records of the last few scenes solved, not of every scene alive: a program holding
 # thousands of scenes (solve_many's input, solved one by one first) would keep thousands
 # of structures, which every full pass of the garbage collector then walks (measured
 # 2026-11-29: solve_many of 1000 four-bars 80 -> 90 ms after a loop of solve over them)
 KEPT = 64
+_RECORDS = Kept(KEPT)
 
 
 def record_of(scene: object) -> dict:
     """The record kept for ``scene`` (a dict, empty at first), while ``scene`` lives."""
-    key = id(scene)
-    entry = _RECORDS.get(key)
-    if entry is not None and entry[0]() is scene:
-        return entry[1]
-    record: dict = {}
-    if len(_RECORDS) >= KEPT:
-        forget_oldest(_RECORDS)
-
-    def gone(ref: weakref.ref, key: int = key) -> None:
-        if _RECORDS.get(key, (None,))[0] is ref:
-            _RECORDS.pop(key, None)
-    _RECORDS[key] = (weakref.ref(scene, gone), record)
+    record = _RECORDS.get(scene)
+    if record is None:
+        record = {}
+        _RECORDS.put(scene, record)
     return record
 
 

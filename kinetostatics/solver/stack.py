@@ -18,7 +18,6 @@ segment, searched alone along increasing position, the probes of all in one solv
 from __future__ import annotations
 
 import struct
-import weakref
 from dataclasses import replace
 from functools import cached_property
 from itertools import chain, count
@@ -31,7 +30,7 @@ from .assembly import hint_points
 from .closure import DyadSolver, body_origin, dyad_param
 from .driver import driver_motion, ground_motion
 from .kinematics import SINGULAR_FAIL, solve_dyad
-from .memo import forget_oldest
+from .memo import Kept
 from .structure import Structure
 from .trap import tame, tame_values
 
@@ -110,9 +109,9 @@ def _numbers(scene: Scene) -> list:
 # each scene's record (stack_record) while it lives, for the last RECORDS scenes read:
 # solve_many over the same scenes again (a study that changes its loads, a benchmark)
 # tells their structure and gathers their numbers once
-_RECORDS: dict[int, tuple[weakref.ref, tuple]] = {}
-_LABELS: dict[Any, int] = {}        # signature -> a label of its own (an int, quick to hash)
 RECORDS = 1 << 16
+_RECORDS = Kept(RECORDS)
+_LABELS: dict[Any, int] = {}        # signature -> a label of its own (an int, quick to hash)
 
 
 def stack_record(scene: Scene) -> tuple[int | None, bytes, bool]:
@@ -123,10 +122,9 @@ def stack_record(scene: Scene) -> tuple[int | None, bytes, bool]:
     float64 bytes, and whether its driver positions strictly increase (then none
     repeats: :func:`~kinetostatics.solver.continuity.check_distinct` has nothing to
     refuse)."""
-    key = id(scene)
-    hit = _RECORDS.get(key)
-    if hit is not None and hit[0]() is scene:
-        return hit[1]
+    hit = _RECORDS.get(scene)
+    if hit is not None:
+        return hit
     sig = signature(scene) if scene.driver.positions.size else None
     label = None
     if sig is not None:
@@ -137,13 +135,7 @@ def stack_record(scene: Scene) -> tuple[int | None, bytes, bool]:
             label = _LABELS[sig] = next(_LABEL)
     nums = _numbers(scene)
     rec = (label, struct.pack(f"{len(nums)}d", *nums), _increases(scene.driver))
-    if len(_RECORDS) >= RECORDS:
-        forget_oldest(_RECORDS)
-
-    def gone(ref: weakref.ref, key: int = key) -> None:
-        if _RECORDS.get(key, (None,))[0] is ref:
-            _RECORDS.pop(key, None)
-    _RECORDS[key] = (weakref.ref(scene, gone), rec)
+    _RECORDS.put(scene, rec)
     return rec
 
 

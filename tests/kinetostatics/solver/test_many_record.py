@@ -59,7 +59,7 @@ def test_a_record_goes_with_its_scene() -> None:
     del gone
     gc.collect()
     assert ref() is None
-    stack._RECORDS[id(sc)] = (ref, stale)        # (as if sc took the dead scene's place)
+    stack._RECORDS.entries[id(sc)] = (ref, stale)        # (as if sc took the dead scene's place)
     assert stack_record(sc)[0] != stack_record(other)[0]
     assert stack_record(sc)[1] != stale[1]
 
