@@ -7,7 +7,6 @@ from dataclasses import replace
 
 import numpy as np
 
-from ...model.scene import GROUND
 from ..blocks import Kept
 from ..kinematics import SINGULAR_WARN
 from ..reactions import DriverReaction
@@ -15,6 +14,7 @@ from ..solved import Solved
 from .choice import wanted
 from .compose import Plan, Refused, solve_full, solve_lean
 from .geometry import not_covered
+from .short import fused_kernel
 from .solve import KeptRun
 
 
@@ -78,18 +78,12 @@ def fused_kept(plan: Plan, n: int, trig: tuple) -> Kept | None:
     kernels composed over blocks, bit for bit), or None for another structure (solved
     by :func:`~kinetostatics.solver.fast.compose.solve_lean`). Raises
     :class:`~kinetostatics.solver.fast.compose.Refused` as the composed kernels do."""
-    scene = plan.scene
-    if not plan.crank or len(plan.dyads) != 1:
+    fused = fused_kernel(plan)
+    if fused is None:
         return None
-    from .fused_kernels import KEPT  # (plan.k given: numba loaded, its cache settled)
-    gy, gys, dyad = plan.dyads[0]
-    kernel = KEPT.get(dyad.kind)
-    dname = scene.driver.body
-    order = (dname, *dyad.bodies)
-    known = [j.other(b) for j, b in zip(dyad.outer, dyad.bodies, strict=True)]
-    if (kernel is None or len(plan.bodies) != 3 or set(plan.bodies) != set(order)
-            or not set(known) <= {GROUND, dname}):
-        return None
+    kernel, order, known = fused
+    gy, gys, _ = plan.dyads[0]
+    dname = order[0]
     swept = [plan.swept.get(b, NO_SWEPT) for b in order]
     drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
     bad = kernel(0, n, plan.own, *trig, *plan.driver, plan.speed, plan.accel,
