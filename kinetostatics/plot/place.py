@@ -15,6 +15,7 @@ from collections.abc import Sequence
 
 import numpy as np
 from matplotlib.axes import Axes
+from matplotlib.layout_engine import PlaceHolderLayoutEngine
 from matplotlib.lines import Line2D
 from matplotlib.patches import FancyArrowPatch
 from matplotlib.path import Path
@@ -29,6 +30,7 @@ __all__ = ["UNPLACED_TITLE", "declutter", "settle"]
 
 _DIRECTIONS = radian_column(np.array([45, 135, 315, 225, 90, 270, 0, 180,
                                    22.5, 67.5, 112.5, 157.5, 202.5, 247.5, 292.5, 337.5]))
+_UNITS = [np.array([np.cos(ang), np.sin(ang)]) for ang in _DIRECTIONS]
 _DISTANCES = (3.0, 6.0, 10.0, 15.0, 21.0, 28.0, 36.0, 46.0, 58.0, 72.0)      # points
 _LEADER = 12.0          # points: a label farther than this from its anchor gets a leader
 _PAD = 2.0              # pixels of free room around a placed label
@@ -58,9 +60,8 @@ def _box(anchor, off, w: float, h: float) -> Bbox:
     return Bbox([[x0, y0], [x0 + w, y0 + h]])
 
 
-def _meets(path: Path, ext: Bbox, box: Bbox) -> bool:
-    if not ext.overlaps(box):
-        return False
+def _meets(path: Path, box: Bbox) -> bool:
+    """A path (whose extent overlaps the box) crosses the box or lies (partly) inside it."""
     if path.intersects_bbox(box, filled=False):
         return True
     v = path.vertices
@@ -68,8 +69,24 @@ def _meets(path: Path, ext: Bbox, box: Bbox) -> bool:
                        (v[:, 1] > box.y0) & (v[:, 1] < box.y1)))
 
 
+def _extents(boxes) -> np.ndarray:
+    """The (x0, y0, x1, y1) rows of boxes, each ordered low to high (as
+    :meth:`Bbox.overlaps` orders them)."""
+    e = np.array([b.extents for b in boxes], dtype=float).reshape(-1, 4)
+    return np.column_stack([np.minimum(e[:, 0], e[:, 2]), np.minimum(e[:, 1], e[:, 3]),
+                            np.maximum(e[:, 0], e[:, 2]), np.maximum(e[:, 1], e[:, 3])])
+
+
+def _overlapping(rows: np.ndarray, box: Bbox) -> np.ndarray:
+    """Which rows of :func:`_extents` overlap ``box``: :meth:`Bbox.overlaps` for all at
+    once (a NaN overlaps nothing)."""
+    (x0, y0, x1, y1), = _extents([box])
+    return (rows[:, 0] <= x1) & (x0 <= rows[:, 2]) & (rows[:, 1] <= y1) & (y0 <= rows[:, 3])
+
+
 class _Room:
-    """What a label must keep clear of on one Axes: boxes and drawn paths (pixels)."""
+    """What a label must keep clear of on one Axes: boxes and drawn paths (pixels), with
+    their extents as arrays (a label tries up to 160 places against every one)."""
 
     def __init__(self, ax: Axes, movable: list[Annotation], renderer) -> None:
         ids = {id(t) for t in movable}
@@ -77,17 +94,18 @@ class _Room:
         self.boxes = [bb for t, bb in figure_boxes(ax.figure, renderer) if id(t) not in ids]
         self.boxes += [child.get_window_extent(renderer) for child in ax.child_axes]
         own = {id(t.arrow_patch) for t in movable if t.arrow_patch is not None}
-        self.paths = []
-        for _name, p, _src in drawn_paths(ax, skip=own):
-            self.paths.append((p, p.get_extents()))
+        self.paths = [p for _name, p, _src in drawn_paths(ax, skip=own)]
+        self.box_rows = _extents(self.boxes)
+        self.path_rows = _extents([p.get_extents() for p in self.paths])
 
     def clear(self, box: Bbox) -> bool:
         f = self.frame
         if not (f.x0 <= box.x0 and box.x1 <= f.x1 and f.y0 <= box.y0 and box.y1 <= f.y1):
             return False
-        if any(box.overlaps(b) for b in self.boxes):
+        if _overlapping(self.box_rows, box).any():
             return False
-        return not any(_meets(p, ext, box) for p, ext in self.paths)
+        return not any(_meets(self.paths[k], box)
+                       for k in np.flatnonzero(_overlapping(self.path_rows, box)))
 
     def leader_clear(self, a: np.ndarray, box: Bbox, skip: Bbox) -> bool:
         """A leader from the anchor to the box's nearest point crosses no other label."""
@@ -97,8 +115,10 @@ class _Room:
 
     def take(self, box: Bbox, leader: Path | None) -> None:
         self.boxes.append(box)
+        self.box_rows = np.vstack([self.box_rows, _extents([box])])
         if leader is not None:
-            self.paths.append((leader, leader.get_extents()))
+            self.paths.append(leader)
+            self.path_rows = np.vstack([self.path_rows, _extents([leader.get_extents()])])
 
 
 def _set_leader(t: Annotation, on: bool) -> None:
@@ -123,8 +143,8 @@ def _place_one(t: Annotation, room: _Room, renderer, scale: float) -> bool:
     bb = text_extent(t, renderer)
     w, h = bb.width, bb.height
     for dist in _DISTANCES:
-        for ang in _DIRECTIONS:
-            off = dist * scale * np.array([np.cos(ang), np.sin(ang)])
+        for unit in _UNITS:
+            off = dist * scale * unit
             box = _box(a, off, w, h).padded(_PAD)
             if not room.clear(box):
                 continue
@@ -164,18 +184,21 @@ def _not_placed(fig, texts: list[Text]) -> None:
                title=UNPLACED_TITLE, title_fontsize=10, ncol=min(3, len(handles)))
 
 
-def _legend_off_data(ax: Axes, renderer) -> None:
-    """An Axes legend over a line, a marker or an arrow goes outside, to the right."""
+def _legend_off_data(ax: Axes, renderer) -> bool:
+    """An Axes legend over a line, a marker or an arrow goes outside, to the right (True
+    if it went)."""
     lg = ax.get_legend()
     if lg is None or not lg.get_visible():
-        return
+        return False
     box = lg.get_window_extent(renderer)
     if not box.overlaps(ax.get_window_extent(renderer)):
-        return
-    if any(_meets(p, p.get_extents(), box) for _n, p, _s in drawn_paths(ax)):
+        return False
+    if any(_meets(p, box) for _n, p, _s in drawn_paths(ax) if p.get_extents().overlaps(box)):
         lg.set_bbox_to_anchor((1.02, 1.0), transform=ax.transAxes)
         lg.set_loc("upper left")
         lg.borderaxespad = 0.0
+        return True
+    return False
 
 
 def _fix_best(ax: Axes, renderer) -> None:
@@ -217,10 +240,14 @@ def settle(fig) -> None:
     """
     axes = [ax for ax in fig.axes if ax in _KEPT]
     r = lay_out(fig)
-    for ax in fig.axes:
-        _legend_off_data(ax, r)
-    for ax in axes:
-        declutter(ax, _KEPT[ax], rounds=1, remember=False)
+    moved = any([_legend_off_data(ax, r) for ax in fig.axes])
+    if moved or not _frozen(fig):
+        # (a constrained layout moves at each drawing, by a thousandth of a pixel: the
+        # labels are placed as before, each Axes' on a drawing of its own)
+        for ax in axes:
+            declutter(ax, _KEPT[ax], rounds=1, remember=False)
+    else:
+        _place_kept(fig, axes, r)
     lay_out(fig)
     for _ in range(3):
         if not any([_thin_ticks(ax, r) for ax in fig.axes]):
@@ -228,11 +255,29 @@ def settle(fig) -> None:
         lay_out(fig)
     for ax in fig.axes:
         _fix_best(ax, r)
+    # the final layout, frozen: drawing again moves nothing but what was added, so the
+    # labels of every Axes are placed on this drawing until a legend of labels not placed
+    # comes (a drawing per Axes cost a seventh of a picture's time)
+    r = lay_out(fig)
     if fig.get_layout_engine() is not None:
-        lay_out(fig)
         fig.set_layout_engine("none")
+    _place_kept(fig, axes, r)
+
+
+def _frozen(fig) -> bool:
+    """No layout engine moves the figure's Axes when it is drawn (none, or frozen by
+    :func:`settle`)."""
+    engine = fig.get_layout_engine()
+    return engine is None or isinstance(engine, PlaceHolderLayoutEngine)
+
+
+def _place_kept(fig, axes: list[Axes], r):
+    """Place the labels :func:`declutter` kept on each of ``axes`` on the figure as drawn
+    last, drawn again after each Axes whose labels moved."""
     for ax in axes:
-        declutter(ax, _KEPT[ax], rounds=1, remember=False)
+        if _place(ax, _movable(_KEPT[ax]), r):
+            r = lay_out(fig)
+    return r
 
 
 def declutter(ax: Axes, texts: Sequence[Text], rounds: int = 1,
@@ -258,20 +303,34 @@ def declutter(ax: Axes, texts: Sequence[Text], rounds: int = 1,
     list of Text
         The labels that found no free place (hidden and named in a legend).
     """
-    fig = ax.figure
+    movable = _movable(texts)
+    if remember:
+        old = _KEPT.get(ax, [])
+        _KEPT[ax] = old + [t for t in movable if all(t is not o for o in old)]
+    missing: list[Text] = []
+    for _ in range(rounds):
+        missing = _place(ax, movable, lay_out(ax.figure), hide=False)
+    if missing:
+        _not_placed(ax.figure, missing)
+    return missing
+
+
+def _movable(texts: Sequence[Text]) -> list[Annotation]:
+    """The visible annotations with letters, written at an offset in points (left out of
+    the layout: they are placed on it)."""
     movable = [t for t in texts if isinstance(t, Annotation) and t.get_visible() and
                t.get_text().strip() and t.anncoords == "offset points"]
     for t in movable:
         t.set_in_layout(False)
-    if remember:
-        old = _KEPT.get(ax, [])
-        _KEPT[ax] = old + [t for t in movable if all(t is not o for o in old)]
-    scale = fig.dpi / 72.0
-    missing: list[Text] = []
-    for _ in range(rounds):
-        r = lay_out(fig)
-        room = _Room(ax, movable, r)
-        missing = [t for t in movable if not _place_one(t, room, r, scale)]
-    if missing:
-        _not_placed(fig, missing)
+    return movable
+
+
+def _place(ax: Axes, movable: list[Annotation], renderer, hide: bool = True) -> list[Text]:
+    """Place the labels on the figure as drawn last (``renderer``); those with no free
+    place are returned, and with ``hide`` taken off the drawing (:func:`_not_placed`)."""
+    room = _Room(ax, movable, renderer)
+    scale = ax.figure.dpi / 72.0
+    missing = [t for t in movable if not _place_one(t, room, renderer, scale)]
+    if missing and hide:
+        _not_placed(ax.figure, missing)
     return missing

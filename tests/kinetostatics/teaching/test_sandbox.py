@@ -35,7 +35,9 @@ SEED = 20261128
 SLEEP = "6173"           # the background process's sleep, to find it afterwards
 # the grader's limit per cell: the looper (and, on a loaded machine, the printer) runs
 # this long (40 s before: their 80 s of CPU were most of the class's 85 s at a load of 9;
-# the twelve other notebooks took 7 s each there, two at a time, cells and kernel start)
+# the twelve other notebooks took 7 s each there, two at a time, cells and kernel start;
+# at 12 s the forker's 48 processes were not all started at a load of 12, and its flag
+# read "ran longer than 12 s" instead of BlockingIOError)
 CELL_SECONDS = 20
 
 STEAL = '''
@@ -223,6 +225,11 @@ def hostile(tmp_path_factory):
             k = key[key.student == sid]
             T.fill_answer_cell(nb, dict(zip(k.question, k.expected, strict=True)))
         else:
+            # the attack is the cell under test: its notebook without the picture (the
+            # honest two draw theirs; a kernel that draws is measured in
+            # test_a_kernel_that_draws_stays_well_inside_the_memory_limit): the kernel's
+            # CPU 1.25-1.33 s -> 0.6-0.75 s, 2.5 s less wall a notebook at a load of 4
+            nb.cells = [c for c in nb.cells if c.get("id") != "picture"]
             at = next(i for i, c in enumerate(nb.cells)
                       if "answers" in c.get("metadata", {}).get("tags", []))
             nb.cells.insert(at + 1, nbformat.v4.new_code_cell(consts + ATTACKS[sid]))
