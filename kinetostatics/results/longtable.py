@@ -416,6 +416,12 @@ def columns_frame(columns: dict, copy: bool | None = None) -> pd.DataFrame:
 _LABELS: dict[tuple[str, ...], pd.Index] = {}
 
 
+def _private_forms(n: int, labels: pd.Index) -> tuple[pd.RangeIndex, pd.Index]:
+    """``pd.RangeIndex(n)`` and ``labels.copy()`` by pandas' private names (no checks)."""
+    import pandas as pd
+    return pd.RangeIndex._simple_new(range(n)), labels._view()
+
+
 def own_frame(columns: dict[str, np.ndarray], n: int) -> pd.DataFrame:
     """A DataFrame of 1-D numpy columns of ``n`` rows that nothing else holds (copies
     made for this table), taken as they are: one block per column, as
@@ -439,6 +445,10 @@ def own_frame(columns: dict[str, np.ndarray], n: int) -> pd.DataFrame:
     # the row index and the labels' copy by what pd.RangeIndex(n) and Index.copy() end
     # in, without their checks of arguments given here (measured 2026-11-29, the driver
     # table at 2001 rows after a garbage collection, as the bench times a call: 30-60 us
-    # of 270-330)
-    return create_dataframe_from_blocks(blocks, index=pd.RangeIndex._simple_new(range(n)),
-                                        columns=labels._view())
+    # of 270-330); both are pandas' private names: a pandas without them takes the public
+    # forms
+    try:
+        index, labels = _private_forms(n, labels)
+    except AttributeError:
+        index, labels = pd.RangeIndex(n), labels.copy()
+    return create_dataframe_from_blocks(blocks, index=index, columns=labels)
