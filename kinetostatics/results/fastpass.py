@@ -37,6 +37,8 @@ from .longtable import (
     FloatBlock,
     LongTable,
     fill_offsets,
+    point_labels,
+    reaction_labels,
 )
 
 KEPT = "_onepass"       # the Solution's entry holding what a pass kept (as onepass's)
@@ -80,8 +82,11 @@ def compiled_frame(sol: Solution, lean: LeanSolved, name: str) -> pd.DataFrame |
     return table.frame_of(fill)
 
 
-def _unused(i: int, part: slice) -> dict:
-    raise NotImplementedError("a table built in one pass has its columns already")
+def _no_chunks(i: int, part: slice) -> dict:
+    """The ``chunk`` of a table built here: none is ever asked for (the table is made
+    whole by :meth:`~kinetostatics.results.longtable.LongTable.frame_of`; the CSV writer
+    reads the Solution's own tables)."""
+    raise RuntimeError("a table built in one pass gives no chunks: its columns are whole")
 
 
 def _kinematics_table(sol: Solution, positions: np.ndarray
@@ -89,9 +94,8 @@ def _kinematics_table(sol: Solution, positions: np.ndarray
     """The ``kinematics`` table's definition, its float columns (one array, every column
     a row of it) and its points (body, point, local point)."""
     points = list(sol._points())
-    table = LongTable(positions, {"body": [b for b, _, _ in points],
-                                  "point": [p for _, p, _ in points]},
-                      KINEMATICS_FLOATS, _unused, sol._tiled)
+    table = LongTable(positions, point_labels(points), KINEMATICS_FLOATS, _no_chunks,
+                      sol._tiled)
     fill = FloatBlock(table)
     for c in fill.names:
         fill.array(c)
@@ -172,10 +176,8 @@ def _reactions(sol: Solution, again, positions: np.ndarray, keep: KeptMotion | N
         if keep is not None:
             keep.put(motions, lo, hi)
         if table is None:
-            table = LongTable(positions, {"joint": joints,
-                                          "on": [reactions[j].on for j in joints],
-                                          "by": [reactions[j].by for j in joints]},
-                              REACTIONS_FLOATS, _unused, sol._tiled)
+            table = LongTable(positions, reaction_labels(joints, reactions),
+                              REACTIONS_FLOATS, _no_chunks, sol._tiled)
             fill = FloatBlock(table)
             fx_all, fy_all, f_all = (fill.array(c) for c in ("Fx", "Fy", "F"))
             prismatic = [i for i, j in enumerate(joints) if reactions[j].N is not None]

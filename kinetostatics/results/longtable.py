@@ -59,6 +59,18 @@ HUGE_PAGES = True
 REACTIONS_FLOATS = ("Fx", "Fy", "F", "N", "M", "offset")
 KINEMATICS_FLOATS = ("x", "y", "vx", "vy", "ax", "ay")
 
+def reaction_labels(joints: list[str], reactions: dict) -> dict[str, list[str]]:
+    """The ``reactions`` table's name columns: each joint, the body its force acts ``on``
+    and the body it comes ``by`` (``reactions``: joint -> its reaction)."""
+    return {"joint": joints, "on": [reactions[j].on for j in joints],
+            "by": [reactions[j].by for j in joints]}
+
+
+def point_labels(points: list[tuple]) -> dict[str, list[str]]:
+    """The ``kinematics`` table's name columns of ``points`` (body, point, local point)."""
+    return {"body": [b for b, _, _ in points], "point": [p for _, p, _ in points]}
+
+
 OFFSET_EMPTY = 1e-12     # offset = M / N is left empty where |N| <= 1e-12 max|N|
 
 

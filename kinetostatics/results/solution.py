@@ -290,10 +290,7 @@ class Solution:
             mm = np.broadcast_to(np.asarray(r.M, dtype=float), (n,))[part]
             return {**out, "N": nn, "M": mm, "offset": offsets(nn, mm, largest[i])}
 
-        return LongTable(self.positions,
-                         {"joint": joints,
-                          "on": [self.joint_reactions[j].on for j in joints],
-                          "by": [self.joint_reactions[j].by for j in joints]},
+        return LongTable(self.positions, tables.reaction_labels(joints, self.joint_reactions),
                          tables.REACTIONS_FLOATS, chunk, self._tiled,
                          {"Fx": lambda: self._force_columns()[0],
                           "Fy": lambda: self._force_columns()[1]})
@@ -337,8 +334,7 @@ class Solution:
             ax, ay = m.acc_arm(rx, ry)
             return {"x": x, "y": y, "vx": vx, "vy": vy, "ax": ax, "ay": ay}
 
-        return LongTable(self.positions, {"body": [b for b, _, _ in points],
-                                          "point": [p for _, p, _ in points]},
+        return LongTable(self.positions, tables.point_labels(points),
                          tables.KINEMATICS_FLOATS, chunk, self._tiled)
 
     def _bodies_long(self) -> LongTable:

@@ -295,9 +295,16 @@ def solve_lean(plan: Plan, positions: np.ndarray, block: int = ROWS,
         for c, d in zip(close, buf["d"], strict=True):
             c[lo:hi] = d[L.CL2, :hi - lo]
     plan.check_swept()
-    kind = plan.scene.driver.kind
+    return kept_sweep(plan.structure, plan.scene.driver.kind, drive, undefined, close)
+
+
+def kept_sweep(structure, kind: str, drive: np.ndarray, undefined: np.ndarray,
+               close: list[np.ndarray]) -> Kept:
+    """What a lean sweep keeps (:class:`~kinetostatics.solver.blocks.Kept`): the driver's
+    Me/Fe (``kind``: the driver's), the undefined rows, each dyad's closeness to a dead
+    centre and its singular rows (closeness within ``SINGULAR_WARN``)."""
     singular = [~(c > SINGULAR_WARN**2) for c in close]
-    return Kept(plan.structure, DriverReaction(kind, drive), undefined, close, singular)
+    return Kept(structure, DriverReaction(kind, drive), undefined, close, singular)
 
 
 def _param(scene: Scene, dyad, i: int, known: BodyMotion, m: np.ndarray, d: np.ndarray

@@ -20,10 +20,9 @@ import numpy as np
 
 from ...model.scene import GROUND, Scene
 from ..blocks import BLOCK_ROWS, Kept
-from ..kinematics import SINGULAR_WARN
 from ..memo import record_of
-from ..reactions import DriverReaction
-from .compose import Plan, Refused
+from .compose import Plan, Refused, kept_sweep
+from .geometry import NO_SWEPT_LOADS
 
 START = np.zeros(1, dtype=np.int64)     # where the one scene's rows begin in its cos, sin
 OWNERS = np.zeros(2 * BLOCK_ROWS, dtype=np.int64)  # each row's scene: 0 (a short sweep)
@@ -53,8 +52,7 @@ def fused_sweep(kernels, scene: Scene, full: Scene, structure, geometry,
     bad = kernel(0, n, OWNERS, cs, sn, START, *fixed, drive, close, undefined)
     if bad:
         raise Refused(bad)
-    return Kept(structure, DriverReaction("R", drive), undefined, [close],
-                [~(close > SINGULAR_WARN**2)])
+    return kept_sweep(structure, "R", drive, undefined, [close])
 
 
 def fused_call(kernels, scene: Scene, structure, geometry) -> tuple | None:
@@ -67,15 +65,23 @@ def fused_call(kernels, scene: Scene, structure, geometry) -> tuple | None:
     if found is None:
         return None
     kernel, order, known = found
+    return kernel, fused_arguments(plan, order, known)
+
+
+def fused_arguments(plan: Plan, order: tuple, known: list) -> tuple:
+    """The fused kernel's arguments after the rows' cos, sin and where they begin, before
+    its outputs: the driver's and the dyad's geometry, whether each outer joint's known
+    body is the driver, and each body's loads, swept loads and their statistics (bodies
+    in ``order``: the driver, the dyad's first, its second)."""
     gy, gys, _ = plan.dyads[0]
     dname = order[0]
     loads = [plan.loads[b] for b in order]
-    none = (np.zeros((1, 1)), 0, 0)      # (no swept loads: never read)
-    fixed = (*plan.driver, plan.speed, plan.accel, gy, gys, known[0] == dname,
-             known[1] == dname, tuple(g for g, _, _ in loads), tuple(gs for _, gs, _ in loads),
-             tuple(p for _, _, p in loads), (none[0],) * 3, (none[1],) * 3, (none[2],) * 3,
-             (NO_STATS,) * 3)
-    return kernel, fixed
+    swept = [plan.swept.get(b, NO_SWEPT_LOADS) for b in order]
+    return (*plan.driver, plan.speed, plan.accel, gy, gys, known[0] == dname,
+            known[1] == dname, tuple(g for g, _, _ in loads), tuple(gs for _, gs, _ in loads),
+            tuple(p for _, _, p in loads), tuple(sw[0] for sw in swept),
+            tuple(sw[1] for sw in swept), tuple(len(sw[2]) for sw in swept),
+            tuple(plan.stats.get(b, NO_STATS) for b in order))
 
 
 def fused_kernel(plan: Plan) -> tuple | None:

@@ -8,13 +8,11 @@ from dataclasses import replace
 import numpy as np
 
 from ..blocks import Kept
-from ..kinematics import SINGULAR_WARN
-from ..reactions import DriverReaction
 from ..solved import Solved
 from .choice import wanted
-from .compose import Plan, Refused, solve_full, solve_lean
+from .compose import Plan, Refused, kept_sweep, solve_full, solve_lean
 from .geometry import not_covered
-from .short import fused_kernel
+from .short import fused_arguments, fused_kernel
 from .solve import KeptRun
 
 
@@ -64,10 +62,6 @@ def solve_run_stacked(stacker, structure, ks: np.ndarray, lo: int, hi: int,
     return solve_full(plan, positions, rows=rows)
 
 
-NO_SWEPT = (np.zeros((1, 1)), 0, [])         # (a body without swept loads)
-NO_STATS = np.zeros((1, 1, 2))
-
-
 def fused_kept(plan: Plan, n: int, trig: tuple) -> Kept | None:
     """What a run's scenes keep (Me, the undefined rows, the closeness to a dead
     centre) of a crank and one dyad (not RTR), in one fused kernel over the run's ``n``
@@ -82,18 +76,10 @@ def fused_kept(plan: Plan, n: int, trig: tuple) -> Kept | None:
     if fused is None:
         return None
     kernel, order, known = fused
-    gy, gys, _ = plan.dyads[0]
-    dname = order[0]
-    swept = [plan.swept.get(b, NO_SWEPT) for b in order]
     drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
-    bad = kernel(0, n, plan.own, *trig, *plan.driver, plan.speed, plan.accel,
-                 gy, gys, known[0] == dname, known[1] == dname,
-                 tuple(plan.loads[b][0] for b in order), tuple(plan.loads[b][1] for b in order),
-                 tuple(plan.loads[b][2] for b in order), tuple(sw[0] for sw in swept),
-                 tuple(sw[1] for sw in swept), tuple(len(sw[2]) for sw in swept),
-                 tuple(plan.stats.get(b, NO_STATS) for b in order), drive, close, undefined)
+    bad = kernel(0, n, plan.own, *trig, *fused_arguments(plan, order, known), drive, close,
+                 undefined)
     if bad:
         raise Refused(bad)
     plan.check_swept()
-    singular = [~(close > SINGULAR_WARN**2)]
-    return Kept(plan.structure, DriverReaction("R", drive), undefined, [close], singular)
+    return kept_sweep(plan.structure, "R", drive, undefined, [close])
