@@ -121,15 +121,53 @@ def _import_every_module() -> None:
                     continue
 
 
+#: numba's cache folder as the suite's environment gives it (None: the loader's default),
+#: put back after each test (:func:`pytest_runtest_teardown`).
+NUMBA_BASE = os.environ.get("NUMBA_CACHE_DIR")
+
+
+def _settle_numba_cache() -> None:
+    """numba's cache folder in this process: the loader's folder for this version of the
+    kernels (kinetostatics.solver.fast.loader.cache_folder), before any kernel is made.
+
+    The loader settles the folder when it loads the kernels; here they are made earlier
+    (:func:`_import_every_module`, a test module's import), and numba gives a kernel its
+    cache folder when it is made: the suite's kernels were cached beside the sources
+    (``__pycache__``, unkeyed: stale after a change to a helper they inline), apart from
+    the folder of the commands the tests start, which compiled every kernel again (11-12 s
+    of CPU each for ``bench --quick`` and a forced ``solve``, measured 2026-11-29)."""
+    from kinetostatics.solver.fast import loader
+    if not loader.installed():
+        return
+    folder = loader.cache_folder()
+    if folder is not None:
+        import numba
+        numba.config.CACHE_DIR = str(folder)
+
+
+def pytest_runtest_teardown(item: pytest.Item) -> None:
+    """``NUMBA_CACHE_DIR`` as it was: the loader writes its keyed folder there when it
+    loads the kernels, and a command started by a later test would take that for the
+    base and cache one folder deeper (compiling everything again)."""
+    if os.environ.get("NUMBA_CACHE_DIR") != NUMBA_BASE:
+        if NUMBA_BASE is None:
+            os.environ.pop("NUMBA_CACHE_DIR", None)
+        else:
+            os.environ["NUMBA_CACHE_DIR"] = NUMBA_BASE
+
+
 def pytest_sessionstart(session: pytest.Session) -> None:
     """Every module imported where tests run (not in an xdist controller, which only
-    hands them out)."""
+    hands them out), the compiled kernels' cache folder settled first."""
     config = session.config
     controller = (config.pluginmanager.has_plugin("xdist") and
                   not hasattr(config, "workerinput") and
                   bool(config.getoption("numprocesses")) and
                   config.getoption("dist") != "no")
-    if PROFILE in ("repeatable", "quick") and not controller:
+    if controller:
+        return
+    _settle_numba_cache()
+    if PROFILE in ("repeatable", "quick"):
         _import_every_module()
 
 
@@ -245,12 +283,31 @@ SHARED_PER_MODULE = ("tests/kinetostatics/teaching/test_classroom.py",
                      "tests/kinetostatics/teaching/test_class_record.py")
 
 
+#: Tests that run the compiled kernels (numba), in the test's process or in a command it
+#: starts: all on one xdist worker (group ``numba``). The project ships no cache, so a
+#: fresh clone compiles each kernel on its first call (test_fast.py's kernels: 101 s of
+#: CPU on a fresh cache against 7 s on a warm one, measured serially 2026-11-29); spread
+#: over two workers, both compiled the same kernels at once. On one worker the first call
+#: compiles a kernel and writes numba's cache, every later call (and command) loads it.
+COMPILED = ("tests/kinetostatics/solver/test_fast.py::",
+            "tests/kinetostatics/solver/test_many_fast.py::",
+            "tests/kinetostatics/solver/test_fast_short.py::",
+            "tests/kinetostatics/solver/test_fast_auto.py::",
+            "tests/kinetostatics/results/test_fastpass.py::",
+            "tests/kinetostatics/design/test_stacked.py::"
+            "test_auto_judges_on_the_stack_even_with_the_compiled_path_loaded",
+            "tests/kinetostatics/design/test_bench_design.py::test_bench_design_row",
+            "tests/kinetostatics/test_cli.py::test_bench_quick")
+
+
 def _group(nodeid: str) -> str | None:
     """The xdist group of a test id: ``<fixture>-<scene>`` for the tests of
     :data:`SHARED_PER_SCENE`, ``<fixture>`` for those of :data:`SHARED_ONCE`, the module
-    for those of :data:`SHARED_PER_MODULE`, else None."""
+    for those of :data:`SHARED_PER_MODULE`, ``numba`` for :data:`COMPILED`, else None."""
     base, _, param = nodeid.partition("[")
     module = base.split("::")[0]
+    if base.startswith(COMPILED):
+        return "numba"
     if module in SHARED_PER_MODULE:
         return module
     for name, tests in SHARED_PER_SCENE.items():

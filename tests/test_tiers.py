@@ -5,6 +5,7 @@ property test on a fifth of its examples, at least ten; the full suite on all of
 from __future__ import annotations
 
 import os
+from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
@@ -43,3 +44,16 @@ def test_this_run_has_its_tiers_profile(request) -> None:
     assert count is None or settings.default.max_examples == count
     if want in ("quick", "repeatable"):
         assert settings.default.derandomize
+
+
+def test_the_compiled_paths_tests_share_one_worker() -> None:
+    """Every entry of COMPILED names a test module that is there, and the test where it
+    names one (a test renamed or moved would leave the group silently and compile the
+    kernels on a second worker again); their ids fall in the group ``numba``."""
+    root = Path(conftest.__file__).resolve().parents[1]
+    for entry in conftest.COMPILED:
+        module, _, name = entry.partition("::")
+        text = (root / module).read_text(encoding="utf-8")
+        assert not name or f"def {name}(" in text, entry
+        assert conftest._group(f"{entry}{'' if name else 'test_x'}[p]") == "numba", entry
+    assert conftest._group("tests/kinetostatics/solver/test_kinematics.py::test_x") is None
