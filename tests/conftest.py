@@ -297,7 +297,8 @@ COMPILED = ("tests/kinetostatics/solver/test_fast.py::",
             "tests/kinetostatics/design/test_stacked.py::"
             "test_auto_judges_on_the_stack_even_with_the_compiled_path_loaded",
             "tests/kinetostatics/design/test_bench_design.py::test_bench_design_row",
-            "tests/kinetostatics/test_cli.py::test_bench_quick")
+            "tests/kinetostatics/test_cli.py::test_bench_quick",
+            "tests/kinetostatics/test_cli.py::test_bench_tables_quick")
 
 
 def _group(nodeid: str) -> str | None:
