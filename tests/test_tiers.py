@@ -57,3 +57,21 @@ def test_the_compiled_paths_tests_share_one_worker() -> None:
         assert not name or f"def {name}(" in text, entry
         assert conftest._group(f"{entry}{'' if name else 'test_x'}[p]") == "numba", entry
     assert conftest._group("tests/kinetostatics/solver/test_kinematics.py::test_x") is None
+
+
+def test_the_kernels_cache_where_the_commands_cache_them(monkeypatch) -> None:
+    """numba caches this process's kernels in the loader's folder for this version of
+    them (the commands the tests start use the same), and the loader's write of that
+    folder into ``NUMBA_CACHE_DIR`` is undone after each test (a command started later
+    would take it for the base and cache a folder deeper)."""
+    from kinetostatics.solver.fast import loader
+    if not loader.installed():
+        pytest.skip("numba is not installed")
+    import numba
+    monkeypatch.setenv("NUMBA_CACHE_DIR", conftest.NUMBA_BASE or "")
+    if conftest.NUMBA_BASE is None:
+        monkeypatch.delenv("NUMBA_CACHE_DIR")
+    assert numba.config.CACHE_DIR == str(loader.cache_folder())
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(loader.cache_folder()))   # as the loader does
+    conftest.pytest_runtest_teardown(None)
+    assert os.environ.get("NUMBA_CACHE_DIR") == conftest.NUMBA_BASE
