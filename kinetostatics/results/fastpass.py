@@ -17,8 +17,8 @@ written straight into the table's columns, allocated once
   motion for it instead, in the table's own rows, wrote 30 of its 54 rows twice for the
   four-bar and read them back: measured 2026-11-29 at 1e6 positions, both tables
   0.14-0.15 s of user time against 0.16-0.18 s, processes alternated; the ``reactions``
-  table alone then costs the kinematics' writes, about 0.02-0.03 s, and holds its
-  432 MB.)
+  table alone now costs the kinematics' writes too, 0.21 against 0.17 s, and holds
+  their 432 MB, a peak of 807 against 627 MB.)
 
 No array over the whole sweep is made but the tables' own, and no temporary per column
 (the full re-solve gathered some 26 arrays, 200 MB at 1e6 positions, and the tables were
