@@ -54,11 +54,13 @@ from ..model.errors import UnitWarning, WorkbenchError
 from ..model.memory import check_memory
 from ..model.scene import load_scene
 from . import blocks
-from .blocks import LeanSolved
-from .deadpoints import dead_points_stacked, kin_measure2
+from .blocks import Kept, LeanSolved
+from .deadpoints import dead_points_stacked, kin_measure2, measure2
 from .driver import BodyMotion
 from .fast import solve_run_stacked, wanted
 from .fast.geometry import not_covered
+from .fast.solve import KeptRun
+from .fast.stacked import solve_group_kept
 from .footprint import columns, solve_bytes
 from .kinematics import Kinematics, solve_kinematics
 from .pipeline import check_distinct, solve_arrays, solve_block
@@ -240,7 +242,6 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     counts = np.array([s.driver.positions.size for s in scenes])
     starts = np.cumsum(counts) - counts
     positions = np.concatenate([s.driver.positions for s in scenes])
-    m2 = np.empty(positions.size)
     out: list[Any] = [None] * len(scenes)
     alone: list[int] = []
     structures: dict[tuple, Any] = {}
@@ -249,17 +250,26 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     compiled = not_covered(stacker.base) is None and wanted(positions.size) is not None
     scratch: dict = {}          # (the compiled path's buffers, reused run after run)
     bounds = run_bounds(starts, counts, FAST_RUN_ROWS if compiled else RUN_ROWS)
+    # lean on the compiled path: every run's kept arrays in one fused kernel call where
+    # the structure has one (each run then a view of them), else run by run
+    whole = _whole_group(trusty, stacker, structure, ks, counts, positions) if (
+        compiled and lean) else None
+    m2 = (np.empty(positions.size) if whole is None
+          else measure2(whole.closeness2, positions.size))
     for lo, hi in zip(bounds[:-1].tolist(), bounds[1:].tolist(), strict=True):
         a = int(starts[lo])
         b = int(starts[hi - 1] + counts[hi - 1])
-        try:
-            sol = _trapped_run(trusty, stacker, structure, ks, lo, hi, counts[lo:hi],
-                               positions[a:b], compiled, lean, scratch)
-        except Exception:
-            alone.extend(range(lo, hi))
-            m2[a:b] = np.inf        # solved alone: nothing of it to probe here
-            continue
-        m2[a:b] = kin_measure2(sol.kin)
+        if whole is not None:
+            sol = _kept_part(whole, a, b, positions)
+        else:
+            try:
+                sol = _trapped_run(trusty, stacker, structure, ks, lo, hi, counts[lo:hi],
+                                   positions[a:b], compiled, lean, scratch)
+            except Exception:
+                alone.extend(range(lo, hi))
+                m2[a:b] = np.inf        # solved alone: nothing of it to probe here
+                continue
+            m2[a:b] = kin_measure2(sol.kin)
         # lean, the scenes' Solutions keep of the run only Me/Fe and the flags; its
         # other arrays are let go before the next run is solved (which then reuses their
         # memory), and solved again when a scene's kinematics are first read
@@ -308,6 +318,26 @@ def _cut_run(sol: Solved, again: _Run, scenes: list, ks: np.ndarray,
         out[j] = one = CutSolved(scenes[j], sj, again, slice(r0, r0 + n), run)
         if path is not None:
             one.path = path
+
+
+def _whole_group(trusty: bool, *args) -> Kept | None:
+    """:func:`~kinetostatics.solver.fast.stacked.solve_group_kept` (``args``) with the
+    finite checks left to the floating-point trap where the stack's numbers are tame (as
+    :func:`_trapped_run`), or None: no fused kernel for it, or its kernel refused a row
+    (then each run is solved as before, the refused runs' scenes alone)."""
+    try:
+        return first_trapped(solve_group_kept, *args) if trusty else solve_group_kept(*args)
+    except Exception:
+        return None
+
+
+def _kept_part(whole: Kept, a: int, b: int, positions: np.ndarray) -> KeptRun:
+    """Rows ``a`` to ``b`` of the group's kept arrays, as a run's solve keeps them
+    (views)."""
+    return KeptRun(Kept(whole.structure, DriverReaction(whole.drive.kind,
+                                                        whole.drive.value[a:b]),
+                        whole.undefined[a:b], [c[a:b] for c in whole.closeness2],
+                        [f[a:b] for f in whole.singular]), positions[a:b])
 
 
 def run_bounds(starts: np.ndarray, counts: np.ndarray, size: int) -> np.ndarray:
