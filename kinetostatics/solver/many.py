@@ -60,7 +60,7 @@ from .driver import BodyMotion
 from .fast import solve_run_stacked, wanted
 from .fast.geometry import not_covered
 from .fast.solve import KeptRun
-from .fast.stacked import solve_group_kept
+from .fast.stacked import release, solve_group_kept
 from .footprint import columns, solve_bytes
 from .kinematics import Kinematics, solve_kinematics
 from .pipeline import check_distinct, solve_arrays, solve_block
@@ -280,10 +280,17 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
                  out)
         del sol
 
+    probes: dict = {}           # (the probes' structure per owner: the same each round)
+
     def at(where: np.ndarray, who: np.ndarray) -> Kinematics:
-        probe = replace(structure, assembly=tuple(k[who] for k in ks))
-        return solve_kinematics(stacker.scene(who, where), probe, strict=False)
+        probe = probes.get(id(who))
+        if probe is None or probe[0] is not who:
+            probe = probes[id(who)] = (who, replace(structure,
+                                                    assembly=tuple(k[who] for k in ks)))
+        return solve_kinematics(stacker.scene(who, where), probe[1], strict=False)
     dead = dead_points_stacked(m2, positions, starts, counts, at, increasing)
+    if whole is not None:
+        release(whole)          # (its closeness: read by nothing after the screen)
     for j in alone:
         out[j] = _alone(scenes[j])
     for j, one in enumerate(out):

@@ -197,6 +197,7 @@ class Stacker:
             self.bodies[name] = (mass, inertia, cog, {p: pair() for p in b.points})
         self.near = {k: pair() for k in s0.near}
         self.size = take()
+        self._gathered: tuple | None = None       # (scene(): the last owner's numbers)
 
     @classmethod
     def of_columns(cls, base: Scene, m: int, ground: dict, bodies: dict, size) -> Stacker:
@@ -213,6 +214,7 @@ class Stacker:
         self.bodies = bodies
         self.near = dict(base.near)
         self.size = size
+        self._gathered = None
         return self
 
     def tame(self) -> bool:
@@ -229,8 +231,21 @@ class Stacker:
 
     def scene(self, owner: np.ndarray, positions: np.ndarray) -> Scene:
         """The stacked scene: row i is scene ``owner[i]`` at driver position
-        ``positions[i]``."""
-        return self._build(lambda x: x[owner], positions)
+        ``positions[i]``. Each number gathered for ``owner`` is kept for the next call
+        with the same ``owner`` object (the dead-point probes' rounds: the same rows'
+        scenes at other positions; measured 2026-11-29, 1000 four-bars: 0.6 ms a call of
+        solve_many in three gathers of some 25 numbers over 5890 rows)."""
+        kept = self._gathered
+        if kept is None or kept[0] is not owner:
+            kept = self._gathered = (owner, {})
+        got = kept[1]
+
+        def gather(x: np.ndarray) -> np.ndarray:
+            y = got.get(id(x))      # (x: one of this stacker's arrays, alive with it)
+            if y is None:
+                y = got[id(x)] = x[owner]
+            return y
+        return self._build(gather, positions)
 
     def runs(self, lo: int, hi: int, counts: np.ndarray, positions: np.ndarray) -> Scene:
         """The stacked scene of scenes ``lo`` to ``hi - 1`` one after another, scene
