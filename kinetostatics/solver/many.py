@@ -241,11 +241,11 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     """
     counts = np.array([s.driver.positions.size for s in scenes])
     starts = np.cumsum(counts) - counts
-    positions = np.concatenate([s.driver.positions for s in scenes])
+    positions, tame = stacked_positions(scenes)
     out: list[Any] = [None] * len(scenes)
     alone: list[int] = []
     structures: dict[tuple, Any] = {}
-    trusty = stacker.tame() and positions_tame(positions)
+    trusty = stacker.tame() and tame
     # the compiled path for the whole group when wanted (numba loaded here, once)
     compiled = not_covered(stacker.base) is None and wanted(positions.size) is not None
     scratch: dict = {}          # (the compiled path's buffers, reused run after run)
@@ -325,6 +325,31 @@ def _cut_run(sol: Solved, again: _Run, scenes: list, ks: np.ndarray,
         out[j] = one = CutSolved(scenes[j], sj, again, slice(r0, r0 + n), run)
         if path is not None:
             one.path = path
+
+
+def stacked_positions(scenes: list) -> tuple[np.ndarray, bool]:
+    """Every scene's driver positions one after another, and whether they are tame
+    (:func:`~kinetostatics.solver.trap.positions_tame`). Scenes that all sweep as the
+    first, read from the same start, stop and count
+    (:attr:`~kinetostatics.model.scene_types.Driver.sweep`: the same bits), share one
+    read-only array, the last one kept: the same stack solved again (a design's
+    generations, a study's loads) takes it as it is (measured 2026-11-29, 1000 four-bars
+    x 361: 2.3 ms a call gathering 1000 sweeps into fresh pages)."""
+    key = scenes[0].driver.sweep
+    if key is None or any([s.driver.sweep != key for s in scenes]):
+        positions = np.concatenate([s.driver.positions for s in scenes])
+        return positions, positions_tame(positions)
+    got = _POSITIONS.get((key, len(scenes)))
+    if got is None:
+        positions = np.tile(scenes[0].driver.positions, len(scenes))
+        positions.flags.writeable = False
+        got = (positions, positions_tame(positions))
+        _POSITIONS.clear()
+        _POSITIONS[(key, len(scenes))] = got
+    return got
+
+
+_POSITIONS: dict[tuple, tuple[np.ndarray, bool]] = {}
 
 
 def _whole_group(trusty: bool, *args) -> Kept | None:

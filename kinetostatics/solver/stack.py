@@ -282,10 +282,17 @@ class Stacker:
         ``start[e]`` = ``s`` or 0."""
         p0 = self.base.driver.positions
         if p0.size and positions.size == p0.size * (hi - lo):
-            bits = positions.view(np.int64).reshape(hi - lo, p0.size)
-            if (bits == p0.view(np.int64)).all():
+            if self._same_sweep(lo, hi) or (positions.view(np.int64).reshape(hi - lo, p0.size)
+                                            == p0.view(np.int64)).all():
                 return (*self._trig0[1:], np.cumsum(counts) - counts)
         return (*self.trig_rows(lo, hi, positions)[1:], np.zeros(hi - lo, dtype=np.int64))
+
+    def _same_sweep(self, lo: int, hi: int) -> bool:
+        """Whether scenes ``lo`` to ``hi - 1`` sweep as the first, read from the same
+        start, stop and count (:attr:`~kinetostatics.model.scene_types.Driver.sweep`:
+        the same bits, told without a pass over their rows)."""
+        key = self.base.driver.sweep
+        return key is not None and all([s.driver.sweep == key for s in self.scenes[lo:hi]])
 
     def trig_rows(self, lo: int, hi: int, positions: np.ndarray
               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -298,8 +305,8 @@ class Stacker:
         p0 = self.base.driver.positions
         n = p0.size
         if n and positions.size == n * (hi - lo):       # each scene at the first's sweep?
-            bits = positions.view(np.int64).reshape(hi - lo, n)
-            if (bits == p0.view(np.int64)).all():
+            if self._same_sweep(lo, hi) or (positions.view(np.int64).reshape(hi - lo, n)
+                                            == p0.view(np.int64)).all():
                 return tuple(np.tile(x, hi - lo) for x in self._trig0)
         done: dict[bytes, tuple] = {}
         parts = []
