@@ -313,18 +313,15 @@ def _cut_run(sol: Solved, again: _Run, scenes: list, ks: np.ndarray,
     run = (sol.drive.kind, drive, _per_row(drive, n_run), undefined,
            _per_row(undefined, n_run),
            [(f, _per_row(f, n_run)) for f in (np.asarray(dm.singular) for dm in sol.kin.dyads)])
-    assemblies = ks[:, lo:hi].T.tolist()
+    assemblies = zip(*ks[:, lo:hi].tolist(), strict=True)    # (a tuple per scene)
     r0s = (starts[lo:hi] - a).tolist()
     path = getattr(sol, "path", None)     # (set by the compiled path)
-    for j, assembly, r0, n in zip(range(lo, hi), assemblies, r0s, counts[lo:hi].tolist(),
-                                  strict=True):
-        key = tuple(assembly)
+    for j, key, r0, n in zip(range(lo, hi), assemblies, r0s, counts[lo:hi].tolist(),
+                             strict=True):
         sj = structures.get(key)
         if sj is None:
             sj = structures[key] = replace(structure, assembly=key)
-        out[j] = one = CutSolved(scenes[j], sj, again, slice(r0, r0 + n), run)
-        if path is not None:
-            one.path = path
+        out[j] = CutSolved(scenes[j], sj, again, slice(r0, r0 + n), run, path)
 
 
 def stacked_positions(scenes: list) -> tuple[np.ndarray, bool]:
@@ -428,10 +425,13 @@ class CutSolved:
 
     __slots__ = ("again", "dead", "path", "rows", "run", "scene", "structure")
 
-    def __init__(self, scene, structure, again: _Run, rows: slice, run: tuple):
+    def __init__(self, scene, structure, again: _Run, rows: slice, run: tuple,
+                 path: str | None = None):
         self.scene, self.structure, self.again, self.rows, self.run = (
             scene, structure, again, rows, run)
         self.dead = None            # (filled in once every scene's are screened)
+        if path is not None:        # (the compiled path's; else the class has none)
+            self.path = path
 
     @property
     def known(self) -> dict:
