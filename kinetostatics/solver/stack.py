@@ -198,6 +198,7 @@ class Stacker:
         self.near = {k: pair() for k in s0.near}
         self.size = take()
         self._gathered: tuple | None = None       # (scene(): the last owner's numbers)
+        self._tiles: dict[int, tuple] = {}       # (trig_rows: a shared sweep per count)
 
     @classmethod
     def of_columns(cls, base: Scene, m: int, ground: dict, bodies: dict, size) -> Stacker:
@@ -215,6 +216,7 @@ class Stacker:
         self.near = dict(base.near)
         self.size = size
         self._gathered = None
+        self._tiles = {}
         return self
 
     def tame(self) -> bool:
@@ -307,7 +309,7 @@ class Stacker:
         if n and positions.size == n * (hi - lo):       # each scene at the first's sweep?
             if self._same_sweep(lo, hi) or (positions.view(np.int64).reshape(hi - lo, n)
                                             == p0.view(np.int64)).all():
-                return tuple(np.tile(x, hi - lo) for x in self._trig0)
+                return self._tiled(hi - lo)
         done: dict[bytes, tuple] = {}
         parts = []
         for sc in self.scenes[lo:hi]:
@@ -319,6 +321,20 @@ class Stacker:
                 hit = done[key] = (th, np.cos(th), np.sin(th))
             parts.append(hit)
         return tuple(np.concatenate(x) for x in zip(*parts, strict=True))
+
+    def _tiled(self, m: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The first scene's angles, cos and sin laid ``m`` times one after another,
+        read-only (as :meth:`~kinetostatics.model.scene_types.Driver.trig`'s), made once
+        per count for the runs of this stack (most runs hold as many scenes: measured
+        2026-11-29, the numpy path's 1000 four-bars x 361 in 30 runs, 3 ms a call tiling
+        them run by run)."""
+        got = self._tiles.get(m)
+        if got is None:
+            got = tuple(np.tile(x, m) for x in self._trig0)
+            for x in got:
+                x.flags.writeable = False
+            self._tiles[m] = got
+        return got
 
     @cached_property
     def _trig0(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
