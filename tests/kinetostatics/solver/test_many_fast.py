@@ -90,9 +90,12 @@ def test_what_one_call_keeps_never_reaches_the_next(alone_calls, fast) -> None:
         return out
     same = group(5, 0.0)
     other = group(6, 0.7)                   # (as many rows, other positions)
-    dead = [load_scene(change_point_four_bar(0.1, 0.3, 0.2, 0.5 * i, 181)) for i in range(4)]
-    assert any(len(ks.solve(sc).kin.between) for sc in dead)
-    for scenes in (same, other, dead, same):
+    # (one sweep shared by the five, their dead points found by probing its positions)
+    dead = [load_scene(change_point_four_bar(a, 0.3, 0.2, 0.5, 181))
+            for a in (0.1, 0.105, 0.11, 0.115, 0.12)]
+    apart = [load_scene(change_point_four_bar(0.1, 0.3, 0.2, 0.5 * i, 181)) for i in range(4)]
+    assert all(len(ks.solve(sc).kin.between) for sc in dead)
+    for scenes in (same, other, dead, apart, same):
         sols = ks.solve_many(scenes)
         assert alone_calls == []
         for s, sc in zip(sols, scenes, strict=True):
