@@ -8,8 +8,11 @@ one scene over all its rows (:mod:`~kinetostatics.solver.stack`; groups of at mo
 ``CHUNK_ROWS`` rows), a run of whole scenes of about ``RUN_ROWS`` rows at a time (the
 solver's cost per pass is spread over many scenes while its arrays stay in the cache),
 and cuts each run's result into one scene's arrays (:class:`CutSolved`) per scene
-(no array over all the rows is gathered: a scene's rows lie in one run). Each holds
-exactly the numbers :func:`~kinetostatics.solve` gives that scene alone: the same
+(no array over all the rows is gathered: a scene's rows lie in one run). On the compiled
+path a crank and one dyad keep every run's Me, flags and closeness from one fused
+kernel call over the whole group, each run a view of them
+(:func:`~kinetostatics.solver.fast.stacked.solve_group_kept`). Each holds exactly the
+numbers :func:`~kinetostatics.solve` gives that scene alone: the same
 elementwise operations run on every row. A scene that cannot be stacked (joint
 friction, a mass model), or whose run the stacked pass refuses, is solved alone; a
 ``resist`` or ``when = "resisting"`` load takes its threshold from each scene's own rows.
@@ -79,7 +82,9 @@ RUN_ROWS = 12_288
 # the compiled path's runs: its kernels go over blocks of a run (compose.ROWS) whatever
 # its length, and keep of it only Me/Fe, the flags and the closeness; longer runs share
 # each run's work in Python (the scenes' geometry, the plan) among more scenes
-# (measured 2026-11-29, 1000 four-bars x 361: 47 ms a call against 59 in runs of 12 288)
+# (measured 2026-11-29, 1000 four-bars x 361: 47 ms a call against 59 in runs of 12 288;
+# a crank and one dyad are now solved in one fused call for the whole group, its runs
+# only cut from it and solved again when read: _whole_group)
 FAST_RUN_ROWS = 49_152
 CHUNK_ROWS = 1_048_576  # rows per group (one Stacker, one dead-point screen for all)
 
