@@ -8,8 +8,11 @@ one scene over all its rows (:mod:`~kinetostatics.solver.stack`; groups of at mo
 ``CHUNK_ROWS`` rows), a run of whole scenes of about ``RUN_ROWS`` rows at a time (the
 solver's cost per pass is spread over many scenes while its arrays stay in the cache),
 and cuts each run's result into one scene's arrays (:class:`CutSolved`) per scene
-(no array over all the rows is gathered: a scene's rows lie in one run). Each holds
-exactly the numbers :func:`~kinetostatics.solve` gives that scene alone: the same
+(no array over all the rows is gathered: a scene's rows lie in one run). On the compiled
+path a crank and one dyad keep every run's Me, flags and closeness from one fused
+kernel call over the whole group, each run a view of them
+(:func:`~kinetostatics.solver.fast.stacked.solve_group_kept`). Each holds exactly the
+numbers :func:`~kinetostatics.solve` gives that scene alone: the same
 elementwise operations run on every row. A scene that cannot be stacked (joint
 friction, a mass model), or whose run the stacked pass refuses, is solved alone; a
 ``resist`` or ``when = "resisting"`` load takes its threshold from each scene's own rows.
@@ -54,11 +57,13 @@ from ..model.errors import UnitWarning, WorkbenchError
 from ..model.memory import check_memory
 from ..model.scene import load_scene
 from . import blocks
-from .blocks import LeanSolved
-from .deadpoints import dead_points_stacked, kin_measure2
+from .blocks import Kept, LeanSolved
+from .deadpoints import dead_points_stacked, kin_measure2, measure2
 from .driver import BodyMotion
 from .fast import solve_run_stacked, wanted
 from .fast.geometry import not_covered
+from .fast.solve import KeptRun
+from .fast.stacked import release, solve_group_kept
 from .footprint import columns, solve_bytes
 from .kinematics import Kinematics, solve_kinematics
 from .pipeline import check_distinct, solve_arrays, solve_block
@@ -77,7 +82,9 @@ RUN_ROWS = 12_288
 # the compiled path's runs: its kernels go over blocks of a run (compose.ROWS) whatever
 # its length, and keep of it only Me/Fe, the flags and the closeness; longer runs share
 # each run's work in Python (the scenes' geometry, the plan) among more scenes
-# (measured 2026-11-29, 1000 four-bars x 361: 47 ms a call against 59 in runs of 12 288)
+# (measured 2026-11-29, 1000 four-bars x 361: 47 ms a call against 59 in runs of 12 288;
+# a crank and one dyad are now solved in one fused call for the whole group, its runs
+# only cut from it and solved again when read: _whole_group)
 FAST_RUN_ROWS = 49_152
 CHUNK_ROWS = 1_048_576  # rows per group (one Stacker, one dead-point screen for all)
 
@@ -239,27 +246,35 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     """
     counts = np.array([s.driver.positions.size for s in scenes])
     starts = np.cumsum(counts) - counts
-    positions = np.concatenate([s.driver.positions for s in scenes])
-    m2 = np.empty(positions.size)
+    positions, tame = stacked_positions(scenes)
     out: list[Any] = [None] * len(scenes)
     alone: list[int] = []
     structures: dict[tuple, Any] = {}
-    trusty = stacker.tame() and positions_tame(positions)
+    trusty = stacker.tame() and tame
     # the compiled path for the whole group when wanted (numba loaded here, once)
     compiled = not_covered(stacker.base) is None and wanted(positions.size) is not None
     scratch: dict = {}          # (the compiled path's buffers, reused run after run)
     bounds = run_bounds(starts, counts, FAST_RUN_ROWS if compiled else RUN_ROWS)
+    # lean on the compiled path: every run's kept arrays in one fused kernel call where
+    # the structure has one (each run then a view of them), else run by run
+    whole = _whole_group(trusty, stacker, structure, ks, counts, positions) if (
+        compiled and lean) else None
+    m2 = (np.empty(positions.size) if whole is None
+          else measure2(whole.closeness2, positions.size))
     for lo, hi in zip(bounds[:-1].tolist(), bounds[1:].tolist(), strict=True):
         a = int(starts[lo])
         b = int(starts[hi - 1] + counts[hi - 1])
-        try:
-            sol = _trapped_run(trusty, stacker, structure, ks, lo, hi, counts[lo:hi],
-                               positions[a:b], compiled, lean, scratch)
-        except Exception:
-            alone.extend(range(lo, hi))
-            m2[a:b] = np.inf        # solved alone: nothing of it to probe here
-            continue
-        m2[a:b] = kin_measure2(sol.kin)
+        if whole is not None:
+            sol = _kept_part(whole, a, b, positions)
+        else:
+            try:
+                sol = _trapped_run(trusty, stacker, structure, ks, lo, hi, counts[lo:hi],
+                                   positions[a:b], compiled, lean, scratch)
+            except Exception:
+                alone.extend(range(lo, hi))
+                m2[a:b] = np.inf        # solved alone: nothing of it to probe here
+                continue
+            m2[a:b] = kin_measure2(sol.kin)
         # lean, the scenes' Solutions keep of the run only Me/Fe and the flags; its
         # other arrays are let go before the next run is solved (which then reuses their
         # memory), and solved again when a scene's kinematics are first read
@@ -270,10 +285,17 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
                  out)
         del sol
 
+    probes: dict = {}           # (the probes' structure per owner: the same each round)
+
     def at(where: np.ndarray, who: np.ndarray) -> Kinematics:
-        probe = replace(structure, assembly=tuple(k[who] for k in ks))
-        return solve_kinematics(stacker.scene(who, where), probe, strict=False)
+        probe = probes.get(id(who))
+        if probe is None or probe[0] is not who:
+            probe = probes[id(who)] = (who, replace(structure,
+                                                    assembly=tuple(k[who] for k in ks)))
+        return solve_kinematics(stacker.scene(who, where), probe[1], strict=False)
     dead = dead_points_stacked(m2, positions, starts, counts, at, increasing)
+    if whole is not None:
+        release(whole)          # (its closeness: read by nothing after the screen)
     for j in alone:
         out[j] = _alone(scenes[j])
     for j, one in enumerate(out):
@@ -296,18 +318,60 @@ def _cut_run(sol: Solved, again: _Run, scenes: list, ks: np.ndarray,
     run = (sol.drive.kind, drive, _per_row(drive, n_run), undefined,
            _per_row(undefined, n_run),
            [(f, _per_row(f, n_run)) for f in (np.asarray(dm.singular) for dm in sol.kin.dyads)])
-    assemblies = ks[:, lo:hi].T.tolist()
+    assemblies = zip(*ks[:, lo:hi].tolist(), strict=True)    # (a tuple per scene)
     r0s = (starts[lo:hi] - a).tolist()
     path = getattr(sol, "path", None)     # (set by the compiled path)
-    for j, assembly, r0, n in zip(range(lo, hi), assemblies, r0s, counts[lo:hi].tolist(),
-                                  strict=True):
-        key = tuple(assembly)
+    for j, key, r0, n in zip(range(lo, hi), assemblies, r0s, counts[lo:hi].tolist(),
+                             strict=True):
         sj = structures.get(key)
         if sj is None:
             sj = structures[key] = replace(structure, assembly=key)
-        out[j] = one = CutSolved(scenes[j], sj, again, slice(r0, r0 + n), run)
-        if path is not None:
-            one.path = path
+        out[j] = CutSolved(scenes[j], sj, again, slice(r0, r0 + n), run, path)
+
+
+def stacked_positions(scenes: list) -> tuple[np.ndarray, bool]:
+    """Every scene's driver positions one after another, and whether they are tame
+    (:func:`~kinetostatics.solver.trap.positions_tame`). Scenes that all sweep as the
+    first, read from the same start, stop and count
+    (:attr:`~kinetostatics.model.scene_types.Driver.sweep`: the same bits), share one
+    read-only array, the last one kept: the same stack solved again (a design's
+    generations, a study's loads) takes it as it is (measured 2026-11-29, 1000 four-bars
+    x 361: 2.3 ms a call gathering 1000 sweeps into fresh pages)."""
+    key = scenes[0].driver.sweep
+    if key is None or any([s.driver.sweep != key for s in scenes]):
+        positions = np.concatenate([s.driver.positions for s in scenes])
+        return positions, positions_tame(positions)
+    got = _POSITIONS.get((key, len(scenes)))
+    if got is None:
+        positions = np.tile(scenes[0].driver.positions, len(scenes))
+        positions.flags.writeable = False
+        got = (positions, positions_tame(positions))
+        _POSITIONS.clear()
+        _POSITIONS[(key, len(scenes))] = got
+    return got
+
+
+_POSITIONS: dict[tuple, tuple[np.ndarray, bool]] = {}
+
+
+def _whole_group(trusty: bool, *args) -> Kept | None:
+    """:func:`~kinetostatics.solver.fast.stacked.solve_group_kept` (``args``) with the
+    finite checks left to the floating-point trap where the stack's numbers are tame (as
+    :func:`_trapped_run`), or None: no fused kernel for it, or its kernel refused a row
+    (then each run is solved as before, the refused runs' scenes alone)."""
+    try:
+        return first_trapped(solve_group_kept, *args) if trusty else solve_group_kept(*args)
+    except Exception:
+        return None
+
+
+def _kept_part(whole: Kept, a: int, b: int, positions: np.ndarray) -> KeptRun:
+    """Rows ``a`` to ``b`` of the group's kept arrays, as a run's solve keeps them
+    (views)."""
+    return KeptRun(Kept(whole.structure, DriverReaction(whole.drive.kind,
+                                                        whole.drive.value[a:b]),
+                        whole.undefined[a:b], [c[a:b] for c in whole.closeness2],
+                        [f[a:b] for f in whole.singular]), positions[a:b])
 
 
 def run_bounds(starts: np.ndarray, counts: np.ndarray, size: int) -> np.ndarray:
@@ -366,10 +430,13 @@ class CutSolved:
 
     __slots__ = ("again", "dead", "path", "rows", "run", "scene", "structure")
 
-    def __init__(self, scene, structure, again: _Run, rows: slice, run: tuple):
+    def __init__(self, scene, structure, again: _Run, rows: slice, run: tuple,
+                 path: str | None = None):
         self.scene, self.structure, self.again, self.rows, self.run = (
             scene, structure, again, rows, run)
         self.dead = None            # (filled in once every scene's are screened)
+        if path is not None:        # (the compiled path's; else the class has none)
+            self.path = path
 
     @property
     def known(self) -> dict:

@@ -62,7 +62,77 @@ def solve_run_stacked(stacker, structure, ks: np.ndarray, lo: int, hi: int,
     return solve_full(plan, positions, rows=rows)
 
 
-def fused_kept(plan: Plan, n: int, trig: tuple) -> Kept | None:
+def solve_group_kept(stacker, structure, ks: np.ndarray, counts: np.ndarray,
+                     positions: np.ndarray) -> Kept | None:
+    """What the cut Solutions of every scene of ``stacker`` keep (``counts`` rows each at
+    ``positions``, each dyad in its scene's assembly ``ks``), in one fused kernel call
+    over all their rows (:func:`fused_kept`), or None: not a crank and one dyad the fused
+    kernels cover (solved run by run, :func:`solve_run_stacked`). Each row is the one a
+    run of its scenes gives (a tile never spans two scenes; every number the scene's
+    own): the geometry and the plan are worked out once, not per run (measured
+    2026-11-29, 1000 four-bars x 361 in 8 runs: 1.2 ms of plans and 1.7 ms of tables a
+    call). Raises :class:`~kinetostatics.solver.fast.compose.Refused` as the run's kernel
+    does (the caller then solves run by run)."""
+    kernels = wanted(positions.size)
+    if kernels is None or stacker.base.driver.kind != "R":
+        return None
+    m = counts.size
+    # (the table's driver at the first scene's sweep: the kernel takes the rows' cos and
+    # sin from sweeps(), and a driver over every row would work out their angles, a
+    # fresh array of 8 bytes a row, for nothing)
+    table = stacker.table(0, m, counts, stacker.base.driver.positions, trig=False)
+    if not_covered(table) is not None:
+        return None
+    plan = Plan(kernels, table, structure, ks, owners(counts))
+    return fused_kept(plan, positions.size, stacker.sweeps(0, m, counts, positions),
+                      _scratch(positions.size))
+
+
+def owners(counts: np.ndarray) -> np.ndarray:
+    """Each row's scene (counted from 0) of a stack of scenes of ``counts`` rows each,
+    read-only, the last one kept: the same stack solved again (a design's generations, a
+    study's loads) reuses it rather than fault in 8 fresh bytes a row (measured
+    2026-11-29, 1000 four-bars x 361: 706 page faults a call)."""
+    key = counts.tobytes()
+    own = _OWNERS.get(key)
+    if own is None:
+        own = np.repeat(np.arange(counts.size, dtype=np.int64), counts)
+        own.flags.writeable = False
+        _OWNERS.clear()
+        _OWNERS[key] = own
+    return own
+
+
+_OWNERS: dict[bytes, np.ndarray] = {}
+
+
+def _scratch(n: int) -> np.ndarray:
+    """An array of ``n`` doubles for a group's closeness to a dead centre, which no
+    Solution keeps (its singular flags are made of it, its dead points screened from it):
+    one given back by :func:`release` if it is long enough, else a new one (measured
+    2026-11-29, 1000 four-bars x 361: 708 page faults a call, about 0.9 ms, faulting in
+    a fresh one)."""
+    try:
+        buf = _SCRATCH.pop()
+    except IndexError:          # (none free: first call, or another thread has it)
+        buf = None
+    return buf[:n] if buf is not None and buf.size >= n else np.empty(n)
+
+
+def release(kept: Kept) -> None:
+    """Give back the closeness array of :func:`solve_group_kept`'s ``kept`` once its dead
+    points are screened (nothing reads it after)."""
+    buf = kept.closeness2[0]
+    buf = buf if buf.base is None else buf.base
+    if len(_SCRATCH) < 2:
+        _SCRATCH.append(buf)
+
+
+_SCRATCH: list[np.ndarray] = []      # (list.pop and append: each thread its own array)
+
+
+def fused_kept(plan: Plan, n: int, trig: tuple, close: np.ndarray | None = None
+               ) -> Kept | None:
     """What a run's scenes keep (Me, the undefined rows, the closeness to a dead
     centre) of a crank and one dyad (not RTR), in one fused kernel over the run's ``n``
     rows (``trig``: the crank's cos and sin and where each scene's rows begin in them,
@@ -70,13 +140,15 @@ def fused_kept(plan: Plan, n: int, trig: tuple) -> Kept | None:
     :data:`~kinetostatics.solver.fast.fused_kernels.KEPT`: every kernel of a block in turn on
     each tile of 64 rows, its values in one scratch array; the numbers of the
     kernels composed over blocks, bit for bit), or None for another structure (solved
-    by :func:`~kinetostatics.solver.fast.compose.solve_lean`). Raises
+    by :func:`~kinetostatics.solver.fast.compose.solve_lean`). ``close``: the array the
+    closeness is written to (a new one if None). Raises
     :class:`~kinetostatics.solver.fast.compose.Refused` as the composed kernels do."""
     fused = fused_kernel(plan)
     if fused is None:
         return None
     kernel, order, known = fused
-    drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
+    drive, undefined = np.empty(n), np.zeros(n, dtype=bool)
+    close = np.empty(n) if close is None else close
     bad = kernel(0, n, plan.own, *trig, *fused_arguments(plan, order, known), drive, close,
                  undefined)
     if bad:

@@ -72,3 +72,34 @@ def test_a_refused_run_is_solved_scene_by_scene(alone_calls, fast, monkeypatch
         assert s.path == "fast"
         assert_same(s, ks.solve(sc))
     assert all(type(r) is not many.CutSolved for r in many.solve_all(scenes))
+
+
+def test_what_one_call_keeps_never_reaches_the_next(alone_calls, fast) -> None:
+    """What solve_many keeps from call to call (the group's closeness array, a shared
+    sweep's stacked positions, each row's scene) carries nothing of one call's rows into
+    the next: groups of the same sweep, of another sweep of as many rows, of
+    change-point four-bars (dead points between rows), one after another; each scene's
+    Solution is its solve's, flags and dead points too."""
+    from .test_deadpoints import change_point_four_bar
+
+    def group(seed: int, start: float) -> list:
+        out = []
+        for d in variants("four_bar", 5, 0.05, seed=seed):
+            d["driver"].update(start=start, stop=start + 360.0, count=181)
+            out.append(load_scene(d))
+        return out
+    same = group(5, 0.0)
+    other = group(6, 0.7)                   # (as many rows, other positions)
+    # (one sweep shared by the five, their dead points found by probing its positions)
+    dead = [load_scene(change_point_four_bar(a, 0.3, 0.2, 0.5, 181))
+            for a in (0.1, 0.105, 0.11, 0.115, 0.12)]
+    apart = [load_scene(change_point_four_bar(0.1, 0.3, 0.2, 0.5 * i, 181)) for i in range(4)]
+    assert all(len(ks.solve(sc).kin.between) for sc in dead)
+    for scenes in (same, other, dead, apart, same):
+        sols = ks.solve_many(scenes)
+        assert alone_calls == []
+        for s, sc in zip(sols, scenes, strict=True):
+            alone = ks.solve(sc)
+            assert s.path == alone.path == "fast"
+            assert_same(s, alone)
+            np.testing.assert_array_equal(s.kin.between, alone.kin.between)
