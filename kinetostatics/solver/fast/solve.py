@@ -7,7 +7,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ...model.scene import Scene
+from ...model.scene import GROUND, Scene
 from ..blocks import BLOCK_ROWS, Kept, LeanSolved
 from ..deadpoints import dead_points_of_sweep, measure2
 from ..kinematics import choose_assembly, with_positions
@@ -28,10 +28,18 @@ from .compose import (
     solve_full,
     solve_lean,
 )
-from .geometry import not_covered
+from .geometry import NO_SWEPT_LOADS, not_covered
 from .layout import CL2
 from .loader import kernels as loaded_kernels
-from .short import OWNERS, START, fused_arguments, fused_call, fused_kernel, fused_sweep
+from .short import (
+    NO_STATS,
+    OWNERS,
+    START,
+    fused_arguments,
+    fused_call,
+    fused_kernel,
+    fused_sweep,
+)
 
 
 def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
@@ -53,6 +61,8 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
     try:
         if n >= 2 * BLOCK_ROWS:
             sweep = fused_blocks(kernels, scene, full, structure, geometry, positions)
+            if sweep is None:
+                sweep = guided_blocks(kernels, full, structure, geometry, positions)
             if sweep is None:
                 sweep = solve_lean(Plan(kernels, full, structure, structure.assembly,
                                         geometry=geometry), positions)
@@ -143,6 +153,66 @@ def _fused(kernels, scene: Scene, structure, geometry) -> tuple | None:
         return None
     kernel, order, known = found
     return kernel, fused_arguments(plan, order, known), plan
+
+
+def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarray
+                  ) -> Kept | None:
+    """The :class:`~kinetostatics.solver.blocks.Kept` of a long sweep of a crank and one
+    RTR dyad (the slotted lever's structure) from the kernels of
+    :mod:`~kinetostatics.solver.fast.guide_kernels`, per block of :data:`FUSED_ROWS`
+    rows: the crank's cos and sin (numpy's), the guide's angle, its cos and sin (numpy's),
+    then the rest, the numbers of the composed kernels bit for bit; or None for another
+    structure. Raises :class:`~kinetostatics.solver.fast.compose.Refused` as the
+    composed kernels do."""
+    plan = Plan(kernels, full, structure, structure.assembly, geometry=geometry)
+    found = _guided(plan)
+    if found is None:
+        return None
+    from .guide_kernels import rtr_guide, rtr_kept  # (numba loaded: plan.k given)
+    first, rest = found
+    angles = full.driver.angles
+    n = positions.size
+    width = min(FUSED_ROWS, n)
+    cs, sn, th, reach, gap, ct, sg = np.empty((7, width))
+    drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
+    bad = 0
+    for lo in range(0, n, width):
+        m = min(lo + width, n) - lo
+        np.cos(angles[lo:lo + m], out=cs[:m])
+        np.sin(angles[lo:lo + m], out=sn[:m])
+        rtr_guide(0, m, cs, sn, *first, th, reach, gap)
+        np.cos(th[:m], out=ct[:m])
+        np.sin(th[:m], out=sg[:m])
+        bad += rtr_kept(0, m, OWNERS, cs, sn, *rest, ct, sg, reach, gap, drive[lo:lo + m],
+                        close[lo:lo + m], undefined[lo:lo + m])
+    if bad:
+        raise Refused(bad)
+    plan.check_swept()
+    return kept_sweep(structure, "R", drive, undefined, [close])
+
+
+def _guided(plan: Plan) -> tuple | None:
+    """The arguments of :func:`~kinetostatics.solver.fast.guide_kernels.rtr_guide` and
+    of ``rtr_kept`` (but the rows' and the outputs) for a crank and one RTR dyad whose
+    outer joints are on the ground or the crank; else None."""
+    if not plan.crank or len(plan.dyads) != 1 or plan.dyads[0][2].kind != "RTR":
+        return None
+    gy, gys, dyad = plan.dyads[0]
+    dname = plan.scene.driver.body
+    order = (dname, *dyad.bodies)
+    known = [j.other(b) for j, b in zip(dyad.outer, dyad.bodies, strict=True)]
+    gd, gds = plan.driver
+    if (gys or gds or len(plan.bodies) != 3 or set(plan.bodies) != set(order)
+            or not set(known) <= {GROUND, dname}):
+        return None
+    first = (gd, plan.speed, plan.accel, gy, known[0] == dname, known[1] == dname)
+    loads = [plan.loads[b] for b in order]
+    swept = [plan.swept.get(b, NO_SWEPT_LOADS) for b in order]
+    if any(gs for _, gs, _ in loads) or any(sw[1] for sw in swept):
+        return None
+    return first, (*first, tuple(g for g, _, _ in loads), tuple(p for _, _, p in loads),
+                   tuple(sw[0] for sw in swept), tuple(len(sw[2]) for sw in swept),
+                   tuple(plan.stats.get(b, NO_STATS) for b in order))
 
 
 class SolvedAgain:

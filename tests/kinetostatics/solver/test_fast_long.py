@@ -14,16 +14,21 @@ from kinetostatics.model.scene import load_scene
 from kinetostatics.solver.blocks import BLOCK_ROWS
 from kinetostatics.solver.fast import loader, use
 from kinetostatics.solver.fast.compose import Plan, solve_lean
-from kinetostatics.solver.fast.solve import FUSED_ROWS, _assembled, fused_blocks
+from kinetostatics.solver.fast.solve import FUSED_ROWS, _assembled, fused_blocks, guided_blocks
 from kinetostatics.solver.pipeline import structure_of
 
-from .test_fast_short import FUSED, full_solve
+from .test_fast_short import DATA, FUSED, full_solve
+
+# a crank and one RTR dyad: the guide on the second body (the slotted lever) and on the
+# first (the oscillating cylinder, with the crank's acceleration)
+GUIDED = {"slotted lever": ks.example("slotted_lever"),
+          "oscillating cylinder": DATA / "oscillating_cylinder.toml"}
 
 pytestmark = [pytest.mark.slow,
               pytest.mark.skipif(not loader.installed(), reason="numba not installed")]
 
 # more rows than the short sweep's limit, not a whole number of the fused calls' blocks
-COUNT = 2 * FUSED_ROWS + 1001
+COUNT = 2 * BLOCK_ROWS + 2 * FUSED_ROWS + 1001
 assert COUNT >= 2 * BLOCK_ROWS
 
 
@@ -35,17 +40,21 @@ def fast():
 
 
 def long_scene(kind: str) -> dict:
-    d = load_scene(FUSED[kind]).raw
+    d = load_scene({**FUSED, **GUIDED}[kind]).raw
     d["driver"] = {**d["driver"], "count": COUNT}
     return d
 
 
-@pytest.mark.parametrize("kind", list(FUSED))
+@pytest.mark.parametrize("kind", [*FUSED, *GUIDED])
 def test_a_long_sweep_keeps_the_composed_kernels_numbers(fast, kind: str) -> None:
     sc = load_scene(long_scene(kind))
     structure, geometry = _assembled(sc, structure_of(sc))
     pos = sc.driver.positions
-    ours = fused_blocks(loader.kernels(), sc, sc, structure, geometry, pos)
+    if kind in GUIDED:
+        assert fused_blocks(loader.kernels(), sc, sc, structure, geometry, pos) is None
+        ours = guided_blocks(loader.kernels(), sc, structure, geometry, pos)
+    else:
+        ours = fused_blocks(loader.kernels(), sc, sc, structure, geometry, pos)
     assert ours is not None
     plan = Plan(loader.kernels(), sc, structure, structure.assembly, geometry=geometry)
     ref = solve_lean(plan, pos)
@@ -55,7 +64,7 @@ def test_a_long_sweep_keeps_the_composed_kernels_numbers(fast, kind: str) -> Non
     assert np.array_equal(ours.singular[0], ref.singular[0])
 
 
-@pytest.mark.parametrize("kind", ["RRR", "RRT", "TTR"])
+@pytest.mark.parametrize("kind", ["RRR", "RRT", "TTR", "slotted lever"])
 def test_a_long_sweep_is_the_full_solves_bit_for_bit(fast, kind: str) -> None:
     d = long_scene(kind)
     sol = ks.solve(d)
