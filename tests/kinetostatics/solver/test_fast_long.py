@@ -10,10 +10,12 @@ import numpy as np
 import pytest
 
 import kinetostatics as ks
+from kinetostatics.model.errors import AssemblyError
 from kinetostatics.model.scene import load_scene
 from kinetostatics.solver.blocks import BLOCK_ROWS
 from kinetostatics.solver.fast import loader, use
-from kinetostatics.solver.fast.compose import Plan, solve_lean
+from kinetostatics.solver.fast import solve as fast_solve
+from kinetostatics.solver.fast.compose import Plan, Refused, solve_lean
 from kinetostatics.solver.fast.solve import FUSED_ROWS, _assembled, fused_blocks, guided_blocks
 from kinetostatics.solver.pipeline import structure_of
 
@@ -80,8 +82,32 @@ def test_a_long_sweep_is_the_full_solves_bit_for_bit(fast, kind: str) -> None:
     assert np.abs(driver.iloc[:, 1].to_numpy() - me).max() <= 1e-13 * np.abs(me).max()
 
 
-def test_given_positions_of_a_long_sweep(fast) -> None:
+@pytest.mark.parametrize("scene", [FUSED["RRR"], GUIDED["oscillating cylinder"]])
+def test_given_positions_of_a_long_sweep(fast, scene) -> None:
     pos = np.concatenate([np.linspace(350.0, -340.0, COUNT), [355.5]])
-    sol = ks.solve(FUSED["RRR"], positions=pos)
+    sol = ks.solve(scene, positions=pos)
     assert sol.path == "fast" and "kin" not in sol.__dict__
-    assert sol.driver.equals(full_solve(FUSED["RRR"], pos).driver)
+    assert sol.driver.equals(full_solve(scene, pos).driver)
+
+
+def test_a_long_sweep_that_cannot_close_is_refused_as_on_numpy(fast, monkeypatch) -> None:
+    d = long_scene("RRR")
+    d["bodies"][0]["points"]["B"] = [0.16, 0.0]     # the crank too long: C lost past 154.85 deg
+    refused = []
+    blocks = fused_blocks
+
+    def seen(*args):
+        try:
+            return blocks(*args)
+        except Refused:
+            refused.append(True)
+            raise
+    monkeypatch.setattr(fast_solve, "fused_blocks", seen)
+    with pytest.raises(AssemblyError) as fast_error:
+        ks.solve(d)
+    assert refused                          # (the fused kernel met the rows, not a check)
+    use("numpy")
+    with pytest.raises(AssemblyError) as numpy_error:
+        ks.solve(d)
+    assert str(fast_error.value) == str(numpy_error.value)
+    assert "cannot be assembled at driver position(s) 154.8" in str(fast_error.value)
