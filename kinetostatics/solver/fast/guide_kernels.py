@@ -13,9 +13,8 @@ loaded (the cache folder settled); the kernels module's rules hold here.
 from __future__ import annotations
 
 from .closure_kernels import rtr_guide_angle
-from .fused_kernels import _known_loads
-from .jitbase import TILE, jit, nonfinite, scratch, tile_geometry
-from .kernels import _param, crank_row, dyad_row
+from .jitbase import TILE, jit, nonfinite, scratch, tile_add, tile_geometry
+from .kernels import crank_row, dyad_row, outer_param
 from .layout import (
     ASSEMBLY,
     C1X,
@@ -25,6 +24,7 @@ from .layout import (
     DYAD_GEOMETRY,
     DYAD_OUT,
     INNER_R,
+    P_GROUND,
     PARAM,
     ROT1,
     ROT2,
@@ -63,8 +63,8 @@ def rtr_guide(lo, hi, cs, sn, gd, w, eps, gy, k1d, k2d, th, reach, gap):
         for t in range(TILE):
             crank_row(t, 0, gd, w, eps, wdrv)   # (counted by the second pass)
         for t in range(nt):
-            p1 = _param(True, wk1, t, gy, 0, 0)
-            p2 = _param(True, wk2, t, gy, 0, PARAM)
+            p1 = outer_param(True, wk1, t, gy, 0, 0)
+            p2 = outer_param(True, wk2, t, gy, 0, PARAM)
             th[t0 + t], reach[t0 + t], gap[t0 + t] = rtr_guide_angle(p1, p2, gy, 0, k)
     return 0
 
@@ -153,7 +153,13 @@ def rtr_kept(lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gl, npt, gw, nw, st,
             f = reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1, wa2,
                              wak1, wak2, wr)
             bad += f if t < nt else 0
-        _known_loads(wg, wad, wak1, wak2)
+        # what the outer joints load the known bodies with, added to the crank's
+        # resultants unless the known body is the ground (in order, every column, as the
+        # composed reactions add them)
+        if wg[P_GROUND, 0] == 0.0:
+            tile_add(wad, wak1, 0, TILE)
+        if wg[PARAM + P_GROUND, 0] == 0.0:
+            tile_add(wad, wak2, 0, TILE)
         for t in range(TILE):
             me = crank_moment(t, t, wgd, wdrv, wad)
             wr[0, t] = me
