@@ -6,24 +6,28 @@ process (so that its peak memory is its own):
 
 * ``solve_s``: ``kinetostatics.solve`` (kinematics, loads, reactions, Me);
 * ``driver_s, reactions_s, kinematics_s, bodies_s``: building each table, in that
-  order (the sweep is solved lean: on the numpy path the first of ``reactions`` and
-  ``kinematics`` solves its blocks again once for both,
-  :mod:`kinetostatics.results.onepass`; on the compiled path, the default at 1e6
-  positions where numba is installed, each is a pass of the kernels of its own,
-  :mod:`kinetostatics.results.fastpass`; ``bodies`` solves it again in full), and
+  order (the sweep is solved lean: the first of ``reactions`` and ``kinematics`` solves
+  its blocks again once for both, on the numpy path
+  :mod:`kinetostatics.results.onepass`, on the compiled path, the default at 1e6
+  positions where numba is installed, :mod:`kinetostatics.results.fastpass`, whose
+  ``reactions`` pass writes the ``kinematics`` table too; ``bodies`` solves it again in
+  full), and
   ``long_tables_s`` the three long ones together
   (``long_tables_over_solve`` their ratio to the solve);
 * ``tables_MB``: the bytes the ``driver``, ``reactions`` and ``kinematics`` tables hold
   (a column shared by several tables, as ``position``, counted once; a column of one
-  value, 8 bytes); ``floor_s``: writing that many bytes into a fresh numpy array
-  (``np.empty`` and ``fill``, the best of three, right after the tables, in the same
-  process: the least those tables' bytes can cost); ``over_floor``: the solve and those
-  three tables over the solve and the floor, in wall time (``over_floor_cpu`` in
-  processor time, steadier on a busy machine; ``over_first_floor_cpu`` against the
-  first of the three fills, which meets fresh pages as the tables did). ``warm_*``: the
-  same solve and tables
-  again in the same process, the first ones let go (the first tables of a process fault
-  in fresh pages, the later ones reuse them);
+  value, 8 bytes); the write floor: those bytes written where the tables have them
+  (:func:`floor_layout`: each allocation their columns live in made afresh, as the
+  tables made it, and only the bytes they hold written, :func:`fill_layout`), on the
+  pages the tables meet. ``warm_*``: after the process's first tables, three rounds of
+  the solve and those tables, each round's let go and then its floor measured in the
+  pages they gave back (``warm_floor_s``), as the next round's tables meet them; the
+  median round's times and, per round, the solve and three tables over the solve and
+  the floor, median (``warm_over_floor``; ``_cpu`` in processor time, steadier on a
+  busy machine) and best (``_best``). ``first_floor_s``: the same bytes written once in
+  another fresh process after its solve (fresh pages, as a process's first tables meet
+  them), and ``over_first_floor`` (``_cpu``) the first solve and tables over the first
+  solve and that floor;
 * ``peak_MB``: the process's peak resident memory with the solution and all four
   tables held;
 * ``csv_MB, csv_s, csv_MB_per_s``: writing the four tables as CSV (17 significant
@@ -68,8 +72,13 @@ LONG = ("reactions", "kinematics", "bodies")
 FLOORED = ("driver", "reactions", "kinematics")     # the tables set against the write floor
 
 
-def measure_tables(n: int, out: str) -> dict:
-    """One run in this process: solve, build the four contract tables, write them."""
+WARM_ROUNDS = 3     # rounds of the solve and the floored tables after a process's first
+
+
+def measure_tables(n: int, out: str, warm_rounds: int = WARM_ROUNDS) -> dict:
+    """One run in this process: solve, build the four contract tables, write them; then
+    ``warm_rounds`` rounds of the solve and the :data:`FLOORED` tables, each set against
+    the write floor of its tables' bytes (:func:`floor_layout`, :func:`fill_layout`)."""
     from ..model.errors import WorkbenchError
     from ..results import solve
     from ..results.output import parquet_available, write_csv, write_parquet
@@ -78,11 +87,14 @@ def measure_tables(n: int, out: str) -> dict:
     scene = fourbar_scene(n)
     sol = _timed(row, "solve", lambda: solve(scene))
     for name in TABLES:
-        _timed(row, name, lambda name=name: getattr(sol, name))
+        _timed(row, name, lambda name=name, sol=sol: getattr(sol, name))
     row["long_tables_s"] = sum(row[f"{name}_s"] for name in LONG)
     row["long_tables_over_solve"] = row["long_tables_s"] / row["solve_s"]
     row["peak_MB"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-    row.update(over_floor(row, [getattr(sol, name) for name in FLOORED]))
+    layout = floor_layout([getattr(sol, name) for name in FLOORED])
+    row["tables_MB"] = sum(sum(b - a for a, b in zip(e[1::2], e[2::2], strict=True))
+                           for e in layout) / 1e6
+    row["layout"] = layout
     size = 0
     t, cpu = time.perf_counter(), time.process_time()
     for name in TABLES:
@@ -103,13 +115,55 @@ def measure_tables(n: int, out: str) -> dict:
         row["parquet_s"] = time.perf_counter() - t
     row.update(measure_formatter(n))
     del sol
-    warm: dict = {}
-    sol = _timed(warm, "solve", lambda: solve(scene))
-    for name in FLOORED:
-        _timed(warm, name, lambda name=name: getattr(sol, name))
-    warm.update(over_floor(warm, [getattr(sol, name) for name in FLOORED]))
-    row.update({f"warm_{k}": v for k, v in warm.items()})
+    row.update(warm_rounds_of(scene, warm_rounds))
     return row
+
+
+def warm_rounds_of(scene, rounds: int) -> dict:
+    """``rounds`` rounds of the solve and the :data:`FLOORED` tables, each round's let go
+    and then its write floor measured: its tables' bytes (:func:`floor_layout`) written
+    into the pages they gave back, as the next round's tables meet them. ``warm_*``: the
+    median round's times, and of each round's solve and tables over its solve and floor
+    the median (``warm_over_floor``, ``_cpu`` in processor time) and the best (``_best``)."""
+    from ..results import solve
+    rows = []
+    for _ in range(rounds):
+        r: dict = {}
+        sol = _timed(r, "solve", lambda: solve(scene))
+        for name in FLOORED:
+            _timed(r, name, lambda name=name, sol=sol: getattr(sol, name))
+        layout = floor_layout([getattr(sol, name) for name in FLOORED])
+        del sol
+        r["floor_s"], r["floor_cpu_s"] = fill_layout(layout)
+        spent = [sum(r[f"{k}{cpu}_s"] for k in ("solve", *FLOORED)) for cpu in ("", "_cpu")]
+        r["over_floor"] = spent[0] / (r["solve_s"] + r["floor_s"])
+        r["over_floor_cpu"] = spent[1] / (r["solve_cpu_s"] + r["floor_cpu_s"])
+        rows.append(r)
+    out = {f"warm_{k}": float(np.median([r[k] for r in rows])) for k in rows[0]}
+    for k in ("over_floor", "over_floor_cpu"):
+        out[f"warm_{k}_best"] = min(r[k] for r in rows)
+    return out
+
+
+def first_floor(n: int, layout: list[list[int]]) -> dict:
+    """The write floor of a process's first tables: in this process (a fresh one), after
+    the solve and the driver table (as the tables met memory), the bytes of ``layout``
+    written once into fresh pages (``first_floor_s``, ``first_floor_cpu_s``)."""
+    from ..results import solve
+    from .accuracy import fourbar_scene
+    sol = solve(fourbar_scene(n))
+    sol.driver                          # noqa: B018 (the state the tables met)
+    wall, cpu = fill_layout(layout)
+    return {"first_floor_s": wall, "first_floor_cpu_s": cpu}
+
+
+def over_first_floor(row: dict) -> dict:
+    """A process's first solve and :data:`FLOORED` tables over its first solve and the
+    first floor (:func:`first_floor`), in wall and processor time."""
+    spent = [sum(row[f"{k}{cpu}_s"] for k in ("solve", *FLOORED)) for cpu in ("", "_cpu")]
+    return {"over_first_floor": spent[0] / (row["solve_s"] + row["first_floor_s"]),
+            "over_first_floor_cpu": spent[1] / (row["solve_cpu_s"]
+                                                + row["first_floor_cpu_s"])}
 
 
 def _timed(row: dict, name: str, job):
@@ -121,44 +175,82 @@ def _timed(row: dict, name: str, job):
     return out
 
 
+def _column_arrays(frames: list[pd.DataFrame]) -> list[np.ndarray]:
+    """Each column's array (a categorical's codes) of every table in ``frames``."""
+    out = []
+    for df in frames:
+        for c in df.columns:
+            col = df[c]
+            out.append(col.cat.codes.to_numpy() if isinstance(col.dtype, pd.CategoricalDtype)
+                       else col.to_numpy())
+    return out
+
+
+def _spans(arrays: list[np.ndarray]) -> list[tuple[int, int]]:
+    """The union of the address ranges ``arrays`` hold (a column of one value, a view of
+    one number: 8 bytes), as sorted disjoint ``(start, end)`` pairs."""
+    spans = []
+    for a in arrays:
+        start = a.__array_interface__["data"][0]
+        size = a.itemsize if a.ndim and a.strides[0] == 0 else a.nbytes
+        spans.append((start, start + size))
+    out: list[tuple[int, int]] = []
+    for a, b in sorted(spans):
+        if out and a <= out[-1][1]:
+            out[-1] = (out[-1][0], max(out[-1][1], b))
+        else:
+            out.append((a, b))
+    return out
+
+
 def held_bytes(frames: list[pd.DataFrame]) -> int:
     """The bytes the tables' columns hold: each column's array (a categorical's codes),
     memory that several columns share counted once, a column of one value (a view of one
     number) as 8 bytes."""
-    spans, held = [], []        # (held: an array made here keeps its address till the end)
-    for df in frames:
-        for c in df.columns:
-            col = df[c]
-            a = col.cat.codes.to_numpy() if isinstance(col.dtype, pd.CategoricalDtype) \
-                else col.to_numpy()
-            held.append(a)
-            start = a.__array_interface__["data"][0]
-            size = a.itemsize if a.ndim and a.strides[0] == 0 else a.nbytes
-            spans.append((start, start + size))
-    total, end = 0, 0
-    for a, b in sorted(spans):           # the union of the spans
-        total += max(0, b - max(a, end))
-        end = max(end, b)
-    return total
+    arrays = _column_arrays(frames)     # (kept alive: a freed copy's address is reused)
+    return sum(b - a for a, b in _spans(arrays))
 
 
-def over_floor(row: dict, frames: list[pd.DataFrame]) -> dict:
-    """The write floor of the tables ``frames`` (:func:`held_bytes` written into a fresh
-    array, the best of three) and the solve and those tables over the solve and it."""
-    size = held_bytes(frames)
-    wall, cpu = [], []
-    for _ in range(3):
-        t, c = time.perf_counter(), time.process_time()
-        np.empty(size // 8).fill(1.0)
-        wall.append(time.perf_counter() - t)
-        cpu.append(time.process_time() - c)
-    spent = sum(row[f"{k}_s"] for k in ("solve", *FLOORED))
-    spent_cpu = sum(row[f"{k}_cpu_s"] for k in ("solve", *FLOORED))
-    return {"tables_MB": size / 1e6, "floor_s": min(wall), "floor_cpu_s": min(cpu),
-            "over_floor": spent / (row["solve_s"] + min(wall)),
-            "over_floor_cpu": spent_cpu / (row["solve_cpu_s"] + min(cpu)),
-            "first_floor_cpu_s": cpu[0],
-            "over_first_floor_cpu": spent_cpu / (row["solve_cpu_s"] + cpu[0])}
+def _owner(a: np.ndarray) -> np.ndarray:
+    """The array that owns ``a``'s memory (the end of its chain of views)."""
+    while isinstance(a.base, np.ndarray):
+        a = a.base
+    return a
+
+
+def floor_layout(frames: list[pd.DataFrame]) -> list[list[int]]:
+    """Where the tables' bytes (:func:`held_bytes`) lie: per allocation their columns
+    live in, its size and the byte ranges held in it, ``[size, start, end, ...]`` (from
+    its first byte). The floor then allocates as the tables did (a table's float block
+    allocated whole, only its rows written touched) and writes those bytes."""
+    arrays = _column_arrays(frames)
+    owners: dict[int, np.ndarray] = {}
+    for a in arrays:
+        o = _owner(a)
+        owners.setdefault(o.__array_interface__["data"][0], o)
+    ranges = sorted((k, k + max(o.nbytes, 1)) for k, o in owners.items())
+    layout: dict[int, list[int]] = {}
+    for a, b in _spans(arrays):
+        for lo, hi in ranges:           # the allocation holding the span
+            if lo <= a < hi:
+                entry = layout.setdefault(lo, [hi - lo])
+                entry += [a - lo, min(b, hi) - lo]
+                break
+    return list(layout.values())
+
+
+def fill_layout(layout: list[list[int]]) -> tuple[float, float]:
+    """Wall and processor time of writing the bytes of ``layout`` (:func:`floor_layout`):
+    each allocation made afresh (``np.empty``, as the tables' arrays) and its ranges
+    filled, all held till the end (as the tables are held together)."""
+    held = []
+    t, cpu = time.perf_counter(), time.process_time()
+    for size, *ranges in layout:
+        a = np.empty(size, dtype=np.uint8)
+        for lo, hi in zip(ranges[::2], ranges[1::2], strict=True):
+            a[lo:hi] = 1
+        held.append(a)
+    return time.perf_counter() - t, time.process_time() - cpu
 
 
 def measure_formatter(n: int) -> dict:
@@ -184,11 +276,20 @@ def measure_formatter(n: int) -> dict:
 
 
 def fresh_run(n: int, out: str) -> dict:
+    """:func:`measure_tables` in a fresh process, then :func:`first_floor` of its tables'
+    layout in another (both meet a fresh process's pages) and :func:`over_first_floor`."""
     code = ("import json, sys; from kinetostatics.bench.tables import measure_tables; "
             f"print(json.dumps(measure_tables({n}, {out!r})))")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                        check=True)
-    return json.loads(r.stdout.strip().splitlines()[-1])
+    row = json.loads(r.stdout.strip().splitlines()[-1])
+    code = ("import json, sys; from kinetostatics.bench.tables import first_floor; "
+            f"print(json.dumps(first_floor({n}, json.load(sys.stdin))))")
+    r = subprocess.run([sys.executable, "-c", code], input=json.dumps(row.pop("layout")),
+                       capture_output=True, text=True, check=True)
+    row.update(json.loads(r.stdout.strip().splitlines()[-1]))
+    row.update(over_first_floor(row))
+    return row
 
 
 def measure_cli(n: int, folder: str) -> dict:

@@ -10,11 +10,15 @@ written straight into the table's columns, allocated once
   operations in its order;
 * ``reactions``: ``Fx``, ``Fy`` copied (or negated) into their columns, ``F =
   hypot(Fx, Fy)`` written in place (numpy's ``hypot``, ``out=``), ``N`` and ``M`` of a
-  prismatic joint copied, its ``offset`` worked out once its columns are whole. The pass
-  also keeps the bodies' motion (ten rows a body) in rows of the ``kinematics`` table's
-  own array, not written yet (:class:`KeptMotion`): that table, asked for later, is
-  written over them a chunk at a time, without solving again (as the numpy path's
-  :mod:`~kinetostatics.results.onepass` does).
+  prismatic joint copied, its ``offset`` worked out once its columns are whole. If the
+  ``kinematics`` table is not made yet, the pass writes its columns too, from each
+  block's motion (:class:`PointRows`): that table, asked for later, is then ready
+  without solving again, each byte of either table written once. (Keeping the bodies'
+  motion for it instead, in the table's own rows, wrote 30 of its 54 rows twice for the
+  four-bar and read them back: measured 2026-11-29 at 1e6 positions, both tables
+  0.14-0.15 s of user time against 0.16-0.18 s, processes alternated; the ``reactions``
+  table alone now costs the kinematics' writes too, 0.21 against 0.17 s, and holds
+  their 432 MB, a peak of 807 against 627 MB.)
 
 No array over the whole sweep is made but the tables' own, and no temporary per column
 (the full re-solve gathered some 26 arrays, 200 MB at 1e6 positions, and the tables were
@@ -30,7 +34,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..solver.fast.layout import MOTION as MOTION_ROWS
 from .longtable import (
     KINEMATICS_FLOATS,
     REACTIONS_FLOATS,
@@ -41,13 +44,7 @@ from .longtable import (
     reaction_labels,
 )
 
-KEPT = "_onepass"       # the Solution's entry holding what a pass kept (as onepass's)
-# Rows of kept motion copied out at a time (a body's ten rows, about 1 MB for three bodies
-# at 4096: the copy stays in the cache while the points are written). Measured
-# 2026-11-29, four-bar at 1e6, kinematics from the kept motion, five rounds each,
-# alternated: 4096 rows 0.081 / 0.097 s best / median, 2048 0.091 / 0.116, 8192 0.088 /
-# 0.129, 32 768 (longtable.CHUNK) 0.100 / 0.121
-KEPT_CHUNK = 4096
+KEPT = "_onepass"       # the Solution's entry holding what a pass wrote ahead (as onepass's)
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -59,26 +56,27 @@ if TYPE_CHECKING:
 def compiled_frame(sol: Solution, lean: LeanSolved, name: str) -> pd.DataFrame | None:
     """Table ``name`` (``reactions`` or ``kinematics``) of ``sol``, a sweep solved lean on
     the compiled path (``lean``), built in one pass (module docstring); None where a
-    kernel refused a block. The ``reactions`` pass keeps the bodies' motion for the
-    ``kinematics`` table, if that is not made yet (:class:`KeptMotion`)."""
+    kernel refused a block. The ``reactions`` pass writes the ``kinematics`` table's
+    columns too, if that table is not made yet (:class:`PointRows`)."""
     from ..solver.fast.compose import Refused
     from ..solver.fast.solve import SolvedAgain
     d = sol.__dict__
     kept = d.pop(KEPT, None)            # (taken: no two threads make a table of one pass)
-    if name == "kinematics" and type(kept) is KeptMotion:
+    if name == "kinematics" and type(kept) is PointRows:
         return kept.frame()
     again = SolvedAgain(lean.known["scene"], lean.known["structure"])
     try:
         if name == "kinematics":
-            table, fill = _kinematics(sol, again, lean.positions)
-        else:
-            keep = None if "kinematics" in d else KeptMotion(sol, again.kernels,
-                                                              lean.positions)
-            table, fill = _reactions(sol, again, lean.positions, keep)
-            if keep is not None and keep.whole:
-                d[KEPT] = keep
+            points = PointRows(sol, again.kernels, lean.positions)
+            for lo, hi, motions, _ in again.blocks():
+                points.put(motions, lo, hi)
+            return points.frame()
+        points = None if "kinematics" in d else PointRows(sol, again.kernels, lean.positions)
+        table, fill = _reactions(sol, again, lean.positions, points)
     except Refused:
         return None
+    if points is not None:
+        d[KEPT] = points
     return table.frame_of(fill)
 
 
@@ -89,92 +87,49 @@ def _no_chunks(i: int, part: slice) -> dict:
     raise RuntimeError("a table built in one pass gives no chunks: its columns are whole")
 
 
-def _kinematics_table(sol: Solution, positions: np.ndarray
-                      ) -> tuple[LongTable, FloatBlock, list]:
-    """The ``kinematics`` table's definition, its float columns (one array, every column
-    a row of it) and its points (body, point, local point)."""
-    points = list(sol._points())
-    table = LongTable(positions, point_labels(points), KINEMATICS_FLOATS, _no_chunks,
-                      sol._tiled)
-    fill = FloatBlock(table)
-    for c in fill.names:
-        fill.array(c)
-    return table, fill, points
-
-
-def _kinematics(sol: Solution, again, positions: np.ndarray) -> tuple[LongTable, FloatBlock]:
-    """The ``kinematics`` table's definition and its float columns, written block by
-    block (:func:`~kinetostatics.solver.fast.table_kernels.point_rows`)."""
-    table, fill, points = _kinematics_table(sol, positions)
-    out = fill.reserve()
-    n = table.n
-    local = [(float(lx), float(ly)) for _, _, (lx, ly) in points]
-    point_rows = again.kernels.point_rows
-    for lo, hi, motions, _ in again.blocks():
-        for i, ((b, _, _), (lx, ly)) in enumerate(zip(points, local, strict=True)):
-            point_rows(motions[b], hi - lo, lx, ly, out, i * n + lo)
-    return table, fill
-
-
-class KeptMotion:
-    """The bodies' motion over the sweep, kept by the ``reactions`` pass for the
-    ``kinematics`` table: each body's ten motion rows
-    (:mod:`~kinetostatics.solver.fast.layout`) in rows of that table's own array, which
-    are not written yet (:attr:`whole` False where they do not fit: nothing kept). The
-    table is then written over them a chunk of rows at a time, each chunk's motion
-    copied out first (no re-solve, no page beyond the table's own)."""
+class PointRows:
+    """The ``kinematics`` table written block by block, as the kernels solve the sweep
+    again: every point's six columns by one compiled kernel per point and block
+    (:func:`~kinetostatics.solver.fast.table_kernels.point_rows`) straight into the
+    table's own array (its rows the columns, :class:`FloatBlock`), from the block's
+    motion while it is in the caches; each byte of the table written once."""
 
     def __init__(self, sol: Solution, kernels, positions: np.ndarray):
-        self.table, self.fill, self.points = _kinematics_table(sol, positions)
-        self.kernels = kernels
-        self.bodies = list(dict.fromkeys(b for b, _, _ in self.points))
-        n = positions.size
-        room = self.fill.reserve().reshape(-1, n) if n else None
-        rows = MOTION_ROWS * len(self.bodies)
-        self.whole = room is not None and room.shape[0] >= rows
-        self.slab = room[:rows] if self.whole else None
+        points = list(sol._points())
+        self.table = LongTable(positions, point_labels(points), KINEMATICS_FLOATS,
+                               _no_chunks, sol._tiled)
+        self.fill = FloatBlock(self.table)
+        for c in self.fill.names:
+            self.fill.array(c)
+        self.out = self.fill.reserve()
+        self.bodies = [b for b, _, _ in points]
+        self.local = [(float(lx), float(ly)) for _, _, (lx, ly) in points]
+        self.point_rows = kernels.point_rows
 
     def put(self, motions: dict, lo: int, hi: int) -> None:
-        """The bodies' motion over rows ``lo`` to ``hi`` (body -> its motion array)."""
-        for k, b in enumerate(self.bodies):
-            self.slab[MOTION_ROWS * k:MOTION_ROWS * (k + 1), lo:hi] = motions[b]
+        """Rows ``lo`` to ``hi`` of every point (``motions``: body -> its motion over
+        them, :mod:`~kinetostatics.solver.fast.layout`)."""
+        n, out, point_rows = self.table.n, self.out, self.point_rows
+        for i, (b, (lx, ly)) in enumerate(zip(self.bodies, self.local, strict=True)):
+            point_rows(motions[b], hi - lo, lx, ly, out, i * n + lo)
 
     def frame(self) -> pd.DataFrame:
-        """The ``kinematics`` table, its columns written over the kept motion."""
-        table, fill, slab = self.table, self.fill, self.slab
-        n = table.n
-        out = fill.reserve()
-        local = [(float(lx), float(ly)) for _, _, (lx, ly) in self.points]
-        where = {b: k for k, b in enumerate(self.bodies)}
-        point_rows = self.kernels.point_rows
-        # (a row longer than the chunk: the kernel sees the layout of the solve's buffer,
-        # one compiled signature for both roads)
-        scratch = np.empty((slab.shape[0], KEPT_CHUNK + 8))
-        for lo in range(0, n, KEPT_CHUNK):
-            hi = min(lo + KEPT_CHUNK, n)
-            motion = scratch[:, :hi - lo]
-            motion[...] = slab[:, lo:hi]            # (before the chunk's rows are written)
-            for i, ((b, _, _), (lx, ly)) in enumerate(zip(self.points, local, strict=True)):
-                k = where[b]
-                point_rows(motion[MOTION_ROWS * k:MOTION_ROWS * (k + 1)], hi - lo, lx, ly,
-                           out, i * n + lo)
-        self.slab = None
-        return table.frame_of(fill)
+        """The ``kinematics`` table (every row written)."""
+        return self.table.frame_of(self.fill)
 
 
-def _reactions(sol: Solution, again, positions: np.ndarray, keep: KeptMotion | None
+def _reactions(sol: Solution, again, positions: np.ndarray, points: PointRows | None
                ) -> tuple[LongTable, FloatBlock]:
     """The ``reactions`` table's definition and its float columns, written block by
-    block (``F``: numpy's ``hypot`` of the columns just written, in place); ``keep``:
-    where the bodies' motion is kept, block by block, if it fits."""
+    block (``F``: numpy's ``hypot`` of the columns just written, in place); ``points``:
+    the ``kinematics`` table, written block by block too (None: not asked)."""
     joints = list(sol.scene.joints)
     n = positions.size
     table = fill = None
     prismatic: list[int] = []
-    keep = keep if keep is not None and keep.whole else None
     for lo, hi, motions, reactions in again.blocks():
-        if keep is not None:
-            keep.put(motions, lo, hi)
+        if points is not None:
+            points.put(motions, lo, hi)
         if table is None:
             table = LongTable(positions, reaction_labels(joints, reactions),
                               REACTIONS_FLOATS, _no_chunks, sol._tiled)
