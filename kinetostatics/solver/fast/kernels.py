@@ -165,7 +165,7 @@ def slider_motion(pos, lo, hi, off, g, gs, own, w, eps, m):
 
 # -- a dyad's kinematics (seed 000 ch. 5-12) ---------------------------------------------
 @body
-def _param(rot, k, j, g, r, base):
+def outer_param(rot, k, j, g, r, base):
     """A dyad body's parameter through its outer joint (the numpy path's ``dyad_param``):
     rot, the known body's point P with its velocity and acceleration; trans, the body's
     angle (c, s), the guide's direction u and the line's base point b."""
@@ -262,8 +262,8 @@ def _dyad_motion(kind, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
         # the caller in a pass of their own (rows C1X, C1Y) before stage 1
         for i in range(lo, hi):
             j, r = i - off, own[i * gs]
-            p1 = _param(True, k1, j, g, r, 0)
-            p2 = _param(True, k2, j, g, r, PARAM)
+            p1 = outer_param(True, k1, j, g, r, 0)
+            p2 = outer_param(True, k2, j, g, r, PARAM)
             d[D_TH, j], d[CL2, j], d[XX, j] = rtr_guide_angle(p1, p2, g, r, g[ASSEMBLY, r])
         return 0
     # in tiles (jitbase.TILE): the known bodies' motions (and RTR's guide angle) in, the
@@ -352,8 +352,8 @@ def _store_param(d, j, b, p, rot):
 def dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d):
     size = g[SIZE, r]
     kk = g[ASSEMBLY, r]
-    p1 = _param(rot1, k1, j, g, r, 0)
-    p2 = _param(rot2, k2, j, g, r, PARAM)
+    p1 = outer_param(rot1, k1, j, g, r, 0)
+    p2 = outer_param(rot2, k2, j, g, r, PARAM)
     reach = -1.0
     gap = -1.0
     if inner_r:

@@ -52,13 +52,13 @@ def _writable(folder: Path) -> bool:
 
 
 def kernel_sources() -> list[Path]:
-    """The files numba compiles: the kernels modules (the composed kernels and
-    ``solve_many``'s fused ones) and the modules of this package they import, and theirs
-    (the composing code, in Python, is left out: a change there compiles nothing
-    again)."""
+    """The files numba compiles: the kernels modules (the composed kernels,
+    ``solve_many``'s fused ones and the RTR guide's) and the modules of this package
+    they import, and theirs (the composing code, in Python, is left out: a change there
+    compiles nothing again)."""
     here = Path(__file__).parent
     seen: list[Path] = []
-    todo = ["kernels", "fused_kernels"]
+    todo = ["kernels", "fused_kernels", "guide_kernels"]
     while todo:
         path = here / f"{todo.pop()}.py"
         if path in seen:

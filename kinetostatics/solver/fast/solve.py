@@ -7,8 +7,8 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ...model.scene import Scene
-from ..blocks import BLOCK_ROWS, LeanSolved
+from ...model.scene import GROUND, Scene
+from ..blocks import BLOCK_ROWS, Kept, LeanSolved
 from ..deadpoints import dead_points_of_sweep, measure2
 from ..kinematics import choose_assembly, with_positions
 from ..memo import record_of
@@ -23,14 +23,23 @@ from .compose import (
     block_reactions,
     cut_rows,
     driver_input,
+    kept_sweep,
     solve_arrays,
     solve_full,
     solve_lean,
 )
-from .geometry import not_covered
+from .geometry import NO_SWEPT_LOADS, not_covered
 from .layout import CL2
 from .loader import kernels as loaded_kernels
-from .short import fused_sweep
+from .short import (
+    NO_STATS,
+    OWNERS,
+    START,
+    fused_arguments,
+    fused_call,
+    fused_kernel,
+    fused_sweep,
+)
 
 
 def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
@@ -51,8 +60,12 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
     full = with_positions(scene, positions) if given else scene
     try:
         if n >= 2 * BLOCK_ROWS:
-            sweep = solve_lean(Plan(kernels, full, structure, structure.assembly,
-                                    geometry=geometry), positions)
+            sweep = fused_blocks(kernels, scene, full, structure, geometry, positions)
+            if sweep is None:
+                sweep = guided_blocks(kernels, full, structure, geometry, positions)
+            if sweep is None:
+                sweep = solve_lean(Plan(kernels, full, structure, structure.assembly,
+                                        geometry=geometry), positions)
         else:
             sweep = fused_sweep(kernels, scene, full, structure, geometry, positions)
         if sweep is not None:
@@ -74,6 +87,132 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
         return None
     sol.path = "fast"       # (a LeanSolved's: its full solve's is set by _solution)
     return sol
+
+
+# Rows per call of the fused kernel over a long sweep (its cos and sin worked out per
+# block into one scratch pair, which stays in the caches). Measured 2026-11-29, the
+# four-bar's solve at 1e6 rows, processor time, best of 7 (machine loaded): 4096 rows
+# 49 ms, 8192 52, 16384 54, 65536 53; at 2e5 all 11.3-11.9 ms
+FUSED_ROWS = 4096
+
+
+def fused_blocks(kernels, scene: Scene, full: Scene, structure, geometry,
+                 positions: np.ndarray) -> Kept | None:
+    """The :class:`~kinetostatics.solver.blocks.Kept` of a long sweep of a crank and one
+    dyad (``full``: ``scene`` at ``positions``) from ``solve_many``'s fused kernel
+    (:func:`~kinetostatics.solver.fast.short.fused_call`), called per block of
+    :data:`FUSED_ROWS` rows, its cos and sin in a pass of their own per block: Me, the
+    undefined rows and the dyad's closeness to a dead centre, the numbers of the composed
+    kernels bit for bit (the same row helpers in the same order; numpy's cos and sin
+    give each angle the same double in a block as over the whole sweep). None for
+    another structure or ``resist`` loads (:func:`~kinetostatics.solver.fast.compose.solve_lean`
+    solves those). Raises :class:`~kinetostatics.solver.fast.compose.Refused` as the
+    composed kernels do."""
+    found = _fused(kernels, scene, structure, geometry)
+    if found is None:
+        return None
+    kernel, fixed, plan = found
+    angles = full.driver.angles
+    n = positions.size
+    width = min(FUSED_ROWS, n)
+    cs, sn = np.empty(width), np.empty(width)
+    drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
+    bad = 0
+    for lo in range(0, n, width):
+        hi = min(lo + width, n)
+        np.cos(angles[lo:hi], out=cs[:hi - lo])
+        np.sin(angles[lo:hi], out=sn[:hi - lo])
+        bad += kernel(0, hi - lo, OWNERS, cs, sn, START, *fixed, drive[lo:hi],
+                      close[lo:hi], undefined[lo:hi])
+    if bad:
+        raise Refused(bad)
+    if plan is not None:
+        plan.check_swept()
+    return kept_sweep(structure, "R", drive, undefined, [close])
+
+
+def _fused(kernels, scene: Scene, structure, geometry) -> tuple | None:
+    """The fused kernel of ``scene``, its arguments (but the rows' cos, sin and where
+    they begin, and its outputs) and the plan whose ``resist`` (``when = "resisting"``)
+    statistics they hold (None without such loads: the arguments are then kept per scene
+    object, as a short sweep's); or None for another structure. A scene with such loads
+    gets a plan per solve: the statistics are each sweep's own, checked after the sweep
+    (:meth:`~kinetostatics.solver.fast.compose.Plan.check_swept`)."""
+    record = record_of(scene)
+    kept = record.get("fused")
+    if kept is None or kept[0] is not structure or kept[1] is not kernels:
+        kept = record["fused"] = (structure, kernels,
+                                  fused_call(kernels, scene, structure, geometry))
+    if kept[2] is not None:
+        return (*kept[2], None)
+    if not geometry.swept:
+        return None         # (another structure)
+    plan = Plan(kernels, scene, structure, structure.assembly, geometry=geometry)
+    found = fused_kernel(plan)
+    if found is None:
+        return None
+    kernel, order, known = found
+    return kernel, fused_arguments(plan, order, known), plan
+
+
+def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarray
+                  ) -> Kept | None:
+    """The :class:`~kinetostatics.solver.blocks.Kept` of a long sweep of a crank and one
+    RTR dyad (the slotted lever's structure) from the kernels of
+    :mod:`~kinetostatics.solver.fast.guide_kernels`, per block of :data:`FUSED_ROWS`
+    rows: the crank's cos and sin (numpy's), the guide's angle, its cos and sin (numpy's),
+    then the rest, the numbers of the composed kernels bit for bit; or None for another
+    structure. Raises :class:`~kinetostatics.solver.fast.compose.Refused` as the
+    composed kernels do."""
+    plan = Plan(kernels, full, structure, structure.assembly, geometry=geometry)
+    found = _guided(plan)
+    if found is None:
+        return None
+    from .guide_kernels import rtr_guide, rtr_kept  # (numba loaded: plan.k given)
+    first, rest = found
+    angles = full.driver.angles
+    n = positions.size
+    width = min(FUSED_ROWS, n)
+    cs, sn, th, reach, gap, ct, sg = np.empty((7, width))
+    drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
+    bad = 0
+    for lo in range(0, n, width):
+        m = min(lo + width, n) - lo
+        np.cos(angles[lo:lo + m], out=cs[:m])
+        np.sin(angles[lo:lo + m], out=sn[:m])
+        rtr_guide(0, m, cs, sn, *first, th, reach, gap)
+        np.cos(th[:m], out=ct[:m])
+        np.sin(th[:m], out=sg[:m])
+        bad += rtr_kept(0, m, OWNERS, cs, sn, *rest, ct, sg, reach, gap, drive[lo:lo + m],
+                        close[lo:lo + m], undefined[lo:lo + m])
+    if bad:
+        raise Refused(bad)
+    plan.check_swept()
+    return kept_sweep(structure, "R", drive, undefined, [close])
+
+
+def _guided(plan: Plan) -> tuple | None:
+    """The arguments of :func:`~kinetostatics.solver.fast.guide_kernels.rtr_guide` and
+    of ``rtr_kept`` (but the rows' and the outputs) for a crank and one RTR dyad whose
+    outer joints are on the ground or the crank; else None."""
+    if not plan.crank or len(plan.dyads) != 1 or plan.dyads[0][2].kind != "RTR":
+        return None
+    gy, gys, dyad = plan.dyads[0]
+    dname = plan.scene.driver.body
+    order = (dname, *dyad.bodies)
+    known = [j.other(b) for j, b in zip(dyad.outer, dyad.bodies, strict=True)]
+    gd, gds = plan.driver
+    if (gys or gds or len(plan.bodies) != 3 or set(plan.bodies) != set(order)
+            or not set(known) <= {GROUND, dname}):
+        return None
+    first = (gd, plan.speed, plan.accel, gy, known[0] == dname, known[1] == dname)
+    loads = [plan.loads[b] for b in order]
+    swept = [plan.swept.get(b, NO_SWEPT_LOADS) for b in order]
+    if any(gs for _, gs, _ in loads) or any(sw[1] for sw in swept):
+        return None
+    return first, (*first, tuple(g for g, _, _ in loads), tuple(p for _, _, p in loads),
+                   tuple(sw[0] for sw in swept), tuple(len(sw[2]) for sw in swept),
+                   tuple(plan.stats.get(b, NO_STATS) for b in order))
 
 
 class SolvedAgain:

@@ -1,0 +1,174 @@
+"""A crank and one RTR dyad (the slotted lever's structure) fused, per block of rows:
+what a long sweep keeps (Me, the dyad's closeness to a dead centre, the undefined rows)
+in two kernels with numpy's cos and sin of the guide's angle between them, as the
+composed kernels work them out (:mod:`~kinetostatics.solver.fast.kernels`: the RTR
+guide's angle in a pass of its own, its cos and sin numpy's, then the rest).
+
+The row helpers are the composed kernels' (and those of ``solve_many``'s fused
+kernels, :mod:`~kinetostatics.solver.fast.fused_kernels`), called in the same order on
+the same numbers: the same doubles, bit for bit. Imported once the compiled path is
+loaded (the cache folder settled); the kernels module's rules hold here.
+"""
+
+from __future__ import annotations
+
+from .closure_kernels import rtr_guide_angle
+from .jitbase import TILE, jit, nonfinite, scratch, tile_add, tile_geometry
+from .kernels import crank_row, dyad_row, outer_param
+from .layout import (
+    ASSEMBLY,
+    C1X,
+    C1Y,
+    CL2,
+    DRIVER_GEOMETRY,
+    DYAD_GEOMETRY,
+    DYAD_OUT,
+    INNER_R,
+    P_GROUND,
+    PARAM,
+    ROT1,
+    ROT2,
+    XX,
+    C,
+    S,
+)
+from .layout import MOTION as BODY_ROWS
+from .layout import REACTIONS as REACTION_ROWS
+from .reaction_kernels import crank_moment, reaction_row, swept_row, tile_loads
+
+RTR = 3                 # the kind's code (layout.KINDS): outer joints revolute, inner prismatic
+
+
+@jit
+def rtr_guide(lo, hi, cs, sn, gd, w, eps, gy, k1d, k2d, th, reach, gap):
+    """RTR's first pass over rows ``lo`` to ``hi`` of a block (``cs``, ``sn``: the
+    crank's cos and sin over the block): the crank's motion (:func:`crank_row`), then
+    each row's guide angle ``th``, the pivots' distance ``reach`` and the ``gap``
+    (:func:`rtr_guide_angle`, seed 000 ch. 6-7: the composed RTR kernel's stage 0).
+    ``k1d``, ``k2d``: whether each outer joint's known body is the crank (else the
+    ground)."""
+    R = BODY_ROWS
+    w_ = scratch(2 * R)
+    wdrv = w_[R:]
+    for t in range(TILE):
+        w_[C, t] = 1.0                          # the ground: at rest
+    wk1 = wdrv if k1d else w_[:R]
+    wk2 = wdrv if k2d else w_[:R]
+    k = gy[ASSEMBLY, 0]
+    for t0 in range(lo, hi, TILE):
+        nt = min(TILE, hi - t0)
+        for t in range(nt):
+            wdrv[C, t] = cs[t0 + t]
+            wdrv[S, t] = sn[t0 + t]
+        for t in range(TILE):
+            crank_row(t, 0, gd, w, eps, wdrv)   # (counted by the second pass)
+        for t in range(nt):
+            p1 = outer_param(True, wk1, t, gy, 0, 0)
+            p2 = outer_param(True, wk2, t, gy, 0, PARAM)
+            th[t0 + t], reach[t0 + t], gap[t0 + t] = rtr_guide_angle(p1, p2, gy, 0, k)
+    return 0
+
+
+@jit
+def rtr_kept(lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gl, npt, gw, nw, st, ct, sg,
+             reach, gap, drive, close, undefined):
+    """RTR's second pass (rows ``lo`` to ``hi`` of a block; ``ct``, ``sg``: the guide's
+    cos and sin, numpy's, of :func:`rtr_guide`'s angles): the crank's motion, the
+    dyad's (:func:`dyad_row`, RTR), each body's loads (bodies in the order crank, the
+    dyad's first, its second: ``gl``, ``npt``, their swept loads ``gw``, ``nw`` with
+    their statistics ``st``; seed 002 s. 2.1-2.2), the dyad's reactions (s. 2.3) and Me
+    (eqs 2.47-2.48), tile by tile in one scratch
+    array, as the composed kernels compute them; only Me, the closeness to a dead centre
+    and the undefined rows written (``own``: zeros, the one scene's column of the loads'
+    geometry). Returns the count of rows the numpy path must
+    judge."""
+    # (the kind's flags worked out as the composed kernels do, not given as literals:
+    # numba types a literal apart, and the rows then compiled slower, measured
+    # 2026-11-29: 109 against 84 ns a row)
+    rot1, rot2, inner_r = (RTR & ROT1) != 0, (RTR & ROT2) != 0, (RTR & INNER_R) != 0
+    rtr = rot1 and rot2 and not inner_r
+    R = BODY_ROWS
+    w_ = scratch(5 * R + 15 + DYAD_OUT + REACTION_ROWS + DYAD_GEOMETRY + DRIVER_GEOMETRY)
+    # the known bodies' motions in rows of their own, copied per tile (views of one
+    # scratch array at fixed offsets: LLVM proves them apart from the dyad's and
+    # vectorises the rows' loops; a view chosen at run time between the ground's and the
+    # crank's kept it from vectorising the RTR row, measured 2026-11-29: 140 ns a row
+    # against 109)
+    wdrv, wm1, wm2 = w_[:R], w_[R:2 * R], w_[2 * R:3 * R]
+    wk1, wk2 = w_[3 * R:4 * R], w_[4 * R:5 * R]
+    b = 5 * R
+    wad, wa1, wa2, wak1, wak2 = (w_[b:b + 3], w_[b + 3:b + 6], w_[b + 6:b + 9],
+                                 w_[b + 9:b + 12], w_[b + 12:b + 15])
+    b += 15
+    wd = w_[b:b + DYAD_OUT]
+    wr = w_[b + DYAD_OUT:b + DYAD_OUT + REACTION_ROWS]
+    b += DYAD_OUT + REACTION_ROWS
+    wg = w_[b:b + DYAD_GEOMETRY]
+    wgd = w_[b + DYAD_GEOMETRY:]
+    for t in range(TILE):
+        wk1[C, t] = wk2[C, t] = 1.0             # the ground: at rest (unless the crank)
+    tile_geometry(wg, gy, 0, own, 0, -1)
+    tile_geometry(wgd, gd, 0, own, 0, -1)
+    n0, n1, n2 = gl[0].shape[0], gl[1].shape[0], gl[2].shape[0]
+    wl = scratch(n0 + n1 + n2)
+    wl0, wl1, wl2 = wl[:n0], wl[n0:n0 + n1], wl[n0 + n1:]
+    tile_geometry(wl0, gl[0], 0, own, 0, -1)
+    tile_geometry(wl1, gl[1], 0, own, 0, -1)
+    tile_geometry(wl2, gl[2], 0, own, 0, -1)
+    bad = 0
+    for t0 in range(lo, hi, TILE):
+        nt = min(TILE, hi - t0)
+        for t in range(nt):
+            wdrv[C, t] = cs[t0 + t]
+            wdrv[S, t] = sn[t0 + t]
+            wd[C1X, t] = ct[t0 + t]
+            wd[C1Y, t] = sg[t0 + t]
+            wd[CL2, t] = reach[t0 + t]
+            wd[XX, t] = gap[t0 + t]
+        for t in range(TILE):
+            f = crank_row(t, t, wgd, w, eps, wdrv)
+            bad += f if t < nt else 0
+        if k1d:
+            wk1[:] = wdrv
+        if k2d:
+            wk2[:] = wdrv
+        for t in range(TILE):
+            f = dyad_row(RTR, rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
+            bad += f if t < nt else 0
+        bad += tile_loads(wdrv, wad, wl0, npt[0], nt)
+        bad += tile_loads(wm1, wa1, wl1, npt[1], nt)
+        bad += tile_loads(wm2, wa2, wl2, npt[2], nt)
+        if nw[0] + nw[1] + nw[2]:
+            for t in range(nt):
+                i = t0 + t - lo
+                if nw[0]:
+                    bad += swept_row(t, 0, 0, i, gw[0], nw[0], wdrv, wad, undefined, st[0])
+                if nw[1]:
+                    bad += swept_row(t, 0, 0, i, gw[1], nw[1], wm1, wa1, undefined, st[1])
+                if nw[2]:
+                    bad += swept_row(t, 0, 0, i, gw[2], nw[2], wm2, wa2, undefined, st[2])
+        wak1[:] = 0.0
+        wak2[:] = 0.0
+        for t in range(TILE):
+            f = reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1, wa2,
+                             wak1, wak2, wr)
+            bad += f if t < nt else 0
+        # what the outer joints load the known bodies with, added to the crank's
+        # resultants unless the known body is the ground (in order, every column, as the
+        # composed reactions add them)
+        if wg[P_GROUND, 0] == 0.0:
+            tile_add(wad, wak1, 0, TILE)
+        if wg[PARAM + P_GROUND, 0] == 0.0:
+            tile_add(wad, wak2, 0, TILE)
+        for t in range(TILE):
+            me = crank_moment(t, t, wgd, wdrv, wad)
+            wr[0, t] = me
+            f = nonfinite((me, wad[0, t], wad[1, t]))
+            bad += f if t < nt else 0
+        for t in range(nt):
+            drive[t0 + t - lo] = wr[0, t]
+            close[t0 + t - lo] = wd[CL2, t]
+    return bad
+
+
+__all__ = ["rtr_guide", "rtr_kept"]

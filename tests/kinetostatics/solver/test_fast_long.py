@@ -1,0 +1,113 @@
+"""A long sweep of a crank and one dyad on the compiled path: Me, the flags and the
+closeness to a dead centre from ``solve_many``'s fused kernel called block by block
+(kinetostatics.solver.fast.solve.fused_blocks), the rest solved when a table asks: the
+same numbers, bit for bit, as the composed kernels' lean and full solves, and within the
+paths' tolerance of the numpy path's."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import kinetostatics as ks
+from kinetostatics.model.errors import AssemblyError
+from kinetostatics.model.scene import load_scene
+from kinetostatics.solver.blocks import BLOCK_ROWS
+from kinetostatics.solver.fast import loader, use
+from kinetostatics.solver.fast import solve as fast_solve
+from kinetostatics.solver.fast.compose import Plan, Refused, solve_lean
+from kinetostatics.solver.fast.solve import FUSED_ROWS, _assembled, fused_blocks, guided_blocks
+from kinetostatics.solver.pipeline import structure_of
+
+from .test_fast_short import DATA, FUSED, full_solve
+
+# a crank and one RTR dyad: the guide on the second body (the slotted lever) and on the
+# first (the oscillating cylinder, with the crank's acceleration)
+GUIDED = {"slotted lever": ks.example("slotted_lever"),
+          "oscillating cylinder": DATA / "oscillating_cylinder.toml"}
+
+pytestmark = [pytest.mark.slow,
+              pytest.mark.skipif(not loader.installed(), reason="numba not installed")]
+
+# more rows than the short sweep's limit, not a whole number of the fused calls' blocks
+COUNT = 2 * BLOCK_ROWS + 2 * FUSED_ROWS + 1001
+assert COUNT >= 2 * BLOCK_ROWS
+
+
+@pytest.fixture
+def fast():
+    use("fast")
+    yield
+    use(None)
+
+
+def long_scene(kind: str) -> dict:
+    d = load_scene({**FUSED, **GUIDED}[kind]).raw
+    d["driver"] = {**d["driver"], "count": COUNT}
+    return d
+
+
+@pytest.mark.parametrize("kind", [*FUSED, *GUIDED])
+def test_a_long_sweep_keeps_the_composed_kernels_numbers(fast, kind: str) -> None:
+    sc = load_scene(long_scene(kind))
+    structure, geometry = _assembled(sc, structure_of(sc))
+    pos = sc.driver.positions
+    if kind in GUIDED:
+        assert fused_blocks(loader.kernels(), sc, sc, structure, geometry, pos) is None
+        ours = guided_blocks(loader.kernels(), sc, structure, geometry, pos)
+    else:
+        ours = fused_blocks(loader.kernels(), sc, sc, structure, geometry, pos)
+    assert ours is not None
+    plan = Plan(loader.kernels(), sc, structure, structure.assembly, geometry=geometry)
+    ref = solve_lean(plan, pos)
+    assert np.array_equal(ours.drive.value, ref.drive.value)
+    assert np.array_equal(ours.undefined, ref.undefined)
+    assert np.array_equal(ours.closeness2[0], ref.closeness2[0])
+    assert np.array_equal(ours.singular[0], ref.singular[0])
+
+
+@pytest.mark.parametrize("kind", ["RRR", "RRT", "TTR", "slotted lever"])
+def test_a_long_sweep_is_the_full_solves_bit_for_bit(fast, kind: str) -> None:
+    d = long_scene(kind)
+    sol = ks.solve(d)
+    assert sol.path == "fast" and "kin" not in sol.__dict__      # (lean)
+    driver = sol.driver.copy()
+    ref = full_solve(d)
+    assert driver.equals(ref.driver)
+    assert sol.reactions.equals(ref.reactions)                    # (solved in full now)
+    use("numpy")
+    me = ks.solve(d).driver.iloc[:, 1].to_numpy()
+    # the paths' agreement (test_fast.py: within 1e-13 of the column's scale; measured
+    # here 2026-11-29: 1.5e-16 to 4.9e-16)
+    assert np.abs(driver.iloc[:, 1].to_numpy() - me).max() <= 1e-13 * np.abs(me).max()
+
+
+@pytest.mark.parametrize("scene", [FUSED["RRR"], GUIDED["oscillating cylinder"]])
+def test_given_positions_of_a_long_sweep(fast, scene) -> None:
+    pos = np.concatenate([np.linspace(350.0, -340.0, COUNT), [355.5]])
+    sol = ks.solve(scene, positions=pos)
+    assert sol.path == "fast" and "kin" not in sol.__dict__
+    assert sol.driver.equals(full_solve(scene, pos).driver)
+
+
+def test_a_long_sweep_that_cannot_close_is_refused_as_on_numpy(fast, monkeypatch) -> None:
+    d = long_scene("RRR")
+    d["bodies"][0]["points"]["B"] = [0.16, 0.0]     # the crank too long: C lost past 154.85 deg
+    refused = []
+    blocks = fused_blocks
+
+    def seen(*args):
+        try:
+            return blocks(*args)
+        except Refused:
+            refused.append(True)
+            raise
+    monkeypatch.setattr(fast_solve, "fused_blocks", seen)
+    with pytest.raises(AssemblyError) as fast_error:
+        ks.solve(d)
+    assert refused                          # (the fused kernel met the rows, not a check)
+    use("numpy")
+    with pytest.raises(AssemblyError) as numpy_error:
+        ks.solve(d)
+    assert str(fast_error.value) == str(numpy_error.value)
+    assert "cannot be assembled at driver position(s) 154.8" in str(fast_error.value)
