@@ -292,6 +292,7 @@ SHARED_PER_MODULE = ("tests/kinetostatics/teaching/test_classroom.py",
 COMPILED = ("tests/kinetostatics/solver/test_fast.py::",
             "tests/kinetostatics/solver/test_many_fast.py::",
             "tests/kinetostatics/solver/test_fast_short.py::",
+            "tests/kinetostatics/solver/test_fast_long.py::",
             "tests/kinetostatics/solver/test_fast_auto.py::",
             "tests/kinetostatics/results/test_fastpass.py::",
             "tests/kinetostatics/design/test_stacked.py::"

@@ -57,6 +57,11 @@ def test_the_compiled_paths_tests_share_one_worker() -> None:
         assert not name or f"def {name}(" in text, entry
         assert conftest._group(f"{entry}{'' if name else 'test_x'}[p]") == "numba", entry
     assert conftest._group("tests/kinetostatics/solver/test_kinematics.py::test_x") is None
+    # a test module that sets the compiled path is in the group (a new one must be added)
+    for path in sorted((root / "tests").rglob("test_*.py")):
+        if path.name != "test_tiers.py" and 'use("fast")' in path.read_text(encoding="utf-8"):
+            module = path.relative_to(root).as_posix()
+            assert conftest._group(f"{module}::test_x") == "numba", module
 
 
 def test_the_kernels_cache_where_the_commands_cache_them(monkeypatch) -> None:
