@@ -90,7 +90,11 @@ def cache_folder() -> Path | None:
         home = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"),
                                                                 ".cache")
         base = Path(home) / "kinetostatics" / "numba"
-    folder = base / sources_key()
+    key = sources_key()
+    # (a process this one starts inherits NUMBA_CACHE_DIR as :func:`kernels` set it, the
+    # folder of this version already: taken as it is, not nested one folder deeper,
+    # where every kernel would be compiled again)
+    folder = base if base.name == key else base / key
     return folder if _writable(folder) else None
 
 

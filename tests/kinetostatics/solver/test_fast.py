@@ -296,6 +296,10 @@ def test_the_cache_folder_is_named_by_every_kernel_source(tmp_path, monkeypatch)
     helper.write_text(helper.read_text() + "\n# changed\n")
     after = loader.cache_folder()
     assert after != before and after.parent == before.parent
+    # a process started by one that loaded the kernels inherits NUMBA_CACHE_DIR set to
+    # that version's folder: the same folder, not one nested in it (compiled again)
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(after))
+    assert loader.cache_folder() == after
 
 
 def test_without_numba_every_setting_solves_on_numpy(path, monkeypatch) -> None:
