@@ -65,7 +65,7 @@ from .fast.geometry import not_covered
 from .fast.solve import KeptRun
 from .fast.stacked import release, solve_group_kept
 from .footprint import columns, solve_bytes
-from .kinematics import Kinematics, solve_kinematics
+from .kinematics import Kinematics, probe_closeness, solve_kinematics
 from .pipeline import check_distinct, solve_arrays, solve_block
 from .reactions import DriverReaction
 from .solved import Solved
@@ -287,12 +287,13 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
 
     probes: dict = {}           # (the probes' structure per owner: the same each round)
 
-    def at(where: np.ndarray, who: np.ndarray) -> Kinematics:
+    def at(where: np.ndarray, who: np.ndarray) -> tuple:
         probe = probes.get(id(who))
         if probe is None or probe[0] is not who:
             probe = probes[id(who)] = (who, replace(structure,
                                                     assembly=tuple(k[who] for k in ks)))
-        return solve_kinematics(stacker.scene(who, where), probe[1], strict=False)
+        # (the closeness alone; each scene's links were measured by assemblies)
+        return probe_closeness(stacker.scene(who, where), probe[1], measured=True)
     dead = dead_points_stacked(m2, positions, starts, counts, at, increasing)
     if whole is not None:
         release(whole)          # (its closeness: read by nothing after the screen)
