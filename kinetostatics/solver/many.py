@@ -136,7 +136,8 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
     read (:class:`_Run`); False keeps every run's arrays, for a caller that reads every
     table (an answer key) or sends the arrays elsewhere (pickled whole)."""
     out: list[Any] = [None] * len(items)
-    loaded: list[tuple[int, Any]] = []
+    loaded = 0
+    rows = 0            # (every scene's rows, counted as it is read: the memory check)
     groups: dict[Any, list] = {}
     alone = []
     with warnings.catch_warnings():     # said again by solve_many, naming the scene
@@ -144,7 +145,8 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
         for i, src in enumerate(items):
             try:
                 sc = load_scene(src)
-                loaded.append((i, sc))
+                loaded += 1
+                rows += sc.driver.positions.size
                 # its signature's label, its numbers and whether its positions increase
                 # (then none repeats), told once per scene object
                 label, nums, up = stack_record(sc)
@@ -159,7 +161,7 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
                 alone.append((i, sc))
             else:
                 groups.setdefault(label, []).append((i, sc, nums, up))
-    _check_memory(loaded, groups, alone)
+    _check_memory(loaded, rows, groups, alone)
     for i, sc in alone:
         out[i] = _alone(sc)
     for members in groups.values():
@@ -176,17 +178,18 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
     return out
 
 
-def _check_memory(loaded: list, groups: dict, alone: list) -> None:
-    """Refuse, before it is spent, the peak memory of solving the ``loaded`` scenes (the
-    widest scene's columns over all their rows; the scenes of one group share theirs)."""
-    rows = sum([sc.driver.positions.size for _, sc in loaded])
+def _check_memory(loaded: int, rows: int, groups: dict, alone: list) -> None:
+    """Refuse, before it is spent, the peak memory of solving the ``loaded`` scenes of
+    ``rows`` positions in all (the widest scene's columns over all their rows; the scenes
+    of one group share theirs). The memory available is read once
+    (:func:`~kinetostatics.model.memory.check_memory`), not per scene."""
     if not loaded or rows < 100_000:
         return
     widest = [m[0][1] for m in groups.values()] + [sc for _, sc in alone]
     if not widest:          # (every scene refused: nothing will be solved)
         return
     largest = max(widest, key=columns)
-    check_memory(solve_bytes(largest, rows), f"solving {len(loaded):,} scene(s) of "
+    check_memory(solve_bytes(largest, rows), f"solving {loaded:,} scene(s) of "
                  f"{rows:,} positions in all", "solve fewer scenes or positions at a time")
 
 
