@@ -68,7 +68,9 @@ def _numbers(scene: Scene) -> list:
 def _read(scene: Scene) -> tuple[tuple | None, list]:
     """:func:`signature` and :func:`_numbers` of a scene, read in one pass over its
     parts (a scene just read is touched once: measured 2026-11-29, 1000 new four-bars,
-    signature and numbers read apart 17 ms, together N ms)."""
+    processor time, best of 9: 11.7-12.4 ms read apart, 10.9-12.5 ms together; most of
+    it is the first touch of each new scene's objects, about 50 of them, which neither
+    way avoids; a flat signature tuple instead of nested ones was no quicker)."""
     out: list = []
     put, add = out.extend, out.append
     for xy in scene.ground.values():
