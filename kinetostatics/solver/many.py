@@ -213,15 +213,18 @@ def _solve_group(members: list, out: list, lean: bool) -> None:
         ks, ok = assemblies(stacker, structure)
     except Exception:
         ok = np.zeros(len(members), dtype=bool)
-    for (i, sc, *_), good in zip(members, ok, strict=True):
-        if not good:
-            out[i] = _alone(sc)
-    kept = [m for m, good in zip(members, ok, strict=True) if good]
-    if len(kept) < 2:
-        for i, sc, *_ in kept:
-            out[i] = _alone(sc)
-        return
-    ks = ks[:, ok]
+    if ok.all():            # (the usual case: every scene kept, no pass over the flags)
+        kept = members
+    else:
+        for (i, sc, *_), good in zip(members, ok.tolist(), strict=True):
+            if not good:
+                out[i] = _alone(sc)
+        kept = [m for m, good in zip(members, ok.tolist(), strict=True) if good]
+        if len(kept) < 2:
+            for i, sc, *_ in kept:
+                out[i] = _alone(sc)
+            return
+        ks = ks[:, ok]
     scenes = [m[1] for m in kept]
     try:
         sols = _stacked(scenes, structure, ks, stacker if len(kept) == len(members)
