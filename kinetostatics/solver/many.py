@@ -146,7 +146,8 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
             try:
                 sc = load_scene(src)
                 loaded += 1
-                rows += sc.driver.positions.size
+                n = sc.driver.positions.size
+                rows += n
                 # its signature's label, its numbers and whether its positions increase
                 # (then none repeats), told once per scene object
                 label, nums, up = stack_record(sc)
@@ -159,8 +160,11 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
                 continue
             if label is None:
                 alone.append((i, sc))
-            else:
-                groups.setdefault(label, []).append((i, sc, nums, up))
+                continue
+            members = groups.get(label)
+            if members is None:
+                members = groups[label] = []
+            members.append((i, sc, nums, up, n))
     _check_memory(loaded, rows, groups, alone)
     for i, sc in alone:
         out[i] = _alone(sc)
@@ -169,7 +173,7 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
         rows = 0
         for m in members:
             chunk.append(m)
-            rows += m[1].driver.positions.size
+            rows += m[4]
             if rows >= CHUNK_ROWS:
                 _solve_group(chunk, out, lean)
                 chunk, rows = [], 0
@@ -229,15 +233,16 @@ def _solve_group(members: list, out: list, lean: bool) -> None:
     try:
         sols = _stacked(scenes, structure, ks, stacker if len(kept) == len(members)
                         else Stacker(scenes, [m[2] for m in kept]), lean,
-                        all(m[3] for m in kept))
+                        all([m[3] for m in kept]), np.array([m[4] for m in kept]))
     except Exception:
         sols = [_alone(sc) for sc in scenes]
-    for (i, *_), s in zip(kept, sols, strict=True):
-        out[i] = s
+    for m, s in zip(kept, sols, strict=True):
+        out[m[0]] = s
 
 
 def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bool,
-             increasing: bool = False) -> list[CutSolved | Solved | LeanSolved | Exception]:
+             increasing: bool = False, counts: np.ndarray | None = None
+             ) -> list[CutSolved | Solved | LeanSolved | Exception]:
     """The solve of :func:`kinetostatics.solve` on the stacked scenes, cut per scene.
 
     The rows are solved in runs of whole scenes of about ``RUN_ROWS`` rows (as
@@ -248,9 +253,11 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     (:func:`dead_points_stacked`, the probes of all scenes in one solve); each scene's
     Solution is a light view: its Me/Fe and flags cut from its run's when first read,
     its kinematics and joint reactions from the run solved again (:class:`_Run`).
-    ``increasing``: every scene's positions are known to increase.
+    ``increasing``: every scene's positions are known to increase; ``counts``: each
+    scene's number of rows, when known.
     """
-    counts = np.array([s.driver.positions.size for s in scenes])
+    if counts is None:
+        counts = np.array([s.driver.positions.size for s in scenes])
     starts = np.cumsum(counts) - counts
     positions, tame = stacked_positions(scenes)
     out: list[Any] = [None] * len(scenes)
