@@ -407,22 +407,33 @@ def probe_closeness(scene: Scene, structure: Structure, positions=None,
     out, opened = [], np.zeros(n, dtype=bool)
     with np.errstate(all="ignore"):
         for dyad, k in zip(structure.dyads, assembly, strict=True):
-            solver = DyadSolver(scene, dyad, measured)
-            pr = (dyad_param(scene, dyad, 0, motions, speeds=False),
-                  dyad_param(scene, dyad, 1, motions, speeds=False))
-            k = 1 if solver.branches == 1 else k
-            cs, ss, gap = solver.positions(pr, k)
-            reach = solver.reach
-            if reach is not None:
-                reach = A.full(reach / scene.size, n)
-            org = [body_origin(pr[i], cs[i], ss[i]) for i in range(2)]
-            out.append(_closeness2(_Closing(dyad, solver, pr, cs, org), pr, reach, n))
+            sin2, gap = probe_dyad(scene, dyad, motions, k, DyadSolver(scene, dyad, measured))
+            out.append(sin2)
             if gap is not None:
                 opened |= ~(np.broadcast_to(gap, (n,)) <= 1e-9 * scene.size)
-            for i, name in enumerate(dyad.bodies):     # (positions: all a probe reads)
-                motions[name] = BodyMotion(None, cs[i][0], cs[i][1], 0.0, 0.0, org[i][0],
-                                           org[i][1], 0.0, 0.0, 0.0, 0.0)
     return out, opened
+
+
+def probe_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion], k,
+               solver: DyadSolver) -> tuple[np.ndarray, object]:
+    """One dyad of :func:`probe_closeness` in assembly ``k``: its closeness2 (as
+    :func:`solve_dyad` with ``strict = False`` gives it) and the closure's gap (None where
+    it closes everywhere); its bodies' positions added to ``motions`` (no speeds: a
+    probe reads none; :func:`~kinetostatics.solver.closure.dyad_param` with ``speeds``
+    False)."""
+    n = scene.driver.positions.size
+    pr = (dyad_param(scene, dyad, 0, motions, speeds=False),
+          dyad_param(scene, dyad, 1, motions, speeds=False))
+    k = 1 if solver.branches == 1 else k
+    cs, ss, gap = solver.positions(pr, k)
+    reach = solver.reach
+    if reach is not None:
+        reach = A.full(reach / scene.size, n)
+    org = [body_origin(pr[i], cs[i], ss[i]) for i in range(2)]
+    for i, name in enumerate(dyad.bodies):
+        motions[name] = BodyMotion(None, cs[i][0], cs[i][1], 0.0, 0.0, org[i][0], org[i][1],
+                                   0.0, 0.0, 0.0, 0.0)
+    return _closeness2(_Closing(dyad, solver, pr, cs, org), pr, reach, n), gap
 
 
 def _column_norm2(solver: DyadSolver, pr) -> float:

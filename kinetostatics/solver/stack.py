@@ -29,7 +29,7 @@ from ..model.scene import GROUND, Body, Scene
 from .assembly import hint_points
 from .closure import DyadSolver, body_origin, dyad_param
 from .driver import driver_motion, ground_motion
-from .kinematics import SINGULAR_FAIL, solve_dyad
+from .kinematics import SINGULAR_FAIL, probe_dyad
 from .memo import Kept
 from .structure import Structure
 from .trap import tame, tame_values
@@ -392,16 +392,19 @@ def assemblies(stacker: Stacker, structure: Structure) -> tuple[np.ndarray, np.n
             solver = DyadSolver(first, dyad)
             if solver.branches == 2:
                 ks[d] = _branch(first, dyad, solver, motions, size, ok)
-            dm = solve_dyad(first, dyad, motions, ks[d] if solver.branches == 2 else 1,
-                            strict=False)
-            ok &= np.broadcast_to(dm.closeness2, (m,)) > SINGULAR_FAIL**2
+            # (the closeness alone, as solve_dyad with strict = False measures it: no
+            # velocities or accelerations; the next dyad reads these bodies' positions)
+            sin2 = probe_dyad(first, dyad, motions, ks[d] if solver.branches == 2 else 1,
+                              solver)[0]
+            ok &= np.broadcast_to(sin2, (m,)) > SINGULAR_FAIL**2
     return ks, ok
 
 
 def _branch(first: Scene, dyad, solver: DyadSolver, motions, size, ok) -> np.ndarray:
     """The assembly whose hinted points lie closest, per scene (``ok`` cleared where the
     first row cannot close or no hint settles it)."""
-    pr = (dyad_param(first, dyad, 0, motions), dyad_param(first, dyad, 1, motions))
+    pr = (dyad_param(first, dyad, 0, motions, speeds=False),
+          dyad_param(first, dyad, 1, motions, speeds=False))
     cands = {}
     for k in (1, -1):
         cs, ss, gap = solver.positions(pr, k)
