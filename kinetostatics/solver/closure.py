@@ -64,25 +64,33 @@ def take_rows(p: Param, index) -> Param:
     return out
 
 
-def known_point(scene: Scene, bname: str, motion: BodyMotion, pname: str):
-    """Position, velocity and acceleration of a named point of a known body."""
+def known_point(scene: Scene, bname: str, motion: BodyMotion, pname: str,
+                speeds: bool = True):
+    """Position, velocity and acceleration of a named point of a known body (``speeds``
+    False: the position alone, the rest 0.0: a probe of the closeness to a dead centre,
+    :func:`~kinetostatics.solver.kinematics.probe_closeness`)."""
     if bname == GROUND:
         x, y = scene.ground[pname]
         return A.scalar(x), A.scalar(y), 0.0, 0.0, 0.0, 0.0
     rx, ry = motion.rotate(*scene.bodies[bname].local(pname))
+    if not speeds:
+        return A.add(motion.ox, rx), A.add(motion.oy, ry), 0.0, 0.0, 0.0, 0.0
     vx, vy = motion.vel_arm(rx, ry)
     ax, ay = motion.acc_arm(rx, ry)
     return A.add(motion.ox, rx), A.add(motion.oy, ry), vx, vy, ax, ay
 
 
-def dyad_param(scene: Scene, dyad: Dyad, i: int, motions: dict[str, BodyMotion]) -> Param:
+def dyad_param(scene: Scene, dyad: Dyad, i: int, motions: dict[str, BodyMotion],
+               speeds: bool = True) -> Param:
+    """A dyad body's :class:`Param` through its outer joint (``speeds`` False: its
+    pivot's velocity and acceleration left at 0.0, :func:`known_point`)."""
     name = dyad.bodies[i]
     joint = dyad.outer[i]
     kname = joint.other(name)
     kb = motions[kname]
     body = scene.bodies[name]
     if joint.kind == "R":
-        px, py, vx, vy, ax, ay = known_point(scene, kname, kb, joint.point_on(kname))
+        px, py, vx, vy, ax, ay = known_point(scene, kname, kb, joint.point_on(kname), speeds)
         return Param("rot", kb, body.local(joint.point_on(name)), px, py, vx, vy, ax, ay)
     beta = joint.beta
     cb, sb = float(np.cos(beta)), float(np.sin(beta))
@@ -115,7 +123,7 @@ def _trans_point(p: Param, local):
 class DyadSolver:
     """Closed-form position analysis of one dyad for a given assembly k."""
 
-    def __init__(self, scene: Scene, dyad: Dyad):
+    def __init__(self, scene: Scene, dyad: Dyad, measured: bool = False):
         self.scene = scene
         self.dyad = dyad
         self.b = [scene.bodies[n] for n in dyad.bodies]
@@ -126,7 +134,8 @@ class DyadSolver:
             # (a run of stacked scenes, kinetostatics.solve_many: each scene's links were
             # measured once, when its assembly was chosen, stack.assemblies; not again
             # row by row)
-            run = "segments" in scene.__dict__
+            # (``measured``: so were a probe's, at the sweep that was solved before)
+            run = measured or "segments" in scene.__dict__
             for i, (qx, qy) in enumerate([] if run else self.q):
                 outer = dyad.outer[i]
                 if outer.kind != "R":

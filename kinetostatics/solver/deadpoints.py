@@ -36,8 +36,12 @@ import numpy as np
 
 from ..model.scene import Scene
 from .continuity import open_rows, sweep_order
-from .kinematics import SINGULAR_WARN, Kinematics, solve_kinematics
+from .kinematics import SINGULAR_WARN, Kinematics, probe_closeness
 from .structure import Structure
+
+# what a probe gives (:func:`_probe`): each dyad's closeness2 and the rows where some dyad
+# cannot close, or (as before) the kinematics solved with strict = False
+Probed = tuple[list, np.ndarray] | Kinematics
 
 PROBES = 31        # interior positions per interval and round
 ROUNDS = 3         # zooms on the smallest value
@@ -112,13 +116,14 @@ def _candidates(m2: np.ndarray, starts: np.ndarray | None = None,
     return both[np.concatenate([[True], both[1:] != both[:-1]])]
 
 
-def _probe(at: Callable[[np.ndarray, np.ndarray], Kinematics], lo: np.ndarray,
+def _probe(at: Callable[[np.ndarray, np.ndarray], Probed], lo: np.ndarray,
            hi: np.ndarray, owner: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The smallest m^2 found inside each interval (lo, hi), zooming ROUNDS times, and
     the intervals where some probe found a dyad that cannot close (no closed form).
-    ``at(positions, owner)`` solves the kinematics (``strict = False``) at driver
-    positions, row i of the mechanism (segment) ``owner[i]``; interval j belongs to
-    ``owner[j]``."""
+    ``at(positions, owner)`` probes the mechanism at driver positions, row i of the
+    mechanism (segment) ``owner[i]``: the closeness of each dyad and the rows where one
+    cannot close (:func:`~.kinematics.probe_closeness`), or the kinematics solved with
+    ``strict = False``; interval j belongs to ``owner[j]``."""
     t = np.linspace(0.0, 1.0, PROBES + 2)
     rows = np.arange(lo.size)
     best = np.full(lo.size, np.inf)
@@ -126,9 +131,13 @@ def _probe(at: Callable[[np.ndarray, np.ndarray], Kinematics], lo: np.ndarray,
     probe_owner = np.repeat(owner, PROBES)
     for _ in range(ROUNDS):
         grid = lo[:, None] + (hi - lo)[:, None] * t[None, :]
-        probe = at(grid[:, 1:-1].ravel(), probe_owner)
-        pm2 = kin_measure2(probe).reshape(lo.size, PROBES)
-        nan = np.isnan(pm2) | open_rows(probe).reshape(lo.size, PROBES)
+        got = at(grid[:, 1:-1].ravel(), probe_owner)
+        if isinstance(got, Kinematics):
+            pm2, gone = kin_measure2(got), open_rows(got)
+        else:
+            pm2, gone = measure2(got[0], got[1].size), got[1]
+        pm2 = pm2.reshape(lo.size, PROBES)
+        nan = np.isnan(pm2) | gone.reshape(lo.size, PROBES)
         open_ |= nan.any(axis=1)
         pm2 = np.where(nan, np.inf, pm2)        # no closed form there: not a dead point
         j = np.argmin(pm2, axis=1)
@@ -171,15 +180,15 @@ def dead_points_of_sweep(scene: Scene, structure: Structure, positions: np.ndarr
         pairs = np.zeros((0, 2), dtype=int)
         return pairs, np.zeros(0, dtype=int), pairs
 
-    def at(positions: np.ndarray, owner: np.ndarray) -> Kinematics:
-        return solve_kinematics(scene, structure, positions=positions, strict=False)
+    def at(positions: np.ndarray, owner: np.ndarray) -> Probed:
+        return probe_closeness(scene, structure, positions)
     return dead_points_stacked(m2, np.asarray(positions, dtype=float),
                                np.zeros(1, dtype=int), np.array([m2.size]), at)[0]
 
 
 def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarray,
                         counts: np.ndarray,
-                        at: Callable[[np.ndarray, np.ndarray], Kinematics],
+                        at: Callable[[np.ndarray, np.ndarray], Probed],
                         increasing: bool = False) -> list[tuple]:
     """:func:`dead_points_between_rows` of many sweeps at once: segment s holds rows
     ``starts[s]`` to ``starts[s] + counts[s]`` (one scene of a stack,
@@ -196,8 +205,8 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     starts, counts : numpy.ndarray
         Each segment's first row and number of rows (one after another, in order).
     at : callable
-        ``at(positions, owner)``: the kinematics at ``positions`` (row i of segment
-        ``owner[i]``), ``strict = False``.
+        ``at(positions, owner)``: the probe at ``positions`` (row i of segment
+        ``owner[i]``), as for :func:`_probe`.
     increasing : bool
         Every segment's positions are known to increase (their order is then not told
         again).

@@ -311,19 +311,15 @@ class _VelocitySystem:
         inner = dyad.inner
         self.revolute = inner.kind == "R"
         self.slider_first = solver.slider_first
-        ib = 0 if inner.kind == "R" or solver.slider_first else 1
-        self.guide = 1 - ib
-        loc = solver.q[0] if inner.kind == "R" else solver.b[ib].local(inner.points[1])
-        rx, ry = A.rotate(cs[ib][0], cs[ib][1], *loc)
-        xx, xy = A.add(org[ib][0], rx), A.add(org[ib][1], ry)
+        self.guide = _guide(solver)
+        xx, xy = _closing_point(dyad, solver, cs, org)
         (c1, k1, w1), (c2, k2, w2) = _columns(pr[0], xx, xy), _columns(pr[1], xx, xy)
         if inner.kind == "R":
             r1, r2 = A.sub(k2[0], k1[0]), A.sub(k2[1], k1[1])
             nx = ny = None
             ux = uy = None
         else:
-            ig = self.guide
-            ux, uy = A.rotate(cs[ig][0], cs[ig][1], np.cos(solver.beta), np.sin(solver.beta))
+            ux, uy = _guide_line(solver, cs)
             nx, ny = -uy, ux
             om0 = [0.0 if p.kind == "rot" else p.known.omega for p in pr]
             r1 = A.sub(om0[1], om0[0])
@@ -337,6 +333,107 @@ class _VelocitySystem:
     def solve(self, r1, r2):
         """qdot (or qddot) for the right-hand side (r1, r2), Cramer's rule."""
         return _solve2(*self.a, r1, r2, self.det)
+
+
+def _guide(solver: DyadSolver) -> int:
+    """The body (0 or 1) that carries a prismatic inner joint's guide (the other one
+    carries the slider, whose point is the closing point X)."""
+    return 1 if solver.dyad.inner.kind == "R" or solver.slider_first else 0
+
+
+def _closing_point(dyad: Dyad, solver: DyadSolver, cs, org):
+    """The closing point X (the inner joint's point; for a prismatic inner joint the
+    slider point) from the first body (the slider) in its solved position."""
+    ib = 1 - _guide(solver)
+    inner = dyad.inner
+    loc = solver.q[0] if inner.kind == "R" else solver.b[ib].local(inner.points[1])
+    rx, ry = A.rotate(cs[ib][0], cs[ib][1], *loc)
+    return A.add(org[ib][0], rx), A.add(org[ib][1], ry)
+
+
+def _guide_line(solver: DyadSolver, cs):
+    """The unit direction u of a prismatic inner joint's line, turned with its guide."""
+    ig = _guide(solver)
+    return A.rotate(cs[ig][0], cs[ig][1], np.cos(solver.beta), np.sin(solver.beta))
+
+
+class _Closing:
+    """What the closeness to a dead centre reads of a dyad's velocity system
+    (:func:`_closeness2`), from its positions alone: for a revolute inner joint the
+    columns c1, c2 at X and their determinant, for a prismatic one the line's
+    direction u (the numbers of :class:`_VelocitySystem`: the same operations)."""
+
+    def __init__(self, dyad: Dyad, solver: DyadSolver, pr, cs, org):
+        self.revolute = dyad.inner.kind == "R"
+        self.c1 = self.c2 = self.det = self.ux = self.uy = None
+        if self.revolute:
+            xx, xy = _closing_point(dyad, solver, cs, org)
+            self.c1, self.c2 = _column(pr[0], xx, xy), _column(pr[1], xx, xy)
+            self.det = _matrix(True, self.c1, self.c2, 1.0, 1.0, None, None)[1]
+        else:
+            self.ux, self.uy = _guide_line(solver, cs)
+
+
+def probe_closeness(scene: Scene, structure: Structure, positions=None,
+                    measured: bool = False) -> tuple[list[np.ndarray], np.ndarray]:
+    """The closeness to a dead centre of each dyad at driver ``positions`` (a probe
+    between rows, :mod:`~kinetostatics.solver.deadpoints`; default the scene's sweep),
+    from the positions alone:
+    exactly the ``closeness2`` of :func:`solve_kinematics` with ``strict = False`` (the
+    same operations, no velocities or accelerations), and the rows where some dyad
+    cannot close (its links do not reach by more than 1e-9 of the mechanism's size,
+    from the closure's own gap).
+
+    ``measured``: the links' lengths were checked at the solve before (a stack's
+    scenes, :func:`~kinetostatics.solver.stack.assemblies`), not again row by row.
+
+    Returns
+    -------
+    closeness2 : list of numpy.ndarray
+        Per dyad, min(sin^2 tau, (pivot distance / size)^2) per row (:func:`_closeness2`
+        as a probe measures it).
+    open : numpy.ndarray
+        Rows where some dyad cannot close.
+    """
+    if len(structure.assembly) == len(structure.dyads):
+        assembly: tuple = structure.assembly
+    else:
+        assembly = choose_assembly(scene, structure)
+    if positions is not None:
+        scene = with_positions(scene, positions)
+    n = scene.driver.positions.size
+    motions: dict[str, BodyMotion] = {GROUND: ground_motion(),
+                                      scene.driver.body: driver_motion(scene)}
+    out, opened = [], np.zeros(n, dtype=bool)
+    with np.errstate(all="ignore"):
+        for dyad, k in zip(structure.dyads, assembly, strict=True):
+            sin2, gap = probe_dyad(scene, dyad, motions, k, DyadSolver(scene, dyad, measured))
+            out.append(sin2)
+            if gap is not None:
+                opened |= ~(np.broadcast_to(gap, (n,)) <= 1e-9 * scene.size)
+    return out, opened
+
+
+def probe_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion], k,
+               solver: DyadSolver) -> tuple[np.ndarray, object]:
+    """One dyad of :func:`probe_closeness` in assembly ``k``: its closeness2 (as
+    :func:`solve_dyad` with ``strict = False`` gives it) and the closure's gap (None where
+    it closes everywhere); its bodies' positions added to ``motions`` (no speeds: a
+    probe reads none; :func:`~kinetostatics.solver.closure.dyad_param` with ``speeds``
+    False)."""
+    n = scene.driver.positions.size
+    pr = (dyad_param(scene, dyad, 0, motions, speeds=False),
+          dyad_param(scene, dyad, 1, motions, speeds=False))
+    k = 1 if solver.branches == 1 else k
+    cs, ss, gap = solver.positions(pr, k)
+    reach = solver.reach
+    if reach is not None:
+        reach = A.full(reach / scene.size, n)
+    org = [body_origin(pr[i], cs[i], ss[i]) for i in range(2)]
+    for i, name in enumerate(dyad.bodies):
+        motions[name] = BodyMotion(None, cs[i][0], cs[i][1], 0.0, 0.0, org[i][0], org[i][1],
+                                   0.0, 0.0, 0.0, 0.0)
+    return _closeness2(_Closing(dyad, solver, pr, cs, org), pr, reach, n), gap
 
 
 def _column_norm2(solver: DyadSolver, pr) -> float:

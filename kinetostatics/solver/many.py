@@ -65,7 +65,7 @@ from .fast.geometry import not_covered
 from .fast.solve import KeptRun
 from .fast.stacked import release, solve_group_kept
 from .footprint import columns, solve_bytes
-from .kinematics import Kinematics, solve_kinematics
+from .kinematics import Kinematics, probe_closeness, solve_kinematics
 from .pipeline import check_distinct, solve_arrays, solve_block
 from .reactions import DriverReaction
 from .solved import Solved
@@ -136,7 +136,8 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
     read (:class:`_Run`); False keeps every run's arrays, for a caller that reads every
     table (an answer key) or sends the arrays elsewhere (pickled whole)."""
     out: list[Any] = [None] * len(items)
-    loaded: list[tuple[int, Any]] = []
+    loaded = 0
+    rows = 0            # (every scene's rows, counted as it is read: the memory check)
     groups: dict[Any, list] = {}
     alone = []
     with warnings.catch_warnings():     # said again by solve_many, naming the scene
@@ -144,7 +145,9 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
         for i, src in enumerate(items):
             try:
                 sc = load_scene(src)
-                loaded.append((i, sc))
+                loaded += 1
+                n = sc.driver.positions.size
+                rows += n
                 # its signature's label, its numbers and whether its positions increase
                 # (then none repeats), told once per scene object
                 label, nums, up = stack_record(sc)
@@ -157,9 +160,12 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
                 continue
             if label is None:
                 alone.append((i, sc))
-            else:
-                groups.setdefault(label, []).append((i, sc, nums, up))
-    _check_memory(loaded, groups, alone)
+                continue
+            members = groups.get(label)
+            if members is None:
+                members = groups[label] = []
+            members.append((i, sc, nums, up, n))
+    _check_memory(loaded, rows, groups, alone)
     for i, sc in alone:
         out[i] = _alone(sc)
     for members in groups.values():
@@ -167,7 +173,7 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
         rows = 0
         for m in members:
             chunk.append(m)
-            rows += m[1].driver.positions.size
+            rows += m[4]
             if rows >= CHUNK_ROWS:
                 _solve_group(chunk, out, lean)
                 chunk, rows = [], 0
@@ -176,17 +182,18 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
     return out
 
 
-def _check_memory(loaded: list, groups: dict, alone: list) -> None:
-    """Refuse, before it is spent, the peak memory of solving the ``loaded`` scenes (the
-    widest scene's columns over all their rows; the scenes of one group share theirs)."""
-    rows = sum([sc.driver.positions.size for _, sc in loaded])
+def _check_memory(loaded: int, rows: int, groups: dict, alone: list) -> None:
+    """Refuse, before it is spent, the peak memory of solving the ``loaded`` scenes of
+    ``rows`` positions in all (the widest scene's columns over all their rows; the scenes
+    of one group share theirs). The memory available is read once
+    (:func:`~kinetostatics.model.memory.check_memory`), not per scene."""
     if not loaded or rows < 100_000:
         return
     widest = [m[0][1] for m in groups.values()] + [sc for _, sc in alone]
     if not widest:          # (every scene refused: nothing will be solved)
         return
     largest = max(widest, key=columns)
-    check_memory(solve_bytes(largest, rows), f"solving {len(loaded):,} scene(s) of "
+    check_memory(solve_bytes(largest, rows), f"solving {loaded:,} scene(s) of "
                  f"{rows:,} positions in all", "solve fewer scenes or positions at a time")
 
 
@@ -210,28 +217,32 @@ def _solve_group(members: list, out: list, lean: bool) -> None:
         ks, ok = assemblies(stacker, structure)
     except Exception:
         ok = np.zeros(len(members), dtype=bool)
-    for (i, sc, *_), good in zip(members, ok, strict=True):
-        if not good:
-            out[i] = _alone(sc)
-    kept = [m for m, good in zip(members, ok, strict=True) if good]
-    if len(kept) < 2:
-        for i, sc, *_ in kept:
-            out[i] = _alone(sc)
-        return
-    ks = ks[:, ok]
+    if ok.all():            # (the usual case: every scene kept, no pass over the flags)
+        kept = members
+    else:
+        for (i, sc, *_), good in zip(members, ok.tolist(), strict=True):
+            if not good:
+                out[i] = _alone(sc)
+        kept = [m for m, good in zip(members, ok.tolist(), strict=True) if good]
+        if len(kept) < 2:
+            for i, sc, *_ in kept:
+                out[i] = _alone(sc)
+            return
+        ks = ks[:, ok]
     scenes = [m[1] for m in kept]
     try:
         sols = _stacked(scenes, structure, ks, stacker if len(kept) == len(members)
                         else Stacker(scenes, [m[2] for m in kept]), lean,
-                        all(m[3] for m in kept))
+                        all([m[3] for m in kept]), np.array([m[4] for m in kept]))
     except Exception:
         sols = [_alone(sc) for sc in scenes]
-    for (i, *_), s in zip(kept, sols, strict=True):
-        out[i] = s
+    for m, s in zip(kept, sols, strict=True):
+        out[m[0]] = s
 
 
 def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bool,
-             increasing: bool = False) -> list[CutSolved | Solved | LeanSolved | Exception]:
+             increasing: bool = False, counts: np.ndarray | None = None
+             ) -> list[CutSolved | Solved | LeanSolved | Exception]:
     """The solve of :func:`kinetostatics.solve` on the stacked scenes, cut per scene.
 
     The rows are solved in runs of whole scenes of about ``RUN_ROWS`` rows (as
@@ -242,9 +253,11 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     (:func:`dead_points_stacked`, the probes of all scenes in one solve); each scene's
     Solution is a light view: its Me/Fe and flags cut from its run's when first read,
     its kinematics and joint reactions from the run solved again (:class:`_Run`).
-    ``increasing``: every scene's positions are known to increase.
+    ``increasing``: every scene's positions are known to increase; ``counts``: each
+    scene's number of rows, when known.
     """
-    counts = np.array([s.driver.positions.size for s in scenes])
+    if counts is None:
+        counts = np.array([s.driver.positions.size for s in scenes])
     starts = np.cumsum(counts) - counts
     positions, tame = stacked_positions(scenes)
     out: list[Any] = [None] * len(scenes)
@@ -287,12 +300,13 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
 
     probes: dict = {}           # (the probes' structure per owner: the same each round)
 
-    def at(where: np.ndarray, who: np.ndarray) -> Kinematics:
+    def at(where: np.ndarray, who: np.ndarray) -> tuple:
         probe = probes.get(id(who))
         if probe is None or probe[0] is not who:
             probe = probes[id(who)] = (who, replace(structure,
                                                     assembly=tuple(k[who] for k in ks)))
-        return solve_kinematics(stacker.scene(who, where), probe[1], strict=False)
+        # (the closeness alone; each scene's links were measured by assemblies)
+        return probe_closeness(stacker.scene(who, where), probe[1], measured=True)
     dead = dead_points_stacked(m2, positions, starts, counts, at, increasing)
     if whole is not None:
         release(whole)          # (its closeness: read by nothing after the screen)
