@@ -242,6 +242,23 @@ def base_radius_oscillating(law: CamLaw, tau_adm: float, arm: float, pivot_dista
     if law.stroke >= math.pi:
         raise CamError(f"the follower's swing must be below "
                        f"{(units or SI).quote(math.pi, 'angle')}")
+    key = (law, float(tau_adm), float(arm), float(pivot_distance), rise_sense)
+    if key not in _BASE_RADII:
+        if len(_BASE_RADII) >= 256:
+            _BASE_RADII.clear()
+        _BASE_RADII[key] = _smallest_base_radius(law, tau_adm, arm, pivot_distance, rise_sense,
+                                                 units)
+    return _BASE_RADII[key]
+
+
+# r0 of every (law, tau_adm, L, d, sense) sized so far: reading the same scene again (the
+# tests, a notebook's slider, a class's scenes) asks for it again; a refusal is not kept
+_BASE_RADII: dict[tuple, float] = {}
+
+
+def _smallest_base_radius(law: CamLaw, tau_adm: float, arm: float, pivot_distance: float,
+                          rise_sense: str, units: Units | None) -> float:
+    """:func:`base_radius_oscillating` for checked arguments (eqs 1.35-1.36)."""
     probe = OscillatingFollower(0.5 * (abs(pivot_distance - arm) + pivot_distance + arm), arm,
                                 pivot_distance, rise_sense=rise_sense)
 

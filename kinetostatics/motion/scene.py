@@ -173,6 +173,12 @@ class ReducedMechanism:
 
     def values(self, phi: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Cached where the angle (modulo a revolution) was evaluated before."""
+        if isinstance(phi, float):
+            # one angle (an integrator's stage): the cached numbers as they are, without
+            # the arrays (the array road cost half of a motion run)
+            hit = self._cache.get(self._key(phi))
+            if hit is not None:
+                return np.float64(hit[0]), np.float64(hit[1]), np.float64(hit[2])
         arr = np.asarray(phi, dtype=float)
         flat = arr.ravel().tolist()
         keys = [self._key(p) for p in flat]

@@ -230,6 +230,29 @@ def test_base_radius_oscillating():
     assert tau_less.min() < tau_adm
 
 
+def test_base_radius_oscillating_sized_again_for_each_change():
+    """The radius sized once per (law, tau_adm, L, d, sense) is kept: a second sizing that
+    changes any one of them is sized anew (each radius meets eq. 1.36 at its own tau_adm)."""
+    # (a rise unlike its return: the two senses need two radii, 22.5 and 22.3 mm)
+    law = CamLaw.cycle(math.radians(20.0), "sine-acceleration", 100, "cosine-acceleration",
+                       100, top_dwell_deg=40.0)
+    other = CamLaw.cycle(math.radians(24.0), "sine-acceleration", 100, "cosine-acceleration",
+                         100, top_dwell_deg=40.0)
+    phi = np.radians(np.linspace(0.0, 360.0, 36_001))
+    base = (law, math.radians(25.0), 0.06, 0.08, "same")
+    radii = set()
+    for args in (base, base, (other, *base[1:]), (law, math.radians(30.0), *base[2:]),
+                 (*base[:2], 0.07, *base[3:]), (*base[:3], 0.09, "same"),
+                 (*base[:4], "opposite")):
+        lw, tau_adm, arm, dist, sense = args
+        r0 = cams.base_radius_oscillating(lw, tau_adm, arm, dist, sense)
+        fol = OscillatingFollower(r0, arm, dist, rise_sense=sense)
+        tau = cams.transmission_angle(lw, fol, phi)
+        assert tau.min() == pytest.approx(tau_adm, abs=1e-6), args       # as above
+        radii.add(r0)
+    assert len(radii) == 6                           # the second sizing of base: the same
+
+
 @pytest.mark.parametrize("offset", [0.0, 0.005, -0.004])
 def test_profile_matches_eq_1_37(offset):
     law = seed_law()

@@ -243,7 +243,9 @@ def test_free_body_diagram_draws_the_forces(name, lecture_figures):
     assert "$F_{\\mathrm{B}}$" in labels and "crank→coupler" in labels
 
 
-@pytest.mark.parametrize("name", ["four_bar", "slider_crank", "shaper"])
+# (the quick tier draws the four-bar's, its one picture scene; the others in the full suite)
+@pytest.mark.parametrize("name", ["four_bar", pytest.param("slider_crank", marks=pytest.mark.slow),
+                                  pytest.param("shaper", marks=pytest.mark.slow)])
 def test_instant_centres_picture(name, sols):
     """The picture of the centres draws (their values: test_centres.py)."""
     sol = sols[name]
