@@ -39,7 +39,7 @@ import numpy as np
 from ..model.scene import Scene
 from ..results.solution import Solution
 from ..solver.deadpoints import dead_points_stacked, kin_measure2
-from ..solver.kinematics import SINGULAR_WARN, Kinematics, solve_kinematics
+from ..solver.kinematics import SINGULAR_WARN, Kinematics, probe_closeness, solve_kinematics
 from ..solver.many import RUN_ROWS, run_bounds
 from ..solver.pipeline import solve_rows
 from ..solver.solved import Solved
@@ -216,9 +216,11 @@ def _dead_points(stacker: Stacker, structure, ks: np.ndarray, m2: np.ndarray,
                  positions: np.ndarray, starts: np.ndarray, counts: np.ndarray) -> list:
     """The dead points between rows of every design (``m2`` inf where none is looked
     for), probed at once as :func:`~kinetostatics.solve_many` probes them."""
-    def at(where: np.ndarray, who: np.ndarray) -> Kinematics:
+    def at(where: np.ndarray, who: np.ndarray) -> tuple:
+        # (the closeness from the positions alone, as solve_many's probes: the same
+        # numbers as the kinematics solved with strict = False)
         probe = replace(structure, assembly=tuple(k[who] for k in ks))
-        return solve_kinematics(stacker.scene(who, where), probe, strict=False)
+        return probe_closeness(stacker.scene(who, where), probe)
     return dead_points_stacked(m2, positions, starts, counts, at)
 
 
