@@ -40,6 +40,17 @@ from .assembly import (
 )
 from .closure import DyadSolver, Param, body_origin, dyad_param
 from .driver import BodyMotion, driver_at_first_row, driver_motion, ground_motion
+from .velocity_system import (
+    closing_point,
+    cramer2,
+    dead_centre_closeness2,
+    guide_body,
+    guide_line,
+    inner_t_tau,
+    velocity_column,
+    velocity_columns,
+    velocity_matrix,
+)
 
 if TYPE_CHECKING:
     from .structure import Dyad, Structure
@@ -96,9 +107,9 @@ class DyadMotion:
 
     def _restore(self) -> None:
         p1, p2 = self.params
-        c1, c2 = _column(p1, self.xx, self.xy), _column(p2, self.xx, self.xy)
+        c1, c2 = velocity_column(p1, self.xx, self.xy), velocity_column(p2, self.xx, self.xy)
         w1, w2 = (1.0 if p.kind == "rot" else 0.0 for p in self.params)
-        self._det = _matrix(self.nx is None, c1, c2, w1, w2, self.nx, self.ny)[1]
+        self._det = velocity_matrix(self.nx is None, c1, c2, w1, w2, self.nx, self.ny)[1]
         self._c1, self._c2 = c1, c2
 
     def release(self) -> None:
@@ -118,7 +129,7 @@ class DyadMotion:
                 sin_t = self.det / norm
                 cos_t = -(A.add(A.mul(c1[0], c2[0]), A.mul(c1[1], c2[1]))) / norm
             else:
-                sin_t, cos_t = _inner_t_tau(self.params, self.ny, -self.nx)
+                sin_t, cos_t = inner_t_tau(self.params, self.ny, -self.nx)
             self._tau = (A.full(np.asarray(sin_t, dtype=float), n),
                          A.full(np.asarray(cos_t, dtype=float), n))
         return self._tau
@@ -180,45 +191,6 @@ class Kinematics:
         return out
 
 
-def _column(pr: Param, xx, xy) -> tuple:
-    """Velocity of the body's point at X per unit of its unknown (the column c_i)."""
-    if pr.kind == "rot":
-        return A.sub(pr.py, xy), A.sub(xx, pr.px)
-    return pr.ux, pr.uy
-
-
-def _columns(pr: Param, xx, xy):
-    """The column c_i (:func:`_column`), the known part k_i of that velocity, and the
-    weight of the unknown in the body's angular velocity (1 for rot, 0 for trans)."""
-    if pr.kind == "rot":
-        return _column(pr, xx, xy), (pr.vpx, pr.vpy), 1.0
-    return _column(pr, xx, xy), pr.known.vel_at(xx, xy), 0.0
-
-
-def _matrix(revolute: bool, c1, c2, w1, w2, nx, ny):
-    """The velocity system's matrix [[a11, -b12], [a21, -b22]] as (a11, b12, a21, b22)
-    (:func:`_solve2`) and its determinant, from the columns (and, for a prismatic inner
-    joint, the line's normal n and the angular weights w)."""
-    if revolute:
-        a11, b12, a21, b22 = c1[0], c2[0], c1[1], c2[1]
-    else:
-        a11, b12 = w1, w2
-        a21 = A.add(A.mul(nx, c1[0]), A.mul(ny, c1[1]))
-        b22 = A.add(A.mul(nx, c2[0]), A.mul(ny, c2[1]))
-    # a11 a22 - a12 a21 with a12 = -b12, a22 = -b22 (the same numbers, exactly)
-    return (a11, b12, a21, b22), A.sub(A.mul(b12, a21), A.mul(a11, b22))
-
-
-def _solve2(a11, b12, a21, b22, r1, r2, det):
-    """Cramer's rule for [[a11, -b12], [a21, -b22]] x = [r1, r2].
-
-    The second column is given negated (the velocity system's is -c2): the negations
-    are never formed, and the numbers are exactly those of the plain rule, since
-    r1 (-b22) - (-b12) r2 = b12 r2 - r1 b22 in floating point too."""
-    return (A.sub(A.mul(b12, r2), A.mul(r1, b22)) / det,
-            A.sub(A.mul(a11, r2), A.mul(r1, a21)) / det)
-
-
 def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
                k: int | None = None, strict: bool = True, screened: bool = False) -> DyadMotion:
     """Positions, velocities and accelerations of a dyad's two bodies over the sweep.
@@ -253,8 +225,8 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
     k = solver.k if k is None else k
     org = [body_origin(pr[i], cs[i], ss[i]) for i in range(2)]
     vs = _VelocitySystem(dyad, solver, pr, cs, org)
-    sin2 = _closeness2(vs, pr, reach, n, solver if strict or screened else None)
-    probe2 = _closeness2(vs, pr, reach, n) if screened else None
+    sin2 = dead_centre_closeness2(vs, pr, reach, n, solver if strict or screened else None)
+    probe2 = dead_centre_closeness2(vs, pr, reach, n) if screened else None
     sing = ~(sin2 > SINGULAR_WARN**2)
     exact = np.flatnonzero(~(sin2 > SINGULAR_FAIL**2)) if sing.any() else ()
     if strict and len(exact):
@@ -311,20 +283,21 @@ class _VelocitySystem:
         inner = dyad.inner
         self.revolute = inner.kind == "R"
         self.slider_first = solver.slider_first
-        self.guide = _guide(solver)
-        xx, xy = _closing_point(dyad, solver, cs, org)
-        (c1, k1, w1), (c2, k2, w2) = _columns(pr[0], xx, xy), _columns(pr[1], xx, xy)
+        self.guide = guide_body(solver)
+        xx, xy = closing_point(dyad, solver, cs, org)
+        (c1, k1, w1), (c2, k2, w2) = (velocity_columns(pr[0], xx, xy),
+                                      velocity_columns(pr[1], xx, xy))
         if inner.kind == "R":
             r1, r2 = A.sub(k2[0], k1[0]), A.sub(k2[1], k1[1])
             nx = ny = None
             ux = uy = None
         else:
-            ux, uy = _guide_line(solver, cs)
+            ux, uy = guide_line(solver, cs)
             nx, ny = -uy, ux
             om0 = [0.0 if p.kind == "rot" else p.known.omega for p in pr]
             r1 = A.sub(om0[1], om0[0])
             r2 = A.add(A.mul(nx, A.sub(k2[0], k1[0])), A.mul(ny, A.sub(k2[1], k1[1])))
-        self.a, self.det = _matrix(inner.kind == "R", c1, c2, w1, w2, nx, ny)
+        self.a, self.det = velocity_matrix(inner.kind == "R", c1, c2, w1, w2, nx, ny)
         self.xx, self.xy = xx, xy
         self.c1, self.c2, self.k1, self.k2 = c1, c2, k1, k2
         self.r1, self.r2 = r1, r2
@@ -332,34 +305,12 @@ class _VelocitySystem:
 
     def solve(self, r1, r2):
         """qdot (or qddot) for the right-hand side (r1, r2), Cramer's rule."""
-        return _solve2(*self.a, r1, r2, self.det)
-
-
-def _guide(solver: DyadSolver) -> int:
-    """The body (0 or 1) that carries a prismatic inner joint's guide (the other one
-    carries the slider, whose point is the closing point X)."""
-    return 1 if solver.dyad.inner.kind == "R" or solver.slider_first else 0
-
-
-def _closing_point(dyad: Dyad, solver: DyadSolver, cs, org):
-    """The closing point X (the inner joint's point; for a prismatic inner joint the
-    slider point) from the first body (the slider) in its solved position."""
-    ib = 1 - _guide(solver)
-    inner = dyad.inner
-    loc = solver.q[0] if inner.kind == "R" else solver.b[ib].local(inner.points[1])
-    rx, ry = A.rotate(cs[ib][0], cs[ib][1], *loc)
-    return A.add(org[ib][0], rx), A.add(org[ib][1], ry)
-
-
-def _guide_line(solver: DyadSolver, cs):
-    """The unit direction u of a prismatic inner joint's line, turned with its guide."""
-    ig = _guide(solver)
-    return A.rotate(cs[ig][0], cs[ig][1], np.cos(solver.beta), np.sin(solver.beta))
+        return cramer2(*self.a, r1, r2, self.det)
 
 
 class _Closing:
     """What the closeness to a dead centre reads of a dyad's velocity system
-    (:func:`_closeness2`), from its positions alone: for a revolute inner joint the
+    (:func:`dead_centre_closeness2`), from its positions alone: for a revolute inner joint the
     columns c1, c2 at X and their determinant, for a prismatic one the line's
     direction u (the numbers of :class:`_VelocitySystem`: the same operations)."""
 
@@ -367,11 +318,11 @@ class _Closing:
         self.revolute = dyad.inner.kind == "R"
         self.c1 = self.c2 = self.det = self.ux = self.uy = None
         if self.revolute:
-            xx, xy = _closing_point(dyad, solver, cs, org)
-            self.c1, self.c2 = _column(pr[0], xx, xy), _column(pr[1], xx, xy)
-            self.det = _matrix(True, self.c1, self.c2, 1.0, 1.0, None, None)[1]
+            xx, xy = closing_point(dyad, solver, cs, org)
+            self.c1, self.c2 = velocity_column(pr[0], xx, xy), velocity_column(pr[1], xx, xy)
+            self.det = velocity_matrix(True, self.c1, self.c2, 1.0, 1.0, None, None)[1]
         else:
-            self.ux, self.uy = _guide_line(solver, cs)
+            self.ux, self.uy = guide_line(solver, cs)
 
 
 def probe_closeness(scene: Scene, structure: Structure, positions=None,
@@ -390,7 +341,7 @@ def probe_closeness(scene: Scene, structure: Structure, positions=None,
     Returns
     -------
     closeness2 : list of numpy.ndarray
-        Per dyad, min(sin^2 tau, (pivot distance / size)^2) per row (:func:`_closeness2`
+        Per dyad, min(sin^2 tau, (pivot distance / size)^2) per row (:func:`dead_centre_closeness2`
         as a probe measures it).
     open : numpy.ndarray
         Rows where some dyad cannot close.
@@ -433,41 +384,7 @@ def probe_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion], k,
     for i, name in enumerate(dyad.bodies):
         motions[name] = BodyMotion(None, cs[i][0], cs[i][1], 0.0, 0.0, org[i][0], org[i][1],
                                    0.0, 0.0, 0.0, 0.0)
-    return _closeness2(_Closing(dyad, solver, pr, cs, org), pr, reach, n), gap
-
-
-def _column_norm2(solver: DyadSolver, pr) -> float:
-    """|c1|^2 |c2|^2 of a revolute inner joint's velocity columns, a constant: a body
-    turning about its outer pivot P has c = J (X - P), and X, P are two points of that
-    body, so |c|^2 is their distance squared; a translating body has c = u, a unit vector.
-    (Valid where the dyad closes: X lies on both bodies.)"""
-    out = 1.0
-    for i, p in enumerate(pr):
-        if p.kind == "rot":
-            qx, qy = solver.q[i]
-            lx, ly = p.local
-            out *= (qx - lx) ** 2 + (qy - ly) ** 2
-    return out
-
-
-def _closeness2(vs: _VelocitySystem, pr, reach, n: int, solver: DyadSolver | None = None):
-    """Step 3, the closeness to a dead centre: min(sin^2 tau, (pivot distance / size)^2),
-    with |det| <= 1e-12 |c1| |c2| exactly singular (for a prismatic inner joint the same
-    test on the transmission measure of _inner_t_tau). With ``solver`` (a sweep where the
-    dyad closes at every row) |c1| |c2| is the rigid bodies' constant; without it (probes
-    where the dyad may not close) it is measured row by row."""
-    if vs.revolute:
-        c1, c2 = vs.c1, vs.c2
-        if solver is not None:
-            norm2 = _column_norm2(solver, pr)
-        else:
-            norm2 = (c1[0] * c1[0] + c1[1] * c1[1]) * (c2[0] * c2[0] + c2[1] * c2[1])
-        sin2 = A.full(vs.det * vs.det / norm2, n)
-    else:
-        sin2 = A.full(_inner_t_tau(pr, vs.ux, vs.uy)[0], n) ** 2
-    if reach is not None:
-        sin2 = np.minimum(sin2, reach * reach)
-    return sin2
+    return dead_centre_closeness2(_Closing(dyad, solver, pr, cs, org), pr, reach, n), gap
 
 
 def _acceleration_rhs(vs: _VelocitySystem, pr, qd):
@@ -531,20 +448,6 @@ def _body_motion(p: Param, cs, org, qd, qdd) -> BodyMotion:
         ax_ = A.sub(A.add(akx, A.mul(qdd, p.ux)), A.mul(f, p.uy))
         ay_ = A.add(A.add(aky, A.mul(qdd, p.uy)), A.mul(f, p.ux))
     return BodyMotion(None, c, sn, om, al, ox, oy, vx, vy, ax_, ay_)
-
-
-def _inner_t_tau(pr, ux, uy):
-    """sin and cos of the transmission angle of a dyad with a prismatic inner joint:
-    between the line and P_s - P_g (RTR: the velocity system's columns are J(P2 - P1)
-    and u, so sin = u . D / |D|) or between the line and the other guide (RTT)."""
-    p1, p2 = pr
-    if p1.kind == "rot" and p2.kind == "rot":
-        dx, dy = A.sub(p1.px, p2.px), A.sub(p1.py, p2.py)
-        dn = np.sqrt(dx * dx + dy * dy)
-        return (A.add(A.mul(ux, dx), A.mul(uy, dy)) / dn,
-                A.sub(A.mul(ux, dy), A.mul(uy, dx)) / dn)
-    pt = p2 if p1.kind == "rot" else p1
-    return A.sub(A.mul(ux, pt.uy), A.mul(uy, pt.ux)), A.add(A.mul(ux, pt.ux), A.mul(uy, pt.uy))
 
 
 def with_positions(scene: Scene, positions) -> Scene:
@@ -637,15 +540,16 @@ def _plain_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion]) -> int
 
 
 def _plain_sin2(dyad: Dyad, solver: DyadSolver, pr, cs, org) -> float:
-    """sin^2 of a dyad's transmission angle at the first row (:func:`_closeness2`, numbers):
-    for a revolute inner joint at X, det(c1, c2)^2 / (|c1|^2 |c2|^2) of the velocity
-    columns (c = J (X - P) of a turning body, u of a translating one) worked out here."""
+    """sin^2 of a dyad's transmission angle at the first row
+    (:func:`~kinetostatics.solver.velocity_system.dead_centre_closeness2`, numbers): for a
+    revolute inner joint at X, det(c1, c2)^2 / (|c1|^2 |c2|^2) of the velocity columns
+    (c = J (X - P) of a turning body, u of a translating one) worked out here."""
     if dyad.inner.kind != "R":
-        return float(_closeness2(_VelocitySystem(dyad, solver, pr, cs, org), pr, None, 1,
+        return float(dead_centre_closeness2(_VelocitySystem(dyad, solver, pr, cs, org), pr, None, 1,
                                  solver)[0])
     rx, ry = A.rotate(cs[0][0], cs[0][1], *solver.q[0])
     xx, xy = org[0][0] + rx, org[0][1] + ry
-    (ax, ay), (bx, by) = (_column(p, xx, xy) for p in pr)
+    (ax, ay), (bx, by) = (velocity_column(p, xx, xy) for p in pr)
     det = ax * by - ay * bx
     return float(det * det / ((ax * ax + ay * ay) * (bx * bx + by * by)))
 

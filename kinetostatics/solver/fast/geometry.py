@@ -117,7 +117,7 @@ def dyad_geometry(scene: Scene, dyad, k) -> tuple[np.ndarray, int]:
     if inner.kind == "R":
         q = [bodies[i].local(inner.point_on(dyad.bodies[i])) for i in range(2)]
         (v[L.Q1X], v[L.Q1Y]), (v[L.Q2X], v[L.Q2Y]) = q
-        norm2 = 1.0     # |c1|^2 |c2|^2, a constant (kinematics._column_norm2)
+        norm2 = 1.0     # |c1|^2 |c2|^2, a constant (velocity_system.column_norm2)
         for i, joint in enumerate(dyad.outer):
             if joint.kind == "R":
                 norm2 = norm2 * ((q[i][0] - local[i][0]) ** 2 + (q[i][1] - local[i][1]) ** 2)
