@@ -77,9 +77,9 @@ def test_a_long_sweep_is_the_full_solves_bit_for_bit(fast, kind: str) -> None:
     assert sol.reactions.equals(ref.reactions)                    # (solved in full now)
     use("numpy")
     me = ks.solve(d).driver.iloc[:, 1].to_numpy()
-    # the paths' agreement (test_fast.py: within 1e-13 of the column's scale; measured
-    # here 2026-11-29: 1.5e-16 to 4.9e-16)
-    assert np.abs(driver.iloc[:, 1].to_numpy() - me).max() <= 1e-13 * np.abs(me).max()
+    # the paths' agreement (measured here 2026-11-29: 1.5e-16 to 4.9e-16 of the column's
+    # scale; about four times that allowed)
+    assert np.abs(driver.iloc[:, 1].to_numpy() - me).max() <= 2e-15 * np.abs(me).max()
 
 
 @pytest.mark.parametrize("scene", [FUSED["RRR"], GUIDED["oscillating cylinder"]])
