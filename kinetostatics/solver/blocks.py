@@ -37,6 +37,25 @@ from .solved import Solved
 BLOCK_ROWS = 16384   # 128 kB per array (measured best of 4096-65536 on a 2 MB L2 cache)
 
 
+# glibc gives the top of its heap back to the system once more than its trim threshold
+# lies free there, and the next block or run of a stack faults every page in again (about
+# 1000 page faults a run of 12 274 rows, its peak 6.7 MB: measured 2026-11-29, 3.6-4.0 ms
+# against 1.6 ms a run without them); the threshold follows the largest block it mapped
+# and freed (twice its size, for blocks up to 32 MB), so one block of HEAP_BYTES
+# allocated and freed untouched (no page faulted) keeps the heap for runs of up to twice
+# that
+HEAP_BYTES = 16 << 20
+_heap: list[int] = []
+
+
+def keep_heap() -> None:
+    """Once per process, raise glibc's heap trim threshold past a run's peak (above); a
+    no-op elsewhere and after the first call."""
+    if not _heap:
+        _heap.append(HEAP_BYTES)
+        np.empty(HEAP_BYTES // 8)       # (mapped and freed at once, never touched)
+
+
 class Unblockable(Exception):
     """The blocks did not give arrays of one layout: solve in one pass instead."""
 

@@ -27,6 +27,7 @@ import numpy as np
 
 from ..model.scene import GROUND, Body, Scene
 from .assembly import hint_points
+from .blocks import keep_heap
 from .closure import DyadSolver, body_origin, dyad_param
 from .driver import driver_motion, ground_motion
 from .kinematics import SINGULAR_FAIL, probe_dyad
@@ -263,6 +264,7 @@ class Stacker:
         ``lo + j`` over ``counts[j]`` rows at driver positions ``positions`` (the same
         scene as :meth:`scene` with ``owner = np.repeat(np.arange(lo, hi), counts)``:
         each scene's numbers repeated, a few times quicker than taken row by row)."""
+        keep_heap()         # (the runs' arrays reuse the heap's pages, not fresh ones)
         sc = self._build(lambda x: np.repeat(x[lo:hi], counts), positions)
         sc.__dict__["segments"] = counts    # each scene's rows (a sweep's maxima per scene)
         if sc.driver.kind == "R":
