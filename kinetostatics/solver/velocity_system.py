@@ -90,7 +90,17 @@ def column_norm2(solver: DyadSolver, pr) -> float:
         if p.kind == "rot":
             qx, qy = solver.q[i]
             lx, ly = p.local
-            out *= (qx - lx) ** 2 + (qy - ly) ** 2
+            dx, dy = A.less(qx, lx), A.less(qy, ly)
+            # (an array's ** 2 is its x * x, a Python float's pow; a square is never
+            # -0.0, so a stack's exact zeros cost no pass: the same bits)
+            sx, sy = (d * d if type(d) is np.ndarray else d ** 2 for d in (dx, dy))
+            if type(sy) is float and sy == 0.0 and type(sx) is np.ndarray:
+                d2 = sx
+            elif type(sx) is float and sx == 0.0 and type(sy) is np.ndarray:
+                d2 = sy
+            else:
+                d2 = sx + sy
+            out = d2 if type(out) is float and out == 1.0 else out * d2
     return out
 
 
