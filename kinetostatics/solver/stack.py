@@ -39,11 +39,33 @@ from .trap import tame, tame_values
 class Rows(np.ndarray):
     """A mass or an inertia over the rows of a stack. Its truth value is that of every
     row: a stack holds only scenes for which each test the solver makes on them
-    (``mass == 0``, ``mass > 0``) comes out alike (:func:`signature`). The lengths are
-    plain arrays (an ndarray subclass costs time in every operation it enters)."""
+    (``mass == 0``, ``mass > 0``) comes out alike (:func:`signature`), so such a test,
+    against the number 0, is told on the first row (a bool, without a pass over the
+    rows). Arithmetic on it gives plain arrays, as the lengths are (an ndarray subclass
+    costs time in every operation it enters)."""
 
     def __bool__(self) -> bool:
         return bool(self.view(np.ndarray).all())
+
+    def __eq__(self, other):
+        if _nil(other):
+            return bool(self.view(np.ndarray)[0] == 0)
+        return np.equal(self, other).view(Rows)
+
+    def __gt__(self, other):
+        if _nil(other):
+            return bool(self.view(np.ndarray)[0] > 0)
+        return np.greater(self, other).view(Rows)
+
+    __hash__ = None
+
+    def __array_wrap__(self, array, context=None, return_scalar=False):
+        return array[()] if return_scalar else array.view(np.ndarray)
+
+
+def _nil(x) -> bool:
+    """A Python number equal to 0 (the tests the stack's signature holds alike)."""
+    return type(x) in (float, int) and x == 0
 
 
 def signature(scene: Scene):
