@@ -255,7 +255,7 @@ def solve_blocks(total: int, part, solve_block, scene: Scene | None = None,
                      [g.values["closeness2"] for g in flags_g],
                      [g.values["singular"] for g in flags_g])
     bodies_g, dyads_g, reactions_g, drive_g, undefined = gathers
-    bodies = {name: g.build(_origin_arm=None) for name, g in bodies_g.items()}
+    bodies = {name: g.build(_origin_arm=None, _arms=None) for name, g in bodies_g.items()}
     known = {id(g.obj): name for name, g in bodies_g.items()}
     dyads = []
     for d, (g, params) in enumerate(dyads_g):
@@ -402,7 +402,7 @@ def _lean_put(gathers: tuple, sol: Solved, rows: slice, n: int) -> None:
 
 
 def _layout(sol: Solved, n: int, arrays: _Arrays) -> tuple:
-    bodies = {name: Gather(m, n, arrays, skip=("_origin_arm",))
+    bodies = {name: Gather(m, n, arrays, skip=("_origin_arm", "_arms"))
               for name, m in sol.kin.bodies.items()}
     dyads = [(Gather(dm, n, arrays, skip=("params", "dyad")),
               [Gather(p, n, arrays, skip=("known",)) for p in dm.params])

@@ -72,7 +72,7 @@ def known_point(scene: Scene, bname: str, motion: BodyMotion, pname: str,
     if bname == GROUND:
         x, y = scene.ground[pname]
         return A.scalar(x), A.scalar(y), 0.0, 0.0, 0.0, 0.0
-    rx, ry = motion.rotate(*scene.bodies[bname].local(pname))
+    rx, ry = motion.arm(scene.bodies[bname].local(pname))
     if not speeds:
         return A.add(motion.ox, rx), A.add(motion.oy, ry), 0.0, 0.0, 0.0, 0.0
     vx, vy = motion.vel_arm(rx, ry)

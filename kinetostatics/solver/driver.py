@@ -20,11 +20,12 @@ class BodyMotion:
     (rad) is computed when first asked for unless given."""
 
     FIELDS = ("cos", "sin", "omega", "alpha", "ox", "oy", "vx", "vy", "ax", "ay")
-    __slots__ = (*FIELDS, "_theta", "_origin_arm")
+    __slots__ = (*FIELDS, "_theta", "_origin_arm", "_arms")
 
     def __init__(self, theta, cos, sin, omega, alpha, ox, oy, vx, vy, ax, ay):
         self._theta = theta
         self._origin_arm = None
+        self._arms = None
         self.cos, self.sin = cos, sin
         self.omega, self.alpha = omega, alpha
         self.ox, self.oy, self.vx, self.vy, self.ax, self.ay = ox, oy, vx, vy, ax, ay
@@ -45,6 +46,33 @@ class BodyMotion:
                 arm = self._origin_arm = A.rotate(self.cos, self.sin, lx, ly)
             return arm
         return A.rotate(self.cos, self.sin, lx, ly)
+
+    def arm(self, local: tuple):
+        """:meth:`rotate` of a named point of the body, ``local`` the tuple of its local
+        coordinates the scene's Body holds (the same object each time it is asked for:
+        a joint's point is asked for by the kinematics and again by the reactions),
+        worked out once while the motion keeps its arms (:meth:`forget_arms`)."""
+        arms = getattr(self, "_arms", None)     # (None too in a motion built by fields)
+        if arms is None:
+            arms = self._arms = []
+        for t, a in arms:
+            if t is local:
+                return a
+        a = self.rotate(*local)
+        arms.append((local, a))
+        return a
+
+    def keep_arm(self, local: tuple, arm: tuple) -> None:
+        """Keep ``arm``, worked out elsewhere as :meth:`rotate` of ``local`` with this
+        motion's own cos and sin, for :meth:`arm`."""
+        arms = getattr(self, "_arms", None)
+        if arms is None:
+            arms = self._arms = []
+        arms.append((local, arm))
+
+    def forget_arms(self) -> None:
+        """Let go of the arms :meth:`arm` kept (arrays over the rows)."""
+        self._arms = None
 
     def point(self, local: tuple[float, float]):
         """Global position of a local point."""

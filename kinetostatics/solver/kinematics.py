@@ -174,9 +174,12 @@ class Kinematics:
         return self.positions.size
 
     def release(self) -> None:
-        """Let go of what only the solve needs (:meth:`DyadMotion.release`)."""
+        """Let go of what only the solve needs (:meth:`DyadMotion.release`, the bodies'
+        arms of their points, :meth:`~kinetostatics.solver.driver.BodyMotion.arm`)."""
         for d in self.dyads:
             d.release()
+        for b in self.bodies.values():
+            b.forget_arms()
 
     @property
     def singular(self) -> np.ndarray:
@@ -238,6 +241,8 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
     qdd = vs.solve(*_acceleration_rhs(vs, pr, qd))
     for i, p in enumerate(pr):
         motions[dyad.bodies[i]] = _body_motion(p, cs[i], org[i], qd[i], qdd[i])
+    ib, loc, arm = vs.arm           # (its cos and sin are the body's: kept for the reactions)
+    motions[dyad.bodies[ib]].keep_arm(loc, arm)
     inner = dyad.inner
     return DyadMotion(dyad, pr, k, vs.xx, vs.xy, vs.c1, vs.c2, vs.det, n,
                       singular=sing, closeness2=sin2, probe2=probe2,
@@ -284,7 +289,8 @@ class _VelocitySystem:
         self.revolute = inner.kind == "R"
         self.slider_first = solver.slider_first
         self.guide = guide_body(solver)
-        xx, xy = closing_point(dyad, solver, cs, org)
+        self.arm: list = []         # (the closing point's body, local point and arm)
+        xx, xy = closing_point(dyad, solver, cs, org, self.arm)
         (c1, k1, w1), (c2, k2, w2) = (velocity_columns(pr[0], xx, xy),
                                       velocity_columns(pr[1], xx, xy))
         if inner.kind == "R":
