@@ -235,12 +235,13 @@ class DyadSolver:
             h2 = r1s - x * x
             gap = None
             # (a NaN in h2 touches the trap of a trapped solve: looked for otherwise)
-            if _least(h2) < 0.0 or not (active() or _all_finite(h2)):
+            least = _least(h2)
+            if least < 0.0 or not (active() or _all_finite(h2)):
                 d = np.sqrt(d2)
                 r1, r2 = np.sqrt(r1s), np.sqrt(r2s)
                 # (coincident pivots, d = 0: the circles are concentric, |r1 - r2| apart)
                 gap = np.maximum(d - (r1 + r2), abs(r1 - r2) - d)
-            root = _root(h2) if type(h2) is float else np.sqrt(np.maximum(h2, 0.0))
+            root = _root(h2) if type(h2) is float else _clipped_root(h2, least)
 
             def close(k, ex, ey, inv, root, xi, p1x, p1y, p2x, p2y):
                 kh = (k * inv) * root
@@ -270,9 +271,10 @@ class DyadSolver:
         b = A.add(A.mul(pt.ux, wx), A.mul(pt.uy, wy))
         disc = b * b - (wx * wx + wy * wy) + rs
         gap = None
-        if _least(disc) < 0.0:
+        least = _least(disc)
+        if least < 0.0:
             gap = np.abs(A.sub(A.mul(pt.ux, wy), A.mul(pt.uy, wx))) - np.sqrt(rs)
-        root = _root(disc) if type(disc) is float else np.sqrt(np.maximum(disc, 0.0))
+        root = _root(disc) if type(disc) is float else _clipped_root(disc, least)
 
         def close(k, root, b, wx, wy, ux, uy, c, sn):
             s = k * root - b
@@ -368,6 +370,13 @@ def _root(x):
     if type(x) is float and x > 0.0:
         return math.sqrt(x)
     return np.sqrt(x)
+
+
+def _clipped_root(x: np.ndarray, least) -> np.ndarray:
+    """np.sqrt(np.maximum(x, 0.0)), ``least`` x's smallest value: where none is below 0
+    (nor NaN) the maximum changes nothing (x is a difference or a sum that is never
+    -0.0: a - a is +0.0), and its pass is not made."""
+    return np.sqrt(x) if least >= 0.0 else np.sqrt(np.maximum(x, 0.0))
 
 
 def body_origin(pr: Param, cs, s):

@@ -71,8 +71,27 @@ class BodyMotion:
         arms.append((local, arm))
 
     def forget_arms(self) -> None:
-        """Let go of the arms :meth:`arm` kept (arrays over the rows)."""
+        """Let go of the arms :meth:`arm` kept and of :meth:`omega2` (arrays over the
+        rows)."""
         self._arms = None
+
+    def omega2(self):
+        """omega^2, worked out once as :meth:`arm` keeps an arm (the accelerations of
+        the body's points each ask for it; the
+        square the kinematics worked out, the same product: :meth:`keep_omega2`)."""
+        arms = getattr(self, "_arms", None)
+        if arms is not None:
+            for t, a in arms:
+                if t is _OMEGA2:
+                    return a
+        w2 = A.mul(self.omega, self.omega)
+        self.keep_arm(_OMEGA2, w2)
+        return w2
+
+    def keep_omega2(self, w2) -> None:
+        """Keep ``w2``, this motion's omega * omega worked out elsewhere, for
+        :meth:`omega2`."""
+        self.keep_arm(_OMEGA2, w2)
 
     def point(self, local: tuple[float, float]):
         """Global position of a local point."""
@@ -86,7 +105,7 @@ class BodyMotion:
     def acc_arm(self, rx, ry):
         """Acceleration of the body point at the arm r: a_O + eps k x r - omega^2 r
         (seed 001 eq. 9)."""
-        w2 = A.mul(self.omega, self.omega)
+        w2 = self.omega2()
         return (A.sub_mul(A.sub_mul(self.ax, self.alpha, ry), w2, rx),
                 A.sub_mul(A.add(self.ay, A.mul(self.alpha, rx)), w2, ry))
 
@@ -107,6 +126,9 @@ class BodyMotion:
             return a[index] if np.ndim(a) else a
         th = None if self._theta is None else t(self._theta)
         return BodyMotion(th, *(t(getattr(self, f)) for f in self.FIELDS))
+
+
+_OMEGA2 = ("omega^2",)      # (the key omega2 keeps its square under)
 
 
 def ground_motion() -> BodyMotion:
