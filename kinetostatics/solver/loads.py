@@ -221,31 +221,37 @@ def resultants(loads: list[PointLoad], names, n: int) -> dict[str, list]:
     it as it is: :func:`~kinetostatics.solver.arith.iadd`.)"""
     acc = {b: [0.0, 0.0, 0.0] for b in names}
     tmp = None
+    iadd, zero, arr = A.iadd, A.zero, np.ndarray
     for ld in loads:
         r = acc[ld.body]
-        _add_term(r, 0, ld.fx, 1.0, n)
-        _add_term(r, 1, ld.fy, 1.0, n)
-        rx, ry, fx, fy = ld.rx, ld.ry, ld.fx, ld.fy
-        for a, b, sign in ((rx, fy, 1.0), (ry, fx, -1.0)):      # M_O += rx fy - ry fx
-            if A.zero(a) or A.zero(b):
+        fx, fy = ld.fx, ld.fy
+        for i, x in ((0, fx), (1, fy)):
+            if type(r[i]) is arr:
+                iadd(r[i], x)
+            else:
+                _add_term(r, i, x, 1.0, n)
+        for a, b, sign in ((ld.rx, fy, 1.0), (ld.ry, fx, -1.0)):    # M_O += rx fy - ry fx
+            if zero(a) or zero(b):
                 continue
             if tmp is None:
                 tmp = np.empty(n)
             np.multiply(a, b, out=tmp)
-            _add_term(r, 2, tmp, sign, n)
-        _add_term(r, 2, ld.m, 1.0, n)
-    return {b: [x if type(x) is np.ndarray else np.full(n, x) for x in r]
-            for b, r in acc.items()}
+            if type(r[2]) is arr:
+                iadd(r[2], tmp, sign)
+            else:
+                _add_term(r, 2, tmp, sign, n)
+        if type(r[2]) is arr:
+            iadd(r[2], ld.m)
+        else:
+            _add_term(r, 2, ld.m, 1.0, n)
+    return {b: [x if type(x) is arr else np.full(n, x) for x in r] for b, r in acc.items()}
 
 
 def _add_term(r: list, i: int, x, sign: float, n: int) -> None:
-    """r[i] += sign * x: in place once r[i] is an array of its own
-    (:func:`~kinetostatics.solver.arith.iadd`); a number r[i] plus an array x becomes
-    a new array (the same operation, elementwise); two numbers, a number."""
+    """r[i] += sign * x while r[i] is a number: a number plus an array x becomes a new
+    array (the same operation, elementwise); two numbers, a number."""
     a = r[i]
-    if type(a) is np.ndarray:
-        A.iadd(a, x, sign)
-    elif isinstance(x, np.ndarray):
+    if isinstance(x, np.ndarray):
         # (into a plain array: x may be a stack's Rows, whose type is not wanted here)
         r[i] = (np.add if sign > 0 else np.subtract)(a, x, out=np.empty(n))
     elif not A.zero(x):
