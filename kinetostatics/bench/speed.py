@@ -8,7 +8,8 @@ little.
 * ``reference``: :func:`kinetostatics.solve` plus its ``driver`` table, on each solve
   path (``numpy``, and ``fast`` when the compiled kernels load: column ``path``), against
   the hand-written closed forms ``fourbar_dyad`` and ``slider_dyad`` of
-  :mod:`kinetostatics.bench.reference` on the same four-bar and slider-crank, at 2001, 2e5 and 1e6
+  :mod:`kinetostatics.bench.reference` on the same four-bar and slider-crank (and
+  ``shaper_dyad`` on the bundled shaper), at 2001, 2e5 and 1e6
   positions, with the largest difference of Me (2001 positions also in batches of
   calls, as :mod:`timeit` times);
 * ``many``: :func:`kinetostatics.solve_many` on 1000 variants of the bundled four-bar
@@ -127,9 +128,14 @@ def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001),
     rows = []
     # the baseline's other mechanism: far fewer operations by hand (a centred slider-crank
     # in closed form), the same general solve
-    for name, make, hand in (("fourbar_dyad", fourbar_scene, lambda th: ref.fourbar_dyad(
-            th, 20.0)), ("slider_dyad", lambda n: slider_crank_reference_scene(n, ref.SC),
-                         lambda th: ref.slider_dyad(th, w2))):
+    mechanisms = [("fourbar_dyad", fourbar_scene, lambda th: ref.fourbar_dyad(th, 20.0)),
+                  ("slider_dyad", lambda n: slider_crank_reference_scene(n, ref.SC),
+                   lambda th: ref.slider_dyad(th, w2))]
+    if hasattr(ref, "shaper_dyad"):     # (a six-bar: two dyads, RTR and RRT; a baseline
+        # given with --reference may have none)
+        mechanisms.append(("shaper_dyad", shaper_scene,
+                           lambda th: ref.shaper_dyad(th, ref.SH["w2"])))
+    for name, make, hand in mechanisms:
         for n in sizes:
             scene = make(n)
             th = radian_column(np.linspace(0.0, 360.0, n))
@@ -148,6 +154,16 @@ def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001),
                 rows += _warm(n, what, {"reference": jobs["reference"], "solve": jobs[p]},
                               err, rounds=repeat or 15, path=p)
     return rows
+
+
+def shaper_scene(count: int) -> dict:
+    """The bundled shaper (the baseline's ``shaper_dyad``'s mechanism) over ``count``
+    positions of a turn."""
+    from ..model.examples import example
+    from ..model.scene import load_scene
+    d = copy.deepcopy(load_scene(example("shaper")).raw)
+    d["driver"].update(start=0.0, stop=360.0, count=int(count))
+    return d
 
 
 WARM_BATCH = 20     # calls per round for the small sizes' warm row
