@@ -12,13 +12,15 @@ is loaded (the cache folder settled); the rules of the kernels module hold here.
 from __future__ import annotations
 
 from .jitbase import (
-    TILE,
+    FUSED_TILE as TILE,
+)
+from .jitbase import (
     body,
     jit,
     nonfinite,
-    scratch,
+    scratch_for,
     tile_geometry,
-    tile_rows,
+    tile_rows_for,
 )
 from .kernels import crank_row, dyad_row
 from .layout import (
@@ -40,8 +42,12 @@ from .reaction_kernels import (
     crank_moment,
     reaction_row,
     swept_row,
-    tile_loads,
+    tile_loads_for,
 )
+
+# tiles of FUSED_TILE rows (jitbase): the helpers of that width
+scratch, tile_rows, tile_loads = (scratch_for(TILE), tile_rows_for(TILE),
+                                  tile_loads_for(TILE))
 
 
 # -- a crank and one dyad, fused: what solve_many keeps of a run ---------------------------
@@ -113,9 +119,18 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
         l1 = tile_geometry(wl1, gl[1], gls[1], own, t0, l1)
         l2 = tile_geometry(wl2, gl[2], gls[2], own, t0, l2)
         c0 = t0 - ts[own[t0]]       # (the scene's row in its cos and sin)
-        for t in range(nt):
-            wdrv[C, t] = cs[c0 + t]
-            wdrv[S, t] = sn[c0 + t]
+        # a whole tile copied in and out where the arrays hold one (a loop of a constant
+        # count: vectorised; of nt rows it is not): the rows after the tile's scene's are
+        # worked out and not counted, and written over by the next tile's (measured
+        # 2026-11-29, 1000 four-bars x 361: 0.35 ms of 11.7 a call)
+        if c0 + TILE <= cs.shape[0]:
+            for t in range(TILE):
+                wdrv[C, t] = cs[c0 + t]
+                wdrv[S, t] = sn[c0 + t]
+        else:
+            for t in range(nt):
+                wdrv[C, t] = cs[c0 + t]
+                wdrv[S, t] = sn[c0 + t]
         for t in range(TILE):
             f = crank_row(t, t, wgd, w, eps, wdrv)
             bad += f if t < nt else 0
@@ -149,9 +164,14 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
             wr[0, t] = me
             f = nonfinite((me, wad[0, t], wad[1, t]))
             bad += f if t < nt else 0
-        for t in range(nt):
-            drive[t0 + t - lo] = wr[0, t]
-            close[t0 + t - lo] = wd[CL2, t]
+        if t0 + TILE <= hi:
+            for t in range(TILE):
+                drive[t0 + t - lo] = wr[0, t]
+                close[t0 + t - lo] = wd[CL2, t]
+        else:
+            for t in range(nt):
+                drive[t0 + t - lo] = wr[0, t]
+                close[t0 + t - lo] = wd[CL2, t]
         t0 += nt
     return bad
 
