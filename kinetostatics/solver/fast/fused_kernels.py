@@ -1,9 +1,10 @@
 """The fused kernels of ``solve_many``: a crank and one dyad (every kind but RTR) in one
-kernel per run, tile by tile: the driver's motion, the dyad's, each body's loads, the
-dyad's reactions and Me, every value of a tile in one scratch array, and only Me, the
-closeness to a dead centre and the undefined rows written out. The row helpers are the
-composed kernels' (:mod:`~kinetostatics.solver.fast.kernels`), in the same order: the
-same numbers, bit for bit.
+kernel per run, tile by tile (``jitbase.FUSED_TILE`` rows a tile): the driver's motion,
+the dyad's, each body's loads, the dyad's reactions and Me, every value of a tile in one
+scratch array, and only Me, the closeness to a dead centre and the undefined rows
+written out. The row helpers are the composed kernels'
+(:mod:`~kinetostatics.solver.fast.kernels`), in the same order: the same numbers, bit
+for bit.
 
 Imported by :func:`~kinetostatics.solver.fast.stacked.fused_kept` once the compiled path
 is loaded (the cache folder settled); the rules of the kernels module hold here.

@@ -55,7 +55,7 @@ TILE = 64
 # (some 160 rows of a tile: every body's motion, the dyad's data, the loads, the
 # reactions and the geometry) is then about 40 KB, nearly within the processor's 32 KB
 # first-level cache, against 80 KB at 64 rows (measured 2026-11-29, 1000 four-bars x 361
-# in one call, processor time: 10.2-10.5 ms against 11.5-11.7 at 64 rows, 11.9-12.1 at
+# in one call, processor time: 10.0-10.2 ms against 11.1-11.7 at 64 rows, 11.9-12.1 at
 # 16, 10.3-10.9 at 24; the same numbers, bit for bit)
 FUSED_TILE = 32
 
