@@ -13,7 +13,7 @@ by :mod:`~kinetostatics.solver.fast.kernels`, after the cache folder is settled.
 
 from __future__ import annotations
 
-from .jitbase import jit
+from .jitbase import TILE, body, jit
 from .layout import AL, AX, AY, OM, OX, OY, VX, VY, C, S
 
 
@@ -21,32 +21,74 @@ from .layout import AL, AX, AY, OM, OX, OY, VX, VY, C, S
 def point_rows(m, rows, lx, ly, out, at):
     """``x, y, vx, vy, ax, ay`` of the body point at the local ``(lx, ly)`` over the
     first ``rows`` columns of the body's motion ``m`` (:mod:`~kinetostatics.solver.fast.layout`)
-    into columns ``at`` to ``at + rows`` of the six rows of ``out``.
+    into columns ``at`` to ``at + rows`` of the six rows of ``out`` (:func:`point_row`)."""
+    origin = lx == 0.0 and ly == 0.0
+    for t in range(rows):
+        point_row(m, t, lx, ly, origin, out, at + t)
+
+
+@body
+def point_row(m, t, lx, ly, origin, out, j):
+    """Column ``j`` of the six rows of ``out``: ``x, y, vx, vy, ax, ay`` of the body point
+    at the local ``(lx, ly)`` from column ``t`` of the body's motion ``m`` (``origin``:
+    ``l`` = 0).
 
     The arm r = R(theta) l (arith's ``rotate``: ``(c lx, s lx)`` when ``ly`` is 0,
     ``(-ly s, c ly)`` when ``lx`` is 0), then x = o + r, v = v_O + omega k x r,
     a = a_O + eps k x r - omega^2 r (seed 001 eq. 9); the body's origin itself (``l`` =
     0) is its motion as it is (arith adds no zero)."""
-    origin = lx == 0.0 and ly == 0.0
-    for t in range(rows):
-        j = at + t
-        if origin:
-            out[0, j], out[1, j] = m[OX, t], m[OY, t]
-            out[2, j], out[3, j] = m[VX, t], m[VY, t]
-            out[4, j], out[5, j] = m[AX, t], m[AY, t]
-            continue
-        c, s = m[C, t], m[S, t]
-        if ly == 0.0:
-            rx, ry = c * lx, s * lx
-        elif lx == 0.0:
-            rx, ry = -ly * s, c * ly
-        else:
-            rx, ry = c * lx - s * ly, s * lx + c * ly
-        om, al = m[OM, t], m[AL, t]
-        w2 = om * om
-        out[0, j] = m[OX, t] + rx
-        out[1, j] = m[OY, t] + ry
-        out[2, j] = m[VX, t] - om * ry
-        out[3, j] = m[VY, t] + om * rx
-        out[4, j] = (m[AX, t] - al * ry) - w2 * rx
-        out[5, j] = (m[AY, t] + al * rx) - w2 * ry
+    if origin:
+        out[0, j], out[1, j] = m[OX, t], m[OY, t]
+        out[2, j], out[3, j] = m[VX, t], m[VY, t]
+        out[4, j], out[5, j] = m[AX, t], m[AY, t]
+        return
+    c, s = m[C, t], m[S, t]
+    if ly == 0.0:
+        rx, ry = c * lx, s * lx
+    elif lx == 0.0:
+        rx, ry = -ly * s, c * ly
+    else:
+        rx, ry = c * lx - s * ly, s * lx + c * ly
+    om, al = m[OM, t], m[AL, t]
+    w2 = om * om
+    out[0, j] = m[OX, t] + rx
+    out[1, j] = m[OY, t] + ry
+    out[2, j] = m[VX, t] - om * ry
+    out[3, j] = m[VY, t] + om * rx
+    out[4, j] = (m[AX, t] - al * ry) - w2 * rx
+    out[5, j] = (m[AY, t] + al * rx) - w2 * ry
+
+
+@body
+def point_tile(m, lx, ly, w):
+    """:func:`point_row` over a tile (``TILE`` columns of the body's motion ``m``) into
+    the six rows of ``w``, both of one scratch array (a loop per road of arith's
+    ``rotate``, each over the tile alone: it vectorises)."""
+    if lx == 0.0 and ly == 0.0:
+        for f in range(6):
+            for t in range(TILE):
+                w[f, t] = m[OX + f, t]
+        return
+    if ly == 0.0:
+        for t in range(TILE):
+            _point_at(m, t, m[C, t] * lx, m[S, t] * lx, w)
+    elif lx == 0.0:
+        for t in range(TILE):
+            _point_at(m, t, -ly * m[S, t], m[C, t] * ly, w)
+    else:
+        for t in range(TILE):
+            c, s = m[C, t], m[S, t]
+            _point_at(m, t, c * lx - s * ly, s * lx + c * ly, w)
+
+
+@body
+def _point_at(m, t, rx, ry, w):
+    """Column ``t`` of :func:`point_tile` given the arm ``(rx, ry)``."""
+    om, al = m[OM, t], m[AL, t]
+    w2 = om * om
+    w[0, t] = m[OX, t] + rx
+    w[1, t] = m[OY, t] + ry
+    w[2, t] = m[VX, t] - om * ry
+    w[3, t] = m[VY, t] + om * rx
+    w[4, t] = (m[AX, t] - al * ry) - w2 * rx
+    w[5, t] = (m[AY, t] + al * rx) - w2 * ry
