@@ -13,7 +13,7 @@ by :mod:`~kinetostatics.solver.fast.kernels`, after the cache folder is settled.
 
 from __future__ import annotations
 
-from .jitbase import TILE, body, jit
+from .jitbase import body, jit
 from .layout import AL, AX, AY, OM, OX, OY, VX, VY, C, S
 
 
@@ -58,37 +58,3 @@ def point_row(m, t, lx, ly, origin, out, j):
     out[4, j] = (m[AX, t] - al * ry) - w2 * rx
     out[5, j] = (m[AY, t] + al * rx) - w2 * ry
 
-
-@body
-def point_tile(m, lx, ly, w):
-    """:func:`point_row` over a tile (``TILE`` columns of the body's motion ``m``) into
-    the six rows of ``w``, both of one scratch array (a loop per road of arith's
-    ``rotate``, each over the tile alone: it vectorises)."""
-    if lx == 0.0 and ly == 0.0:
-        for f in range(6):
-            for t in range(TILE):
-                w[f, t] = m[OX + f, t]
-        return
-    if ly == 0.0:
-        for t in range(TILE):
-            _point_at(m, t, m[C, t] * lx, m[S, t] * lx, w)
-    elif lx == 0.0:
-        for t in range(TILE):
-            _point_at(m, t, -ly * m[S, t], m[C, t] * ly, w)
-    else:
-        for t in range(TILE):
-            c, s = m[C, t], m[S, t]
-            _point_at(m, t, c * lx - s * ly, s * lx + c * ly, w)
-
-
-@body
-def _point_at(m, t, rx, ry, w):
-    """Column ``t`` of :func:`point_tile` given the arm ``(rx, ry)``."""
-    om, al = m[OM, t], m[AL, t]
-    w2 = om * om
-    w[0, t] = m[OX, t] + rx
-    w[1, t] = m[OY, t] + ry
-    w[2, t] = m[VX, t] - om * ry
-    w[3, t] = m[VY, t] + om * rx
-    w[4, t] = (m[AX, t] - al * ry) - w2 * rx
-    w[5, t] = (m[AY, t] + al * rx) - w2 * ry
