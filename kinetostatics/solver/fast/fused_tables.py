@@ -8,17 +8,17 @@ the first-level cache (:mod:`kinetostatics.results.fastpass`).
 Per tile: every named point's ``x, y, vx, vy, ax, ay``
 (:func:`~kinetostatics.solver.fast.table_kernels.point_row`, the numpy path's operations
 in its order) and every joint's ``Fx, Fy`` (the reaction on its ``on`` body: the
-solver's value or its negation, exact), ``F = hypot(Fx, Fy)`` (the C library's
-``hypot``, numpy's own) and a prismatic joint's ``N, M``. The solving is compute, the
-writing memory traffic: done together per tile, the one runs while the other drains.
+solver's value or its negation, exact), ``F = hypot(Fx, Fy)`` (numpy's, bit for bit:
+:func:`~kinetostatics.solver.fast.table_kernels.hypot_into`) and a prismatic joint's
+``N, M``. The rows of a block are written a column or a few at a time, from the block's
+motion and reactions kept in the caches (measured 2026-11-29: 54 columns written a tile
+of 64 rows at a time ran at half the memory's speed for long runs of few columns).
 
 Imported by :mod:`~kinetostatics.solver.fast.table_pass` once the compiled path is
 loaded (the cache folder settled); the rules of the kernels module hold here.
 """
 
 from __future__ import annotations
-
-import math
 
 from .fused_kernels import _known_loads
 from .jitbase import (
@@ -36,7 +36,7 @@ from .layout import DRIVER_GEOMETRY, DYAD_GEOMETRY, DYAD_OUT, INNER_R, ROT1, ROT
 from .layout import MOTION as BODY_ROWS
 from .layout import REACTIONS as REACTION_ROWS
 from .reaction_kernels import reaction_row, tile_loads
-from .table_kernels import point_row
+from .table_kernels import hypot_into, point_row
 
 # Where a tile's values lie in the kernel's scratch array (rows): the ground's motion,
 # the driver's, the dyad's first and second body's, the load resultants of the driver
@@ -51,7 +51,7 @@ W_ROWS = W_REACTIONS + REACTION_ROWS + DYAD_GEOMETRY + DRIVER_GEOMETRY
 
 @body
 def _crank_dyad_tables(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
-                       gls, npt, slots, local, n, at, kout, src, sign, rout, mb, rb):
+                       gls, npt, slots, local, n, at, kout, src, sign, rout, mb, rb, mine):
     """A crank and one dyad (not RTR), rows ``lo`` to ``hi`` of its sweep (``own``,
     ``ts``, the geometry and the loads as ``solve_many``'s fused kernel takes them; no
     ``resist`` loads), solved tile by tile as that kernel solves them, each tile's
@@ -66,9 +66,11 @@ def _crank_dyad_tables(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, 
       ``local[p]``, its block ``p`` (:func:`~kinetostatics.solver.fast.table_kernels.point_row`);
     * ``rout`` (the ``reactions`` table's ``Fx, Fy, F, N, M``): joint ``q``, its block
       ``q``: ``Fx, Fy`` the scratch rows ``src[q, 0]``, ``src[q, 1]`` times
-      ``sign[q, 0]`` (+-1), F their hypot, and where ``src[q, 2] >= 0`` ``N, M`` the
-      rows ``src[q, 2]``, ``src[q, 3]`` times ``sign[q, 1]``. No joint (``src`` of no
-      rows): the loads and reactions are not solved.
+      ``sign[q, 0]`` (+-1), F their hypot (``mine``: glibc's algorithm inlined, else
+      the C library's, :func:`~kinetostatics.solver.fast.table_kernels.hypot`), and
+      where ``src[q, 2] >= 0`` ``N, M`` the rows ``src[q, 2]``, ``src[q, 3]`` times
+      ``sign[q, 1]``. No joint (``src`` of no rows): the loads and reactions are not
+      solved.
 
     Returns the count of rows the numpy path must judge."""
     rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
@@ -134,7 +136,7 @@ def _crank_dyad_tables(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, 
                             dst[t] = w_[row, t]
         t0 += nt
     _point_rows(mb, hi - lo, slots, local, n, at, kout)
-    _reaction_rows(rb, hi - lo, src, sign, n, at, rout)
+    _reaction_rows(rb, hi - lo, src, sign, n, at, rout, mine)
     return bad
 
 
@@ -153,7 +155,7 @@ def _point_rows(mb, m, slots, local, n, at, kout):
 
 
 @body
-def _reaction_rows(rb, m, src, sign, n, at, rout):
+def _reaction_rows(rb, m, src, sign, n, at, rout, mine):
     """The block's ``m`` rows of every joint's ``Fx, Fy, F`` (and ``N, M``) into
     ``rout`` (:func:`_crank_dyad_tables`), joint by joint."""
     for q in range(src.shape[0]):
@@ -167,7 +169,7 @@ def _reaction_rows(rb, m, src, sign, n, at, rout):
                 fx, fy = -fx, -fy
             fx_out[t] = fx
             fy_out[t] = fy
-            f_out[t] = math.hypot(fx, fy)
+        hypot_into(fxs, fys, f_out, m, mine)     # (|Fx|, |Fy|: the sign is no matter)
         if src[q, 2] >= 0:
             flip = sign[q, 1] < 0.0
             ns, ms = rb[4 * q + 2], rb[4 * q + 3]
@@ -182,44 +184,50 @@ def _reaction_rows(rb, m, src, sign, n, at, rout):
 
 @jit
 def rrr_tables(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt,
-               slots, local, n, at, kout, src, sign, rout, mb, rb):
+               slots, local, n, at, kout, src, sign, rout, mb, rb, mine):
     return _crank_dyad_tables(7, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d,
-                              gl, gls, npt, slots, local, n, at, kout, src, sign, rout, mb, rb)
+                              gl, gls, npt, slots, local, n, at, kout, src, sign, rout, mb, rb,
+                              mine)
 
 
 @jit
 def rrt_tables(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt,
-               slots, local, n, at, kout, src, sign, rout, mb, rb):
+               slots, local, n, at, kout, src, sign, rout, mb, rb, mine):
     return _crank_dyad_tables(5, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d,
-                              gl, gls, npt, slots, local, n, at, kout, src, sign, rout, mb, rb)
+                              gl, gls, npt, slots, local, n, at, kout, src, sign, rout, mb, rb,
+                              mine)
 
 
 @jit
 def trr_tables(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt,
-               slots, local, n, at, kout, src, sign, rout, mb, rb):
+               slots, local, n, at, kout, src, sign, rout, mb, rb, mine):
     return _crank_dyad_tables(6, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d,
-                              gl, gls, npt, slots, local, n, at, kout, src, sign, rout, mb, rb)
+                              gl, gls, npt, slots, local, n, at, kout, src, sign, rout, mb, rb,
+                              mine)
 
 
 @jit
 def trt_tables(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt,
-               slots, local, n, at, kout, src, sign, rout, mb, rb):
+               slots, local, n, at, kout, src, sign, rout, mb, rb, mine):
     return _crank_dyad_tables(4, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d,
-                              gl, gls, npt, slots, local, n, at, kout, src, sign, rout, mb, rb)
+                              gl, gls, npt, slots, local, n, at, kout, src, sign, rout, mb, rb,
+                              mine)
 
 
 @jit
 def rtt_tables(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt,
-               slots, local, n, at, kout, src, sign, rout, mb, rb):
+               slots, local, n, at, kout, src, sign, rout, mb, rb, mine):
     return _crank_dyad_tables(1, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d,
-                              gl, gls, npt, slots, local, n, at, kout, src, sign, rout, mb, rb)
+                              gl, gls, npt, slots, local, n, at, kout, src, sign, rout, mb, rb,
+                              mine)
 
 
 @jit
 def ttr_tables(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt,
-               slots, local, n, at, kout, src, sign, rout, mb, rb):
+               slots, local, n, at, kout, src, sign, rout, mb, rb, mine):
     return _crank_dyad_tables(2, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d,
-                              gl, gls, npt, slots, local, n, at, kout, src, sign, rout, mb, rb)
+                              gl, gls, npt, slots, local, n, at, kout, src, sign, rout, mb, rb,
+                              mine)
 
 
 # a crank and one dyad, per dyad kind (RTR: the composed kernels, SolvedAgain)

@@ -184,3 +184,34 @@ def test_the_pass_solves_no_array_over_the_sweep(fast, monkeypatch):
     sol.reactions                       # noqa: B018 (kinematics made: nothing kept)
     assert calls == ["kinematics", "reactions"] and fastpass.KEPT not in sol.__dict__
     assert sol.__dict__["_deferred"].full is None
+
+
+def test_the_kernels_hypot_is_numpys_bit_for_bit(fast):
+    """The fused table kernel's F: glibc's hypot inlined where it gives numpy's (checked
+    once a process), else the C library's; either way numpy's ``hypot`` bit for bit, on
+    pairs of every size (seeded apart from the process's own check), the four-bar's F
+    of the reactions table among them."""
+    from kinetostatics.solver.fast import table_pass
+    from kinetostatics.solver.fast.table_kernels import hypot_rows
+    rng = np.random.default_rng(2026)
+    n = 200_000
+    with np.errstate(all="ignore"):
+        x = rng.standard_normal(n) * 2.0 ** rng.integers(-1074, 1024, n).astype(float)
+        y = np.concatenate([rng.standard_normal(n // 2) * 2.0 ** rng.integers(
+            -1074, 1024, n // 2).astype(float), x[:n // 2] * (1 + 1e-9 * rng.random(n // 2))])
+        want = np.hypot(x, y)
+    for own in (table_pass.own_hypot(), False):
+        out = np.empty(n)
+        hypot_rows(x, y, out, own)
+        assert out.tobytes() == want.tobytes(), own
+    r = ks.solve(scene_text("four_bar")).reactions
+    assert r.F.to_numpy().tobytes() == np.hypot(r.Fx.to_numpy(), r.Fy.to_numpy()).tobytes()
+
+
+def test_tables_with_the_c_librarys_hypot(fast, monkeypatch):
+    """Where the inlined hypot is not numpy's, the C library's gives the same table."""
+    from kinetostatics.solver.fast import table_pass
+    text = scene_text("four_bar")
+    expected = bits(ks.solve(text).reactions)
+    monkeypatch.setitem(table_pass._HYPOT, "own", False)
+    assert bits(ks.solve(text).reactions) == expected
