@@ -20,6 +20,11 @@ written straight into the table's columns, allocated once
   table alone now costs the kinematics' writes too, 0.21 against 0.17 s, and holds
   their 432 MB, a peak of 807 against 627 MB.)
 
+A crank and one dyad (not RTR, no ``resist`` loads) takes the fused table kernels instead
+(:class:`~kinetostatics.solver.fast.table_pass.FusedTables`): the block solved tile by
+tile in one kernel and its rows of both tables written there, ``F`` by numpy's ``hypot``
+bit for bit at a fifteenth of its cost (docs/solve-paths.md, "The fused table kernels").
+
 No array over the whole sweep is made but the tables' own, and no temporary per column
 (the full re-solve gathered some 26 arrays, 200 MB at 1e6 positions, and the tables were
 computed from them chunk by chunk: docs/solve-paths.md, "Tables at scale"). The numbers
