@@ -8,7 +8,8 @@ little.
 * ``reference``: :func:`kinetostatics.solve` plus its ``driver`` table, on each solve
   path (``numpy``, and ``fast`` when the compiled kernels load: column ``path``), against
   the hand-written closed forms ``fourbar_dyad`` and ``slider_dyad`` of
-  :mod:`kinetostatics.bench.reference` on the same four-bar and slider-crank, at 2001, 2e5 and 1e6
+  :mod:`kinetostatics.bench.reference` on the same four-bar and slider-crank (and
+  ``shaper_dyad`` on the bundled shaper), at 2001, 2e5 and 1e6
   positions, with the largest difference of Me (2001 positions also in batches of
   calls, as :mod:`timeit` times);
 * ``many``: :func:`kinetostatics.solve_many` on 1000 variants of the bundled four-bar
@@ -127,9 +128,14 @@ def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001),
     rows = []
     # the baseline's other mechanism: far fewer operations by hand (a centred slider-crank
     # in closed form), the same general solve
-    for name, make, hand in (("fourbar_dyad", fourbar_scene, lambda th: ref.fourbar_dyad(
-            th, 20.0)), ("slider_dyad", lambda n: slider_crank_reference_scene(n, ref.SC),
-                         lambda th: ref.slider_dyad(th, w2))):
+    mechanisms = [("fourbar_dyad", fourbar_scene, lambda th: ref.fourbar_dyad(th, 20.0)),
+                  ("slider_dyad", lambda n: slider_crank_reference_scene(n, ref.SC),
+                   lambda th: ref.slider_dyad(th, w2))]
+    if hasattr(ref, "shaper_dyad"):     # (a six-bar: two dyads, RTR and RRT; a baseline
+        # given with --reference may have none)
+        mechanisms.append(("shaper_dyad", shaper_scene,
+                           lambda th: ref.shaper_dyad(th, ref.SH["w2"])))
+    for name, make, hand in mechanisms:
         for n in sizes:
             scene = make(n)
             th = radian_column(np.linspace(0.0, 360.0, n))
@@ -148,6 +154,16 @@ def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001),
                 rows += _warm(n, what, {"reference": jobs["reference"], "solve": jobs[p]},
                               err, rounds=repeat or 15, path=p)
     return rows
+
+
+def shaper_scene(count: int) -> dict:
+    """The bundled shaper (the baseline's ``shaper_dyad``'s mechanism) over ``count``
+    positions of a turn."""
+    from ..model.examples import example
+    from ..model.scene import load_scene
+    d = copy.deepcopy(load_scene(example("shaper")).raw)
+    d["driver"].update(start=0.0, stop=360.0, count=int(count))
+    return d
 
 
 WARM_BATCH = 20     # calls per round for the small sizes' warm row
@@ -365,19 +381,22 @@ def bench_crosscheck(repeat: int = 3) -> list[dict]:
     return [{k: r[k] for k in keys} for r in crosscheck_speed(repeat=repeat)]
 
 
-def run_speed(quick: bool = False, reference: str | None = None) -> pd.DataFrame:
-    """Every ratio of this module, printed as one table (``quick``: small sizes)."""
+def run_speed(quick: bool = False, reference: str | None = None,
+              repeat: int | None = None) -> pd.DataFrame:
+    """Every ratio of this module, printed as one table (``quick``: small sizes;
+    ``repeat``: the rounds of every row, None: each row's own)."""
     ref = str(reference or find_reference())
     # quick: every row once more than a smoke run, 3 rounds each (25 and 7, and 15 warm
     # rounds, took 68 s of the command's 120 s at a load of 12)
-    rows = (bench_reference(ref, (2_001, 20_001), repeat=3) if quick
-            else bench_reference(ref))
-    rows += bench_many(100 if quick else 1000)
-    rows += bench_start(3 if quick else 7)
-    rows += bench_design(50, 2, repeat=1) if quick else bench_design()
+    rows = (bench_reference(ref, (2_001, 20_001), repeat=repeat or 3) if quick
+            else bench_reference(ref, repeat=repeat))
+    rows += bench_many(100 if quick else 1000, repeat=repeat or 3)
+    rows += bench_start(repeat or (3 if quick else 7))
+    rows += (bench_design(50, 2, repeat=1) if quick else
+             bench_design(repeat=repeat or 2))
     if not quick:
         rows += bench_tables()
-        rows += bench_crosscheck()
+        rows += bench_crosscheck(repeat or 3)
     df = pd.DataFrame(rows)
     pd.set_option("display.width", 160)
     print(f"\n== speed: ratios to baselines timed side by side ({os.cpu_count()} cores) ==")

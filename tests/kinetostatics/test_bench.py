@@ -136,3 +136,65 @@ def test_side_by_side_in_warm_batches(monkeypatch) -> None:
     rows = B._warm(2001, "x / y", {"reference": job("a"), "solve": job("b")}, 0.0)
     assert [r["measure"] for r in rows] == [f"x / y (warm, batches of {B.WARM_BATCH} calls)"]
     assert B._warm(200_001, "x / y", {"reference": job("a"), "solve": job("b")}, 0.0) == []
+
+
+def _shaper_power(ref, th):
+    """The shaper baseline's Me w2 + the load's and gravity's power and the rate of
+    change of its kinetic energy, sum m a . v + I alpha w (the motion from shaper_kin)."""
+    p, w2 = ref.SH, ref.SH["w2"]
+    r = ref.shaper_dyad(th, w2)
+    k = r["kin"]
+    vf, af = (k["vFx"], 0.0), (k["aFx"], 0.0)
+    ve, ae = (k["vEx"], k["vEy"]), (k["aEx"], k["aEy"])
+    va, aa = (k["vAx"], k["vAy"]), (k["aAx"], k["aAy"])
+
+    def half(a, b=(0.0, 0.0)):
+        return 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])
+    bodies = [(p["m2"], p["I2"], half(va), half(aa), w2, 0.0),
+              (p["m3"], p["I3"], va, aa, k["w4"], k["al4"]),
+              (p["m4"], p["I4"], half(ve), half(ae), k["w4"], k["al4"]),
+              (p["m5"], p["I5"], half(ve, vf), half(ae, af), k["w5"], k["al5"]),
+              (p["m6"], 0.0, vf, af, 0.0, 0.0)]
+    kinetic = sum(m * (a[0] * v[0] + a[1] * v[1]) + inertia * al * w
+                  for m, inertia, v, a, w, al in bodies)
+    weight = sum(-p["g"] * m * v[1] for m, _, v, _, _, _ in bodies)
+    load = np.where(vf[0] * p["P"] < 0.0, p["P"], 0.0) * vf[0]
+    return r["Me"] * w2 + load + weight, kinetic
+
+
+def test_the_shaper_baselines_me_closes_the_virtual_power(ref) -> None:
+    th = np.deg2rad(np.linspace(0.0, 360.0, 721))
+    given, kinetic = _shaper_power(ref, th)
+    # measured 6.3e-16 of the largest power
+    assert np.abs(given - kinetic).max() <= 2e-15 * np.abs(kinetic).max()
+
+
+def test_the_shaper_baselines_motion_against_finite_differences(ref) -> None:
+    """Each velocity the derivative of its position, each acceleration of its velocity
+    (central differences in the crank angle, h = 1e-5 rad: error about h^2)."""
+    h, w2 = 1e-5, ref.SH["w2"]
+    th = np.deg2rad(np.linspace(0.0, 360.0, 181))
+    lo, mid, hi = (ref.shaper_kin(th + d, w2) for d in (-h, 0.0, h))
+    for x, v in (("Ax", "vAx"), ("Ex", "vEx"), ("Ey", "vEy"), ("Fx", "vFx"),
+                 ("vEx", "aEx"), ("vEy", "aEy"), ("vFx", "aFx"), ("w4", "al4"),
+                 ("w5", "al5")):
+        rate = (hi[x] - lo[x]) / (2.0 * h) * w2
+        # measured at most 2.9e-10 of the rate's scale (vEy)
+        assert np.abs(rate - mid[v]).max() <= 1e-9 * np.abs(mid[v]).max(), v
+
+
+def test_the_shaper_is_the_baselines(ref) -> None:
+    """The bundled shaper solved (both paths agree with it: the paths' own tests) against
+    the baseline: Me, the crank's force on the block at A, the lever's on the link at E."""
+    import kinetostatics as ks
+    sol = solve(ks.example("shaper"))
+    th = np.deg2rad(sol.positions)
+    want = ref.shaper_dyad(th, ref.SH["w2"])
+    # measured 9.8e-16
+    assert np.abs(sol.Me - want["Me"]).max() <= 5e-15 * np.abs(want["Me"]).max()
+    for joint, on, key in (("A", "block", "FA"), ("E", "link", "FE")):
+        rows = sol.reactions[(sol.reactions["joint"] == joint) & (sol.reactions["on"] == on)]
+        for col, w in zip(("Fx", "Fy"), want[key], strict=True):
+            # measured at most 3.0e-15 (E, Fy)
+            assert np.abs(rows[col].to_numpy() - w).max() <= 1e-14 * np.abs(w).max(), (
+                joint, col)

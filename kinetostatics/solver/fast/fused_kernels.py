@@ -11,24 +11,13 @@ is loaded (the cache folder settled); the rules of the kernels module hold here.
 
 from __future__ import annotations
 
-from .jitbase import (
-    TILE,
-    body,
-    jit,
-    nonfinite,
-    scratch,
-    tile_geometry,
-    tile_rows,
-)
+from .jitbase import TILE, body, jit, scratch, tile_geometry, tile_rows
 from .kernels import crank_row, dyad_row
 from .layout import (
-    CL2,
     DRIVER_GEOMETRY,
     DYAD_GEOMETRY,
     DYAD_OUT,
     INNER_R,
-    P_GROUND,
-    PARAM,
     ROT1,
     ROT2,
     C,
@@ -36,30 +25,11 @@ from .layout import (
 )
 from .layout import MOTION as BODY_ROWS
 from .layout import REACTIONS as REACTION_ROWS
-from .reaction_kernels import (
-    crank_moment,
-    reaction_row,
-    swept_row,
-    tile_loads,
-)
+from .reaction_kernels import tile_loads
+from .tail_kernels import known_loads, tile_kept, tile_moment, tile_reactions, tile_swept
 
 
 # -- a crank and one dyad, fused: what solve_many keeps of a run ---------------------------
-@body
-def _known_loads(wg, wad, wak1, wak2):
-    """What a dyad's outer joints load its known bodies with (``wak1``, ``wak2``, a
-    tile's) added to the driver's resultants ``wad`` in order, unless the known body is
-    the ground (as the composed reactions add them, ``tile_add``)."""
-    if wg[P_GROUND, 0] == 0.0:
-        for f in range(3):
-            for t in range(TILE):
-                wad[f, t] += wak1[f, t]
-    if wg[PARAM + P_GROUND, 0] == 0.0:
-        for f in range(3):
-            for t in range(TILE):
-                wad[f, t] += wak2[f, t]
-
-
 @body
 def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls,
                      npt, gw, gws, nw, st, drive, close, undefined):
@@ -125,33 +95,20 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
         bad += tile_loads(wdrv, wad, wl0, npt[0], nt)
         bad += tile_loads(wm1, wa1, wl1, npt[1], nt)
         bad += tile_loads(wm2, wa2, wl2, npt[2], nt)
-        if nw[0] + nw[1] + nw[2]:
-            for t in range(nt):
-                i = t0 + t
-                if nw[0]:
-                    bad += swept_row(t, own[i * gws[0]], own[i * e0], i - lo, gw[0], nw[0],
-                                     wdrv, wad, undefined, st[0])
-                if nw[1]:
-                    bad += swept_row(t, own[i * gws[1]], own[i * e1], i - lo, gw[1], nw[1],
-                                     wm1, wa1, undefined, st[1])
-                if nw[2]:
-                    bad += swept_row(t, own[i * gws[2]], own[i * e2], i - lo, gw[2], nw[2],
-                                     wm2, wa2, undefined, st[2])
-        wak1[:] = 0.0
-        wak2[:] = 0.0
-        for t in range(TILE):
-            f = reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1, wa2,
-                             wak1, wak2, wr)
-            bad += f if t < nt else 0
-        _known_loads(wg, wad, wak1, wak2)
-        for t in range(TILE):
-            me = crank_moment(t, t, wgd, wdrv, wad)
-            wr[0, t] = me
-            f = nonfinite((me, wad[0, t], wad[1, t]))
-            bad += f if t < nt else 0
-        for t in range(nt):
-            drive[t0 + t - lo] = wr[0, t]
-            close[t0 + t - lo] = wd[CL2, t]
+        if nw[0]:
+            bad += tile_swept(lo, t0, nt, own, gws[0], e0, gw[0], nw[0], wdrv, wad, undefined,
+                              st[0])
+        if nw[1]:
+            bad += tile_swept(lo, t0, nt, own, gws[1], e1, gw[1], nw[1], wm1, wa1, undefined,
+                              st[1])
+        if nw[2]:
+            bad += tile_swept(lo, t0, nt, own, gws[2], e2, gw[2], nw[2], wm2, wa2, undefined,
+                              st[2])
+        bad += tile_reactions(rot1, rot2, inner_r, nt, wg, wm1, wm2, wk1, wk2, wd, wa1, wa2,
+                              wak1, wak2, wr)
+        known_loads(wg, wad, wad, wak1, wak2)
+        bad += tile_moment(wgd, wdrv, wad, wr, nt)
+        tile_kept(t0 - lo, nt, wr, wd, drive, close)
         t0 += nt
     return bad
 

@@ -158,23 +158,25 @@ def _fused(kernels, scene: Scene, structure, geometry) -> tuple | None:
 def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarray
                   ) -> Kept | None:
     """The :class:`~kinetostatics.solver.blocks.Kept` of a long sweep of a crank and one
-    RTR dyad (the slotted lever's structure) from the kernels of
+    RTR dyad (the slotted lever's structure), or of a crank, one RTR dyad and a second
+    dyad of another kind (the shaper's), from the kernels of
     :mod:`~kinetostatics.solver.fast.guide_kernels`, per block of :data:`FUSED_ROWS`
     rows: the crank's cos and sin (numpy's), the guide's angle, its cos and sin (numpy's),
-    then the rest, the numbers of the composed kernels bit for bit; or None for another
-    structure. Raises :class:`~kinetostatics.solver.fast.compose.Refused` as the
-    composed kernels do."""
+    then the rest in one kernel, the numbers of the composed kernels bit for bit; or None
+    for another structure. Raises :class:`~kinetostatics.solver.fast.compose.Refused` as
+    the composed kernels do."""
     plan = Plan(kernels, full, structure, structure.assembly, geometry=geometry)
     found = _guided(plan)
     if found is None:
         return None
-    from .guide_kernels import rtr_guide, rtr_kept  # (numba loaded: plan.k given)
-    first, rest = found
+    from .guide_kernels import rtr_guide  # (numba loaded: plan.k given)
+    kernel, first, rest = found
     angles = full.driver.angles
     n = positions.size
     width = min(FUSED_ROWS, n)
     cs, sn, th, reach, gap, ct, sg = np.empty((7, width))
-    drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
+    drive, undefined = np.empty(n), np.zeros(n, dtype=bool)
+    close = [np.empty(n) for _ in plan.dyads]
     bad = 0
     for lo in range(0, n, width):
         m = min(lo + width, n) - lo
@@ -183,36 +185,51 @@ def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarr
         rtr_guide(0, m, cs, sn, *first, th, reach, gap)
         np.cos(th[:m], out=ct[:m])
         np.sin(th[:m], out=sg[:m])
-        bad += rtr_kept(0, m, OWNERS, cs, sn, *rest, ct, sg, reach, gap, drive[lo:lo + m],
-                        close[lo:lo + m], undefined[lo:lo + m])
+        bad += kernel(0, m, OWNERS, cs, sn, *rest, ct, sg, reach, gap, drive[lo:lo + m],
+                      *[c[lo:lo + m] for c in close], undefined[lo:lo + m])
     if bad:
         raise Refused(bad)
     plan.check_swept()
-    return kept_sweep(structure, "R", drive, undefined, [close])
+    return kept_sweep(structure, "R", drive, undefined, close)
 
 
 def _guided(plan: Plan) -> tuple | None:
-    """The arguments of :func:`~kinetostatics.solver.fast.guide_kernels.rtr_guide` and
-    of ``rtr_kept`` (but the rows' and the outputs) for a crank and one RTR dyad whose
-    outer joints are on the ground or the crank; else None."""
-    if not plan.crank or len(plan.dyads) != 1 or plan.dyads[0][2].kind != "RTR":
+    """The kernel that follows :func:`~kinetostatics.solver.fast.guide_kernels.rtr_guide`
+    (``rtr_kept``, or for a second dyad one of ``AFTER_RTR``), ``rtr_guide``'s arguments
+    and the kernel's (but the rows' and the outputs) for a crank and one RTR dyad whose
+    outer joints are on the ground or the crank, and maybe a second dyad (not RTR) whose
+    outer joints are on the ground, the crank or the RTR dyad's bodies; else None."""
+    if not plan.crank or len(plan.dyads) not in (1, 2) or plan.dyads[0][2].kind != "RTR":
         return None
+    from .guide_kernels import AFTER_RTR, rtr_kept  # (numba loaded: plan.k given)
     gy, gys, dyad = plan.dyads[0]
     dname = plan.scene.driver.body
     order = (dname, *dyad.bodies)
     known = [j.other(b) for j, b in zip(dyad.outer, dyad.bodies, strict=True)]
     gd, gds = plan.driver
-    if (gys or gds or len(plan.bodies) != 3 or set(plan.bodies) != set(order)
-            or not set(known) <= {GROUND, dname}):
+    if gys or gds or not set(known) <= {GROUND, dname}:
         return None
     first = (gd, plan.speed, plan.accel, gy, known[0] == dname, known[1] == dname)
+    kernel, second = rtr_kept, ()
+    if len(plan.dyads) == 2:
+        gz, gzs, dyad = plan.dyads[1]
+        kernel = AFTER_RTR.get(dyad.kind)
+        which = (GROUND, *order)        # (the kernel's codes: 0 the ground, 1 the crank...)
+        known = [j.other(b) for j, b in zip(dyad.outer, dyad.bodies, strict=True)]
+        if kernel is None or gzs or not set(known) <= set(which):
+            return None
+        second = (gz, which.index(known[0]), which.index(known[1]))
+        order = (*order, *dyad.bodies)
+    if len(plan.bodies) != len(order) or set(plan.bodies) != set(order):
+        return None
     loads = [plan.loads[b] for b in order]
     swept = [plan.swept.get(b, NO_SWEPT_LOADS) for b in order]
     if any(gs for _, gs, _ in loads) or any(sw[1] for sw in swept):
         return None
-    return first, (*first, tuple(g for g, _, _ in loads), tuple(p for _, _, p in loads),
-                   tuple(sw[0] for sw in swept), tuple(len(sw[2]) for sw in swept),
-                   tuple(plan.stats.get(b, NO_STATS) for b in order))
+    return kernel, first, (*first, *second, tuple(g for g, _, _ in loads),
+                           tuple(p for _, _, p in loads), tuple(sw[0] for sw in swept),
+                           tuple(len(sw[2]) for sw in swept),
+                           tuple(plan.stats.get(b, NO_STATS) for b in order))
 
 
 class SolvedAgain:

@@ -6,6 +6,8 @@ paths' tolerance of the numpy path's."""
 
 from __future__ import annotations
 
+import copy
+
 import numpy as np
 import pytest
 
@@ -26,6 +28,43 @@ from .test_fast_short import DATA, FUSED, full_solve
 GUIDED = {"slotted lever": ks.example("slotted_lever"),
           "oscillating cylinder": DATA / "oscillating_cylinder.toml"}
 
+
+def _rocker_ram() -> dict:
+    """The shaper with its ram a rocker about a ground pivot G: a second dyad RRR whose
+    known bodies are the lever and the ground."""
+    d = copy.deepcopy(load_scene(ks.example("shaper")).raw)
+    d["ground"]["G"] = [0.35, 0.75]
+    ram = next(b for b in d["bodies"] if b["name"] == "ram")
+    ram["points"] = {"F": [0.0, 0.0], "G": [0.35, 0.0], "T": [0.25, -0.05]}
+    d["joints"] = [j for j in d["joints"] if j["name"] != "ram-guide"] + [
+        {"name": "G", "kind": "R", "bodies": ["ground", "ram"]}]
+    d["near"] = {"lever.E": [0.0, 0.60], "F": [0.1, 0.85]}
+    return d
+
+
+def _crank_link() -> dict:
+    """The rocker-ram shaper with the ram's other end on the crank (joint H): a second
+    dyad RRR whose known bodies are the lever and the crank."""
+    d = _rocker_ram()
+    del d["ground"]["G"]
+    for b in d["bodies"]:
+        if b["name"] == "crank":
+            b["points"]["H"] = [0.10, 0.0]
+        if b["name"] == "ram":
+            b["points"] = {"F": [0.0, 0.0], "H": [0.3, 0.0], "T": [0.15, 0.02]}
+    d["joints"] = [j for j in d["joints"] if j["name"] != "G"] + [
+        {"name": "H", "kind": "R", "bodies": ["crank", "ram"]}]
+    d["near"] = {"lever.E": [0.0, 0.60], "F": [-0.2, 0.4]}
+    return d
+
+
+# a crank, one RTR dyad and a second dyad (the shaper's structure): the bundled shaper
+# (RRT on the lever and the ground, a force acting "when resisting"), and two of its
+# variants (RRR on the lever and the ground; on the lever and the crank)
+SIX_BARS = {"shaper": ks.example("shaper"), "shaper, a rocker ram": _rocker_ram(),
+            "shaper, the ram on the crank": _crank_link()}
+GUIDED.update(SIX_BARS)
+
 pytestmark = [pytest.mark.slow,
               pytest.mark.skipif(not loader.installed(), reason="numba not installed")]
 
@@ -42,7 +81,7 @@ def fast():
 
 
 def long_scene(kind: str) -> dict:
-    d = load_scene({**FUSED, **GUIDED}[kind]).raw
+    d = copy.deepcopy(load_scene({**FUSED, **GUIDED}[kind]).raw)
     d["driver"] = {**d["driver"], "count": COUNT}
     return d
 
@@ -62,11 +101,13 @@ def test_a_long_sweep_keeps_the_composed_kernels_numbers(fast, kind: str) -> Non
     ref = solve_lean(plan, pos)
     assert np.array_equal(ours.drive.value, ref.drive.value)
     assert np.array_equal(ours.undefined, ref.undefined)
-    assert np.array_equal(ours.closeness2[0], ref.closeness2[0])
-    assert np.array_equal(ours.singular[0], ref.singular[0])
+    assert len(ours.closeness2) == len(ref.closeness2) == len(structure.dyads)
+    for i in range(len(structure.dyads)):
+        assert np.array_equal(ours.closeness2[i], ref.closeness2[i])
+        assert np.array_equal(ours.singular[i], ref.singular[i])
 
 
-@pytest.mark.parametrize("kind", ["RRR", "RRT", "TTR", "slotted lever"])
+@pytest.mark.parametrize("kind", ["RRR", "RRT", "TTR", "slotted lever", *SIX_BARS])
 def test_a_long_sweep_is_the_full_solves_bit_for_bit(fast, kind: str) -> None:
     d = long_scene(kind)
     sol = ks.solve(d)
@@ -78,8 +119,10 @@ def test_a_long_sweep_is_the_full_solves_bit_for_bit(fast, kind: str) -> None:
     use("numpy")
     me = ks.solve(d).driver.iloc[:, 1].to_numpy()
     # the paths' agreement (measured here 2026-11-29: 1.5e-16 to 4.9e-16 of the column's
-    # scale; about four times that allowed)
-    assert np.abs(driver.iloc[:, 1].to_numpy() - me).max() <= 2e-15 * np.abs(me).max()
+    # scale, the six-bars 8.6e-16 to 3.0e-15: two dyads' rounding, the rocker ram's
+    # transmission angle; about four times that allowed)
+    tol = 1.2e-14 if kind in SIX_BARS else 2e-15
+    assert np.abs(driver.iloc[:, 1].to_numpy() - me).max() <= tol * np.abs(me).max()
 
 
 @pytest.mark.parametrize("scene", [FUSED["RRR"], GUIDED["oscillating cylinder"]])

@@ -1,0 +1,97 @@
+"""What a fused kernel does with a tile once its bodies' motions are worked out, shared
+by :mod:`~kinetostatics.solver.fast.fused_kernels` and
+:mod:`~kinetostatics.solver.fast.guide_kernels`: the swept loads of a body over the
+tile's rows, a dyad's reactions and what its outer joints load its known bodies with,
+the crank's Me
+(seed 002 eqs 2.47-2.48) and the write-out of what a long sweep keeps. Each helper does
+the composed kernels' operations in their order (:mod:`~kinetostatics.solver.fast.
+reaction_kernels`): the same numbers, bit for bit. Inlined by LLVM (``body``); the
+kernels module's rules hold here.
+"""
+
+from __future__ import annotations
+
+from .jitbase import TILE, body, nonfinite
+from .layout import CL2, P_GROUND, PARAM
+from .reaction_kernels import crank_moment, reaction_row, swept_row
+
+
+@body
+def tile_swept(lo, t0, nt, own, gs, es, gw, nw, wm, wa, undefined, st):
+    """A body's swept loads (``resist``, ``when = "resisting"``: :func:`swept_row`)
+    over the ``nt`` rows of the tile that starts at row ``t0`` of rows from ``lo``
+    (``own``: each row's scene, its geometry at ``own[i * gs]``, its statistics at
+    ``own[i * es]``), added to the tile's resultants ``wa``; the count of rows that are
+    not finite."""
+    bad = 0
+    for t in range(nt):
+        i = t0 + t
+        # (one scene's: column 0, a constant once inlined with gs = es = 0)
+        r = own[i * gs] if gs != 0 else 0
+        e = own[i * es] if es != 0 else 0
+        bad += swept_row(t, r, e, i - lo, gw, nw, wm, wa, undefined, st)
+    return bad
+
+
+@body
+def tile_reactions(rot1, rot2, inner_r, nt, wg, wm1, wm2, wk1, wk2, wd, wa1, wa2, wak1, wak2,
+                   wr):
+    """A dyad's reactions over a tile (:func:`reaction_row`, seed 002 s. 2.3) into
+    ``wr``, its bodies' resultants ``wa1``, ``wa2`` and what its outer joints load the
+    known bodies with (``wak1``, ``wak2``, zeroed first); the count of the tile's first
+    ``nt`` rows that are not finite."""
+    wak1[:] = 0.0
+    wak2[:] = 0.0
+    bad = 0
+    for t in range(TILE):
+        f = reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1, wa2,
+                         wak1, wak2, wr)
+        bad += f if t < nt else 0
+    return bad
+
+
+@body
+def add_rows(wa, wak):
+    """A tile's three resultant rows ``wak`` added to ``wa`` (every column, in order)."""
+    for f in range(3):
+        src, dst = wak[f], wa[f]        # (rows as 1-d views, as ``tile_add``)
+        for t in range(TILE):
+            dst[t] += src[t]
+
+
+@body
+def known_loads(wg, wa1, wa2, wak1, wak2):
+    """What a dyad's outer joints load their known bodies with (``wak1``, ``wak2``, a
+    tile's) added to those bodies' resultants ``wa1``, ``wa2`` in order, unless the
+    known body is the ground (as the composed reactions add them, ``tile_add``)."""
+    if wg[P_GROUND, 0] == 0.0:
+        add_rows(wa1, wak1)
+    if wg[PARAM + P_GROUND, 0] == 0.0:
+        add_rows(wa2, wak2)
+
+
+@body
+def tile_moment(wgd, wdrv, wad, wr, nt):
+    """The crank's Me over a tile (:func:`crank_moment`) into row 0 of ``wr``; the count
+    of the tile's first ``nt`` rows where Me or the crank's resultant force is not
+    finite."""
+    bad = 0
+    for t in range(TILE):
+        me = crank_moment(t, t, wgd, wdrv, wad)
+        wr[0, t] = me
+        f = nonfinite((me, wad[0, t], wad[1, t]))
+        bad += f if t < nt else 0
+    return bad
+
+
+@body
+def tile_kept(j0, nt, wr, wd, drive, close):
+    """What a long sweep keeps of a tile: Me (row 0 of ``wr``) and the dyad's closeness
+    to a dead centre (``wd``'s), at ``j0`` on."""
+    for t in range(nt):
+        drive[j0 + t] = wr[0, t]
+        close[j0 + t] = wd[CL2, t]
+
+
+__all__ = ["add_rows", "known_loads", "tile_kept", "tile_moment", "tile_reactions",
+           "tile_swept"]
