@@ -20,7 +20,6 @@ loaded (the cache folder settled); the rules of the kernels module hold here.
 
 from __future__ import annotations
 
-from .fused_kernels import _known_loads
 from .jitbase import (
     TILE,
     body,
@@ -35,8 +34,9 @@ from .kernels import crank_row, dyad_row
 from .layout import DRIVER_GEOMETRY, DYAD_GEOMETRY, DYAD_OUT, INNER_R, ROT1, ROT2, C, S
 from .layout import MOTION as BODY_ROWS
 from .layout import REACTIONS as REACTION_ROWS
-from .reaction_kernels import reaction_row, tile_loads
+from .reaction_kernels import tile_loads
 from .table_kernels import hypot_into, point_row
+from .tail_kernels import known_loads, tile_reactions
 
 # Where a tile's values lie in the kernel's scratch array (rows): the ground's motion,
 # the driver's, the dyad's first and second body's, the load resultants of the driver
@@ -118,13 +118,9 @@ def _crank_dyad_tables(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, 
             bad += tile_loads(wdrv, wad, wl0, npt[0], nt)
             bad += tile_loads(wm1, wa1, wl1, npt[1], nt)
             bad += tile_loads(wm2, wa2, wl2, npt[2], nt)
-            wak1[:] = 0.0
-            wak2[:] = 0.0
-            for t in range(TILE):
-                f = reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1,
-                                 wa2, wak1, wak2, wr)
-                bad += f if t < nt else 0
-            _known_loads(wg, wad, wak1, wak2)
+            bad += tile_reactions(rot1, rot2, inner_r, nt, wg, wm1, wm2, wk1, wk2, wd, wa1,
+                                  wa2, wak1, wak2, wr)
+            known_loads(wg, wad, wad, wak1, wak2)
             for t in range(nt):
                 bad += nonfinite((wad[0, t], wad[1, t]))
             for q in range(src.shape[0]):
