@@ -119,7 +119,7 @@ _HYPOT: dict[str, bool] = {}
 def own_hypot() -> bool:
     """Whether the kernels' inlined hypot (glibc's algorithm,
     :func:`~kinetostatics.solver.fast.table_kernels.hypot`) gives numpy's ``hypot`` bit
-    for bit here: checked once a process on 400 000 pairs (every class of double, each
+    for bit here: checked once a process on 100 000 pairs (every class of double, each
     order of size, pairs near equal and far apart, zeros, subnormals, the largest
     doubles, infinities and NaN). Where numpy's C library computes it otherwise (another
     C library, a build with fused multiply-adds) the kernels call that library's, as
@@ -135,7 +135,7 @@ def own_hypot() -> bool:
     return _HYPOT["own"]
 
 
-def hypot_probes(n: int = 100_000) -> tuple[np.ndarray, np.ndarray]:
+def hypot_probes(n: int = 25_000) -> tuple[np.ndarray, np.ndarray]:
     """Pairs of doubles whose hypot :func:`own_hypot` checks (``4 n`` plus the special
     values' every pair)."""
     rng = np.random.default_rng(31)
