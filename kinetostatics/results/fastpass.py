@@ -20,6 +20,11 @@ written straight into the table's columns, allocated once
   table alone now costs the kinematics' writes too, 0.21 against 0.17 s, and holds
   their 432 MB, a peak of 807 against 627 MB.)
 
+A crank and one dyad (not RTR, no ``resist`` loads) takes the fused table kernels instead
+(:class:`~kinetostatics.solver.fast.table_pass.FusedTables`): the block solved tile by
+tile in one kernel and its rows of both tables written there, ``F`` by numpy's ``hypot``
+bit for bit at a fifteenth of its cost (docs/solve-paths.md, "The fused table kernels").
+
 No array over the whole sweep is made but the tables' own, and no temporary per column
 (the full re-solve gathered some 26 arrays, 200 MB at 1e6 positions, and the tables were
 computed from them chunk by chunk: docs/solve-paths.md, "Tables at scale"). The numbers
@@ -59,25 +64,75 @@ def compiled_frame(sol: Solution, lean: LeanSolved, name: str) -> pd.DataFrame |
     kernel refused a block. The ``reactions`` pass writes the ``kinematics`` table's
     columns too, if that table is not made yet (:class:`PointRows`)."""
     from ..solver.fast.compose import Refused
+    from ..solver.fast.loader import kernels
     from ..solver.fast.solve import SolvedAgain
+    from ..solver.fast.table_pass import FusedTables
     d = sol.__dict__
     kept = d.pop(KEPT, None)            # (taken: no two threads make a table of one pass)
     if name == "kinematics" and type(kept) is PointRows:
         return kept.frame()
-    again = SolvedAgain(lean.known["scene"], lean.known["structure"])
+    scene, structure = lean.known["scene"], lean.known["structure"]
+    fused = FusedTables(kernels(), scene, structure)
     try:
+        if fused.kernel is not None:
+            return _fused_frame(sol, fused, lean.positions, name)
+        again = SolvedAgain(scene, structure)
+        rows = again.kernels.point_rows
         if name == "kinematics":
-            points = PointRows(sol, again.kernels, lean.positions)
+            points = PointRows(sol, lean.positions, rows)
             for lo, hi, motions, _ in again.blocks():
                 points.put(motions, lo, hi)
             return points.frame()
-        points = None if "kinematics" in d else PointRows(sol, again.kernels, lean.positions)
+        points = None if "kinematics" in d else PointRows(sol, lean.positions, rows)
         table, fill = _reactions(sol, again, lean.positions, points)
     except Refused:
         return None
     if points is not None:
         d[KEPT] = points
     return table.frame_of(fill)
+
+
+def _fused_frame(sol: Solution, fused, positions: np.ndarray, name: str) -> pd.DataFrame:
+    """Table ``name`` written by the fused table kernel
+    (:class:`~kinetostatics.solver.fast.table_pass.FusedTables`): the ``kinematics``
+    table alone, or the ``reactions`` table and, if it is not made yet, the
+    ``kinematics`` table's columns in the same pass (kept for it, :class:`PointRows`)."""
+    d = sol.__dict__
+    points = None
+    if name == "kinematics" or "kinematics" not in d:
+        points = PointRows(sol, positions)
+    located = [] if points is None else list(zip(points.bodies, points.local, strict=True))
+    kout = np.empty((6, 0)) if points is None else points.out
+    if name == "kinematics":
+        fused.write(located, kout)
+        return points.frame()
+    joints = list(sol.scene.joints)
+    table = LongTable(positions, reaction_labels(joints, fused.reactions), REACTIONS_FLOATS,
+                      _no_chunks, sol._tiled)
+    fill, prismatic = _reaction_columns(table, joints, fused.reactions)
+    fused.write(located, kout, joints, fill.reserve())
+    fill_offsets(fill, prismatic, table.n)
+    if points is not None:
+        d[KEPT] = points
+    return table.frame_of(fill)
+
+
+def _reaction_columns(table: LongTable, joints: list[str], reactions: dict
+                      ) -> tuple[FloatBlock, list[int]]:
+    """The ``reactions`` table's float columns, ``Fx, Fy, F`` arrays to be written in
+    place (and ``N, M, offset`` where a joint is prismatic), a pin's ``N, M, offset``
+    its constants; and the prismatic joints' blocks."""
+    n = table.n
+    fill = FloatBlock(table)
+    for c in ("Fx", "Fy", "F"):
+        fill.array(c)
+    prismatic = [i for i, j in enumerate(joints) if reactions[j].N is not None]
+    for c in ("N", "M", "offset") if prismatic else ():
+        fill.array(c)
+    for i in set(range(len(joints))) - set(prismatic):     # a pin: no N, M, offset
+        fill.put(i, slice(i * n, (i + 1) * n), {"N": 0.0, "M": 0.0, "offset": np.nan},
+                 ("N", "M", "offset"))
+    return fill, prismatic
 
 
 def _no_chunks(i: int, part: slice) -> dict:
@@ -94,7 +149,7 @@ class PointRows:
     table's own array (its rows the columns, :class:`FloatBlock`), from the block's
     motion while it is in the caches; each byte of the table written once."""
 
-    def __init__(self, sol: Solution, kernels, positions: np.ndarray):
+    def __init__(self, sol: Solution, positions: np.ndarray, point_rows=None):
         points = list(sol._points())
         self.table = LongTable(positions, point_labels(points), KINEMATICS_FLOATS,
                                _no_chunks, sol._tiled)
@@ -104,7 +159,7 @@ class PointRows:
         self.out = self.fill.reserve()
         self.bodies = [b for b, _, _ in points]
         self.local = [(float(lx), float(ly)) for _, _, (lx, ly) in points]
-        self.point_rows = kernels.point_rows
+        self.point_rows = point_rows    # (None: written by a fused table kernel)
 
     def put(self, motions: dict, lo: int, hi: int) -> None:
         """Rows ``lo`` to ``hi`` of every point (``motions``: body -> its motion over

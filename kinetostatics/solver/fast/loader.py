@@ -58,7 +58,7 @@ def kernel_sources() -> list[Path]:
     compiles nothing again)."""
     here = Path(__file__).parent
     seen: list[Path] = []
-    todo = ["kernels", "fused_kernels", "guide_kernels"]
+    todo = ["kernels", "fused_kernels", "guide_kernels", "fused_tables"]
     while todo:
         path = here / f"{todo.pop()}.py"
         if path in seen:

@@ -5,6 +5,8 @@ re-solve, which is never made."""
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 
@@ -15,6 +17,7 @@ from kinetostatics.solver.driver import BodyMotion
 from kinetostatics.solver.fast import loader, use
 from kinetostatics.solver.fast.compose import Refused
 from kinetostatics.solver.fast.solve import SolvedAgain
+from kinetostatics.solver.fast.table_pass import FusedTables
 
 from .test_onepass import bits, scene_text
 
@@ -25,6 +28,20 @@ pytestmark = pytest.mark.slow       # (the kernels compiled first on a fresh mac
 # sliding driver, prismatic joints (offset = M / N) inner and outer, an RTR dyad, six bars
 CASES = ("four_bar", "sliding_driver", "slider_crank", "scotch_yoke", "slotted_lever",
          "shaper")
+# those a fused table kernel solves again (a crank and one dyad, not RTR); the others the
+# composed kernels (SolvedAgain)
+FUSED = ("four_bar", "scotch_yoke")
+
+
+def count_passes(monkeypatch) -> list[str]:
+    """Each pass over the sweep, by the road it takes (``fused`` or ``composed``)."""
+    passes: list[str] = []
+    blocks, write = SolvedAgain.blocks, FusedTables.write
+    monkeypatch.setattr(SolvedAgain, "blocks",
+                        lambda *a: passes.append("composed") or blocks(*a))
+    monkeypatch.setattr(FusedTables, "write",
+                        lambda *a, **k: passes.append("fused") or write(*a, **k))
+    return passes
 
 
 @pytest.fixture
@@ -48,10 +65,7 @@ def test_tables_equal_those_of_the_full_re_solve_bit_for_bit(fast, case, order, 
     sol = ks.solve(text)
     lean = sol.__dict__["_deferred"]
     assert sol.path == "fast" and type(lean) is LeanSolved
-    passes = []
-    real = SolvedAgain.blocks
-    monkeypatch.setattr(SolvedAgain, "blocks",
-                        lambda *a: passes.append(1) or real(*a))
+    passes = count_passes(monkeypatch)
     tables = {order[0]: getattr(sol, order[0])}
     kept = sol.__dict__.get(fastpass.KEPT)
     if order[0] == "reactions":         # the kinematics table's columns written ahead
@@ -61,7 +75,8 @@ def test_tables_equal_those_of_the_full_re_solve_bit_for_bit(fast, case, order, 
     tables[order[1]] = getattr(sol, order[1])
     if order[0] == "reactions":         # ... and taken as they are
         assert np.shares_memory(tables["kinematics"].ay.to_numpy(), kept.out)
-    assert len(passes) == (1 if order[0] == "reactions" else 2)
+    road = "fused" if case in FUSED else "composed"
+    assert passes == [road] * (1 if order[0] == "reactions" else 2)
     assert fastpass.KEPT not in sol.__dict__
     assert "kin" not in sol.__dict__ and lean.full is None
     full = ks.solve(text)
@@ -69,6 +84,34 @@ def test_tables_equal_those_of_the_full_re_solve_bit_for_bit(fast, case, order, 
     assert full.path == "fast" and "kin" in full.__dict__
     for name, table in tables.items():
         assert bits(table) == bits(getattr(full, name)), name
+
+
+def slider_crank_pushed() -> str:
+    """The bundled slider-crank with its ``resist`` load made a constant force (an RRT
+    dyad the fused table kernel takes; ``resist`` loads go the composed road)."""
+    text, k = re.subn(r"(?m)^resist = 6000.0", "force = [-6000.0, 0.0]",
+                      scene_text("slider_crank"))
+    assert k == 1
+    return text
+
+
+@pytest.mark.parametrize("text", [scene_text("four_bar"), scene_text("scotch_yoke"),
+                                  slider_crank_pushed()], ids=["RRR", "TTR", "RRT"])
+def test_the_fused_road_gives_the_full_re_solves_tables(fast, text, monkeypatch):
+    """A crank and one dyad: one pass of the fused table kernel for both tables (its
+    reaction rows read off the composed path's own reading, revolute and prismatic
+    joints, N and M of the slider included), the tables those of the full re-solve bit
+    for bit; asked for alone, ``kinematics`` by a pass of its own (loads not solved)."""
+    passes = count_passes(monkeypatch)
+    sol = ks.solve(text)
+    tables = {"reactions": sol.reactions, "kinematics": sol.kinematics}
+    alone = ks.solve(text).kinematics
+    assert passes == ["fused", "fused"]
+    full = ks.solve(text)
+    full.kin                            # noqa: B018 (the full re-solve: the tables from it)
+    for name, table in tables.items():
+        assert bits(table) == bits(getattr(full, name)), name
+    assert bits(alone) == bits(full.kinematics)
 
 
 def test_a_refused_block_takes_the_full_re_solve(fast, monkeypatch):
@@ -81,6 +124,7 @@ def test_a_refused_block_takes_the_full_re_solve(fast, monkeypatch):
         raise Refused("a block")
         yield
     monkeypatch.setattr(SolvedAgain, "blocks", refused)
+    monkeypatch.setattr(FusedTables, "write", lambda *a, **k: refused(None).send(None))
     sol = ks.solve(text)
     assert bits(sol.reactions) == expected
     assert "joint_reactions" in sol.__dict__       # (given by the full re-solve)
@@ -140,3 +184,34 @@ def test_the_pass_solves_no_array_over_the_sweep(fast, monkeypatch):
     sol.reactions                       # noqa: B018 (kinematics made: nothing kept)
     assert calls == ["kinematics", "reactions"] and fastpass.KEPT not in sol.__dict__
     assert sol.__dict__["_deferred"].full is None
+
+
+def test_the_kernels_hypot_is_numpys_bit_for_bit(fast):
+    """The fused table kernel's F: glibc's hypot inlined where it gives numpy's (checked
+    once a process), else the C library's; either way numpy's ``hypot`` bit for bit, on
+    pairs of every size (seeded apart from the process's own check), the four-bar's F
+    of the reactions table among them."""
+    from kinetostatics.solver.fast import table_pass
+    from kinetostatics.solver.fast.table_kernels import hypot_rows
+    rng = np.random.default_rng(2026)
+    n = 200_000
+    with np.errstate(all="ignore"):
+        x = rng.standard_normal(n) * 2.0 ** rng.integers(-1074, 1024, n).astype(float)
+        y = np.concatenate([rng.standard_normal(n // 2) * 2.0 ** rng.integers(
+            -1074, 1024, n // 2).astype(float), x[:n // 2] * (1 + 1e-9 * rng.random(n // 2))])
+        want = np.hypot(x, y)
+    for own in (table_pass.own_hypot(), False):
+        out = np.empty(n)
+        hypot_rows(x, y, out, own)
+        assert out.tobytes() == want.tobytes(), own
+    r = ks.solve(scene_text("four_bar")).reactions
+    assert r.F.to_numpy().tobytes() == np.hypot(r.Fx.to_numpy(), r.Fy.to_numpy()).tobytes()
+
+
+def test_tables_with_the_c_librarys_hypot(fast, monkeypatch):
+    """Where the inlined hypot is not numpy's, the C library's gives the same table."""
+    from kinetostatics.solver.fast import table_pass
+    text = scene_text("four_bar")
+    expected = bits(ks.solve(text).reactions)
+    monkeypatch.setitem(table_pass._HYPOT, "own", False)
+    assert bits(ks.solve(text).reactions) == expected
