@@ -128,12 +128,12 @@ def _cmd_cam(args) -> int:
 def _cmd_bench(args) -> int:
     if args.tables:
         from .bench.tables import run_table_bench
-        run_table_bench(quick=args.quick, repeat=args.repeat)
+        run_table_bench(quick=args.quick, repeat=args.repeat or 3)
         return 0
     from .bench.accuracy import run_bench
     from .bench.speed import run_speed
-    run_bench(quick=args.quick, reference=args.reference)
-    run_speed(quick=args.quick, reference=args.reference)
+    run_bench(quick=args.quick, reference=args.reference, repeat=args.repeat)
+    run_speed(quick=args.quick, reference=args.reference, repeat=args.repeat)
     return 0
 
 
@@ -191,8 +191,9 @@ def build_parser(extras: bool = True) -> argparse.ArgumentParser:
                    "(default: the bundled kinetostatics/bench/reference.py)")
     b.add_argument("--tables", action="store_true", help="time the result tables and the "
                    "CSV writer (four-bar at 1e4, 1e5, 1e6 positions) with peak memory")
-    b.add_argument("--repeat", type=int, default=3, help="runs per size for --tables "
-                   "(best and median are reported; default 3)")
+    b.add_argument("--repeat", type=int, default=None, help="runs per size for --tables "
+                   "(best and median are reported; default 3), rounds of every timed row "
+                   "otherwise (default: each row's own, 3 to 25)")
     b.set_defaults(func=_cmd_bench)
     m = sub.add_parser("motion", help="motion under forces of a scene with [motion]")
     m.add_argument("scene")

@@ -110,13 +110,15 @@ for _e in _explorers:
     if _e.values != _start:
         _e.set(**_start)
     assert _e.error is None, _e.error
-    for _s in _e.sliders:
+    _png = _e.png(dpi=30)               # (each state drawn once: the last move's is the next's
+    for _s in _e.sliders:               # before)
         _v = _s.value + (_s.max - _s.value) / 2 if _s.value < _s.max else _s.min
         _v = min(max(round(_v / _s.step) * _s.step, _s.min), _s.max)
-        _numbers, _png = dict(_e.numbers), _e.png(dpi=30)
+        _numbers = dict(_e.numbers)
         _e.set(**{_s.name: _v})
         assert _e.error is None, f"slider {_s.name} = {_v}: {_e.error}"
-        assert _e.png(dpi=30) != _png, f"slider {_s.name} = {_v} does not change the picture"
+        _before, _png = _png, _e.png(dpi=30)
+        assert _png != _before, f"slider {_s.name} = {_v} does not change the picture"
         assert _e.numbers != _numbers, f"slider {_s.name} = {_v} changes no key number"
         _e.table()                      # every key number is finite (raises otherwise)
         _AUDIT(f"explorer {_s.name} = {_v}", _e.figure)

@@ -294,14 +294,17 @@ def bench_against_reference(path: str | Path, n: int = 200_001, repeat: int = 7)
     return df
 
 
-def run_bench(quick: bool = False, reference: str | None = None) -> dict[str, pd.DataFrame]:
+def run_bench(quick: bool = False, reference: str | None = None,
+              repeat: int | None = None) -> dict[str, pd.DataFrame]:
     """Run the benchmarks and print their tables (the ratios to baselines follow from
-    :func:`kinetostatics.bench.speed.run_speed`)."""
+    :func:`kinetostatics.bench.speed.run_speed`; ``repeat``: the runs of every timing,
+    None: each one's own, 3 or 7)."""
     sizes = (1_000, 10_000) if quick else (1_000, 100_000, 1_000_000)
-    out = {"kinematics": bench_kinematics(sizes)}
-    out["reactions"] = bench_reactions(10_000 if quick else 1_000_000)
+    out = {"kinematics": bench_kinematics(sizes, repeat=repeat or 3)}
+    out["reactions"] = bench_reactions(10_000 if quick else 1_000_000, repeat=repeat or 3)
     out["reference"] = bench_against_reference(reference or find_reference(),
-                                               20_001 if quick else 200_001)
+                                               20_001 if quick else 200_001,
+                                               repeat=repeat or 7)
     pd.set_option("display.width", 160)
     for name, df in out.items():
         print(f"\n== {name} ==")

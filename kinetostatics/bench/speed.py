@@ -382,19 +382,22 @@ def bench_crosscheck(repeat: int = 3) -> list[dict]:
     return [{k: r[k] for k in keys} for r in crosscheck_speed(repeat=repeat)]
 
 
-def run_speed(quick: bool = False, reference: str | None = None) -> pd.DataFrame:
-    """Every ratio of this module, printed as one table (``quick``: small sizes)."""
+def run_speed(quick: bool = False, reference: str | None = None,
+              repeat: int | None = None) -> pd.DataFrame:
+    """Every ratio of this module, printed as one table (``quick``: small sizes;
+    ``repeat``: the rounds of every row, None: each row's own)."""
     ref = str(reference or find_reference())
     # quick: every row once more than a smoke run, 3 rounds each (25 and 7, and 15 warm
     # rounds, took 68 s of the command's 120 s at a load of 12)
-    rows = (bench_reference(ref, (2_001, 20_001), repeat=3) if quick
-            else bench_reference(ref))
-    rows += bench_many(100 if quick else 1000)
-    rows += bench_start(3 if quick else 7)
-    rows += bench_design(50, 2, repeat=1) if quick else bench_design()
+    rows = (bench_reference(ref, (2_001, 20_001), repeat=repeat or 3) if quick
+            else bench_reference(ref, repeat=repeat))
+    rows += bench_many(100 if quick else 1000, repeat=repeat or 3)
+    rows += bench_start(repeat or (3 if quick else 7))
+    rows += (bench_design(50, 2, repeat=1) if quick else
+             bench_design(repeat=repeat or 2))
     if not quick:
         rows += bench_tables()
-        rows += bench_crosscheck()
+        rows += bench_crosscheck(repeat or 3)
     df = pd.DataFrame(rows)
     pd.set_option("display.width", 160)
     print(f"\n== speed: ratios to baselines timed side by side ({os.cpu_count()} cores) ==")

@@ -81,10 +81,10 @@ def cli_figures(sol: Solution, positions: list[float] | None = None) -> dict[str
         for d in range(len(sol.kin.dyads) + 1):
             figs[f"free_body_{t}_" + (f"dyad{d}" if d else "driver")] = \
                 dyad_free_body(sol, d, p)
-    # (a free-body figure comes settled: settling it again drew it three times more and
-    # changed no pixel)
+    # (the overview and a free-body figure come settled: settling them again drew them
+    # three or four times more and changed no pixel)
     for stem, fig in figs.items():
-        if not stem.startswith("free_body_"):
+        if stem != "overview" and not stem.startswith("free_body_"):
             settle(fig)
     return figs
 

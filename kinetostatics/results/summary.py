@@ -83,26 +83,49 @@ def left_out(singular: np.ndarray, locked: np.ndarray | None) -> np.ndarray:
     return out_rows
 
 
+#: Values within this share of an extreme's size tie with it (a few units in the last
+#: place): a flat extreme (the slotted lever's transmission angle, 90 deg at every row to
+#: one unit in the last place) is located at its first row, whichever rounding each path's
+#: arithmetic gave each row (the two paths agree to 5e-16 of a column's scale).
+TIE = 16 * np.finfo(float).eps
+
+
 class Extreme:
-    """The first largest (``"max"``) or smallest (``"min"``) value along the kept rows,
-    gathered from parts of them in order: what ``argmax``/``argmin`` over all of them
-    picks (the first NaN, else the first of the tied extremes), and its position."""
+    """The largest (``"max"``) or smallest (``"min"``) value along the kept rows,
+    gathered from parts of them in order, and its position: the first row whose value
+    ties with the extreme to rounding (:data:`TIE`), or the first NaN."""
 
     def __init__(self, kind: str):
-        self.pick = np.argmax if kind == "max" else np.argmin
-        self.better = np.greater if kind == "max" else np.less
+        self.sign = 1.0 if kind == "max" else -1.0
         self.value: float | None = None
         self.at: float | None = None
+        # the rows so far that lay beyond every row before them and still tie with the
+        # extreme, in order: (how far short of the extreme, as the least; position)
+        self._records: list[tuple[float, float]] = []
 
     def add(self, values: np.ndarray, positions: np.ndarray) -> None:
         """The next kept rows' values and driver positions."""
-        if values.size == 0:
+        if values.size == 0 or (self.value is not None and np.isnan(self.value)):
+            return                  # (a NaN before these rows stays the extreme)
+        nan = np.isnan(values)
+        if nan.any():
+            i = int(np.argmax(nan))
+            self.value, self.at, self._records = values[i], positions[i], []
             return
-        i = int(self.pick(values))
-        v = values[i]
-        if self.value is None or (not np.isnan(self.value) and (
-                np.isnan(v) or self.better(v, self.value))):
-            self.value, self.at = v, positions[i]
+        low = -self.sign * values                  # (the extreme as the least)
+        least = np.minimum.accumulate(low)
+        new = np.empty(low.size, dtype=bool)        # (beyond every row before)
+        new[0] = not self._records or low[0] < self._records[-1][0]
+        np.less(low[1:], least[:-1], out=new[1:])
+        if self._records:
+            new &= low < self._records[-1][0]
+        best = least[-1] if not self._records else min(least[-1], self._records[-1][0])
+        band = best + TIE * abs(best)
+        records = [r for r in self._records if r[0] <= band]
+        records += [(w, x) for w, x in zip(low[new].tolist(), positions[new].tolist(),
+                                           strict=True) if w <= band]
+        self._records = records
+        self.value, self.at = -self.sign * best, records[0][1]
 
 
 class Extremes:

@@ -140,6 +140,26 @@ def sub(a, b):
     return a - b
 
 
+def less(a, b):
+    """a - b with the bits of the plain expression, signed zeros and NaN included (unlike
+    :func:`sub`, whose a - 0 is a for b = -0.0 too): an array less the number +0.0 is
+    the array itself (x - (+0.0) is x for every double), without a pass."""
+    if type(a) is _ARRAY and type(b) is float and b == 0.0 and math.copysign(1.0, b) > 0:
+        return a
+    return a - b
+
+
+def squares(x, y):
+    """x * x + y * y with the bits of the plain expression: the square of a number 0.0
+    (either sign) is +0.0, which leaves the other square (never -0.0) as it is, so an
+    array with such a number costs one pass, not three."""
+    if type(x) is _ARRAY and type(y) is float and y == 0.0:
+        return x * x
+    if type(y) is _ARRAY and type(x) is float and x == 0.0:
+        return y * y
+    return x * x + y * y
+
+
 def sub_mul(a, s, x):
     """a - s x; with a an exact zero, s a Python number and x an array, (-s) x: one pass
     instead of two, the same numbers (-(s x) is (-s) x exactly, signed zeros too)."""

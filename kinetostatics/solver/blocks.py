@@ -37,6 +37,25 @@ from .solved import Solved
 BLOCK_ROWS = 16384   # 128 kB per array (measured best of 4096-65536 on a 2 MB L2 cache)
 
 
+# glibc gives the top of its heap back to the system once more than its trim threshold
+# lies free there, and the next block or run of a stack faults every page in again (about
+# 1000 page faults a run of 12 274 rows, its peak 6.7 MB: measured 2026-11-29, 3.6-4.0 ms
+# against 1.6 ms a run without them); the threshold follows the largest block it mapped
+# and freed (twice its size, for blocks up to 32 MB), so one block of HEAP_BYTES
+# allocated and freed untouched (no page faulted) keeps the heap for runs of up to twice
+# that
+HEAP_BYTES = 16 << 20
+_heap: list[int] = []
+
+
+def keep_heap() -> None:
+    """Once per process, raise glibc's heap trim threshold past a run's peak (above); a
+    no-op elsewhere and after the first call."""
+    if not _heap:
+        _heap.append(HEAP_BYTES)
+        np.empty(HEAP_BYTES // 8)       # (mapped and freed at once, never touched)
+
+
 class Unblockable(Exception):
     """The blocks did not give arrays of one layout: solve in one pass instead."""
 
@@ -236,7 +255,7 @@ def solve_blocks(total: int, part, solve_block, scene: Scene | None = None,
                      [g.values["closeness2"] for g in flags_g],
                      [g.values["singular"] for g in flags_g])
     bodies_g, dyads_g, reactions_g, drive_g, undefined = gathers
-    bodies = {name: g.build(_origin_arm=None) for name, g in bodies_g.items()}
+    bodies = {name: g.build(_origin_arm=None, _arms=None) for name, g in bodies_g.items()}
     known = {id(g.obj): name for name, g in bodies_g.items()}
     dyads = []
     for d, (g, params) in enumerate(dyads_g):
@@ -383,7 +402,7 @@ def _lean_put(gathers: tuple, sol: Solved, rows: slice, n: int) -> None:
 
 
 def _layout(sol: Solved, n: int, arrays: _Arrays) -> tuple:
-    bodies = {name: Gather(m, n, arrays, skip=("_origin_arm",))
+    bodies = {name: Gather(m, n, arrays, skip=("_origin_arm", "_arms"))
               for name, m in sol.kin.bodies.items()}
     dyads = [(Gather(dm, n, arrays, skip=("params", "dyad")),
               [Gather(p, n, arrays, skip=("known",)) for p in dm.params])

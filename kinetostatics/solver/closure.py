@@ -72,7 +72,7 @@ def known_point(scene: Scene, bname: str, motion: BodyMotion, pname: str,
     if bname == GROUND:
         x, y = scene.ground[pname]
         return A.scalar(x), A.scalar(y), 0.0, 0.0, 0.0, 0.0
-    rx, ry = motion.rotate(*scene.bodies[bname].local(pname))
+    rx, ry = motion.arm(scene.bodies[bname].local(pname))
     if not speeds:
         return A.add(motion.ox, rx), A.add(motion.oy, ry), 0.0, 0.0, 0.0, 0.0
     vx, vy = motion.vel_arm(rx, ry)
@@ -110,8 +110,16 @@ def dyad_param(scene: Scene, dyad: Dyad, i: int, motions: dict[str, BodyMotion],
 def _rot_angle(dx, dy, local_vec, r2):
     """cos, sin of the angle that turns the local vector onto (dx, dy) (|d|^2 = r2)."""
     lx, ly = local_vec
-    return (A.add(A.mul(dx, lx / r2), A.mul(dy, ly / r2)),
-            A.sub(A.mul(dy, lx / r2), A.mul(dx, ly / r2)))
+    u = lx / r2
+    if (type(r2) is np.ndarray and type(dx) is np.ndarray and type(dy) is np.ndarray
+            and type(ly) is float and ly == 0.0 and math.copysign(1.0, ly) > 0):
+        # a stack's r2 is an array over its rows, each > 0 (every link measured:
+        # DyadSolver, stack.assemblies): ly / r2 would be an array of +0.0, and
+        # d * (+0.0) is d * 0.0 bit for bit (kept: -0.0 + x is not always x)
+        return (A.add(A.mul(dx, u), np.multiply(dy, 0.0)),
+                A.sub(A.mul(dy, u), np.multiply(dx, 0.0)))
+    v = ly / r2
+    return A.add(A.mul(dx, u), A.mul(dy, v)), A.sub(A.mul(dy, u), A.mul(dx, v))
 
 
 def _trans_point(p: Param, local):
@@ -210,13 +218,15 @@ class DyadSolver:
     def _inner_r(self, pr, k, first=None):
         p1, p2 = pr
         (q1x, q1y), (q2x, q2y) = self.q
-        a1 = (q1x - p1.local[0], q1y - p1.local[1])
-        a2 = (q2x - p2.local[0], q2y - p2.local[1])
+        # (a stack's local points are arrays: its exact zeros cost no pass, A.less and
+        # A.squares, the same bits)
+        a1 = (A.less(q1x, p1.local[0]), A.less(q1y, p1.local[1]))
+        a2 = (A.less(q2x, p2.local[0]), A.less(q2y, p2.local[1]))
         if p1.kind == "rot" and p2.kind == "rot":
             # circle-circle (RRR, seed 000 ch. 5, eq. 5.1): Q = P1 + x e + k h J e
             # x * x, not x ** 2: a Python float's ** 2 (C pow) is not always x * x
             # rounded, and a stack's arrays square (kinetostatics.solve_many)
-            r1s, r2s = a1[0] * a1[0] + a1[1] * a1[1], a2[0] * a2[0] + a2[1] * a2[1]
+            r1s, r2s = A.squares(*a1), A.squares(*a2)
             ex, ey = A.sub(p2.px, p1.px), A.sub(p2.py, p1.py)
             d2 = ex * ex + ey * ey
             self.reach = _root(d2)
@@ -225,12 +235,13 @@ class DyadSolver:
             h2 = r1s - x * x
             gap = None
             # (a NaN in h2 touches the trap of a trapped solve: looked for otherwise)
-            if _least(h2) < 0.0 or not (active() or _all_finite(h2)):
+            least = _least(h2)
+            if least < 0.0 or not (active() or _all_finite(h2)):
                 d = np.sqrt(d2)
                 r1, r2 = np.sqrt(r1s), np.sqrt(r2s)
                 # (coincident pivots, d = 0: the circles are concentric, |r1 - r2| apart)
                 gap = np.maximum(d - (r1 + r2), abs(r1 - r2) - d)
-            root = _root(h2) if type(h2) is float else np.sqrt(np.maximum(h2, 0.0))
+            root = _root(h2) if type(h2) is float else _clipped_root(h2, least)
 
             def close(k, ex, ey, inv, root, xi, p1x, p1y, p2x, p2y):
                 kh = (k * inv) * root
@@ -254,15 +265,16 @@ class DyadSolver:
         ir, it = (0, 1) if p1.kind == "rot" else (1, 0)
         prr, pt = pr[ir], pr[it]
         ar = a1 if ir == 0 else a2
-        rs = ar[0] * ar[0] + ar[1] * ar[1]        # (x * x: as for r1s above)
+        rs = A.squares(*ar)        # (x * x: as for r1s above)
         q0 = _trans_point(pt, self.q[it])
         wx, wy = A.sub(q0[0], prr.px), A.sub(q0[1], prr.py)
         b = A.add(A.mul(pt.ux, wx), A.mul(pt.uy, wy))
         disc = b * b - (wx * wx + wy * wy) + rs
         gap = None
-        if _least(disc) < 0.0:
+        least = _least(disc)
+        if least < 0.0:
             gap = np.abs(A.sub(A.mul(pt.ux, wy), A.mul(pt.uy, wx))) - np.sqrt(rs)
-        root = _root(disc) if type(disc) is float else np.sqrt(np.maximum(disc, 0.0))
+        root = _root(disc) if type(disc) is float else _clipped_root(disc, least)
 
         def close(k, root, b, wx, wy, ux, uy, c, sn):
             s = k * root - b
@@ -358,6 +370,13 @@ def _root(x):
     if type(x) is float and x > 0.0:
         return math.sqrt(x)
     return np.sqrt(x)
+
+
+def _clipped_root(x: np.ndarray, least) -> np.ndarray:
+    """np.sqrt(np.maximum(x, 0.0)), ``least`` x's smallest value: where none is below 0
+    (nor NaN) the maximum changes nothing (x is a difference or a sum that is never
+    -0.0: a - a is +0.0), and its pass is not made."""
+    return np.sqrt(x) if least >= 0.0 else np.sqrt(np.maximum(x, 0.0))
 
 
 def body_origin(pr: Param, cs, s):

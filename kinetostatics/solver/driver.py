@@ -20,11 +20,12 @@ class BodyMotion:
     (rad) is computed when first asked for unless given."""
 
     FIELDS = ("cos", "sin", "omega", "alpha", "ox", "oy", "vx", "vy", "ax", "ay")
-    __slots__ = (*FIELDS, "_theta", "_origin_arm")
+    __slots__ = (*FIELDS, "_theta", "_origin_arm", "_arms")
 
     def __init__(self, theta, cos, sin, omega, alpha, ox, oy, vx, vy, ax, ay):
         self._theta = theta
         self._origin_arm = None
+        self._arms = None
         self.cos, self.sin = cos, sin
         self.omega, self.alpha = omega, alpha
         self.ox, self.oy, self.vx, self.vy, self.ax, self.ay = ox, oy, vx, vy, ax, ay
@@ -46,6 +47,52 @@ class BodyMotion:
             return arm
         return A.rotate(self.cos, self.sin, lx, ly)
 
+    def arm(self, local: tuple):
+        """:meth:`rotate` of a named point of the body, ``local`` the tuple of its local
+        coordinates the scene's Body holds (the same object each time it is asked for:
+        a joint's point is asked for by the kinematics and again by the reactions),
+        worked out once while the motion keeps its arms (:meth:`forget_arms`)."""
+        arms = getattr(self, "_arms", None)     # (None too in a motion built by fields)
+        if arms is None:
+            arms = self._arms = []
+        for t, a in arms:
+            if t is local:
+                return a
+        a = self.rotate(*local)
+        arms.append((local, a))
+        return a
+
+    def keep_arm(self, local: tuple, arm: tuple) -> None:
+        """Keep ``arm``, worked out elsewhere as :meth:`rotate` of ``local`` with this
+        motion's own cos and sin, for :meth:`arm`."""
+        arms = getattr(self, "_arms", None)
+        if arms is None:
+            arms = self._arms = []
+        arms.append((local, arm))
+
+    def forget_arms(self) -> None:
+        """Let go of the arms :meth:`arm` kept and of :meth:`omega2` (arrays over the
+        rows)."""
+        self._arms = None
+
+    def omega2(self):
+        """omega^2, worked out once as :meth:`arm` keeps an arm (the accelerations of
+        the body's points each ask for it; the
+        square the kinematics worked out, the same product: :meth:`keep_omega2`)."""
+        arms = getattr(self, "_arms", None)
+        if arms is not None:
+            for t, a in arms:
+                if t is _OMEGA2:
+                    return a
+        w2 = A.mul(self.omega, self.omega)
+        self.keep_arm(_OMEGA2, w2)
+        return w2
+
+    def keep_omega2(self, w2) -> None:
+        """Keep ``w2``, this motion's omega * omega worked out elsewhere, for
+        :meth:`omega2`."""
+        self.keep_arm(_OMEGA2, w2)
+
     def point(self, local: tuple[float, float]):
         """Global position of a local point."""
         rx, ry = self.rotate(*local)
@@ -58,7 +105,7 @@ class BodyMotion:
     def acc_arm(self, rx, ry):
         """Acceleration of the body point at the arm r: a_O + eps k x r - omega^2 r
         (seed 001 eq. 9)."""
-        w2 = A.mul(self.omega, self.omega)
+        w2 = self.omega2()
         return (A.sub_mul(A.sub_mul(self.ax, self.alpha, ry), w2, rx),
                 A.sub_mul(A.add(self.ay, A.mul(self.alpha, rx)), w2, ry))
 
@@ -79,6 +126,9 @@ class BodyMotion:
             return a[index] if np.ndim(a) else a
         th = None if self._theta is None else t(self._theta)
         return BodyMotion(th, *(t(getattr(self, f)) for f in self.FIELDS))
+
+
+_OMEGA2 = ("omega^2",)      # (the key omega2 keeps its square under)
 
 
 def ground_motion() -> BodyMotion:

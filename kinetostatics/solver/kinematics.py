@@ -174,9 +174,12 @@ class Kinematics:
         return self.positions.size
 
     def release(self) -> None:
-        """Let go of what only the solve needs (:meth:`DyadMotion.release`)."""
+        """Let go of what only the solve needs (:meth:`DyadMotion.release`, the bodies'
+        arms of their points, :meth:`~kinetostatics.solver.driver.BodyMotion.arm`)."""
         for d in self.dyads:
             d.release()
+        for b in self.bodies.values():
+            b.forget_arms()
 
     @property
     def singular(self) -> np.ndarray:
@@ -235,9 +238,14 @@ def solve_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion],
             f"driver position(s) {fmt_positions(scene, exact)}; its velocities are undefined "
             "there: leave those positions out of the sweep")
     qd = vs.solve(vs.r1, vs.r2)
-    qdd = vs.solve(*_acceleration_rhs(vs, pr, qd))
+    # a turning body's omega^2 (qd qd), for the acceleration system and again for the
+    # accelerations of its points (kept by its motion: BodyMotion.omega2)
+    w2 = [qd[i] * qd[i] if p.kind == "rot" else None for i, p in enumerate(pr)]
+    qdd = vs.solve(*_acceleration_rhs(vs, pr, qd, w2))
     for i, p in enumerate(pr):
-        motions[dyad.bodies[i]] = _body_motion(p, cs[i], org[i], qd[i], qdd[i])
+        motions[dyad.bodies[i]] = _body_motion(p, cs[i], org[i], qd[i], qdd[i], w2[i])
+    ib, loc, arm = vs.arm           # (its cos and sin are the body's: kept for the reactions)
+    motions[dyad.bodies[ib]].keep_arm(loc, arm)
     inner = dyad.inner
     return DyadMotion(dyad, pr, k, vs.xx, vs.xy, vs.c1, vs.c2, vs.det, n,
                       singular=sing, closeness2=sin2, probe2=probe2,
@@ -284,7 +292,8 @@ class _VelocitySystem:
         self.revolute = inner.kind == "R"
         self.slider_first = solver.slider_first
         self.guide = guide_body(solver)
-        xx, xy = closing_point(dyad, solver, cs, org)
+        self.arm: list = []         # (the closing point's body, local point and arm)
+        xx, xy = closing_point(dyad, solver, cs, org, self.arm)
         (c1, k1, w1), (c2, k2, w2) = (velocity_columns(pr[0], xx, xy),
                                       velocity_columns(pr[1], xx, xy))
         if inner.kind == "R":
@@ -387,9 +396,9 @@ def probe_dyad(scene: Scene, dyad: Dyad, motions: dict[str, BodyMotion], k,
     return dead_centre_closeness2(_Closing(dyad, solver, pr, cs, org), pr, reach, n), gap
 
 
-def _acceleration_rhs(vs: _VelocitySystem, pr, qd):
+def _acceleration_rhs(vs: _VelocitySystem, pr, qd, w2):
     """Step 4, the right-hand side of the acceleration system (the same matrix): the
-    centripetal and Coriolis terms."""
+    centripetal and Coriolis terms (``w2``: each turning body's qd qd)."""
     xx, xy = vs.xx, vs.xy
     ka = []
     for i, p in enumerate(pr):
@@ -397,7 +406,7 @@ def _acceleration_rhs(vs: _VelocitySystem, pr, qd):
             # a_P - omega^2 (X - P), with X - P = (c_y, -c_x) from the column c = J (X - P)
             # (the same differences, computed once)
             cx, cy = vs.c1 if i == 0 else vs.c2
-            w2_ = qd[i] * qd[i]
+            w2_ = w2[i]
             ka.append((A.sub(p.apx, w2_ * cy), A.add(p.apy, w2_ * cx)))
         else:
             kax, kay = p.known.acc_at(xx, xy)
@@ -422,8 +431,9 @@ def _acceleration_rhs(vs: _VelocitySystem, pr, qd):
     return r1, r2
 
 
-def _body_motion(p: Param, cs, org, qd, qdd) -> BodyMotion:
-    """Step 5, a dyad body's motion from its unknown's rate and acceleration."""
+def _body_motion(p: Param, cs, org, qd, qdd, w2) -> BodyMotion:
+    """Step 5, a dyad body's motion from its unknown's rate and acceleration (``w2``: a
+    turning body's qd qd, kept by its motion, :meth:`BodyMotion.omega2`)."""
     c, sn = cs
     ox, oy = org
     kb = p.known
@@ -434,7 +444,7 @@ def _body_motion(p: Param, cs, org, qd, qdd) -> BodyMotion:
     elif p.kind == "rot":
         om, al = qd, qdd
         rax, ray = A.rotate(c, sn, -p.local[0], -p.local[1])   # o - P = -R a
-        w2_ = om * om
+        w2_ = w2            # (om * om)
         vx = A.sub(p.vpx, A.mul(om, ray))
         vy = A.add(p.vpy, A.mul(om, rax))
         ax_ = A.sub(A.sub(p.apx, A.mul(al, ray)), A.mul(w2_, rax))
@@ -447,7 +457,10 @@ def _body_motion(p: Param, cs, org, qd, qdd) -> BodyMotion:
         vx, vy = A.add(vkx, A.mul(qd, p.ux)), A.add(vky, A.mul(qd, p.uy))
         ax_ = A.sub(A.add(akx, A.mul(qdd, p.ux)), A.mul(f, p.uy))
         ay_ = A.add(A.add(aky, A.mul(qdd, p.uy)), A.mul(f, p.ux))
-    return BodyMotion(None, c, sn, om, al, ox, oy, vx, vy, ax_, ay_)
+    motion = BodyMotion(None, c, sn, om, al, ox, oy, vx, vy, ax_, ay_)
+    if w2 is not None:
+        motion.keep_omega2(w2)
+    return motion
 
 
 def with_positions(scene: Scene, positions) -> Scene:

@@ -83,9 +83,11 @@ def concentrated_masses(body: Body) -> list[tuple[tuple[float, float], float]]:
     return [(tuple(b), m * gk / (gb + gk)), (tuple(k), m * gb / (gb + gk))]
 
 
-def inertia_loads(scene: Scene, kin: Kinematics) -> list[PointLoad]:
+def inertia_loads(scene: Scene, kin: Kinematics, arms: dict | None = None
+                  ) -> list[PointLoad]:
     """Inertia loads of every body with mass: the exact torsor (eq. 2.1) or the point
-    forces of its mass model (eq. 2.8 with 2.11 or 2.13-2.15)."""
+    forces of its mass model (eq. 2.8 with 2.11 or 2.13-2.15). ``arms``: each body's
+    arm of its cog is put there (:func:`applied_loads` takes its weight's from it)."""
     out = []
     for name, body in scene.bodies.items():
         if body.mass == 0.0 and body.inertia == 0.0:
@@ -93,10 +95,16 @@ def inertia_loads(scene: Scene, kin: Kinematics) -> list[PointLoad]:
         m = kin.bodies[name]
         if body.mass_model is None:
             rx, ry = m.rotate(*(body.cog or (0.0, 0.0)))
+            if arms is not None:
+                arms[name] = (rx, ry)
             ax, ay = m.acc_arm(rx, ry)
-            out.append(PointLoad(name, "inertia", rx, ry, A.mul(-body.mass, ax),
-                                 A.mul(-body.mass, ay), A.mul(-body.inertia, m.alpha),
-                                 "inertia torsor"))
+            neg = -body.mass
+            # (a body turning at a constant rate: the couple is 0.0 whatever the sign of
+            # the inertia, so not negated; a NaN or an infinity gives NaN either way)
+            alpha = m.alpha
+            inertia = body.inertia if A.zero(alpha) else -body.inertia
+            out.append(PointLoad(name, "inertia", rx, ry, A.mul(neg, ax), A.mul(neg, ay),
+                                 A.mul(inertia, alpha), "inertia torsor"))
             continue
         for loc, mk in concentrated_masses(body):
             rx, ry = m.rotate(*loc)
@@ -122,7 +130,8 @@ def motion_scales(scene: Scene) -> tuple[float, float, float, float]:
     return w, w / size, acc, acc / size
 
 
-def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.ndarray]:
+def applied_loads(scene: Scene, kin: Kinematics, arms: dict | None = None
+                  ) -> tuple[list[PointLoad], np.ndarray]:
     """Gravity (at every cog) and the scene's ``[[loads]]``.
 
     Returns the loads and the ``undefined_load`` mask: rows where a ``resist`` point
@@ -130,6 +139,11 @@ def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.nd
     scale if larger: :func:`motion_scales`), where that force is zero, and rows where a
     ``when = "resisting"`` force's power is at most 1e-9 of its top (the force switches
     there; it is taken as zero).
+
+    ``arms``: the arms of the cogs :func:`inertia_loads` put there, and the loads for
+    :func:`resultants` alone: a weight's component along an axis without gravity is
+    the number 0.0 (a stack's masses times 0.0 are zeros over its rows: what the sums
+    skip, :func:`resultants`), not an array.
     """
     n = kin.n
     undefined = np.zeros(n, dtype=bool)
@@ -139,9 +153,12 @@ def applied_loads(scene: Scene, kin: Kinematics) -> tuple[list[PointLoad], np.nd
     if gx or gy:
         for name, body in scene.bodies.items():
             if body.mass > 0.0:
-                rx, ry = kin.bodies[name].rotate(*body.cog)
-                out.append(PointLoad(name, "gravity", rx, ry, body.mass * gx, body.mass * gy,
-                                     0.0, "weight"))
+                arm = arms.get(name) if arms is not None else None
+                rx, ry = arm or kin.bodies[name].rotate(*body.cog)
+                mass = body.mass
+                fx, fy = (0.0 if arms is not None and gg == 0.0 else mass * gg
+                          for gg in (gx, gy))
+                out.append(PointLoad(name, "gravity", rx, ry, fx, fy, 0.0, "weight"))
     for i, load in enumerate(scene.loads):
         m = kin.bodies[load.body]
         body = scene.bodies[load.body]
@@ -196,13 +213,46 @@ def _top(x: np.ndarray, scene: Scene, floor):
 def resultants(loads: list[PointLoad], names, n: int) -> dict[str, list]:
     """Per body [Fx, Fy, M_O]: the resultant force and its moment about the body's local
     origin O. The three are arrays of their own (accumulated in place: at large sizes a
-    fresh array per operation costs more than the arithmetic)."""
-    acc = {b: [np.zeros(n), np.zeros(n), np.zeros(n)] for b in names}
-    tmp = np.empty(n)
+    fresh array per operation costs more than the arithmetic), each summed from 0.0 in
+    the order of ``loads``: a sum of numbers stays a number until its first array term
+    (0.0 + x, the same double), and the array is then made by that term's own pass (no
+    pass of zeros before it); a sum still a number at the end is laid over the rows.
+    (A sum from +0.0 is never -0.0, so the terms the arithmetic skips, exact zeros, leave
+    it as it is: :func:`~kinetostatics.solver.arith.iadd`.)"""
+    acc = {b: [0.0, 0.0, 0.0] for b in names}
+    tmp = None
+    iadd, zero, arr = A.iadd, A.zero, np.ndarray
     for ld in loads:
         r = acc[ld.body]
-        A.iadd(r[0], ld.fx)
-        A.iadd(r[1], ld.fy)
-        A.icross(r[2], ld.rx, ld.ry, ld.fx, ld.fy, tmp)
-        A.iadd(r[2], ld.m)
-    return acc
+        fx, fy = ld.fx, ld.fy
+        for i, x in ((0, fx), (1, fy)):
+            if type(r[i]) is arr:
+                iadd(r[i], x)
+            else:
+                _add_term(r, i, x, 1.0, n)
+        for a, b, sign in ((ld.rx, fy, 1.0), (ld.ry, fx, -1.0)):    # M_O += rx fy - ry fx
+            if zero(a) or zero(b):
+                continue
+            if tmp is None:
+                tmp = np.empty(n)
+            np.multiply(a, b, out=tmp)
+            if type(r[2]) is arr:
+                iadd(r[2], tmp, sign)
+            else:
+                _add_term(r, 2, tmp, sign, n)
+        if type(r[2]) is arr:
+            iadd(r[2], ld.m)
+        else:
+            _add_term(r, 2, ld.m, 1.0, n)
+    return {b: [x if type(x) is arr else np.full(n, x) for x in r] for b, r in acc.items()}
+
+
+def _add_term(r: list, i: int, x, sign: float, n: int) -> None:
+    """r[i] += sign * x while r[i] is a number: a number plus an array x becomes a new
+    array (the same operation, elementwise); two numbers, a number."""
+    a = r[i]
+    if isinstance(x, np.ndarray):
+        # (into a plain array: x may be a stack's Rows, whose type is not wanted here)
+        r[i] = (np.add if sign > 0 else np.subtract)(a, x, out=np.empty(n))
+    elif not A.zero(x):
+        r[i] = a + x if sign > 0 else a - x

@@ -237,10 +237,14 @@ def solve_rows(sc, structure, kin) -> Solved:
 
 
 def _solve_loads(sc, structure, kin) -> Solved:
-    inertia = inertia_loads(sc, kin)
-    applied, undefined = applied_loads(sc, kin)
+    friction = has_friction(sc)
+    # (the loads for their resultants alone: each cog's arm worked out once for its two
+    # loads, applied_loads; with friction they are kept, as the tables read them)
+    arms: dict | None = None if friction else {}
+    inertia = inertia_loads(sc, kin, arms)
+    applied, undefined = applied_loads(sc, kin, arms)
     loads = applied + inertia
-    if has_friction(sc):
+    if friction:
         reactions, drive, fl, locking, at_rest = solve_with_friction(sc, kin, loads)
         return Solved(sc, structure, kin, loads + fl, reactions, drive,
                       np.broadcast_to(undefined, (kin.n,)) | at_rest, self_locking=locking)

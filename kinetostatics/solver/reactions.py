@@ -88,7 +88,7 @@ class _Store:
         """Arm of a named point from the body's origin (0 on the ground)."""
         if body == GROUND:
             return 0.0, 0.0
-        return self.motions[body].rotate(*scene.bodies[body].local(point))
+        return self.motions[body].arm(scene.bodies[body].local(point))
 
     def arm_to(self, body: str, x, y):
         """Arm of the global point (x, y) from the body's origin."""
@@ -136,7 +136,7 @@ def _generalised(store: _Store, name: str, pr, r):
     """Generalised force of the loads on a dyad body along its freedom: moment about the
     outer pivot P (rot) or force along the outer guide direction u (trans)."""
     if pr.kind == "rot":
-        px, py = store.motions[name].rotate(*pr.local)          # P - O
+        px, py = store.motions[name].arm(pr.local)          # P - O
         return A.sub(r[2], A.cross(px, py, r[0], r[1]))
     return A.add(A.mul(r[0], pr.ux), A.mul(r[1], pr.uy))
 
@@ -159,8 +159,8 @@ def _solve_dyad(scene: Scene, dm: DyadMotion, store: _Store, out: dict) -> None:
         rx = A.add(A.mul(q1, c2[1]), A.mul(q2, c1[1])) / ndet
         rx = np.negative(rx, out=rx) if isinstance(rx, np.ndarray) else -rx
         ry = A.add(A.mul(c1[0], q2), A.mul(c2[0], q1)) / ndet
-        a1 = store.motions[b1].rotate(*dm.inner_local[0])
-        a2 = store.motions[b2].rotate(*dm.inner_local[1])
+        a1 = store.motions[b1].arm(dm.inner_local[0])
+        a2 = store.motions[b2].arm(dm.inner_local[1])
         store.add(b1, rx, ry, *a1, sign=-1.0)
         store.add(b2, rx, ry, *a2)
         record_reaction(out, inner, b2, rx, ry, xx, xy)

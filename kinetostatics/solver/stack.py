@@ -27,6 +27,7 @@ import numpy as np
 
 from ..model.scene import GROUND, Body, Scene
 from .assembly import hint_points
+from .blocks import keep_heap
 from .closure import DyadSolver, body_origin, dyad_param
 from .driver import driver_motion, ground_motion
 from .kinematics import SINGULAR_FAIL, probe_dyad
@@ -38,11 +39,33 @@ from .trap import tame, tame_values
 class Rows(np.ndarray):
     """A mass or an inertia over the rows of a stack. Its truth value is that of every
     row: a stack holds only scenes for which each test the solver makes on them
-    (``mass == 0``, ``mass > 0``) comes out alike (:func:`signature`). The lengths are
-    plain arrays (an ndarray subclass costs time in every operation it enters)."""
+    (``mass == 0``, ``mass > 0``) comes out alike (:func:`signature`), so such a test,
+    against the number 0, is told on the first row (a bool, without a pass over the
+    rows). Arithmetic on it gives plain arrays, as the lengths are (an ndarray subclass
+    costs time in every operation it enters)."""
 
     def __bool__(self) -> bool:
         return bool(self.view(np.ndarray).all())
+
+    def __eq__(self, other):
+        if _nil(other):
+            return bool(self.view(np.ndarray)[0] == 0)
+        return np.equal(self, other).view(Rows)
+
+    def __gt__(self, other):
+        if _nil(other):
+            return bool(self.view(np.ndarray)[0] > 0)
+        return np.greater(self, other).view(Rows)
+
+    __hash__ = None
+
+    def __array_wrap__(self, array, context=None, return_scalar=False):
+        return array[()] if return_scalar else array.view(np.ndarray)
+
+
+def _nil(x) -> bool:
+    """A Python number equal to 0 (the tests the stack's signature holds alike)."""
+    return type(x) in (float, int) and x == 0
 
 
 def signature(scene: Scene):
@@ -172,10 +195,10 @@ class Stacker:
     """Builds stacked scenes of a list of scenes of one :func:`signature`.
 
     Every scene's numbers (:func:`_numbers`, packed by :func:`stack_record`) are read
-    into one array in one pass. (Repeating the numbers that vary over a run's rows as one
-    table, in one call, was no quicker: measured 2026-11-29, the four-bar's solve_many
-    the same, the shaper's 5-10 % slower, its probes' table of some 50 numbers x 81 000
-    rows a fresh 32 MB array each round.)"""
+    into one array in one pass. A run (:meth:`runs`) repeats them over its rows in one
+    call. (The probes' rows, :meth:`scene`, are gathered number by number: as one table
+    they were no quicker, measured 2026-11-29, the shaper's 5-10 % slower, its probes'
+    table of some 50 numbers x 81 000 rows a fresh 32 MB array each round.)"""
 
     def __init__(self, scenes: list[Scene], numbers: list[bytes] | None = None):
         """``numbers``: each scene's packed numbers (:func:`stack_record`), when known."""
@@ -192,7 +215,12 @@ class Stacker:
         bits = table.view(np.int64)
         varies = (bits != bits[0]).any(axis=0).tolist()
         which = [c for c, v in enumerate(varies) if v]
-        rows = iter(table[:, which].T.copy())   # (the numbers that vary, each contiguous)
+        # (the numbers that vary, each contiguous: a row of one table, which a run
+        # repeats over its rows in one call, runs)
+        self._varying = table[:, which].T.copy()
+        rows = list(self._varying)
+        self._row_of = {id(r): i for i, r in enumerate(rows)}
+        rows = iter(rows)
         take = iter([next(rows) if v else x for v, x in zip(varies, _numbers(s0), strict=True)]
                     ).__next__
 
@@ -226,6 +254,7 @@ class Stacker:
         self.size = size
         self._gathered = None
         self._tiles = {}
+        self._varying, self._row_of = None, {}
         return self
 
     def tame(self) -> bool:
@@ -263,7 +292,17 @@ class Stacker:
         ``lo + j`` over ``counts[j]`` rows at driver positions ``positions`` (the same
         scene as :meth:`scene` with ``owner = np.repeat(np.arange(lo, hi), counts)``:
         each scene's numbers repeated, a few times quicker than taken row by row)."""
-        sc = self._build(lambda x: np.repeat(x[lo:hi], counts), positions)
+        keep_heap()         # (the runs' arrays reuse the heap's pages, not fresh ones)
+        # every number that varies repeated in one call (a row each of one block; 15
+        # numbers of 34 four-bars: 29 us against 37 us and 15 calls one by one)
+        block = (self._varying[:, lo:hi].repeat(counts, axis=1)
+                 if self._varying is not None else None)
+        row_of = self._row_of
+
+        def expand(x: np.ndarray) -> np.ndarray:
+            i = row_of.get(id(x))       # (x: one of this stacker's rows, alive with it)
+            return block[i] if i is not None else x[lo:hi].repeat(counts)
+        sc = self._build(expand, positions)
         sc.__dict__["segments"] = counts    # each scene's rows (a sweep's maxima per scene)
         if sc.driver.kind == "R":
             sc.__dict__["driver_trig"] = self.trig_rows(lo, hi, positions)

@@ -64,13 +64,18 @@ def guide_body(solver: DyadSolver) -> int:
     return 1 if solver.dyad.inner.kind == "R" or solver.slider_first else 0
 
 
-def closing_point(dyad: Dyad, solver: DyadSolver, cs, org):
+def closing_point(dyad: Dyad, solver: DyadSolver, cs, org, arm: list | None = None):
     """The closing point X (the inner joint's point; for a prismatic inner joint the
-    slider point) from the first body (the slider) in its solved position."""
+    slider point) from the first body (the slider) in its solved position. ``arm``: the
+    body (0 or 1), the point's local coordinates (the Body's tuple) and its arm from the
+    body's origin are put there (the reactions ask for that arm again:
+    :meth:`~kinetostatics.solver.driver.BodyMotion.keep_arm`)."""
     ib = 1 - guide_body(solver)
     inner = dyad.inner
     loc = solver.q[0] if inner.kind == "R" else solver.b[ib].local(inner.points[1])
     rx, ry = A.rotate(cs[ib][0], cs[ib][1], *loc)
+    if arm is not None:
+        arm += (ib, loc, (rx, ry))
     return A.add(org[ib][0], rx), A.add(org[ib][1], ry)
 
 
@@ -90,7 +95,17 @@ def column_norm2(solver: DyadSolver, pr) -> float:
         if p.kind == "rot":
             qx, qy = solver.q[i]
             lx, ly = p.local
-            out *= (qx - lx) ** 2 + (qy - ly) ** 2
+            dx, dy = A.less(qx, lx), A.less(qy, ly)
+            # (an array's ** 2 is its x * x, a Python float's pow; a square is never
+            # -0.0, so a stack's exact zeros cost no pass: the same bits)
+            sx, sy = (d * d if type(d) is np.ndarray else d ** 2 for d in (dx, dy))
+            if type(sy) is float and sy == 0.0 and type(sx) is np.ndarray:
+                d2 = sx
+            elif type(sx) is float and sx == 0.0 and type(sy) is np.ndarray:
+                d2 = sy
+            else:
+                d2 = sx + sy
+            out = d2 if type(out) is float and out == 1.0 else out * d2
     return out
 
 

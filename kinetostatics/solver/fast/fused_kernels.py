@@ -1,9 +1,10 @@
 """The fused kernels of ``solve_many``: a crank and one dyad (every kind but RTR) in one
-kernel per run, tile by tile: the driver's motion, the dyad's, each body's loads, the
-dyad's reactions and Me, every value of a tile in one scratch array, and only Me, the
-closeness to a dead centre and the undefined rows written out. The row helpers are the
-composed kernels' (:mod:`~kinetostatics.solver.fast.kernels`), in the same order: the
-same numbers, bit for bit.
+kernel per run, tile by tile (``jitbase.FUSED_TILE`` rows a tile): the driver's motion,
+the dyad's, each body's loads, the dyad's reactions and Me, every value of a tile in one
+scratch array, and only Me, the closeness to a dead centre and the undefined rows
+written out. The row helpers are the composed kernels'
+(:mod:`~kinetostatics.solver.fast.kernels`), in the same order: the same numbers, bit
+for bit.
 
 Imported by :func:`~kinetostatics.solver.fast.stacked.fused_kept` once the compiled path
 is loaded (the cache folder settled); the rules of the kernels module hold here.
@@ -11,13 +12,26 @@ is loaded (the cache folder settled); the rules of the kernels module hold here.
 
 from __future__ import annotations
 
-from .jitbase import TILE, body, jit, scratch, tile_geometry, tile_rows
+from .jitbase import (
+    FUSED_TILE as TILE,
+)
+from .jitbase import (
+    body,
+    jit,
+    nonfinite,
+    scratch_for,
+    tile_geometry,
+    tile_rows_for,
+)
 from .kernels import crank_row, dyad_row
 from .layout import (
+    CL2,
     DRIVER_GEOMETRY,
     DYAD_GEOMETRY,
     DYAD_OUT,
     INNER_R,
+    P_GROUND,
+    PARAM,
     ROT1,
     ROT2,
     C,
@@ -25,8 +39,16 @@ from .layout import (
 )
 from .layout import MOTION as BODY_ROWS
 from .layout import REACTIONS as REACTION_ROWS
-from .reaction_kernels import tile_loads
-from .tail_kernels import known_loads, tile_kept, tile_moment, tile_reactions, tile_swept
+from .reaction_kernels import (
+    crank_moment,
+    reaction_row,
+    swept_row,
+    tile_loads_for,
+)
+
+# tiles of FUSED_TILE rows (jitbase): the helpers of that width
+scratch, tile_rows, tile_loads = (scratch_for(TILE), tile_rows_for(TILE),
+                                  tile_loads_for(TILE))
 
 
 # -- a crank and one dyad, fused: what solve_many keeps of a run ---------------------------
@@ -82,10 +104,20 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
         l0 = tile_geometry(wl0, gl[0], gls[0], own, t0, l0)
         l1 = tile_geometry(wl1, gl[1], gls[1], own, t0, l1)
         l2 = tile_geometry(wl2, gl[2], gls[2], own, t0, l2)
+        known1, known2 = wg[P_GROUND, 0] == 0.0, wg[PARAM + P_GROUND, 0] == 0.0
         c0 = t0 - ts[own[t0]]       # (the scene's row in its cos and sin)
-        for t in range(nt):
-            wdrv[C, t] = cs[c0 + t]
-            wdrv[S, t] = sn[c0 + t]
+        # a whole tile copied in and out where the arrays hold one (a loop of a constant
+        # count: vectorised; of nt rows it is not): the rows after the tile's scene's are
+        # worked out and not counted, and written over by the next tile's (measured
+        # 2026-11-29, 1000 four-bars x 361: 0.35 ms of 11.7 a call)
+        if c0 + TILE <= cs.shape[0]:
+            for t in range(TILE):
+                wdrv[C, t] = cs[c0 + t]
+                wdrv[S, t] = sn[c0 + t]
+        else:
+            for t in range(nt):
+                wdrv[C, t] = cs[c0 + t]
+                wdrv[S, t] = sn[c0 + t]
         for t in range(TILE):
             f = crank_row(t, t, wgd, w, eps, wdrv)
             bad += f if t < nt else 0
@@ -95,20 +127,46 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
         bad += tile_loads(wdrv, wad, wl0, npt[0], nt)
         bad += tile_loads(wm1, wa1, wl1, npt[1], nt)
         bad += tile_loads(wm2, wa2, wl2, npt[2], nt)
-        if nw[0]:
-            bad += tile_swept(lo, t0, nt, own, gws[0], e0, gw[0], nw[0], wdrv, wad, undefined,
-                              st[0])
-        if nw[1]:
-            bad += tile_swept(lo, t0, nt, own, gws[1], e1, gw[1], nw[1], wm1, wa1, undefined,
-                              st[1])
-        if nw[2]:
-            bad += tile_swept(lo, t0, nt, own, gws[2], e2, gw[2], nw[2], wm2, wa2, undefined,
-                              st[2])
-        bad += tile_reactions(rot1, rot2, inner_r, nt, wg, wm1, wm2, wk1, wk2, wd, wa1, wa2,
-                              wak1, wak2, wr)
-        known_loads(wg, wad, wad, wak1, wak2)
-        bad += tile_moment(wgd, wdrv, wad, wr, nt)
-        tile_kept(t0 - lo, nt, wr, wd, drive, close)
+        if nw[0] + nw[1] + nw[2]:
+            for t in range(nt):
+                i = t0 + t
+                if nw[0]:
+                    bad += swept_row(t, own[i * gws[0]], own[i * e0], i - lo, gw[0], nw[0],
+                                     wdrv, wad, undefined, st[0])
+                if nw[1]:
+                    bad += swept_row(t, own[i * gws[1]], own[i * e1], i - lo, gw[1], nw[1],
+                                     wm1, wa1, undefined, st[1])
+                if nw[2]:
+                    bad += swept_row(t, own[i * gws[2]], own[i * e2], i - lo, gw[2], nw[2],
+                                     wm2, wa2, undefined, st[2])
+        wak1[:] = 0.0
+        wak2[:] = 0.0
+        # the reactions, what the outer joints load the driver with added to its
+        # resultants in order unless their known body is the ground (as the composed
+        # reactions add them, tile_add) and Me, in one loop (measured 2026-11-29, 1000
+        # four-bars x 361: 9.1 ms a call against 9.9 in three loops; the dyad's motion
+        # in the crank's loop stops it vectorising: 24.5 ms)
+        for t in range(TILE):
+            f = reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1, wa2,
+                             wak1, wak2, wr)
+            if known1:
+                for q in range(3):
+                    wad[q, t] += wak1[q, t]
+            if known2:
+                for q in range(3):
+                    wad[q, t] += wak2[q, t]
+            me = crank_moment(t, t, wgd, wdrv, wad)
+            wr[0, t] = me
+            f = nonfinite((me, wad[0, t], wad[1, t]))
+            bad += f if t < nt else 0
+        if t0 + TILE <= hi:
+            for t in range(TILE):
+                drive[t0 + t - lo] = wr[0, t]
+                close[t0 + t - lo] = wd[CL2, t]
+        else:
+            for t in range(nt):
+                drive[t0 + t - lo] = wr[0, t]
+                close[t0 + t - lo] = wd[CL2, t]
         t0 += nt
     return bad
 

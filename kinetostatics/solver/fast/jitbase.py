@@ -51,11 +51,27 @@ def fmin(a, b):
 TILE = 64
 
 
-@body
-def scratch(rows):
-    """A tile's scratch array (``rows`` x :data:`TILE`, zeros: rows a kernel never
-    writes go out as 0)."""
-    return np.zeros((rows, TILE))
+# The fused kernels of solve_many (fused_kernels): tiles of 32 rows. Their scratch array
+# (some 160 rows of a tile: every body's motion, the dyad's data, the loads, the
+# reactions and the geometry) is then about 40 KB, nearly within the processor's 32 KB
+# first-level cache, against 80 KB at 64 rows (measured 2026-11-29, 1000 four-bars x 361
+# in one call, processor time: 10.0-10.2 ms against 11.1-11.7 at 64 rows, 11.9-12.1 at
+# 16, 10.3-10.9 at 24; the same numbers, bit for bit)
+FUSED_TILE = 32
+
+
+def scratch_for(width: int):
+    """``scratch(rows)``: a tile's scratch array (``rows`` x ``width``, zeros: rows a
+    kernel never writes go out as 0). ``width`` is a constant of the compiled helper (a
+    tile's loops of a constant count vectorise; of a count known at run time they ran
+    about 1.5x slower, measured 2026-11-29)."""
+    @body
+    def scratch(rows):
+        return np.zeros((rows, width))
+    return scratch
+
+
+scratch = scratch_for(TILE)
 
 
 @body
@@ -86,17 +102,22 @@ def tile_add(k, w, j0, nt):
             dst[t] += src[t]
 
 
-@body
-def tile_rows(gs, own, t0, hi):
-    """The rows of the tile that starts at row ``t0`` (of rows up to ``hi``): at most
-    :data:`TILE`, all of one scene (``own[i * gs]``: row ``i``'s scene in a stack,
-    ``gs`` 0 for one scene)."""
-    nt = min(TILE, hi - t0)
-    if gs != 0:
-        s = own[t0]
-        while own[t0 + nt - 1] != s:
-            nt -= 1
-    return nt
+def tile_rows_for(width: int):
+    """``tile_rows(gs, own, t0, hi)``: the rows of the tile that starts at row ``t0`` (of
+    rows up to ``hi``): at most ``width``, all of one scene (``own[i * gs]``: row ``i``'s
+    scene in a stack, ``gs`` 0 for one scene)."""
+    @body
+    def tile_rows(gs, own, t0, hi):
+        nt = min(width, hi - t0)
+        if gs != 0:
+            s = own[t0]
+            while own[t0 + nt - 1] != s:
+                nt -= 1
+        return nt
+    return tile_rows
+
+
+tile_rows = tile_rows_for(TILE)
 
 
 @body

@@ -107,32 +107,38 @@ def body_loads(lo, hi, off, g, gs, own, npoint, m, acc):
     return bad
 
 
-@body
-def tile_loads(wm, wa, wg, npoint, nt):
-    """A tile's load resultants ``wa`` (:func:`body_loads`) from its body's motion ``wm``
-    and its geometry ``wg`` (the tile's scene's in each column); the count of the
-    tile's first ``nt`` rows that are not finite."""
-    wa[:] = 0.0
-    for q in range(npoint):
-        b = 2 + L_POINT * q
-        for t in range(TILE):
-            c, s, al, om = wm[C, t], wm[S, t], wm[AL, t], wm[OM, t]
-            w2 = om * om
-            lx, ly = wg[b, t], wg[b + 1, t]
-            rx, ry = c * lx - s * ly, s * lx + c * ly
-            mk = wg[b + 4, t]
-            ax = (wm[AX, t] - al * ry) - w2 * rx
-            ay = (wm[AY, t] + al * rx) - w2 * ry
-            px, py = wg[b + 2, t] - mk * ax, wg[b + 3, t] - mk * ay
-            wa[0, t] += px
-            wa[1, t] += py
-            wa[2, t] += rx * py - ry * px
-    bad = 0
-    for t in range(TILE):
-        wa[2, t] = wa[2, t] + wg[L_M0, t] - wg[L_I, t] * wm[AL, t]
-        f = nonfinite((wa[0, t], wa[1, t], wa[2, t]))
-        bad += f if t < nt else 0
-    return bad
+def tile_loads_for(width: int):
+    """``tile_loads(wm, wa, wg, npoint, nt)``: a tile's load resultants ``wa``
+    (:func:`body_loads`) from its body's motion ``wm`` and its geometry ``wg`` (the
+    tile's scene's in each column), tiles of ``width`` rows; the count of the tile's
+    first ``nt`` rows that are not finite."""
+    @body
+    def tile_loads(wm, wa, wg, npoint, nt):
+        wa[:] = 0.0
+        for q in range(npoint):
+            b = 2 + L_POINT * q
+            for t in range(width):
+                c, s, al, om = wm[C, t], wm[S, t], wm[AL, t], wm[OM, t]
+                w2 = om * om
+                lx, ly = wg[b, t], wg[b + 1, t]
+                rx, ry = c * lx - s * ly, s * lx + c * ly
+                mk = wg[b + 4, t]
+                ax = (wm[AX, t] - al * ry) - w2 * rx
+                ay = (wm[AY, t] + al * rx) - w2 * ry
+                px, py = wg[b + 2, t] - mk * ax, wg[b + 3, t] - mk * ay
+                wa[0, t] += px
+                wa[1, t] += py
+                wa[2, t] += rx * py - ry * px
+        bad = 0
+        for t in range(width):
+            wa[2, t] = wa[2, t] + wg[L_M0, t] - wg[L_I, t] * wm[AL, t]
+            f = nonfinite((wa[0, t], wa[1, t], wa[2, t]))
+            bad += f if t < nt else 0
+        return bad
+    return tile_loads
+
+
+tile_loads = tile_loads_for(TILE)
 
 
 @jit

@@ -67,6 +67,16 @@ def test_declutter_and_settle_clear_a_crowded_drawing():
     assert not kp.collisions(fig)
 
 
+def test_a_figure_changed_after_its_measure_is_drawn_again():
+    """The measures draw a finished figure (no layout engine moving it) only when
+    something changed since its last drawing: a new tick format is drawn and measured."""
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [0, 1])
+    assert kp.collisions(fig) == []
+    ax.xaxis.set_major_formatter(lambda x, pos: f"a long tick label {x:g}")
+    assert any("a long tick label" in a for a, _b in kp.collisions(fig))
+
+
 def _smallest_font(fig) -> float:
     lay_out(fig)
     sizes = [t.get_fontsize() for t in fig.findobj(Text)

@@ -1,0 +1,49 @@
+"""tools/cpu_per_test.py: the processor time of each test phase, a child process's too."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+from tests.helpers import ROOT
+
+TESTS = '''
+import subprocess, sys
+
+def test_busy_child():
+    # about 0.5 s of CPU in a child process (the plugin counts what the test starts)
+    subprocess.run([sys.executable, "-c", "import time\\nt = time.process_time()\\n"
+                    "while time.process_time() - t < 0.5: pass"], check=True)
+
+def test_idle():
+    import time
+    time.sleep(0.3)
+'''
+
+
+@pytest.mark.slow
+def test_a_childs_processor_time_is_its_tests(tmp_path) -> None:
+    (tmp_path / "test_cases.py").write_text(TESTS)
+    out = tmp_path / "cpu.jsonl"
+    env = dict(os.environ, CPU_PER_TEST=str(out), PYTHONPATH=os.pathsep.join(
+        [str(ROOT), *filter(None, [os.environ.get("PYTHONPATH")])]))
+    r = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
+                        "-p", "no:xdist", "-p", "tools.cpu_per_test", "test_cases.py"],
+                       cwd=tmp_path, env=env, capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+    rows = [json.loads(line) for line in out.read_text().splitlines()]
+    assert [(n.split("::")[1], p) for n, p, _, _ in rows] == [
+        (t, p) for t in ("test_busy_child", "test_idle") for p in ("setup", "call", "teardown")]
+    cpu = {(n.split("::")[1], p): c for n, p, c, _ in rows}
+    wall = {(n.split("::")[1], p): w for n, p, _, w in rows}
+    # the child's 0.5 s (and its interpreter's start) counted; the sleep is wall, not CPU
+    assert cpu["test_busy_child", "call"] >= 0.5
+    assert cpu["test_idle", "call"] < 0.1 <= 0.3 <= wall["test_idle", "call"]
+    r = subprocess.run([sys.executable, str(ROOT / "tools" / "cpu_per_test.py"), str(out)],
+                       capture_output=True, text=True, check=True)
+    tests = r.stdout.split("tests:\n", 1)[1].splitlines()
+    assert tests[0].endswith("test_cases.py::test_busy_child"), r.stdout
