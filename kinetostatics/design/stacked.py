@@ -39,9 +39,10 @@ import numpy as np
 from ..model.scene import Scene
 from ..results.solution import Solution
 from ..solver.deadpoints import dead_points_stacked, kin_measure2
-from ..solver.kinematics import SINGULAR_WARN, Kinematics, probe_closeness, solve_kinematics
+from ..solver.kinematics import SINGULAR_WARN, Kinematics, solve_kinematics
 from ..solver.many import RUN_ROWS, run_bounds
 from ..solver.pipeline import solve_rows
+from ..solver.probes import probe_closeness
 from ..solver.solved import Solved
 from ..solver.stack import Stacker, assemblies, signature
 from ..solver.structure import Structure, analyse

@@ -68,7 +68,7 @@ def known_point(scene: Scene, bname: str, motion: BodyMotion, pname: str,
                 speeds: bool = True):
     """Position, velocity and acceleration of a named point of a known body (``speeds``
     False: the position alone, the rest 0.0: a probe of the closeness to a dead centre,
-    :func:`~kinetostatics.solver.kinematics.probe_closeness`)."""
+    :func:`~kinetostatics.solver.probes.probe_closeness`)."""
     if bname == GROUND:
         x, y = scene.ground[pname]
         return A.scalar(x), A.scalar(y), 0.0, 0.0, 0.0, 0.0

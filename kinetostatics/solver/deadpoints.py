@@ -36,7 +36,8 @@ import numpy as np
 
 from ..model.scene import Scene
 from .continuity import open_rows, sweep_order
-from .kinematics import SINGULAR_WARN, Kinematics, probe_closeness
+from .kinematics import SINGULAR_WARN, Kinematics
+from .probes import probe_closeness
 from .structure import Structure
 
 # what a probe gives (:func:`_probe`): each dyad's closeness2 and the rows where some dyad
@@ -122,7 +123,7 @@ def _probe(at: Callable[[np.ndarray, np.ndarray], Probed], lo: np.ndarray,
     the intervals where some probe found a dyad that cannot close (no closed form).
     ``at(positions, owner)`` probes the mechanism at driver positions, row i of the
     mechanism (segment) ``owner[i]``: the closeness of each dyad and the rows where one
-    cannot close (:func:`~.kinematics.probe_closeness`), or the kinematics solved with
+    cannot close (:func:`~.probes.probe_closeness`), or the kinematics solved with
     ``strict = False``; interval j belongs to ``owner[j]``."""
     t = np.linspace(0.0, 1.0, PROBES + 2)
     rows = np.arange(lo.size)

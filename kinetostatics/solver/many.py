@@ -65,8 +65,9 @@ from .fast.geometry import not_covered
 from .fast.solve import KeptRun
 from .fast.stacked import release, solve_group_kept
 from .footprint import columns, solve_bytes
-from .kinematics import Kinematics, probe_closeness, solve_kinematics
+from .kinematics import Kinematics, solve_kinematics
 from .pipeline import check_distinct, solve_arrays, solve_block
+from .probes import probe_closeness
 from .reactions import DriverReaction
 from .solved import Solved
 from .stack import Rows, Stacker, assemblies, stack_record

@@ -30,8 +30,9 @@ from .assembly import hint_points
 from .blocks import keep_heap
 from .closure import DyadSolver, body_origin, dyad_param
 from .driver import driver_motion, ground_motion
-from .kinematics import SINGULAR_FAIL, probe_dyad
+from .kinematics import SINGULAR_FAIL
 from .memo import Kept
+from .probes import probe_dyad
 from .structure import Structure
 from .trap import tame, tame_values
 

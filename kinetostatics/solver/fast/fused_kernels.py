@@ -39,12 +39,8 @@ from .layout import (
 )
 from .layout import MOTION as BODY_ROWS
 from .layout import REACTIONS as REACTION_ROWS
-from .reaction_kernels import (
-    crank_moment,
-    reaction_row,
-    swept_row,
-    tile_loads_for,
-)
+from .reaction_kernels import crank_moment, reaction_row, tile_loads_for
+from .tail_kernels import tile_swept
 
 # tiles of FUSED_TILE rows (jitbase): the helpers of that width
 scratch, tile_rows, tile_loads = (scratch_for(TILE), tile_rows_for(TILE),
@@ -52,6 +48,38 @@ scratch, tile_rows, tile_loads = (scratch_for(TILE), tile_rows_for(TILE),
 
 
 # -- a crank and one dyad, fused: what solve_many keeps of a run ---------------------------
+# A whole tile is copied in and out where the arrays hold one (a loop of a constant count:
+# vectorised; of nt rows it is not): the rows after the tile's scene's are worked out and
+# not counted, and written over by the next tile's (measured 2026-11-29, 1000 four-bars x
+# 361: 0.35 ms of 11.7 a call).
+@body
+def _tile_in(cs, sn, c0, nt, wdrv):
+    """The crank's cos and sin of a tile's rows (from row ``c0`` of ``cs``, ``sn``)."""
+    if c0 + TILE <= cs.shape[0]:
+        for t in range(TILE):
+            wdrv[C, t] = cs[c0 + t]
+            wdrv[S, t] = sn[c0 + t]
+    else:
+        for t in range(nt):
+            wdrv[C, t] = cs[c0 + t]
+            wdrv[S, t] = sn[c0 + t]
+
+
+@body
+def _tile_out(j0, nt, whole, wr, wd, drive, close):
+    """What a run keeps of a tile (Me, row 0 of ``wr``; the closeness, ``wd``'s), at
+    ``j0`` on: the whole tile where ``whole`` (the arrays reach past it), else ``nt``
+    rows."""
+    if whole:
+        for t in range(TILE):
+            drive[j0 + t] = wr[0, t]
+            close[j0 + t] = wd[CL2, t]
+    else:
+        for t in range(nt):
+            drive[j0 + t] = wr[0, t]
+            close[j0 + t] = wd[CL2, t]
+
+
 @body
 def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls,
                      npt, gw, gws, nw, st, drive, close, undefined):
@@ -106,18 +134,7 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
         l2 = tile_geometry(wl2, gl[2], gls[2], own, t0, l2)
         known1, known2 = wg[P_GROUND, 0] == 0.0, wg[PARAM + P_GROUND, 0] == 0.0
         c0 = t0 - ts[own[t0]]       # (the scene's row in its cos and sin)
-        # a whole tile copied in and out where the arrays hold one (a loop of a constant
-        # count: vectorised; of nt rows it is not): the rows after the tile's scene's are
-        # worked out and not counted, and written over by the next tile's (measured
-        # 2026-11-29, 1000 four-bars x 361: 0.35 ms of 11.7 a call)
-        if c0 + TILE <= cs.shape[0]:
-            for t in range(TILE):
-                wdrv[C, t] = cs[c0 + t]
-                wdrv[S, t] = sn[c0 + t]
-        else:
-            for t in range(nt):
-                wdrv[C, t] = cs[c0 + t]
-                wdrv[S, t] = sn[c0 + t]
+        _tile_in(cs, sn, c0, nt, wdrv)
         for t in range(TILE):
             f = crank_row(t, t, wgd, w, eps, wdrv)
             bad += f if t < nt else 0
@@ -127,18 +144,15 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
         bad += tile_loads(wdrv, wad, wl0, npt[0], nt)
         bad += tile_loads(wm1, wa1, wl1, npt[1], nt)
         bad += tile_loads(wm2, wa2, wl2, npt[2], nt)
-        if nw[0] + nw[1] + nw[2]:
-            for t in range(nt):
-                i = t0 + t
-                if nw[0]:
-                    bad += swept_row(t, own[i * gws[0]], own[i * e0], i - lo, gw[0], nw[0],
-                                     wdrv, wad, undefined, st[0])
-                if nw[1]:
-                    bad += swept_row(t, own[i * gws[1]], own[i * e1], i - lo, gw[1], nw[1],
-                                     wm1, wa1, undefined, st[1])
-                if nw[2]:
-                    bad += swept_row(t, own[i * gws[2]], own[i * e2], i - lo, gw[2], nw[2],
-                                     wm2, wa2, undefined, st[2])
+        if nw[0]:
+            bad += tile_swept(lo, t0, nt, own, gws[0], e0, gw[0], nw[0], wdrv, wad, undefined,
+                              st[0])
+        if nw[1]:
+            bad += tile_swept(lo, t0, nt, own, gws[1], e1, gw[1], nw[1], wm1, wa1, undefined,
+                              st[1])
+        if nw[2]:
+            bad += tile_swept(lo, t0, nt, own, gws[2], e2, gw[2], nw[2], wm2, wa2, undefined,
+                              st[2])
         wak1[:] = 0.0
         wak2[:] = 0.0
         # the reactions, what the outer joints load the driver with added to its
@@ -159,14 +173,7 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
             wr[0, t] = me
             f = nonfinite((me, wad[0, t], wad[1, t]))
             bad += f if t < nt else 0
-        if t0 + TILE <= hi:
-            for t in range(TILE):
-                drive[t0 + t - lo] = wr[0, t]
-                close[t0 + t - lo] = wd[CL2, t]
-        else:
-            for t in range(nt):
-                drive[t0 + t - lo] = wr[0, t]
-                close[t0 + t - lo] = wd[CL2, t]
+        _tile_out(t0 - lo, nt, t0 + TILE <= hi, wr, wd, drive, close)
         t0 += nt
     return bad
 

@@ -14,7 +14,8 @@ import kinetostatics as ks
 from kinetostatics.model.scene import load_scene
 from kinetostatics.solver.continuity import open_rows
 from kinetostatics.solver.deadpoints import kin_measure2
-from kinetostatics.solver.kinematics import probe_closeness, solve_kinematics
+from kinetostatics.solver.kinematics import solve_kinematics
+from kinetostatics.solver.probes import probe_closeness
 from kinetostatics.solver.structure import analyse
 
 NAMES = ["four_bar", "four_bar_mm", "scotch_yoke", "shaper", "slider_crank",
