@@ -118,7 +118,8 @@ def on_path(path: str, job: Callable[[], object]) -> Callable[[], object]:
 def bench_reference(path: str, sizes=(2_001, 200_001, 1_000_001),
                     repeat: int | None = None) -> list[dict]:
     """solve(scene).driver on each solve path against ``fourbar_dyad`` (and
-    ``slider_dyad``) of the hand-written baseline, all timed side by side in one run
+    ``slider_dyad``, and ``shaper_dyad`` when the baseline has it) of the hand-written
+    baseline, all timed side by side in one run
     (``repeat``: the rounds of every size and of the warm rows; None: 25 below 10^4
     positions, 7 below 5 10^5, else 3, and 15 for the warm rows)."""
     from ..results import solve

@@ -68,6 +68,8 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
                                         geometry=geometry), positions)
         else:
             sweep = fused_sweep(kernels, scene, full, structure, geometry, positions)
+            if sweep is None:       # (an RTR dyad first: per block of rows, as a long one)
+                sweep = guided_blocks(kernels, full, structure, geometry, positions)
         if sweep is not None:
             def again() -> Solved:
                 return solve_full(Plan(kernels, full, structure, structure.assembly,

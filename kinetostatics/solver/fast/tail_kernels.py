@@ -1,12 +1,12 @@
 """What a fused kernel does with a tile once its bodies' motions are worked out, shared
-by :mod:`~kinetostatics.solver.fast.fused_kernels` and
-:mod:`~kinetostatics.solver.fast.guide_kernels`: the swept loads of a body over the
+by the kernels of :mod:`~kinetostatics.solver.fast.guide_kernels` (tiles of
+:data:`~kinetostatics.solver.fast.jitbase.TILE` rows; ``tile_swept`` by
+:mod:`~kinetostatics.solver.fast.fused_kernels` too): the swept loads of a body over the
 tile's rows, a dyad's reactions and what its outer joints load its known bodies with,
-the crank's Me
-(seed 002 eqs 2.47-2.48) and the write-out of what a long sweep keeps. Each helper does
-the composed kernels' operations in their order (:mod:`~kinetostatics.solver.fast.
-reaction_kernels`): the same numbers, bit for bit. Inlined by LLVM (``body``); the
-kernels module's rules hold here.
+the crank's Me (seed 002 eqs 2.47-2.48) and the write-out of what a long sweep keeps.
+Each helper does the composed kernels' operations in their order
+(:mod:`~kinetostatics.solver.fast.reaction_kernels`): the same numbers, bit for bit.
+Inlined by LLVM (``body``); the kernels module's rules hold here.
 """
 
 from __future__ import annotations

@@ -50,9 +50,14 @@ def full_solve(scene, positions=None):
     return ks.Solution.of(solve_full(plan, pos))
 
 
-@pytest.mark.parametrize("kind", list(FUSED))
+# a crank and an RTR dyad (and a second dyad): Me from the guide's fused kernels
+# (solve.guided_blocks), as a long sweep's
+GUIDED_SHORT = {"slotted lever": ks.example("slotted_lever"), "shaper": ks.example("shaper")}
+
+
+@pytest.mark.parametrize("kind", [*FUSED, *GUIDED_SHORT])
 def test_a_short_sweep_is_the_full_solves_bit_for_bit(fast, kind: str) -> None:
-    d = load_scene(FUSED[kind]).raw
+    d = load_scene({**FUSED, **GUIDED_SHORT}[kind]).raw
     d["driver"] = {**d["driver"], "count": 2001}
     sol = ks.solve(d)
     assert sol.path == "fast" and "kin" not in sol.__dict__      # (lean: the fused kernel)
@@ -78,3 +83,4 @@ def test_given_positions_take_the_fused_kernel_too(fast, kind: str) -> None:
     # the column's scale; measured here 2026-11-29: 2e-16)
     assert np.abs(sol.Me - me).max() <= 1e-13 * np.abs(me).max()
     assert sol.singular.tolist() == ours.singular.tolist()
+
