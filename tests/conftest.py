@@ -142,7 +142,28 @@ def _settle_numba_cache() -> None:
     folder = loader.cache_folder()
     if folder is not None:
         import numba
-        numba.config.CACHE_DIR = str(folder)
+        # numba's compiler reads the environment again whenever it changed since numba
+        # last read it (config.reload_config), and would put back the folder it names: read
+        # now, so that only a later change of NUMBA_CACHE_DIR resets the folder set here
+        numba.core.config.reload_config()
+        _NUMBA_FOLDER[:] = [str(folder)]
+        numba.config.CACHE_DIR = _NUMBA_FOLDER[0]
+
+
+#: The folder :func:`_settle_numba_cache` gave numba (none yet: empty).
+_NUMBA_FOLDER: list[str] = []
+
+
+def pytest_runtest_setup(item: pytest.Item) -> None:
+    """numba's cache folder settled again before each test: a test that changed
+    ``NUMBA_CACHE_DIR`` (the loader, a monkeypatch) changes it back after its own
+    teardown, and numba's compiler, reading the changed environment, would cache the next
+    kernel beside the sources (seen 2026-11-29: an xdist worker where a kernel was
+    compiled after such a test)."""
+    if _NUMBA_FOLDER and "numba" in sys.modules:
+        config = sys.modules["numba"].core.config
+        config.reload_config()
+        config.CACHE_DIR = _NUMBA_FOLDER[0]
 
 
 def pytest_runtest_teardown(item: pytest.Item) -> None:
