@@ -26,6 +26,7 @@ from .layout import (
     DYAD_GEOMETRY,
     DYAD_OUT,
     INNER_R,
+    KINDS,
     P_GROUND,
     PARAM,
     ROT1,
@@ -39,6 +40,7 @@ from .layout import REACTIONS as REACTION_ROWS
 from .reaction_kernels import tile_loads
 from .tail_kernels import (
     add_rows,
+    copy_rows,
     known_loads,
     tile_kept,
     tile_moment,
@@ -46,7 +48,7 @@ from .tail_kernels import (
     tile_swept,
 )
 
-RTR = 3                 # the kind's code (layout.KINDS): outer joints revolute, inner prismatic
+RTR = KINDS["RTR"]      # outer joints revolute, inner prismatic
 
 
 @jit
@@ -102,9 +104,9 @@ def _rtr_tile(t0, nt, cs, sn, ct, sg, reach, gap, wgd, w, eps, k1d, k2d, wg, wdr
         f = crank_row(t, t, wgd, w, eps, wdrv)
         bad += f if t < nt else 0
     if k1d:
-        wk1[:] = wdrv
+        copy_rows(wk1, wdrv)
     if k2d:
-        wk2[:] = wdrv
+        copy_rows(wk2, wdrv)
     for t in range(TILE):
         f = dyad_row(RTR, rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
         bad += f if t < nt else 0
@@ -184,11 +186,11 @@ def _known_copy(which, wk, wdrv, wm1, wm2):
     ``which`` 1 the crank's, 2 the RTR dyad's first body's, 3 its second's (0: the
     ground's, set once and left)."""
     if which == 1:
-        wk[:] = wdrv
+        copy_rows(wk, wdrv)
     elif which == 2:
-        wk[:] = wm1
+        copy_rows(wk, wm1)
     elif which == 3:
-        wk[:] = wm2
+        copy_rows(wk, wm2)
 
 
 @body
@@ -296,51 +298,19 @@ def _rtr_dyad_kept(kind, lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, 
     return bad
 
 
-@jit
-def rtr_rrr_kept(lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl, npt, gw, nw, st,
-                 ct, sg, reach, gap, drive, close1, close2, undefined):
-    return _rtr_dyad_kept(7, lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl,
-                          npt, gw, nw, st, ct, sg, reach, gap, drive, close1, close2, undefined)
-
-
-@jit
-def rtr_rrt_kept(lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl, npt, gw, nw, st,
-                 ct, sg, reach, gap, drive, close1, close2, undefined):
-    return _rtr_dyad_kept(5, lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl,
-                          npt, gw, nw, st, ct, sg, reach, gap, drive, close1, close2, undefined)
-
-
-@jit
-def rtr_trr_kept(lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl, npt, gw, nw, st,
-                 ct, sg, reach, gap, drive, close1, close2, undefined):
-    return _rtr_dyad_kept(6, lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl,
-                          npt, gw, nw, st, ct, sg, reach, gap, drive, close1, close2, undefined)
-
-
-@jit
-def rtr_trt_kept(lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl, npt, gw, nw, st,
-                 ct, sg, reach, gap, drive, close1, close2, undefined):
-    return _rtr_dyad_kept(4, lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl,
-                          npt, gw, nw, st, ct, sg, reach, gap, drive, close1, close2, undefined)
-
-
-@jit
-def rtr_rtt_kept(lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl, npt, gw, nw, st,
-                 ct, sg, reach, gap, drive, close1, close2, undefined):
-    return _rtr_dyad_kept(1, lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl,
-                          npt, gw, nw, st, ct, sg, reach, gap, drive, close1, close2, undefined)
-
-
-@jit
-def rtr_ttr_kept(lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl, npt, gw, nw, st,
-                 ct, sg, reach, gap, drive, close1, close2, undefined):
-    return _rtr_dyad_kept(2, lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl,
-                          npt, gw, nw, st, ct, sg, reach, gap, drive, close1, close2, undefined)
+def _after_rtr_for(code: int):
+    """The entry point of :func:`_rtr_dyad_kept` for a second dyad of kind ``code``
+    (:data:`~kinetostatics.solver.fast.layout.KINDS`), its arguments but the kind's: one
+    source, compiled once per kind on its first call and cached, the kind a constant of
+    the compiled code (as :mod:`~kinetostatics.solver.fast.fused_kernels`' ``KEPT``)."""
+    @jit
+    def kept(*args):
+        return _rtr_dyad_kept(code, *args)
+    return kept
 
 
 # a crank, one RTR dyad and a second dyad, fused, per the second dyad's kind (compiled on
 # its first call: the shaper's RRT alone, unless a scene asks for another)
-AFTER_RTR = {"RRR": rtr_rrr_kept, "RRT": rtr_rrt_kept, "TRR": rtr_trr_kept,
-             "TRT": rtr_trt_kept, "RTT": rtr_rtt_kept, "TTR": rtr_ttr_kept}
+AFTER_RTR = {name: _after_rtr_for(code) for name, code in KINDS.items() if name != "RTR"}
 
 __all__ = ["AFTER_RTR", "rtr_guide", "rtr_kept"]
