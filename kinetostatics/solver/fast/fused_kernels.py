@@ -12,40 +12,18 @@ is loaded (the cache folder settled); the rules of the kernels module hold here.
 
 from __future__ import annotations
 
-from .jitbase import (
-    FUSED_TILE as TILE,
-)
-from .jitbase import (
-    body,
-    jit,
-    nonfinite,
-    scratch_for,
-    tile_geometry,
-    tile_rows_for,
-)
-from .kernels import crank_row, dyad_row
-from .layout import (
-    CL2,
-    DRIVER_GEOMETRY,
-    DYAD_GEOMETRY,
-    DYAD_OUT,
-    INNER_R,
-    KINDS,
-    P_GROUND,
-    PARAM,
-    ROT1,
-    ROT2,
-    C,
-    S,
-)
+from .jitbase import FUSED_TILE as TILE
+from .jitbase import body, jit, nonfinite, scratch_for, tile_geometry, tile_rows_for
+from .layout import DRIVER_GEOMETRY, INNER_R, KINDS, P_GROUND, PARAM, ROT1, ROT2, C, S
 from .layout import MOTION as BODY_ROWS
-from .layout import REACTIONS as REACTION_ROWS
 from .reaction_kernels import crank_moment, reaction_row, tile_loads_for
-from .tail_kernels import tile_swept
+from .scratch_views import DYAD_ROWS, LOAD_ROWS, dyad_views, load_views, resultant_views
+from .tail_kernels import body_tile_for, motion_tile_for, tile_kept_for
 
 # tiles of FUSED_TILE rows (jitbase): the helpers of that width
-scratch, tile_rows, tile_loads = (scratch_for(TILE), tile_rows_for(TILE),
-                                  tile_loads_for(TILE))
+scratch, tile_rows = scratch_for(TILE), tile_rows_for(TILE)
+body_tile, tile_kept = body_tile_for(tile_loads_for(TILE)), tile_kept_for(TILE)
+motion_tile = motion_tile_for(TILE)
 
 
 # -- a crank and one dyad, fused: what solve_many keeps of a run ---------------------------
@@ -64,21 +42,6 @@ def _tile_in(cs, sn, c0, nt, wdrv):
         for t in range(nt):
             wdrv[C, t] = cs[c0 + t]
             wdrv[S, t] = sn[c0 + t]
-
-
-@body
-def _tile_out(j0, nt, whole, wr, wd, drive, close):
-    """What a run keeps of a tile (Me, row 0 of ``wr``; the closeness, ``wd``'s), at
-    ``j0`` on: the whole tile where ``whole`` (the arrays reach past it), else ``nt``
-    rows."""
-    if whole:
-        for t in range(TILE):
-            drive[j0 + t] = wr[0, t]
-            close[j0 + t] = wd[CL2, t]
-    else:
-        for t in range(nt):
-            drive[j0 + t] = wr[0, t]
-            close[j0 + t] = wd[CL2, t]
 
 
 @body
@@ -101,25 +64,16 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
     judge."""
     rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
     R = BODY_ROWS
-    w_ = scratch(4 * R + 15 + DYAD_OUT + REACTION_ROWS + DYAD_GEOMETRY + DRIVER_GEOMETRY)
+    w_ = scratch(4 * R + LOAD_ROWS + DYAD_ROWS + DRIVER_GEOMETRY)
     wdrv, wm1, wm2 = w_[R:2 * R], w_[2 * R:3 * R], w_[3 * R:4 * R]
     o1, o2 = R if k1d else 0, R if k2d else 0       # (the ground's motion: rows 0..R)
     wk1, wk2 = w_[o1:o1 + R], w_[o2:o2 + R]
-    b = 4 * R
-    wad, wa1, wa2, wak1, wak2 = (w_[b:b + 3], w_[b + 3:b + 6], w_[b + 6:b + 9],
-                                 w_[b + 9:b + 12], w_[b + 12:b + 15])
-    b += 15
-    wd = w_[b:b + DYAD_OUT]
-    b += DYAD_OUT
-    wr = w_[b:b + REACTION_ROWS]
-    b += REACTION_ROWS
-    wg = w_[b:b + DYAD_GEOMETRY]
-    wgd = w_[b + DYAD_GEOMETRY:]
+    wad, wa1, wa2, wak1, wak2 = resultant_views(w_, 4 * R)
+    wd, wr, wg, b = dyad_views(w_, 4 * R + LOAD_ROWS)
+    wgd = w_[b:]
     for t in range(TILE):
         w_[C, t] = 1.0                              # the ground: at rest
-    n0, n1, n2 = gl[0].shape[0], gl[1].shape[0], gl[2].shape[0]
-    wl = scratch(n0 + n1 + n2)
-    wl0, wl1, wl2 = wl[:n0], wl[n0:n0 + n1], wl[n0 + n1:]
+    wl0, wl1, wl2 = load_views(scratch(gl[0].shape[0] + gl[1].shape[0] + gl[2].shape[0]), gl)
     e0 = 1 if st[0].shape[1] > 1 else 0
     e1 = 1 if st[1].shape[1] > 1 else 0
     e2 = 1 if st[2].shape[1] > 1 else 0
@@ -136,24 +90,13 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
         known1, known2 = wg[P_GROUND, 0] == 0.0, wg[PARAM + P_GROUND, 0] == 0.0
         c0 = t0 - ts[own[t0]]       # (the scene's row in its cos and sin)
         _tile_in(cs, sn, c0, nt, wdrv)
-        for t in range(TILE):
-            f = crank_row(t, t, wgd, w, eps, wdrv)
-            bad += f if t < nt else 0
-        for t in range(TILE):
-            f = dyad_row(kind, rot1, rot2, inner_r, False, t, t, wg, wk1, wk2, wm1, wm2, wd)
-            bad += f if t < nt else 0
-        bad += tile_loads(wdrv, wad, wl0, npt[0], nt)
-        bad += tile_loads(wm1, wa1, wl1, npt[1], nt)
-        bad += tile_loads(wm2, wa2, wl2, npt[2], nt)
-        if nw[0]:
-            bad += tile_swept(lo, t0, nt, own, gws[0], e0, gw[0], nw[0], wdrv, wad, undefined,
-                              st[0])
-        if nw[1]:
-            bad += tile_swept(lo, t0, nt, own, gws[1], e1, gw[1], nw[1], wm1, wa1, undefined,
-                              st[1])
-        if nw[2]:
-            bad += tile_swept(lo, t0, nt, own, gws[2], e2, gw[2], nw[2], wm2, wa2, undefined,
-                              st[2])
+        bad += motion_tile(kind, nt, wgd, w, eps, wdrv, wg, wk1, wk2, wm1, wm2, wd)
+        bad += body_tile(lo, t0, nt, own, gws[0], e0, wdrv, wad, wl0, npt[0], gw[0], nw[0],
+                         undefined, st[0])
+        bad += body_tile(lo, t0, nt, own, gws[1], e1, wm1, wa1, wl1, npt[1], gw[1], nw[1],
+                         undefined, st[1])
+        bad += body_tile(lo, t0, nt, own, gws[2], e2, wm2, wa2, wl2, npt[2], gw[2], nw[2],
+                         undefined, st[2])
         wak1[:] = 0.0
         wak2[:] = 0.0
         # the reactions, what the outer joints load the driver with added to its
@@ -174,7 +117,7 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
             wr[0, t] = me
             f = nonfinite((me, wad[0, t], wad[1, t]))
             bad += f if t < nt else 0
-        _tile_out(t0 - lo, nt, t0 + TILE <= hi, wr, wd, drive, close)
+        tile_kept(t0 - lo, nt, t0 + TILE <= hi, wr, wd, drive, close)
         t0 += nt
     return bad
 

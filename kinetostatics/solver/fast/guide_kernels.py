@@ -23,8 +23,6 @@ from .layout import (
     C1Y,
     CL2,
     DRIVER_GEOMETRY,
-    DYAD_GEOMETRY,
-    DYAD_OUT,
     INNER_R,
     KINDS,
     P_GROUND,
@@ -36,16 +34,15 @@ from .layout import (
     S,
 )
 from .layout import MOTION as BODY_ROWS
-from .layout import REACTIONS as REACTION_ROWS
-from .reaction_kernels import tile_loads
+from .scratch_views import DYAD_ROWS, LOAD_ROWS, dyad_views, resultant_views
 from .tail_kernels import (
     add_rows,
+    body_tile,
     copy_rows,
     known_loads,
     tile_kept,
     tile_moment,
     tile_reactions,
-    tile_swept,
 )
 
 RTR = KINDS["RTR"]      # outer joints revolute, inner prismatic
@@ -82,14 +79,16 @@ def rtr_guide(lo, hi, cs, sn, gd, w, eps, gy, k1d, k2d, th, reach, gap):
 
 
 @body
-def _rtr_tile(t0, nt, cs, sn, ct, sg, reach, gap, wgd, w, eps, k1d, k2d, wg, wdrv, wk1, wk2,
-              wm1, wm2, wd):
-    """RTR's second pass over the tile that starts at row ``t0`` (``nt`` rows): the
-    crank's cos and sin, the guide's (``ct``, ``sg``) and :func:`rtr_guide`'s ``reach``
-    and ``gap`` in, the crank's motion (:func:`crank_row`), copied to the outer joints'
-    known bodies where they are the crank (``k1d``, ``k2d``), and the dyad's
-    (:func:`dyad_row`, RTR); the count of the tile's rows that are not finite or that
-    the numpy path refuses."""
+def _rtr_tile(lo, t0, nt, own, cs, sn, ct, sg, reach, gap, wgd, w, eps, k1d, k2d, wg, wdrv,
+              wk1, wk2, wm1, wm2, wd, wa, wl, npt, gw, nw, undefined, st):
+    """RTR's second pass over the tile that starts at row ``t0`` (``nt`` rows) of rows
+    from ``lo``: the crank's cos and sin, the guide's (``ct``, ``sg``) and
+    :func:`rtr_guide`'s ``reach`` and ``gap`` in, the crank's motion (:func:`crank_row`),
+    copied to the outer joints' known bodies where they are the crank (``k1d``, ``k2d``),
+    the dyad's (:func:`dyad_row`, RTR), then the loads of the crank and the dyad's
+    bodies (:func:`body_tile`: ``wa`` their resultants, ``wl`` their geometry, the first
+    three of ``npt``, ``gw``, ``nw``, ``st``); the count of the tile's rows that are not
+    finite or that the numpy path refuses."""
     rot1, rot2, inner_r = (RTR & ROT1) != 0, (RTR & ROT2) != 0, (RTR & INNER_R) != 0
     rtr = rot1 and rot2 and not inner_r
     for t in range(nt):
@@ -110,7 +109,35 @@ def _rtr_tile(t0, nt, cs, sn, ct, sg, reach, gap, wgd, w, eps, k1d, k2d, wg, wdr
     for t in range(TILE):
         f = dyad_row(RTR, rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
         bad += f if t < nt else 0
+    bad += body_tile(lo, t0, nt, own, 0, 0, wdrv, wa[0], wl[0], npt[0], gw[0], nw[0],
+                     undefined, st[0])
+    bad += body_tile(lo, t0, nt, own, 0, 0, wm1, wa[1], wl[1], npt[1], gw[1], nw[1],
+                     undefined, st[1])
+    bad += body_tile(lo, t0, nt, own, 0, 0, wm2, wa[2], wl[2], npt[2], gw[2], nw[2],
+                     undefined, st[2])
     return bad
+
+
+@body
+def _loads_in(g, own):
+    """A body's load geometry (one scene's: ``g``'s column) in every column of a tile's
+    scratch array of its own."""
+    wl = scratch(g.shape[0])
+    tile_geometry(wl, g, 0, own, 0, -1)
+    return wl
+
+
+@body
+def _rtr_last(nt, wg, wgd, wdrv, wm1, wm2, wk1, wk2, wd, wad, wa1, wa2, wak1, wak2, wr):
+    """The RTR dyad's reactions over a tile (:func:`tile_reactions`, seed 002 s. 2.3),
+    what its outer joints load the crank with added to the crank's resultants
+    (:func:`known_loads`) and Me (:func:`tile_moment`, eqs 2.47-2.48) into row 0 of
+    ``wr``; the count of the tile's first ``nt`` rows that are not finite."""
+    rot1, rot2, inner_r = (RTR & ROT1) != 0, (RTR & ROT2) != 0, (RTR & INNER_R) != 0
+    bad = tile_reactions(rot1, rot2, inner_r, nt, wg, wm1, wm2, wk1, wk2, wd, wa1, wa2, wak1,
+                         wak2, wr)
+    known_loads(wg, wad, wad, wak1, wak2)
+    return bad + tile_moment(wgd, wdrv, wad, wr, nt)
 
 
 @jit
@@ -126,12 +153,8 @@ def rtr_kept(lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gl, npt, gw, nw, st,
     and the undefined rows written (``own``: zeros, the one scene's column of the loads'
     geometry). Returns the count of rows the numpy path must
     judge."""
-    # (the kind's flags worked out as the composed kernels do, not given as literals:
-    # numba types a literal apart, and the rows then compiled slower, measured
-    # 2026-11-29: 109 against 84 ns a row)
-    rot1, rot2, inner_r = (RTR & ROT1) != 0, (RTR & ROT2) != 0, (RTR & INNER_R) != 0
     R = BODY_ROWS
-    w_ = scratch(5 * R + 15 + DYAD_OUT + REACTION_ROWS + DYAD_GEOMETRY + DRIVER_GEOMETRY)
+    w_ = scratch(5 * R + LOAD_ROWS + DYAD_ROWS + DRIVER_GEOMETRY)
     # the known bodies' motions in rows of their own, copied per tile (views of one
     # scratch array at fixed offsets: LLVM proves them apart from the dyad's and
     # vectorises the rows' loops; a view chosen at run time between the ground's and the
@@ -139,70 +162,31 @@ def rtr_kept(lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gl, npt, gw, nw, st,
     # against 109)
     wdrv, wm1, wm2 = w_[:R], w_[R:2 * R], w_[2 * R:3 * R]
     wk1, wk2 = w_[3 * R:4 * R], w_[4 * R:5 * R]
-    b = 5 * R
-    wad, wa1, wa2, wak1, wak2 = (w_[b:b + 3], w_[b + 3:b + 6], w_[b + 6:b + 9],
-                                 w_[b + 9:b + 12], w_[b + 12:b + 15])
-    b += 15
-    wd = w_[b:b + DYAD_OUT]
-    wr = w_[b + DYAD_OUT:b + DYAD_OUT + REACTION_ROWS]
-    b += DYAD_OUT + REACTION_ROWS
-    wg = w_[b:b + DYAD_GEOMETRY]
-    wgd = w_[b + DYAD_GEOMETRY:]
+    wad, wa1, wa2, wak1, wak2 = resultant_views(w_, 5 * R)
+    wd, wr, wg, b = dyad_views(w_, 5 * R + LOAD_ROWS)
+    wgd = w_[b:]
     for t in range(TILE):
         wk1[C, t] = wk2[C, t] = 1.0             # the ground: at rest (unless the crank)
     tile_geometry(wg, gy, 0, own, 0, -1)
     tile_geometry(wgd, gd, 0, own, 0, -1)
-    n0, n1, n2 = gl[0].shape[0], gl[1].shape[0], gl[2].shape[0]
-    wl = scratch(n0 + n1 + n2)
-    wl0, wl1, wl2 = wl[:n0], wl[n0:n0 + n1], wl[n0 + n1:]
-    tile_geometry(wl0, gl[0], 0, own, 0, -1)
-    tile_geometry(wl1, gl[1], 0, own, 0, -1)
-    tile_geometry(wl2, gl[2], 0, own, 0, -1)
+    wa = (wad, wa1, wa2)
+    wl = (_loads_in(gl[0], own), _loads_in(gl[1], own), _loads_in(gl[2], own))
     bad = 0
     for t0 in range(lo, hi, TILE):
         nt = min(TILE, hi - t0)
-        bad += _rtr_tile(t0, nt, cs, sn, ct, sg, reach, gap, wgd, w, eps, k1d, k2d, wg, wdrv,
-                         wk1, wk2, wm1, wm2, wd)
-        bad += tile_loads(wdrv, wad, wl0, npt[0], nt)
-        bad += tile_loads(wm1, wa1, wl1, npt[1], nt)
-        bad += tile_loads(wm2, wa2, wl2, npt[2], nt)
-        if nw[0]:
-            bad += tile_swept(lo, t0, nt, own, 0, 0, gw[0], nw[0], wdrv, wad, undefined, st[0])
-        if nw[1]:
-            bad += tile_swept(lo, t0, nt, own, 0, 0, gw[1], nw[1], wm1, wa1, undefined, st[1])
-        if nw[2]:
-            bad += tile_swept(lo, t0, nt, own, 0, 0, gw[2], nw[2], wm2, wa2, undefined, st[2])
-        bad += tile_reactions(rot1, rot2, inner_r, nt, wg, wm1, wm2, wk1, wk2, wd, wa1, wa2,
-                              wak1, wak2, wr)
-        known_loads(wg, wad, wad, wak1, wak2)
-        bad += tile_moment(wgd, wdrv, wad, wr, nt)
-        tile_kept(t0 - lo, nt, wr, wd, drive, close)
+        bad += _rtr_tile(lo, t0, nt, own, cs, sn, ct, sg, reach, gap, wgd, w, eps, k1d, k2d,
+                         wg, wdrv, wk1, wk2, wm1, wm2, wd, wa, wl, npt, gw, nw, undefined, st)
+        bad += _rtr_last(nt, wg, wgd, wdrv, wm1, wm2, wk1, wk2, wd, wad, wa1, wa2, wak1, wak2,
+                         wr)
+        tile_kept(t0 - lo, nt, nt == TILE, wr, wd, drive, close)
     return bad
 
 
 @body
-def _known_copy(which, wk, wdrv, wm1, wm2):
-    """A known body's motion copied into its rows of its own (``wk``) for a tile:
-    ``which`` 1 the crank's, 2 the RTR dyad's first body's, 3 its second's (0: the
-    ground's, set once and left)."""
-    if which == 1:
-        copy_rows(wk, wdrv)
-    elif which == 2:
-        copy_rows(wk, wm1)
-    elif which == 3:
-        copy_rows(wk, wm2)
-
-
-@body
-def _known_add(which, wad, wa1, wa2, wak):
-    """What an outer joint loads its known body with (``wak``) added to that body's
-    resultants (``which`` as :func:`_known_copy`; the ground's: nothing)."""
-    if which == 1:
-        add_rows(wad, wak)
-    elif which == 2:
-        add_rows(wa1, wak)
-    elif which == 3:
-        add_rows(wa2, wak)
+def _known(which, crank, first, second):
+    """A known body's rows of a tile by its code ``which`` (1 the crank's, 2 the RTR
+    dyad's first body's, 3 its second's; 0, the ground's, is never asked for)."""
+    return crank if which == 1 else first if which == 2 else second
 
 
 @body
@@ -220,79 +204,54 @@ def _rtr_dyad_kept(kind, lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, 
     tile by tile in one scratch array, as the composed kernels compute them; only Me,
     each dyad's closeness to a dead centre and the undefined rows written. Returns the
     count of rows the numpy path must judge."""
-    rot1, rot2, inner_r = (RTR & ROT1) != 0, (RTR & ROT2) != 0, (RTR & INNER_R) != 0
     rot3, rot4, inner_z = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
     R = BODY_ROWS
-    w_ = scratch(9 * R + 27 + 2 * (DYAD_OUT + REACTION_ROWS + DYAD_GEOMETRY)
-                 + DRIVER_GEOMETRY)
+    w_ = scratch(9 * R + LOAD_ROWS + 12 + 2 * DYAD_ROWS + DRIVER_GEOMETRY)
     # every body's motion and every known body's copy at fixed offsets of one scratch
     # array (views chosen at run time keep LLVM from vectorising the rows: rtr_kept)
     wdrv, wm1, wm2 = w_[:R], w_[R:2 * R], w_[2 * R:3 * R]
     wm3, wm4 = w_[3 * R:4 * R], w_[4 * R:5 * R]
     wk1, wk2, wk3, wk4 = w_[5 * R:6 * R], w_[6 * R:7 * R], w_[7 * R:8 * R], w_[8 * R:9 * R]
-    b = 9 * R
-    wad, wa1, wa2, wa3, wa4 = (w_[b:b + 3], w_[b + 3:b + 6], w_[b + 6:b + 9],
-                               w_[b + 9:b + 12], w_[b + 12:b + 15])
-    wak1, wak2, wak3, wak4 = (w_[b + 15:b + 18], w_[b + 18:b + 21], w_[b + 21:b + 24],
-                              w_[b + 24:b + 27])
-    b += 27
-    wd, wdz = w_[b:b + DYAD_OUT], w_[b + DYAD_OUT:b + 2 * DYAD_OUT]
-    b += 2 * DYAD_OUT
-    wr, wrz = w_[b:b + REACTION_ROWS], w_[b + REACTION_ROWS:b + 2 * REACTION_ROWS]
-    b += 2 * REACTION_ROWS
-    wg, wgz = w_[b:b + DYAD_GEOMETRY], w_[b + DYAD_GEOMETRY:b + 2 * DYAD_GEOMETRY]
-    wgd = w_[b + 2 * DYAD_GEOMETRY:]
+    wad, wa1, wa2, wak1, wak2 = resultant_views(w_, 9 * R)
+    b = 9 * R + LOAD_ROWS       # (the second dyad's: its bodies' resultants, its loads)
+    wa3, wa4, wak3, wak4 = w_[b:b + 3], w_[b + 3:b + 6], w_[b + 6:b + 9], w_[b + 9:b + 12]
+    wd, wr, wg, b = dyad_views(w_, b + 12)
+    wdz, wrz, wgz, b = dyad_views(w_, b)
+    wgd = w_[b:]
     for t in range(TILE):                       # the ground: at rest (unless a body's)
         wk1[C, t] = wk2[C, t] = wk3[C, t] = wk4[C, t] = 1.0
     tile_geometry(wg, gy, 0, own, 0, -1)
     tile_geometry(wgz, gz, 0, own, 0, -1)
     tile_geometry(wgd, gd, 0, own, 0, -1)
-    n0, n1, n2, n3 = gl[0].shape[0], gl[1].shape[0], gl[2].shape[0], gl[3].shape[0]
-    wl = scratch(n0 + n1 + n2 + n3 + gl[4].shape[0])
-    b1, b2, b3 = n0 + n1, n0 + n1 + n2, n0 + n1 + n2 + n3
-    wl0, wl1, wl2, wl3, wl4 = wl[:n0], wl[n0:b1], wl[b1:b2], wl[b2:b3], wl[b3:]
-    tile_geometry(wl0, gl[0], 0, own, 0, -1)
-    tile_geometry(wl1, gl[1], 0, own, 0, -1)
-    tile_geometry(wl2, gl[2], 0, own, 0, -1)
-    tile_geometry(wl3, gl[3], 0, own, 0, -1)
-    tile_geometry(wl4, gl[4], 0, own, 0, -1)
+    wa = (wad, wa1, wa2)
+    wl = (_loads_in(gl[0], own), _loads_in(gl[1], own), _loads_in(gl[2], own))
+    wl3, wl4 = _loads_in(gl[3], own), _loads_in(gl[4], own)
     bad = 0
     for t0 in range(lo, hi, TILE):
         nt = min(TILE, hi - t0)
-        bad += _rtr_tile(t0, nt, cs, sn, ct, sg, reach, gap, wgd, w, eps, k1d, k2d, wg, wdrv,
-                         wk1, wk2, wm1, wm2, wd)
-        _known_copy(k3, wk3, wdrv, wm1, wm2)
-        _known_copy(k4, wk4, wdrv, wm1, wm2)
+        bad += _rtr_tile(lo, t0, nt, own, cs, sn, ct, sg, reach, gap, wgd, w, eps, k1d, k2d,
+                         wg, wdrv, wk1, wk2, wm1, wm2, wd, wa, wl, npt, gw, nw, undefined, st)
+        if k3:                  # (the ground's rows: set once and left)
+            copy_rows(wk3, _known(k3, wdrv, wm1, wm2))
+        if k4:
+            copy_rows(wk4, _known(k4, wdrv, wm1, wm2))
         for t in range(TILE):
             f = dyad_row(kind, rot3, rot4, inner_z, False, t, t, wgz, wk3, wk4, wm3, wm4, wdz)
             bad += f if t < nt else 0
-        bad += tile_loads(wdrv, wad, wl0, npt[0], nt)
-        bad += tile_loads(wm1, wa1, wl1, npt[1], nt)
-        bad += tile_loads(wm2, wa2, wl2, npt[2], nt)
-        bad += tile_loads(wm3, wa3, wl3, npt[3], nt)
-        bad += tile_loads(wm4, wa4, wl4, npt[4], nt)
-        if nw[0]:
-            bad += tile_swept(lo, t0, nt, own, 0, 0, gw[0], nw[0], wdrv, wad, undefined, st[0])
-        if nw[1]:
-            bad += tile_swept(lo, t0, nt, own, 0, 0, gw[1], nw[1], wm1, wa1, undefined, st[1])
-        if nw[2]:
-            bad += tile_swept(lo, t0, nt, own, 0, 0, gw[2], nw[2], wm2, wa2, undefined, st[2])
-        if nw[3]:
-            bad += tile_swept(lo, t0, nt, own, 0, 0, gw[3], nw[3], wm3, wa3, undefined, st[3])
-        if nw[4]:
-            bad += tile_swept(lo, t0, nt, own, 0, 0, gw[4], nw[4], wm4, wa4, undefined, st[4])
+        bad += body_tile(lo, t0, nt, own, 0, 0, wm3, wa3, wl3, npt[3], gw[3], nw[3],
+                         undefined, st[3])
+        bad += body_tile(lo, t0, nt, own, 0, 0, wm4, wa4, wl4, npt[4], gw[4], nw[4],
+                         undefined, st[4])
         # the reactions, the dyads last to first (seed 002 s. 2.3)
         bad += tile_reactions(rot3, rot4, inner_z, nt, wgz, wm3, wm4, wk3, wk4, wdz, wa3, wa4,
                               wak3, wak4, wrz)
-        if wgz[P_GROUND, 0] == 0.0:
-            _known_add(k3, wad, wa1, wa2, wak3)
-        if wgz[PARAM + P_GROUND, 0] == 0.0:
-            _known_add(k4, wad, wa1, wa2, wak4)
-        bad += tile_reactions(rot1, rot2, inner_r, nt, wg, wm1, wm2, wk1, wk2, wd, wa1, wa2,
-                              wak1, wak2, wr)
-        known_loads(wg, wad, wad, wak1, wak2)
-        bad += tile_moment(wgd, wdrv, wad, wr, nt)
-        tile_kept(t0 - lo, nt, wr, wd, drive, close1)
+        if k3 and wgz[P_GROUND, 0] == 0.0:
+            add_rows(_known(k3, wad, wa1, wa2), wak3)
+        if k4 and wgz[PARAM + P_GROUND, 0] == 0.0:
+            add_rows(_known(k4, wad, wa1, wa2), wak4)
+        bad += _rtr_last(nt, wg, wgd, wdrv, wm1, wm2, wk1, wk2, wd, wad, wa1, wa2, wak1, wak2,
+                         wr)
+        tile_kept(t0 - lo, nt, nt == TILE, wr, wd, drive, close1)
         for t in range(nt):
             close2[t0 + t - lo] = wdz[CL2, t]
     return bad
