@@ -34,15 +34,16 @@ from .layout import (
     S,
 )
 from .layout import MOTION as BODY_ROWS
+from .reaction_kernels import tile_loads
 from .scratch_views import DYAD_ROWS, LOAD_ROWS, dyad_views, resultant_views
 from .tail_kernels import (
     add_rows,
-    body_tile,
     copy_rows,
     known_loads,
     tile_kept,
     tile_moment,
     tile_reactions,
+    tile_swept,
 )
 
 RTR = KINDS["RTR"]      # outer joints revolute, inner prismatic
@@ -86,9 +87,9 @@ def _rtr_tile(lo, t0, nt, own, cs, sn, ct, sg, reach, gap, wgd, w, eps, k1d, k2d
     :func:`rtr_guide`'s ``reach`` and ``gap`` in, the crank's motion (:func:`crank_row`),
     copied to the outer joints' known bodies where they are the crank (``k1d``, ``k2d``),
     the dyad's (:func:`dyad_row`, RTR), then the loads of the crank and the dyad's
-    bodies (:func:`body_tile`: ``wa`` their resultants, ``wl`` their geometry, the first
-    three of ``npt``, ``gw``, ``nw``, ``st``); the count of the tile's rows that are not
-    finite or that the numpy path refuses."""
+    bodies (:func:`tile_loads`, then :func:`tile_swept`: ``wa`` their resultants, ``wl``
+    their geometry, the first three of ``npt``, ``gw``, ``nw``, ``st``); the count of
+    the tile's rows that are not finite or that the numpy path refuses."""
     rot1, rot2, inner_r = (RTR & ROT1) != 0, (RTR & ROT2) != 0, (RTR & INNER_R) != 0
     rtr = rot1 and rot2 and not inner_r
     for t in range(nt):
@@ -109,12 +110,15 @@ def _rtr_tile(lo, t0, nt, own, cs, sn, ct, sg, reach, gap, wgd, w, eps, k1d, k2d
     for t in range(TILE):
         f = dyad_row(RTR, rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
         bad += f if t < nt else 0
-    bad += body_tile(lo, t0, nt, own, 0, 0, wdrv, wa[0], wl[0], npt[0], gw[0], nw[0],
-                     undefined, st[0])
-    bad += body_tile(lo, t0, nt, own, 0, 0, wm1, wa[1], wl[1], npt[1], gw[1], nw[1],
-                     undefined, st[1])
-    bad += body_tile(lo, t0, nt, own, 0, 0, wm2, wa[2], wl[2], npt[2], gw[2], nw[2],
-                     undefined, st[2])
+    bad += tile_loads(wdrv, wa[0], wl[0], npt[0], nt)
+    bad += tile_loads(wm1, wa[1], wl[1], npt[1], nt)
+    bad += tile_loads(wm2, wa[2], wl[2], npt[2], nt)
+    if nw[0]:
+        bad += tile_swept(lo, t0, nt, own, 0, 0, gw[0], nw[0], wdrv, wa[0], undefined, st[0])
+    if nw[1]:
+        bad += tile_swept(lo, t0, nt, own, 0, 0, gw[1], nw[1], wm1, wa[1], undefined, st[1])
+    if nw[2]:
+        bad += tile_swept(lo, t0, nt, own, 0, 0, gw[2], nw[2], wm2, wa[2], undefined, st[2])
     return bad
 
 
@@ -238,10 +242,12 @@ def _rtr_dyad_kept(kind, lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, 
         for t in range(TILE):
             f = dyad_row(kind, rot3, rot4, inner_z, False, t, t, wgz, wk3, wk4, wm3, wm4, wdz)
             bad += f if t < nt else 0
-        bad += body_tile(lo, t0, nt, own, 0, 0, wm3, wa3, wl3, npt[3], gw[3], nw[3],
-                         undefined, st[3])
-        bad += body_tile(lo, t0, nt, own, 0, 0, wm4, wa4, wl4, npt[4], gw[4], nw[4],
-                         undefined, st[4])
+        bad += tile_loads(wm3, wa3, wl3, npt[3], nt)
+        bad += tile_loads(wm4, wa4, wl4, npt[4], nt)
+        if nw[3]:
+            bad += tile_swept(lo, t0, nt, own, 0, 0, gw[3], nw[3], wm3, wa3, undefined, st[3])
+        if nw[4]:
+            bad += tile_swept(lo, t0, nt, own, 0, 0, gw[4], nw[4], wm4, wa4, undefined, st[4])
         # the reactions, the dyads last to first (seed 002 s. 2.3)
         bad += tile_reactions(rot3, rot4, inner_z, nt, wgz, wm3, wm4, wk3, wk4, wdz, wa3, wa4,
                               wak3, wak4, wrz)

@@ -14,7 +14,7 @@ from __future__ import annotations
 from .jitbase import TILE, body, nonfinite
 from .kernels import crank_row, dyad_row
 from .layout import CL2, INNER_R, P_GROUND, PARAM, ROT1, ROT2
-from .reaction_kernels import crank_moment, reaction_row, swept_row, tile_loads
+from .reaction_kernels import crank_moment, reaction_row, swept_row
 
 
 @body
@@ -97,23 +97,6 @@ def tile_moment(wgd, wdrv, wad, wr, nt):
     return bad
 
 
-def body_tile_for(loads):
-    """``body_tile(lo, t0, nt, own, gs, es, wm, wa, wl, npoint, gw, nw, undefined, st)``:
-    a body's loads over a tile (``loads``: :func:`tile_loads` of the kernel's tile
-    width; ``wl`` their geometry, ``npoint`` the point loads) into its resultants ``wa``,
-    then its ``nw`` swept loads where it has any (:func:`tile_swept`); the count of the
-    tile's first ``nt`` rows that are not finite. Each body's resultants are its own: a
-    body's loads and swept loads before the next body's give the numbers the composed
-    kernels give (every body's loads, then every body's swept loads)."""
-    @body
-    def body_tile(lo, t0, nt, own, gs, es, wm, wa, wl, npoint, gw, nw, undefined, st):
-        bad = loads(wm, wa, wl, npoint, nt)
-        if nw:
-            bad += tile_swept(lo, t0, nt, own, gs, es, gw, nw, wm, wa, undefined, st)
-        return bad
-    return body_tile
-
-
 def motion_tile_for(width: int):
     """``motion_tile(kind, nt, wgd, w, eps, wdrv, wg, wk1, wk2, wm1, wm2, wd)``: a crank's
     motion over a tile of ``width`` rows (:func:`crank_row`, its cos and sin in ``wdrv``
@@ -155,9 +138,8 @@ def tile_kept_for(width: int):
     return tile_kept
 
 
-# tiles of TILE rows (the RTR guide's kernels)
-body_tile, tile_kept = body_tile_for(tile_loads), tile_kept_for(TILE)
+tile_kept = tile_kept_for(TILE)         # (tiles of TILE rows: the RTR guide's kernels)
 
-__all__ = ["add_rows", "body_tile", "body_tile_for", "copy_rows", "known_loads",
+__all__ = ["add_rows", "copy_rows", "known_loads",
            "motion_tile_for", "tile_kept", "tile_kept_for", "tile_moment", "tile_reactions",
            "tile_swept"]
