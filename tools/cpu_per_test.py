@@ -34,7 +34,6 @@ import pytest
 
 OUT = os.environ.get("CPU_PER_TEST", "cpu_per_test.jsonl")
 _ME = psutil.Process()
-_WORKER = os.environ.get("PYTEST_XDIST_WORKER", "main")
 
 
 def processor_time() -> float:
@@ -51,12 +50,18 @@ def processor_time() -> float:
     return total
 
 
+def _worker(item: pytest.Item) -> str:
+    """The xdist worker running ``item`` (from its configuration: the environment's
+    PYTEST_XDIST_WORKER reaches the pytest runs a test starts too), else ``main``."""
+    return getattr(item.config, "workerinput", {}).get("workerid", "main")
+
+
 def _measured(item: pytest.Item, phase: str):
     cpu, wall, start = processor_time(), time.perf_counter(), time.time()
     yield
     with open(OUT, "a", encoding="utf-8") as f:
         f.write(json.dumps([item.nodeid, phase, processor_time() - cpu,
-                            time.perf_counter() - wall, _WORKER, start]) + "\n")
+                            time.perf_counter() - wall, _worker(item), start]) + "\n")
 
 
 @pytest.hookimpl(hookwrapper=True)
