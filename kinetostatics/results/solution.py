@@ -25,6 +25,7 @@ from ..solver import arith as A
 from ..solver.continuity import sweep_order
 from ..solver.kinematics import Kinematics
 from ..solver.loads import PointLoad
+from ..solver.many import CutSolved
 from ..solver.reactions import DriverReaction, JointReaction
 from ..solver.solved import DEFERRED, Deferred, Solved, drive_values
 from ..solver.structure import Structure
@@ -113,6 +114,26 @@ class Solution:
         if path is not None:
             new.__dict__["path"] = path
         return new
+
+    @classmethod
+    def all_of(cls, outcomes: list) -> list:
+        """:meth:`of` of each of ``outcomes`` (an exception stays as it is): a scene of a
+        stack (:class:`~kinetostatics.solver.many.CutSolved`) by its slots, without
+        building its ``known`` dict (measured 2026-11-29, 1000 four-bars: 0.6 ms of
+        about 20 a call of solve_many on the compiled path, against 0.2)."""
+        make, cut, of = object.__new__, CutSolved, cls.of
+        out = []
+        for s in outcomes:
+            if type(s) is not cut:
+                out.append(s if isinstance(s, Exception) else of(s))
+                continue
+            new = make(cls)
+            new.__dict__.update(scene=s.scene, structure=s.structure, self_locking=None,
+                                _deferred=s)
+            if s.path is not None:
+                new.__dict__["path"] = s.path
+            out.append(new)
+        return out
 
     @classmethod
     def block_of(cls, solved: Solved, angles: dict[str, np.ndarray],

@@ -105,7 +105,7 @@ def solve_many(scenes: Iterable[Any], *, executor: Executor | None = None,
     """
     items = list(scenes)
     with collector_paused():       # (the Solutions made too: thousands of small objects)
-        out = [Solution.of(s) for s in solve_all(items, executor, batch)]
+        out = Solution.all_of(solve_all(items, executor, batch))
     for i, r in enumerate(out):         # the unit slips, each naming its scene
         for text in r.scene.warnings:
             title = f" ({r.scene.title})" if r.scene.title else ""
@@ -117,5 +117,4 @@ def solve_outcomes(items: list[Any], *, lean: bool = True) -> list[Solution | Ex
     """Per scene, its Solution or the exception :func:`solve` raises for it, as
     :func:`solve_many` solves them (``lean``: see
     :func:`~kinetostatics.solver.many.solved_outcomes`)."""
-    return [r if isinstance(r, Exception) else Solution.of(r)
-            for r in solved_outcomes(items, lean=lean)]
+    return Solution.all_of(solved_outcomes(items, lean=lean))

@@ -242,7 +242,8 @@ def _solve_group(members: list, out: list, lean: bool) -> None:
 
 
 def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bool,
-             increasing: bool = False, counts: np.ndarray | None = None
+             increasing: bool = False, counts: np.ndarray | None = None,
+             stacked: tuple | None = None
              ) -> list[CutSolved | Solved | LeanSolved | Exception]:
     """The solve of :func:`kinetostatics.solve` on the stacked scenes, cut per scene.
 
@@ -255,15 +256,14 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     Solution is a light view: its Me/Fe and flags cut from its run's when first read,
     its kinematics and joint reactions from the run solved again (:class:`_Run`).
     ``increasing``: every scene's positions are known to increase; ``counts``: each
-    scene's number of rows, when known.
+    scene's number of rows, when known; ``stacked``: :func:`stacked_positions` of the
+    scenes, when known.
     """
     if counts is None:
         counts = np.array([s.driver.positions.size for s in scenes])
     starts = np.cumsum(counts) - counts
-    positions, tame = stacked_positions(scenes)
-    out: list[Any] = [None] * len(scenes)
+    positions, tame = stacked if stacked is not None else stacked_positions(scenes)
     alone: list[int] = []
-    structures: dict[tuple, Any] = {}
     trusty = stacker.tame() and tame
     # the compiled path for the whole group when wanted (numba loaded here, once)
     compiled = not_covered(stacker.base) is None and wanted(positions.size) is not None
@@ -275,6 +275,7 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
         compiled and lean) else None
     m2 = (np.empty(positions.size) if whole is None
           else measure2(whole.closeness2, positions.size))
+    runs: list = []             # (per run: again, its values and path; None if refused)
     for lo, hi in zip(bounds[:-1].tolist(), bounds[1:].tolist(), strict=True):
         a = int(starts[lo])
         b = int(starts[hi - 1] + counts[hi - 1])
@@ -287,6 +288,7 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
             except Exception:
                 alone.extend(range(lo, hi))
                 m2[a:b] = np.inf        # solved alone: nothing of it to probe here
+                runs.append(None)
                 continue
             m2[a:b] = kin_measure2(sol.kin)
         # lean, the scenes' Solutions keep of the run only Me/Fe and the flags; its
@@ -295,8 +297,7 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
         again = (_Run(_trapped_run, (trusty, stacker, structure, ks, lo, hi,
                                      counts[lo:hi], positions[a:b], compiled))
                  if lean else _Run(None, (), _splitter(sol)))
-        _cut_run(sol, again, scenes, ks, starts, counts, lo, hi, a, structure, structures,
-                 out)
+        runs.append((again, _run_values(sol), getattr(sol, "path", None)))
         del sol
 
     probes: dict = {}           # (the probes' structure per owner: the same each round)
@@ -311,37 +312,44 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     dead = dead_points_stacked(m2, positions, starts, counts, at, increasing)
     if whole is not None:
         release(whole)          # (its closeness: read by nothing after the screen)
+    out = _cut(scenes, structure, ks, starts, counts, bounds, runs, dead)
     for j in alone:
         out[j] = _alone(scenes[j])
-    for j, one in enumerate(out):
-        if type(one) is CutSolved:
-            one.dead = dead[j]
     return out
 
 
-def _cut_run(sol: Solved, again: _Run, scenes: list, ks: np.ndarray,
-             starts: np.ndarray, counts: np.ndarray, lo: int, hi: int, a: int, structure,
-             structures: dict, out: list) -> None:
-    """The Solutions of scenes ``lo`` to ``hi - 1`` into ``out``, cut lazily from their
-    run's ``sol`` (whose first row is the stack's row ``a``): its Me/Fe and flags kept,
-    its kinematics and joint reactions from ``again`` (the run solved again) when first
-    read; their dead points are filled in once screened. ``structures``: one Structure
-    per assembly, shared."""
+def _run_values(sol: Solved) -> tuple:
+    """What the scenes of a run keep of its solve ``sol``: the driver's kind, Me/Fe and
+    the undefined rows, each dyad's singular rows, each with whether it is an array over
+    the run's rows (cut per scene) or a value they share."""
     n_run = sol.positions.size
     drive = np.asarray(sol.drive.value)
     undefined = np.asarray(sol.undefined_load)
-    run = (sol.drive.kind, drive, _per_row(drive, n_run), undefined,
-           _per_row(undefined, n_run),
-           [(f, _per_row(f, n_run)) for f in (np.asarray(dm.singular) for dm in sol.kin.dyads)])
-    assemblies = zip(*ks[:, lo:hi].tolist(), strict=True)    # (a tuple per scene)
-    r0s = (starts[lo:hi] - a).tolist()
-    path = getattr(sol, "path", None)     # (set by the compiled path)
-    for j, key, r0, n in zip(range(lo, hi), assemblies, r0s, counts[lo:hi].tolist(),
-                             strict=True):
-        sj = structures.get(key)
-        if sj is None:
-            sj = structures[key] = replace(structure, assembly=key)
-        out[j] = CutSolved(scenes[j], sj, again, slice(r0, r0 + n), run, path)
+    return (sol.drive.kind, drive, _per_row(drive, n_run), undefined,
+            _per_row(undefined, n_run),
+            [(f, _per_row(f, n_run)) for f in (np.asarray(dm.singular) for dm in sol.kin.dyads)])
+
+
+def _cut(scenes: list, structure, ks: np.ndarray, starts: np.ndarray, counts: np.ndarray,
+         bounds: np.ndarray, runs: list, dead: list) -> list:
+    """Each scene's :class:`CutSolved` (None for a scene of a refused run) in one pass
+    over the scenes, what each needs worked out for all of them at once: its rows in its
+    run, its run's values and ``again`` (the run solved again when its kinematics are
+    first read, :class:`_Run`), its dead points, and one Structure per assembly, shared."""
+    run_of = np.repeat(np.arange(bounds.size - 1), np.diff(bounds))
+    first = starts - starts[bounds[:-1]][run_of]
+    if ks.shape[0] == 1:        # (one dyad: its assembly per scene, a number)
+        keys = ks[0].tolist()
+        structures = {k: replace(structure, assembly=(k,)) for k in set(keys)}
+    else:
+        keys = list(zip(*ks.tolist(), strict=True))
+        structures = {k: replace(structure, assembly=k) for k in set(keys)}
+    parts = [(None, None, None) if r is None else r for r in runs]
+    made = CutSolved
+    return [None if parts[r][0] is None else
+            made(sc, structures[k], parts[r][0], slice(a, b), parts[r][1], parts[r][2], d)
+            for sc, k, r, a, b, d in zip(scenes, keys, run_of.tolist(), first.tolist(),
+                                         (first + counts).tolist(), dead, strict=True)]
 
 
 def stacked_positions(scenes: list) -> tuple[np.ndarray, bool]:
@@ -446,12 +454,11 @@ class CutSolved:
     __slots__ = ("again", "dead", "path", "rows", "run", "scene", "structure")
 
     def __init__(self, scene, structure, again: _Run, rows: slice, run: tuple,
-                 path: str | None = None):
+                 path: str | None = None, dead: tuple | None = None):
         self.scene, self.structure, self.again, self.rows, self.run = (
             scene, structure, again, rows, run)
-        self.dead = None            # (filled in once every scene's are screened)
-        if path is not None:        # (the compiled path's; else the class has none)
-            self.path = path
+        self.path = path            # (the compiled path's "fast"; None: the numpy path's)
+        self.dead = dead            # (between, ends, unassembled: once screened)
 
     @property
     def known(self) -> dict:
