@@ -141,17 +141,17 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
     rows = 0            # (every scene's rows, counted as it is read: the memory check)
     groups: dict[Any, list] = {}
     alone = []
+    record = stack_record
     with warnings.catch_warnings():     # said again by solve_many, naming the scene
         warnings.simplefilter("ignore", UnitWarning)
         for i, src in enumerate(items):
             try:
                 sc = load_scene(src)
                 loaded += 1
-                n = sc.driver.positions.size
+                # its signature's label, its numbers, whether its positions increase
+                # (then none repeats), its rows and its sweep, told once per scene object
+                label, nums, up, n, sweep = record(sc)
                 rows += n
-                # its signature's label, its numbers and whether its positions increase
-                # (then none repeats), told once per scene object
-                label, nums, up = stack_record(sc)
                 if not up:
                     q = "angle" if sc.driver.kind == "R" else "length"
                     check_distinct(sc.driver.positions, sc.units.unit(q),
@@ -165,19 +165,22 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
             members = groups.get(label)
             if members is None:
                 members = groups[label] = []
-            members.append((i, sc, nums, up, n))
+            members.append((i, sc, nums, up, n, sweep))
     _check_memory(loaded, rows, groups, alone)
     for i, sc in alone:
         out[i] = _alone(sc)
     for members in groups.values():
+        if rows < CHUNK_ROWS:       # (every group one chunk: no pass over its scenes)
+            _solve_group(members, out, lean)
+            continue
         chunk: list = []
-        rows = 0
+        count = 0
         for m in members:
             chunk.append(m)
-            rows += m[4]
-            if rows >= CHUNK_ROWS:
+            count += m[4]
+            if count >= CHUNK_ROWS:
                 _solve_group(chunk, out, lean)
-                chunk, rows = [], 0
+                chunk, count = [], 0
         if chunk:
             _solve_group(chunk, out, lean)
     return out
@@ -211,34 +214,37 @@ def _solve_group(members: list, out: list, lean: bool) -> None:
     if len(members) == 1:
         out[members[0][0]] = _alone(members[0][1])
         return
+    # (each field of the members at once: index, scene, numbers, increasing, rows, sweep)
+    index, scenes, numbers, ups, counts, sweeps = (list(f) for f in zip(*members, strict=True))
     stacker = None
     try:
-        structure = analyse(members[0][1], assemble=False)
-        stacker = Stacker([m[1] for m in members], [m[2] for m in members])
-        ks, ok = assemblies(stacker, structure)
+        structure = analyse(scenes[0], assemble=False)
+        one = sweeps[0] is not None and sweeps.count(sweeps[0]) == len(sweeps)
+        stacker = Stacker(scenes, numbers, one)
+        rows = np.array(counts)
+        stacked = stacked_positions(scenes, one)
+        ks, ok = assemblies(stacker, structure, stacked[0][np.cumsum(rows) - rows])
     except Exception:
         ok = np.zeros(len(members), dtype=bool)
-    if ok.all():            # (the usual case: every scene kept, no pass over the flags)
-        kept = members
-    else:
-        for (i, sc, *_), good in zip(members, ok.tolist(), strict=True):
-            if not good:
+    if not ok.all():        # (usually all kept: no pass over the flags, no copy)
+        good = ok.tolist()
+        for i, sc, g in zip(index, scenes, good, strict=True):
+            if not g:
                 out[i] = _alone(sc)
-        kept = [m for m, good in zip(members, ok.tolist(), strict=True) if good]
+        kept = [m for m, g in zip(members, good, strict=True) if g]
         if len(kept) < 2:
             for i, sc, *_ in kept:
                 out[i] = _alone(sc)
             return
         ks = ks[:, ok]
-    scenes = [m[1] for m in kept]
+        index, scenes, numbers, ups, counts, _ = (list(f) for f in zip(*kept, strict=True))
+        stacker, stacked, rows = Stacker(scenes, numbers), None, np.array(counts)
     try:
-        sols = _stacked(scenes, structure, ks, stacker if len(kept) == len(members)
-                        else Stacker(scenes, [m[2] for m in kept]), lean,
-                        all([m[3] for m in kept]), np.array([m[4] for m in kept]))
+        sols = _stacked(scenes, structure, ks, stacker, lean, all(ups), rows, stacked)
     except Exception:
         sols = [_alone(sc) for sc in scenes]
-    for m, s in zip(kept, sols, strict=True):
-        out[m[0]] = s
+    for i, s in zip(index, sols, strict=True):
+        out[i] = s
 
 
 def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bool,
@@ -352,16 +358,18 @@ def _cut(scenes: list, structure, ks: np.ndarray, starts: np.ndarray, counts: np
                                          (first + counts).tolist(), dead, strict=True)]
 
 
-def stacked_positions(scenes: list) -> tuple[np.ndarray, bool]:
+def stacked_positions(scenes: list, one: bool | None = None) -> tuple[np.ndarray, bool]:
     """Every scene's driver positions one after another, and whether they are tame
     (:func:`~kinetostatics.solver.trap.positions_tame`). Scenes that all sweep as the
     first, read from the same start, stop and count
-    (:attr:`~kinetostatics.model.scene_types.Driver.sweep`: the same bits), share one
-    read-only array, the last one kept: the same stack solved again (a design's
-    generations, a study's loads) takes it as it is (measured 2026-11-29, 1000 four-bars
-    x 361: 2.3 ms a call gathering 1000 sweeps into fresh pages)."""
+    (:attr:`~kinetostatics.model.scene_types.Driver.sweep`: the same bits; ``one``, when
+    known), share one read-only array, the last one kept: the same stack solved again (a
+    design's generations, a study's loads) takes it as it is (measured 2026-11-29, 1000
+    four-bars x 361: 2.3 ms a call gathering 1000 sweeps into fresh pages)."""
     key = scenes[0].driver.sweep
-    if key is None or any([s.driver.sweep != key for s in scenes]):
+    if one is None:
+        one = key is not None and all([s.driver.sweep == key for s in scenes])
+    if not one:
         positions = np.concatenate([s.driver.positions for s in scenes])
         return positions, positions_tame(positions)
     got = _POSITIONS.get((key, len(scenes)))
