@@ -120,7 +120,7 @@ class Solution:
         """:meth:`of` of each of ``outcomes`` (an exception stays as it is): a scene of a
         stack (:class:`~kinetostatics.solver.many.CutSolved`) by its slots, without
         building its ``known`` dict (measured 2026-11-29, 1000 four-bars: 0.6 ms of
-        about 20 a call of solve_many on the compiled path, against 0.2)."""
+        about 20 a call of solve_many on the compiled path, against 0.25)."""
         make, cut, of = object.__new__, CutSolved, cls.of
         out = []
         for s in outcomes:
@@ -128,10 +128,11 @@ class Solution:
                 out.append(s if isinstance(s, Exception) else of(s))
                 continue
             new = make(cls)
-            new.__dict__.update(scene=s.scene, structure=s.structure, self_locking=None,
-                                _deferred=s)
+            d = new.__dict__
+            d["scene"], d["structure"], d["self_locking"], d["_deferred"] = (
+                s.scene, s.structure, None, s)
             if s.path is not None:
-                new.__dict__["path"] = s.path
+                d["path"] = s.path
             out.append(new)
         return out
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 import warnings
 from collections.abc import Iterable
 from concurrent.futures import Executor
+from operator import attrgetter
 from typing import Any
 
 from ..model.errors import UnitWarning
@@ -106,11 +107,15 @@ def solve_many(scenes: Iterable[Any], *, executor: Executor | None = None,
     items = list(scenes)
     with collector_paused():       # (the Solutions made too: thousands of small objects)
         out = Solution.all_of(solve_all(items, executor, batch))
-    for i, r in enumerate(out):         # the unit slips, each naming its scene
-        for text in r.scene.warnings:
-            title = f" ({r.scene.title})" if r.scene.title else ""
-            warnings.warn(f"scenes[{i}]{title}: {text}", UnitWarning, stacklevel=2)
+    if any(map(_SLIPS, out)):           # the unit slips, each naming its scene
+        for i, r in enumerate(out):
+            for text in r.scene.warnings:
+                title = f" ({r.scene.title})" if r.scene.title else ""
+                warnings.warn(f"scenes[{i}]{title}: {text}", UnitWarning, stacklevel=2)
     return out
+
+
+_SLIPS = attrgetter("scene.warnings")       # (a Solution's scene's unit slips)
 
 
 def solve_outcomes(items: list[Any], *, lean: bool = True) -> list[Solution | Exception]:

@@ -223,7 +223,7 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     m = starts.size
     none, pairs = np.zeros(0, dtype=int), np.zeros((0, 2), dtype=int)
     if not m2u.size or not _min(m2u) < SCREEN**2:     # nothing to probe (NaN is not)
-        return [(pairs, none, pairs) for _ in range(m)]
+        return [(pairs, none, pairs)] * m
     one = m == 1
     # the rows in increasing position (None: as they are, the usual case: then no
     # array over all the rows is taken in another order)
@@ -244,7 +244,7 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     hi = np.concatenate([pos[cand + 1], hi_f[use_f], hi_l[use_l]])
     owner = np.concatenate([_segment_of(cand, starts), segs[use_f], segs[use_l]])
     if lo.size == 0:
-        return [(pairs, none, pairs) for _ in range(m)]
+        return [(pairs, none, pairs)] * m
     best, open_ = _probe(at, lo, hi, owner)
     ends_m2 = np.minimum(m2[cand], m2[cand + 1])
     dead = (best[:k] <= SINGULAR_WARN**2) & (best[:k] < ends_m2) & ~open_[:k]
@@ -261,7 +261,7 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
         edges.setdefault(s, []).append(r)
     between = _per_segment(cand[dead], order, starts, m)
     gaps = _per_segment(cand[open_[:k]], order, starts, m)
-    out = [(b, none, g) for b, g in zip(between, gaps, strict=True)]
+    out = list(zip(between, [none] * m, gaps, strict=True))     # (a tuple per segment)
     for s, rs in edges.items():
         rows = rs if order is None else order[rs].tolist()
         out[s] = (out[s][0], np.array(rows, dtype=int) - int(starts[s]), out[s][2])

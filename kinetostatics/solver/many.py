@@ -104,11 +104,12 @@ def solve_all(items: list, executor: Executor | None = None, batch: int | None =
         # again)
         out = [r for part in executor.map(partial(solved_outcomes, lean=False), parts)
                for r in part]
-    for i, r in enumerate(out):
-        if isinstance(r, WorkbenchError):
-            raise type(r)(f"scenes[{i}]: {r}") from None    # which scene, in one line
-        if isinstance(r, Exception):
-            raise r
+    if any(issubclass(kind, Exception) for kind in set(map(type, out))):  # (usually none)
+        for i, r in enumerate(out):
+            if isinstance(r, WorkbenchError):
+                raise type(r)(f"scenes[{i}]: {r}") from None    # which scene, in one line
+            if isinstance(r, Exception):
+                raise r
     return out
 
 
