@@ -55,7 +55,7 @@ import numpy as np
 from ..common.lazy import moved_names
 from ..model.errors import UnitWarning, WorkbenchError
 from ..model.memory import check_memory
-from ..model.scene import load_scene
+from ..model.scene import Scene, load_scene
 from . import blocks
 from .blocks import Kept, LeanSolved
 from .deadpoints import dead_points_stacked, kin_measure2, measure2
@@ -138,10 +138,57 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
     read (:class:`_Run`); False keeps every run's arrays, for a caller that reads every
     table (an answer key) or sends the arrays elsewhere (pickled whole)."""
     out: list[Any] = [None] * len(items)
+    groups: dict[Any, list] = {}
+    alone: list = []
+    one = _one_group(items)
+    if one is not None:         # (the usual case: read at once)
+        groups[0], rows = one
+        _check_memory(len(items), rows, groups, alone)
+    else:
+        rows = _read_each(items, out, groups, alone)
+    for i, sc in alone:
+        out[i] = _alone(sc)
+    for members in groups.values():
+        if rows < CHUNK_ROWS:       # (each group one chunk: no pass over its scenes)
+            _solve_group(members, out, lean)
+            continue
+        chunk: list = []
+        count = 0
+        for m in members:
+            chunk.append(m)
+            count += m[4]
+            if count >= CHUNK_ROWS:
+                _solve_group(chunk, out, lean)
+                chunk, count = [], 0
+        if chunk:
+            _solve_group(chunk, out, lean)
+    return out
+
+
+def _one_group(items: list) -> tuple[list, int] | None:
+    """The members of :func:`solved_outcomes`' one group and their rows in all, when
+    every item is a Scene of one signature whose positions increase (the usual case),
+    each scene's record (:func:`~kinetostatics.solver.stack.stack_record`) taken and
+    spread over the members in C; else None (read one by one, :func:`_read_each`)."""
+    if not items or set(map(type, items)) != {Scene}:
+        return None
+    try:
+        labels, numbers, ups, counts, sweeps = zip(*map(stack_record, items), strict=True)
+    except Exception:           # (read one by one: each scene's error in its place)
+        return None
+    if labels[0] is None or labels.count(labels[0]) != len(labels) or not all(ups):
+        return None
+    return (list(zip(range(len(items)), items, numbers, ups, counts, sweeps, strict=True)),
+            sum(counts))
+
+
+def _read_each(items: list, out: list, groups: dict, alone: list) -> int:
+    """Read the scenes one by one into ``groups`` (members by signature's label) and
+    ``alone`` (scenes solved alone), each error :func:`~kinetostatics.solve` would raise
+    for a scene in its place in ``out``; then check the memory of them all. Returns
+    their rows in all."""
     loaded = 0
     rows = 0            # (every scene's rows, counted as it is read: the memory check)
-    groups: dict[Any, list] = {}
-    alone = []
     record = stack_record
     with warnings.catch_warnings():     # said again by solve_many, naming the scene
         warnings.simplefilter("ignore", UnitWarning)
@@ -168,23 +215,7 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
                 members = groups[label] = []
             members.append((i, sc, nums, up, n, sweep))
     _check_memory(loaded, rows, groups, alone)
-    for i, sc in alone:
-        out[i] = _alone(sc)
-    for members in groups.values():
-        if rows < CHUNK_ROWS:       # (every group one chunk: no pass over its scenes)
-            _solve_group(members, out, lean)
-            continue
-        chunk: list = []
-        count = 0
-        for m in members:
-            chunk.append(m)
-            count += m[4]
-            if count >= CHUNK_ROWS:
-                _solve_group(chunk, out, lean)
-                chunk, count = [], 0
-        if chunk:
-            _solve_group(chunk, out, lean)
-    return out
+    return rows
 
 
 def _check_memory(loaded: int, rows: int, groups: dict, alone: list) -> None:
