@@ -101,7 +101,7 @@ class FusedTables:
         width = min(BLOCK, n)
         cs, sn = np.empty(width), np.empty(width)
         mb = np.empty((3 * BODY_ROWS, width))       # the block's motion and reactions
-        rb = np.empty((4 * src.shape[0], width))
+        rb = np.empty((4 * src.shape[0] + 1, width))    # (+ F's row)
         bad = 0
         for lo in range(0, n, width):
             m = min(lo + width, n) - lo

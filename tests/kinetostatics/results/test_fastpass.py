@@ -172,6 +172,31 @@ def test_point_rows_is_the_numpy_paths_arithmetic(fast, lx, ly):
     assert (out[:, :4] == 7.0).all() and (out[:, 4 + w:] == 7.0).all()
 
 
+@pytest.mark.parametrize("text", [scene_text("four_bar"), scene_text("scotch_yoke"),
+                                  slider_crank_pushed()], ids=["RRR", "TTR", "RRT"])
+def test_the_fused_kernels_points_are_the_numpy_paths_arithmetic(fast, text):
+    """The fused table kernel's columns of a point (written a column a loop by
+    non-temporal stores) are the numpy path's arithmetic bit for bit, at a local point
+    on each road of arith.rotate on every moving body, from the full re-solve's motion."""
+    from kinetostatics.solver import arith as A
+    sol = ks.solve(text)
+    lean = sol.__dict__["_deferred"]
+    fused = FusedTables(loader.kernels(), lean.known["scene"], lean.known["structure"])
+    points = [(b, loc) for b in fused.slot for loc in LOCAL]
+    n = lean.positions.size
+    out = np.full((6, len(points) * n + 3), 7.0)
+    fused.write(points, out[:, :-3])
+    full = ks.solve(text)
+    for i, (b, loc) in enumerate(points):
+        m = full.kin.bodies[b]
+        rx, ry = m.rotate(*loc)
+        expected = [A.add(m.ox, rx), A.add(m.oy, ry), *m.vel_arm(rx, ry), *m.acc_arm(rx, ry)]
+        for c in range(6):
+            want = np.ascontiguousarray(np.broadcast_to(expected[c], (n,)))
+            assert out[c, i * n:(i + 1) * n].tobytes() == want.tobytes(), (b, loc, c)
+    assert (out[:, -3:] == 7.0).all()
+
+
 def test_the_pass_solves_no_array_over_the_sweep(fast, monkeypatch):
     """The pass goes through the scratch buffer block by block: no full re-solve, and
     one call of the kinematics kernel per point and block."""
