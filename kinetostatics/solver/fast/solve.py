@@ -117,20 +117,24 @@ def fused_blocks(kernels, scene: Scene, full: Scene, structure, geometry,
     angles = full.driver.angles
     n = positions.size
     width = min(FUSED_ROWS, n)
-    cs, sn = np.empty(width), np.empty(width)
+    # (the cos and sin kept whole: the tables' pass reads them instead of working them out
+    # again, fastpass)
+    cs, sn = np.empty(n), np.empty(n)
     drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
     bad = 0
     for lo in range(0, n, width):
         hi = min(lo + width, n)
-        np.cos(angles[lo:hi], out=cs[:hi - lo])
-        np.sin(angles[lo:hi], out=sn[:hi - lo])
-        bad += kernel(0, hi - lo, OWNERS, cs, sn, START, *fixed, drive[lo:hi],
+        np.cos(angles[lo:hi], out=cs[lo:hi])
+        np.sin(angles[lo:hi], out=sn[lo:hi])
+        bad += kernel(0, hi - lo, OWNERS, cs[lo:hi], sn[lo:hi], START, *fixed, drive[lo:hi],
                       close[lo:hi], undefined[lo:hi])
     if bad:
         raise Refused(bad)
     if plan is not None:
         plan.check_swept()
-    return kept_sweep(structure, "R", drive, undefined, [close])
+    kept = kept_sweep(structure, "R", drive, undefined, [close])
+    kept.crank = (cs, sn)
+    return kept
 
 
 def _fused(kernels, scene: Scene, structure, geometry) -> tuple | None:

@@ -114,6 +114,26 @@ def test_the_fused_road_gives_the_full_re_solves_tables(fast, text, monkeypatch)
     assert bits(alone) == bits(full.kinematics)
 
 
+def test_the_pass_reads_the_solves_cos_and_sin(fast):
+    """The lean solve keeps the crank angle's cos and sin (numpy's over the whole sweep)
+    and the fused pass reads them instead of working them out again (other numbers
+    there give other tables); a solution without them (worked out per block) gives the
+    same tables."""
+    text = scene_text("four_bar")
+    sol = ks.solve(text)
+    lean = sol.__dict__["_deferred"]
+    cs, sn = lean.crank
+    angles = lean.known["scene"].driver.angles
+    assert cs.tobytes() == np.cos(angles).tobytes() and sn.tobytes() == np.sin(angles).tobytes()
+    tables = bits(sol.reactions), bits(sol.kinematics)
+    again = ks.solve(text)
+    again.__dict__["_deferred"].crank = None
+    assert (bits(again.reactions), bits(again.kinematics)) == tables
+    other = ks.solve(text)
+    other.__dict__["_deferred"].crank = (cs[::-1].copy(), sn[::-1].copy())
+    assert bits(other.kinematics)["x"] != tables[1]["x"]
+
+
 def test_a_refused_block_takes_the_full_re_solve(fast, monkeypatch):
     """Where the kernels refuse a block of the pass (never expected), the table comes
     from the full re-solve: the same table."""
