@@ -5,17 +5,17 @@ order, the same numbers bit for bit), and each block's rows of the ``kinematics`
 ``reactions`` tables written straight into the tables' own columns while the block's
 motion is in the caches (:mod:`kinetostatics.results.fastpass`).
 
-Per block: every named point's ``x, y, vx, vy, ax, ay`` (the numpy path's operations
+Per tile: every named point's ``x, y, vx, vy, ax, ay`` (the numpy path's operations
 in its order, as :func:`~kinetostatics.solver.fast.table_kernels.point_row`) and every
 joint's ``Fx, Fy`` (the reaction on its ``on`` body: the solver's value or its negation,
 exact), ``F = hypot(Fx, Fy)`` (numpy's, bit for bit:
 :func:`~kinetostatics.solver.fast.table_kernels.hypot_into`) and a prismatic joint's
-``N, M``, written from the block's motion and reactions kept in the caches, a column a
-loop, by non-temporal stores (:mod:`~kinetostatics.solver.fast.streams`; measured
-2026-11-29 at 1e6 positions, the four-bar's pass in pages already had: 0.084 s against
-0.105 s with ordinary stores six columns a loop, ``kinematics`` alone 0.064 against
-0.083 s; 54 columns written a tile of 64 rows at a time had run at half the speed of
-long runs of six).
+``N, M``, written from the kernel's scratch, a column a loop, by non-temporal stores
+(:mod:`~kinetostatics.solver.fast.streams`). Measured 2026-11-29 at 1e6 positions, the
+four-bar's pass in pages already had, processor time: 0.066 s; with the tile's motion
+and reactions first copied into a block of 4096 rows and the columns written from it
+0.072 s (the copy alone 7 ms), and with ordinary stores six columns a loop 0.105 s
+(0.084 s with the crank's cos and sin worked out again).
 
 Imported by :mod:`~kinetostatics.solver.fast.table_pass` once the compiled path is
 loaded (the cache folder settled); the rules of the kernels module hold here.
@@ -30,7 +30,6 @@ from .jitbase import (
     nonfinite,
     scratch,
     tile_geometry,
-    tile_out,
     tile_rows,
 )
 from .kernels import crank_row, dyad_row
@@ -91,15 +90,13 @@ def _views(w, k1d, k2d):
 
 @body
 def _crank_dyad_tables(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
-                       gls, npt, slots, local, n, at, kout, src, sign, rout, mb, rb, mine):
+                       gls, npt, slots, local, n, at, kout, src, sign, rout, mine):
     """A crank and one dyad (not RTR), rows ``lo`` to ``hi`` of its sweep (``own``,
     ``ts``, the geometry and the loads as ``solve_many``'s fused kernel takes them; no
-    ``resist`` loads), solved tile by tile as that kernel solves them, each tile's
-    bodies' motion kept in ``mb`` (ten rows a body: the driver's, the dyad's first,
-    its second) and each joint's reaction in ``rb`` (four rows a joint), both in the
-    caches; then the block's rows written into the tables' columns, at row
-    ``at + i - lo`` of each block of ``n`` rows, a column a loop by non-temporal stores
-    (drained before it returns):
+    ``resist`` loads), solved tile by tile as that kernel solves them, and each tile's
+    rows written into the tables' columns from the kernel's scratch (the tile's motion
+    and reactions, in the first-level cache), at row ``at + i - lo`` of each block of
+    ``n`` rows, a column a loop by non-temporal stores (drained before it returns):
 
     * ``kout`` (the ``kinematics`` table's six float columns, a row each): point ``p``
       of body ``slots[p]`` (1 the driver, 2 and 3 the dyad's bodies) at the local
@@ -123,6 +120,7 @@ def _crank_dyad_tables(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, 
     n0, n1, n2 = gl[0].shape[0], gl[1].shape[0], gl[2].shape[0]
     wl = scratch(n0 + n1 + n2)
     wl0, wl1, wl2 = wl[:n0], wl[n0:n0 + n1], wl[n0 + n1:]
+    wf = scratch(1)[0]                    # (a reaction's F over the tile)
     ld = ly = l0 = l1 = l2 = -1           # (the scene whose geometry each tile holds)
     loads = src.shape[0] > 0
     bad = 0
@@ -141,7 +139,7 @@ def _crank_dyad_tables(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, 
         for t in range(TILE):
             f = dyad_row(kind, rot1, rot2, inner_r, False, t, t, wg, wk1, wk2, wm1, wm2, wd)
             bad += f if t < nt else 0
-        tile_out(mb, w_[R:4 * R], t0 - lo, nt)
+        j = at + t0 - lo                # (the tile's first row in each block of n)
         if loads:
             l0 = tile_geometry(wl0, gl[0], gls[0], own, t0, l0)
             l1 = tile_geometry(wl1, gl[1], gls[1], own, t0, l1)
@@ -154,16 +152,9 @@ def _crank_dyad_tables(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, 
             known_loads(wg, wad, wad, wak1, wak2)
             for t in range(nt):
                 bad += nonfinite((wad[0, t], wad[1, t]))
-            for q in range(src.shape[0]):
-                for f in range(4):
-                    row = src[q, f]
-                    if row >= 0:
-                        dst = rb[4 * q + f, t0 - lo:t0 - lo + nt]
-                        for t in range(nt):
-                            dst[t] = w_[row, t]
+            _reaction_rows(w_, wf, nt, src, sign, n, j, rout, mine)
+        _point_rows(w_[R:4 * R], nt, slots, local, n, j, kout)
         t0 += nt
-    _point_rows(mb, hi - lo, slots, local, n, at, kout)
-    _reaction_rows(rb, hi - lo, src, sign, n, at, rout, mine)
     drain()                 # (the non-temporal stores in memory before the caller reads)
     return bad
 
@@ -183,7 +174,7 @@ def _arm(c, s, lx, ly):
 @body
 def _point_column(mb, s, k, m, lx, ly, out):
     """Column ``k`` (``x, y, vx, vy, ax, ay``) of the body point at the local ``(lx, ly)``
-    over the block's ``m`` rows of the body's motion (``mb[s:s + 10]``) into ``out``, by
+    over the tile's ``m`` rows of the body's motion (``mb[s:s + 10]``) into ``out``, by
     non-temporal stores: x = o + r, v = v_O + omega k x r, a = a_O + eps k x r - omega^2
     r (seed 001 eq. 9), the operations of
     :func:`~kinetostatics.solver.fast.table_kernels.point_row` in its order (the same
@@ -212,7 +203,9 @@ def _point_column(mb, s, k, m, lx, ly, out):
 
 @body
 def _point_rows(mb, m, slots, local, n, at, kout):
-    """The block's ``m`` rows of every point into ``kout`` (:func:`_crank_dyad_tables`),
+    """The tile's ``m`` rows of every point (``mb``: the motion of the driver and the
+    dyad's bodies, ten rows each) into ``kout`` at row ``at`` of each point's block
+    (:func:`_crank_dyad_tables`),
     a column at a time (:mod:`~kinetostatics.solver.fast.streams`: a loop of
     non-temporal stores writes one column)."""
     for p in range(slots.shape[0]):
@@ -223,22 +216,22 @@ def _point_rows(mb, m, slots, local, n, at, kout):
 
 
 @body
-def _reaction_rows(rb, m, src, sign, n, at, rout, mine):
-    """The block's ``m`` rows of every joint's ``Fx, Fy, F`` (and ``N, M``) into
-    ``rout`` (:func:`_crank_dyad_tables`), joint by joint, a column at a time; ``F``
-    worked out into ``rb``'s last row first."""
-    f = rb[rb.shape[0] - 1]
+def _reaction_rows(w_, f, m, src, sign, n, j, rout, mine):
+    """The tile's ``m`` rows of every joint's ``Fx, Fy, F`` (and ``N, M``) from the
+    kernel's scratch ``w_`` into ``rout`` (:func:`_crank_dyad_tables`) at row ``j`` of
+    each joint's block, a column at a time; ``F`` worked out into ``f`` first."""
     for q in range(src.shape[0]):
         neg = sign[q, 0] < 0.0
-        j = q * n + at
-        stream_column(rb[4 * q], m, neg, rout[0, j:j + m])
-        stream_column(rb[4 * q + 1], m, neg, rout[1, j:j + m])
-        hypot_into(rb[4 * q], rb[4 * q + 1], f, m, mine)   # (|Fx|, |Fy|: no sign)
-        stream_column(f, m, False, rout[2, j:j + m])
+        at = q * n + j
+        fx, fy = w_[src[q, 0]], w_[src[q, 1]]
+        stream_column(fx, m, neg, rout[0, at:at + m])
+        stream_column(fy, m, neg, rout[1, at:at + m])
+        hypot_into(fx, fy, f, m, mine)              # (|Fx|, |Fy|: no sign)
+        stream_column(f, m, False, rout[2, at:at + m])
         if src[q, 2] >= 0:
             flip = sign[q, 1] < 0.0
-            stream_column(rb[4 * q + 2], m, flip, rout[3, j:j + m])
-            stream_column(rb[4 * q + 3], m, flip, rout[4, j:j + m])
+            stream_column(w_[src[q, 2]], m, flip, rout[3, at:at + m])
+            stream_column(w_[src[q, 3]], m, flip, rout[4, at:at + m])
 
 
 def _tables_of(kind: str):
@@ -251,10 +244,10 @@ def _tables_of(kind: str):
     code = KINDS[kind]
 
     def tables(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt,
-               slots, local, n, at, kout, src, sign, rout, mb, rb, mine):
+               slots, local, n, at, kout, src, sign, rout, mine):
         return _crank_dyad_tables(code, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys,
                                   k1d, k2d, gl, gls, npt, slots, local, n, at, kout, src, sign,
-                                  rout, mb, rb, mine)
+                                  rout, mine)
     tables.__name__ = tables.__qualname__ = f"{kind.lower()}_tables"
     return jit(tables)
 

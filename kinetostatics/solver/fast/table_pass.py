@@ -106,8 +106,6 @@ class FusedTables:
             crank = None
         if crank is None:
             cs, sn = np.empty(width), np.empty(width)
-        mb = np.empty((3 * BODY_ROWS, width))       # the block's motion and reactions
-        rb = np.empty((4 * src.shape[0] + 1, width))    # (+ F's row)
         bad = 0
         for lo in range(0, n, width):
             m = min(lo + width, n) - lo
@@ -117,7 +115,7 @@ class FusedTables:
             else:
                 cs, sn = crank[0][lo:lo + m], crank[1][lo:lo + m]
             bad += self.kernel(0, m, OWNERS, cs, sn, START, *self.fixed, slots, local, n, lo,
-                               kout, src, sign, rout, mb, rb, own)
+                               kout, src, sign, rout, own)
         if bad:
             raise Refused(bad)
 
