@@ -22,8 +22,9 @@ written straight into the table's columns, allocated once
 
 A crank and one dyad (not RTR, no ``resist`` loads) takes the fused table kernels instead
 (:class:`~kinetostatics.solver.fast.table_pass.FusedTables`): the block solved tile by
-tile in one kernel and its rows of both tables written there, ``F`` by numpy's ``hypot``
-bit for bit at a fifteenth of its cost (docs/solve-paths.md, "The fused table kernels").
+tile in one kernel and each tile's rows of both tables written there by non-temporal
+stores, ``F`` by numpy's ``hypot`` bit for bit at a fifteenth of its cost, the crank's
+cos and sin those the lean solve kept (docs/solve-paths.md, "The fused table kernels").
 
 No array over the whole sweep is made but the tables' own, and no temporary per column
 (the full re-solve gathered some 26 arrays, 200 MB at 1e6 positions, and the tables were

@@ -88,6 +88,31 @@ def _views(w, k1d, k2d):
             w[g + DYAD_GEOMETRY:])
 
 
+def tile_motion_for(width: int):
+    """``tile_motion(kind, rot1, rot2, inner_r, nt, wgd, w, eps, wdrv, wg, wk1, wk2, wm1,
+    wm2, wd)``: a tile's motion (tiles of ``width`` rows), the crank's
+    (:func:`~kinetostatics.solver.fast.kernels.crank_row`, its cos and sin in ``wdrv``
+    already) then the dyad's (:func:`~kinetostatics.solver.fast.kernels.dyad_row`), each
+    a loop over the whole tile (a constant count: it vectorises); the count of the
+    first ``nt`` rows that are not finite. (``solve_many``'s fused kernels work out the
+    same two loops in tiles of ``FUSED_TILE`` rows.)"""
+    @body
+    def tile_motion(kind, rot1, rot2, inner_r, nt, wgd, w, eps, wdrv, wg, wk1, wk2, wm1, wm2,
+                    wd):
+        bad = 0
+        for t in range(width):
+            f = crank_row(t, t, wgd, w, eps, wdrv)
+            bad += f if t < nt else 0
+        for t in range(width):
+            f = dyad_row(kind, rot1, rot2, inner_r, False, t, t, wg, wk1, wk2, wm1, wm2, wd)
+            bad += f if t < nt else 0
+        return bad
+    return tile_motion
+
+
+_tile_motion = tile_motion_for(TILE)
+
+
 @body
 def _crank_dyad_tables(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl,
                        gls, npt, slots, local, n, at, kout, src, sign, rout, mine):
@@ -133,12 +158,8 @@ def _crank_dyad_tables(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, 
         for t in range(nt):
             wdrv[C, t] = cs[c0 + t]
             wdrv[S, t] = sn[c0 + t]
-        for t in range(TILE):
-            f = crank_row(t, t, wgd, w, eps, wdrv)
-            bad += f if t < nt else 0
-        for t in range(TILE):
-            f = dyad_row(kind, rot1, rot2, inner_r, False, t, t, wg, wk1, wk2, wm1, wm2, wd)
-            bad += f if t < nt else 0
+        bad += _tile_motion(kind, rot1, rot2, inner_r, nt, wgd, w, eps, wdrv, wg, wk1, wk2, wm1,
+                            wm2, wd)
         j = at + t0 - lo                # (the tile's first row in each block of n)
         if loads:
             l0 = tile_geometry(wl0, gl[0], gls[0], own, t0, l0)
