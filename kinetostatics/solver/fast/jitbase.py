@@ -75,31 +75,35 @@ scratch = scratch_for(TILE)
 
 
 @body
-def tile_in(w, k, j0, nt):
-    """Columns ``j0`` to ``j0 + nt`` of ``k``'s rows into ``w[:, :nt]`` (each row a
-    loop of its own over 1-d views: it vectorises)."""
-    for f in range(w.shape[0]):
-        src, dst = k[f, j0:j0 + nt], w[f]
+def tile_move(dst, d0, src, s0, nt, add):
+    """Columns ``s0`` to ``s0 + nt`` of ``src``'s rows into columns ``d0`` on of ``dst``'s
+    (``add``: added to them; a constant where it is called). Each row a loop of its own
+    over 1-d views: it vectorises."""
+    for f in range(dst.shape[0]):
+        src_f, dst_f = src[f, s0:s0 + nt], dst[f, d0:d0 + nt]
         for t in range(nt):
-            dst[t] = src[t]
+            if add:
+                dst_f[t] += src_f[t]
+            else:
+                dst_f[t] = src_f[t]
+
+
+@body
+def tile_in(w, k, j0, nt):
+    """Columns ``j0`` to ``j0 + nt`` of ``k``'s rows into ``w[:, :nt]``."""
+    tile_move(w, 0, k, j0, nt, False)
 
 
 @body
 def tile_out(k, w, j0, nt):
     """``w[:, :nt]`` into columns ``j0`` to ``j0 + nt`` of ``k``'s rows."""
-    for f in range(w.shape[0]):
-        src, dst = w[f], k[f, j0:j0 + nt]
-        for t in range(nt):
-            dst[t] = src[t]
+    tile_move(k, j0, w, 0, nt, False)
 
 
 @body
 def tile_add(k, w, j0, nt):
     """``w[:, :nt]`` added to columns ``j0`` to ``j0 + nt`` of ``k``'s rows."""
-    for f in range(w.shape[0]):
-        src, dst = w[f], k[f, j0:j0 + nt]
-        for t in range(nt):
-            dst[t] += src[t]
+    tile_move(k, j0, w, 0, nt, True)
 
 
 def tile_rows_for(width: int):
@@ -137,3 +141,12 @@ def tile_geometry(wg, g, gs, own, t0, last):
         for f in range(wg.shape[0]):
             wg[f, :] = g[f, a]
     return a
+
+
+@body
+def tile_next(wg, g, gs, own, t0, hi, last):
+    """``(nt, last)`` of the tile that starts at row ``t0`` (of rows up to ``hi``): its
+    count of rows (:func:`tile_rows`: one scene's) and the scene whose geometry ``wg``
+    then holds, put there unless ``last`` is it (:func:`tile_geometry`)."""
+    nt = tile_rows(gs, own, t0, hi)
+    return nt, tile_geometry(wg, g, gs, own, t0, last)

@@ -14,10 +14,9 @@ from .jitbase import (
     nonfinite,
     scratch,
     tile_add,
-    tile_geometry,
     tile_in,
+    tile_next,
     tile_out,
-    tile_rows,
 )
 from .layout import (
     AL,
@@ -36,6 +35,7 @@ from .layout import (
     I_SX,
     I_SY,
     INNER_R,
+    KINDS,
     L_I,
     L_M0,
     L_POINT,
@@ -92,14 +92,10 @@ def body_loads(lo, hi, off, g, gs, own, npoint, m, acc):
     w = scratch(BODY_ROWS + 3)
     wm, wa = w[:BODY_ROWS], w[BODY_ROWS:]
     wg = scratch(g.shape[0])
-    bad = 0
-    last = -1           # (the scene whose geometry the tile holds)
-    t0 = lo
+    bad, last, t0 = 0, -1, lo       # (last: the scene whose geometry the tile holds)
     while t0 < hi:
-        nt = tile_rows(gs, own, t0, hi)         # (a tile never spans two scenes)
-        j0 = t0 - off
-        last = tile_geometry(wg, g, gs, own, t0, last)
-        t0 += nt
+        nt, last = tile_next(wg, g, gs, own, t0, hi, last)     # (one scene's rows)
+        j0, t0 = t0 - off, t0 + nt
         tile_in(wm[C:AL + 1], m[C:AL + 1], j0, nt)      # (no velocities read)
         tile_in(wm[AX:AY + 1], m[AX:AY + 1], j0, nt)
         bad += tile_loads(wm, wa, wg, npoint, nt)
@@ -251,7 +247,7 @@ def _outer(rot, t, g, r, j, m, mk, a, ak, d, rr):
 
 @body
 def reaction_row(rot1, rot2, inner_r, j, r, g, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    """A dyad's reactions at one row (:func:`_dyad_reactions`)."""
+    """A dyad's reactions at one row (:func:`_reactions_kernel`'s)."""
     sfirst = g[I_SFIRST, r] != 0.0
     # the generalised forces: moment about the outer pivot, or force along the guide
     q1 = _generalised(rot1, m1, a1, d, g, j, r, 0)
@@ -294,68 +290,69 @@ def reaction_row(rot1, rot2, inner_r, j, r, g, m1, m2, mk1, mk2, d, a1, a2, ak1,
                 rr[4, j], rr[5, j], rr[7, j], rr[10, j], rr[11, j], rr[13, j]))
 
 
-@body
-def _dyad_reactions(kind, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2,
-                    rr):
-    """A dyad's joint reactions (seed 002 s. 2.3.1, eqs 2.16-2.43 in vector form, the
-    numpy path's ``_solve_dyad``): the inner joint's from the two bodies' equations along
-    their freedoms (a 2 x 2 system with the velocity system's columns), each outer
-    joint's from its body's remaining equations; the outer reactions load the known
-    bodies (``ak1``, ``ak2``) with opposite sign."""
-    rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
-    # in tiles (jitbase.TILE), as the dyad's motion: the motions (their angle and origin
-    # rows), the data and the dyad bodies' resultants in, the tile worked out in the
-    # scratch array alone, the reactions and resultants out; what the outer joints load
-    # the known bodies with is added to theirs after (in order: the same array twice
-    # when both outer joints are on one body)
-    w = scratch(4 * BODY_ROWS + DYAD_OUT + 12 + REACTION_ROWS + DYAD_GEOMETRY)
-    wm1, wm2 = w[:BODY_ROWS], w[BODY_ROWS:2 * BODY_ROWS]
-    wk1, wk2 = w[2 * BODY_ROWS:3 * BODY_ROWS], w[3 * BODY_ROWS:4 * BODY_ROWS]
-    b = 4 * BODY_ROWS
-    wd = w[b:b + DYAD_OUT]
-    b += DYAD_OUT
-    wa1, wa2, wak1, wak2 = w[b:b + 3], w[b + 3:b + 6], w[b + 6:b + 9], w[b + 9:b + 12]
-    b += 12
-    wr = w[b:b + REACTION_ROWS]
-    wg = w[b + REACTION_ROWS:]
-    bad = 0
-    last = -1           # (the scene whose geometry the tile holds)
-    t0 = lo
-    while t0 < hi:
-        nt = tile_rows(gs, own, t0, hi)         # (a tile never spans two scenes)
-        j0 = t0 - off
-        last = tile_geometry(wg, g, gs, own, t0, last)
-        t0 += nt
-        for wm, m in ((wm1, m1), (wm2, m2), (wk1, mk1), (wk2, mk2)):
-            tile_in(wm[C:S + 1], m[C:S + 1], j0, nt)
-            tile_in(wm[OX:OY + 1], m[OX:OY + 1], j0, nt)
-        # (only the rows a kind reads: the closing point, the velocity system, the
-        # normal; an outer prismatic joint's guide direction)
-        tile_in(wd[:NY + 1], d[:NY + 1], j0, nt)
-        if not rot1:
-            tile_in(wd[10:12], d[10:12], j0, nt)
-        if not rot2:
-            tile_in(wd[14:16], d[14:16], j0, nt)
-        tile_in(wa1, a1, j0, nt)
-        tile_in(wa2, a2, j0, nt)
-        wak1[:] = 0.0
-        wak2[:] = 0.0
-        for t in range(TILE):
-            f = reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1,
-                              wa2, wak1, wak2, wr)
-            bad += f if t < nt else 0
-        tile_out(a1, wa1, j0, nt)
-        tile_out(a2, wa2, j0, nt)
-        if wg[P_GROUND, 0] == 0.0:
-            tile_add(ak1, wak1, j0, nt)
-        if wg[PARAM + P_GROUND, 0] == 0.0:
-            tile_add(ak2, wak2, j0, nt)
-        tile_out(rr[:4], wr[:4], j0, nt)
-        if not rot1:
-            tile_out(rr[4:10], wr[4:10], j0, nt)
-        if not rot2:
-            tile_out(rr[10:], wr[10:], j0, nt)
-    return bad
+def _reactions_kernel(kind: int):
+    """The compiled reactions kernel of dyad kind ``kind`` (its code, layout.KINDS), the
+    kind a constant of the kernel as in the motion's
+    (:func:`~kinetostatics.solver.fast.kernels._motion_kernel`)."""
+
+    @jit
+    def dyad_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+        """A dyad's joint reactions (seed 002 s. 2.3.1, eqs 2.16-2.43 in vector form,
+        the numpy path's ``_solve_dyad``): the inner joint's from the two bodies'
+        equations along their freedoms (a 2 x 2 system with the velocity system's
+        columns), each outer joint's from its body's remaining equations; the outer
+        reactions load the known bodies (``ak1``, ``ak2``) with opposite sign."""
+        rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
+        # in tiles (jitbase.TILE), as the dyad's motion: the motions (their angle and
+        # origin rows), the data and the dyad bodies' resultants in, the tile worked out
+        # in the scratch array alone, the reactions and resultants out; what the outer
+        # joints load the known bodies with is added to theirs after (in order: the same
+        # array twice when both outer joints are on one body)
+        w = scratch(4 * BODY_ROWS + DYAD_OUT + 12 + REACTION_ROWS + DYAD_GEOMETRY)
+        wm1, wm2 = w[:BODY_ROWS], w[BODY_ROWS:2 * BODY_ROWS]
+        wk1, wk2 = w[2 * BODY_ROWS:3 * BODY_ROWS], w[3 * BODY_ROWS:4 * BODY_ROWS]
+        b = 4 * BODY_ROWS
+        wd = w[b:b + DYAD_OUT]
+        b += DYAD_OUT
+        wa1, wa2, wak1, wak2 = w[b:b + 3], w[b + 3:b + 6], w[b + 6:b + 9], w[b + 9:b + 12]
+        b += 12
+        wr = w[b:b + REACTION_ROWS]
+        wg = w[b + REACTION_ROWS:]
+        bad, last, t0 = 0, -1, lo       # (last: the scene whose geometry the tile holds)
+        while t0 < hi:
+            nt, last = tile_next(wg, g, gs, own, t0, hi, last)     # (one scene's rows)
+            j0, t0 = t0 - off, t0 + nt
+            for wm, m in ((wm1, m1), (wm2, m2), (wk1, mk1), (wk2, mk2)):
+                tile_in(wm[C:S + 1], m[C:S + 1], j0, nt)
+                tile_in(wm[OX:OY + 1], m[OX:OY + 1], j0, nt)
+            # (only the rows a kind reads: the closing point, the velocity system, the
+            # normal; an outer prismatic joint's guide direction)
+            tile_in(wd[:NY + 1], d[:NY + 1], j0, nt)
+            if not rot1:
+                tile_in(wd[10:12], d[10:12], j0, nt)
+            if not rot2:
+                tile_in(wd[14:16], d[14:16], j0, nt)
+            tile_in(wa1, a1, j0, nt)
+            tile_in(wa2, a2, j0, nt)
+            wak1[:] = 0.0
+            wak2[:] = 0.0
+            for t in range(TILE):
+                f = reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1,
+                                 wa2, wak1, wak2, wr)
+                bad += f if t < nt else 0
+            tile_out(a1, wa1, j0, nt)
+            tile_out(a2, wa2, j0, nt)
+            if wg[P_GROUND, 0] == 0.0:
+                tile_add(ak1, wak1, j0, nt)
+            if wg[PARAM + P_GROUND, 0] == 0.0:
+                tile_add(ak2, wak2, j0, nt)
+            tile_out(rr[:4], wr[:4], j0, nt)
+            if not rot1:
+                tile_out(rr[4:10], wr[4:10], j0, nt)
+            if not rot2:
+                tile_out(rr[10:], wr[10:], j0, nt)
+        return bad
+    return dyad_reactions
 
 
 @jit
@@ -404,41 +401,5 @@ def slider_reaction(lo, hi, off, g, gs, own, m, a, out):
     return bad
 
 
-@jit
-def rrr_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(7, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
-
-
-@jit
-def rrt_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(5, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
-
-
-@jit
-def trr_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(6, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
-
-
-@jit
-def trt_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(4, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
-
-
-@jit
-def rtr_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(3, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
-
-
-@jit
-def rtt_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(1, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
-
-
-@jit
-def ttr_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(2, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
-
-
-REACTIONS = {"RRR": rrr_reactions, "RRT": rrt_reactions, "TRR": trr_reactions,
-             "TRT": trt_reactions, "RTR": rtr_reactions, "RTT": rtt_reactions,
-             "TTR": ttr_reactions}
+# one compiled kernel per dyad kind (layout.KINDS)
+REACTIONS = {name: _reactions_kernel(code) for name, code in KINDS.items()}
