@@ -75,35 +75,31 @@ scratch = scratch_for(TILE)
 
 
 @body
-def tile_move(dst, d0, src, s0, nt, add):
-    """Columns ``s0`` to ``s0 + nt`` of ``src``'s rows into columns ``d0`` on of ``dst``'s
-    (``add``: added to them; a constant where it is called). Each row a loop of its own
-    over 1-d views: it vectorises."""
-    for f in range(dst.shape[0]):
-        src_f, dst_f = src[f, s0:s0 + nt], dst[f, d0:d0 + nt]
-        for t in range(nt):
-            if add:
-                dst_f[t] += src_f[t]
-            else:
-                dst_f[t] = src_f[t]
-
-
-@body
 def tile_in(w, k, j0, nt):
-    """Columns ``j0`` to ``j0 + nt`` of ``k``'s rows into ``w[:, :nt]``."""
-    tile_move(w, 0, k, j0, nt, False)
+    """Columns ``j0`` to ``j0 + nt`` of ``k``'s rows into ``w[:, :nt]`` (each row a
+    loop of its own over 1-d views: it vectorises)."""
+    for f in range(w.shape[0]):
+        src, dst = k[f, j0:j0 + nt], w[f]
+        for t in range(nt):
+            dst[t] = src[t]
 
 
-@body
-def tile_out(k, w, j0, nt):
-    """``w[:, :nt]`` into columns ``j0`` to ``j0 + nt`` of ``k``'s rows."""
-    tile_move(k, j0, w, 0, nt, False)
+def tile_out_for(add: bool):
+    """``tile_out(k, w, j0, nt)``: ``w[:, :nt]`` into columns ``j0`` to ``j0 + nt`` of
+    ``k``'s rows, or added to them (``add``, a constant of the compiled helper)."""
+    @body
+    def tile_out(k, w, j0, nt):
+        for f in range(w.shape[0]):
+            src, dst = w[f], k[f, j0:j0 + nt]
+            for t in range(nt):
+                if add:
+                    dst[t] += src[t]
+                else:
+                    dst[t] = src[t]
+    return tile_out
 
 
-@body
-def tile_add(k, w, j0, nt):
-    """``w[:, :nt]`` added to columns ``j0`` to ``j0 + nt`` of ``k``'s rows."""
-    tile_move(k, j0, w, 0, nt, True)
+tile_out, tile_add = tile_out_for(False), tile_out_for(True)
 
 
 def tile_rows_for(width: int):

@@ -12,8 +12,9 @@ then solves on the numpy path, whose message names the rows.
 Rules (measured on a prototype): ``error_model="numpy"`` (a division by zero gives an
 infinity, as numpy's, counted), sin and cos in a pass of their own, no ``fastmath`` (the
 numbers stay IEEE), no ``prange`` (the executors spread scenes over processes).
-A dyad's kernels have one entry point per kind (:data:`MOTION`, :data:`REACTIONS`): the
-kind a constant in each, its other kinds' branches folded away.
+A dyad's kernels have one entry point per kind (:data:`MOTION`, :data:`REACTIONS`), each
+made from one source by a factory (:func:`_motion_kernel`): the kind a constant in each,
+its other kinds' branches folded away.
 """
 
 from __future__ import annotations
@@ -93,13 +94,8 @@ from .layout import (
     S,
 )
 from .layout import MOTION as BODY_ROWS
-from .reaction_kernels import (
-    REACTIONS,
-    body_loads,
-    crank_reaction,
-    slider_reaction,
-    swept_loads,
-)
+from .load_kernels import body_loads, swept_loads
+from .reaction_kernels import REACTIONS, crank_reaction, slider_reaction
 from .table_kernels import point_rows
 
 SINGULAR_WARN2 = 1e-6       # (1e-3)^2: kinematics.SINGULAR_WARN squared
