@@ -17,8 +17,13 @@ jit = njit(cache=True, error_model="numpy", nogil=True)
 # numba (``inline="always"``: numba copies the callee's IR into every call site, nested,
 # a deep copy of its whole scope per block). Measured 2026-11-29, a cold cache: the
 # four-bar's kernels 43.5 s of processor time with numba's inlining, 15.7 s with
-# LLVM's; the kernels as fast (RRR motion 22-23 ns a row either way, reactions 17)
-body = njit(error_model="numpy", nogil=True, forceinline=True)
+# LLVM's; the kernels as fast (RRR motion 22-23 ns a row either way, reactions 17).
+# Called from compiled code only: no wrapper for Python (each helper's wrapper was
+# compiled to machine code for nothing: measured 2026-11-29, the composed kernels of the
+# four-bar, slider-crank and shaper 20.5-21.0 s of processor time on an empty cache
+# against 24.0-25.0 s with the wrappers; the same numbers, bit for bit)
+body = njit(error_model="numpy", nogil=True, forceinline=True, no_cpython_wrapper=True,
+            no_cfunc_wrapper=True)
 
 
 @body
