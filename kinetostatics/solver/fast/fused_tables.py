@@ -26,7 +26,7 @@ from __future__ import annotations
 from .jitbase import (
     TILE,
     body,
-    jit,
+    jit_as,
     nonfinite,
     scratch,
     tile_geometry,
@@ -258,19 +258,17 @@ def _reaction_rows(w_, f, m, src, sign, n, j, rout, mine):
 def _tables_of(kind: str):
     """The compiled entry of dyad kind ``kind``: :func:`_crank_dyad_tables` with the
     kind's code (:data:`~kinetostatics.solver.fast.layout.KINDS`) a constant (numba
-    freezes the closure's ``code``: each kind compiled as if written out). Each entry is
-    named by its kind, so that each has a cache index of its own: numba names a cached
-    function's index by its name, and entries of one index saved by two processes at
-    once may take the same file (one kind's kernel would then load for another)."""
+    freezes the closure's ``code``: each kind compiled as if written out), named by its
+    kind (:func:`~kinetostatics.solver.fast.jitbase.jit_as`: a cache index of its own)."""
     code = KINDS[kind]
 
+    @jit_as(f"{kind.lower()}_tables")
     def tables(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt,
                slots, local, n, at, kout, src, sign, rout, mine):
         return _crank_dyad_tables(code, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys,
                                   k1d, k2d, gl, gls, npt, slots, local, n, at, kout, src, sign,
                                   rout, mine)
-    tables.__name__ = tables.__qualname__ = f"{kind.lower()}_tables"
-    return jit(tables)
+    return tables
 
 
 # a crank and one dyad, per dyad kind (RTR: the composed kernels, SolvedAgain)

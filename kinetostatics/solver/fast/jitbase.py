@@ -26,6 +26,20 @@ body = njit(error_model="numpy", nogil=True, forceinline=True, no_cpython_wrappe
             no_cfunc_wrapper=True)
 
 
+def jit_as(name: str):
+    """:data:`jit` for a kernel a factory makes once per kind, named ``name`` first: numba
+    names a cached function's index file by the function's qualified name and line, so
+    a factory's kernels would share one index, and two processes compiling two kinds at
+    once (xdist workers on a cold cache) may each save into the same data file, one
+    kind's machine code then loading for the other's, without a warning (numba's
+    ``IndexDataCacheFile.save`` picks the first free name from the index it read). Named
+    apart, each kind has an index of its own."""
+    def decorate(func):
+        func.__name__ = func.__qualname__ = name
+        return jit(func)
+    return decorate
+
+
 @body
 def nonfinite(values) -> int:
     """1 when a value of the tuple ``values`` is not finite (v * 0 is 0 for a finite v,

@@ -27,6 +27,7 @@ from .jitbase import (
     body,
     fmin,
     jit,
+    jit_as,
     nonfinite,
     scratch,
     tile_in,
@@ -241,12 +242,12 @@ def _body(rot, p, kb, j, c, s, lx, ly, ox, oy, qd, qdd, m, jo):
     m[AY, jo] = (aky + qdd * p[3]) + f * p[2]
 
 
-def _motion_kernel(kind: int):
+def _motion_kernel(kind: int, name: str):
     """The compiled motion kernel of dyad kind ``kind`` (its code, layout.KINDS): the
     kind a constant of the kernel (a closure's cell, frozen by numba; each cached apart,
     its cell's value in the key), its other kinds' branches folded away."""
 
-    @jit
+    @jit_as(f"{name.lower()}_motion")
     def dyad_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
         """Positions, velocities and accelerations of a dyad (seed 000 ch. 5-12, the numpy
         path's ``solve_dyad``): its bodies' motions into ``m1``, ``m2`` and its data
@@ -433,7 +434,7 @@ def dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d):
 
 
 # one compiled kernel per dyad kind (layout.KINDS), motion and reactions
-MOTION = {name: _motion_kernel(code) for name, code in KINDS.items()}
+MOTION = {name: _motion_kernel(code, name) for name, code in KINDS.items()}
 
 
 __all__ = ["MOTION", "REACTIONS", "body_loads", "swept_loads", "crank_motion",

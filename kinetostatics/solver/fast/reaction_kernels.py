@@ -11,6 +11,7 @@ from .jitbase import (
     TILE,
     body,
     jit,
+    jit_as,
     nonfinite,
     scratch,
     tile_add,
@@ -171,12 +172,12 @@ def reaction_row(rot1, rot2, inner_r, j, r, g, m1, m2, mk1, mk2, d, a1, a2, ak1,
                 rr[4, j], rr[5, j], rr[7, j], rr[10, j], rr[11, j], rr[13, j]))
 
 
-def _reactions_kernel(kind: int):
+def _reactions_kernel(kind: int, name: str):
     """The compiled reactions kernel of dyad kind ``kind`` (its code, layout.KINDS), the
     kind a constant of the kernel as in the motion's
     (:func:`~kinetostatics.solver.fast.kernels._motion_kernel`)."""
 
-    @jit
+    @jit_as(f"{name.lower()}_reactions")
     def dyad_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
         """A dyad's joint reactions (seed 002 s. 2.3.1, eqs 2.16-2.43 in vector form,
         the numpy path's ``_solve_dyad``): the inner joint's from the two bodies'
@@ -283,7 +284,7 @@ def slider_reaction(lo, hi, off, g, gs, own, m, a, out):
 
 
 # one compiled kernel per dyad kind (layout.KINDS)
-REACTIONS = {name: _reactions_kernel(code) for name, code in KINDS.items()}
+REACTIONS = {name: _reactions_kernel(code, name) for name, code in KINDS.items()}
 
 __all__ = ["REACTIONS", "body_loads", "crank_moment", "crank_reaction", "reaction_row",
            "slider_reaction", "swept_loads", "swept_row", "tile_loads", "tile_loads_for"]
