@@ -265,11 +265,9 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
                                             "SHARED_PER_SCENE or SHARED_ONCE in "
                                             "tests/conftest.py")
                 item.add_marker(pytest.mark.xdist_group(name + suffix))
-    # the longest tests first (a stable sort: the order is otherwise the collection's), so
-    # the workers start on the long ones and the short ones fill in at the end, instead
-    # of one worker finishing a run of long tests alone (pytest-xdist sends the groups
-    # of shared fixtures first, the largest first, then the tests in this order)
-    items.sort(key=_cost_rank)
+    # the longest work first, so the workers start on the long units and the short ones
+    # fill in at the end, instead of one worker finishing a run of long tests alone
+    items[:] = _in_order_of_cost(items, _quick_tier(config))
 
 
 #: Single tests measured among the longest (30-170 s each at a load of 5 on 2 cores,
@@ -287,11 +285,41 @@ LONGEST = ("tests/kinetostatics/test_cli.py::test_bench_quick",
 
 def _cost_rank(item: pytest.Item) -> int:
     """0 for the browser's tests and :data:`LONGEST`, 1 for the other kernels', 2 for the
-    other slow tests, 3 for the quick tier."""
+    other slow tests and those of a slow fixture (the quick tier's picture scene), 3 for
+    the quick tier."""
     if item.get_closest_marker("browser") or item.nodeid.startswith(LONGEST):
         return 0
-    return 1 if item.get_closest_marker("kernel") else \
-        2 if item.get_closest_marker("slow") else 3
+    if item.get_closest_marker("kernel"):
+        return 1
+    slow = item.get_closest_marker("slow") or SLOW_FIXTURES.keys() & set(
+        getattr(item, "fixturenames", ()))
+    return 2 if slow else 3
+
+
+def _in_order_of_cost(items: list[pytest.Item], by_module: bool) -> list[pytest.Item]:
+    """The tests in the order their xdist work units (:func:`_scope`) should be handed
+    out: the units of the costliest rank (:func:`_cost_rank` of their costliest test)
+    first, among those the largest first, the collection's order otherwise (stable
+    sorts); inside a unit its costliest tests first.
+
+    pytest-xdist's ``loadgroup`` queues the units in the order of their first test
+    (:func:`pytest_xdist_make_scheduler` turns its own reordering, by size alone, off): by
+    size alone the groups of shared fixtures went first and the browser's single tests
+    (20-35 s each) after them, the last of them the run's tail on one worker while the
+    other had run out of work."""
+    units: dict[str, list[pytest.Item]] = {}
+    for item in items:
+        units.setdefault(_scope(item.nodeid, by_module), []).append(item)
+
+    def cost(unit: list[pytest.Item]) -> tuple[int, int]:
+        # the quick tier ranks a unit by its quick tests (the slow ones are deselected
+        # after this hook)
+        kept = [i for i in unit if not i.get_closest_marker("slow")] if by_module else unit
+        kept = kept or unit
+        return min(map(_cost_rank, kept)), -len(kept)
+
+    ranked = sorted(units.values(), key=cost)
+    return [item for unit in ranked for item in sorted(unit, key=_cost_rank)]
 
 
 #: Test modules whose tests share a costly module fixture (a class generated): each runs
@@ -342,6 +370,12 @@ def _group(nodeid: str) -> str | None:
     return None
 
 
+def _scope(nodeid: str, by_module: bool) -> str:
+    """The xdist work unit of a test id: its :func:`_group`, else its module (the quick
+    tier, ``by_module``) or itself."""
+    return _group(nodeid) or (nodeid.split("::")[0] if by_module else nodeid)
+
+
 @pytest.hookimpl(optionalhook=True)     # (a hook of pytest-xdist: unknown without it)
 def pytest_xdist_make_scheduler(config: pytest.Config, log):
     """``--dist loadgroup`` that also groups by :func:`_group` (pytest-xdist's own
@@ -353,12 +387,15 @@ def pytest_xdist_make_scheduler(config: pytest.Config, log):
     # the quick tier hands out whole modules: a module fixture is then made once, not on
     # each worker (measured: 5 s less CPU in all); the full suite spreads its long tests
     by_module = _quick_tier(config)
+    # the units go out in the order of their first test (:func:`_in_order_of_cost`), not
+    # by their number of tests
+    config.option.loadscopereorder = False
 
     class SharedFixtureScheduling(LoadGroupScheduling):
         def _split_scope(self, nodeid: str) -> str:
             if "@" in nodeid:
                 return super()._split_scope(nodeid)
-            return _group(nodeid) or (nodeid.split("::")[0] if by_module else nodeid)
+            return _scope(nodeid, by_module)
 
     return SharedFixtureScheduling(config, log)
 

@@ -36,10 +36,10 @@ def test_a_childs_processor_time_is_its_tests(tmp_path) -> None:
                        cwd=tmp_path, env=env, capture_output=True, text=True)
     assert r.returncode == 0, r.stdout + r.stderr
     rows = [json.loads(line) for line in out.read_text().splitlines()]
-    assert [(n.split("::")[1], p) for n, p, _, _ in rows] == [
+    assert [(n.split("::")[1], p) for n, p, *_ in rows] == [
         (t, p) for t in ("test_busy_child", "test_idle") for p in ("setup", "call", "teardown")]
-    cpu = {(n.split("::")[1], p): c for n, p, c, _ in rows}
-    wall = {(n.split("::")[1], p): w for n, p, _, w in rows}
+    cpu = {(n.split("::")[1], p): c for n, p, c, *_ in rows}
+    wall = {(n.split("::")[1], p): w for n, p, _, w, *_ in rows}
     # the child's 0.5 s (and its interpreter's start) counted; the sleep is wall, not CPU
     assert cpu["test_busy_child", "call"] >= 0.5
     assert cpu["test_idle", "call"] < 0.1 <= 0.3 <= wall["test_idle", "call"]
@@ -47,3 +47,8 @@ def test_a_childs_processor_time_is_its_tests(tmp_path) -> None:
                        capture_output=True, text=True, check=True)
     tests = r.stdout.split("tests:\n", 1)[1].splitlines()
     assert tests[0].endswith("test_cases.py::test_busy_child"), r.stdout
+    # one process (no xdist worker): its two tests' wall in its line, the idle one last
+    assert {row[4] for row in rows} == {"main"}
+    main = r.stdout.split("workers", 1)[1].splitlines()[1].split()
+    assert main[0] == "main" and float(main[2]) >= 0.3, r.stdout
+    assert r.stdout.rstrip().endswith("test_cases.py::test_idle"), r.stdout

@@ -34,6 +34,14 @@ def _parse(source: str) -> ast.Module:
     return ast.parse(source)
 
 
+@functools.cache
+def _walk(source: str) -> tuple[ast.AST, ...]:
+    """Every node of a module's tree (:func:`_parse`), walked once for the three rules
+    that look at every node (each walking it again: about 0.5 s more CPU for this module,
+    7.2 s against 6.6-6.8 s, measured 2026-11-29)."""
+    return tuple(ast.walk(_parse(source)))
+
+
 def _type_checking(node: ast.AST) -> bool:
     return isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test)
 
@@ -378,7 +386,7 @@ def _long_functions(root: Path = ROOT, packages: tuple[str, ...] = PACKAGES,
     out = {}
     for path in _modules(root, packages).values():
         source = path.read_text()
-        for node in ast.walk(_parse(source)):
+        for node in _walk(source):
             if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef):
                 n = _code_lines(source, node)
                 if n >= limit:
@@ -413,7 +421,7 @@ def _private_writes(root: Path = ROOT, packages: tuple[str, ...] = PACKAGES) -> 
     bad = []
     for path in _modules(root, packages).values():
         rel = path.relative_to(root).as_posix()
-        for node in ast.walk(_parse(path.read_text())):
+        for node in _walk(path.read_text()):
             if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) \
                     and node.func.id == "setattr" and len(node.args) >= 2 \
                     and isinstance(node.args[1], ast.Constant):
@@ -509,7 +517,7 @@ def _degree_conversions(root: Path = ROOT, floors: tuple[str, ...] = PACKAGES
     out = []
     for floor in floors:
         for path in sorted((root / floor).rglob("*.py")):
-            for node in ast.walk(_parse(path.read_text())):
+            for node in _walk(path.read_text()):
                 if isinstance(node, ast.Call):
                     f = node.func
                     called = f.attr if isinstance(f, ast.Attribute) else getattr(f, "id", None)

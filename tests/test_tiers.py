@@ -80,3 +80,47 @@ def test_the_kernels_cache_where_the_commands_cache_them(monkeypatch) -> None:
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(loader.cache_folder()))   # as the loader does
     conftest.pytest_runtest_teardown(None)
     assert os.environ.get("NUMBA_CACHE_DIR") == conftest.NUMBA_BASE
+
+
+class _Item:
+    """A collected test as :func:`conftest._in_order_of_cost` reads it."""
+
+    def __init__(self, nodeid: str, marks: tuple[str, ...] = (),
+                 fixtures: tuple[str, ...] = ()) -> None:
+        self.nodeid, self.marks, self.fixturenames = nodeid, marks, fixtures
+
+    def get_closest_marker(self, name: str) -> str | None:
+        return name if name in self.marks else None
+
+
+def test_the_costliest_units_go_out_first() -> None:
+    """The compiled group first (its longest test first), then the browser's single
+    tests, the kernels', the slow ones and the quick tier's in the collection's order:
+    pytest-xdist hands the units out in the order of their first test."""
+    fast = "tests/kinetostatics/solver/test_fast.py::"
+    items = [_Item("tests/a.py::test_quick"), _Item("tests/b.py::test_slow", ("slow",)),
+             _Item(fast + "test_small"), _Item("tests/a.py::test_quick_too"),
+             _Item("tests/test_browser.py::test_sheet[01]", ("slow", "kernel", "browser")),
+             _Item("tests/c.py::test_kernel", ("slow", "kernel")),
+             _Item("tests/kinetostatics/test_cli.py::test_bench_quick", ("slow",))]
+    order = [i.nodeid.split("::")[1] for i in conftest._in_order_of_cost(items, False)]
+    assert order == ["test_bench_quick", "test_small", "test_sheet[01]", "test_kernel",
+                     "test_slow", "test_quick", "test_quick_too"]
+    # the quick tier hands out modules, ranked by the tests it keeps: the module whose
+    # slow test is deselected counts as quick; the picture scene's figures (a slow
+    # fixture kept in the quick tier) go first, then the larger modules
+    items = [_Item("tests/a.py::test_1"), _Item("tests/b.py::test_1"),
+             _Item("tests/b.py::test_2"), _Item("tests/a.py::test_slow", ("slow",)),
+             _Item("tests/p.py::test_pictures", (), ("lecture_figures",))]
+    order = [i.nodeid for i in conftest._in_order_of_cost(items, True)]
+    assert order == ["tests/p.py::test_pictures", "tests/b.py::test_1", "tests/b.py::test_2",
+                     "tests/a.py::test_slow", "tests/a.py::test_1"]
+
+
+def test_the_longest_tests_are_there() -> None:
+    """Every entry of LONGEST names a test that is there, or the start of its name (a
+    renamed one would lose its early start silently)."""
+    root = Path(conftest.__file__).resolve().parents[1]
+    for entry in conftest.LONGEST:
+        module, _, name = entry.partition("::")
+        assert f"def {name.split('[')[0]}" in (root / module).read_text(encoding="utf-8"), entry

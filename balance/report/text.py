@@ -191,11 +191,10 @@ def summary_text(out: dict[str, Any], speed: bool) -> str:
             lines.append(f"  plane {c['plane']} (z = {c['z']:g} m): mass {_fmt6(c['mass'], 'kg')}"
                          f" at {_fmt6(c['angle'], 'deg')}, radius {c['radius']:g} m, "
                          f"U = {_fmt6(c['U'], 'kg m')}")
-        lines.append(f"  force  before {_fmt6(r['initial_force'], fu)}, after "
-                     f"{rounded(r['residual_force'], r['initial_force'] or 0.0, fu, 6)}")
-        lines.append(f"  moment before {_fmt6(r['initial_moment'], mu)}, after "
-                     f"{rounded(r['residual_moment'], r['initial_moment'] or 0.0, mu, 6)}"
-                     " (about z = 0)")
+        for what, unit, tail in (("force", fu, ""), ("moment", mu, " (about z = 0)")):
+            before = r[f"initial_{what}"]
+            lines.append(f"  {what:<6} before {_fmt6(before, unit)}, after "
+                         f"{rounded(r[f'residual_{what}'], before or 0.0, unit, 6)}{tail}")
     if "static_test" in out:
         s = out["static_test"]
         lines.append("static balancing device:")

@@ -22,8 +22,9 @@ written straight into the table's columns, allocated once
 
 A crank and one dyad (not RTR, no ``resist`` loads) takes the fused table kernels instead
 (:class:`~kinetostatics.solver.fast.table_pass.FusedTables`): the block solved tile by
-tile in one kernel and its rows of both tables written there, ``F`` by numpy's ``hypot``
-bit for bit at a fifteenth of its cost (docs/solve-paths.md, "The fused table kernels").
+tile in one kernel and each tile's rows of both tables written there by non-temporal
+stores, ``F`` by numpy's ``hypot`` bit for bit at a fifteenth of its cost, the crank's
+cos and sin those the lean solve kept (docs/solve-paths.md, "The fused table kernels").
 
 No array over the whole sweep is made but the tables' own, and no temporary per column
 (the full re-solve gathered some 26 arrays, 200 MB at 1e6 positions, and the tables were
@@ -75,7 +76,7 @@ def compiled_frame(sol: Solution, lean: LeanSolved, name: str) -> pd.DataFrame |
     fused = FusedTables(kernels(), scene, structure)
     try:
         if fused.kernel is not None:
-            return _fused_frame(sol, fused, lean.positions, name)
+            return _fused_frame(sol, fused, lean, name)
         again = SolvedAgain(scene, structure)
         rows = again.kernels.point_rows
         if name == "kinematics":
@@ -92,25 +93,26 @@ def compiled_frame(sol: Solution, lean: LeanSolved, name: str) -> pd.DataFrame |
     return table.frame_of(fill)
 
 
-def _fused_frame(sol: Solution, fused, positions: np.ndarray, name: str) -> pd.DataFrame:
+def _fused_frame(sol: Solution, fused, lean: LeanSolved, name: str) -> pd.DataFrame:
     """Table ``name`` written by the fused table kernel
     (:class:`~kinetostatics.solver.fast.table_pass.FusedTables`): the ``kinematics``
     table alone, or the ``reactions`` table and, if it is not made yet, the
-    ``kinematics`` table's columns in the same pass (kept for it, :class:`PointRows`)."""
-    d = sol.__dict__
+    ``kinematics`` table's columns in the same pass (kept for it, :class:`PointRows`);
+    the crank's cos and sin as the solve kept them, where it did."""
+    d, positions = sol.__dict__, lean.positions
     points = None
     if name == "kinematics" or "kinematics" not in d:
         points = PointRows(sol, positions)
     located = [] if points is None else list(zip(points.bodies, points.local, strict=True))
     kout = np.empty((6, 0)) if points is None else points.out
     if name == "kinematics":
-        fused.write(located, kout)
+        fused.write(located, kout, crank=lean.crank)
         return points.frame()
     joints = list(sol.scene.joints)
     table = LongTable(positions, reaction_labels(joints, fused.reactions), REACTIONS_FLOATS,
                       _no_chunks, sol._tiled)
     fill, prismatic = _reaction_columns(table, joints, fused.reactions)
-    fused.write(located, kout, joints, fill.reserve())
+    fused.write(located, kout, joints, fill.reserve(), lean.crank)
     fill_offsets(fill, prismatic, table.n)
     if points is not None:
         d[KEPT] = points

@@ -88,9 +88,12 @@ def categorical(names: list[str], n: int, block: int | None = None) -> pd.Catego
     cats = list(dict.fromkeys(names))
     kind = np.int8 if len(cats) < 127 else np.int16 if len(cats) < 32767 else np.int32
     codes = np.array([cats.index(x) for x in names], dtype=kind)
+    # (codes made here, in range by construction: pandas' check, a min and a max over
+    # every row, 0.3 ms per 9e6 rows, is skipped; ``validate`` is pandas 2.1's)
     if block is not None:
-        return pd.Categorical.from_codes(np.full(n, codes[block]), categories=cats)
-    return pd.Categorical.from_codes(np.repeat(codes, n), categories=cats)
+        return pd.Categorical.from_codes(np.full(n, codes[block]), categories=cats,
+                                         validate=False)
+    return pd.Categorical.from_codes(np.repeat(codes, n), categories=cats, validate=False)
 
 
 class Labels:

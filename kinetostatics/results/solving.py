@@ -8,6 +8,7 @@ from __future__ import annotations
 import warnings
 from collections.abc import Iterable
 from concurrent.futures import Executor
+from operator import attrgetter
 from typing import Any
 
 from ..model.errors import UnitWarning
@@ -105,17 +106,20 @@ def solve_many(scenes: Iterable[Any], *, executor: Executor | None = None,
     """
     items = list(scenes)
     with collector_paused():       # (the Solutions made too: thousands of small objects)
-        out = [Solution.of(s) for s in solve_all(items, executor, batch)]
-    for i, r in enumerate(out):         # the unit slips, each naming its scene
-        for text in r.scene.warnings:
-            title = f" ({r.scene.title})" if r.scene.title else ""
-            warnings.warn(f"scenes[{i}]{title}: {text}", UnitWarning, stacklevel=2)
+        out = Solution.all_of(solve_all(items, executor, batch))
+    if any(map(_SLIPS, out)):           # the unit slips, each naming its scene
+        for i, r in enumerate(out):
+            for text in r.scene.warnings:
+                title = f" ({r.scene.title})" if r.scene.title else ""
+                warnings.warn(f"scenes[{i}]{title}: {text}", UnitWarning, stacklevel=2)
     return out
+
+
+_SLIPS = attrgetter("scene.warnings")       # (a Solution's scene's unit slips)
 
 
 def solve_outcomes(items: list[Any], *, lean: bool = True) -> list[Solution | Exception]:
     """Per scene, its Solution or the exception :func:`solve` raises for it, as
     :func:`solve_many` solves them (``lean``: see
     :func:`~kinetostatics.solver.many.solved_outcomes`)."""
-    return [r if isinstance(r, Exception) else Solution.of(r)
-            for r in solved_outcomes(items, lean=lean)]
+    return Solution.all_of(solved_outcomes(items, lean=lean))

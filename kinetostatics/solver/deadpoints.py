@@ -70,7 +70,8 @@ def measure2(closeness2: list, n: int) -> np.ndarray:
 
 
 def _candidates(m2: np.ndarray, starts: np.ndarray | None = None,
-                counts: np.ndarray | None = None) -> np.ndarray:
+                counts: np.ndarray | None = None, rows: np.ndarray | None = None
+                ) -> np.ndarray:
     """Intervals i (rows i, i + 1) next to a local minimum of m over the rows, in
     increasing order; with ``starts`` and ``counts``, over each segment of rows alone
     (many scenes' sweeps one after another, :func:`dead_points_stacked`): no interval
@@ -78,14 +79,16 @@ def _candidates(m2: np.ndarray, starts: np.ndarray | None = None,
 
     Only the rows below the screen (``m < SCREEN``, a few in a hundred) can start a probe,
     so only they are compared with their neighbours: one pass over all the rows instead
-    of a dozen (the comparisons, row by row, are the same)."""
+    of a dozen (the comparisons, row by row, are the same). ``rows``: those rows, when
+    known."""
     n = m2.size
     none = np.zeros(0, dtype=int)
     if n < 2:
         return none
     if starts is None:
         starts, counts = np.zeros(1, dtype=int), np.array([n])
-    rows = np.flatnonzero(m2 < SCREEN**2)       # (NaN is not below: never probed)
+    if rows is None:
+        rows = np.flatnonzero(m2 < SCREEN**2)       # (NaN is not below: never probed)
     if rows.size == 0:
         return none
     # the rows that begin or end a segment, marked over all rows (a pass over them
@@ -222,15 +225,21 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     counts = np.asarray(counts, dtype=int)
     m = starts.size
     none, pairs = np.zeros(0, dtype=int), np.zeros((0, 2), dtype=int)
-    if not m2u.size or not _min(m2u) < SCREEN**2:     # nothing to probe (NaN is not)
-        return [(pairs, none, pairs) for _ in range(m)]
+    # the rows below the screen, which alone can start a probe (NaN is not below; none:
+    # nothing to probe, the usual case for one scene; one pass over the rows, told once)
+    below = np.flatnonzero(m2u < SCREEN**2)
+    if below.size == 0:
+        return [(pairs, none, pairs)] * m
     one = m == 1
     # the rows in increasing position (None: as they are, the usual case: then no
     # array over all the rows is taken in another order)
     order = None if increasing else _segment_order(positions, starts)
     m2 = m2u if order is None else m2u[order]
     pos = positions if order is None else positions[order]
-    cand = _candidates(m2) if one else _candidates(m2, starts, counts)
+    if order is not None:
+        below = None            # (the same rows, told in their order)
+    cand = (_candidates(m2, rows=below) if one
+            else _candidates(m2, starts, counts, rows=below))
     # beyond the ends: an end row that is a dip of m, probed over one spacing outside
     two = counts >= 2
     first, last = starts[two], (starts + counts - 1)[two]
@@ -244,7 +253,7 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     hi = np.concatenate([pos[cand + 1], hi_f[use_f], hi_l[use_l]])
     owner = np.concatenate([_segment_of(cand, starts), segs[use_f], segs[use_l]])
     if lo.size == 0:
-        return [(pairs, none, pairs) for _ in range(m)]
+        return [(pairs, none, pairs)] * m
     best, open_ = _probe(at, lo, hi, owner)
     ends_m2 = np.minimum(m2[cand], m2[cand + 1])
     dead = (best[:k] <= SINGULAR_WARN**2) & (best[:k] < ends_m2) & ~open_[:k]
@@ -261,7 +270,7 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
         edges.setdefault(s, []).append(r)
     between = _per_segment(cand[dead], order, starts, m)
     gaps = _per_segment(cand[open_[:k]], order, starts, m)
-    out = [(b, none, g) for b, g in zip(between, gaps, strict=True)]
+    out = list(zip(between, [none] * m, gaps, strict=True))     # (a tuple per segment)
     for s, rs in edges.items():
         rows = rs if order is None else order[rs].tolist()
         out[s] = (out[s][0], np.array(rows, dtype=int) - int(starts[s]), out[s][2])

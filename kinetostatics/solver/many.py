@@ -41,7 +41,6 @@ from __future__ import annotations
 
 import gc
 import math
-import threading
 import warnings
 from collections.abc import Iterator
 from concurrent.futures import Executor
@@ -55,22 +54,22 @@ import numpy as np
 from ..common.lazy import moved_names
 from ..model.errors import UnitWarning, WorkbenchError
 from ..model.memory import check_memory
-from ..model.scene import load_scene
+from ..model.scene import Scene, load_scene
 from . import blocks
 from .blocks import Kept, LeanSolved
+from .cut import CutSolved, RunAgain, cut_scenes, run_values, splitter
 from .deadpoints import dead_points_stacked, kin_measure2, measure2
-from .driver import BodyMotion
 from .fast import solve_run_stacked, wanted
 from .fast.geometry import not_covered
 from .fast.solve import KeptRun
 from .fast.stacked import release, solve_group_kept
 from .footprint import columns, solve_bytes
-from .kinematics import Kinematics, solve_kinematics
+from .kinematics import solve_kinematics
 from .pipeline import check_distinct, solve_arrays, solve_block
 from .probes import probe_closeness
 from .reactions import DriverReaction
 from .solved import Solved
-from .stack import Rows, Stacker, assemblies, stack_record
+from .stack import Stacker, assemblies, stack_record
 from .structure import analyse
 from .trap import first_trapped, positions_tame
 
@@ -104,11 +103,12 @@ def solve_all(items: list, executor: Executor | None = None, batch: int | None =
         # again)
         out = [r for part in executor.map(partial(solved_outcomes, lean=False), parts)
                for r in part]
-    for i, r in enumerate(out):
-        if isinstance(r, WorkbenchError):
-            raise type(r)(f"scenes[{i}]: {r}") from None    # which scene, in one line
-        if isinstance(r, Exception):
-            raise r
+    if any(issubclass(kind, Exception) for kind in set(map(type, out))):  # (usually none)
+        for i, r in enumerate(out):
+            if isinstance(r, WorkbenchError):
+                raise type(r)(f"scenes[{i}]: {r}") from None    # which scene, in one line
+            if isinstance(r, Exception):
+                raise r
     return out
 
 
@@ -134,24 +134,71 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
     exception :func:`~kinetostatics.solve` raises for it (a top-level function: the task
     an executor runs). ``lean``: each run of stacked scenes keeps only Me/Fe and the
     flags, and is solved again when a scene's kinematics or joint reactions are first
-    read (:class:`_Run`); False keeps every run's arrays, for a caller that reads every
+    read (:class:`RunAgain`); False keeps every run's arrays, for a caller that reads every
     table (an answer key) or sends the arrays elsewhere (pickled whole)."""
     out: list[Any] = [None] * len(items)
+    groups: dict[Any, list] = {}
+    alone: list = []
+    one = _one_group(items)
+    if one is not None:         # (the usual case: read at once)
+        groups[0], rows = one
+        _check_memory(len(items), rows, groups, alone)
+    else:
+        rows = _read_each(items, out, groups, alone)
+    for i, sc in alone:
+        out[i] = _alone(sc)
+    for members in groups.values():
+        if rows < CHUNK_ROWS:       # (each group one chunk: no pass over its scenes)
+            _solve_group(members, out, lean)
+            continue
+        chunk: list = []
+        count = 0
+        for m in members:
+            chunk.append(m)
+            count += m[4]
+            if count >= CHUNK_ROWS:
+                _solve_group(chunk, out, lean)
+                chunk, count = [], 0
+        if chunk:
+            _solve_group(chunk, out, lean)
+    return out
+
+
+def _one_group(items: list) -> tuple[list, int] | None:
+    """The members of :func:`solved_outcomes`' one group and their rows in all, when
+    every item is a Scene of one signature whose positions increase (the usual case),
+    each scene's record (:func:`~kinetostatics.solver.stack.stack_record`) taken and
+    spread over the members in C; else None (read one by one, :func:`_read_each`)."""
+    if not items or set(map(type, items)) != {Scene}:
+        return None
+    try:
+        labels, numbers, ups, counts, sweeps = zip(*map(stack_record, items), strict=True)
+    except Exception:           # (read one by one: each scene's error in its place)
+        return None
+    if labels[0] is None or labels.count(labels[0]) != len(labels) or not all(ups):
+        return None
+    return (list(zip(range(len(items)), items, numbers, ups, counts, sweeps, strict=True)),
+            sum(counts))
+
+
+def _read_each(items: list, out: list, groups: dict, alone: list) -> int:
+    """Read the scenes one by one into ``groups`` (members by signature's label) and
+    ``alone`` (scenes solved alone), each error :func:`~kinetostatics.solve` would raise
+    for a scene in its place in ``out``; then check the memory of them all. Returns
+    their rows in all."""
     loaded = 0
     rows = 0            # (every scene's rows, counted as it is read: the memory check)
-    groups: dict[Any, list] = {}
-    alone = []
+    record = stack_record
     with warnings.catch_warnings():     # said again by solve_many, naming the scene
         warnings.simplefilter("ignore", UnitWarning)
         for i, src in enumerate(items):
             try:
                 sc = load_scene(src)
                 loaded += 1
-                n = sc.driver.positions.size
+                # its signature's label, its numbers, whether its positions increase
+                # (then none repeats), its rows and its sweep, told once per scene object
+                label, nums, up, n, sweep = record(sc)
                 rows += n
-                # its signature's label, its numbers and whether its positions increase
-                # (then none repeats), told once per scene object
-                label, nums, up = stack_record(sc)
                 if not up:
                     q = "angle" if sc.driver.kind == "R" else "length"
                     check_distinct(sc.driver.positions, sc.units.unit(q),
@@ -165,22 +212,9 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
             members = groups.get(label)
             if members is None:
                 members = groups[label] = []
-            members.append((i, sc, nums, up, n))
+            members.append((i, sc, nums, up, n, sweep))
     _check_memory(loaded, rows, groups, alone)
-    for i, sc in alone:
-        out[i] = _alone(sc)
-    for members in groups.values():
-        chunk: list = []
-        rows = 0
-        for m in members:
-            chunk.append(m)
-            rows += m[4]
-            if rows >= CHUNK_ROWS:
-                _solve_group(chunk, out, lean)
-                chunk, rows = [], 0
-        if chunk:
-            _solve_group(chunk, out, lean)
-    return out
+    return rows
 
 
 def _check_memory(loaded: int, rows: int, groups: dict, alone: list) -> None:
@@ -211,38 +245,42 @@ def _solve_group(members: list, out: list, lean: bool) -> None:
     if len(members) == 1:
         out[members[0][0]] = _alone(members[0][1])
         return
+    # (each field of the members at once: index, scene, numbers, increasing, rows, sweep)
+    index, scenes, numbers, ups, counts, sweeps = (list(f) for f in zip(*members, strict=True))
     stacker = None
     try:
-        structure = analyse(members[0][1], assemble=False)
-        stacker = Stacker([m[1] for m in members], [m[2] for m in members])
-        ks, ok = assemblies(stacker, structure)
+        structure = analyse(scenes[0], assemble=False)
+        one = sweeps[0] is not None and sweeps.count(sweeps[0]) == len(sweeps)
+        stacker = Stacker(scenes, numbers, one)
+        rows = np.array(counts)
+        stacked = stacked_positions(scenes, one)
+        ks, ok = assemblies(stacker, structure, stacked[0][np.cumsum(rows) - rows])
     except Exception:
         ok = np.zeros(len(members), dtype=bool)
-    if ok.all():            # (the usual case: every scene kept, no pass over the flags)
-        kept = members
-    else:
-        for (i, sc, *_), good in zip(members, ok.tolist(), strict=True):
-            if not good:
+    if not ok.all():        # (usually all kept: no pass over the flags, no copy)
+        good = ok.tolist()
+        for i, sc, g in zip(index, scenes, good, strict=True):
+            if not g:
                 out[i] = _alone(sc)
-        kept = [m for m, good in zip(members, ok.tolist(), strict=True) if good]
+        kept = [m for m, g in zip(members, good, strict=True) if g]
         if len(kept) < 2:
             for i, sc, *_ in kept:
                 out[i] = _alone(sc)
             return
         ks = ks[:, ok]
-    scenes = [m[1] for m in kept]
+        index, scenes, numbers, ups, counts, _ = (list(f) for f in zip(*kept, strict=True))
+        stacker, stacked, rows = Stacker(scenes, numbers), None, np.array(counts)
     try:
-        sols = _stacked(scenes, structure, ks, stacker if len(kept) == len(members)
-                        else Stacker(scenes, [m[2] for m in kept]), lean,
-                        all([m[3] for m in kept]), np.array([m[4] for m in kept]))
+        sols = _stacked(scenes, structure, ks, stacker, lean, all(ups), rows, stacked)
     except Exception:
         sols = [_alone(sc) for sc in scenes]
-    for m, s in zip(kept, sols, strict=True):
-        out[m[0]] = s
+    for i, s in zip(index, sols, strict=True):
+        out[i] = s
 
 
 def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bool,
-             increasing: bool = False, counts: np.ndarray | None = None
+             increasing: bool = False, counts: np.ndarray | None = None,
+             stacked: tuple | None = None
              ) -> list[CutSolved | Solved | LeanSolved | Exception]:
     """The solve of :func:`kinetostatics.solve` on the stacked scenes, cut per scene.
 
@@ -253,17 +291,16 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     refuses is solved scene by scene. The dead points of every scene are screened at once
     (:func:`dead_points_stacked`, the probes of all scenes in one solve); each scene's
     Solution is a light view: its Me/Fe and flags cut from its run's when first read,
-    its kinematics and joint reactions from the run solved again (:class:`_Run`).
+    its kinematics and joint reactions from the run solved again (:class:`RunAgain`).
     ``increasing``: every scene's positions are known to increase; ``counts``: each
-    scene's number of rows, when known.
+    scene's number of rows, when known; ``stacked``: :func:`stacked_positions` of the
+    scenes, when known.
     """
     if counts is None:
         counts = np.array([s.driver.positions.size for s in scenes])
     starts = np.cumsum(counts) - counts
-    positions, tame = stacked_positions(scenes)
-    out: list[Any] = [None] * len(scenes)
+    positions, tame = stacked if stacked is not None else stacked_positions(scenes)
     alone: list[int] = []
-    structures: dict[tuple, Any] = {}
     trusty = stacker.tame() and tame
     # the compiled path for the whole group when wanted (numba loaded here, once)
     compiled = not_covered(stacker.base) is None and wanted(positions.size) is not None
@@ -275,6 +312,7 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
         compiled and lean) else None
     m2 = (np.empty(positions.size) if whole is None
           else measure2(whole.closeness2, positions.size))
+    runs: list = []             # (per run: again, its values and path; None if refused)
     for lo, hi in zip(bounds[:-1].tolist(), bounds[1:].tolist(), strict=True):
         a = int(starts[lo])
         b = int(starts[hi - 1] + counts[hi - 1])
@@ -287,16 +325,16 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
             except Exception:
                 alone.extend(range(lo, hi))
                 m2[a:b] = np.inf        # solved alone: nothing of it to probe here
+                runs.append(None)
                 continue
             m2[a:b] = kin_measure2(sol.kin)
         # lean, the scenes' Solutions keep of the run only Me/Fe and the flags; its
         # other arrays are let go before the next run is solved (which then reuses their
         # memory), and solved again when a scene's kinematics are first read
-        again = (_Run(_trapped_run, (trusty, stacker, structure, ks, lo, hi,
+        again = (RunAgain(_trapped_run, (trusty, stacker, structure, ks, lo, hi,
                                      counts[lo:hi], positions[a:b], compiled))
-                 if lean else _Run(None, (), _splitter(sol)))
-        _cut_run(sol, again, scenes, ks, starts, counts, lo, hi, a, structure, structures,
-                 out)
+                 if lean else RunAgain(None, (), splitter(sol)))
+        runs.append((again, run_values(sol), getattr(sol, "path", None)))
         del sol
 
     probes: dict = {}           # (the probes' structure per owner: the same each round)
@@ -311,49 +349,24 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     dead = dead_points_stacked(m2, positions, starts, counts, at, increasing)
     if whole is not None:
         release(whole)          # (its closeness: read by nothing after the screen)
+    out = cut_scenes(scenes, structure, ks, starts, counts, bounds, runs, dead)
     for j in alone:
         out[j] = _alone(scenes[j])
-    for j, one in enumerate(out):
-        if type(one) is CutSolved:
-            one.dead = dead[j]
     return out
 
 
-def _cut_run(sol: Solved, again: _Run, scenes: list, ks: np.ndarray,
-             starts: np.ndarray, counts: np.ndarray, lo: int, hi: int, a: int, structure,
-             structures: dict, out: list) -> None:
-    """The Solutions of scenes ``lo`` to ``hi - 1`` into ``out``, cut lazily from their
-    run's ``sol`` (whose first row is the stack's row ``a``): its Me/Fe and flags kept,
-    its kinematics and joint reactions from ``again`` (the run solved again) when first
-    read; their dead points are filled in once screened. ``structures``: one Structure
-    per assembly, shared."""
-    n_run = sol.positions.size
-    drive = np.asarray(sol.drive.value)
-    undefined = np.asarray(sol.undefined_load)
-    run = (sol.drive.kind, drive, _per_row(drive, n_run), undefined,
-           _per_row(undefined, n_run),
-           [(f, _per_row(f, n_run)) for f in (np.asarray(dm.singular) for dm in sol.kin.dyads)])
-    assemblies = zip(*ks[:, lo:hi].tolist(), strict=True)    # (a tuple per scene)
-    r0s = (starts[lo:hi] - a).tolist()
-    path = getattr(sol, "path", None)     # (set by the compiled path)
-    for j, key, r0, n in zip(range(lo, hi), assemblies, r0s, counts[lo:hi].tolist(),
-                             strict=True):
-        sj = structures.get(key)
-        if sj is None:
-            sj = structures[key] = replace(structure, assembly=key)
-        out[j] = CutSolved(scenes[j], sj, again, slice(r0, r0 + n), run, path)
-
-
-def stacked_positions(scenes: list) -> tuple[np.ndarray, bool]:
+def stacked_positions(scenes: list, one: bool | None = None) -> tuple[np.ndarray, bool]:
     """Every scene's driver positions one after another, and whether they are tame
     (:func:`~kinetostatics.solver.trap.positions_tame`). Scenes that all sweep as the
     first, read from the same start, stop and count
-    (:attr:`~kinetostatics.model.scene_types.Driver.sweep`: the same bits), share one
-    read-only array, the last one kept: the same stack solved again (a design's
-    generations, a study's loads) takes it as it is (measured 2026-11-29, 1000 four-bars
-    x 361: 2.3 ms a call gathering 1000 sweeps into fresh pages)."""
+    (:attr:`~kinetostatics.model.scene_types.Driver.sweep`: the same bits; ``one``, when
+    known), share one read-only array, the last one kept: the same stack solved again (a
+    design's generations, a study's loads) takes it as it is (measured 2026-11-29, 1000
+    four-bars x 361: 2.3 ms a call gathering 1000 sweeps into fresh pages)."""
     key = scenes[0].driver.sweep
-    if key is None or any([s.driver.sweep != key for s in scenes]):
+    if one is None:
+        one = key is not None and all([s.driver.sweep == key for s in scenes])
+    if not one:
         positions = np.concatenate([s.driver.positions for s in scenes])
         return positions, positions_tame(positions)
     got = _POSITIONS.get((key, len(scenes)))
@@ -433,156 +446,6 @@ def _solve_run(stacker: Stacker, structure, ks: np.ndarray, lo: int, hi: int,
         return blocks.solve_blocks(positions.size, part, solve_block, None, st, positions)
     sc = stacker.runs(lo, hi, counts, positions)
     return solve_block(sc, st, solve_kinematics(sc, st))
-
-
-class CutSolved:
-    """One scene's arrays cut from a stacked solve (a
-    :class:`~kinetostatics.solver.solved.Deferred`): its scene and structure from the
-    start; its ``Me``/``Fe`` and flags (views of its run's arrays) cut when first asked
-    for, its kinematics and joint reactions when first asked for (the run solved again
-    for all its scenes, :class:`_Run`); its loads are computed from its kinematics when
-    asked for, as a solve's are."""
-
-    __slots__ = ("again", "dead", "path", "rows", "run", "scene", "structure")
-
-    def __init__(self, scene, structure, again: _Run, rows: slice, run: tuple,
-                 path: str | None = None):
-        self.scene, self.structure, self.again, self.rows, self.run = (
-            scene, structure, again, rows, run)
-        self.dead = None            # (filled in once every scene's are screened)
-        if path is not None:        # (the compiled path's; else the class has none)
-            self.path = path
-
-    @property
-    def known(self) -> dict:
-        return {"scene": self.scene, "structure": self.structure, "self_locking": None}
-
-    @property
-    def positions(self) -> np.ndarray:
-        return self.scene.driver.positions
-
-    def singular(self) -> np.ndarray:
-        """As :attr:`Kinematics.singular`, from the run's flags (the driver table reads
-        it: no need to solve the run again)."""
-        rows, run = self.rows, self.run
-        return blocks.singular_rows(rows.stop - rows.start,
-                                    [f[rows] if cut else f for f, cut in run[5]], self.dead)
-
-    def give(self, name: str, have=()) -> dict:
-        """``drive`` or ``undefined_load``: both, views of the run's arrays (the same
-        for every thread); ``kin`` or ``joint_reactions``: both, cut from the run solved
-        again (with the views, if not held yet)."""
-        out = {}
-        if "drive" not in have or "undefined_load" not in have:
-            rows = self.rows
-            kind, drive, drive_rows, undefined, undefined_rows, _ = self.run
-            out.update(drive=DriverReaction(kind, drive[rows] if drive_rows else drive),
-                       undefined_load=undefined[rows] if undefined_rows else undefined)
-        if name in ("kin", "joint_reactions"):
-            kin, reactions = self.again.cutter()(self.scene, self.structure, self.rows,
-                                                 self.dead)
-            out.update(kin=kin, joint_reactions=reactions)
-        return out
-
-    def solved(self) -> Solved:
-        got = self.give("kin")
-        return Solved(self.scene, self.structure, got["kin"], None, got["joint_reactions"],
-                      got["drive"], got["undefined_load"])
-
-    def __reduce__(self):
-        return _solved, (self.solved(),)
-
-
-def _solved(solved: Solved) -> Solved:
-    return solved
-
-
-class _Run:
-    """A run of stacked scenes whose solve was let go once its Me/Fe, flags and
-    closeness to the dead centres were taken: solved again (``solve(*args)``, the same
-    rows and assemblies, so the same numbers bit for bit) when the kinematics or joint
-    reactions of one of its scenes are first read, and then cut for each of them."""
-
-    def __init__(self, solve, args: tuple, cut=None):
-        self.solve = solve
-        self.args = args
-        self.lock = threading.Lock()
-        self.cut = cut          # (given: the run kept whole, never solved again)
-
-    def cutter(self):
-        """The run's :func:`_splitter` (solving the run again, once)."""
-        with self.lock:
-            if self.cut is None:
-                self.cut = _splitter(self.solve(*self.args))
-                self.solve = self.args = None       # (the stack: no longer needed)
-            return self.cut
-
-
-class _Template:
-    """How to cut one object of the stacked solution: its attributes that hold an array
-    over the rows (or tuples of them), and the rest, shared."""
-
-    def __init__(self, obj, total: int):
-        self.cls = type(obj)
-        self.same = {}
-        self.rows = []            # (name, array)
-        self.parts = []           # (name, tuple of array-or-value, which are arrays)
-        for k, v in obj.__dict__.items():
-            if _per_row(v, total):
-                self.rows.append((k, np.asarray(v)))
-            elif type(v) is tuple and any(_per_row(x, total) for x in v):
-                self.parts.append((k, tuple(np.asarray(x) if _per_row(x, total) else x
-                                            for x in v),
-                                   tuple(_per_row(x, total) for x in v)))
-            else:
-                self.same[k] = np.asarray(v) if type(v) is Rows else v
-
-    def cut(self, rows: slice, **extra):
-        new = object.__new__(self.cls)
-        d = new.__dict__
-        d.update(self.same)
-        for k, a in self.rows:
-            d[k] = a[rows]
-        for k, vals, which in self.parts:
-            d[k] = tuple([x[rows] if w else x for x, w in zip(vals, which, strict=True)])
-        d.update(extra)
-        return new
-
-
-def _per_row(v, total: int) -> bool:
-    return isinstance(v, np.ndarray) and v.ndim == 1 and v.shape[0] == total
-
-
-def _splitter(sol: Solved):
-    """A function (scene, structure, rows, dead points) -> that scene's kinematics and
-    joint reactions, cutting the rows of every array of the stacked ``sol``."""
-    total = sol.positions.size
-    motions = []
-    for name, m in sol.kin.bodies.items():
-        values = [getattr(m, f) for f in ("_theta", *BodyMotion.FIELDS)]
-        motions.append((name, [(np.asarray(v), True) if _per_row(v, total) else (v, False)
-                               for v in values]))
-    known = {id(m): name for name, m in sol.kin.bodies.items()}
-    dyads = [(_Template(dm, total), [(_Template(p, total), known[id(p.known)])
-                                     for p in dm.params]) for dm in sol.kin.dyads]
-    reactions = [(name, _Template(r, total)) for name, r in sol.joint_reactions.items()]
-
-    def cut(scene, structure, rows: slice, dead: tuple) -> tuple:
-        bodies = {name: BodyMotion(*[a[rows] if cut_it else a for a, cut_it in fs])
-                  for name, fs in motions}
-        n = rows.stop - rows.start
-        dms = []
-        for d, (t, params) in enumerate(dyads):
-            pr = tuple([tp.cut(rows, known=bodies[b]) for tp, b in params])
-            dms.append(t.cut(rows, dyad=structure.dyads[d], params=pr,
-                             k=structure.assembly[d], n=n, _tau=None))
-        kin = Kinematics(scene, structure, scene.driver.positions, bodies, dms)
-        # the dead points between rows, and the intervals no motion crosses, found per
-        # scene along increasing driver position exactly as solve finds them
-        kin.between, kin.ends, kin.unassembled = dead
-        return (kin,
-                {name: t.cut(rows) for name, t in reactions})
-    return cut
 
 
 # kinetostatics.solver.many.solve_many, deprecated: the public one is

@@ -2,7 +2,7 @@
 
 :class:`Solved` holds them all; a long sweep solved lean
 (:class:`~kinetostatics.solver.blocks.LeanSolved`) and one scene of a stacked solve
-(:class:`~kinetostatics.solver.many.CutSolved`) hold some at first and give the others
+(:class:`~kinetostatics.solver.cut.CutSolved`) hold some at first and give the others
 when asked (:class:`Deferred`, the protocol both follow). The results package wraps any
 of them in a :class:`~kinetostatics.results.Solution`; the solver never builds one.
 """

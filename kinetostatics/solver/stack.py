@@ -146,19 +146,21 @@ _RECORDS = Kept(RECORDS)
 _LABELS: dict[Any, int] = {}        # signature -> a label of its own (an int, quick to hash)
 
 
-def stack_record(scene: Scene) -> tuple[int | None, bytes, bool]:
+def stack_record(scene: Scene) -> tuple[int | None, bytes, bool, int, tuple | None]:
     """What :func:`kinetostatics.solve_many` needs of a scene to stack it, worked out once
     per scene object (kept while it lives; a Scene is frozen): a label of its
     :func:`signature` (scenes of equal signatures get the same label; None for a scene
     solved alone, or without positions), its numbers (:func:`_numbers`) packed as
-    float64 bytes, and whether its driver positions strictly increase (then none
+    float64 bytes, whether its driver positions strictly increase (then none
     repeats: :func:`~kinetostatics.solver.continuity.check_distinct` has nothing to
-    refuse)."""
+    refuse), its number of positions and its sweep's key
+    (:attr:`~kinetostatics.model.scene_types.Driver.sweep`)."""
     hit = _RECORDS.get(scene)
     if hit is not None:
         return hit
     sig, nums = _read(scene)
-    if not scene.driver.positions.size:
+    drv = scene.driver
+    if not drv.positions.size:
         sig = None
     label = None
     if sig is not None:
@@ -167,7 +169,8 @@ def stack_record(scene: Scene) -> tuple[int | None, bytes, bool]:
             if len(_LABELS) >= RECORDS:
                 _LABELS.clear()     # (a new label for a signature met again: no harm)
             label = _LABELS[sig] = next(_LABEL)
-    rec = (label, struct.pack(f"{len(nums)}d", *nums), _increases(scene.driver))
+    rec = (label, struct.pack(f"{len(nums)}d", *nums), _increases(drv), drv.positions.size,
+           drv.sweep)
     _RECORDS.put(scene, rec)
     return rec
 
@@ -201,9 +204,13 @@ class Stacker:
     they were no quicker, measured 2026-11-29, the shaper's 5-10 % slower, its probes'
     table of some 50 numbers x 81 000 rows a fresh 32 MB array each round.)"""
 
-    def __init__(self, scenes: list[Scene], numbers: list[bytes] | None = None):
-        """``numbers``: each scene's packed numbers (:func:`stack_record`), when known."""
+    def __init__(self, scenes: list[Scene], numbers: list[bytes] | None = None,
+                 one_sweep: bool | None = None):
+        """``numbers``: each scene's packed numbers (:func:`stack_record`), when known;
+        ``one_sweep``: whether every scene sweeps as the first, when known
+        (:meth:`_same_sweep`)."""
         self.scenes = scenes
+        self.one_sweep = one_sweep
         s0 = scenes[0]
         self.base = s0
         m = len(scenes)
@@ -219,6 +226,7 @@ class Stacker:
         # (the numbers that vary, each contiguous: a row of one table, which a run
         # repeats over its rows in one call, runs)
         self._varying = table[:, which].T.copy()
+        self._varying.flags.writeable = False     # (handed out as they are: scene(None))
         rows = list(self._varying)
         self._row_of = {id(r): i for i, r in enumerate(rows)}
         rows = iter(rows)
@@ -256,6 +264,7 @@ class Stacker:
         self._gathered = None
         self._tiles = {}
         self._varying, self._row_of = None, {}
+        self.one_sweep = True
         return self
 
     def tame(self) -> bool:
@@ -264,6 +273,11 @@ class Stacker:
         driver positions by the caller, as stacked)."""
         if not tame(self.base):
             return False
+        if self._varying is not None:   # (every number that varies: a row of one table)
+            table = self._varying
+            if isinstance(self.size, np.ndarray):       # (not one of the scene's numbers)
+                table = np.delete(table, self._row_of[id(self.size)], axis=0)
+            return tame_values([table])     # (in one pass: 15 arrays took 0.09 ms)
         nums: list = [*chain.from_iterable(self.ground.values()),
                       *chain.from_iterable(self.near.values())]
         for m, inertia, cog, pts in self.bodies.values():
@@ -271,14 +285,21 @@ class Stacker:
         return tame_values([x for x in nums if isinstance(x, np.ndarray)])
 
     def scene(self, owner: np.ndarray, positions: np.ndarray) -> Scene:
-        """The stacked scene: row i is scene ``owner[i]`` at driver position
-        ``positions[i]``. Each number gathered for ``owner`` is kept for the next call
-        with the same ``owner`` object (the dead-point probes' rounds: the same rows'
-        scenes at other positions; measured 2026-11-29, 1000 four-bars: 0.6 ms a call of
-        solve_many in three gathers of some 25 numbers over 5890 rows)."""
+        """The stacked scene: row i is scene ``owner[i]`` (scene i if ``owner`` is None:
+        each number as it is) at driver position ``positions[i]``. Each number gathered
+        for ``owner`` is kept for the next call with the same ``owner`` object (the
+        dead-point probes' rounds: the same rows' scenes at other positions; measured
+        2026-11-29, 1000 four-bars: 0.6 ms a call of solve_many in three gathers of some
+        25 numbers over 5890 rows), and so is the scene made of them: the next call
+        moves its driver alone (:func:`moved`; 0.5 ms of 2.3 in the probes' three
+        rounds, each building the scene's bodies and points anew)."""
+        if owner is None:           # (row i is scene i: each number as it is)
+            return self._build(lambda x: x, positions)
         kept = self._gathered
         if kept is None or kept[0] is not owner:
-            kept = self._gathered = (owner, {})
+            kept = self._gathered = (owner, {}, [])
+        elif kept[2]:
+            return moved(kept[2][0], positions)
         got = kept[1]
 
         def gather(x: np.ndarray) -> np.ndarray:
@@ -286,7 +307,9 @@ class Stacker:
             if y is None:
                 y = got[id(x)] = x[owner]
             return y
-        return self._build(gather, positions)
+        sc = self._build(gather, positions)
+        kept[2].append(sc)
+        return sc
 
     def runs(self, lo: int, hi: int, counts: np.ndarray, positions: np.ndarray) -> Scene:
         """The stacked scene of scenes ``lo`` to ``hi - 1`` one after another, scene
@@ -343,7 +366,11 @@ class Stacker:
         start, stop and count (:attr:`~kinetostatics.model.scene_types.Driver.sweep`:
         the same bits, told without a pass over their rows)."""
         key = self.base.driver.sweep
-        return key is not None and all([s.driver.sweep == key for s in self.scenes[lo:hi]])
+        if key is None:
+            return False
+        if self.one_sweep is None:      # (told for the whole stack once)
+            self.one_sweep = all([s.driver.sweep == key for s in self.scenes])
+        return self.one_sweep or all([s.driver.sweep == key for s in self.scenes[lo:hi]])
 
     def trig_rows(self, lo: int, hi: int, positions: np.ndarray
               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -415,14 +442,25 @@ class Stacker:
         return sc
 
 
-def assemblies(stacker: Stacker, structure: Structure) -> tuple[np.ndarray, np.ndarray]:
+def moved(scene: Scene, positions: np.ndarray) -> Scene:
+    """A stacked scene (:meth:`Stacker.scene`) with its driver at other ``positions``:
+    the same numbers and size (each row's own)."""
+    out = replace(scene, driver=replace(scene.driver, positions=positions))
+    out.__dict__["size"] = scene.__dict__["size"]
+    return out
+
+
+def assemblies(stacker: Stacker, structure: Structure, firsts: np.ndarray | None = None
+               ) -> tuple[np.ndarray, np.ndarray]:
     """Each scene's assembly k = +-1 per dyad (an array (dyads, scenes)), chosen at its
     first row as :func:`~kinetostatics.solver.kinematics.choose_assembly` does, and which
     scenes it settles: a scene that cannot close at its first row, or whose hints do not
-    settle an assembly, is left to be solved (and refused) alone."""
+    settle an assembly, is left to be solved (and refused) alone. ``firsts``: each
+    scene's first driver position, when known."""
     m = len(stacker.scenes)
-    owner = np.arange(m)
-    first = stacker.scene(owner, np.array([s.driver.positions[0] for s in stacker.scenes]))
+    if firsts is None:
+        firsts = np.array([s.driver.positions[0] for s in stacker.scenes])
+    first = stacker.scene(None, firsts)
     size = np.broadcast_to(np.asarray(first.size, dtype=float), (m,))
     motions = {GROUND: ground_motion(), first.driver.body: driver_motion(first)}
     ok = np.ones(m, dtype=bool)

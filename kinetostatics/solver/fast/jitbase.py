@@ -17,8 +17,27 @@ jit = njit(cache=True, error_model="numpy", nogil=True)
 # numba (``inline="always"``: numba copies the callee's IR into every call site, nested,
 # a deep copy of its whole scope per block). Measured 2026-11-29, a cold cache: the
 # four-bar's kernels 43.5 s of processor time with numba's inlining, 15.7 s with
-# LLVM's; the kernels as fast (RRR motion 22-23 ns a row either way, reactions 17)
-body = njit(error_model="numpy", nogil=True, forceinline=True)
+# LLVM's; the kernels as fast (RRR motion 22-23 ns a row either way, reactions 17).
+# Called from compiled code only: no wrapper for Python (each helper's wrapper was
+# compiled to machine code for nothing: measured 2026-11-29, the composed kernels of the
+# four-bar, slider-crank and shaper 20.5-21.0 s of processor time on an empty cache
+# against 24.0-25.0 s with the wrappers; the same numbers, bit for bit)
+body = njit(error_model="numpy", nogil=True, forceinline=True, no_cpython_wrapper=True,
+            no_cfunc_wrapper=True)
+
+
+def jit_as(name: str):
+    """:data:`jit` for a kernel a factory makes once per kind, named ``name`` first: numba
+    names a cached function's index file by the function's qualified name and line, so
+    a factory's kernels would share one index, and two processes compiling two kinds at
+    once (xdist workers on a cold cache) may each save into the same data file, one
+    kind's machine code then loading for the other's, without a warning (numba's
+    ``IndexDataCacheFile.save`` picks the first free name from the index it read). Named
+    apart, each kind has an index of its own."""
+    def decorate(func):
+        func.__name__ = func.__qualname__ = name
+        return jit(func)
+    return decorate
 
 
 @body
@@ -84,22 +103,22 @@ def tile_in(w, k, j0, nt):
             dst[t] = src[t]
 
 
-@body
-def tile_out(k, w, j0, nt):
-    """``w[:, :nt]`` into columns ``j0`` to ``j0 + nt`` of ``k``'s rows."""
-    for f in range(w.shape[0]):
-        src, dst = w[f], k[f, j0:j0 + nt]
-        for t in range(nt):
-            dst[t] = src[t]
+def tile_out_for(add: bool):
+    """``tile_out(k, w, j0, nt)``: ``w[:, :nt]`` into columns ``j0`` to ``j0 + nt`` of
+    ``k``'s rows, or added to them (``add``, a constant of the compiled helper)."""
+    @body
+    def tile_out(k, w, j0, nt):
+        for f in range(w.shape[0]):
+            src, dst = w[f], k[f, j0:j0 + nt]
+            for t in range(nt):
+                if add:
+                    dst[t] += src[t]
+                else:
+                    dst[t] = src[t]
+    return tile_out
 
 
-@body
-def tile_add(k, w, j0, nt):
-    """``w[:, :nt]`` added to columns ``j0`` to ``j0 + nt`` of ``k``'s rows."""
-    for f in range(w.shape[0]):
-        src, dst = w[f], k[f, j0:j0 + nt]
-        for t in range(nt):
-            dst[t] += src[t]
+tile_out, tile_add = tile_out_for(False), tile_out_for(True)
 
 
 def tile_rows_for(width: int):
@@ -137,3 +156,12 @@ def tile_geometry(wg, g, gs, own, t0, last):
         for f in range(wg.shape[0]):
             wg[f, :] = g[f, a]
     return a
+
+
+@body
+def tile_next(wg, g, gs, own, t0, hi, last):
+    """``(nt, last)`` of the tile that starts at row ``t0`` (of rows up to ``hi``): its
+    count of rows (:func:`tile_rows`: one scene's) and the scene whose geometry ``wg``
+    then holds, put there unless ``last`` is it (:func:`tile_geometry`)."""
+    nt = tile_rows(gs, own, t0, hi)
+    return nt, tile_geometry(wg, g, gs, own, t0, last)

@@ -12,8 +12,9 @@ then solves on the numpy path, whose message names the rows.
 Rules (measured on a prototype): ``error_model="numpy"`` (a division by zero gives an
 infinity, as numpy's, counted), sin and cos in a pass of their own, no ``fastmath`` (the
 numbers stay IEEE), no ``prange`` (the executors spread scenes over processes).
-A dyad's kernels have one entry point per kind (:data:`MOTION`, :data:`REACTIONS`): the
-kind a constant in each, its other kinds' branches folded away.
+A dyad's kernels have one entry point per kind (:data:`MOTION`, :data:`REACTIONS`), each
+made from one source by a factory (:func:`_motion_kernel`): the kind a constant in each,
+its other kinds' branches folded away.
 """
 
 from __future__ import annotations
@@ -26,12 +27,12 @@ from .jitbase import (
     body,
     fmin,
     jit,
+    jit_as,
     nonfinite,
     scratch,
-    tile_geometry,
     tile_in,
+    tile_next,
     tile_out,
-    tile_rows,
 )
 from .layout import (
     AL,
@@ -57,6 +58,7 @@ from .layout import (
     I_SX,
     I_SY,
     INNER_R,
+    KINDS,
     NORM2,
     NX,
     NY,
@@ -93,13 +95,8 @@ from .layout import (
     S,
 )
 from .layout import MOTION as BODY_ROWS
-from .reaction_kernels import (
-    REACTIONS,
-    body_loads,
-    crank_reaction,
-    slider_reaction,
-    swept_loads,
-)
+from .load_kernels import body_loads, swept_loads
+from .reaction_kernels import REACTIONS, crank_reaction, slider_reaction
 from .table_kernels import point_rows
 
 SINGULAR_WARN2 = 1e-6       # (1e-3)^2: kinematics.SINGULAR_WARN squared
@@ -245,58 +242,66 @@ def _body(rot, p, kb, j, c, s, lx, ly, ox, oy, qd, qdd, m, jo):
     m[AY, jo] = (aky + qdd * p[3]) + f * p[2]
 
 
+def _motion_kernel(kind: int, name: str):
+    """The compiled motion kernel of dyad kind ``kind`` (its code, layout.KINDS): the
+    kind a constant of the kernel (a closure's cell, frozen by numba; each cached apart,
+    its cell's value in the key), its other kinds' branches folded away."""
+
+    @jit_as(f"{name.lower()}_motion")
+    def dyad_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
+        """Positions, velocities and accelerations of a dyad (seed 000 ch. 5-12, the numpy
+        path's ``solve_dyad``): its bodies' motions into ``m1``, ``m2`` and its data
+        (closing point, velocity system, closeness to a dead centre, parameters) into
+        ``d``. Counts the rows that are not finite, cannot close, or are exactly
+        singular. ``stage`` 0: RTR's guide angle only (nothing for the other kinds); 1:
+        the rest."""
+        rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
+        rtr = rot1 and rot2 and not inner_r
+        if stage == 0:
+            return rtr_stage(rtr, lo, hi, off, g, gs, own, k1, k2, d)
+        # in tiles (jitbase.TILE): the known bodies' motions (and RTR's guide angle) in,
+        # the tile worked out in the scratch array alone, the bodies' motions and the
+        # data out
+        w = scratch(4 * BODY_ROWS + DYAD_OUT + DYAD_GEOMETRY)
+        wk1, wk2 = w[:BODY_ROWS], w[BODY_ROWS:2 * BODY_ROWS]
+        wm1, wm2 = w[2 * BODY_ROWS:3 * BODY_ROWS], w[3 * BODY_ROWS:4 * BODY_ROWS]
+        wd = w[4 * BODY_ROWS:4 * BODY_ROWS + DYAD_OUT]
+        wg = w[4 * BODY_ROWS + DYAD_OUT:]
+        bad, last, t0 = 0, -1, lo       # (last: the scene whose geometry the tile holds)
+        while t0 < hi:
+            nt, last = tile_next(wg, g, gs, own, t0, hi, last)     # (one scene's rows)
+            j0, t0 = t0 - off, t0 + nt
+            tile_in(wk1, k1, j0, nt)
+            tile_in(wk2, k2, j0, nt)
+            if rtr:
+                tile_in(wd[XX:XX + 1], d[XX:XX + 1], j0, nt)
+                tile_in(wd[C1X:C1Y + 1], d[C1X:C1Y + 1], j0, nt)
+                tile_in(wd[CL2:CL2 + 1], d[CL2:CL2 + 1], j0, nt)
+            for t in range(TILE):
+                b = dyad_row(kind, rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
+                bad += b if t < nt else 0
+            tile_out(m1, wm1, j0, nt)
+            tile_out(m2, wm2, j0, nt)
+            tile_out(d[:CL2 + 1], wd[:CL2 + 1], j0, nt)
+            # each side's parameter: P (rot), or the guide's u and the line's base point
+            tile_out(d[10:12 if rot1 else 14], wd[10:12 if rot1 else 14], j0, nt)
+            tile_out(d[14:16 if rot2 else 18], wd[14:16 if rot2 else 18], j0, nt)
+        return bad
+    return dyad_motion
+
+
 @body
-def _dyad_motion(kind, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
-    """Positions, velocities and accelerations of a dyad of kind ``kind`` (seed 000
-    ch. 5-12, the numpy path's ``solve_dyad``): its bodies' motions into ``m1``, ``m2``
-    and its data (closing point, velocity system, closeness to a dead centre, parameters)
-    into ``d``. Counts the rows that are not finite, cannot close, or are exactly
-    singular. ``stage`` 0: RTR's guide angle only (nothing for the other kinds); 1: the
-    rest."""
-    rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
-    rtr = rot1 and rot2 and not inner_r
-    if stage == 0:
-        if not rtr:
-            return 0
-        # RTR, stage 0: the guide's angle (row D_TH), its cos and sin then worked out by
-        # the caller in a pass of their own (rows C1X, C1Y) before stage 1
+def rtr_stage(rtr, lo, hi, off, g, gs, own, k1, k2, d):
+    """A dyad's stage 0: RTR's guide angle (row D_TH), its cos and sin then worked out by
+    the caller in a pass of their own (rows C1X, C1Y) before stage 1; nothing for the
+    other kinds."""
+    if rtr:
         for i in range(lo, hi):
             j, r = i - off, own[i * gs]
             p1 = outer_param(True, k1, j, g, r, 0)
             p2 = outer_param(True, k2, j, g, r, PARAM)
             d[D_TH, j], d[CL2, j], d[XX, j] = rtr_guide_angle(p1, p2, g, r, g[ASSEMBLY, r])
-        return 0
-    # in tiles (jitbase.TILE): the known bodies' motions (and RTR's guide angle) in, the
-    # tile worked out in the scratch array alone, the bodies' motions and the data out
-    w = scratch(4 * BODY_ROWS + DYAD_OUT + DYAD_GEOMETRY)
-    wk1, wk2 = w[:BODY_ROWS], w[BODY_ROWS:2 * BODY_ROWS]
-    wm1, wm2 = w[2 * BODY_ROWS:3 * BODY_ROWS], w[3 * BODY_ROWS:4 * BODY_ROWS]
-    wd = w[4 * BODY_ROWS:4 * BODY_ROWS + DYAD_OUT]
-    wg = w[4 * BODY_ROWS + DYAD_OUT:]
-    bad = 0
-    last = -1           # (the scene whose geometry the tile holds)
-    t0 = lo
-    while t0 < hi:
-        nt = tile_rows(gs, own, t0, hi)         # (a tile never spans two scenes)
-        j0 = t0 - off
-        last = tile_geometry(wg, g, gs, own, t0, last)
-        t0 += nt
-        tile_in(wk1, k1, j0, nt)
-        tile_in(wk2, k2, j0, nt)
-        if rtr:
-            tile_in(wd[XX:XX + 1], d[XX:XX + 1], j0, nt)
-            tile_in(wd[C1X:C1Y + 1], d[C1X:C1Y + 1], j0, nt)
-            tile_in(wd[CL2:CL2 + 1], d[CL2:CL2 + 1], j0, nt)
-        for t in range(TILE):
-            b = dyad_row(kind, rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
-            bad += b if t < nt else 0
-        tile_out(m1, wm1, j0, nt)
-        tile_out(m2, wm2, j0, nt)
-        tile_out(d[:CL2 + 1], wd[:CL2 + 1], j0, nt)
-        # each side's parameter: P (rot), or the guide's u and the line's base point
-        tile_out(d[10:12 if rot1 else 14], wd[10:12 if rot1 else 14], j0, nt)
-        tile_out(d[14:16 if rot2 else 18], wd[14:16 if rot2 else 18], j0, nt)
-    return bad
+    return 0
 
 
 @body
@@ -428,46 +433,8 @@ def dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d):
     return bad
 
 
-# one compiled kernel per dyad kind (the kind's code: layout.KINDS), motion and reactions
-
-
-@jit
-def rrr_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
-    return _dyad_motion(7, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d)
-
-
-@jit
-def rrt_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
-    return _dyad_motion(5, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d)
-
-
-@jit
-def trr_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
-    return _dyad_motion(6, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d)
-
-
-@jit
-def trt_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
-    return _dyad_motion(4, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d)
-
-
-@jit
-def rtr_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
-    return _dyad_motion(3, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d)
-
-
-@jit
-def rtt_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
-    return _dyad_motion(1, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d)
-
-
-@jit
-def ttr_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
-    return _dyad_motion(2, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d)
-
-
-MOTION = {"RRR": rrr_motion, "RRT": rrt_motion, "TRR": trr_motion, "TRT": trt_motion,
-          "RTR": rtr_motion, "RTT": rtt_motion, "TTR": ttr_motion}
+# one compiled kernel per dyad kind (layout.KINDS), motion and reactions
+MOTION = {name: _motion_kernel(code, name) for name, code in KINDS.items()}
 
 
 __all__ = ["MOTION", "REACTIONS", "body_loads", "swept_loads", "crank_motion",

@@ -1,28 +1,25 @@
-"""The compiled kernels of the loads and the reactions (seed 002 s. 2.1-2.3), row by row:
-the numpy path's formulas, as :mod:`~kinetostatics.solver.fast.kernels` computes the
-motion (the same conventions: rows ``lo`` to ``hi``, arrays at ``i - off``, geometry at
-``i * gs``; each kernel returns the count of rows the numpy path must judge)."""
+"""The compiled kernels of the reactions (seed 002 s. 2.3), row by row: the numpy path's
+formulas, as :mod:`~kinetostatics.solver.fast.kernels` computes the motion (the same
+conventions: rows ``lo`` to ``hi``, arrays at ``i - off``, geometry at ``i * gs``; each
+kernel returns the count of rows the numpy path must judge). The loads' kernels are
+:mod:`~kinetostatics.solver.fast.load_kernels`' (their names here too, as the fused
+kernels import them)."""
 
 from __future__ import annotations
-
-import math
 
 from .jitbase import (
     TILE,
     body,
     jit,
+    jit_as,
     nonfinite,
     scratch,
     tile_add,
-    tile_geometry,
     tile_in,
+    tile_next,
     tile_out,
-    tile_rows,
 )
 from .layout import (
-    AL,
-    AX,
-    AY,
     C1X,
     C1Y,
     C2X,
@@ -36,15 +33,12 @@ from .layout import (
     I_SX,
     I_SY,
     INNER_R,
-    L_I,
-    L_M0,
-    L_POINT,
+    KINDS,
     NX,
     NY,
     O_WHERE,
     O_X,
     O_Y,
-    OM,
     OX,
     OY,
     P_BX,
@@ -70,8 +64,6 @@ from .layout import (
     T_RUY,
     T_SX,
     T_SY,
-    VX,
-    VY,
     XX,
     XY,
     C,
@@ -79,121 +71,7 @@ from .layout import (
 )
 from .layout import MOTION as BODY_ROWS
 from .layout import REACTIONS as REACTION_ROWS
-
-
-# -- loads (seed 002 s. 2.1-2.2) ----------------------------------------------------------
-@jit
-def body_loads(lo, hi, off, g, gs, own, npoint, m, acc):
-    """A body's load resultants [Fx, Fy, M about its origin]: forces at local points,
-    each with the inertia force -m_k a_k of a mass there (the cog's, eq. 2.1, or a
-    concentrated mass, eq. 2.8), a couple, and the inertia couple -I_G eps (eq. 2.1).
-    In tiles (jitbase.TILE): the motion in, each point load a loop over the tile's rows
-    (it vectorises), the resultants out."""
-    w = scratch(BODY_ROWS + 3)
-    wm, wa = w[:BODY_ROWS], w[BODY_ROWS:]
-    wg = scratch(g.shape[0])
-    bad = 0
-    last = -1           # (the scene whose geometry the tile holds)
-    t0 = lo
-    while t0 < hi:
-        nt = tile_rows(gs, own, t0, hi)         # (a tile never spans two scenes)
-        j0 = t0 - off
-        last = tile_geometry(wg, g, gs, own, t0, last)
-        t0 += nt
-        tile_in(wm[C:AL + 1], m[C:AL + 1], j0, nt)      # (no velocities read)
-        tile_in(wm[AX:AY + 1], m[AX:AY + 1], j0, nt)
-        bad += tile_loads(wm, wa, wg, npoint, nt)
-        tile_out(acc, wa, j0, nt)
-    return bad
-
-
-def tile_loads_for(width: int):
-    """``tile_loads(wm, wa, wg, npoint, nt)``: a tile's load resultants ``wa``
-    (:func:`body_loads`) from its body's motion ``wm`` and its geometry ``wg`` (the
-    tile's scene's in each column), tiles of ``width`` rows; the count of the tile's
-    first ``nt`` rows that are not finite."""
-    @body
-    def tile_loads(wm, wa, wg, npoint, nt):
-        wa[:] = 0.0
-        for q in range(npoint):
-            b = 2 + L_POINT * q
-            for t in range(width):
-                c, s, al, om = wm[C, t], wm[S, t], wm[AL, t], wm[OM, t]
-                w2 = om * om
-                lx, ly = wg[b, t], wg[b + 1, t]
-                rx, ry = c * lx - s * ly, s * lx + c * ly
-                mk = wg[b + 4, t]
-                ax = (wm[AX, t] - al * ry) - w2 * rx
-                ay = (wm[AY, t] + al * rx) - w2 * ry
-                px, py = wg[b + 2, t] - mk * ax, wg[b + 3, t] - mk * ay
-                wa[0, t] += px
-                wa[1, t] += py
-                wa[2, t] += rx * py - ry * px
-        bad = 0
-        for t in range(width):
-            wa[2, t] = wa[2, t] + wg[L_M0, t] - wg[L_I, t] * wm[AL, t]
-            f = nonfinite((wa[0, t], wa[1, t], wa[2, t]))
-            bad += f if t < nt else 0
-        return bad
-    return tile_loads
-
-
-tile_loads = tile_loads_for(TILE)
-
-
-@jit
-def swept_loads(lo, hi, off, g, gs, own, nload, m, acc, undefined, stats):
-    """Loads whose rows are told by the whole sweep (the numpy path's
-    ``applied_loads``), added to a body's resultants: a ``resist`` force (kind 1) of
-    magnitude R against its point's velocity, a force (kind 2) acting ``when =
-    "resisting"`` (where its power is negative). A row stands still where the speed (the
-    power's magnitude) is at most ``thr`` (1e-9 of the mechanism's own scale): the force
-    is zero there and the row is undefined. ``stats[q, e]`` gathers the largest speed and
-    the smallest speed of a moving row of scene ``e`` (a stack's: each row's scene
-    ``own[i]``; one scene: 0): the caller checks that each sweep's top does not move its
-    scene's threshold over a row."""
-    bad = 0
-    es = 1 if stats.shape[1] > 1 else 0
-    for i in range(lo, hi):
-        j = i - off
-        bad += swept_row(j, own[i * gs], own[i * es], j, g, nload, m, acc, undefined, stats)
-    return bad
-
-
-@body
-def swept_row(j, r, e, u, g, nload, m, acc, undefined, stats):
-    """:func:`swept_loads` at row ``j`` of ``m`` and ``acc`` (geometry column ``r``, the
-    row of scene ``e`` of ``stats``, its flag ``undefined[u]``); 1 if not finite."""
-    c, s = m[C, j], m[S, j]
-    om = m[OM, j]
-    for q in range(nload):
-        b = 7 * q
-        lx, ly = g[b, r], g[b + 1, r]
-        rx, ry = c * lx - s * ly, s * lx + c * ly
-        vx, vy = m[VX, j] - om * ry, m[VY, j] + om * rx
-        thr = g[b + 6, r]
-        if g[b + 2, r] == 1.0:
-            x = math.hypot(vx, vy)
-            still = x <= thr
-            fx = 0.0 if still else -g[b + 3, r] * vx / x
-            fy = 0.0 if still else -g[b + 3, r] * vy / x
-        else:
-            fx, fy = g[b + 4, r], g[b + 5, r]
-            power = fx * vx + fy * vy
-            x = abs(power)
-            still = x <= thr
-            if still or not power < 0.0:
-                fx = fy = 0.0
-        if x > stats[q, e, 0] or not x == x:
-            stats[q, e, 0] = x
-        if not still and x < stats[q, e, 1]:
-            stats[q, e, 1] = x
-        if still:
-            undefined[u] = True
-        acc[0, j] += fx
-        acc[1, j] += fy
-        acc[2, j] += rx * fy - ry * fx
-    return nonfinite((acc[0, j], acc[1, j], acc[2, j]))
+from .load_kernels import body_loads, swept_loads, swept_row, tile_loads, tile_loads_for
 
 
 # -- reactions (seed 002 s. 2.3) ----------------------------------------------------------
@@ -251,7 +129,7 @@ def _outer(rot, t, g, r, j, m, mk, a, ak, d, rr):
 
 @body
 def reaction_row(rot1, rot2, inner_r, j, r, g, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    """A dyad's reactions at one row (:func:`_dyad_reactions`)."""
+    """A dyad's reactions at one row (:func:`_reactions_kernel`'s)."""
     sfirst = g[I_SFIRST, r] != 0.0
     # the generalised forces: moment about the outer pivot, or force along the guide
     q1 = _generalised(rot1, m1, a1, d, g, j, r, 0)
@@ -294,68 +172,69 @@ def reaction_row(rot1, rot2, inner_r, j, r, g, m1, m2, mk1, mk2, d, a1, a2, ak1,
                 rr[4, j], rr[5, j], rr[7, j], rr[10, j], rr[11, j], rr[13, j]))
 
 
-@body
-def _dyad_reactions(kind, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2,
-                    rr):
-    """A dyad's joint reactions (seed 002 s. 2.3.1, eqs 2.16-2.43 in vector form, the
-    numpy path's ``_solve_dyad``): the inner joint's from the two bodies' equations along
-    their freedoms (a 2 x 2 system with the velocity system's columns), each outer
-    joint's from its body's remaining equations; the outer reactions load the known
-    bodies (``ak1``, ``ak2``) with opposite sign."""
-    rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
-    # in tiles (jitbase.TILE), as the dyad's motion: the motions (their angle and origin
-    # rows), the data and the dyad bodies' resultants in, the tile worked out in the
-    # scratch array alone, the reactions and resultants out; what the outer joints load
-    # the known bodies with is added to theirs after (in order: the same array twice
-    # when both outer joints are on one body)
-    w = scratch(4 * BODY_ROWS + DYAD_OUT + 12 + REACTION_ROWS + DYAD_GEOMETRY)
-    wm1, wm2 = w[:BODY_ROWS], w[BODY_ROWS:2 * BODY_ROWS]
-    wk1, wk2 = w[2 * BODY_ROWS:3 * BODY_ROWS], w[3 * BODY_ROWS:4 * BODY_ROWS]
-    b = 4 * BODY_ROWS
-    wd = w[b:b + DYAD_OUT]
-    b += DYAD_OUT
-    wa1, wa2, wak1, wak2 = w[b:b + 3], w[b + 3:b + 6], w[b + 6:b + 9], w[b + 9:b + 12]
-    b += 12
-    wr = w[b:b + REACTION_ROWS]
-    wg = w[b + REACTION_ROWS:]
-    bad = 0
-    last = -1           # (the scene whose geometry the tile holds)
-    t0 = lo
-    while t0 < hi:
-        nt = tile_rows(gs, own, t0, hi)         # (a tile never spans two scenes)
-        j0 = t0 - off
-        last = tile_geometry(wg, g, gs, own, t0, last)
-        t0 += nt
-        for wm, m in ((wm1, m1), (wm2, m2), (wk1, mk1), (wk2, mk2)):
-            tile_in(wm[C:S + 1], m[C:S + 1], j0, nt)
-            tile_in(wm[OX:OY + 1], m[OX:OY + 1], j0, nt)
-        # (only the rows a kind reads: the closing point, the velocity system, the
-        # normal; an outer prismatic joint's guide direction)
-        tile_in(wd[:NY + 1], d[:NY + 1], j0, nt)
-        if not rot1:
-            tile_in(wd[10:12], d[10:12], j0, nt)
-        if not rot2:
-            tile_in(wd[14:16], d[14:16], j0, nt)
-        tile_in(wa1, a1, j0, nt)
-        tile_in(wa2, a2, j0, nt)
-        wak1[:] = 0.0
-        wak2[:] = 0.0
-        for t in range(TILE):
-            f = reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1,
-                              wa2, wak1, wak2, wr)
-            bad += f if t < nt else 0
-        tile_out(a1, wa1, j0, nt)
-        tile_out(a2, wa2, j0, nt)
-        if wg[P_GROUND, 0] == 0.0:
-            tile_add(ak1, wak1, j0, nt)
-        if wg[PARAM + P_GROUND, 0] == 0.0:
-            tile_add(ak2, wak2, j0, nt)
-        tile_out(rr[:4], wr[:4], j0, nt)
-        if not rot1:
-            tile_out(rr[4:10], wr[4:10], j0, nt)
-        if not rot2:
-            tile_out(rr[10:], wr[10:], j0, nt)
-    return bad
+def _reactions_kernel(kind: int, name: str):
+    """The compiled reactions kernel of dyad kind ``kind`` (its code, layout.KINDS), the
+    kind a constant of the kernel as in the motion's
+    (:func:`~kinetostatics.solver.fast.kernels._motion_kernel`)."""
+
+    @jit_as(f"{name.lower()}_reactions")
+    def dyad_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+        """A dyad's joint reactions (seed 002 s. 2.3.1, eqs 2.16-2.43 in vector form,
+        the numpy path's ``_solve_dyad``): the inner joint's from the two bodies'
+        equations along their freedoms (a 2 x 2 system with the velocity system's
+        columns), each outer joint's from its body's remaining equations; the outer
+        reactions load the known bodies (``ak1``, ``ak2``) with opposite sign."""
+        rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
+        # in tiles (jitbase.TILE), as the dyad's motion: the motions (their angle and
+        # origin rows), the data and the dyad bodies' resultants in, the tile worked out
+        # in the scratch array alone, the reactions and resultants out; what the outer
+        # joints load the known bodies with is added to theirs after (in order: the same
+        # array twice when both outer joints are on one body)
+        w = scratch(4 * BODY_ROWS + DYAD_OUT + 12 + REACTION_ROWS + DYAD_GEOMETRY)
+        wm1, wm2 = w[:BODY_ROWS], w[BODY_ROWS:2 * BODY_ROWS]
+        wk1, wk2 = w[2 * BODY_ROWS:3 * BODY_ROWS], w[3 * BODY_ROWS:4 * BODY_ROWS]
+        b = 4 * BODY_ROWS
+        wd = w[b:b + DYAD_OUT]
+        b += DYAD_OUT
+        wa1, wa2, wak1, wak2 = w[b:b + 3], w[b + 3:b + 6], w[b + 6:b + 9], w[b + 9:b + 12]
+        b += 12
+        wr = w[b:b + REACTION_ROWS]
+        wg = w[b + REACTION_ROWS:]
+        bad, last, t0 = 0, -1, lo       # (last: the scene whose geometry the tile holds)
+        while t0 < hi:
+            nt, last = tile_next(wg, g, gs, own, t0, hi, last)     # (one scene's rows)
+            j0, t0 = t0 - off, t0 + nt
+            for wm, m in ((wm1, m1), (wm2, m2), (wk1, mk1), (wk2, mk2)):
+                tile_in(wm[C:S + 1], m[C:S + 1], j0, nt)
+                tile_in(wm[OX:OY + 1], m[OX:OY + 1], j0, nt)
+            # (only the rows a kind reads: the closing point, the velocity system, the
+            # normal; an outer prismatic joint's guide direction)
+            tile_in(wd[:NY + 1], d[:NY + 1], j0, nt)
+            if not rot1:
+                tile_in(wd[10:12], d[10:12], j0, nt)
+            if not rot2:
+                tile_in(wd[14:16], d[14:16], j0, nt)
+            tile_in(wa1, a1, j0, nt)
+            tile_in(wa2, a2, j0, nt)
+            wak1[:] = 0.0
+            wak2[:] = 0.0
+            for t in range(TILE):
+                f = reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1,
+                                 wa2, wak1, wak2, wr)
+                bad += f if t < nt else 0
+            tile_out(a1, wa1, j0, nt)
+            tile_out(a2, wa2, j0, nt)
+            if wg[P_GROUND, 0] == 0.0:
+                tile_add(ak1, wak1, j0, nt)
+            if wg[PARAM + P_GROUND, 0] == 0.0:
+                tile_add(ak2, wak2, j0, nt)
+            tile_out(rr[:4], wr[:4], j0, nt)
+            if not rot1:
+                tile_out(rr[4:10], wr[4:10], j0, nt)
+            if not rot2:
+                tile_out(rr[10:], wr[10:], j0, nt)
+        return bad
+    return dyad_reactions
 
 
 @jit
@@ -404,41 +283,8 @@ def slider_reaction(lo, hi, off, g, gs, own, m, a, out):
     return bad
 
 
-@jit
-def rrr_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(7, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
+# one compiled kernel per dyad kind (layout.KINDS)
+REACTIONS = {name: _reactions_kernel(code, name) for name, code in KINDS.items()}
 
-
-@jit
-def rrt_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(5, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
-
-
-@jit
-def trr_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(6, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
-
-
-@jit
-def trt_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(4, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
-
-
-@jit
-def rtr_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(3, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
-
-
-@jit
-def rtt_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(1, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
-
-
-@jit
-def ttr_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
-    return _dyad_reactions(2, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr)
-
-
-REACTIONS = {"RRR": rrr_reactions, "RRT": rrt_reactions, "TRR": trr_reactions,
-             "TRT": trt_reactions, "RTR": rtr_reactions, "RTT": rtt_reactions,
-             "TTR": ttr_reactions}
+__all__ = ["REACTIONS", "body_loads", "crank_moment", "crank_reaction", "reaction_row",
+           "slider_reaction", "swept_loads", "swept_row", "tile_loads", "tile_loads_for"]

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import replace
 from types import SimpleNamespace
 
@@ -114,23 +115,40 @@ def fused_blocks(kernels, scene: Scene, full: Scene, structure, geometry,
     if found is None:
         return None
     kernel, fixed, plan = found
-    angles = full.driver.angles
     n = positions.size
-    width = min(FUSED_ROWS, n)
-    cs, sn = np.empty(width), np.empty(width)
+    # (the cos and sin kept whole: the tables' pass reads them instead of working them out
+    # again, fastpass)
+    cs, sn = np.empty(n), np.empty(n)
     drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
     bad = 0
-    for lo in range(0, n, width):
-        hi = min(lo + width, n)
-        np.cos(angles[lo:hi], out=cs[:hi - lo])
-        np.sin(angles[lo:hi], out=sn[:hi - lo])
-        bad += kernel(0, hi - lo, OWNERS, cs, sn, START, *fixed, drive[lo:hi],
-                      close[lo:hi], undefined[lo:hi])
+    for lo, m, c, s in crank_blocks(full.driver.angles, (cs, sn)):
+        bad += kernel(0, m, OWNERS, c, s, START, *fixed, drive[lo:lo + m],
+                      close[lo:lo + m], undefined[lo:lo + m])
     if bad:
         raise Refused(bad)
     if plan is not None:
         plan.check_swept()
-    return kept_sweep(structure, "R", drive, undefined, [close])
+    kept = kept_sweep(structure, "R", drive, undefined, [close])
+    kept.crank = (cs, sn)
+    return kept
+
+
+def crank_blocks(angles: np.ndarray, whole: tuple[np.ndarray, np.ndarray] | None = None
+                 ) -> Iterator[tuple[int, int, np.ndarray, np.ndarray]]:
+    """The blocks of :data:`FUSED_ROWS` rows of a crank's sweep at ``angles``: per block
+    its first row, its rows m, and their cos and sin (numpy's, in a pass of their own,
+    in the first m values of a scratch pair shared by the blocks: the same doubles per
+    angle as over the whole sweep; or, given ``whole``, a pair of arrays over the sweep,
+    in their rows of the block, so that they hold every row's at the end)."""
+    n = angles.size
+    width = min(FUSED_ROWS, n)
+    cs, sn = (np.empty(width), np.empty(width)) if whole is None else whole
+    for lo in range(0, n, width):
+        m = min(lo + width, n) - lo
+        at = slice(0, m) if whole is None else slice(lo, lo + m)
+        np.cos(angles[lo:lo + m], out=cs[at])
+        np.sin(angles[lo:lo + m], out=sn[at])
+        yield lo, m, cs[at], sn[at]
 
 
 def _fused(kernels, scene: Scene, structure, geometry) -> tuple | None:
@@ -173,17 +191,12 @@ def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarr
         return None
     from .guide_kernels import rtr_guide  # (numba loaded: plan.k given)
     kernel, first, rest = found
-    angles = full.driver.angles
     n = positions.size
-    width = min(FUSED_ROWS, n)
-    cs, sn, th, reach, gap, ct, sg = np.empty((7, width))
+    th, reach, gap, ct, sg = np.empty((5, min(FUSED_ROWS, n)))
     drive, undefined = np.empty(n), np.zeros(n, dtype=bool)
     close = [np.empty(n) for _ in plan.dyads]
     bad = 0
-    for lo in range(0, n, width):
-        m = min(lo + width, n) - lo
-        np.cos(angles[lo:lo + m], out=cs[:m])
-        np.sin(angles[lo:lo + m], out=sn[:m])
+    for lo, m, cs, sn in crank_blocks(full.driver.angles):
         rtr_guide(0, m, cs, sn, *first, th, reach, gap)
         np.cos(th[:m], out=ct[:m])
         np.sin(th[:m], out=sg[:m])

@@ -82,11 +82,14 @@ class FusedTables:
         return src, sign
 
     def write(self, points: list[tuple[str, tuple[float, float]]], kout: np.ndarray,
-              joints: list[str] | None = None, rout: np.ndarray | None = None) -> None:
+              joints: list[str] | None = None, rout: np.ndarray | None = None,
+              crank: tuple[np.ndarray, np.ndarray] | None = None) -> None:
         """Solve the sweep again block by block and write every row of the ``kinematics``
         table's float columns into ``kout`` (``points``: each point's body and local
         coordinates, in the table's order) and, with ``joints`` (in the table's order),
-        of the ``reactions`` table's ``Fx, Fy, F, N, M`` into ``rout``. Raises
+        of the ``reactions`` table's ``Fx, Fy, F, N, M`` into ``rout``. ``crank``: the
+        crank angle's cos and sin over the sweep as the solve kept them (numpy's), else
+        worked out per block (numpy's ``cos`` and ``sin``: the same numbers). Raises
         :class:`~kinetostatics.solver.fast.compose.Refused` where a kernel met a row
         that is not finite (never expected: the sweep was solved by the same kernels)."""
         if joints is None:
@@ -99,16 +102,20 @@ class FusedTables:
         angles = driver_input(self.scene)
         n = angles.size
         width = min(BLOCK, n)
-        cs, sn = np.empty(width), np.empty(width)
-        mb = np.empty((3 * BODY_ROWS, width))       # the block's motion and reactions
-        rb = np.empty((4 * src.shape[0], width))
+        if crank is not None and crank[0].shape != (n,):
+            crank = None
+        if crank is None:
+            cs, sn = np.empty(width), np.empty(width)
         bad = 0
         for lo in range(0, n, width):
             m = min(lo + width, n) - lo
-            np.cos(angles[lo:lo + m], out=cs[:m])
-            np.sin(angles[lo:lo + m], out=sn[:m])
+            if crank is None:
+                np.cos(angles[lo:lo + m], out=cs[:m])
+                np.sin(angles[lo:lo + m], out=sn[:m])
+            else:
+                cs, sn = crank[0][lo:lo + m], crank[1][lo:lo + m]
             bad += self.kernel(0, m, OWNERS, cs, sn, START, *self.fixed, slots, local, n, lo,
-                               kout, src, sign, rout, mb, rb, own)
+                               kout, src, sign, rout, own)
         if bad:
             raise Refused(bad)
 

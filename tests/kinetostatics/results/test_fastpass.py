@@ -114,6 +114,26 @@ def test_the_fused_road_gives_the_full_re_solves_tables(fast, text, monkeypatch)
     assert bits(alone) == bits(full.kinematics)
 
 
+def test_the_pass_reads_the_solves_cos_and_sin(fast):
+    """The lean solve keeps the crank angle's cos and sin (numpy's over the whole sweep)
+    and the fused pass reads them instead of working them out again (other numbers
+    there give other tables); a solution without them (worked out per block) gives the
+    same tables."""
+    text = scene_text("four_bar")
+    sol = ks.solve(text)
+    lean = sol.__dict__["_deferred"]
+    cs, sn = lean.crank
+    angles = lean.known["scene"].driver.angles
+    assert cs.tobytes() == np.cos(angles).tobytes() and sn.tobytes() == np.sin(angles).tobytes()
+    tables = bits(sol.reactions), bits(sol.kinematics)
+    again = ks.solve(text)
+    again.__dict__["_deferred"].crank = None
+    assert (bits(again.reactions), bits(again.kinematics)) == tables
+    other = ks.solve(text)
+    other.__dict__["_deferred"].crank = (cs[::-1].copy(), sn[::-1].copy())
+    assert bits(other.kinematics)["x"] != tables[1]["x"]
+
+
 def test_a_refused_block_takes_the_full_re_solve(fast, monkeypatch):
     """Where the kernels refuse a block of the pass (never expected), the table comes
     from the full re-solve: the same table."""
@@ -170,6 +190,31 @@ def test_point_rows_is_the_numpy_paths_arithmetic(fast, lx, ly):
         want = np.broadcast_to(expected[c], (w,))
         assert out[c, 4:4 + w].tobytes() == np.ascontiguousarray(want).tobytes(), c
     assert (out[:, :4] == 7.0).all() and (out[:, 4 + w:] == 7.0).all()
+
+
+@pytest.mark.parametrize("text", [scene_text("four_bar"), scene_text("scotch_yoke"),
+                                  slider_crank_pushed()], ids=["RRR", "TTR", "RRT"])
+def test_the_fused_kernels_points_are_the_numpy_paths_arithmetic(fast, text):
+    """The fused table kernel's columns of a point (written a column a loop by
+    non-temporal stores) are the numpy path's arithmetic bit for bit, at a local point
+    on each road of arith.rotate on every moving body, from the full re-solve's motion."""
+    from kinetostatics.solver import arith as A
+    sol = ks.solve(text)
+    lean = sol.__dict__["_deferred"]
+    fused = FusedTables(loader.kernels(), lean.known["scene"], lean.known["structure"])
+    points = [(b, loc) for b in fused.slot for loc in LOCAL]
+    n = lean.positions.size
+    out = np.full((6, len(points) * n + 3), 7.0)
+    fused.write(points, out[:, :-3])
+    full = ks.solve(text)
+    for i, (b, loc) in enumerate(points):
+        m = full.kin.bodies[b]
+        rx, ry = m.rotate(*loc)
+        expected = [A.add(m.ox, rx), A.add(m.oy, ry), *m.vel_arm(rx, ry), *m.acc_arm(rx, ry)]
+        for c in range(6):
+            want = np.ascontiguousarray(np.broadcast_to(expected[c], (n,)))
+            assert out[c, i * n:(i + 1) * n].tobytes() == want.tobytes(), (b, loc, c)
+    assert (out[:, -3:] == 7.0).all()
 
 
 def test_the_pass_solves_no_array_over_the_sweep(fast, monkeypatch):

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import copy
 from concurrent.futures import ThreadPoolExecutor
+from dataclasses import replace
 
 import numpy as np
 import pandas as pd
@@ -199,6 +200,26 @@ def test_positions_in_any_order_and_repeats_as_solve(alone_calls) -> None:
     with pytest.raises(ks.SceneError) as batch:
         ks.solve_many([scenes[1], bad])
     assert str(batch.value) == "scenes[1]: " + str(alone.value)
+
+
+def test_scene_objects_read_at_once_refuse_and_group_as_solve(alone_calls) -> None:
+    """Scene objects of one structure are read at once (their records taken together,
+    ``many._one_group``): one whose positions repeat is still refused as solve refuses
+    it, led by its place; a scene of another structure among them, or one without
+    positions, sends them all to be read one by one, each solved as solve solves it."""
+    scenes = [load_scene(d) for d in variants("four_bar", 3, 0.05, seed=5)]
+    drv = scenes[1].driver
+    bad = replace(scenes[1], driver=replace(drv, positions=np.array([0.0, 90.0, 0.0])))
+    with pytest.raises(ks.SceneError) as alone:
+        ks.solve(bad)
+    with pytest.raises(ks.SceneError) as batch:
+        ks.solve_many([scenes[0], bad, scenes[2]])
+    assert str(batch.value) == "scenes[1]: " + str(alone.value)
+    other = load_scene(ks.example("slider_crank"))
+    mixed = [scenes[0], other, scenes[1], scenes[2], other]
+    for got, sc in zip(ks.solve_many(mixed), mixed, strict=True):
+        assert_same(got, ks.solve(sc))
+    assert alone_calls == []        # (each structure stacked: the four-bars, the two cranks)
 
 
 def test_a_bad_value_names_its_scene_and_field() -> None:

@@ -58,3 +58,22 @@ def test_probe_picks_the_assembly_as_the_solve():
     closeness, gone = probe_closeness(scene, replace(structure), where)
     assert np.array_equal(_bits(closeness[0]), _bits(kin.dyads[0].closeness2))
     assert np.array_equal(gone, open_rows(kin))
+
+
+def test_probe_of_a_crank_pivoted_off_its_origin():
+    """A crank whose pivot is not its frame's origin (its origin turns about the pivot,
+    ``probes.driver_positions``): the probe still equals the kinematics, bit for bit."""
+    raw = load_scene(ks.example("four_bar")).raw
+    crank = raw["bodies"][0]
+    assert crank["name"] == raw["driver"]["body"]
+    shift = (0.013, -0.007)
+    crank = dict(crank, cog=[c + s for c, s in zip(crank["cog"], shift, strict=True)],
+                 points={p: [c + s for c, s in zip(xy, shift, strict=True)]
+                         for p, xy in crank["points"].items()})
+    scene = load_scene(dict(raw, bodies=[crank, *raw["bodies"][1:]]))
+    structure = analyse(scene)
+    where = np.linspace(-30.0, 400.0, 301)
+    kin = solve_kinematics(scene, structure, positions=where, strict=False)
+    closeness, gone = probe_closeness(scene, structure, where)
+    assert np.array_equal(_bits(closeness[0]), _bits(kin.dyads[0].closeness2))
+    assert np.array_equal(gone, open_rows(kin))
