@@ -13,7 +13,7 @@ is loaded (the cache folder settled); the rules of the kernels module hold here.
 from __future__ import annotations
 
 from .jitbase import FUSED_TILE as TILE
-from .jitbase import body, jit, nonfinite, scratch_for, tile_geometry, tile_rows_for
+from .jitbase import body, jit_as, nonfinite, scratch_for, tile_geometry, tile_rows_for
 from .layout import DRIVER_GEOMETRY, INNER_R, KINDS, P_GROUND, PARAM, ROT1, ROT2, C, S
 from .layout import MOTION as BODY_ROWS
 from .reaction_kernels import crank_moment, reaction_row, tile_loads_for
@@ -131,21 +131,25 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
     return bad
 
 
-def _kept_for(code: int):
-    """The entry point of :func:`_crank_dyad_kept` for the dyad kind ``code``
-    (:data:`~kinetostatics.solver.fast.layout.KINDS`), its arguments but the kind's: the
-    kind a constant of the compiled code (numba compiles the body once per kind, on the
-    kind's first call, and caches it: the closure's value is part of the cache's key,
-    so one source serves every kind). Measured 2026-11-29 against the kind passed at run
-    time (one compile for every kind): the four-bar at 2e5 rows 23 ms a solve against
-    11, its dyad's row no longer vectorised."""
-    @jit
-    def kept(*args):
-        return _crank_dyad_kept(code, *args)
+def _kept_for(kind: str):
+    """The compiled entry of dyad kind ``kind``: :func:`_crank_dyad_kept` with the kind's
+    code (:data:`~kinetostatics.solver.fast.layout.KINDS`) a constant (numba freezes the
+    closure's ``code``: each kind compiled on its first call as if written out), named by
+    its kind (:func:`~kinetostatics.solver.fast.jitbase.jit_as`: a cache index of its
+    own). Measured 2026-11-29 against the kind passed at run time (one compile for every
+    kind): the four-bar at 2e5 rows 23 ms a solve against 11, its dyad's row no longer
+    vectorised."""
+    code = KINDS[kind]
+
+    @jit_as(f"{kind.lower()}_kept")
+    def kept(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
+             nw, st, drive, close, undefined):
+        return _crank_dyad_kept(code, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d,
+                                k2d, gl, gls, npt, gw, gws, nw, st, drive, close, undefined)
     return kept
 
 
 # a crank and one dyad, fused, per dyad kind (RTR: its composed kernels)
-KEPT = {name: _kept_for(code) for name, code in KINDS.items() if name != "RTR"}
+KEPT = {kind: _kept_for(kind) for kind in KINDS if kind != "RTR"}
 
 __all__ = ["KEPT"]

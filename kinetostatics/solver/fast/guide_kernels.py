@@ -15,7 +15,7 @@ cache folder settled); the kernels module's rules hold here.
 from __future__ import annotations
 
 from .closure_kernels import rtr_guide_angle
-from .jitbase import TILE, body, jit, scratch, tile_geometry
+from .jitbase import TILE, body, jit, jit_as, scratch, tile_geometry
 from .kernels import crank_row, dyad_row, outer_param
 from .layout import (
     ASSEMBLY,
@@ -263,19 +263,23 @@ def _rtr_dyad_kept(kind, lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, 
     return bad
 
 
-def _after_rtr_for(code: int):
-    """The entry point of :func:`_rtr_dyad_kept` for a second dyad of kind ``code``
-    (:data:`~kinetostatics.solver.fast.layout.KINDS`), its arguments but the kind's: one
-    source, compiled once per kind on its first call and cached, the kind a constant of
-    the compiled code (as :mod:`~kinetostatics.solver.fast.fused_kernels`' ``KEPT``)."""
-    @jit
-    def kept(*args):
-        return _rtr_dyad_kept(code, *args)
+def _after_rtr_for(kind: str):
+    """The compiled entry of :func:`_rtr_dyad_kept` for a second dyad of kind ``kind``,
+    its code (:data:`~kinetostatics.solver.fast.layout.KINDS`) a constant, named by its
+    kind (as :mod:`~kinetostatics.solver.fast.fused_kernels`' ``KEPT``)."""
+    code = KINDS[kind]
+
+    @jit_as(f"rtr_{kind.lower()}_kept")
+    def kept(lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl, npt, gw, nw, st, ct,
+             sg, reach, gap, drive, close1, close2, undefined):
+        return _rtr_dyad_kept(code, lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4,
+                              gl, npt, gw, nw, st, ct, sg, reach, gap, drive, close1, close2,
+                              undefined)
     return kept
 
 
 # a crank, one RTR dyad and a second dyad, fused, per the second dyad's kind (compiled on
 # its first call: the shaper's RRT alone, unless a scene asks for another)
-AFTER_RTR = {name: _after_rtr_for(code) for name, code in KINDS.items() if name != "RTR"}
+AFTER_RTR = {kind: _after_rtr_for(kind) for kind in KINDS if kind != "RTR"}
 
 __all__ = ["AFTER_RTR", "rtr_guide", "rtr_kept"]
