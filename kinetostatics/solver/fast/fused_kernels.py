@@ -12,18 +12,19 @@ is loaded (the cache folder settled); the rules of the kernels module hold here.
 
 from __future__ import annotations
 
+from .fused_tables import tile_motion_for
 from .jitbase import FUSED_TILE as TILE
 from .jitbase import body, jit_as, nonfinite, scratch_for, tile_geometry, tile_rows_for
 from .layout import DRIVER_GEOMETRY, INNER_R, KINDS, P_GROUND, PARAM, ROT1, ROT2, C, S
 from .layout import MOTION as BODY_ROWS
 from .reaction_kernels import crank_moment, reaction_row, tile_loads_for
 from .scratch_views import DYAD_ROWS, LOAD_ROWS, dyad_views, load_views, resultant_views
-from .tail_kernels import motion_tile_for, tile_kept_for, tile_swept
+from .tail_kernels import tile_kept_for, tile_swept
 
 # tiles of FUSED_TILE rows (jitbase): the helpers of that width
 scratch, tile_rows = scratch_for(TILE), tile_rows_for(TILE)
 tile_loads, tile_kept = tile_loads_for(TILE), tile_kept_for(TILE)
-motion_tile = motion_tile_for(TILE)
+tile_motion = tile_motion_for(TILE)
 
 
 # -- a crank and one dyad, fused: what solve_many keeps of a run ---------------------------
@@ -90,7 +91,8 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
         known1, known2 = wg[P_GROUND, 0] == 0.0, wg[PARAM + P_GROUND, 0] == 0.0
         c0 = t0 - ts[own[t0]]       # (the scene's row in its cos and sin)
         _tile_in(cs, sn, c0, nt, wdrv)
-        bad += motion_tile(kind, nt, wgd, w, eps, wdrv, wg, wk1, wk2, wm1, wm2, wd)
+        bad += tile_motion(kind, rot1, rot2, inner_r, nt, wgd, w, eps, wdrv, wg, wk1, wk2,
+                           wm1, wm2, wd)
         bad += tile_loads(wdrv, wad, wl0, npt[0], nt)
         bad += tile_loads(wm1, wa1, wl1, npt[1], nt)
         bad += tile_loads(wm2, wa2, wl2, npt[2], nt)

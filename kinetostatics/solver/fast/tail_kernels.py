@@ -12,8 +12,7 @@ Inlined by LLVM (``body``); the kernels module's rules hold here.
 from __future__ import annotations
 
 from .jitbase import TILE, body, nonfinite
-from .kernels import crank_row, dyad_row
-from .layout import CL2, INNER_R, P_GROUND, PARAM, ROT1, ROT2
+from .layout import CL2, P_GROUND, PARAM
 from .reaction_kernels import crank_moment, reaction_row, swept_row
 
 
@@ -97,27 +96,6 @@ def tile_moment(wgd, wdrv, wad, wr, nt):
     return bad
 
 
-def motion_tile_for(width: int):
-    """``motion_tile(kind, nt, wgd, w, eps, wdrv, wg, wk1, wk2, wm1, wm2, wd)``: a crank's
-    motion over a tile of ``width`` rows (:func:`crank_row`, its cos and sin in ``wdrv``
-    already), then its dyad's of kind ``kind`` (:func:`dyad_row`, not RTR; ``wk1``,
-    ``wk2`` the outer joints' known bodies); the count of the tile's first ``nt`` rows
-    that are not finite or that the numpy path refuses. Each a loop of its own over the
-    whole tile (the dyad's in the crank's loop stops it vectorising)."""
-    @body
-    def motion_tile(kind, nt, wgd, w, eps, wdrv, wg, wk1, wk2, wm1, wm2, wd):
-        rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
-        bad = 0
-        for t in range(width):
-            f = crank_row(t, t, wgd, w, eps, wdrv)
-            bad += f if t < nt else 0
-        for t in range(width):
-            f = dyad_row(kind, rot1, rot2, inner_r, False, t, t, wg, wk1, wk2, wm1, wm2, wd)
-            bad += f if t < nt else 0
-        return bad
-    return motion_tile
-
-
 def tile_kept_for(width: int):
     """``tile_kept(j0, nt, whole, wr, wd, drive, close)``: what a sweep keeps of a tile
     of ``width`` rows, at ``j0`` on: Me (row 0 of ``wr``) and the dyad's closeness to a
@@ -140,6 +118,5 @@ def tile_kept_for(width: int):
 
 tile_kept = tile_kept_for(TILE)         # (tiles of TILE rows: the RTR guide's kernels)
 
-__all__ = ["add_rows", "copy_rows", "known_loads",
-           "motion_tile_for", "tile_kept", "tile_kept_for", "tile_moment", "tile_reactions",
-           "tile_swept"]
+__all__ = ["add_rows", "copy_rows", "known_loads", "tile_kept", "tile_kept_for", "tile_moment",
+           "tile_reactions", "tile_swept"]
