@@ -12,9 +12,9 @@ is loaded (the cache folder settled); the rules of the kernels module hold here.
 
 from __future__ import annotations
 
-from .fused_tables import tile_motion_for
 from .jitbase import FUSED_TILE as TILE
 from .jitbase import body, jit_as, nonfinite, scratch_for, tile_geometry, tile_rows_for
+from .kernels import tile_motion_for
 from .layout import DRIVER_GEOMETRY, INNER_R, KINDS, P_GROUND, PARAM, ROT1, ROT2, C, S
 from .layout import MOTION as BODY_ROWS
 from .reaction_kernels import crank_moment, reaction_row, tile_loads_for

@@ -32,7 +32,7 @@ from .jitbase import (
     tile_geometry,
     tile_rows,
 )
-from .kernels import crank_row, dyad_row
+from .kernels import tile_motion_for
 from .layout import (
     AL,
     AX,
@@ -86,28 +86,6 @@ def _views(w, k1d, k2d):
             w[a:a + 3], w[a + 3:a + 6], w[a + 6:a + 9], w[a + 9:a + 12], w[a + 12:W_DYAD],
             w[W_DYAD:W_REACTIONS], w[W_REACTIONS:g], w[g:g + DYAD_GEOMETRY],
             w[g + DYAD_GEOMETRY:])
-
-
-def tile_motion_for(width: int):
-    """``tile_motion(kind, rot1, rot2, inner_r, nt, wgd, w, eps, wdrv, wg, wk1, wk2, wm1,
-    wm2, wd)``: a tile's motion (tiles of ``width`` rows), the crank's
-    (:func:`~kinetostatics.solver.fast.kernels.crank_row`, its cos and sin in ``wdrv``
-    already) then the dyad's (:func:`~kinetostatics.solver.fast.kernels.dyad_row`), each
-    a loop over the whole tile (a constant count: it vectorises); the count of the
-    first ``nt`` rows that are not finite. (``solve_many``'s fused kernels work out the
-    same two loops in tiles of ``FUSED_TILE`` rows.)"""
-    @body
-    def tile_motion(kind, rot1, rot2, inner_r, nt, wgd, w, eps, wdrv, wg, wk1, wk2, wm1, wm2,
-                    wd):
-        bad = 0
-        for t in range(width):
-            f = crank_row(t, t, wgd, w, eps, wdrv)
-            bad += f if t < nt else 0
-        for t in range(width):
-            f = dyad_row(kind, rot1, rot2, inner_r, False, t, t, wg, wk1, wk2, wm1, wm2, wd)
-            bad += f if t < nt else 0
-        return bad
-    return tile_motion
 
 
 _tile_motion = tile_motion_for(TILE)

@@ -437,5 +437,27 @@ def dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d):
 MOTION = {name: _motion_kernel(code, name) for name, code in KINDS.items()}
 
 
-__all__ = ["MOTION", "REACTIONS", "body_loads", "swept_loads", "crank_motion",
+def tile_motion_for(width: int):
+    """``tile_motion(kind, rot1, rot2, inner_r, nt, wgd, w, eps, wdrv, wg, wk1, wk2, wm1,
+    wm2, wd)``: a tile's motion (tiles of ``width`` rows), the crank's
+    (:func:`~kinetostatics.solver.fast.kernels.crank_row`, its cos and sin in ``wdrv``
+    already) then the dyad's (:func:`~kinetostatics.solver.fast.kernels.dyad_row`), each
+    a loop over the whole tile (a constant count: it vectorises); the count of the
+    first ``nt`` rows that are not finite. (``solve_many``'s fused kernels work out the
+    same two loops in tiles of ``FUSED_TILE`` rows.)"""
+    @body
+    def tile_motion(kind, rot1, rot2, inner_r, nt, wgd, w, eps, wdrv, wg, wk1, wk2, wm1, wm2,
+                    wd):
+        bad = 0
+        for t in range(width):
+            f = crank_row(t, t, wgd, w, eps, wdrv)
+            bad += f if t < nt else 0
+        for t in range(width):
+            f = dyad_row(kind, rot1, rot2, inner_r, False, t, t, wg, wk1, wk2, wm1, wm2, wd)
+            bad += f if t < nt else 0
+        return bad
+    return tile_motion
+
+
+__all__ = ["MOTION", "REACTIONS", "tile_motion_for", "body_loads", "swept_loads", "crank_motion",
            "crank_reaction", "slider_motion", "slider_reaction", "point_rows"]
