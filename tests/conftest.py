@@ -322,14 +322,15 @@ def _in_order_of_cost(items: list[pytest.Item], by_module: bool) -> list[pytest.
     return [item for unit in ranked for item in sorted(unit, key=_cost_rank)]
 
 
-#: Test modules whose tests share a costly module fixture (a class generated): each runs
-#: on one xdist worker, so the fixture is made once. (tests/test_browser.py is not one:
-#: its eleven tests, one per widget sheet, each making the headless checks of the sheet
-#: on the browser's own run too, some 355 s in all, are spread over the workers for
-#: balance; each worker starts one JupyterLab server for the session and one Chromium
-#: page while the module's tests run.)
+#: Test modules whose tests share a costly module fixture (a class generated; the browser
+#: test's JupyterLab server, Chromium and page with JupyterLab loaded): each runs on one
+#: xdist worker, so the fixture is made once. (Spread over two workers, the browser's
+#: eleven tests started a second server, Chromium and JupyterLab page: 10 s of CPU,
+#: measured 2026-11-29; on one worker they take some 250 s of CPU while the other worker
+#: runs the compiled group, handed out first.)
 SHARED_PER_MODULE = ("tests/kinetostatics/teaching/test_classroom.py",
-                     "tests/kinetostatics/teaching/test_class_record.py")
+                     "tests/kinetostatics/teaching/test_class_record.py",
+                     "tests/test_browser.py")
 
 
 #: Tests that run the compiled kernels (numba), in the test's process or in a command it

@@ -17,11 +17,14 @@ student sees:
   Python API): the sheet, saved from the browser, gives its outputs, and the checks run
   in its kernel. So each widget sheet is executed once in the suite.
 
-One JupyterLab server (one per xdist worker, for the session) serves the sheets (copied
-into a temporary folder, with the picture audit's cell first, so the checkout's sheets
-stay without outputs) to one Chromium page with JupyterLab loaded (for the module's
-tests run one after another): each test opens its sheet in that page, and closes it and
-shuts its kernel down after, so the server and the page start once, not once a sheet.
+One JupyterLab server (for the session) serves the sheets (copied into a temporary
+folder, with the picture audit's cell first, so the checkout's sheets stay without
+outputs) to one Chromium page with JupyterLab loaded (for the module's tests, which run
+one after another on one xdist worker: tests/conftest.py, SHARED_PER_MODULE): each test
+opens its sheet in that page, and closes it and shuts its kernel down after, so the
+server, Chromium and the page start once in the suite, not once a sheet or a worker.
+The test waits for the page by checking it every POLL ms (Playwright's default, every
+animation frame, kept Chromium drawing frames through every wait).
 In CI (``CI=true``) the test must run: a missing Chromium or Playwright fails it;
 elsewhere it is skipped with one line saying what to install.
 """
@@ -57,6 +60,9 @@ RUN_TRY = 240_000      # ms: one "Run All" that has not finished by then is give
 RUN_START = 60_000     # ms: a Run All marks every cell queued at once (within 5 s measured)
 SAVE_AGAIN = 30         # s: a save not on disk by then is asked again (under 1 s measured)
 UPDATE = 300_000       # ms: one slider update (1.5-15 s measured)
+POLL = 200             # ms between two checks of a condition the test waits for on the page
+                       # (Playwright's default, every animation frame, kept Chromium drawing
+                       # frames at 60 Hz through every wait)
 CLICK = 60_000         # ms: one click on the page (instant when nothing is in the way)
 WIDGET_ERRORS = re.compile(r"Error displaying widget|model not found|Could not find model|"
                            r"Class \S+ not found|Failed to (create|render)|"
@@ -230,12 +236,12 @@ def _run_all(page, lab, sheet: str) -> None:
     values). A dialog in the way is dismissed first (``_clear_dialogs``)."""
     from playwright.sync_api import TimeoutError as PlaywrightTimeout
     page.locator(".jp-Notebook .jp-Cell").first.wait_for(timeout=RUN_ALL)
-    page.wait_for_function(KERNEL_IDLE, timeout=RUN_ALL)
+    page.wait_for_function(KERNEL_IDLE, polling=POLL, timeout=RUN_ALL)
     for wait in (RUN_TRY, RUN_ALL):
         for attempt in range(3):
             _menu(page, "Run", re.compile(r"^Run All Cells"))
             try:
-                page.wait_for_function(STARTED, timeout=RUN_START)
+                page.wait_for_function(STARTED, polling=POLL, timeout=RUN_START)
                 break
             except PlaywrightTimeout:
                 if attempt == 2:
@@ -246,14 +252,14 @@ def _run_all(page, lab, sheet: str) -> None:
                 # sheet opened again (on the kernel it started)
                 _load_app(page, lab)
                 _open((page, None), sheet)
-                page.wait_for_function(KERNEL_IDLE, timeout=RUN_ALL)
+                page.wait_for_function(KERNEL_IDLE, polling=POLL, timeout=RUN_ALL)
         try:
-            page.wait_for_function(ALL_RAN, timeout=wait)
+            page.wait_for_function(ALL_RAN, polling=POLL, timeout=wait)
             return
         except PlaywrightTimeout:
             if wait == RUN_ALL:
                 raise
-            page.wait_for_function(KERNEL_IDLE, timeout=RUN_ALL)
+            page.wait_for_function(KERNEL_IDLE, polling=POLL, timeout=RUN_ALL)
 
 
 def _run_code(page, code: str) -> str:
@@ -285,7 +291,7 @@ def _wait_picture(page, before: str) -> str:
             const img = imgs[imgs.length - 1];
             const html = [...document.querySelectorAll('.widget-html')].map(e => e.textContent);
             return img && img.src !== before && !html.some(t => t.includes('computing'));
-        }""", arg=before, timeout=UPDATE)
+        }""", arg=before, polling=POLL, timeout=UPDATE)
     return _image(page).get_attribute("src")
 
 
@@ -300,7 +306,7 @@ def _wait_settled(page) -> None:
             if (!status || !readout || status.includes('computing')) return false;
             const m = status.match(/values: \\w+ = ([-+0-9.e]+)/);
             return m && Math.abs(parseFloat(m[1]) - parseFloat(readout.textContent)) < 1e-9;
-        }""", timeout=UPDATE)
+        }""", polling=POLL, timeout=UPDATE)
 
 
 def _state(page) -> tuple[int, dict]:
@@ -337,7 +343,7 @@ def _load_app(page, lab) -> None:
     """JupyterLab loaded in ``page`` on a fresh workspace (no sheet open)."""
     base, token, _ = lab
     page.goto(f"{base}/lab?token={token}&reset", timeout=RUN_ALL)
-    page.wait_for_function(APP_READY, timeout=RUN_ALL)
+    page.wait_for_function(APP_READY, polling=POLL, timeout=RUN_ALL)
     page.evaluate("() => window.jupyterapp.restored")      # (a promise: awaited)
 
 
@@ -376,7 +382,7 @@ def app(jupyterlab, lab):
     yield page, console
     try:
         page.evaluate(CLOSE_ALL)
-        page.wait_for_function(NO_SHEET, timeout=CLICK)
+        page.wait_for_function(NO_SHEET, polling=POLL, timeout=CLICK)
     except Exception:                   # noqa: BLE001 (any state: the page is loaded again)
         _load_app(page, lab)
     _shut_kernels(lab)
@@ -416,7 +422,7 @@ def _move_every_slider(page, sheet: str, console: list[str]) -> None:
                 return imgs.length === before.length &&
                        imgs.some((img, j) => img.src !== before[j]) &&
                        !html.some(t => t.includes('computing'));
-            }""", arg=before, timeout=UPDATE)
+            }""", arg=before, polling=POLL, timeout=UPDATE)
         assert pictures.count() == explorers, (sheet, k, "pictures stacked")
         errors = _page_errors(console)
         assert not errors, (sheet, k, errors)
@@ -519,7 +525,7 @@ def test_sheet_in_a_real_browser(lab, app, sheet):
     headless checks on the same run (``_headless_checks``)."""
     page, console = _open(app, sheet)
     page.locator(".jp-Notebook .jp-Cell").first.wait_for(timeout=RUN_ALL)
-    page.wait_for_function(KERNEL_IDLE, timeout=RUN_ALL)
+    page.wait_for_function(KERNEL_IDLE, polling=POLL, timeout=RUN_ALL)
     # a dialog in the way of Run All is dismissed (one intercepted every click in CI)
     _menu(page, "Kernel", re.compile(r"^Restart Kernel…"))
     page.locator(".jp-Dialog").first.wait_for(timeout=UPDATE)

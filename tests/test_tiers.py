@@ -94,17 +94,21 @@ class _Item:
 
 
 def test_the_costliest_units_go_out_first() -> None:
-    """The compiled group first (its longest test first), then the browser's single
-    tests, the kernels', the slow ones and the quick tier's in the collection's order:
+    """The compiled group first (its longest test first), then the browser's group, the
+    kernels', the slow ones and the quick tier's in the collection's order:
     pytest-xdist hands the units out in the order of their first test."""
     fast = "tests/kinetostatics/solver/test_fast.py::"
     items = [_Item("tests/a.py::test_quick"), _Item("tests/b.py::test_slow", ("slow",)),
              _Item(fast + "test_small"), _Item("tests/a.py::test_quick_too"),
              _Item("tests/test_browser.py::test_sheet[01]", ("slow", "kernel", "browser")),
+             _Item("tests/test_mutants.py::test_every_mutant_is_killed_by_a_quick_test"),
              _Item("tests/c.py::test_kernel", ("slow", "kernel")),
+             _Item("tests/test_browser.py::test_sheet[02]", ("slow", "kernel", "browser")),
              _Item("tests/kinetostatics/test_cli.py::test_bench_quick", ("slow",))]
     order = [i.nodeid.split("::")[1] for i in conftest._in_order_of_cost(items, False)]
-    assert order == ["test_bench_quick", "test_small", "test_sheet[01]", "test_kernel",
+    # (the browser's tests one unit: one JupyterLab server, Chromium and page for them)
+    assert order == ["test_bench_quick", "test_small", "test_sheet[01]", "test_sheet[02]",
+                     "test_every_mutant_is_killed_by_a_quick_test", "test_kernel",
                      "test_slow", "test_quick", "test_quick_too"]
     # the quick tier hands out modules, ranked by the tests it keeps: the module whose
     # slow test is deselected counts as quick; the picture scene's figures (a slow
