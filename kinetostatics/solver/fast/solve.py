@@ -123,11 +123,8 @@ def fused_blocks(kernels, scene: Scene, full: Scene, structure, geometry,
     # again, fastpass)
     cs, sn = np.empty(n), np.empty(n)
     drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
-    angles = full.driver.angles
-    if kernel_trig():
-        if angles.flags.writeable:      # (read-only, as NO_ANGLES: one signature)
-            angles = angles.view()
-            angles.flags.writeable = False
+    angles = full.driver.angles     # (read-only, as the driver makes them and NO_ANGLES:
+    if kernel_trig():               # one compiled signature)
         w = OWNERS.size
         blocks = ((lo, min(w, n - lo), angles[lo:lo + w]) for lo in range(0, n, w))
     else:
