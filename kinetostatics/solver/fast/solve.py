@@ -93,8 +93,9 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
     return sol
 
 
-# Rows per call of the fused kernel over a long sweep (its cos and sin worked out per
-# block into one scratch pair, which stays in the caches). Measured 2026-11-29, the
+# Rows per call of the fused kernels over a long sweep given numpy's cos and sin (worked
+# out per block into one scratch pair, which stays in the caches: guided_blocks, and
+# fused_blocks where kernel_trig does not hold). Measured 2026-11-29, the
 # four-bar's solve at 1e6 rows, processor time, best of 7 (machine loaded): 4096 rows
 # 49 ms, 8192 52, 16384 54, 65536 53; at 2e5 all 11.3-11.9 ms
 FUSED_ROWS = 4096
@@ -165,13 +166,13 @@ def kernel_trig() -> bool:
 
 
 def trig_probes(n: int = 20_000) -> np.ndarray:
-    """Angles (rad) whose cos and sin :func:`kernel_trig` checks: a turn's sweep in
-    degrees (``n + 1`` rows), ``n`` each within +-8, +-1e3 and +-1e9, multiples of
+    """Angles (rad) whose cos and sin :func:`kernel_trig` checks: a turn (``n + 1``
+    rows), ``n`` each within +-8, +-1e3 and +-1e9, multiples of
     pi / 4, and zeros, subnormals, the largest doubles, infinities and NaN."""
     rng = np.random.default_rng(31)
     special = np.array([0.0, -0.0, 5e-324, 2.2e-308, 1e-8, 1.7976931348623157e308,
                         -1.7976931348623157e308, np.inf, -np.inf, np.nan])
-    return np.concatenate([np.deg2rad(np.linspace(0.0, 360.0, n + 1)),
+    return np.concatenate([np.linspace(0.0, 2.0 * np.pi, n + 1),
                            *(rng.uniform(-r, r, n) for r in (8.0, 1e3, 1e9)),
                            np.pi / 4 * np.arange(-64, 65), special])
 
