@@ -12,8 +12,12 @@ is loaded (the cache folder settled); the rules of the kernels module hold here.
 
 from __future__ import annotations
 
+import math
+
+import numpy as np
+
 from .jitbase import FUSED_TILE as TILE
-from .jitbase import body, jit_as, nonfinite, scratch_for, tile_geometry, tile_rows_for
+from .jitbase import body, jit, jit_as, nonfinite, scratch_for, tile_geometry, tile_rows_for
 from .kernels import tile_motion_for
 from .layout import DRIVER_GEOMETRY, INNER_R, KINDS, P_GROUND, PARAM, ROT1, ROT2, C, S
 from .layout import MOTION as BODY_ROWS
@@ -46,8 +50,26 @@ def _tile_in(cs, sn, c0, nt, wdrv):
 
 
 @body
-def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls,
-                     npt, gw, gws, nw, st, drive, close, undefined):
+def _tile_turn(angles, cs, sn, c0, nt, wdrv):
+    """The crank's cos and sin of a tile's rows worked out from their angles (row ``c0``
+    on of ``angles``) into the tile and into rows ``c0`` on of ``cs``, ``sn`` (kept for
+    the tables' pass). The C library's cos and sin of one angle, which LLVM fuses into
+    one ``sincos`` call (glibc's: the same doubles as its ``cos`` and ``sin``, which
+    numpy calls; :func:`~kinetostatics.solver.fast.solve.kernel_trig` checks it once a
+    process). Measured 2026-11-29, 1e6 angles, processor time: 15 ns a row against
+    numpy's two passes 21-24."""
+    for t in range(nt):
+        a = angles[c0 + t]
+        c, s = math.cos(a), math.sin(a)
+        wdrv[C, t] = c
+        wdrv[S, t] = s
+        cs[c0 + t] = c
+        sn[c0 + t] = s
+
+
+@body
+def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d, k2d,
+                     gl, gls, npt, gw, gws, nw, st, drive, close, undefined):
     """A crank and one dyad (not RTR: its guide's cos and sin are numpy's, in a pass of
     their own), rows ``lo`` to ``hi`` of a stack (``own``: each row's scene; a table per
     kernel, ``gd`` the driver's, ``gy`` the dyad's, ``gl`` each body's loads, ``gw`` its
@@ -61,8 +83,9 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
     ``undefined``). ``k1d``, ``k2d``: whether each outer joint's known body is the
     driver (else the ground). The crank's cos and sin (``cs``, ``sn``) are worked out
     before, in a pass of their own: row ``i`` of scene ``e`` at ``i - ts[e]`` (one
-    sweep shared by the scenes, or the run's rows). Returns the count of rows the numpy path must
-    judge."""
+    sweep shared by the scenes, or the run's rows), or here from the crank's ``angles``
+    (one scene, ``ts`` 0; none: an empty array) into ``cs``, ``sn``
+    (:func:`_tile_turn`). Returns the count of rows the numpy path must judge."""
     rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
     R = BODY_ROWS
     w_ = scratch(4 * R + LOAD_ROWS + DYAD_ROWS + DRIVER_GEOMETRY)
@@ -80,6 +103,7 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
     e2 = 1 if st[2].shape[1] > 1 else 0
     ld = ly = l0 = l1 = l2 = -1           # (the scene whose geometry each tile holds)
     bad = 0
+    turn = angles.shape[0] > 0
     t0 = lo
     while t0 < hi:
         nt = tile_rows(1, own, t0, hi)          # (a tile never spans two scenes)
@@ -90,7 +114,10 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1
         l2 = tile_geometry(wl2, gl[2], gls[2], own, t0, l2)
         known1, known2 = wg[P_GROUND, 0] == 0.0, wg[PARAM + P_GROUND, 0] == 0.0
         c0 = t0 - ts[own[t0]]       # (the scene's row in its cos and sin)
-        _tile_in(cs, sn, c0, nt, wdrv)
+        if turn:
+            _tile_turn(angles, cs, sn, c0, nt, wdrv)
+        else:
+            _tile_in(cs, sn, c0, nt, wdrv)
         bad += tile_motion(kind, rot1, rot2, inner_r, nt, wgd, w, eps, wdrv, wg, wk1, wk2,
                            wm1, wm2, wd)
         bad += tile_loads(wdrv, wad, wl0, npt[0], nt)
@@ -144,14 +171,23 @@ def _kept_for(kind: str):
     code = KINDS[kind]
 
     @jit_as(f"{kind.lower()}_kept")
-    def kept(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt, gw, gws,
-             nw, st, drive, close, undefined):
-        return _crank_dyad_kept(code, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d,
-                                k2d, gl, gls, npt, gw, gws, nw, st, drive, close, undefined)
+    def kept(lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt,
+             gw, gws, nw, st, drive, close, undefined):
+        return _crank_dyad_kept(code, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys,
+                                k1d, k2d, gl, gls, npt, gw, gws, nw, st, drive, close,
+                                undefined)
     return kept
 
 
 # a crank and one dyad, fused, per dyad kind (RTR: its composed kernels)
 KEPT = {kind: _kept_for(kind) for kind in KINDS if kind != "RTR"}
 
-__all__ = ["KEPT"]
+
+@jit
+def turn_rows(angles, cs, sn):
+    """The cos and sin of ``angles`` into ``cs``, ``sn`` as :func:`_tile_turn` works them
+    out (what :func:`~kinetostatics.solver.fast.solve.kernel_trig` holds against numpy's)."""
+    _tile_turn(angles, cs, sn, 0, angles.shape[0], np.empty((BODY_ROWS, angles.shape[0])))
+
+
+__all__ = ["KEPT", "turn_rows"]

@@ -25,6 +25,8 @@ from .compose import Plan, Refused, kept_sweep
 from .geometry import NO_SWEPT_LOADS
 
 START = np.zeros(1, dtype=np.int64)     # where the one scene's rows begin in its cos, sin
+NO_ANGLES = np.zeros(0)     # (the fused kernel reads the rows' cos and sin: none worked out)
+NO_ANGLES.flags.writeable = False       # (read-only as a driver's angles: one signature)
 OWNERS = np.zeros(2 * BLOCK_ROWS, dtype=np.int64)  # each row's scene: 0 (a short sweep)
 NO_STATS = np.zeros((1, 1, 2))          # (a body without swept loads: never written)
 
@@ -49,7 +51,7 @@ def fused_sweep(kernels, scene: Scene, full: Scene, structure, geometry,
     cs, sn = scene_trig(record, scene) if full is scene else _trig(full)
     n = positions.size
     drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
-    bad = kernel(0, n, OWNERS, cs, sn, START, *fixed, drive, close, undefined)
+    bad = kernel(0, n, OWNERS, cs, sn, START, NO_ANGLES, *fixed, drive, close, undefined)
     if bad:
         raise Refused(bad)
     return kept_sweep(structure, "R", drive, undefined, [close])

@@ -33,6 +33,7 @@ from .geometry import NO_SWEPT_LOADS, not_covered
 from .layout import CL2
 from .loader import kernels as loaded_kernels
 from .short import (
+    NO_ANGLES,
     NO_STATS,
     OWNERS,
     START,
@@ -92,8 +93,9 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
     return sol
 
 
-# Rows per call of the fused kernel over a long sweep (its cos and sin worked out per
-# block into one scratch pair, which stays in the caches). Measured 2026-11-29, the
+# Rows per call of the fused kernels over a long sweep given numpy's cos and sin (worked
+# out per block into one scratch pair, which stays in the caches: guided_blocks, and
+# fused_blocks where kernel_trig does not hold). Measured 2026-11-29, the
 # four-bar's solve at 1e6 rows, processor time, best of 7 (machine loaded): 4096 rows
 # 49 ms, 8192 52, 16384 54, 65536 53; at 2e5 all 11.3-11.9 ms
 FUSED_ROWS = 4096
@@ -103,14 +105,16 @@ def fused_blocks(kernels, scene: Scene, full: Scene, structure, geometry,
                  positions: np.ndarray) -> Kept | None:
     """The :class:`~kinetostatics.solver.blocks.Kept` of a long sweep of a crank and one
     dyad (``full``: ``scene`` at ``positions``) from ``solve_many``'s fused kernel
-    (:func:`~kinetostatics.solver.fast.short.fused_call`), called per block of
-    :data:`FUSED_ROWS` rows, its cos and sin in a pass of their own per block: Me, the
-    undefined rows and the dyad's closeness to a dead centre, the numbers of the composed
-    kernels bit for bit (the same row helpers in the same order; numpy's cos and sin
-    give each angle the same double in a block as over the whole sweep). None for
-    another structure or ``resist`` loads (:func:`~kinetostatics.solver.fast.compose.solve_lean`
-    solves those). Raises :class:`~kinetostatics.solver.fast.compose.Refused` as the
-    composed kernels do."""
+    (:func:`~kinetostatics.solver.fast.short.fused_call`): Me, the undefined rows and
+    the dyad's closeness to a dead centre, the numbers of the composed kernels bit for
+    bit (the same row helpers in the same order). The crank's cos and sin are worked out
+    in the kernel, tile by tile, where :func:`kernel_trig` finds them numpy's (called
+    per ``OWNERS`` rows: measured 2026-11-29, the slider-crank at 1e6 rows, 15 ns a row
+    against 21-24 for numpy's two passes, and 31 calls instead of 245 of the kernel and
+    490 of numpy's); else numpy's, per block of :data:`FUSED_ROWS` rows in a pass of
+    their own (:func:`crank_blocks`). None for another structure or ``resist`` loads
+    (:func:`~kinetostatics.solver.fast.compose.solve_lean` solves those). Raises
+    :class:`~kinetostatics.solver.fast.compose.Refused` as the composed kernels do."""
     found = _fused(kernels, scene, structure, geometry)
     if found is None:
         return None
@@ -120,10 +124,17 @@ def fused_blocks(kernels, scene: Scene, full: Scene, structure, geometry,
     # again, fastpass)
     cs, sn = np.empty(n), np.empty(n)
     drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
+    angles = full.driver.angles     # (read-only, as the driver makes them and NO_ANGLES:
+    if kernel_trig():               # one compiled signature)
+        w = OWNERS.size
+        blocks = ((lo, min(w, n - lo), angles[lo:lo + w]) for lo in range(0, n, w))
+    else:
+        blocks = ((lo, m, NO_ANGLES) for lo, m, _, _ in crank_blocks(angles, (cs, sn)))
     bad = 0
-    for lo, m, c, s in crank_blocks(full.driver.angles, (cs, sn)):
-        bad += kernel(0, m, OWNERS, c, s, START, *fixed, drive[lo:lo + m],
-                      close[lo:lo + m], undefined[lo:lo + m])
+    for lo, m, a in blocks:
+        at = slice(lo, lo + m)
+        bad += kernel(0, m, OWNERS, cs[at], sn[at], START, a, *fixed, drive[at], close[at],
+                      undefined[at])
     if bad:
         raise Refused(bad)
     if plan is not None:
@@ -131,6 +142,39 @@ def fused_blocks(kernels, scene: Scene, full: Scene, structure, geometry,
     kept = kept_sweep(structure, "R", drive, undefined, [close])
     kept.crank = (cs, sn)
     return kept
+
+
+_TRIG: dict[str, bool] = {}
+
+
+def kernel_trig() -> bool:
+    """Whether the fused kernel's cos and sin of an angle
+    (:func:`~kinetostatics.solver.fast.fused_kernels.turn_rows`: the C library's, fused
+    by LLVM into one ``sincos``) are numpy's bit for bit here: checked once a process on
+    the angles of :func:`trig_probes`. Where numpy works them out otherwise (its own
+    vectorised cos and sin on some processors, another C library) the fused kernel
+    reads numpy's (:func:`crank_blocks`)."""
+    if "same" not in _TRIG:
+        from .fused_kernels import turn_rows  # (numba loaded: kernels given)
+        x = trig_probes()
+        cs, sn = np.empty_like(x), np.empty_like(x)
+        turn_rows(x, cs, sn)
+        with np.errstate(invalid="ignore"):     # (infinities among the probes)
+            want = np.cos(x).tobytes(), np.sin(x).tobytes()
+        _TRIG["same"] = (cs.tobytes(), sn.tobytes()) == want
+    return _TRIG["same"]
+
+
+def trig_probes(n: int = 20_000) -> np.ndarray:
+    """Angles (rad) whose cos and sin :func:`kernel_trig` checks: a turn (``n + 1``
+    rows), ``n`` each within +-8, +-1e3 and +-1e9, multiples of
+    pi / 4, and zeros, subnormals, the largest doubles, infinities and NaN."""
+    rng = np.random.default_rng(31)
+    special = np.array([0.0, -0.0, 5e-324, 2.2e-308, 1e-8, 1.7976931348623157e308,
+                        -1.7976931348623157e308, np.inf, -np.inf, np.nan])
+    return np.concatenate([np.linspace(0.0, 2.0 * np.pi, n + 1),
+                           *(rng.uniform(-r, r, n) for r in (8.0, 1e3, 1e9)),
+                           np.pi / 4 * np.arange(-64, 65), special])
 
 
 def crank_blocks(angles: np.ndarray, whole: tuple[np.ndarray, np.ndarray] | None = None

@@ -12,7 +12,7 @@ from ..solved import Solved
 from .choice import wanted
 from .compose import Plan, Refused, kept_sweep, solve_full, solve_lean
 from .geometry import not_covered
-from .short import fused_arguments, fused_kernel
+from .short import NO_ANGLES, fused_arguments, fused_kernel
 from .solve import KeptRun
 
 
@@ -149,8 +149,8 @@ def fused_kept(plan: Plan, n: int, trig: tuple, close: np.ndarray | None = None
     kernel, order, known = fused
     drive, undefined = np.empty(n), np.zeros(n, dtype=bool)
     close = np.empty(n) if close is None else close
-    bad = kernel(0, n, plan.own, *trig, *fused_arguments(plan, order, known), drive, close,
-                 undefined)
+    bad = kernel(0, n, plan.own, *trig, NO_ANGLES, *fused_arguments(plan, order, known), drive,
+                 close, undefined)
     if bad:
         raise Refused(bad)
     plan.check_swept()
