@@ -30,7 +30,7 @@ from .compose import (
     solve_lean,
 )
 from .geometry import NO_SWEPT_LOADS, not_covered
-from .layout import CL2
+from .layout import CL2, I_SFIRST
 from .loader import kernels as loaded_kernels
 from .short import (
     NO_ANGLES,
@@ -266,8 +266,8 @@ def _guided(plan: Plan) -> tuple | None:
     order = (dname, *dyad.bodies)
     known = [j.other(b) for j, b in zip(dyad.outer, dyad.bodies, strict=True)]
     gd, gds = plan.driver
-    if gys or gds or not set(known) <= {GROUND, dname}:
-        return None
+    if gys or gds or not set(known) <= {GROUND, dname} or gy[I_SFIRST, 0] != 0.0:
+        return None         # (the kernels pin the guide first: guide_kernels._pin)
     first = (gd, plan.speed, plan.accel, gy, known[0] == dname, known[1] == dname)
     kernel, second = rtr_kept, ()
     if len(plan.dyads) == 2:
