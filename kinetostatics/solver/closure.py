@@ -119,7 +119,7 @@ def _rot_angle(dx, dy, local_vec, r2):
         return (A.add(A.mul(dx, u), np.multiply(dy, 0.0)),
                 A.sub(A.mul(dy, u), np.multiply(dx, 0.0)))
     v = ly / r2
-    return A.add(A.mul(dx, u), A.mul(dy, v)), A.sub(A.mul(dy, u), A.mul(dx, v))
+    return A.mul_add(dx, u, dy, v), A.mul_sub(dy, u, dx, v)
 
 
 def _trans_point(p: Param, local):
@@ -257,9 +257,9 @@ class DyadSolver:
             q01 = _trans_point(p1, self.q[0])
             q02 = _trans_point(p2, self.q[1])
             rx, ry = A.sub(q02[0], q01[0]), A.sub(q02[1], q01[1])
-            det = A.sub(A.mul(p1.uy, p2.ux), A.mul(p1.ux, p2.uy))
-            s1 = A.sub(A.mul(ry, p2.ux), A.mul(rx, p2.uy)) / det
-            s2 = A.sub(A.mul(p1.ux, ry), A.mul(p1.uy, rx)) / det
+            det = A.mul_sub(p1.uy, p2.ux, p1.ux, p2.uy)
+            s1 = A.mul_sub(ry, p2.ux, rx, p2.uy, den=det)
+            s2 = A.mul_sub(p1.ux, ry, p1.uy, rx, den=det)
             return [(p1.c, p1.s), (p2.c, p2.s)], (s1, s2), None
         # circle-line (RRT / TRR, seed 000 ch. 9 and 8)
         ir, it = (0, 1) if p1.kind == "rot" else (1, 0)
@@ -268,18 +268,18 @@ class DyadSolver:
         rs = A.squares(*ar)        # (x * x: as for r1s above)
         q0 = _trans_point(pt, self.q[it])
         wx, wy = A.sub(q0[0], prr.px), A.sub(q0[1], prr.py)
-        b = A.add(A.mul(pt.ux, wx), A.mul(pt.uy, wy))
+        b = A.mul_add(pt.ux, wx, pt.uy, wy)
         disc = b * b - (wx * wx + wy * wy) + rs
         gap = None
         least = _least(disc)
         if least < 0.0:
-            gap = np.abs(A.sub(A.mul(pt.ux, wy), A.mul(pt.uy, wx))) - np.sqrt(rs)
+            gap = np.abs(A.mul_sub(pt.ux, wy, pt.uy, wx)) - np.sqrt(rs)
         root = _root(disc) if type(disc) is float else _clipped_root(disc, least)
 
         def close(k, root, b, wx, wy, ux, uy, c, sn):
             s = k * root - b
             out = [None, None]
-            out[ir] = _rot_angle(A.add(wx, A.mul(s, ux)), A.add(wy, A.mul(s, uy)), ar, rs)
+            out[ir] = _rot_angle(A.add_mul(wx, s, ux), A.add_mul(wy, s, uy), ar, rs)
             out[it] = (c, sn)
             ss = [None, None]
             ss[it] = s
@@ -302,14 +302,23 @@ class DyadSolver:
             vy_ = sb * asx + cb * asy - (l_loc[1] - pg.local[1])
             c = cb * vy_ - sb * vx_
             dx, dy = A.sub(ps.px, pg.px), A.sub(ps.py, pg.py)
-            dn = self.reach = np.sqrt(dx * dx + dy * dy)
+            d2 = dx * dx + dy * dy
+            # (the arrays made here take the next step's values: the same numbers)
+            own = A.fresh(d2, dx, dy)
+            dn = self.reach = np.sqrt(d2, out=d2) if own else np.sqrt(d2)
             y = -c / dn
             gap = None
-            if np.max(np.abs(y)) > 1.0 or not np.all(np.isfinite(y)):
+            # (|y| > 1 somewhere, or a NaN or an infinity: the same test as on np.abs(y))
+            if max(np.max(y), -np.min(y)) > 1.0 or not np.all(np.isfinite(y)):
                 gap = np.where(np.isfinite(y), abs(c) - dn, np.inf)
-            x = np.arcsin(np.clip(y, -1.0, 1.0))
+            own = A.fresh(y, dn)
+            x = np.arcsin(np.clip(y, -1.0, 1.0, out=y) if own else np.clip(y, -1.0, 1.0),
+                          out=y if own else None)
             if np.ndim(k):      # per-row assemblies (kinetostatics.solve_many)
                 th = np.arctan2(dy, dx) - self.beta + np.where(k > 0, -x, x - np.pi)
+            elif own:
+                th = np.arctan2(dy, dx) - self.beta + (np.negative(x, out=x) if k > 0 else
+                                                        np.subtract(x, np.pi, out=x))
             else:
                 th = np.arctan2(dy, dx) - self.beta + (-x if k > 0 else x - np.pi)
             cg, sg = np.cos(th), np.sin(th)
@@ -322,8 +331,8 @@ class DyadSolver:
             sx, sy = A.rotate(cs_, sn_, s_loc[0] - ps.local[0], s_loc[1] - ps.local[1])
             sx, sy = A.add(ps.px, sx), A.add(ps.py, sy)
             l0 = _trans_point(pg, l_loc)
-            den = A.sub(A.mul(cs_, pg.uy), A.mul(sn_, pg.ux))
-            s = A.sub(A.mul(cs_, A.sub(sy, l0[1])), A.mul(sn_, A.sub(sx, l0[0]))) / den
+            den = A.mul_sub(cs_, pg.uy, sn_, pg.ux)
+            s = A.mul_sub(cs_, A.sub(sy, l0[1]), sn_, A.sub(sx, l0[0]), den=den)
             out[i_s] = (cs_, sn_)
             out[i_g] = (pg.c, pg.s)
             ss[i_g] = s
@@ -333,7 +342,7 @@ class DyadSolver:
             lx, ly = A.add(pg.px, lx), A.add(pg.py, ly)
             ux, uy = ps.c, ps.s
             s0 = _trans_point(ps, s_loc)
-            den = A.sub(A.mul(ux, ps.uy), A.mul(uy, ps.ux))
+            den = A.mul_sub(ux, ps.uy, uy, ps.ux)
             s = -A.sub(A.mul(ux, A.sub(s0[1], ly)), A.mul(uy, A.sub(s0[0], lx))) / den
             out[i_g] = (cg, sg)
             out[i_s] = (ps.c, ps.s)
@@ -384,4 +393,4 @@ def body_origin(pr: Param, cs, s):
     if pr.kind == "rot":
         rx, ry = A.rotate(cs[0], cs[1], *pr.local)
         return A.sub(pr.px, rx), A.sub(pr.py, ry)
-    return A.add(pr.bx, A.mul(s, pr.ux)), A.add(pr.by, A.mul(s, pr.uy))
+    return A.add_mul(pr.bx, s, pr.ux), A.add_mul(pr.by, s, pr.uy)

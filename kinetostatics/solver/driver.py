@@ -100,14 +100,14 @@ class BodyMotion:
 
     def vel_arm(self, rx, ry):
         """Velocity of the body point at the arm (rx, ry) from the origin: v_O + omega k x r."""
-        return A.sub_mul(self.vx, self.omega, ry), A.add(self.vy, A.mul(self.omega, rx))
+        return A.sub_mul(self.vx, self.omega, ry), A.add_mul(self.vy, self.omega, rx)
 
     def acc_arm(self, rx, ry):
         """Acceleration of the body point at the arm r: a_O + eps k x r - omega^2 r
         (seed 001 eq. 9)."""
         w2 = self.omega2()
         return (A.sub_mul(A.sub_mul(self.ax, self.alpha, ry), w2, rx),
-                A.sub_mul(A.add(self.ay, A.mul(self.alpha, rx)), w2, ry))
+                A.sub_mul(A.add_mul(self.ay, self.alpha, rx), w2, ry))
 
     def vel_at(self, x, y):
         """Velocity of the body's point that is at the global position (x, y)."""
@@ -154,8 +154,8 @@ def driver_motion(scene: Scene) -> BodyMotion:
         w2 = w * w
         return BodyMotion(th, c, s, w, eps, A.sub(A.scalar(px), rax), A.sub(A.scalar(py), ray),
                           A.mul(w, ray), A.mul(-w, rax),
-                          A.add(A.mul(eps, ray), A.mul(w2, rax)),
-                          A.add(A.mul(-eps, rax), A.mul(w2, ray)))
+                          A.mul_add(eps, ray, w2, rax),
+                          A.mul_add(-eps, rax, w2, ray))
     return _sliding(scene, drv.positions, w, eps)
 
 

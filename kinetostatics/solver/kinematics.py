@@ -127,7 +127,7 @@ class DyadMotion:
                 c1, c2 = self.c1, self.c2
                 norm = np.hypot(*c1) * np.hypot(*c2)
                 sin_t = self.det / norm
-                cos_t = -(A.add(A.mul(c1[0], c2[0]), A.mul(c1[1], c2[1]))) / norm
+                cos_t = -(A.mul_add(c1[0], c2[0], c1[1], c2[1])) / norm
             else:
                 sin_t, cos_t = inner_t_tau(self.params, self.ny, -self.nx)
             self._tau = (A.full(np.asarray(sin_t, dtype=float), n),
@@ -305,7 +305,7 @@ class _VelocitySystem:
             nx, ny = -uy, ux
             om0 = [0.0 if p.kind == "rot" else p.known.omega for p in pr]
             r1 = A.sub(om0[1], om0[0])
-            r2 = A.add(A.mul(nx, A.sub(k2[0], k1[0])), A.mul(ny, A.sub(k2[1], k1[1])))
+            r2 = A.mul_add(nx, A.sub(k2[0], k1[0]), ny, A.sub(k2[1], k1[1]))
         self.a, self.det = velocity_matrix(inner.kind == "R", c1, c2, w1, w2, nx, ny)
         self.xx, self.xy = xx, xy
         self.c1, self.c2, self.k1, self.k2 = c1, c2, k1, k2
@@ -332,23 +332,22 @@ def _acceleration_rhs(vs: _VelocitySystem, pr, qd, w2):
         else:
             kax, kay = p.known.acc_at(xx, xy)
             f = A.mul(2.0 * p.known.omega, qd[i])          # Coriolis 2 omega_K x v_rel
-            ka.append((A.sub(kax, A.mul(f, p.uy)), A.add(kay, A.mul(f, p.ux))))
+            ka.append((A.sub_mul(kax, f, p.uy), A.add_mul(kay, f, p.ux)))
     if vs.revolute:
         return A.sub(ka[1][0], ka[0][0]), A.sub(ka[1][1], ka[0][1])
     c1, c2, k1, k2 = vs.c1, vs.c2, vs.k1, vs.k2
     ux, uy, nx, ny = vs.ux, vs.uy, vs.nx, vs.ny
     al0 = [0.0 if p.kind == "rot" else p.known.alpha for p in pr]
     r1 = A.sub(al0[1], al0[0])
-    v1 = (A.add(k1[0], A.mul(c1[0], qd[0])), A.add(k1[1], A.mul(c1[1], qd[0])))
-    v2 = (A.add(k2[0], A.mul(c2[0], qd[1])), A.add(k2[1], A.mul(c2[1], qd[1])))
+    v1 = (A.add_mul(k1[0], c1[0], qd[0]), A.add_mul(k1[1], c1[1], qd[0]))
+    v2 = (A.add_mul(k2[0], c2[0], qd[1]), A.add_mul(k2[1], c2[1], qd[1]))
     sgn = 1.0 if vs.slider_first else -1.0
-    rdot = A.mul(sgn, A.add(A.mul(ux, A.sub(v1[0], v2[0])), A.mul(uy, A.sub(v1[1], v2[1]))))
+    rdot = A.mul(sgn, A.mul_add(ux, A.sub(v1[0], v2[0]), uy, A.sub(v1[1], v2[1])))
     ig = vs.guide
     om_g = qd[ig] if pr[ig].kind == "rot" else pr[ig].known.omega
     # n.(a_slider - a_guide) = 2 omega_g rdot (Coriolis, seed 001 eq. 8)
     r2 = A.sub(A.mul(2.0 * sgn, A.mul(om_g, rdot)),
-               A.add(A.mul(nx, A.sub(ka[0][0], ka[1][0])),
-                     A.mul(ny, A.sub(ka[0][1], ka[1][1]))))
+               A.mul_add(nx, A.sub(ka[0][0], ka[1][0]), ny, A.sub(ka[0][1], ka[1][1])))
     return r1, r2
 
 
@@ -366,18 +365,18 @@ def _body_motion(p: Param, cs, org, qd, qdd, w2) -> BodyMotion:
         om, al = qd, qdd
         rax, ray = A.rotate(c, sn, -p.local[0], -p.local[1])   # o - P = -R a
         w2_ = w2            # (om * om)
-        vx = A.sub(p.vpx, A.mul(om, ray))
-        vy = A.add(p.vpy, A.mul(om, rax))
-        ax_ = A.sub(A.sub(p.apx, A.mul(al, ray)), A.mul(w2_, rax))
-        ay_ = A.sub(A.add(p.apy, A.mul(al, rax)), A.mul(w2_, ray))
+        vx = A.sub_mul(p.vpx, om, ray)
+        vy = A.add_mul(p.vpy, om, rax)
+        ax_ = A.sub_mul(A.sub_mul(p.apx, al, ray), w2_, rax)
+        ay_ = A.sub_mul(A.add_mul(p.apy, al, rax), w2_, ray)
     else:
         om, al = kb.omega, kb.alpha
         vkx, vky = kb.vel_at(ox, oy)
         akx, aky = kb.acc_at(ox, oy)
         f = A.mul(2.0 * kb.omega, qd)
-        vx, vy = A.add(vkx, A.mul(qd, p.ux)), A.add(vky, A.mul(qd, p.uy))
-        ax_ = A.sub(A.add(akx, A.mul(qdd, p.ux)), A.mul(f, p.uy))
-        ay_ = A.add(A.add(aky, A.mul(qdd, p.uy)), A.mul(f, p.ux))
+        vx, vy = A.add_mul(vkx, qd, p.ux), A.add_mul(vky, qd, p.uy)
+        ax_ = A.sub_mul(A.add_mul(akx, qdd, p.ux), f, p.uy)
+        ay_ = A.add_mul(A.add_mul(aky, qdd, p.uy), f, p.ux)
     motion = BodyMotion(None, c, sn, om, al, ox, oy, vx, vy, ax_, ay_)
     if w2 is not None:
         motion.keep_omega2(w2)

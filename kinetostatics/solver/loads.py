@@ -40,6 +40,9 @@ class PointLoad:
     fy: object
     m: object = 0.0
     label: str = ""
+    scratch: tuple[str, ...] = ()
+    """The fields (``fx``, ``fy``, ``m``) whose arrays this load alone holds, made for
+    :func:`resultants` alone (``arms`` given): it may write its sums into them."""
 
     def position(self, kin: Kinematics):
         """Global position of the point of application."""
@@ -54,7 +57,7 @@ class PointLoad:
         """Power of the load: F . v + M omega."""
         vx, vy = self.velocity(kin)
         om = kin.bodies[self.body].omega
-        return A.add(A.add(A.mul(self.fx, vx), A.mul(self.fy, vy)), A.mul(self.m, om))
+        return A.add(A.mul_add(self.fx, vx, self.fy, vy), A.mul(self.m, om))
 
 
 def concentrated_masses(body: Body) -> list[tuple[tuple[float, float], float]]:
@@ -103,15 +106,26 @@ def inertia_loads(scene: Scene, kin: Kinematics, arms: dict | None = None
             # the inertia, so not negated; a NaN or an infinity gives NaN either way)
             alpha = m.alpha
             inertia = body.inertia if A.zero(alpha) else -body.inertia
-            out.append(PointLoad(name, "inertia", rx, ry, A.mul(neg, ax), A.mul(neg, ay),
-                                 A.mul(inertia, alpha), "inertia torsor"))
+            fx, fy, mi = A.mul(neg, ax), A.mul(neg, ay), A.mul(inertia, alpha)
+            out.append(PointLoad(name, "inertia", rx, ry, fx, fy, mi, "inertia torsor",
+                                 _scratch(arms, fx=(fx, ax), fy=(fy, ay), m=(mi, alpha))))
             continue
         for loc, mk in concentrated_masses(body):
             rx, ry = m.rotate(*loc)
             ax, ay = m.acc_arm(rx, ry)
-            out.append(PointLoad(name, "inertia", rx, ry, A.mul(-mk, ax), A.mul(-mk, ay), 0.0,
-                                 f"concentrated mass {mk:.6g} kg"))
+            fx, fy = A.mul(-mk, ax), A.mul(-mk, ay)
+            out.append(PointLoad(name, "inertia", rx, ry, fx, fy, 0.0,
+                                 f"concentrated mass {mk:.6g} kg",
+                                 _scratch(arms, fx=(fx, ax), fy=(fy, ay))))
     return out
+
+
+def _scratch(arms: dict | None, **made) -> tuple[str, ...]:
+    """The fields of a load for the resultants alone (``arms`` given) whose arrays were
+    just made (``made``: each field's value and the operand it was made from)."""
+    if arms is None:
+        return ()
+    return tuple(k for k, (x, src) in made.items() if A.fresh(x, src))
 
 
 def motion_scales(scene: Scene) -> tuple[float, float, float, float]:
@@ -225,11 +239,7 @@ def resultants(loads: list[PointLoad], names, n: int) -> dict[str, list]:
     for ld in loads:
         r = acc[ld.body]
         fx, fy = ld.fx, ld.fy
-        for i, x in ((0, fx), (1, fy)):
-            if type(r[i]) is arr:
-                iadd(r[i], x)
-            else:
-                _add_term(r, i, x, 1.0, n)
+        # (the moment first: a force's array may then take its sum, _add_term)
         for a, b, sign in ((ld.rx, fy, 1.0), (ld.ry, fx, -1.0)):    # M_O += rx fy - ry fx
             if zero(a) or zero(b):
                 continue
@@ -239,20 +249,24 @@ def resultants(loads: list[PointLoad], names, n: int) -> dict[str, list]:
             if type(r[2]) is arr:
                 iadd(r[2], tmp, sign)
             else:
-                _add_term(r, 2, tmp, sign, n)
-        if type(r[2]) is arr:
-            iadd(r[2], ld.m)
-        else:
-            _add_term(r, 2, ld.m, 1.0, n)
+                _add_term(r, 2, tmp, sign, n, True)
+                tmp = None                      # (the scratch array is the sum's now)
+        for i, x, name in ((2, ld.m, "m"), (0, fx, "fx"), (1, fy, "fy")):
+            if type(r[i]) is arr:
+                iadd(r[i], x)
+            else:
+                _add_term(r, i, x, 1.0, n, name in ld.scratch)
     return {b: [x if type(x) is arr else np.full(n, x) for x in r] for b, r in acc.items()}
 
 
-def _add_term(r: list, i: int, x, sign: float, n: int) -> None:
-    """r[i] += sign * x while r[i] is a number: a number plus an array x becomes a new
-    array (the same operation, elementwise); two numbers, a number."""
+def _add_term(r: list, i: int, x, sign: float, n: int, spare: bool = False) -> None:
+    """r[i] += sign * x while r[i] is a number: a number plus an array x becomes an array
+    (the same operation, elementwise: written into x itself when ``spare``, x a plain
+    float array of n values no one else holds, else a new one); two numbers, a number."""
     a = r[i]
     if isinstance(x, np.ndarray):
         # (into a plain array: x may be a stack's Rows, whose type is not wanted here)
-        r[i] = (np.add if sign > 0 else np.subtract)(a, x, out=np.empty(n))
+        own = spare and A.fresh(x) and x.shape == (n,)
+        r[i] = (np.add if sign > 0 else np.subtract)(a, x, out=x if own else np.empty(n))
     elif not A.zero(x):
         r[i] = a + x if sign > 0 else a - x

@@ -138,7 +138,7 @@ def _generalised(store: _Store, name: str, pr, r):
     if pr.kind == "rot":
         px, py = store.motions[name].arm(pr.local)          # P - O
         return A.sub(r[2], A.cross(px, py, r[0], r[1]))
-    return A.add(A.mul(r[0], pr.ux), A.mul(r[1], pr.uy))
+    return A.mul_add(r[0], pr.ux, r[1], pr.uy)
 
 
 def _solve_dyad(scene: Scene, dm: DyadMotion, store: _Store, out: dict) -> None:
@@ -156,9 +156,9 @@ def _solve_dyad(scene: Scene, dm: DyadMotion, store: _Store, out: dict) -> None:
         # det = c1 x c2 is minus the velocity system's determinant (its columns are c1,
         # -c2): the same products, so -dm.det is exactly c1x c2y - c1y c2x
         ndet = dm.det
-        rx = A.add(A.mul(q1, c2[1]), A.mul(q2, c1[1])) / ndet
+        rx = A.mul_add(q1, c2[1], q2, c1[1], den=ndet)
         rx = np.negative(rx, out=rx) if isinstance(rx, np.ndarray) else -rx
-        ry = A.add(A.mul(c1[0], q2), A.mul(c2[0], q1)) / ndet
+        ry = A.mul_add(c1[0], q2, c2[0], q1, den=ndet)
         a1 = store.motions[b1].arm(dm.inner_local[0])
         a2 = store.motions[b2].arm(dm.inner_local[1])
         store.add(b1, rx, ry, *a1, sign=-1.0)
@@ -167,15 +167,15 @@ def _solve_dyad(scene: Scene, dm: DyadMotion, store: _Store, out: dict) -> None:
     else:
         # [n.c_i, w_i] (N, M) = -sigma_i Q_i ; sigma = +1 on the slider, -1 on the guide
         nx, ny = dm.nx, dm.ny
-        a1 = A.add(A.mul(nx, c1[0]), A.mul(ny, c1[1]))
-        a2 = A.add(A.mul(nx, c2[0]), A.mul(ny, c2[1]))
+        a1 = A.mul_add(nx, c1[0], ny, c1[1])
+        a2 = A.mul_add(nx, c2[0], ny, c2[1])
         w1 = 1.0 if p1.kind == "rot" else 0.0
         w2 = 1.0 if p2.kind == "rot" else 0.0
         s1, s2 = (1.0, -1.0) if dm.slider_first else (-1.0, 1.0)
-        det = A.sub(A.mul(a1, w2), A.mul(w1, a2))
+        det = A.mul_sub(a1, w2, w1, a2)
         y1, y2 = A.mul(-s1, q1), A.mul(-s2, q2)
-        N = A.sub(A.mul(y1, w2), A.mul(w1, y2)) / det
-        M = A.sub(A.mul(a1, y2), A.mul(y1, a2)) / det
+        N = A.mul_sub(y1, w2, w1, y2, den=det)
+        M = A.mul_sub(a1, y2, y1, a2, den=det)
         fx, fy = A.mul(N, nx), A.mul(N, ny)
         slider, guide = (b1, b2) if dm.slider_first else (b2, b1)
         store.add(slider, fx, fy, *store.arm(scene, slider, inner.points[1]), M)
@@ -206,7 +206,7 @@ def _outer_prismatic(scene, store, out, joint, name, kname, ux, uy):
         sx, sy = A.add(m.ox, ax), A.add(m.oy, ay)
     arm_i = store.arm_to(name, sx, sy)
     nx, ny = -uy, ux
-    fn = -A.add(A.mul(r[0], nx), A.mul(r[1], ny))
+    fn = -A.mul_add(r[0], nx, r[1], ny)
     fx, fy = A.mul(fn, nx), A.mul(fn, ny)
     c = -A.sub(r[2], A.cross(arm_i[0], arm_i[1], r[0], r[1]))
     store.add(kname, fx, fy, *store.arm_to(kname, sx, sy), c, sign=-1.0)
@@ -236,9 +236,9 @@ def _solve_driver(scene: Scene, kin: Kinematics, store: _Store, out: dict) -> Dr
         x, y = scene.ground[joint.points[1]]
         sx, sy = A.scalar(x), A.scalar(y)
         ax, ay = store.arm_to(drv.body, sx, sy)
-    fe = -A.add(A.mul(r[0], ux), A.mul(r[1], uy))
+    fe = -A.mul_add(r[0], ux, r[1], uy)
     nx, ny = -uy, ux
-    fn = -A.add(A.mul(r[0], nx), A.mul(r[1], ny))
+    fn = -A.mul_add(r[0], nx, r[1], ny)
     c = -A.sub(r[2], A.cross(ax, ay, r[0], r[1]))
     record_reaction(out, joint, drv.body, A.mul(fn, nx), A.mul(fn, ny), sx, sy, fn, c)
     return DriverReaction("T", A.full(fe, kin.n))

@@ -42,10 +42,10 @@ def velocity_matrix(revolute: bool, c1, c2, w1, w2, nx, ny):
         a11, b12, a21, b22 = c1[0], c2[0], c1[1], c2[1]
     else:
         a11, b12 = w1, w2
-        a21 = A.add(A.mul(nx, c1[0]), A.mul(ny, c1[1]))
-        b22 = A.add(A.mul(nx, c2[0]), A.mul(ny, c2[1]))
+        a21 = A.mul_add(nx, c1[0], ny, c1[1])
+        b22 = A.mul_add(nx, c2[0], ny, c2[1])
     # a11 a22 - a12 a21 with a12 = -b12, a22 = -b22 (the same numbers, exactly)
-    return (a11, b12, a21, b22), A.sub(A.mul(b12, a21), A.mul(a11, b22))
+    return (a11, b12, a21, b22), A.mul_sub(b12, a21, a11, b22)
 
 
 def cramer2(a11, b12, a21, b22, r1, r2, det):
@@ -54,8 +54,8 @@ def cramer2(a11, b12, a21, b22, r1, r2, det):
     The second column is given negated (the velocity system's is -c2): the negations
     are never formed, and the numbers are exactly those of the plain rule, since
     r1 (-b22) - (-b12) r2 = b12 r2 - r1 b22 in floating point too."""
-    return (A.sub(A.mul(b12, r2), A.mul(r1, b22)) / det,
-            A.sub(A.mul(a11, r2), A.mul(r1, a21)) / det)
+    return (A.mul_sub(b12, r2, r1, b22, den=det),
+            A.mul_sub(a11, r2, r1, a21, den=det))
 
 
 def guide_body(solver: DyadSolver) -> int:
@@ -139,7 +139,7 @@ def inner_t_tau(pr, ux, uy):
     if p1.kind == "rot" and p2.kind == "rot":
         dx, dy = A.sub(p1.px, p2.px), A.sub(p1.py, p2.py)
         dn = np.sqrt(dx * dx + dy * dy)
-        return (A.add(A.mul(ux, dx), A.mul(uy, dy)) / dn,
-                A.sub(A.mul(ux, dy), A.mul(uy, dx)) / dn)
+        return (A.mul_add(ux, dx, uy, dy, den=dn),
+                A.mul_sub(ux, dy, uy, dx, den=dn))
     pt = p2 if p1.kind == "rot" else p1
-    return A.sub(A.mul(ux, pt.uy), A.mul(uy, pt.ux)), A.add(A.mul(ux, pt.ux), A.mul(uy, pt.uy))
+    return A.mul_sub(ux, pt.uy, uy, pt.ux), A.mul_add(ux, pt.ux, uy, pt.uy)

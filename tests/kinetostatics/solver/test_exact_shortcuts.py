@@ -4,6 +4,8 @@ are compared with solve's bit for bit, the sign of each zero too)."""
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -116,3 +118,31 @@ def test_arms_and_omega2_kept_are_the_computed_ones() -> None:
     np.testing.assert_array_equal(bits(b.omega2()), bits(om * om))
     b.forget_arms()
     assert b.arm(local) is not a1
+
+
+def same(x, y) -> None:
+    """The same doubles, the sign of each zero too (NaN for NaN: its sign may differ)."""
+    x, y = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(y, dtype=float))
+    nan = np.isnan(y)
+    np.testing.assert_array_equal(np.isnan(x), nan)
+    np.testing.assert_array_equal(bits(x)[~nan], bits(y)[~nan])
+
+
+OPERANDS = [rows(seed=1), rows(seed=2)[::-1].copy(), 0.0, 1.0, -2.0]
+
+
+@pytest.mark.parametrize("den", [None, 3.0, "array"])
+def test_fused_forms_give_the_composed_bits_and_leave_the_operands(den) -> None:
+    """mul_add, mul_sub, add_mul and sub_mul (sums written into a product's own array)
+    give the bits of the composed add/sub/mul and never write into an operand."""
+    d = rows(seed=3) if den == "array" else den
+    with np.errstate(all="ignore"):     # (infinities and NaN among the operands)
+        for a, b, c, e in itertools.product(OPERANDS, repeat=4):
+            kept = [np.copy(x) for x in (a, b, c, e)]
+            for fused, plain in ((A.mul_add, A.add), (A.mul_sub, A.sub)):
+                want = plain(A.mul(a, b), A.mul(c, e))
+                same(fused(a, b, c, e, den=d), want if d is None else want / d)
+            same(A.add_mul(a, b, c), A.add(a, A.mul(b, c)))
+            same(A.sub_mul(a, b, c), A.sub(a, A.mul(b, c)))
+            for x, k in zip((a, b, c, e), kept, strict=True):
+                same(x, k)      # (no operand written into)
