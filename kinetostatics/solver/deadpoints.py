@@ -126,18 +126,25 @@ def _candidates(m2: np.ndarray, starts: np.ndarray | None = None,
     return both[np.concatenate([[True], both[1:] != both[:-1]])]
 
 
+# Where the compiled path's scan comes from: each a function giving it, or None (the
+# numpy scan). This module cannot import the compiled path's package, which imports it:
+# the solver's many (imported with the results) adds fast.screen.compiled_scan here, so
+# that every screen, a single sweep's too, scans compiled once the kernels are loaded.
+SCANS: list[Callable[[], Callable | None]] = []
+
+
 def compiled_scan() -> Callable | None:
-    """The compiled scan of :func:`_candidates`
+    """The compiled scan of :func:`_candidates` from :data:`SCANS`
     (:func:`~kinetostatics.solver.fast.screen_kernels.scan_candidates`: the same intervals
     in one pass over the rows; measured 2026-11-29, the shaper's solve at 1e6 rows, 45 %
-    of them below the screen: 1.5 ms against 13.8 ms, processor time, load 8-9) when
-    the compiled kernels are loaded in this process and the numpy path is not asked for;
-    else None (numba is never loaded for it)."""
-    from .fast import loader, path_setting  # (here: the fast package imports this one)
-    if not loader.loaded() or path_setting() == "numpy":
-        return None
-    from .fast.screen_kernels import scan_candidates
-    return scan_candidates
+    of them below the screen: 1.5 ms against 13.8 ms, processor time, load 8-9) when the
+    compiled kernels are loaded in this process and the numpy path is not asked for;
+    else None."""
+    for source in SCANS:
+        scan = source()
+        if scan is not None:
+            return scan
+    return None
 
 
 def _probe(at: Callable[[np.ndarray, np.ndarray], Probed], lo: np.ndarray,

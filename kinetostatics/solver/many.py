@@ -58,9 +58,10 @@ from ..model.scene import Scene, load_scene
 from . import blocks
 from .blocks import Kept, LeanSolved
 from .cut import CutSolved, RunAgain, cut_scenes, run_values, splitter
-from .deadpoints import dead_points_stacked, kin_measure2, measure2
+from .deadpoints import SCANS, dead_points_stacked, kin_measure2, measure2
 from .fast import solve_run_stacked, wanted
 from .fast.geometry import not_covered
+from .fast.screen import compiled_scan
 from .fast.solve import KeptRun
 from .fast.stacked import release, solve_group_kept
 from .footprint import columns, solve_bytes
@@ -87,6 +88,10 @@ RUN_ROWS = 12_288
 # only cut from it and solved again when read: _whole_group)
 FAST_RUN_ROWS = 49_152
 CHUNK_ROWS = 1_048_576  # rows per group (one Stacker, one dead-point screen for all)
+
+# every dead-point screen (a single sweep's too) scans compiled once the kernels are
+# loaded: deadpoints cannot import the compiled path's package, which imports it
+SCANS.append(compiled_scan)
 
 
 def solve_all(items: list, executor: Executor | None = None, batch: int | None = None

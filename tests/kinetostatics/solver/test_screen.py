@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from kinetostatics.solver import deadpoints
+from kinetostatics.solver import deadpoints, many
 from kinetostatics.solver.fast import loader, use
 
 from .test_deadpoints import _candidates_reference
@@ -27,6 +27,9 @@ def on_path():
 
 
 def test_the_compiled_scan_is_taken_on_the_compiled_path_only(on_path) -> None:
+    """The solver's many gives every screen the compiled path's scan (deadpoints cannot
+    import it); it is taken on the compiled path only."""
+    assert many.compiled_scan in deadpoints.SCANS
     on_path("fast")
     assert deadpoints.compiled_scan() is not None
     on_path("numpy")
