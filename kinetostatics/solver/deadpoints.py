@@ -297,9 +297,13 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
         edges.setdefault(s, []).append(r)
     for s, r in zip(segs[use_l][hit_l].tolist(), rl[hit_l].tolist(), strict=True):
         edges.setdefault(s, []).append(r)
-    between = _per_segment(cand[dead], order, starts, m)
-    gaps = _per_segment(cand[open_[:k]], order, starts, m)
-    out = list(zip(between, [none] * m, gaps, strict=True))     # (a tuple per segment)
+    between = _per_segment(cand[dead], order, starts)
+    gaps = _per_segment(cand[open_[:k]], order, starts)
+    # (a segment with nothing found shares one tuple of empty arrays: most of a stack's,
+    # a thousand tuples fewer for the garbage collector to walk)
+    out = [(pairs, none, pairs)] * m
+    for s in between.keys() | gaps.keys():
+        out[s] = (between.get(s, pairs), none, gaps.get(s, pairs))
     for s, rs in edges.items():
         rows = rs if order is None else order[rs].tolist()
         out[s] = (out[s][0], np.array(rows, dtype=int) - int(starts[s]), out[s][2])
@@ -327,20 +331,18 @@ def _segment_order(positions: np.ndarray, starts: np.ndarray) -> np.ndarray | No
     return np.lexsort((positions, seg))
 
 
-def _per_segment(intervals: np.ndarray, order: np.ndarray | None, starts: np.ndarray,
-                 m: int) -> list[np.ndarray]:
-    """Intervals (global rows in increasing position) as (k, 2) row pairs per segment,
-    in each segment's own row numbers (``order`` None: the rows as they are)."""
+def _per_segment(intervals: np.ndarray, order: np.ndarray | None, starts: np.ndarray
+                 ) -> dict[int, np.ndarray]:
+    """Intervals (global rows in increasing position) as (k, 2) row pairs per segment
+    that holds some, in each segment's own row numbers (``order`` None: the rows as they
+    are)."""
     if intervals.size == 0:
-        empty = np.zeros((0, 2), dtype=int)
-        return [empty] * m
+        return {}
     owner = _segment_of(intervals, starts)
     if order is None:
         pairs = np.stack([intervals, intervals + 1], axis=1) - starts[owner, None]
     else:
         pairs = np.stack([order[intervals], order[intervals + 1]], axis=1) - starts[owner, None]
-    cuts = np.searchsorted(owner, np.arange(m + 1))
-    out = [np.zeros((0, 2), dtype=int)] * m        # (most segments: none, one array)
-    for s in np.flatnonzero(cuts[1:] > cuts[:-1]).tolist():
-        out[s] = pairs[cuts[s]:cuts[s + 1]]
-    return out
+    cuts = np.searchsorted(owner, np.arange(starts.size + 1))
+    return {s: pairs[cuts[s]:cuts[s + 1]]
+            for s in np.flatnonzero(cuts[1:] > cuts[:-1]).tolist()}
