@@ -87,12 +87,9 @@ def _candidates(m2: np.ndarray, starts: np.ndarray | None = None,
         return none
     if starts is None:
         starts, counts = np.zeros(1, dtype=int), np.array([n])
-    scan = compiled_scan()
-    if scan is not None and m2.dtype == np.float64:     # (the same intervals, one pass)
-        out = np.empty(n, dtype=np.int64)
-        k = scan(m2, np.asarray(starts, dtype=np.int64), np.asarray(counts, dtype=np.int64),
-                 SCREEN**2, out)
-        return out[:k].copy()
+    scan = compiled_scan() if starts.size == 1 else None
+    if scan is not None and m2.dtype == np.float64:     # (the same intervals)
+        return scanned(scan, m2, starts, counts)
     if rows is None:
         rows = np.flatnonzero(m2 < SCREEN**2)       # (NaN is not below: never probed)
     if rows.size == 0:
@@ -133,11 +130,27 @@ def _candidates(m2: np.ndarray, starts: np.ndarray | None = None,
 SCANS: list[Callable[[], Callable | None]] = []
 
 
+def scanned(scan: Callable, m2: np.ndarray, starts: np.ndarray, counts: np.ndarray
+            ) -> np.ndarray:
+    """The intervals of :func:`_candidates` by the compiled ``scan``
+    (:func:`~kinetostatics.solver.fast.screen_kernels.scan_candidates`): counted, then
+    written (two passes over the rows, no array as long as them)."""
+    starts = np.asarray(starts, dtype=np.int64)
+    counts = np.asarray(counts, dtype=np.int64)
+    out = np.empty(scan(m2, starts, counts, SCREEN**2, _NONE), dtype=np.int64)
+    scan(m2, starts, counts, SCREEN**2, out)
+    return out
+
+
+_NONE = np.zeros(0, dtype=np.int64)
+
+
 def compiled_scan() -> Callable | None:
     """The compiled scan of :func:`_candidates` from :data:`SCANS`
     (:func:`~kinetostatics.solver.fast.screen_kernels.scan_candidates`: the same intervals
-    in one pass over the rows; measured 2026-11-29, the shaper's solve at 1e6 rows, 45 %
-    of them below the screen: 1.5 ms against 13.8 ms, processor time, load 8-9) when the
+    in two passes over the rows; measured 2026-11-29, the shaper's solve at 1e6 rows, 45 %
+    of them below the screen: one pass 1.5 ms against 13.8 ms, processor time, load 8-9;
+    taken for a single sweep, :func:`_candidates`) when the
     compiled kernels are loaded in this process and the numpy path is not asked for;
     else None."""
     for source in SCANS:
@@ -254,12 +267,15 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     none, pairs = np.zeros(0, dtype=int), np.zeros((0, 2), dtype=int)
     # the rows below the screen, which alone can start a probe (NaN is not below; none:
     # nothing to probe, the usual case for one scene; one pass over the rows, told once)
-    # (the compiled scan, compiled_scan, reads the rows itself: no such pass; nothing
-    # below the screen then leaves nothing to probe, below)
-    below = None if compiled_scan() is not None else np.flatnonzero(m2u < SCREEN**2)
+    # (a single sweep's compiled scan, compiled_scan, reads the rows itself: no such
+    # pass; nothing below the screen then leaves nothing to probe, below; a stack's
+    # scenes are scanned on numpy: its rows below the screen are few and sparse, the
+    # numpy scan's gathers over them cost less than two compiled passes over every row)
+    one = m == 1
+    below = (None if one and compiled_scan() is not None
+             else np.flatnonzero(m2u < SCREEN**2))
     if below is not None and below.size == 0:
         return [(pairs, none, pairs)] * m
-    one = m == 1
     # the rows in increasing position (None: as they are, the usual case: then no
     # array over all the rows is taken in another order)
     order = None if increasing else _segment_order(positions, starts)
