@@ -87,6 +87,9 @@ def _candidates(m2: np.ndarray, starts: np.ndarray | None = None,
         return none
     if starts is None:
         starts, counts = np.zeros(1, dtype=int), np.array([n])
+    scan = compiled_scan() if starts.size == 1 else None
+    if scan is not None and m2.dtype == np.float64:     # (the same intervals)
+        return scanned(scan, m2, starts, counts)
     if rows is None:
         rows = np.flatnonzero(m2 < SCREEN**2)       # (NaN is not below: never probed)
     if rows.size == 0:
@@ -118,6 +121,43 @@ def _candidates(m2: np.ndarray, starts: np.ndarray | None = None,
     if both.size < 2:
         return both
     return both[np.concatenate([[True], both[1:] != both[:-1]])]
+
+
+# Where the compiled path's scan comes from: each a function giving it, or None (the
+# numpy scan). This module cannot import the compiled path's package, which imports it:
+# the solver's many (imported with the results) adds fast.screen.compiled_scan here, so
+# that every screen, a single sweep's too, scans compiled once the kernels are loaded.
+SCANS: list[Callable[[], Callable | None]] = []
+
+
+def scanned(scan: Callable, m2: np.ndarray, starts: np.ndarray, counts: np.ndarray
+            ) -> np.ndarray:
+    """The intervals of :func:`_candidates` by the compiled ``scan``
+    (:func:`~kinetostatics.solver.fast.screen_kernels.scan_candidates`): counted, then
+    written (two passes over the rows, no array as long as them)."""
+    starts = np.asarray(starts, dtype=np.int64)
+    counts = np.asarray(counts, dtype=np.int64)
+    out = np.empty(scan(m2, starts, counts, SCREEN**2, _NONE), dtype=np.int64)
+    scan(m2, starts, counts, SCREEN**2, out)
+    return out
+
+
+_NONE = np.zeros(0, dtype=np.int64)
+
+
+def compiled_scan() -> Callable | None:
+    """The compiled scan of :func:`_candidates` from :data:`SCANS`
+    (:func:`~kinetostatics.solver.fast.screen_kernels.scan_candidates`: the same intervals
+    in two passes over the rows; measured 2026-11-29, the shaper's solve at 1e6 rows, 45 %
+    of them below the screen: one pass 1.5 ms against 13.8 ms, processor time, load 8-9;
+    taken for a single sweep, :func:`_candidates`) when the
+    compiled kernels are loaded in this process and the numpy path is not asked for;
+    else None."""
+    for source in SCANS:
+        scan = source()
+        if scan is not None:
+            return scan
+    return None
 
 
 def _probe(at: Callable[[np.ndarray, np.ndarray], Probed], lo: np.ndarray,
@@ -227,10 +267,15 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     none, pairs = np.zeros(0, dtype=int), np.zeros((0, 2), dtype=int)
     # the rows below the screen, which alone can start a probe (NaN is not below; none:
     # nothing to probe, the usual case for one scene; one pass over the rows, told once)
-    below = np.flatnonzero(m2u < SCREEN**2)
-    if below.size == 0:
-        return [(pairs, none, pairs)] * m
+    # (a single sweep's compiled scan, compiled_scan, reads the rows itself: no such
+    # pass; nothing below the screen then leaves nothing to probe, below; a stack's
+    # scenes are scanned on numpy: its rows below the screen are few and sparse, the
+    # numpy scan's gathers over them cost less than two compiled passes over every row)
     one = m == 1
+    below = (None if one and compiled_scan() is not None
+             else np.flatnonzero(m2u < SCREEN**2))
+    if below is not None and below.size == 0:
+        return [(pairs, none, pairs)] * m
     # the rows in increasing position (None: as they are, the usual case: then no
     # array over all the rows is taken in another order)
     order = None if increasing else _segment_order(positions, starts)
@@ -268,9 +313,13 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
         edges.setdefault(s, []).append(r)
     for s, r in zip(segs[use_l][hit_l].tolist(), rl[hit_l].tolist(), strict=True):
         edges.setdefault(s, []).append(r)
-    between = _per_segment(cand[dead], order, starts, m)
-    gaps = _per_segment(cand[open_[:k]], order, starts, m)
-    out = list(zip(between, [none] * m, gaps, strict=True))     # (a tuple per segment)
+    between = _per_segment(cand[dead], order, starts)
+    gaps = _per_segment(cand[open_[:k]], order, starts)
+    # (a segment with nothing found shares one tuple of empty arrays: most of a stack's,
+    # a thousand tuples fewer for the garbage collector to walk)
+    out = [(pairs, none, pairs)] * m
+    for s in between.keys() | gaps.keys():
+        out[s] = (between.get(s, pairs), none, gaps.get(s, pairs))
     for s, rs in edges.items():
         rows = rs if order is None else order[rs].tolist()
         out[s] = (out[s][0], np.array(rows, dtype=int) - int(starts[s]), out[s][2])
@@ -298,20 +347,18 @@ def _segment_order(positions: np.ndarray, starts: np.ndarray) -> np.ndarray | No
     return np.lexsort((positions, seg))
 
 
-def _per_segment(intervals: np.ndarray, order: np.ndarray | None, starts: np.ndarray,
-                 m: int) -> list[np.ndarray]:
-    """Intervals (global rows in increasing position) as (k, 2) row pairs per segment,
-    in each segment's own row numbers (``order`` None: the rows as they are)."""
+def _per_segment(intervals: np.ndarray, order: np.ndarray | None, starts: np.ndarray
+                 ) -> dict[int, np.ndarray]:
+    """Intervals (global rows in increasing position) as (k, 2) row pairs per segment
+    that holds some, in each segment's own row numbers (``order`` None: the rows as they
+    are)."""
     if intervals.size == 0:
-        empty = np.zeros((0, 2), dtype=int)
-        return [empty] * m
+        return {}
     owner = _segment_of(intervals, starts)
     if order is None:
         pairs = np.stack([intervals, intervals + 1], axis=1) - starts[owner, None]
     else:
         pairs = np.stack([order[intervals], order[intervals + 1]], axis=1) - starts[owner, None]
-    cuts = np.searchsorted(owner, np.arange(m + 1))
-    out = [np.zeros((0, 2), dtype=int)] * m        # (most segments: none, one array)
-    for s in np.flatnonzero(cuts[1:] > cuts[:-1]).tolist():
-        out[s] = pairs[cuts[s]:cuts[s + 1]]
-    return out
+    cuts = np.searchsorted(owner, np.arange(starts.size + 1))
+    return {s: pairs[cuts[s]:cuts[s + 1]]
+            for s in np.flatnonzero(cuts[1:] > cuts[:-1]).tolist()}

@@ -58,9 +58,10 @@ from ..model.scene import Scene, load_scene
 from . import blocks
 from .blocks import Kept, LeanSolved
 from .cut import CutSolved, RunAgain, cut_scenes, run_values, splitter
-from .deadpoints import dead_points_stacked, kin_measure2, measure2
+from .deadpoints import SCANS, dead_points_stacked, kin_measure2, measure2
 from .fast import solve_run_stacked, wanted
 from .fast.geometry import not_covered
+from .fast.screen import compiled_scan, rrr_probe
 from .fast.solve import KeptRun
 from .fast.stacked import release, solve_group_kept
 from .footprint import columns, solve_bytes
@@ -69,7 +70,7 @@ from .pipeline import check_distinct, solve_arrays, solve_block
 from .probes import probe_closeness
 from .reactions import DriverReaction
 from .solved import Solved
-from .stack import Stacker, assemblies, stack_record
+from .stack import Stacker, assemblies, stack_record, stack_records
 from .structure import analyse
 from .trap import first_trapped, positions_tame
 
@@ -87,6 +88,10 @@ RUN_ROWS = 12_288
 # only cut from it and solved again when read: _whole_group)
 FAST_RUN_ROWS = 49_152
 CHUNK_ROWS = 1_048_576  # rows per group (one Stacker, one dead-point screen for all)
+
+# every dead-point screen (a single sweep's too) scans compiled once the kernels are
+# loaded: deadpoints cannot import the compiled path's package, which imports it
+SCANS.append(compiled_scan)
 
 
 def solve_all(items: list, executor: Executor | None = None, batch: int | None = None
@@ -141,15 +146,19 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
     alone: list = []
     one = _one_group(items)
     if one is not None:         # (the usual case: read at once)
-        groups[0], rows = one
-        _check_memory(len(items), rows, groups, alone)
+        columns, rows = one
+        _check_memory(len(items), rows, [items[0]])
+        if rows < CHUNK_ROWS:   # (one chunk: its members' fields as they were read)
+            _solve_group(columns, out, lean)
+            return out
+        groups[0] = list(zip(*columns, strict=True))
     else:
         rows = _read_each(items, out, groups, alone)
     for i, sc in alone:
         out[i] = _alone(sc)
     for members in groups.values():
         if rows < CHUNK_ROWS:       # (each group one chunk: no pass over its scenes)
-            _solve_group(members, out, lean)
+            _solve_group(fields_of(members), out, lean)
             continue
         chunk: list = []
         count = 0
@@ -157,28 +166,36 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
             chunk.append(m)
             count += m[4]
             if count >= CHUNK_ROWS:
-                _solve_group(chunk, out, lean)
+                _solve_group(fields_of(chunk), out, lean)
                 chunk, count = [], 0
         if chunk:
-            _solve_group(chunk, out, lean)
+            _solve_group(fields_of(chunk), out, lean)
     return out
 
 
-def _one_group(items: list) -> tuple[list, int] | None:
-    """The members of :func:`solved_outcomes`' one group and their rows in all, when
-    every item is a Scene of one signature whose positions increase (the usual case),
-    each scene's record (:func:`~kinetostatics.solver.stack.stack_record`) taken and
-    spread over the members in C; else None (read one by one, :func:`_read_each`)."""
+def fields_of(members: list) -> tuple:
+    """The members of a group (index, scene, numbers, increasing, rows, sweep each) as
+    one list per field."""
+    return tuple(list(f) for f in zip(*members, strict=True))
+
+
+def _one_group(items: list) -> tuple[tuple, int] | None:
+    """The fields of :func:`solved_outcomes`' one group (:func:`fields_of` its members)
+    and their rows in all, when every item is a Scene of one signature whose positions
+    increase (the usual case), each scene's record
+    (:func:`~kinetostatics.solver.stack.stack_records`) taken and spread over the fields
+    in C (no tuple per member: measured 2026-11-29, 1000 four-bars, 0.3 ms a call making
+    and unzipping them); else None (read one by one, :func:`_read_each`)."""
     if not items or set(map(type, items)) != {Scene}:
         return None
     try:
-        labels, numbers, ups, counts, sweeps = zip(*map(stack_record, items), strict=True)
+        labels, numbers, ups, counts, sweeps = zip(*stack_records(items), strict=True)
     except Exception:           # (read one by one: each scene's error in its place)
         return None
     if labels[0] is None or labels.count(labels[0]) != len(labels) or not all(ups):
         return None
-    return (list(zip(range(len(items)), items, numbers, ups, counts, sweeps, strict=True)),
-            sum(counts))
+    return (list(range(len(items))), list(items), list(numbers), list(ups), list(counts),
+            list(sweeps)), sum(counts)
 
 
 def _read_each(items: list, out: list, groups: dict, alone: list) -> int:
@@ -213,18 +230,18 @@ def _read_each(items: list, out: list, groups: dict, alone: list) -> int:
             if members is None:
                 members = groups[label] = []
             members.append((i, sc, nums, up, n, sweep))
-    _check_memory(loaded, rows, groups, alone)
+    _check_memory(loaded, rows, [m[0][1] for m in groups.values()] + [sc for _, sc in alone])
     return rows
 
 
-def _check_memory(loaded: int, rows: int, groups: dict, alone: list) -> None:
+def _check_memory(loaded: int, rows: int, widest: list) -> None:
     """Refuse, before it is spent, the peak memory of solving the ``loaded`` scenes of
     ``rows`` positions in all (the widest scene's columns over all their rows; the scenes
-    of one group share theirs). The memory available is read once
+    of one group share theirs: ``widest`` holds a scene of each group and every scene
+    solved alone). The memory available is read once
     (:func:`~kinetostatics.model.memory.check_memory`), not per scene."""
     if not loaded or rows < 100_000:
         return
-    widest = [m[0][1] for m in groups.values()] + [sc for _, sc in alone]
     if not widest:          # (every scene refused: nothing will be solved)
         return
     largest = max(widest, key=columns)
@@ -239,14 +256,15 @@ def _alone(sc) -> Solved | LeanSolved | Exception:
         return exc
 
 
-def _solve_group(members: list, out: list, lean: bool) -> None:
-    """Solve scenes of one signature stacked; any scene the stacked pass cannot vouch
-    for (or all of them, if it refuses) is solved alone."""
-    if len(members) == 1:
-        out[members[0][0]] = _alone(members[0][1])
+def _solve_group(columns: tuple, out: list, lean: bool) -> None:
+    """Solve scenes of one signature stacked (``columns``: :func:`fields_of` their
+    members); any scene the stacked pass cannot vouch for (or all of them, if it
+    refuses) is solved alone."""
+    # (each field of the members: index, scene, numbers, increasing, rows, sweep)
+    index, scenes, numbers, ups, counts, sweeps = columns
+    if len(index) == 1:
+        out[index[0]] = _alone(scenes[0])
         return
-    # (each field of the members at once: index, scene, numbers, increasing, rows, sweep)
-    index, scenes, numbers, ups, counts, sweeps = (list(f) for f in zip(*members, strict=True))
     stacker = None
     try:
         structure = analyse(scenes[0], assemble=False)
@@ -256,13 +274,13 @@ def _solve_group(members: list, out: list, lean: bool) -> None:
         stacked = stacked_positions(scenes, one)
         ks, ok = assemblies(stacker, structure, stacked[0][np.cumsum(rows) - rows])
     except Exception:
-        ok = np.zeros(len(members), dtype=bool)
+        ok = np.zeros(len(index), dtype=bool)
     if not ok.all():        # (usually all kept: no pass over the flags, no copy)
         good = ok.tolist()
         for i, sc, g in zip(index, scenes, good, strict=True):
             if not g:
                 out[i] = _alone(sc)
-        kept = [m for m, g in zip(members, good, strict=True) if g]
+        kept = [m for m, g in zip(zip(*columns, strict=True), good, strict=True) if g]
         if len(kept) < 2:
             for i, sc, *_ in kept:
                 out[i] = _alone(sc)
@@ -337,22 +355,36 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
         runs.append((again, run_values(sol), getattr(sol, "path", None)))
         del sol
 
-    probes: dict = {}           # (the probes' structure per owner: the same each round)
-
-    def at(where: np.ndarray, who: np.ndarray) -> tuple:
-        probe = probes.get(id(who))
-        if probe is None or probe[0] is not who:
-            probe = probes[id(who)] = (who, replace(structure,
-                                                    assembly=tuple(k[who] for k in ks)))
-        # (the closeness alone; each scene's links were measured by assemblies)
-        return probe_closeness(stacker.scene(who, where), probe[1], measured=True)
-    dead = dead_points_stacked(m2, positions, starts, counts, at, increasing)
+    dead = dead_points_stacked(m2, positions, starts, counts,
+                               _probe_at(stacker, structure, ks, compiled), increasing)
     if whole is not None:
         release(whole)          # (its closeness: read by nothing after the screen)
     out = cut_scenes(scenes, structure, ks, starts, counts, bounds, runs, dead)
     for j in alone:
         out[j] = _alone(scenes[j])
     return out
+
+
+def _probe_at(stacker: Stacker, structure, ks: np.ndarray, compiled: bool):
+    """The dead-point screen's probe ``at(positions, owner)`` of a stack
+    (:func:`dead_points_stacked`): on the compiled path, a crank and one RRR dyad in one
+    compiled pass (:func:`~kinetostatics.solver.fast.screen.rrr_probe`: the same numbers;
+    measured 2026-11-29, 1000 four-bars x 361: the screen 2.0 ms a call against 3.9,
+    its probes 1.2 against 3.2, best of 15 at a load of 10-11), else numpy's
+    :func:`probe_closeness` of the stacked scene at the probes' rows."""
+    at = rrr_probe(stacker, structure, ks) if compiled else None
+    if at is not None:
+        return at
+    probes: dict = {}           # (the probes' structure per owner: the same each round)
+
+    def numpy_at(where: np.ndarray, who: np.ndarray) -> tuple:
+        probe = probes.get(id(who))
+        if probe is None or probe[0] is not who:
+            probe = probes[id(who)] = (who, replace(structure,
+                                                    assembly=tuple(k[who] for k in ks)))
+        # (the closeness alone; each scene's links were measured by assemblies)
+        return probe_closeness(stacker.scene(who, where), probe[1], measured=True)
+    return numpy_at
 
 
 def stacked_positions(scenes: list, one: bool | None = None) -> tuple[np.ndarray, bool]:

@@ -1,0 +1,170 @@
+"""The dead-point screen's scan in one compiled pass: the intervals next to a local
+minimum of the closeness to a dead centre (``deadpoints._candidates`` on the numpy
+arithmetic, a dozen passes and gathers over the rows below the screen).
+
+Only comparisons and one product by a constant are made, each the numpy scan's own
+(IEEE doubles, no fastmath): the same intervals, in the same order. Imported only once
+the kernels are loaded (:func:`~kinetostatics.solver.fast.loader.kernels`: numba's cache
+folder settled first).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .jitbase import body, jit
+
+# a real dip is below a neighbour by more than rounding jitter (deadpoints._candidates)
+SHRINK = 1.0 - 1e-9
+
+
+@jit
+def scan_candidates(m2, starts, counts, screen2, out):
+    """The intervals i (rows i, i + 1) next to a local minimum of m over each segment of
+    rows alone (segment s: ``counts[s]`` rows from ``starts[s]``), in increasing order,
+    written to ``out`` (as many as there are); returns how many.
+
+    A row r below the screen (m^2 < ``screen2``: NaN never is) is a dip when
+    (m_r < m_left (1 - 1e-9) and m_r <= m_right) or (m_r <= m_left and
+    m_r < m_right (1 - 1e-9)), a segment's end having no neighbour beyond it (+inf); the
+    intervals (r - 1, r) unless r starts its segment and (r, r + 1) unless it ends it,
+    each once. An empty ``out``: counted only (then an ``out`` of that size is filled:
+    no array as long as the rows is taken, whose fresh pages, mapped and given back,
+    cost the next solve's arrays their pages again: measured 2026-11-29, solve_many's
+    fused kernel 1.5-2 ms slower a call after a scan with an ``out`` of the rows' length)."""
+    inf = np.inf
+    k = 0
+    prev = -1           # (the last interval written: the intervals never decrease)
+    for s in range(starts.size):
+        a = starts[s]
+        b = a + counts[s]
+        for r in range(a, b):
+            v = m2[r]
+            if not v < screen2:
+                continue
+            left = m2[r - 1] if r > a else inf
+            right = m2[r + 1] if r + 1 < b else inf
+            if not (((v < left * SHRINK) and (v <= right))
+                    or ((v <= left) and (v < right * SHRINK))):
+                continue
+            if r > a and r - 1 != prev:
+                if out.size:
+                    out[k] = r - 1
+                k += 1
+                prev = r - 1
+            if r + 1 < b and r != prev:
+                if out.size:
+                    out[k] = r
+                k += 1
+                prev = r
+    return k
+
+
+# the columns of probe_rrr's table, one row per scene: the driver joint's ground point
+# and its point on the crank, per outer pivot j (0, 1) its point on the ground or on the
+# crank and its point on the dyad's body, the inner joint's point on each dyad body, size
+PA, CA, PIVOT, LOCAL, INNER, SIZE = 0, 2, (4, 8), (6, 10), 12, 16
+COLUMNS = 17
+
+
+@body
+def rrr_pivots(ci, si, g, e, on_crank):
+    """The outer pivots P1, P2 of scene ``e`` (row ``e`` of ``g``) at the crank's cos
+    ``ci`` and sin ``si``: a point of the ground, or of the crank about its origin
+    o = P - R a (seed 000 ch. 4), as the numpy probe computes them."""
+    ox = g[e, PA] - (ci * g[e, CA] - si * g[e, CA + 1])
+    oy = g[e, PA + 1] - (si * g[e, CA] + ci * g[e, CA + 1])
+    b1, b2 = PIVOT
+    if on_crank[0]:
+        p1x = ox + (ci * g[e, b1] - si * g[e, b1 + 1])
+        p1y = oy + (si * g[e, b1] + ci * g[e, b1 + 1])
+    else:
+        p1x, p1y = g[e, b1], g[e, b1 + 1]
+    if on_crank[1]:
+        p2x = ox + (ci * g[e, b2] - si * g[e, b2 + 1])
+        p2y = oy + (si * g[e, b2] + ci * g[e, b2 + 1])
+    else:
+        p2x, p2y = g[e, b2], g[e, b2 + 1]
+    return p1x, p1y, p2x, p2y
+
+
+@body
+def rrr_arms(g, e):
+    """The dyad's links from its outer joints' points to its inner joint's, in each
+    body (the numpy closure's a1, a2: A.less, the same subtractions)."""
+    return (g[e, INNER] - g[e, LOCAL[0]], g[e, INNER + 1] - g[e, LOCAL[0] + 1],
+            g[e, INNER + 2] - g[e, LOCAL[1]], g[e, INNER + 3] - g[e, LOCAL[1] + 1])
+
+
+@jit
+def probe_rrr(c, s, own, k, g, on_crank, m2):
+    """The closeness to a dead centre of a crank and one RRR dyad at the rows' crank
+    angles (cos ``c``, sin ``s``: numpy's), row i of scene ``own[i]`` in assembly
+    ``k[own[i]]`` (+-1.0), its numbers row ``own[i]`` of ``g`` (the columns above;
+    ``on_crank[j]``: outer pivot j on the crank, else on the ground): the operations of
+    :func:`~kinetostatics.solver.probes.probe_closeness` in their order (IEEE doubles, no
+    fastmath; numpy's minimum: a NaN kept), m^2 written to ``m2``. Returns 1 when some
+    row's h^2 is negative or not finite (then the rows' gaps count, :func:`rrr_gaps`, as
+    numpy's probe measures them only then), else 0."""
+    bad = 0
+    for i in range(c.size):
+        e = own[i]
+        p1x, p1y, p2x, p2y = rrr_pivots(c[i], s[i], g, e, on_crank)
+        a1x, a1y, a2x, a2y = rrr_arms(g, e)
+        # circle-circle (seed 000 eq. 5.1): Q = P1 + x e + k h J e
+        r1s = a1x * a1x + a1y * a1y
+        r2s = a2x * a2x + a2y * a2y
+        ex, ey = p2x - p1x, p2y - p1y
+        d2 = ex * ex + ey * ey
+        reach = np.sqrt(d2)
+        inv = 1.0 / reach
+        x = (d2 + (r1s - r2s)) * (0.5 * inv)
+        h2 = r1s - x * x
+        if h2 < 0.0 or not np.isfinite(h2):
+            bad = 1
+        root = np.sqrt(h2 if not h2 < 0.0 else 0.0)     # (numpy's maximum(h2, 0))
+        xi = x * inv
+        kh = (k[e] * inv) * root
+        tx = xi * ex - kh * ey                      # X - P1
+        ty = xi * ey + kh * ex
+        u, v = a1x / r1s, a1y / r1s               # the first body's cos, sin
+        c1, s1 = tx * u + ty * v, ty * u - tx * v
+        # (the second body's angle: not read by the closeness)
+        # the first body's origin, then the closing point X on it
+        lx, ly = g[e, LOCAL[0]], g[e, LOCAL[0] + 1]
+        o1x = p1x - (c1 * lx - s1 * ly)
+        o1y = p1y - (s1 * lx + c1 * ly)
+        qx, qy = g[e, INNER], g[e, INNER + 1]
+        xx = o1x + (c1 * qx - s1 * qy)
+        xy = o1y + (s1 * qx + c1 * qy)
+        # the velocity system's columns c_i = J (X - P_i) and determinant; sin^2 tau
+        # = det^2 / (|c1|^2 |c2|^2) (seed 002 eqs 2.60-2.61)
+        c1x, c1y = p1y - xy, xx - p1x
+        c2x, c2y = p2y - xy, xx - p2x
+        det = c2x * c1y - c1x * c2y
+        norm2 = (c1x * c1x + c1y * c1y) * (c2x * c2x + c2y * c2y)
+        sin2 = det * det / norm2
+        rr = reach / g[e, SIZE]
+        rr = rr * rr
+        m2[i] = sin2 if (sin2 <= rr or np.isnan(sin2)) else rr     # (numpy's minimum)
+    return bad
+
+
+@jit
+def rrr_gaps(c, s, own, g, on_crank, opened):
+    """Per row of :func:`probe_rrr`, whether the dyad cannot close: its gap
+    max(d - (r1 + r2), |r1 - r2| - d) (numpy's maximum: a NaN kept) is not within 1e-9 of
+    the mechanism's size, written to ``opened``."""
+    for i in range(c.size):
+        e = own[i]
+        p1x, p1y, p2x, p2y = rrr_pivots(c[i], s[i], g, e, on_crank)
+        a1x, a1y, a2x, a2y = rrr_arms(g, e)
+        r1s = a1x * a1x + a1y * a1y
+        r2s = a2x * a2x + a2y * a2y
+        ex, ey = p2x - p1x, p2y - p1y
+        d = np.sqrt(ex * ex + ey * ey)
+        r1, r2 = np.sqrt(r1s), np.sqrt(r2s)
+        gap = d - (r1 + r2)
+        far = abs(r1 - r2) - d
+        gap = gap if (gap >= far or np.isnan(gap)) else far
+        opened[i] = not gap <= 1e-9 * g[e, SIZE]

@@ -1,0 +1,77 @@
+"""The dead-point screen's compiled scan (``solver/fast/screen_kernels.py``) against the
+numpy scan of :func:`~kinetostatics.solver.deadpoints._candidates`: the same intervals,
+in the same order, of the same dtype."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from kinetostatics.solver import deadpoints, many
+from kinetostatics.solver.fast import loader, use
+
+from .test_deadpoints import _candidates_reference
+
+pytestmark = pytest.mark.skipif(not loader.installed(), reason="numba not installed")
+
+
+@pytest.fixture
+def on_path():
+    """Sets the solve path (``"fast"``: the kernels loaded), put back after."""
+    def set_path(path: str) -> None:
+        use(path)
+        if path == "fast" and loader.kernels() is None:
+            pytest.skip("no writable cache folder")
+    yield set_path
+    use(None)
+
+
+def test_the_compiled_scan_is_taken_on_the_compiled_path_only(on_path) -> None:
+    """The solver's many gives every screen the compiled path's scan (deadpoints cannot
+    import it); it is taken on the compiled path only."""
+    assert many.compiled_scan in deadpoints.SCANS
+    on_path("fast")
+    assert deadpoints.compiled_scan() is not None
+    on_path("numpy")
+    assert deadpoints.compiled_scan() is None
+
+
+def test_compiled_scan_gives_the_numpy_scans_intervals(on_path) -> None:
+    """Segments of any length (empty ones too), ties, values within rounding of each
+    other (the dip's 1 - 1e-9), NaN and infinities, one segment or many."""
+    rng = np.random.default_rng(11)
+    pool = np.array([0.0, 0.1, 0.1 * (1 - 1e-10), 0.1 * (1 - 2e-9), 0.2, 0.25,
+                     0.25 * (1 - 1e-16), 0.3, 0.6, np.nan, np.inf])
+    for _ in range(3000):
+        counts = rng.integers(0, 9, rng.integers(1, 7))
+        counts[-1] = max(counts[-1], 1)
+        starts = np.cumsum(counts) - counts
+        n = int(counts.sum())
+        m2 = rng.choice(pool, n) if rng.random() < 0.6 else rng.random(n) * 0.6
+        whole = (np.zeros(1, dtype=int), np.array([n]))
+        got = {}
+        for path in ("numpy", "fast"):
+            on_path(path)
+            scan = deadpoints.compiled_scan()
+            # (a stack's segments are scanned on numpy: the kernel asked directly)
+            got[path] = (deadpoints._candidates(m2, starts, counts) if scan is None
+                         else deadpoints.scanned(scan, m2, starts, counts),
+                         deadpoints._candidates(m2))
+        for numpy_scan, compiled in zip(got["numpy"], got["fast"], strict=True):
+            assert compiled.dtype == numpy_scan.dtype == np.int64
+            np.testing.assert_array_equal(compiled, numpy_scan)
+        np.testing.assert_array_equal(got["fast"][0],
+                                      _candidates_reference(m2, starts, counts))
+        np.testing.assert_array_equal(got["fast"][1], _candidates_reference(m2, *whole))
+
+
+def test_compiled_scan_on_a_long_sweep(on_path) -> None:
+    """A long sweep with many rows below the screen (a shaper's 45 % at 1e6 rows): the
+    same intervals both ways, every dip found: sin^2 vanishes at 0 (the first row: its
+    interval after it alone) and 12 times inside (0, 40) (the intervals on either side)."""
+    m2 = 0.6 * np.sin(np.linspace(0.0, 40.0, 200_001)) ** 2
+    on_path("numpy")
+    expected = deadpoints._candidates(m2)
+    on_path("fast")
+    np.testing.assert_array_equal(deadpoints._candidates(m2), expected)
+    assert expected.size == 1 + 2 * 12
