@@ -53,12 +53,12 @@ def _writable(folder: Path) -> bool:
 
 def kernel_sources() -> list[Path]:
     """The files numba compiles: the kernels modules (the composed kernels,
-    ``solve_many``'s fused ones and the RTR guide's) and the modules of this package
-    they import, and theirs (the composing code, in Python, is left out: a change there
-    compiles nothing again)."""
+    ``solve_many``'s fused ones, the RTR guide's and the dead-point screen's) and the
+    modules of this package they import, and theirs (the composing code, in Python, is
+    left out: a change there compiles nothing again)."""
     here = Path(__file__).parent
     seen: list[Path] = []
-    todo = ["kernels", "fused_kernels", "guide_kernels", "fused_tables"]
+    todo = ["kernels", "fused_kernels", "guide_kernels", "fused_tables", "screen_kernels"]
     while todo:
         path = here / f"{todo.pop()}.py"
         if path in seen:
