@@ -387,7 +387,10 @@ def _long_functions(root: Path = ROOT, packages: tuple[str, ...] = PACKAGES,
     for path in _modules(root, packages).values():
         source = path.read_text()
         for node in _walk(source):
-            if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef):
+            # (a function of fewer lines than the limit, blank and comment lines counted,
+            # has fewer lines of code: its file is not tokenized, 2.0 -> 0.3 s of CPU)
+            if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef) and \
+                    node.end_lineno - node.lineno + 1 >= limit:
                 n = _code_lines(source, node)
                 if n >= limit:
                     out[f"{path.relative_to(root).as_posix()}:{node.name}"] = n

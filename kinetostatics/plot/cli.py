@@ -19,7 +19,7 @@ from .centres import plot_instant_centres
 from .curves import overview, plot_driver, plot_polar
 from .freebody import dyad_free_body
 from .mechanism import draw_mechanism
-from .place import settle
+from .place import settle, settled_later
 from .plans import acceleration_plan, velocity_plan
 from .style import lecture_style
 
@@ -68,6 +68,24 @@ def cli_figures(sol: Solution, positions: list[float] | None = None) -> dict[str
         if not lo - 1e-9 <= p <= hi + 1e-9:
             raise WorkbenchError(f"--plot-at {p:g}: outside the sweep [{lo:g}, {hi:g}] "
                                  f"{position_unit(sol)}")
+    with settled_later():       # each figure is settled below: its labels placed there
+        figs = _drawn(sol, positions)
+    # (a free-body figure comes settled, its labels placed first as it is drawn: placed by
+    # settle alone, its narrow diagram was drawn with less room and a label left out)
+    for p in positions:
+        for d in range(len(sol.kin.dyads) + 1):
+            figs[f"free_body_{_tag(sol, p)}_" + (f"dyad{d}" if d else "driver")] = \
+                dyad_free_body(sol, d, p)
+    # (the overview and a free-body figure come settled: settling them again drew them
+    # three or four times more and changed no pixel)
+    for stem, fig in figs.items():
+        if stem != "overview" and not stem.startswith("free_body_"):
+            settle(fig)
+    return figs
+
+
+def _drawn(sol: Solution, positions: list[float]) -> dict[str, Figure]:
+    """The figures of :func:`cli_figures` by stem, drawn (not yet settled)."""
     figs = {"overview": overview(sol, positions[0] if positions else None),
             "driver": plot_driver(sol).figure}
     for j in sol.scene.joints:
@@ -78,14 +96,6 @@ def cli_figures(sol: Solution, positions: list[float] | None = None) -> dict[str
         figs[f"velocity_plan_{t}"] = velocity_plan(sol, p).figure
         figs[f"acceleration_plan_{t}"] = acceleration_plan(sol, p).figure
         figs[f"instant_centres_{t}"] = plot_instant_centres(sol, p).figure
-        for d in range(len(sol.kin.dyads) + 1):
-            figs[f"free_body_{t}_" + (f"dyad{d}" if d else "driver")] = \
-                dyad_free_body(sol, d, p)
-    # (the overview and a free-body figure come settled: settling them again drew them
-    # three or four times more and changed no pixel)
-    for stem, fig in figs.items():
-        if stem != "overview" and not stem.startswith("free_body_"):
-            settle(fig)
     return figs
 
 

@@ -28,7 +28,7 @@ from .base import (
 )
 from .mechanism import draw_mechanism
 from .notation import direction_text, force_symbol, number, reading, titled
-from .place import declutter, settle
+from .place import declutter, settle, settled_later
 
 __all__ = [
     "overview", "plot_accelerations", "plot_angular", "plot_driver", "plot_polar",
@@ -408,13 +408,14 @@ def overview(sol: Solution, position: float | None = None) -> Figure:
     fig, axs = plt.subplots(2, 2, figsize=(14, 11.5), layout="constrained")
     if position is None:
         position = float(sol.positions[len(sol.positions) // 12])
-    draw_mechanism(sol, position, ax=axs[0, 0], forces=True, loads=True)
-    plot_driver(sol, ax=axs[0, 1])
-    plot_polar(sol, ax=axs[1, 0])
-    if len(sol.kin.dyads):
-        plot_transmission(sol, ax=axs[1, 1])
-    else:
-        plot_trajectories(sol, ax=axs[1, 1])
+    with settled_later():       # the labels placed once, by settle below
+        draw_mechanism(sol, position, ax=axs[0, 0], forces=True, loads=True)
+        plot_driver(sol, ax=axs[0, 1])
+        plot_polar(sol, ax=axs[1, 0])
+        if len(sol.kin.dyads):
+            plot_transmission(sol, ax=axs[1, 1])
+        else:
+            plot_trajectories(sol, ax=axs[1, 1])
     for ax in axs.flat:         # four panels: each legend below its panel, not beside
         legend_below(ax)
     settle(fig)

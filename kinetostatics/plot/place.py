@@ -26,7 +26,7 @@ from ..common.angles import radian_column
 from .collide import drawn_paths
 from .style import figure_boxes, lay_out, text_extent
 
-__all__ = ["UNPLACED_TITLE", "declutter", "settle"]
+__all__ = ["UNPLACED_TITLE", "declutter", "settle", "settled_later"]
 
 _DIRECTIONS = radian_column(np.array([45, 135, 315, 225, 90, 270, 0, 180,
                                    22.5, 67.5, 112.5, 157.5, 202.5, 247.5, 292.5, 337.5]))
@@ -39,6 +39,8 @@ _LEADER_PROPS = {"width": 0.01, "headwidth": 0.01, "headlength": 0.01, "shrink":
 _LEADERS: weakref.WeakSet[Annotation] = weakref.WeakSet()    # labels with a leader
 # the labels declutter keeps per Axes, placed again by settle
 _KEPT: weakref.WeakKeyDictionary[Axes, list[Text]] = weakref.WeakKeyDictionary()
+# inside settled_later: how many are open (declutter then only keeps the labels)
+_LATER = [0]
 
 
 def _anchor(t: Annotation) -> np.ndarray | None:
@@ -242,12 +244,14 @@ def settle(fig) -> None:
     r = lay_out(fig)
     moved = any([_legend_off_data(ax, r) for ax in fig.axes])
     if moved or not _frozen(fig):
-        # (a constrained layout moves at each drawing, by a thousandth of a pixel: the
-        # labels are placed as before, each Axes' on a drawing of its own; the first on
-        # the drawing just made where nothing changed since, which spared a drawing per
-        # figure, a tenth of its time, and moved no label by a pixel)
+        # (every Axes' labels on this drawing: a label's box and a "best" legend's place
+        # are measured afresh from it, and the labels are out of the layout; drawn again
+        # only when a legend of labels not placed came, which changes the layout. A
+        # drawing per Axes moved the Axes by a thousandth of a pixel and cost a fifth of
+        # the overview's time, 2026-11-29)
         for ax in axes:
-            _place_again(ax, r if not fig.stale else lay_out(fig))
+            if _place_again(ax, r):
+                r = lay_out(fig)
     else:
         _place_kept(fig, axes, r)
     lay_out(fig)
@@ -257,21 +261,23 @@ def settle(fig) -> None:
         lay_out(fig)
     for ax in fig.axes:
         _fix_best(ax, r)
-    # the final layout, frozen: drawing again moves nothing but what was added, so the
-    # labels of every Axes are placed on this drawing until a legend of labels not placed
-    # comes (a drawing per Axes cost a seventh of a picture's time)
-    r = lay_out(fig)
+    # the final layout (the drawing just made: _fix_best pins each legend where it was
+    # drawn, so drawing again moved nothing but by a thousandth of a pixel, a drawing a
+    # figure), frozen: the labels of every Axes are placed on it until a legend of labels
+    # not placed comes (a drawing per Axes cost a seventh of a picture's time)
     if fig.get_layout_engine() is not None:
         fig.set_layout_engine("none")
     _place_kept(fig, axes, r)
 
 
-def _place_again(ax: Axes, renderer) -> None:
+def _place_again(ax: Axes, renderer) -> bool:
     """Place the labels :func:`declutter` kept on ``ax`` on the figure as drawn last
-    (``renderer``), those with no free place named in the legend of labels not placed."""
+    (``renderer``), those with no free place named in the legend of labels not placed
+    (True: the legend came, the layout changed)."""
     missing = _place(ax, _movable(_KEPT[ax]), renderer, hide=False)
     if missing:
         _not_placed(ax.figure, missing)
+    return bool(missing)
 
 
 def _frozen(fig) -> bool:
@@ -288,6 +294,20 @@ def _place_kept(fig, axes: list[Axes], r):
         if _place(ax, _movable(_KEPT[ax]), r):
             r = lay_out(fig)
     return r
+
+
+class settled_later:
+    """``with settled_later(): ...``: the figures made inside are finished by
+    :func:`settle`, so :func:`declutter` there only keeps its labels for it (settle places
+    every kept label again on the final layout: placing them first on a layout that is
+    not yet final cost a drawing of the figure and was undone)."""
+
+    def __enter__(self) -> settled_later:
+        _LATER[0] += 1
+        return self
+
+    def __exit__(self, *exc) -> None:
+        _LATER[0] -= 1
 
 
 def declutter(ax: Axes, texts: Sequence[Text], rounds: int = 1,
@@ -311,12 +331,15 @@ def declutter(ax: Axes, texts: Sequence[Text], rounds: int = 1,
     Returns
     -------
     list of Text
-        The labels that found no free place (hidden and named in a legend).
+        The labels that found no free place (hidden and named in a legend); none inside
+        :class:`settled_later` (the labels are kept, placed by :func:`settle`).
     """
     movable = _movable(texts)
     if remember:
         old = _KEPT.get(ax, [])
         _KEPT[ax] = old + [t for t in movable if all(t is not o for o in old)]
+        if _LATER[0]:
+            return []
     missing: list[Text] = []
     for _ in range(rounds):
         missing = _place(ax, movable, lay_out(ax.figure), hide=False)

@@ -120,3 +120,18 @@ def test_lecture_style_is_a_switch():
     assert plt.figure().dpi == 200
     style.restore()
     assert plt.rcParams["figure.dpi"] == base
+
+
+def test_labels_kept_for_settle_are_placed_by_it():
+    """Inside ``settled_later`` declutter only keeps the labels (no drawing): settle
+    places them on the final layout."""
+    from kinetostatics.plot.place import settled_later
+    fig, ax = plt.subplots(layout="constrained")
+    ax.plot([0, 1], [0, 1], lw=3)
+    texts = [ax.annotate(f"label {k}", (0.5, 0.5), xytext=(0, 0),
+                         textcoords="offset points") for k in range(4)]
+    with settled_later():
+        assert kp.declutter(ax, texts) == []
+    assert all(t.xyann == (0, 0) for t in texts)        # kept, not placed
+    kp.settle(fig)
+    assert not kp.collisions(fig)

@@ -2,7 +2,6 @@
 dask.distributed cluster of two worker processes (the test extra installs dask, so
 this runs in CI): identical numbers in the same order."""
 
-import distributed
 import pytest
 
 import kinetostatics as ks
@@ -74,6 +73,9 @@ def test_a_diverged_run_crosses_a_process_boundary():
 def test_batches_through_a_dask_cluster():
     """A LocalCluster of two worker processes runs a study (with a diverged setting)
     and a balancing machine's runs unchanged: the same numbers as in this process."""
+    # (imported here, in the full suite's test only: at the module's top every process
+    # collecting the quick tier imported dask's cluster, 0.4 s of CPU each)
+    import distributed
     grid = dict(steps=(500, 1000), iterations=(10,), samples_per_revolution=45)
     bm = BalancingMachine(coast_down=CoastDown(duration=1.0))
     sets = [[(0.02, 0.1, a)] for a in (0.0, 90.0, 200.0)]
