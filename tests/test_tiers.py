@@ -57,11 +57,17 @@ def test_the_compiled_paths_tests_share_one_worker() -> None:
         assert not name or f"def {name}(" in text, entry
         assert conftest._group(f"{entry}{'' if name else 'test_x'}[p]") == "numba", entry
     assert conftest._group("tests/kinetostatics/solver/test_kinematics.py::test_x") is None
-    # a test module that sets the compiled path is in the group (a new one must be added)
+    # a test module that sets the compiled path or reads the compiled package is in the
+    # group, whole or by the names of its tests that load kernels (a new one must be added)
     for path in sorted((root / "tests").rglob("test_*.py")):
-        if path.name != "test_tiers.py" and 'use("fast")' in path.read_text(encoding="utf-8"):
-            module = path.relative_to(root).as_posix()
-            assert conftest._group(f"{module}::test_x") == "numba", module
+        text = path.read_text(encoding="utf-8")
+        module = path.relative_to(root).as_posix()
+        if path.name == "test_tiers.py" or not ('use("fast")' in text
+                                                 or "kinetostatics.solver.fast" in text):
+            continue
+        named = any(e.startswith(f"{module}::") and e != f"{module}::"
+                    for e in conftest.COMPILED)
+        assert named or conftest._group(f"{module}::test_x") == "numba", module
 
 
 def test_the_kernels_cache_where_the_commands_cache_them(monkeypatch) -> None:
