@@ -96,6 +96,18 @@ def rrr_arms(g, e):
             g[e, INNER + 2] - g[e, LOCAL[1]], g[e, INNER + 3] - g[e, LOCAL[1] + 1])
 
 
+@body
+def rrr_span(ci, si, g, e, on_crank):
+    """A row's outer pivots P1, P2 (:func:`rrr_pivots`), the first link a1
+    (:func:`rrr_arms`), both links' squared lengths and P2 - P1: what the probe and the
+    gaps both start from, in the numpy closure's order."""
+    p1x, p1y, p2x, p2y = rrr_pivots(ci, si, g, e, on_crank)
+    a1x, a1y, a2x, a2y = rrr_arms(g, e)
+    r1s = a1x * a1x + a1y * a1y
+    r2s = a2x * a2x + a2y * a2y
+    return p1x, p1y, p2x, p2y, a1x, a1y, r1s, r2s, p2x - p1x, p2y - p1y
+
+
 @jit
 def probe_rrr(c, s, own, k, g, on_crank, m2):
     """The closeness to a dead centre of a crank and one RRR dyad at the rows' crank
@@ -109,12 +121,9 @@ def probe_rrr(c, s, own, k, g, on_crank, m2):
     bad = 0
     for i in range(c.size):
         e = own[i]
-        p1x, p1y, p2x, p2y = rrr_pivots(c[i], s[i], g, e, on_crank)
-        a1x, a1y, a2x, a2y = rrr_arms(g, e)
         # circle-circle (seed 000 eq. 5.1): Q = P1 + x e + k h J e
-        r1s = a1x * a1x + a1y * a1y
-        r2s = a2x * a2x + a2y * a2y
-        ex, ey = p2x - p1x, p2y - p1y
+        p1x, p1y, p2x, p2y, a1x, a1y, r1s, r2s, ex, ey = rrr_span(c[i], s[i], g, e,
+                                                                  on_crank)
         d2 = ex * ex + ey * ey
         reach = np.sqrt(d2)
         inv = 1.0 / reach
@@ -157,11 +166,7 @@ def rrr_gaps(c, s, own, g, on_crank, opened):
     the mechanism's size, written to ``opened``."""
     for i in range(c.size):
         e = own[i]
-        p1x, p1y, p2x, p2y = rrr_pivots(c[i], s[i], g, e, on_crank)
-        a1x, a1y, a2x, a2y = rrr_arms(g, e)
-        r1s = a1x * a1x + a1y * a1y
-        r2s = a2x * a2x + a2y * a2y
-        ex, ey = p2x - p1x, p2y - p1y
+        _, _, _, _, _, _, r1s, r2s, ex, ey = rrr_span(c[i], s[i], g, e, on_crank)
         d = np.sqrt(ex * ex + ey * ey)
         r1, r2 = np.sqrt(r1s), np.sqrt(r2s)
         gap = d - (r1 + r2)
