@@ -90,14 +90,17 @@ def solve_group_kept(stacker, structure, ks: np.ndarray, counts: np.ndarray,
 
 def owners(counts: np.ndarray) -> np.ndarray:
     """Each row's scene (counted from 0) of a stack of scenes of ``counts`` rows each,
-    read-only, the last one kept: the same stack solved again (a design's generations, a
-    study's loads) reuses it rather than fault in 8 fresh bytes a row (measured
-    2026-11-29, 1000 four-bars x 361: 706 page faults a call)."""
+    the last one kept: the same stack solved again (a design's generations, a study's
+    loads) reuses it rather than fault in 8 fresh bytes a row (measured 2026-11-29, 1000
+    four-bars x 361: 706 page faults a call). Writable, as every other caller's owners
+    (``short.OWNERS``, a run's): a read-only array is another type to numba, and each
+    fused kernel was compiled twice (measured 2026-11-30, an empty cache: 6-10 s of
+    processor time each; the compiled tests 285 s of CPU against 244 s); the kernels
+    only read it."""
     key = counts.tobytes()
     own = _OWNERS.get(key)
     if own is None:
         own = np.repeat(np.arange(counts.size, dtype=np.int64), counts)
-        own.flags.writeable = False
         _OWNERS.clear()
         _OWNERS[key] = own
     return own
