@@ -20,7 +20,9 @@ from kinetostatics.solver.pipeline import Sweep
 
 from .test_fast_guided import offset_slot
 
-pytestmark = pytest.mark.skipif(not loader.installed(), reason="numba not installed")
+# (slow: the guide's kernels compiled first on a fresh machine)
+pytestmark = [pytest.mark.skipif(not loader.installed(), reason="numba not installed"),
+              pytest.mark.slow]
 
 ROWS = 2 * BLOCK_ROWS + 4097        # (blocks of FUSED_ROWS and a short last one)
 
@@ -60,7 +62,6 @@ def kept_bytes(monkeypatch, scene: dict, trig: bool | None) -> list[bytes]:
             *(c.tobytes() for c in kept.closeness2)]
 
 
-@pytest.mark.slow          # (the six-bars' kernels compiled on a cold cache)
 @pytest.mark.parametrize("name", list(SCENES))
 def test_the_guide_pass_turning_its_own_angles_keeps_the_numbers(monkeypatch, name):
     """The guide's pass as the solve chooses it (working out the cos and sin where the C
