@@ -14,6 +14,8 @@ cache folder settled); the kernels module's rules hold here.
 
 from __future__ import annotations
 
+import math
+
 from .closure_kernels import rtr_guide_angle
 from .jitbase import TILE, body, jit, jit_as, scratch, tile_geometry
 from .kernels import crank_row, dyad_row, outer_param
@@ -50,14 +52,19 @@ from .tail_kernels import (
 RTR = KINDS["RTR"]      # outer joints revolute, inner prismatic
 
 
-@jit
-def rtr_guide(lo, hi, cs, sn, gd, w, eps, gy, k1d, k2d, th, reach, gap):
-    """RTR's first pass over rows ``lo`` to ``hi`` of a block (``cs``, ``sn``: the
-    crank's cos and sin over the block): the crank's motion (:func:`crank_row`), then
-    each row's guide angle ``th``, the pivots' distance ``reach`` and the ``gap``
-    (:func:`rtr_guide_angle`, seed 000 ch. 6-7: the composed RTR kernel's stage 0).
-    ``k1d``, ``k2d``: whether each outer joint's known body is the crank (else the
-    ground)."""
+@body
+def _guide_rows(lo, hi, a0, turn, angles, cs, sn, gd, w, eps, gy, k1d, k2d, th, ct, sg,
+                reach, gap):
+    """RTR's first pass over rows ``lo`` to ``hi`` of a block: the crank's motion
+    (:func:`crank_row`), then each row's guide angle ``th``, the pivots' distance
+    ``reach`` and the ``gap`` (:func:`rtr_guide_angle`, seed 000 ch. 6-7: the composed
+    RTR kernel's stage 0). ``turn``: the crank's cos and sin worked out here from
+    ``angles`` (the block's rows from ``a0`` on) into ``cs``, ``sn``, and the guide's
+    into ``ct``, ``sg`` (the C library's cos and sin of one angle, as
+    ``fused_kernels.turn_rows``: numpy's where
+    :func:`~kinetostatics.solver.fast.solve.kernel_trig` holds); else read from ``cs``,
+    ``sn`` (``angles``, ``ct``, ``sg`` not read). ``k1d``, ``k2d``: whether each outer
+    joint's known body is the crank (else the ground)."""
     R = BODY_ROWS
     w_ = scratch(2 * R)
     wdrv = w_[R:]
@@ -69,6 +76,9 @@ def rtr_guide(lo, hi, cs, sn, gd, w, eps, gy, k1d, k2d, th, reach, gap):
     for t0 in range(lo, hi, TILE):
         nt = min(TILE, hi - t0)
         for t in range(nt):
+            if turn:
+                a = angles[a0 + t0 + t]
+                cs[t0 + t], sn[t0 + t] = math.cos(a), math.sin(a)
             wdrv[C, t] = cs[t0 + t]
             wdrv[S, t] = sn[t0 + t]
         for t in range(TILE):
@@ -76,8 +86,31 @@ def rtr_guide(lo, hi, cs, sn, gd, w, eps, gy, k1d, k2d, th, reach, gap):
         for t in range(nt):
             p1 = outer_param(True, wk1, t, gy, 0, 0)
             p2 = outer_param(True, wk2, t, gy, 0, PARAM)
-            th[t0 + t], reach[t0 + t], gap[t0 + t] = rtr_guide_angle(p1, p2, gy, 0, k)
+            g, reach[t0 + t], gap[t0 + t] = rtr_guide_angle(p1, p2, gy, 0, k)
+            th[t0 + t] = g
+            if turn:
+                ct[t0 + t], sg[t0 + t] = math.cos(g), math.sin(g)
     return 0
+
+
+@jit
+def rtr_guide(lo, hi, cs, sn, gd, w, eps, gy, k1d, k2d, th, reach, gap):
+    """RTR's first pass (:func:`_guide_rows`) over rows ``lo`` to ``hi`` of a block given
+    the crank's cos and sin ``cs``, ``sn`` (numpy's): the guide's angle ``th``, whose
+    cos and sin the caller works out (numpy's), ``reach`` and ``gap``."""
+    return _guide_rows(lo, hi, 0, False, cs, cs, sn, gd, w, eps, gy, k1d, k2d, th, th, th,
+                       reach, gap)
+
+
+@jit
+def rtr_guide_turned(a0, m, angles, cs, sn, gd, w, eps, gy, k1d, k2d, th, ct, sg, reach, gap):
+    """RTR's first pass (:func:`_guide_rows`) over the ``m`` rows of a block whose angles
+    start at row ``a0`` of ``angles``: the crank's cos and sin (``cs``, ``sn``), the
+    guide's angle ``th`` and its cos and sin (``ct``, ``sg``), the C library's (where
+    :func:`~kinetostatics.solver.fast.solve.kernel_trig` finds them numpy's), ``reach``
+    and ``gap``, into the block's first ``m`` rows."""
+    return _guide_rows(0, m, a0, True, angles, cs, sn, gd, w, eps, gy, k1d, k2d, th, ct, sg,
+                       reach, gap)
 
 
 @body
@@ -305,4 +338,4 @@ def _after_rtr_for(kind: str):
 # its first call: the shaper's RRT alone, unless a scene asks for another)
 AFTER_RTR = {kind: _after_rtr_for(kind) for kind in KINDS if kind != "RTR"}
 
-__all__ = ["AFTER_RTR", "rtr_guide", "rtr_kept"]
+__all__ = ["AFTER_RTR", "rtr_guide", "rtr_guide_turned", "rtr_kept"]

@@ -225,31 +225,55 @@ def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarr
     RTR dyad (the slotted lever's structure), or of a crank, one RTR dyad and a second
     dyad of another kind (the shaper's), from the kernels of
     :mod:`~kinetostatics.solver.fast.guide_kernels`, per block of :data:`FUSED_ROWS`
-    rows: the crank's cos and sin (numpy's), the guide's angle, its cos and sin (numpy's),
-    then the rest in one kernel, the numbers of the composed kernels bit for bit; or None
-    for another structure. Raises :class:`~kinetostatics.solver.fast.compose.Refused` as
-    the composed kernels do."""
+    rows: the crank's cos and sin, the guide's angle, its cos and sin (numpy's, or the C
+    library's where they are the same: :func:`_guide_blocks`), then the rest in one
+    kernel, the numbers of the composed kernels bit for bit; or None for another
+    structure. Raises :class:`~kinetostatics.solver.fast.compose.Refused` as the
+    composed kernels do."""
     plan = Plan(kernels, full, structure, structure.assembly, geometry=geometry)
     found = _guided(plan)
     if found is None:
         return None
-    from .guide_kernels import rtr_guide  # (numba loaded: plan.k given)
     kernel, first, rest = found
     n = positions.size
-    th, reach, gap, ct, sg = np.empty((5, min(FUSED_ROWS, n)))
+    th, reach, gap, cs, sn, ct, sg = np.empty((7, min(FUSED_ROWS, n)))
     drive, undefined = np.empty(n), np.zeros(n, dtype=bool)
     close = [np.empty(n) for _ in plan.dyads]
     bad = 0
-    for lo, m, cs, sn in crank_blocks(full.driver.angles):
-        rtr_guide(0, m, cs, sn, *first, th, reach, gap)
-        np.cos(th[:m], out=ct[:m])
-        np.sin(th[:m], out=sg[:m])
+    for lo, m in _guide_blocks(full.driver.angles, first, th, reach, gap, cs, sn, ct, sg):
         bad += kernel(0, m, OWNERS, cs, sn, *rest, ct, sg, reach, gap, drive[lo:lo + m],
                       *[c[lo:lo + m] for c in close], undefined[lo:lo + m])
     if bad:
         raise Refused(bad)
     plan.check_swept()
     return kept_sweep(structure, "R", drive, undefined, close)
+
+
+def _guide_blocks(angles: np.ndarray, first: tuple, th, reach, gap, cs, sn, ct, sg
+                  ) -> Iterator[tuple[int, int]]:
+    """The blocks of :data:`FUSED_ROWS` rows of a crank's sweep at ``angles`` through the
+    RTR guide's first pass (``first``: its arguments but the rows'): per block its first
+    row and its rows m, with the crank's cos and sin, the guide's, ``reach`` and ``gap``
+    in the first m rows of the scratch arrays. The cos and sin are worked out in the pass
+    where :func:`kernel_trig` finds the C library's numpy's
+    (:func:`~kinetostatics.solver.fast.guide_kernels.rtr_guide_turned`: measured
+    2026-11-30, :func:`guided_blocks` at 1e6 rows, processor time, best of 9 at a load of
+    15: the shaper 159 ns a row against 181, the slotted lever 111 against 127), else
+    numpy's in passes of their own around it (``rtr_guide``): the same doubles."""
+    from .guide_kernels import rtr_guide, rtr_guide_turned  # (numba loaded: kernels given)
+    n = angles.size
+    w, turned = min(FUSED_ROWS, n), kernel_trig()
+    for lo in range(0, n, w):
+        m = min(w, n - lo)
+        if turned:
+            rtr_guide_turned(lo, m, angles, cs, sn, *first, th, ct, sg, reach, gap)
+        else:
+            np.cos(angles[lo:lo + m], out=cs[:m])
+            np.sin(angles[lo:lo + m], out=sn[:m])
+            rtr_guide(0, m, cs, sn, *first, th, reach, gap)
+            np.cos(th[:m], out=ct[:m])
+            np.sin(th[:m], out=sg[:m])
+        yield lo, m
 
 
 def _guided(plan: Plan) -> tuple | None:
