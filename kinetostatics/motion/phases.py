@@ -156,7 +156,7 @@ def flywheel_for_delta(inertia: Inertia, moment: Moment, target_delta: float, ph
     def inv_delta(j: float) -> float:
         sol = _periodic(inertia, moment, phi0, guess[0], rtol, cycle, 1e-10, 60, grid, j)
         guess[0] = sol.omega0
-        return 1.0 / sol.cycle_stats()["delta"] - 1.0 / target_delta
+        return 1.0 / sol.cycle_stats(alpha=False)["delta"] - 1.0 / target_delta
 
     h0 = inv_delta(0.0)
     if h0 >= 0.0:

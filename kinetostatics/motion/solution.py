@@ -165,23 +165,26 @@ class MotionSolution:
         w, _, alpha = self.state(p)
         return p, w, alpha
 
-    def extremes(self, a: float, b: float, per_step: int = 8) -> dict[str, float]:
+    def extremes(self, a: float, b: float, per_step: int = 8,
+                 alpha: bool = True) -> dict[str, float]:
         """omega_max, omega_min and max |alpha| over [a, b] (rad) and where they are.
 
         The dense output is sampled ``per_step`` times per step; the best samples are refined
         by golden-section search on the dense output (omega) and on alpha computed from it.
+        ``alpha=False`` leaves max |alpha| out (a third of the searches): the speeds are
+        the same numbers, found first either way.
         """
         nodes = self.phi[(self.phi > a) & (self.phi < b)]
         edges = np.concatenate(([a], nodes, [b]))
         th = np.arange(per_step) / per_step
         x = np.concatenate(((edges[:-1, None] + np.diff(edges)[:, None] * th).ravel(), [b]))
-        w, _, alpha = self.state(x)
+        w, _, acc = self.state(x)
         out: dict[str, float] = {}
-        for name, vals, fun in (
-                ("omega_max", w, lambda p: float(self.omega(np.array([p]))[0])),
-                ("omega_min", -w, lambda p: -float(self.omega(np.array([p]))[0])),
-                ("alpha_abs_max", np.abs(alpha),
-                 lambda p: abs(float(self.state(np.array([p]))[2][0])))):
+        searches = (("omega_max", w, lambda p: float(self.omega(np.array([p]))[0])),
+                    ("omega_min", -w, lambda p: -float(self.omega(np.array([p]))[0])),
+                    ("alpha_abs_max", np.abs(acc),
+                     lambda p: abs(float(self.state(np.array([p]))[2][0]))))
+        for name, vals, fun in searches[:3 if alpha else 2]:
             best_x, best_v = x[int(np.argmax(vals))], float(np.max(vals))
             for j in _top_peaks(vals, 3):
                 xm, vm = golden_max(fun, x[max(j - 1, 0)], x[min(j + 1, x.size - 1)],
@@ -192,13 +195,14 @@ class MotionSolution:
             out[name + "_at"] = best_x
         return out
 
-    def cycle_stats(self, k: int | None = None) -> dict[str, float]:
+    def cycle_stats(self, k: int | None = None, alpha: bool = True) -> dict[str, float]:
         """Speed fluctuation over cycle ``k`` (1-based; default the last complete one).
 
         ``omega_mean`` = cycle / period (the time average), ``omega_max``, ``omega_min``,
         ``delta`` = (omega_max - omega_min) / omega_mean (eq. 4.20), ``alpha_max`` = max
         |alpha|, ``chi`` = alpha_max / omega_mean^2 (eq. 4.21), ``period`` (s), and the
-        driver angles (rad) of the extremes.
+        driver angles (rad) of the extremes. ``alpha=False``: the speeds only (no
+        ``alpha_max``, ``chi``, ``alpha_max_at``; see :meth:`extremes`).
         """
         n = self.complete_cycles
         if n < 1:
@@ -211,12 +215,14 @@ class MotionSolution:
         ta, tb = self._dense(np.array([a, b]))[1]
         period = float(tb - ta)
         mean = self.cycle / period
-        ex = self.extremes(a, b)
-        return {"omega_mean": mean, "omega_max": ex["omega_max"], "omega_min": ex["omega_min"],
-                "delta": (ex["omega_max"] - ex["omega_min"]) / mean,
-                "alpha_max": ex["alpha_abs_max"], "chi": ex["alpha_abs_max"] / mean**2,
-                "period": period, "omega_max_at": ex["omega_max_at"],
-                "omega_min_at": ex["omega_min_at"], "alpha_max_at": ex["alpha_abs_max_at"]}
+        ex = self.extremes(a, b, alpha=alpha)
+        out = {"omega_mean": mean, "omega_max": ex["omega_max"], "omega_min": ex["omega_min"],
+               "delta": (ex["omega_max"] - ex["omega_min"]) / mean, "period": period,
+               "omega_max_at": ex["omega_max_at"], "omega_min_at": ex["omega_min_at"]}
+        if alpha:
+            out.update(alpha_max=ex["alpha_abs_max"], chi=ex["alpha_abs_max"] / mean**2,
+                       alpha_max_at=ex["alpha_abs_max_at"])
+        return out
 
     def cycles(self, steady_tol: float = 1e-6) -> pd.DataFrame:
         """One row per whole cycle: speeds at its ends, period, the work of M over it, phase.

@@ -65,8 +65,8 @@ def leaked_values(text: str, values: Mapping[str, float],
         appears anywhere in the text, even inside a longer number.
     """
     shown = set()
-    for tok in _NUM.findall(text):
-        try:
+    for tok in set(_NUM.findall(text)):     # each distinct token once (a PNG's base64
+        try:                                # text repeats short digit runs many times)
             shown.add(_sig4(float(tok)))
         except (ValueError, OverflowError):
             continue

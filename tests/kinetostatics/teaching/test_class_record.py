@@ -378,7 +378,9 @@ def test_generate_and_grade_through_executors(klass, tmp_path):
         _typed(klass, sid, _key(klass, sid), subs / f"{sid}.ipynb")
     from dask.distributed import Client, LocalCluster
 
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+    # one worker process: the tasks still go out to the cluster one by one, pickled; a
+    # second worker only imported the libraries again
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
                       dashboard_address=None) as cluster, Client(cluster) as client:
         ex = _Counting(client.get_executor())
         rep = T.grade_class(klass["dir"], [subs], execute=False, executor=ex)
