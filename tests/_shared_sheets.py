@@ -2,7 +2,8 @@
 
 Each sheet is run once in a suite: a sheet with an interactive cell (an Explorer's
 widget) in JupyterLab by tests/test_browser.py, which makes the checks below in the same
-kernel after its own (the browser's) checks; every other sheet headless with nbclient by
+kernel after its own (the browser's) checks, on the browser's own slider moves
+(:data:`MOVES_RECORD`, :data:`MOVES_CHECK`); every other sheet headless with nbclient by
 tests/test_notebooks.py, which runs the widget sheets too when the browser test is not
 part of the run (Chromium or Playwright missing, the test deselected).
 
@@ -10,7 +11,8 @@ A run passes when no cell raises, the sheet shows at least one picture and one t
 its outputs hold no ``nan`` or ``inf`` (a not-applicable cell shows a dash) and nothing
 on stderr (no warning), every figure a cell shows meets the picture standard
 (:data:`AUDIT_HOOK`), and every Explorer left in the kernel, moved slider by slider
-through its Python API, changes its picture and key numbers (:data:`EXPLORER_CHECK`).
+through its Python API (in the browser: by the browser), changes its picture and key
+numbers (:data:`EXPLORER_CHECK`; the browser's picture checked on the page).
 """
 
 from __future__ import annotations
@@ -94,8 +96,7 @@ def _check_crank(_e, _c):
         _at = float(_sol.positions[_sing][0])
         _n = _e.set(phi=_at)
         assert _n["Me at φ [N m]"] == "singular (dead point)", (_c, _at, _n)
-        _e.set(phi=30.0)
-    return bool(_sing.any())
+    return bool(_sing.any())                    # (the next call sets phi = 30 again)
 
 
 # every crank length through a twin of the explorer that draws nothing (the sheet's own
@@ -141,10 +142,58 @@ for _e in _explorers:
 """
 
 
-def checks_after(name: str) -> list[str]:
+# the browser test's record of its own slider moves, in the kernel: MOVES_RECORD is run
+# (through a kernel client) once the sheet has run and again after each slider move of the
+# browser, whose update has ended; MOVES_CHECK, after the moves, holds them to what
+# EXPLORER_CHECK holds its own moves to (so the browser's run moves every slider once, not
+# once in the browser and again through the API: each move was a whole update, 1-3 s of
+# the kernel's CPU, measured 2026-11-30)
+MOVES_RECORD = """
+def _record_moves():
+    from kinetostatics.notebook import Explorer
+    moves = globals().setdefault("_MOVES", [])
+    found = {id(v): v for v in list(globals().values()) if isinstance(v, Explorer)}
+    moves.append([(dict(e.values), dict(e.numbers), e.error, e.updates)
+                  for e in found.values()])
+    for k, e in enumerate(found.values()):
+        if len(moves) > 1 and moves[-2][k][0] != e.values:    # moved: measured as shown
+            moved = {n: v for n, v in e.values.items() if moves[-2][k][0][n] != v}
+            e.table()                   # every key number is finite (raises otherwise)
+            _AUDIT(f"explorer {moved} (browser)", e.figure)
+
+
+_record_moves()
+"""
+MOVES_CHECK = """
+from kinetostatics.notebook import Explorer as _Explorer
+_explorers = list({id(v): v for v in list(globals().values()) if isinstance(v, _Explorer)}
+                  .values())
+assert _explorers or not {topic}, "this topic sheet has no interactive cell (Explorer)"
+assert len(_MOVES) > 1 and all(len(_m) == len(_explorers) for _m in _MOVES), _MOVES
+for _before, _after in zip(_MOVES, _MOVES[1:]):
+    # each move: one slider of one explorer, its value in the kernel, one update computed
+    _moved = [(_k, _n) for _k, (_b, _a) in enumerate(zip(_before, _after))
+              for _n in _a[0] if _a[0][_n] != _b[0][_n]]
+    assert len(_moved) == 1, f"a move changed {_moved} (one slider each)"
+    _k, _n = _moved[0]
+    _v = _after[_k][0][_n]
+    assert _after[_k][3] > _before[_k][3], f"slider {_n} = {_v}: no update computed"
+    assert _after[_k][2] is None, f"slider {_n} = {_v}: {_after[_k][2]}"
+    assert _after[_k][1] != _before[_k][1], f"slider {_n} = {_v} changes no key number"
+for _k, _e in enumerate(_explorers):
+    _left = {_s.name for _s in _e.sliders} - {_n for _b, _a in zip(_MOVES, _MOVES[1:])
+                                             for _n in _a[_k][0] if _a[_k][0][_n] != _b[_k][0][_n]}
+    assert not _left, f"sliders never moved in the browser: {sorted(_left)}"
+    _e.close()                          # no frontend from here: the API alone
+"""
+
+
+def checks_after(name: str, browser: bool = False) -> list[str]:
     """The code run in a sheet's kernel after the sheet (each a cell): every Explorer's
-    sliders moved, the sheet's own checks; then :data:`AUDIT_REPORT` gives the audits."""
-    cells = [EXPLORER_CHECK.replace("{topic}", str(name[:2] in TOPIC_SHEETS))]
+    sliders moved (``browser``: the browser's moves, recorded by :data:`MOVES_RECORD`,
+    checked), the sheet's own checks; then :data:`AUDIT_REPORT` gives the audits."""
+    check = MOVES_CHECK if browser else EXPLORER_CHECK
+    cells = [check.replace("{topic}", str(name[:2] in TOPIC_SHEETS))]
     if name[:2] in SHEET_CHECKS:
         cells.append(SHEET_CHECKS[name[:2]])
     return cells

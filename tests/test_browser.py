@@ -13,9 +13,11 @@ student sees:
   same number of axes as before (redrawn, never stacked);
 - then, on the same run, every check tests/test_notebooks.py makes on a headless run
   (tests/_shared_sheets.py: no error, a picture and a table, no nan, nothing on stderr,
-  every figure to the picture standard, every Explorer's sliders moved through its
-  Python API): the sheet, saved from the browser, gives its outputs, and the checks run
-  in its kernel. So each widget sheet is executed once in the suite.
+  every figure to the picture standard, every slider's move changes the key numbers
+  and leaves no error): the sheet, saved from the browser, gives its outputs, and the
+  checks run in its kernel, on the browser's own slider moves (recorded there after
+  each: the sliders are not moved again through the Python API). So each widget sheet
+  is executed once in the suite, and each slider moved once.
 
 One JupyterLab server (for the session) serves the sheets (copied into a temporary
 folder, with the picture audit's cell first, so the checkout's sheets stay without
@@ -32,6 +34,7 @@ elsewhere it is skipped with one line saying what to install.
 from __future__ import annotations
 
 import ast
+import contextlib
 import json
 import os
 import re
@@ -397,15 +400,18 @@ def _open(app, sheet: str):
     return page, console
 
 
-def _move_every_slider(page, sheet: str, console: list[str]) -> None:
+def _move_every_slider(page, sheet: str, console: list[str], run) -> None:
     """Every slider of the (run) sheet moved once by keyboard: the picture changes, the
-    sheet still shows exactly one picture per explorer, no JavaScript error."""
+    sheet still shows exactly one picture per explorer, no JavaScript error; the kernel's
+    state recorded (``run``: the kernel's client, sheets.MOVES_RECORD) before the first
+    move and after each (the headless checks hold every move to the API's standard)."""
     page.locator(".widget-slider").first.wait_for(timeout=UPDATE)
     pictures = page.locator(".jp-OutputArea-output img.widget-image")
     explorers = pictures.count()
     assert explorers >= 1, sheet
     handles = page.locator(".widget-slider .noUi-handle")
     assert handles.count() >= 1, sheet
+    run(sheets.MOVES_RECORD)
     for k in range(handles.count()):
         handle = handles.nth(k)
         handle.scroll_into_view_if_needed()
@@ -424,6 +430,7 @@ def _move_every_slider(page, sheet: str, console: list[str]) -> None:
                        !html.some(t => t.includes('computing'));
             }""", arg=before, polling=POLL, timeout=UPDATE)
         assert pictures.count() == explorers, (sheet, k, "pictures stacked")
+        run(sheets.MOVES_RECORD)
         errors = _page_errors(console)
         assert not errors, (sheet, k, errors)
     text = page.locator(".jp-Notebook").inner_text()
@@ -462,10 +469,11 @@ def _saved_outputs(page, home: Path, sheet: str) -> list:
                                  f"dialogs: {page.evaluate(DIALOG_TEXT)}")
 
 
-def _kernel_checks(lab, sheet: str) -> list[dict]:
-    """Run the headless checks of tests/_shared_sheets.py (every Explorer's sliders moved
-    through its Python API, the sheet's own checks) in the sheet's kernel, through a
-    client of its own (the page's cells stay as they are); returns the figures' audits."""
+@contextlib.contextmanager
+def _kernel(lab, sheet: str):
+    """A client of the sheet's kernel of its own (the page's cells stay as they are):
+    ``run(code)`` runs the code there and returns what it printed; a cell that raises
+    fails the test with its traceback."""
     from jupyter_client.blocking import BlockingKernelClient
     base, token, home = lab
     with urllib.request.urlopen(f"{base}/api/sessions?token={token}", timeout=60) as r:
@@ -474,28 +482,35 @@ def _kernel_checks(lab, sheet: str) -> list[dict]:
     client = BlockingKernelClient()
     client.load_connection_file(str(home / ".jupyter" / "runtime" / f"kernel-{kernels[0]}.json"))
     client.start_channels()
+
+    def run(code: str) -> str:
+        said: list[str] = []
+        reply = client.execute_interactive(
+            code, timeout=sheets.CELL_TIMEOUT, allow_stdin=False,
+            output_hook=lambda m: said.append(m["content"]["text"])
+            if m["msg_type"] == "stream" else None)["content"]
+        assert reply["status"] == "ok", "\n".join(
+            [f"{sheet}: {reply.get('ename')}: {reply.get('evalue')}", code,
+             *reply.get("traceback", [])])
+        return "".join(said)
+
     try:
         client.wait_for_ready(timeout=UPDATE / 1000)
-        for code in [*sheets.checks_after(sheet), sheets.AUDIT_REPORT]:
-            said: list[str] = []
-            reply = client.execute_interactive(
-                code, timeout=sheets.CELL_TIMEOUT, allow_stdin=False,
-                output_hook=lambda m, said=said: said.append(m["content"]["text"])
-                if m["msg_type"] == "stream" else None)["content"]
-            assert reply["status"] == "ok", "\n".join(
-                [f"{sheet}: {reply.get('ename')}: {reply.get('evalue')}", code,
-                 *reply.get("traceback", [])])
+        yield run
     finally:
         client.stop_channels()
-    return sheets.audits_of("".join(said))
 
 
-def _headless_checks(page, lab, sheet: str) -> None:
+def _headless_checks(page, lab, sheet: str, run) -> None:
     """The checks of tests/test_notebooks.py on the browser's run of the sheet (which
-    then skips the sheet): its outputs as saved, the Explorers moved through their
-    API, every figure to the picture standard."""
+    then skips the sheet): its outputs as saved, the browser's slider moves (recorded in
+    the kernel by ``run``, the kernel's client, with sheets.MOVES_RECORD) held to what
+    the headless run's moves through the API are, the sheet's own checks, every figure
+    to the picture standard."""
     outputs = _saved_outputs(page, lab[2], sheet)
-    sheets.check_run(sheet, outputs, _kernel_checks(lab, sheet))
+    for code in sheets.checks_after(sheet, browser=True):
+        run(code)
+    sheets.check_run(sheet, outputs, sheets.audits_of(run(sheets.AUDIT_REPORT)))
 
 
 # the sheets of the in-depth test have their every slider moved there (each sheet is run
@@ -510,8 +525,9 @@ def test_every_slider_of_every_widget_sheet(lab, app, sheet):
     headless checks on the same run (``_headless_checks``)."""
     page, console = _open(app, sheet)
     _run_all(page, lab, sheet)
-    _move_every_slider(page, sheet, console)
-    _headless_checks(page, lab, sheet)
+    with _kernel(lab, sheet) as run:
+        _move_every_slider(page, sheet, console, run)
+        _headless_checks(page, lab, sheet, run)
 
 
 @pytest.mark.slow
@@ -538,7 +554,15 @@ def test_sheet_in_a_real_browser(lab, app, sheet):
     bad = WIDGET_ERRORS.findall(text) + [c for c in console if WIDGET_ERRORS.search(c)]
     assert not bad, f"{sheet}: {bad}"
     assert page.locator(".jp-OutputArea-output img.widget-image").count() == 1
-    _move_every_slider(page, sheet, console)
+    with _kernel(lab, sheet) as run:
+        _move_every_slider(page, sheet, console, run)
+        _rapid_moves(page, sheet, console)
+        _headless_checks(page, lab, sheet, run)
+
+
+def _rapid_moves(page, sheet: str, console: list[str]) -> None:
+    """A slider moved by drag changes the picture; after rapid moves the kernel holds
+    the newest values and the picture the same number of axes as before."""
     axes, values = _state(page)
     picture = _image(page).get_attribute("src")
 
@@ -572,4 +596,3 @@ def test_sheet_in_a_real_browser(lab, app, sheet):
     text = page.locator(".jp-Notebook").inner_text()
     bad = WIDGET_ERRORS.findall(text) + [c for c in console if WIDGET_ERRORS.search(c)]
     assert not bad, f"{sheet}: {bad}"
-    _headless_checks(page, lab, sheet)
