@@ -14,7 +14,10 @@
   ``python -m pytest`` (on every core: ``-n auto`` in pyproject.toml). A test that uses
   one of :data:`SLOW_FIXTURES` is marked ``slow`` here (and ``kernel`` or ``browser``
   where the fixture starts one), so nobody has to remember the mark; the remaining slow
-  tests carry ``@pytest.mark.slow`` themselves.
+  tests carry ``@pytest.mark.slow`` themselves, or are listed in tests/slow_by_cost.txt:
+  a quick test costs at most :data:`QUICK_CPU` of CPU unless it is a keeper
+  (:func:`keeper`: a property or invariance test, a command line's smoke test, the
+  picture scene, a mutant's killer), which the list may not name.
 - Tests that read one fixture's state (the figures drawn for one scene, a class
   generated for a module's tests) run on one xdist worker
   (``--dist loadgroup`` with the groups of :func:`_group`), so each is made once; in
