@@ -7,14 +7,17 @@
   python -m pytest`` (a nightly run) searches with fresh random examples, ten times as
   many in every property test, those that set their own count too
   (:func:`_scale_examples`). The quick tier (``-m "not slow"``, where no profile is
-  named) runs the same property tests derandomized on a fifth of the examples (profile
-  ``quick``, at least ten each): every property is still tried, the full suite tries it
+  named) runs the same property tests derandomized on a tenth of the examples (profile
+  ``quick``, at least five each): every property is still tried, the full suite tries it
   on all of them.
 - Two tiers. ``python -m pytest -m "not slow"`` is the everyday line; the full suite is
   ``python -m pytest`` (on every core: ``-n auto`` in pyproject.toml). A test that uses
   one of :data:`SLOW_FIXTURES` is marked ``slow`` here (and ``kernel`` or ``browser``
   where the fixture starts one), so nobody has to remember the mark; the remaining slow
-  tests carry ``@pytest.mark.slow`` themselves.
+  tests carry ``@pytest.mark.slow`` themselves, or are listed in tests/slow_by_cost.txt:
+  a quick test costs at most :data:`QUICK_CPU` of CPU unless it is a keeper
+  (:func:`keeper`: a property or invariance test, a command line's smoke test, the
+  picture scene, a mutant's killer), which the list may not name.
 - Tests that read one fixture's state (the figures drawn for one scene, a class
   generated for a module's tests) run on one xdist worker
   (``--dist loadgroup`` with the groups of :func:`_group`), so each is made once; in
@@ -30,6 +33,7 @@ import importlib
 import os
 import pkgutil
 import sys
+from pathlib import Path
 
 import matplotlib
 import pytest
@@ -62,7 +66,7 @@ EXPLORE_FACTOR = 10
 settings.register_profile("explore", derandomize=False, print_blob=True,
                           max_examples=EXPLORE_FACTOR * settings.default.max_examples)
 #: The quick tier's share of the examples, and the fewest a property test runs there.
-QUICK_SHARE, QUICK_FEWEST = 5, 10
+QUICK_SHARE, QUICK_FEWEST = 10, 5
 settings.register_profile("quick", derandomize=True, print_blob=True,
                           max_examples=settings.default.max_examples // QUICK_SHARE)
 PROFILE = os.environ.get("HYPOTHESIS_PROFILE", "repeatable")
@@ -81,6 +85,18 @@ FIXTURE_MARKS = {"lab": ("kernel", "browser"), "browser": ("kernel", "browser"),
                  "klass": ("kernel",), "classes": ("kernel",)}
 #: The one picture scene whose command-line figures stay in the quick tier.
 QUICK_PICTURE_SCENE = "four_bar"
+#: The quick tier's rule: a quick test costs at most this many seconds of CPU (all its
+#: phases, as tools/cpu_per_test.py measures them on the 2-core machine) unless it is a
+#: keeper (:func:`keeper`); a heavier one is listed in :data:`SLOW_BY_COST` and marked
+#: ``slow`` here. ``python tools/cpu_per_test.py RUN.jsonl --over 0.1`` lists the quick
+#: tests over the budget that are no keepers (the list's new lines).
+QUICK_CPU = 0.1
+#: The tests of the quick tier heavier than :data:`QUICK_CPU`, with their measured CPU
+#: (``seconds test-id`` a line; an id without ``[...]`` takes every parameter).
+SLOW_BY_COST = Path(__file__).with_name("slow_by_cost.txt")
+#: The one smoke test of each command line that starts it as ``python -m``.
+CLI_SMOKE = ("tests/kinetostatics/test_cli.py::test_solve_writes_contract_csv",
+             "tests/balance/test_balance_cli.py::test_text_report_and_bundled_names")
 #: Session fixtures whose state is made per scene: tests reading one scene's share a
 #: worker (xdist group ``<fixture>-<scene>``), and the tests that use each (the xdist
 #: controller sees only test ids; collection checks that the list is whole).
@@ -214,6 +230,8 @@ def pytest_configure(config: pytest.Config) -> None:
     test modules are imported: their own settings inherit its count)."""
     global PROFILE
     config.addinivalue_line("markers", "xdist_group(name): run on one xdist worker")
+    config.addinivalue_line("markers", "quick_keeper(reason): stays in the quick tier "
+                            "whatever it costs (tests/conftest.py, keeper)")
     if "HYPOTHESIS_PROFILE" not in os.environ and _quick_tier(config):
         PROFILE = "quick"
         settings.load_profile(PROFILE)
@@ -227,7 +245,7 @@ def _examples(own: int) -> int:
 
 
 def _scale_examples(items: list[pytest.Item]) -> None:
-    """Profiles ``explore`` and ``quick``: ten times, or a fifth of (at least ten), the
+    """Profiles ``explore`` and ``quick``: ten times, or a tenth of (at least five), the
     examples of every property test that sets its own count (hypothesis reads a test's
     settings when it runs; the others inherit the profile's default)."""
     done = set()                        # (a parametrized test's items share one function)
@@ -242,12 +260,82 @@ def _scale_examples(items: list[pytest.Item]) -> None:
                 own, max_examples=_examples(own.max_examples))
 
 
+def mutant_killers() -> tuple[str, ...]:
+    """The quick tests named to kill the mutants of tools/mutants.py (``--killers``)."""
+    import importlib.util
+    path = Path(__file__).resolve().parents[1] / "tools" / "mutants.py"
+    mutants = sys.modules.get("mutants")
+    if mutants is None:
+        spec = importlib.util.spec_from_file_location("mutants", path)
+        mutants = sys.modules["mutants"] = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(mutants)
+    return tuple(name for m in mutants.MUTANTS for name in m.killers)
+
+
+def keeper(item: pytest.Item, killers: tuple[str, ...] = ()) -> str | None:
+    """Why a test stays in the quick tier whatever it costs (a property test, an
+    invariance test, a command line's smoke test, a mutant's killer, the picture scene's
+    figures), else None."""
+    base = item.nodeid.split("[")[0]
+    if getattr(getattr(item, "obj", None), "is_hypothesis_test", False):
+        return "property"
+    if "invariance" in base.split("::")[0].rsplit("/", 1)[-1]:
+        return "invariance"
+    if base in CLI_SMOKE:
+        return "command-line smoke test"
+    if item.nodeid in killers:
+        return "mutant killer"
+    scene = getattr(item, "callspec", None)
+    if ("lecture_figures" in getattr(item, "fixturenames", ()) and scene is not None
+            and scene.params.get("name") == QUICK_PICTURE_SCENE):
+        return "picture scene"
+    return None
+
+
+def slow_by_cost() -> dict[str, float]:
+    """:data:`SLOW_BY_COST`: test id (or a test's id without parameters) to CPU seconds."""
+    entries = {}
+    for line in SLOW_BY_COST.read_text(encoding="utf-8").splitlines():
+        if line.strip() and not line.startswith("#"):
+            cpu, nodeid = line.split(maxsplit=1)
+            entries[nodeid.strip()] = float(cpu)
+    return entries
+
+
+def _mark_by_cost(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Mark ``slow`` the tests of :data:`SLOW_BY_COST` and ``quick_keeper`` the keepers
+    (:func:`keeper`); a keeper listed, or (in a run of the whole suite) an entry that names
+    no test, stops the run."""
+    listed, killers, found = slow_by_cost(), mutant_killers(), set()
+    for item in items:
+        reason = keeper(item, killers)
+        if reason:
+            item.add_marker(pytest.mark.quick_keeper(reason))
+        entry = next((e for e in (item.nodeid, item.nodeid.split("[")[0]) if e in listed),
+                     None)
+        if entry is None:
+            continue
+        found.add(entry)
+        if reason:
+            raise pytest.UsageError(f"{item.nodeid} is in {SLOW_BY_COST.name} but stays "
+                                    f"in the quick tier ({reason}): make it cheaper")
+        item.add_marker(pytest.mark.slow)
+    root = config.rootpath
+    whole = not config.getoption("keyword") and {
+        (root / a).resolve() for a in config.args or ["."]} <= {
+        (root / t).resolve() for t in [".", *config.getini("testpaths")]}
+    if whole and listed.keys() - found:
+        raise pytest.UsageError(f"{SLOW_BY_COST.name} names tests that are not there: "
+                                f"{sorted(listed.keys() - found)}")
+
+
 @pytest.hookimpl(tryfirst=True)      # before xdist's, which reads the xdist_group marks
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     """Mark ``slow`` (and ``kernel``/``browser``) every test that uses a slow fixture,
     and group the tests that share a per-scene session fixture."""
     if PROFILE in ("explore", "quick"):
         _scale_examples(items)
+    _mark_by_cost(config, items)
     for item in items:
         used = set(getattr(item, "fixturenames", ()))
         scene = getattr(item, "callspec", None)

@@ -52,3 +52,20 @@ def test_a_childs_processor_time_is_its_tests(tmp_path) -> None:
     main = r.stdout.split("workers", 1)[1].splitlines()[1].split()
     assert main[0] == "main" and float(main[2]) >= 0.3, r.stdout
     assert r.stdout.rstrip().endswith("test_cases.py::test_idle"), r.stdout
+
+
+def test_over_lists_the_heavy_tests_that_are_no_keepers(tmp_path) -> None:
+    """``--over``: the tests of a recorded run at or over the budget (all phases summed),
+    heaviest first, as lines of tests/slow_by_cost.txt; the keepers left out and counted."""
+    rows = [["t.py::test_a", "setup", 0.05, 0.0, "gw0", 1.0, None],
+            ["t.py::test_a", "call", 0.12, 0.0, "gw0", 1.0, None],
+            ["t.py::test_b", "call", 0.4, 0.0, "gw1", 1.0, None],
+            ["t.py::test_c", "call", 0.1, 0.0, "gw1", 1.0, None],
+            ["t.py::test_p", "call", 2.0, 0.0, "gw0", 1.0, "property"]]
+    run = tmp_path / "run.jsonl"
+    run.write_text("".join(json.dumps(r) + "\n" for r in rows))
+    # (in this process: the command line's start cost 0.35 s of CPU, over the quick
+    # tier's budget; `--over` only hands its arguments on)
+    from tools.cpu_per_test import over
+    assert over(str(run), 0.15).splitlines() == ["0.40 t.py::test_b", "0.17 t.py::test_a",
+                                                 "# keepers: 1 tests, 2.0 s of CPU"]

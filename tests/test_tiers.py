@@ -1,5 +1,5 @@
 """The tiers' settings (tests/conftest.py): the quick tier (``-m "not slow"``) runs every
-property test on a fifth of its examples, at least ten; the full suite on all of them;
+property test on a tenth of its examples, at least five; the full suite on all of them;
 ``HYPOTHESIS_PROFILE=explore`` on ten times as many."""
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ def test_the_quick_tier_is_the_run_without_the_slow_tests(markexpr: str, quick: 
 
 def test_each_profile_scales_a_property_tests_own_count(monkeypatch) -> None:
     monkeypatch.setattr(conftest, "PROFILE", "quick")
-    assert [conftest._examples(n) for n in (400, 100, 40, 12, 6)] == [80, 20, 10, 10, 6]
+    assert [conftest._examples(n) for n in (400, 100, 40, 12, 3)] == [40, 10, 5, 5, 3]
     monkeypatch.setattr(conftest, "PROFILE", "explore")
     assert conftest._examples(40) == 400
 
@@ -134,3 +134,87 @@ def test_the_longest_tests_are_there() -> None:
     for entry in conftest.LONGEST:
         module, _, name = entry.partition("::")
         assert f"def {name.split('[')[0]}" in (root / module).read_text(encoding="utf-8"), entry
+
+
+def _decorated(root: Path, entry: str) -> str:
+    """The decorators and ``def`` line of the test an id names (``module::name[...]``)."""
+    module, _, name = entry.partition("::")
+    lines = (root / module).read_text(encoding="utf-8").splitlines()
+    start = next(i for i, line in enumerate(lines)
+                 if line.startswith(f"def {name.split('[')[0]}("))
+    first = start
+    while first and (lines[first - 1].startswith(("@", " ", ")", "]"))):
+        first -= 1
+    return "\n".join(lines[first:start + 1])
+
+
+def test_the_slow_by_cost_list_names_tests_there_and_no_keepers() -> None:
+    """Every line of tests/slow_by_cost.txt names a test that is there (by its module and
+    function; the conftest stops a whole run whose list names a parameter that is not),
+    over the quick tier's budget, and none that must stay quick: no property test (a
+    ``given`` among its decorators), invariance test, command-line smoke test or mutant
+    killer."""
+    root = Path(conftest.__file__).resolve().parents[1]
+    listed = conftest.slow_by_cost()
+    killers = conftest.mutant_killers()
+    assert len(listed) > 100 and len(killers) >= 6
+    for entry, cpu in listed.items():
+        assert cpu >= conftest.QUICK_CPU, entry
+        assert "invariance" not in entry.split("::")[0], entry
+        assert entry.split("[")[0] not in conftest.CLI_SMOKE, entry
+        assert not any(k.startswith(entry) for k in killers), entry
+        assert "given(" not in _decorated(root, entry), entry
+
+
+def test_the_named_keepers_stay_quick() -> None:
+    """The command lines' smoke tests and the mutants' killers are there, carry no
+    ``slow`` mark and use no slow fixture (tools/mutants.py --killers runs them in the
+    quick tier: a killer marked slow would kill nothing)."""
+    root = Path(conftest.__file__).resolve().parents[1]
+    for entry in (*conftest.CLI_SMOKE, *conftest.mutant_killers()):
+        text = _decorated(root, entry)
+        assert "mark.slow" not in text, entry
+        assert not any(f"{name}" in text.split("def ", 1)[1]
+                       for name in conftest.SLOW_FIXTURES), entry
+        module = (root / entry.split("::")[0]).read_text(encoding="utf-8")
+        assert "pytestmark = pytest.mark.slow" not in module, entry
+
+
+class _Marked(_Item):
+    """A collected test that takes marks, and the function it runs."""
+
+    def __init__(self, nodeid: str, obj=None) -> None:
+        super().__init__(nodeid)
+        self.obj, self.marks = obj, ()
+
+    def add_marker(self, mark) -> None:
+        self.marks += (mark.name,)
+
+
+def _run_config(args: list[str], keyword: str = "") -> SimpleNamespace:
+    root = Path(conftest.__file__).resolve().parents[1]
+    options = {"keyword": keyword}
+    return SimpleNamespace(getoption=options.__getitem__, args=args, rootpath=root,
+                           getini=lambda name: ["tests"])
+
+
+def test_the_listed_tests_are_marked_slow_and_a_listed_keeper_stops_the_run(
+        monkeypatch) -> None:
+    listed = {"tests/a.py::test_heavy": 0.4, "tests/a.py::test_param[2]": 0.3}
+    monkeypatch.setattr(conftest, "slow_by_cost", lambda: listed)
+    items = [_Marked("tests/a.py::test_heavy[1]"), _Marked("tests/a.py::test_param[1]"),
+             _Marked("tests/a.py::test_param[2]"), _Marked(conftest.CLI_SMOKE[0])]
+    conftest._mark_by_cost(_run_config(["tests/a.py"]), items)
+    assert [i.marks for i in items] == [("slow",), (), ("slow",), ("quick_keeper",)]
+    # a run of the whole suite: every entry must name a test
+    with pytest.raises(pytest.UsageError, match="not there"):
+        conftest._mark_by_cost(_run_config([]), items[:2])
+    conftest._mark_by_cost(_run_config([], keyword="heavy"), items[:2])
+
+    def prop() -> None:
+        pass
+    prop.is_hypothesis_test = True
+    listed["tests/a.py::test_prop"] = 0.2
+    with pytest.raises(pytest.UsageError, match="property"):
+        conftest._mark_by_cost(_run_config(["tests/a.py"]),
+                               [_Marked("tests/a.py::test_prop", prop)])

@@ -12,9 +12,11 @@ Usage (serially, from the repository's root)::
 
     python -m pytest -p no:xdist -p tools.cpu_per_test -m slow     # writes cpu_per_test.jsonl
     python tools/cpu_per_test.py cpu_per_test.jsonl                # the costliest files, tests
+    python tools/cpu_per_test.py cpu_per_test.jsonl --over 0.15    # heavy quick tests
 
 ``CPU_PER_TEST`` names the output (JSON lines: test id, phase, CPU seconds, wall seconds,
-the xdist worker or ``main``, the phase's start in seconds since the epoch), appended to as
+the xdist worker or ``main``, the phase's start in seconds since the epoch, why the test is
+a keeper of the quick tier or null), appended to as
 the run goes. Under pytest-xdist (``-n 2 -p tools.cpu_per_test``) each worker records its
 own tests: the summary then shows each worker's busy time and when it ran out of work (the
 run's tail). Needs psutil (installed with ipykernel).
@@ -26,7 +28,6 @@ import collections
 import json
 import os
 import resource
-import sys
 import time
 
 import psutil
@@ -59,9 +60,11 @@ def _worker(item: pytest.Item) -> str:
 def _measured(item: pytest.Item, phase: str):
     cpu, wall, start = processor_time(), time.perf_counter(), time.time()
     yield
+    keeper = item.get_closest_marker("quick_keeper")
     with open(OUT, "a", encoding="utf-8") as f:
         f.write(json.dumps([item.nodeid, phase, processor_time() - cpu,
-                            time.perf_counter() - wall, _worker(item), start]) + "\n")
+                            time.perf_counter() - wall, _worker(item), start,
+                            keeper.args[0] if keeper else None]) + "\n")
 
 
 @pytest.hookimpl(hookwrapper=True)
@@ -115,5 +118,27 @@ def summary(path: str, top: int = 30) -> str:
     return "\n".join(lines)
 
 
+def over(path: str, budget: float) -> str:
+    """The tests of a recorded run (the quick tier) that cost ``budget`` seconds of CPU or
+    more and are no keepers of the quick tier (tests/conftest.py, ``keeper``), as lines of
+    tests/slow_by_cost.txt; then the keepers' count and CPU."""
+    tests: collections.Counter = collections.Counter()
+    kept: dict[str, str | None] = {}
+    with open(path, encoding="utf-8") as f:
+        for row in map(json.loads, f):
+            tests[row[0]] += row[2]
+            kept[row[0]] = row[6] if len(row) > 6 else None
+    lines = [f"{cpu:.2f} {nodeid}" for nodeid, cpu in tests.most_common()
+             if cpu >= budget and not kept[nodeid]]
+    keepers = [cpu for nodeid, cpu in tests.items() if kept[nodeid]]
+    return "\n".join(lines + [f"# keepers: {len(keepers)} tests, {sum(keepers):.1f} s of CPU"])
+
+
 if __name__ == "__main__":
-    print(summary(sys.argv[1] if len(sys.argv) > 1 else OUT))
+    import argparse
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("run", nargs="?", default=OUT, help="the recorded run (JSON lines)")
+    ap.add_argument("--over", type=float, metavar="SECONDS",
+                    help="list the tests, no keepers, of this CPU or more")
+    args = ap.parse_args()
+    print(summary(args.run) if args.over is None else over(args.run, args.over))
