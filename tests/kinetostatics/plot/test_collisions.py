@@ -122,6 +122,28 @@ def test_lecture_style_is_a_switch():
     assert plt.rcParams["figure.dpi"] == base
 
 
+def test_figures_share_one_mathtext_parser():
+    """Every laid-out figure's renderer parses mathtext with one shared parser (its
+    labels parsed once per session, not once per figure), measuring as the renderer's
+    own parser does."""
+    from matplotlib.mathtext import MathTextParser
+
+    from kinetostatics.plot.style import text_extent
+    drawn = []
+    for _ in range(2):
+        fig, ax = plt.subplots()
+        t = ax.text(0.2, 0.5, r"$F^{i}_{\mathrm{coupler}}$ 12.5 N")
+        r = lay_out(fig)
+        drawn.append((r.mathtext_parser, text_extent(t, r).extents))
+    assert drawn[0][0] is drawn[1][0] and type(drawn[0][0]) is not MathTextParser
+    fig, ax = plt.subplots()
+    t = ax.text(0.2, 0.5, r"$F^{i}_{\mathrm{coupler}}$ 12.5 N")
+    fig.draw_without_rendering()            # matplotlib's own parser
+    r = fig.canvas.get_renderer()
+    assert type(r.mathtext_parser) is MathTextParser
+    assert (text_extent(t, r).extents == drawn[0][1]).all()
+
+
 def test_labels_kept_for_settle_are_placed_by_it():
     """Inside ``settled_later`` declutter only keeps the labels (no drawing): settle
     places them on the final layout."""
