@@ -10,7 +10,7 @@ import functools
 import matplotlib as mpl
 from matplotlib.axes import Axes
 from matplotlib.backend_bases import RendererBase
-from matplotlib.backends.backend_agg import RendererAgg
+from matplotlib.backends.backend_agg import FigureCanvasAgg, RendererAgg
 from matplotlib.figure import Figure
 from matplotlib.font_manager import fontManager, get_font
 from matplotlib.layout_engine import PlaceHolderLayoutEngine
@@ -103,9 +103,7 @@ def lay_out(fig: Figure) -> RendererBase:
     RendererBase
         The canvas's renderer (the one the extents are measured with).
     """
-    get = getattr(fig.canvas, "get_renderer", None)
-    if get is not None:
-        shared_math(get())      # (the drawing below reuses the canvas's renderer)
+    shared_caches(fig)
     fig.draw_without_rendering()
     return fig.canvas.get_renderer()
 
@@ -125,17 +123,43 @@ class _SharedMathParser(MathTextParser):
 _MATH = _SharedMathParser("path")
 
 
-def shared_math(renderer) -> None:
-    """Give an Agg renderer the parser of mathtext every figure shares (its results
-    are the same; parsed once per session instead of once per figure)."""
-    if not isinstance(renderer, RendererAgg):
-        return
-    if _SharedMathParser._parse_cached is not None and \
-            type(renderer.mathtext_parser) is MathTextParser:
-        renderer.mathtext_parser = _MATH
-    if "_get_font_height_metrics" not in vars(renderer):
-        dpi = renderer.dpi
-        renderer._get_font_height_metrics = lambda prop: _font_heights(prop.copy(), dpi)
+class _Renderer(RendererAgg):
+    """Agg's renderer with the mathtext parser every figure shares (its results are the
+    same; parsed once per session instead of once per figure) and each font's heights
+    looked up once (:func:`_font_heights`)."""
+
+    def __init__(self, width, height, dpi) -> None:
+        super().__init__(width, height, dpi)
+        if _SharedMathParser._parse_cached is not None:
+            self.mathtext_parser = _MATH
+
+    def _get_font_height_metrics(self, prop):
+        return _font_heights(prop.copy(), self.dpi)
+
+
+class _Canvas(FigureCanvasAgg):
+    """Agg's off-screen canvas, drawing with :class:`_Renderer` (kept while the size
+    and dpi stay, as Agg keeps its own)."""
+
+    def get_renderer(self) -> RendererAgg:
+        w, h = self.get_width_height(physical=True)
+        key = w, h, self.figure.dpi
+        if self._lastKey != key:
+            self.renderer = _Renderer(w, h, self.figure.dpi)
+            self._lastKey = key
+        return self.renderer
+
+
+def shared_caches(fig: Figure) -> None:
+    """A figure on Agg's own canvas (the command line's, the notebooks' inline
+    pictures, the tests') is moved to :class:`_Canvas` (same pixels, its pyplot
+    manager kept)."""
+    old = fig.canvas
+    if type(old) is FigureCanvasAgg:
+        new = _Canvas(fig)
+        new.manager = old.manager
+        if old.manager is not None:
+            old.manager.canvas = new
 
 
 @functools.lru_cache(512)
