@@ -23,7 +23,7 @@ from matplotlib.text import Annotation, Text
 from matplotlib.transforms import Bbox
 
 from ..common.angles import radian_column
-from .collide import drawn_paths
+from .collide import drawn_paths, extent_rows, meets, overlapping_rows
 from .style import figure_boxes, lay_out, text_extent
 
 __all__ = ["UNPLACED_TITLE", "declutter", "settle", "settled_later"]
@@ -62,30 +62,6 @@ def _box(anchor, off, w: float, h: float) -> Bbox:
     return Bbox([[x0, y0], [x0 + w, y0 + h]])
 
 
-def _meets(path: Path, box: Bbox) -> bool:
-    """A path (whose extent overlaps the box) crosses the box or lies (partly) inside it."""
-    if path.intersects_bbox(box, filled=False):
-        return True
-    v = path.vertices
-    return bool(np.any((v[:, 0] > box.x0) & (v[:, 0] < box.x1) &
-                       (v[:, 1] > box.y0) & (v[:, 1] < box.y1)))
-
-
-def _extents(boxes) -> np.ndarray:
-    """The (x0, y0, x1, y1) rows of boxes, each ordered low to high (as
-    :meth:`Bbox.overlaps` orders them)."""
-    e = np.array([b.extents for b in boxes], dtype=float).reshape(-1, 4)
-    return np.column_stack([np.minimum(e[:, 0], e[:, 2]), np.minimum(e[:, 1], e[:, 3]),
-                            np.maximum(e[:, 0], e[:, 2]), np.maximum(e[:, 1], e[:, 3])])
-
-
-def _overlapping(rows: np.ndarray, box: Bbox) -> np.ndarray:
-    """Which rows of :func:`_extents` overlap ``box``: :meth:`Bbox.overlaps` for all at
-    once (a NaN overlaps nothing)."""
-    (x0, y0, x1, y1), = _extents([box])
-    return (rows[:, 0] <= x1) & (x0 <= rows[:, 2]) & (rows[:, 1] <= y1) & (y0 <= rows[:, 3])
-
-
 class _Room:
     """What a label must keep clear of on one Axes: boxes and drawn paths (pixels), with
     their extents as arrays (a label tries up to 160 places against every one)."""
@@ -97,17 +73,17 @@ class _Room:
         self.boxes += [child.get_window_extent(renderer) for child in ax.child_axes]
         own = {id(t.arrow_patch) for t in movable if t.arrow_patch is not None}
         self.paths = [p for _name, p, _src in drawn_paths(ax, skip=own)]
-        self.box_rows = _extents(self.boxes)
-        self.path_rows = _extents([p.get_extents() for p in self.paths])
+        self.box_rows = extent_rows(self.boxes)
+        self.path_rows = extent_rows([p.get_extents() for p in self.paths])
 
     def clear(self, box: Bbox) -> bool:
         f = self.frame
         if not (f.x0 <= box.x0 and box.x1 <= f.x1 and f.y0 <= box.y0 and box.y1 <= f.y1):
             return False
-        if _overlapping(self.box_rows, box).any():
+        if overlapping_rows(self.box_rows, box).any():
             return False
-        return not any(_meets(self.paths[k], box)
-                       for k in np.flatnonzero(_overlapping(self.path_rows, box)))
+        return not any(meets(self.paths[k], box)
+                       for k in np.flatnonzero(overlapping_rows(self.path_rows, box)))
 
     def leader_clear(self, a: np.ndarray, box: Bbox, skip: Bbox) -> bool:
         """A leader from the anchor to the box's nearest point crosses no other label."""
@@ -117,10 +93,10 @@ class _Room:
 
     def take(self, box: Bbox, leader: Path | None) -> None:
         self.boxes.append(box)
-        self.box_rows = np.vstack([self.box_rows, _extents([box])])
+        self.box_rows = np.vstack([self.box_rows, extent_rows([box])])
         if leader is not None:
             self.paths.append(leader)
-            self.path_rows = np.vstack([self.path_rows, _extents([leader.get_extents()])])
+            self.path_rows = np.vstack([self.path_rows, extent_rows([leader.get_extents()])])
 
 
 def _set_leader(t: Annotation, on: bool) -> None:
@@ -195,7 +171,7 @@ def _legend_off_data(ax: Axes, renderer) -> bool:
     box = lg.get_window_extent(renderer)
     if not box.overlaps(ax.get_window_extent(renderer)):
         return False
-    if any(_meets(p, box) for _n, p, _s in drawn_paths(ax) if p.get_extents().overlaps(box)):
+    if any(meets(p, box) for _n, p, _s in drawn_paths(ax) if p.get_extents().overlaps(box)):
         lg.set_bbox_to_anchor((1.02, 1.0), transform=ax.transAxes)
         lg.set_loc("upper left")
         lg.borderaxespad = 0.0

@@ -15,6 +15,7 @@ figures (docs/pictures-collisions.md).
 from __future__ import annotations
 
 import matplotlib.pyplot as plt
+import numpy as np
 import pytest
 from matplotlib.text import Text
 
@@ -120,6 +121,36 @@ def test_lecture_style_is_a_switch():
     assert plt.figure().dpi == 200
     style.restore()
     assert plt.rcParams["figure.dpi"] == base
+
+
+def test_figures_share_one_mathtext_parser():
+    """Every laid-out figure's renderer parses mathtext with one shared parser (its
+    labels parsed once per session, not once per figure) and looks each font's heights
+    up once, measuring as matplotlib's own renderer does (a mathtext label and a plain
+    two-line one, whose height is the font's)."""
+    from matplotlib.mathtext import MathTextParser
+
+    from kinetostatics.plot.style import text_extent
+
+    def extents(fig, ax, r):
+        return np.array([text_extent(t, r).extents for t in ax.texts])
+
+    def labelled():
+        fig, ax = plt.subplots()
+        ax.text(0.2, 0.5, r"$F^{i}_{\mathrm{coupler}}$ 12.5 N")
+        ax.text(0.2, 0.2, "reaction\nA on B", fontsize=10)
+        return fig, ax
+    drawn = []
+    for _ in range(2):
+        fig, ax = labelled()
+        r = lay_out(fig)
+        drawn.append((r.mathtext_parser, extents(fig, ax, r)))
+    assert drawn[0][0] is drawn[1][0] and type(drawn[0][0]) is not MathTextParser
+    fig, ax = labelled()
+    fig.draw_without_rendering()            # matplotlib's own parser and font lookups
+    r = fig.canvas.get_renderer()
+    assert type(r.mathtext_parser) is MathTextParser
+    assert (extents(fig, ax, r) == drawn[0][1]).all()
 
 
 def test_labels_kept_for_settle_are_placed_by_it():
