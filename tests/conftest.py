@@ -504,3 +504,15 @@ def numpy_path():
     use("numpy")
     yield
     use(None)
+
+
+@pytest.fixture
+def fast():
+    """The compiled solve path for one test, put back after (skipped where its kernels
+    do not load: no numba, no writable cache folder)."""
+    from kinetostatics.solver.fast import loader, use
+    if loader.kernels() is None:
+        pytest.skip("the compiled kernels do not load here")
+    use("fast")
+    yield
+    use(None)

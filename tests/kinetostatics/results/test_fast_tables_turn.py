@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 
 import kinetostatics as ks
-from kinetostatics.solver.fast import loader, use
 from kinetostatics.solver.fast import solve as fast_solve
 from kinetostatics.solver.fast.table_pass import block_turn
 
@@ -17,16 +16,6 @@ from .test_onepass import bits, scene_text
 
 pytest.importorskip("numba")
 pytestmark = pytest.mark.slow       # (the kernels compiled first on a fresh machine)
-
-
-@pytest.fixture
-def fast():
-    """The compiled path for one test (skipped where its kernels do not load)."""
-    if loader.kernels() is None:
-        pytest.skip("the compiled kernels do not load here")
-    use("fast")
-    yield
-    use(None)
 
 
 @pytest.mark.parametrize("trig", [True, False], ids=["compiled", "numpy"])

@@ -14,7 +14,7 @@ import kinetostatics as ks
 from kinetostatics.results import fastpass
 from kinetostatics.solver.blocks import LeanSolved
 from kinetostatics.solver.driver import BodyMotion
-from kinetostatics.solver.fast import loader, use
+from kinetostatics.solver.fast import loader
 from kinetostatics.solver.fast.compose import Refused
 from kinetostatics.solver.fast.solve import SolvedAgain
 from kinetostatics.solver.fast.table_pass import FusedTables
@@ -42,16 +42,6 @@ def count_passes(monkeypatch) -> list[str]:
     monkeypatch.setattr(FusedTables, "write",
                         lambda *a, **k: passes.append("fused") or write(*a, **k))
     return passes
-
-
-@pytest.fixture
-def fast():
-    """The compiled path for one test (skipped where its kernels do not load)."""
-    if loader.kernels() is None:
-        pytest.skip("the compiled kernels do not load here")
-    use("fast")
-    yield
-    use(None)
 
 
 @pytest.mark.parametrize("order", [("reactions", "kinematics"), ("kinematics", "reactions")])

@@ -73,13 +73,6 @@ COUNT = 2 * BLOCK_ROWS + 2 * FUSED_ROWS + 1001
 assert COUNT >= 2 * BLOCK_ROWS
 
 
-@pytest.fixture
-def fast():
-    use("fast")
-    yield
-    use(None)
-
-
 def long_scene(kind: str) -> dict:
     d = copy.deepcopy(load_scene({**FUSED, **GUIDED}[kind]).raw)
     d["driver"] = {**d["driver"], "count": COUNT}

@@ -33,13 +33,6 @@ FUSED = {
 }
 
 
-@pytest.fixture
-def fast():
-    use("fast")
-    yield
-    use(None)
-
-
 def full_solve(scene, positions=None):
     """The composed kernels' full solve of ``scene`` (at ``positions``), as a Solution."""
     sc = load_scene(scene)

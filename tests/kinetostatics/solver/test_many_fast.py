@@ -9,7 +9,6 @@ import pytest
 import kinetostatics as ks
 from kinetostatics.model.scene import load_scene
 from kinetostatics.solver import many
-from kinetostatics.solver.fast import use
 
 from .test_many import assert_same, variants
 
@@ -17,14 +16,6 @@ numba = pytest.importorskip("numba")
 
 # the compiled kernels: a fresh machine compiles them first (slow tier, as test_fast.py)
 pytestmark = pytest.mark.slow
-
-
-@pytest.fixture
-def fast():
-    """The compiled path for one test, put back after."""
-    use("fast")
-    yield
-    use(None)
 
 
 def unequal(name: str, count: int, seed: int) -> list:
