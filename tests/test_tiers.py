@@ -210,6 +210,13 @@ def test_the_listed_tests_are_marked_slow_and_a_listed_keeper_stops_the_run(
     with pytest.raises(pytest.UsageError, match="not there"):
         conftest._mark_by_cost(_run_config([]), items[:2])
     conftest._mark_by_cost(_run_config([], keyword="heavy"), items[:2])
+    # an entry parametrized by ../shared's cases (absent from a fresh clone) is stale
+    # only when its test function is gone
+    listed["tests/a.py::test_param[shared-x]"] = 0.2
+    conftest._mark_by_cost(_run_config([]), items)
+    listed["tests/a.py::test_gone[shared-x]"] = 0.2
+    with pytest.raises(pytest.UsageError, match="test_gone"):
+        conftest._mark_by_cost(_run_config([]), items)
 
     def prop() -> None:
         pass
