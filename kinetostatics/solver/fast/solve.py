@@ -168,13 +168,17 @@ def kernel_trig() -> bool:
 def trig_probes(n: int = 20_000) -> np.ndarray:
     """Angles (rad) whose cos and sin :func:`kernel_trig` checks: a turn (``n + 1``
     rows), ``n`` each within +-8, +-1e3 and +-1e9, multiples of
-    pi / 4, and zeros, subnormals, the largest doubles, infinities and NaN."""
+    pi / 4, and zeros, subnormals, the largest doubles, infinities and NaN. Read-only,
+    as the tables' pass gives its angles to the same kernel (``table_pass.block_turn``):
+    one type of array, one compile of it."""
     rng = np.random.default_rng(31)
     special = np.array([0.0, -0.0, 5e-324, 2.2e-308, 1e-8, 1.7976931348623157e308,
                         -1.7976931348623157e308, np.inf, -np.inf, np.nan])
-    return np.concatenate([np.linspace(0.0, 2.0 * np.pi, n + 1),
-                           *(rng.uniform(-r, r, n) for r in (8.0, 1e3, 1e9)),
-                           np.pi / 4 * np.arange(-64, 65), special])
+    x = np.concatenate([np.linspace(0.0, 2.0 * np.pi, n + 1),
+                        *(rng.uniform(-r, r, n) for r in (8.0, 1e3, 1e9)),
+                        np.pi / 4 * np.arange(-64, 65), special])
+    x.flags.writeable = False
+    return x
 
 
 def crank_blocks(angles: np.ndarray, whole: tuple[np.ndarray, np.ndarray] | None = None
