@@ -181,6 +181,13 @@ def trig_probes(n: int = 20_000) -> np.ndarray:
     return x
 
 
+def numpy_turn(angles: np.ndarray, cs: np.ndarray, sn: np.ndarray) -> None:
+    """numpy's cos and sin of ``angles`` into ``cs`` and ``sn``, each in a pass of its
+    own (the road wherever :func:`kernel_trig` does not hold)."""
+    np.cos(angles, out=cs)
+    np.sin(angles, out=sn)
+
+
 def crank_blocks(angles: np.ndarray, whole: tuple[np.ndarray, np.ndarray] | None = None
                  ) -> Iterator[tuple[int, int, np.ndarray, np.ndarray]]:
     """The blocks of :data:`FUSED_ROWS` rows of a crank's sweep at ``angles``: per block
@@ -194,8 +201,7 @@ def crank_blocks(angles: np.ndarray, whole: tuple[np.ndarray, np.ndarray] | None
     for lo in range(0, n, width):
         m = min(lo + width, n) - lo
         at = slice(0, m) if whole is None else slice(lo, lo + m)
-        np.cos(angles[lo:lo + m], out=cs[at])
-        np.sin(angles[lo:lo + m], out=sn[at])
+        numpy_turn(angles[lo:lo + m], cs[at], sn[at])
         yield lo, m, cs[at], sn[at]
 
 
@@ -272,11 +278,9 @@ def _guide_blocks(angles: np.ndarray, first: tuple, th, reach, gap, cs, sn, ct, 
         if turned:
             rtr_guide_turned(lo, m, angles, cs, sn, *first, th, ct, sg, reach, gap)
         else:
-            np.cos(angles[lo:lo + m], out=cs[:m])
-            np.sin(angles[lo:lo + m], out=sn[:m])
+            numpy_turn(angles[lo:lo + m], cs[:m], sn[:m])
             rtr_guide(0, m, cs, sn, *first, th, reach, gap)
-            np.cos(th[:m], out=ct[:m])
-            np.sin(th[:m], out=sg[:m])
+            numpy_turn(th[:m], ct[:m], sg[:m])
         yield lo, m
 
 

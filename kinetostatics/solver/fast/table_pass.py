@@ -133,15 +133,11 @@ def block_turn():
     four-bar's ``kinematics`` and ``reactions`` at 1e6 rows, processor time, best of 5 at
     a load of 17: 246 ms without the solve's kept cos and sin, 261 with numpy's passes,
     233 reading the kept pair.)"""
-    from .solve import kernel_trig
+    from .solve import kernel_trig, numpy_turn
     if kernel_trig():
         from .fused_kernels import turn_rows  # (numba loaded: the kernels given)
         return turn_rows
-
-    def turn(angles: np.ndarray, cs: np.ndarray, sn: np.ndarray) -> None:
-        np.cos(angles, out=cs)
-        np.sin(angles, out=sn)
-    return turn
+    return numpy_turn
 
 
 _HYPOT: dict[str, bool] = {}
