@@ -262,14 +262,8 @@ def _scale_examples(items: list[pytest.Item]) -> None:
 
 def mutant_killers() -> tuple[str, ...]:
     """The quick tests named to kill the mutants of tools/mutants.py (``--killers``)."""
-    import importlib.util
-    path = Path(__file__).resolve().parents[1] / "tools" / "mutants.py"
-    mutants = sys.modules.get("mutants")
-    if mutants is None:
-        spec = importlib.util.spec_from_file_location("mutants", path)
-        mutants = sys.modules["mutants"] = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(mutants)
-    return tuple(name for m in mutants.MUTANTS for name in m.killers)
+    from tools.mutants import MUTANTS
+    return tuple(name for m in MUTANTS for name in m.killers)
 
 
 def keeper(item: pytest.Item, killers: tuple[str, ...] = ()) -> str | None:
