@@ -333,8 +333,19 @@ HANDLE_RANGE = """(h) => ['aria-valuenow', 'aria-valuemin', 'aria-valuemax'].map
 
 
 APP_READY = "() => window.jupyterapp !== undefined && window.jupyterapp.shell !== undefined"
-OPEN = ("(path) => window.jupyterapp.commands.execute('docmanager:open', "
-        "{path, factory: 'Notebook'})")
+# the sheet opened, its kernel started and answering (its kernel_info reply); returns null:
+# returning the command's result (the notebook's widget) made Playwright serialise the
+# widget's object graph to the test (2-4 s of the test's CPU, 1 s of its driver's and
+# some of Chromium's per sheet, measured 2026-11-30)
+OPEN = """async (path) => {
+    const w = await window.jupyterapp.commands.execute('docmanager:open',
+                                                       {path, factory: 'Notebook'});
+    await w.context.ready;
+    await w.sessionContext.ready;
+    const kernel = w.sessionContext.session?.kernel;
+    if (kernel) { await kernel.info; }
+    return null;
+}"""
 # every document of the main area closed, its changes dropped (the test read what it
 # saved; a clean document closes without asking)
 CLOSE_ALL = """() => { for (const w of [...window.jupyterapp.shell.widgets('main')]) {
