@@ -7,13 +7,10 @@ student sees:
   model-not-found message), every slider moved by keyboard changes the picture, and
   after each move the sheet shows exactly one picture per explorer, with no JavaScript
   error on the page;
-- on one sheet, in depth (after a dialog came up; its every-slider check is made here, so
-  each sheet is run once in the browser): a slider moved by drag changes the picture,
-  and after rapid moves the kernel holds the newest values and the picture the same
-  number of axes as before (redrawn, never stacked). Every sheet's widget is the same
-  Explorer (kinetostatics.notebook), so the sheet is the lightest one (05, two sliders, an
-  update well under a second of the kernel's CPU): on the heavy sheets 02 and 13 the
-  in-depth test cost some 7 s of CPU more than their every-slider test (2026-11-30);
+- on the lightest sheet (05; every sheet's widget is the same Explorer), in depth (after a
+  dialog came up; its every-slider check made here too): a slider moved by drag changes
+  the picture, and after rapid moves the kernel holds the newest values and the picture
+  the same number of axes as before (redrawn, never stacked);
 - then, on the same run, every check tests/test_notebooks.py makes on a headless run
   (tests/_shared_sheets.py: no error, a picture and a table, no nan, nothing on stderr,
   every figure to the picture standard, every slider's move changes the key numbers
@@ -336,19 +333,10 @@ HANDLE_RANGE = """(h) => ['aria-valuenow', 'aria-valuemin', 'aria-valuemax'].map
 
 
 APP_READY = "() => window.jupyterapp !== undefined && window.jupyterapp.shell !== undefined"
-# the sheet opened, its kernel started and answering (its kernel_info reply); returns null:
-# returning the command's result (the notebook's widget) made Playwright serialise the
-# widget's object graph to the test (2-4 s of the test's CPU, 1 s of its driver's and
-# some of Chromium's per sheet, measured 2026-11-30)
-OPEN = """async (path) => {
-    const w = await window.jupyterapp.commands.execute('docmanager:open',
-                                                       {path, factory: 'Notebook'});
-    await w.context.ready;
-    await w.sessionContext.ready;
-    const kernel = w.sessionContext.session?.kernel;
-    if (kernel) { await kernel.info; }
-    return null;
-}"""
+# the sheet opened, its kernel answering; null returned (the widget: 2-4 s CPU to serialise)
+OPEN = """async (path) => { const w = await window.jupyterapp.commands.execute(
+    'docmanager:open', {path, factory: 'Notebook'}); await w.sessionContext.ready;
+    await w.sessionContext.session?.kernel?.info; return null; }"""
 # every document of the main area closed, its changes dropped (the test read what it
 # saved; a clean document closes without asking)
 CLOSE_ALL = """() => { for (const w of [...window.jupyterapp.shell.widgets('main')]) {
