@@ -79,6 +79,29 @@ def test_a_figure_changed_after_its_measure_is_drawn_again():
     assert any("a long tick label" in a for a, _b in kp.collisions(fig))
 
 
+def test_a_finished_figure_is_drawn_once_for_all_its_measures(monkeypatch):
+    """The measures read a settled figure as drawn: the first draws it, the later ones
+    (an audit after the collisions, as the picture tests run them) reuse that drawing
+    (measured: an audit of the four-bar's twelve pictures 1.29 s of CPU drawing each
+    again, 0.58 s without)."""
+    from matplotlib.figure import Figure
+
+    from kinetostatics.plot.audit import audit
+    drawn = []
+    real = Figure.draw_without_rendering
+    with kp.lecture_style():
+        fig, ax = plt.subplots(layout="constrained")
+        ax.plot([0, 1], [0, 1], lw=3)
+        texts = [ax.annotate(f"label {k}", (0.5, 0.5), xytext=(0, 0),
+                             textcoords="offset points") for k in range(3)]
+        kp.declutter(ax, texts)
+        kp.settle(fig)
+        monkeypatch.setattr(Figure, "draw_without_rendering",
+                            lambda self: drawn.append(self) or real(self))
+        assert kp.collisions(fig) == [] and audit(fig).problems == []
+        assert kp.collisions(fig) == [] and len(drawn) == 1
+
+
 def _smallest_font(fig) -> float:
     shown = set(figure_texts(fig))          # (the texts a reader sees, on the drawn figure)
     sizes = [t.get_fontsize() for t in fig.findobj(Text)
