@@ -78,12 +78,6 @@ def test_pdf_is_an_a4_document_with_the_html_sections(name, written):
     assert all(len(texts) >= 1 for _, texts, _ in pages)
 
 
-def _results(name):
-    from balance.api import results_to_dict, solve_results
-    r = solve_results(SCENES.resolve(name))
-    return r, results_to_dict(r)
-
-
 @pytest.mark.slow     # a whole PDF (test_pdf_is_an_a4_document... keeps one in the quick tier)
 def test_residual_at_rounding_and_micrometres(written):
     _raw, pages, _drawn = written("influence_two_plane")
@@ -93,14 +87,14 @@ def test_residual_at_rounding_and_micrometres(written):
     assert "e-14" not in words
 
 
-@pytest.mark.slow     # every picture of a report drawn (1.3 s of CPU)
-def test_legends_carry_units():
-    figs = report_figures(*_results("influence_two_plane"))
+@pytest.mark.slow     # the pictures of two whole PDFs (written once, read here too)
+def test_legends_carry_units(written):
+    _raw, _pages, figs = written("influence_two_plane")        # as the PDF shows them
     labels = [t.get_text() for _, fig in figs for lg in fig.findobj(Legend)
               for t in lg.get_texts()]
     assert any("170 µm at 112.0 deg" in s for s in labels), labels
     assert all(" um" not in s for s in labels)
-    figs = report_figures(*_results("four_run"))
+    _raw, _pages, figs = written("four_run")
     labels = [t.get_text() for _, fig in figs for lg in fig.findobj(Legend)
               for t in lg.get_texts()]
     amplitudes = [s for s in labels if "A1 =" in s or "A =" in s]
