@@ -19,7 +19,7 @@ from matplotlib.text import Text
 from .collide import collisions
 from .notation import notation_problems
 from .place import UNPLACED_TITLE
-from .style import SMALLEST_FONT, lay_out, undrawn_ticks
+from .style import SMALLEST_FONT, laid_out, undrawn_ticks
 
 __all__ = ["LOWEST_DPI", "PictureAudit", "audit", "figure_texts", "not_placed"]
 
@@ -54,8 +54,10 @@ class PictureAudit:
 
 def figure_texts(fig: Figure) -> list[str]:
     """Every text a reader sees on the figure: titles, axis and tick labels, labels,
-    legend entries and titles (hidden, empty and undrawn tick labels left out)."""
-    lay_out(fig)
+    legend entries and titles (hidden, empty and undrawn tick labels left out), on the
+    figure as laid out last (:func:`~kinetostatics.plot.style.laid_out`: a finished
+    figure measured before is not drawn again)."""
+    laid_out(fig)
     undrawn = undrawn_ticks(fig)
     out = []
     for t in fig.findobj(Text):

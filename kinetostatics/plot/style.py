@@ -19,7 +19,7 @@ from matplotlib.mathtext import MathTextParser
 from matplotlib.text import Annotation, Text
 
 __all__ = ["LECTURE", "PROJECTOR", "SMALLEST_FONT", "drawn_extent", "figure_boxes", "lay_out",
-           "lecture_style", "overlapping_texts", "projector", "text_extent",
+           "laid_out", "lecture_style", "overlapping_texts", "projector", "text_extent",
            "undrawn_ticks"]
 
 #: The smallest font of a picture, in points at the figure's printed size.
@@ -182,7 +182,7 @@ def _font_heights(prop, dpi: float) -> tuple:
     return None, None, None
 
 
-def _laid_out(fig: Figure) -> RendererBase:
+def laid_out(fig: Figure) -> RendererBase:
     """:func:`lay_out`, skipped where drawing again would change nothing: the figure was
     drawn and no artist changed since (matplotlib's ``stale``), and no layout engine moves
     its Axes at each drawing (none, or frozen by ``settle``). The measures read a finished
@@ -209,9 +209,18 @@ def undrawn_ticks(fig: Figure) -> set[int]:
 
 def text_extent(t: Text, renderer):
     """The window extent of a text's letters (an annotation's arrow or leader left
-    out)."""
+    out).
+
+    An annotation's positions are worked out again on the renderer (what drawing it
+    does): on a figure drawn and unchanged since, the same positions, so the figure
+    stays as drawn (not ``stale``: a measure after another, :func:`laid_out`, does not
+    draw it again)."""
     if isinstance(t, Annotation):
+        fig = t.get_figure(root=True)
+        drawn = fig is not None and not fig.stale
         t.update_positions(renderer)
+        if drawn:
+            fig.stale = False
     return Text.get_window_extent(t, renderer)
 
 
@@ -262,7 +271,7 @@ def overlapping_texts(fig: Figure, tolerance: float = 1.0) -> list[tuple[str, st
         The texts of each overlapping pair (or a text and ``"outside the figure"``);
         empty when every label stands clear.
     """
-    boxes = figure_boxes(fig, _laid_out(fig))
+    boxes = figure_boxes(fig, laid_out(fig))
     hits = []
     page = fig.bbox.padded(tolerance)
     for t, bb in boxes:

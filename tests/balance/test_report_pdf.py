@@ -25,36 +25,45 @@ def scenes(*names: str) -> list:
             for k, n in enumerate(names)]
 
 
-@pytest.fixture
-def pages(monkeypatch):
-    """Every page figure the PDF writer saves: (size in inches, texts)."""
-    seen = []
-    save = backend_pdf.PdfPages.savefig
+@pytest.fixture(scope="module")
+def written(tmp_path_factory):
+    """``written(name)``: the PDF report of a bundled scene, written once per module
+    (each PDF draws every picture of its report: the three tests reading one scene's
+    wrote it three times), as (the file's bytes, every page figure the PDF writer saved
+    as (size in inches, texts, Axes with an image), the report's pictures as
+    report_figures made them for this PDF)."""
+    cache: dict[str, tuple[bytes, list, list]] = {}
 
-    def spy(self, fig=None, **kw):
-        texts = [t for t in fig.findobj(Text) if t.get_text().strip()]
-        seen.append((tuple(fig.get_size_inches()), texts,
-                     [ax for ax in fig.axes if ax.images]))
-        return save(self, fig, **kw)
+    def get(name: str):
+        if name not in cache:
+            pages, drawn = [], []
+            save = backend_pdf.PdfPages.savefig
 
-    monkeypatch.setattr(backend_pdf.PdfPages, "savefig", spy)
-    return seen
+            def spy(self, fig=None, **kw):
+                texts = [t for t in fig.findobj(Text) if t.get_text().strip()]
+                pages.append((tuple(fig.get_size_inches()), texts,
+                              [ax for ax in fig.axes if ax.images]))
+                return save(self, fig, **kw)
+
+            def made(*args):
+                drawn.extend(report_figures(*args))
+                return drawn
+
+            # (the pictures counted as the report draws them: drawing them again to count
+            # them cost a third of the test)
+            with pytest.MonkeyPatch.context() as mp:
+                mp.setattr(backend_pdf.PdfPages, "savefig", spy)
+                mp.setattr(document, "report_figures", made)
+                path = report_scene(SCENES.resolve(name), tmp_path_factory.mktemp(name) / "r.pdf")
+            cache[name] = (path.read_bytes(), pages, drawn)
+        return cache[name]
+    return get
 
 
 @pytest.mark.parametrize("name", scenes("influence_two_plane", "rotor_two_plane",
                                         "resonance_example"))
-def test_pdf_is_an_a4_document_with_the_html_sections(tmp_path, pages, name, monkeypatch):
-    drawn = []          # the report's pictures, as report_figures made them for this PDF
-
-    def made(*args):
-        drawn.extend(report_figures(*args))
-        return drawn
-
-    # (counted as the report draws them: drawing them again to count them cost a third of
-    # the test)
-    monkeypatch.setattr(document, "report_figures", made)
-    f = report_scene(SCENES.resolve(name), tmp_path / "r.pdf")
-    raw = f.read_bytes()
+def test_pdf_is_an_a4_document_with_the_html_sections(name, written):
+    raw, pages, drawn = written(name)
     boxes = re.findall(rb"/MediaBox \[\s*0 0 ([\d.]+) ([\d.]+)\s*\]", raw)
     assert boxes and all(abs(float(w) - 595.4) < 1 and abs(float(h) - 841.7) < 1
                          for w, h in boxes), boxes
@@ -69,29 +78,23 @@ def test_pdf_is_an_a4_document_with_the_html_sections(tmp_path, pages, name, mon
     assert all(len(texts) >= 1 for _, texts, _ in pages)
 
 
-def _results(name):
-    from balance.api import results_to_dict, solve_results
-    r = solve_results(SCENES.resolve(name))
-    return r, results_to_dict(r)
-
-
 @pytest.mark.slow     # a whole PDF (test_pdf_is_an_a4_document... keeps one in the quick tier)
-def test_residual_at_rounding_and_micrometres(tmp_path, pages):
-    report_scene(SCENES.resolve("influence_two_plane"), tmp_path / "r.pdf")
+def test_residual_at_rounding_and_micrometres(written):
+    _raw, pages, _drawn = written("influence_two_plane")
     words = " ".join(t.get_text() for _, texts, _ in pages for t in texts)
     # measured: the predicted residuals are 5.7e-14 and 2.5e-14 um of readings ~170 um
     assert "bearing A 0 (to rounding), bearing B 0 (to rounding)" in words
     assert "e-14" not in words
 
 
-@pytest.mark.slow     # every picture of a report drawn (1.3 s of CPU)
-def test_legends_carry_units():
-    figs = report_figures(*_results("influence_two_plane"))
+@pytest.mark.slow     # the pictures of two whole PDFs (written once, read here too)
+def test_legends_carry_units(written):
+    _raw, _pages, figs = written("influence_two_plane")        # as the PDF shows them
     labels = [t.get_text() for _, fig in figs for lg in fig.findobj(Legend)
               for t in lg.get_texts()]
     assert any("170 µm at 112.0 deg" in s for s in labels), labels
     assert all(" um" not in s for s in labels)
-    figs = report_figures(*_results("four_run"))
+    _raw, _pages, figs = written("four_run")
     labels = [t.get_text() for _, fig in figs for lg in fig.findobj(Legend)
               for t in lg.get_texts()]
     amplitudes = [s for s in labels if "A1 =" in s or "A =" in s]
@@ -103,12 +106,11 @@ def test_legends_carry_units():
 @pytest.mark.slow     # a whole PDF (test_pdf_is_an_a4_document... keeps one in the quick tier)
 @pytest.mark.parametrize("name", scenes("four_run", "influence_two_plane", "rotor_two_plane",
                                         "resonance_example"))
-def test_pictures_heading_kept_with_its_picture_and_panels_at_full_width(tmp_path, pages,
-                                                                         name):
+def test_pictures_heading_kept_with_its_picture_and_panels_at_full_width(name, written):
     """The "Pictures" heading stands on the page of the first picture (never alone at a
     page's foot), and every picture is as wide as the text: panels side by side are
     stacked one above the other, not shrunk (issue 33, item 6)."""
-    report_scene(SCENES.resolve(name), tmp_path / "r.pdf")
+    _raw, pages, _drawn = written(name)
     with_heading = [k for k, (_size, texts, _imgs) in enumerate(pages)
                     if any(t.get_text() == "Pictures" for t in texts)]
     assert len(with_heading) == 1

@@ -2,10 +2,12 @@
 
 Drawing every figure of ``solve --plot`` for one scene costs 10-20 s of CPU on the CI
 machine (the labels are placed on the laid-out figure, several layouts per figure), and
-several tests read the same figures: the collision measure, the lecture-size rule and
-the overlap check of every picture. :func:`lecture_figures` draws each scene once, in the
-lecture style the command line draws with, at one position of its cycle. The figures
-are only read by the tests (measured, saved), never changed, and held outside pyplot.
+several tests read the same figures: the collision measure, the lecture-size rule, the
+overlap check of every picture, and the command line's own tests (``solve --plot
+--plot-at`` and ``demo`` write these figures: :func:`cli_pictures`).
+:func:`lecture_figures` draws each scene once, in the lecture style the command line
+draws with, at :func:`picture_positions`. The figures are only read by the tests
+(measured, saved), never changed, and held outside pyplot.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import matplotlib.pyplot as plt
+import numpy as np
 import pytest
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
@@ -24,15 +27,26 @@ from kinetostatics.plot.cli import cli_figures
 #: The scenes whose every picture is measured, each at another place of its cycle.
 PICTURE_SCENES = ["four_bar", "slider_crank", "slotted_lever", "scotch_yoke",
                   "sliding_driver", "shaper", "four_bar_mm"]
+#: The scene ``demo`` writes in tests/kinetostatics/plot/test_cli.py: its pictures are
+#: drawn where the command line draws them by default (where |Me| is largest).
+DEMO_SCENE = "slotted_lever"
+#: A second position for a scene (deg): ``solve --plot --plot-at`` with two positions
+#: in test_cli.py writes these pictures, and every test of the figures reads them too.
+SECOND_POSITION = {"slider_crank": 30.0}
 
 
-def picture_position(sol, name: str) -> float:
-    """The driver position a scene's pictures are drawn at: an eighth, the middle or
+def picture_positions(sol, name: str) -> list[float]:
+    """The driver positions a scene's pictures are drawn at: an eighth, the middle or
     five sixths of its sweep, in turn along :data:`PICTURE_SCENES` (every picture type
-    of every scene at one position costs 10-20 s per scene; three positions a minute)."""
+    of every scene at one position costs 10-20 s per scene; three positions a minute),
+    then :data:`SECOND_POSITION`; :data:`DEMO_SCENE`'s where |Me| is largest (the command
+    line's default)."""
+    if name == DEMO_SCENE:
+        return [float(sol.positions[int(np.nanargmax(np.abs(sol.Me)))])]
     n = sol.positions.size
     which = PICTURE_SCENES.index(name) if name in PICTURE_SCENES else 0
-    return float(sol.positions[(n // 7, n // 2, (5 * n) // 6)[which % 3]])
+    first = float(sol.positions[(n // 7, n // 2, (5 * n) // 6)[which % 3]])
+    return [first] + ([SECOND_POSITION[name]] if name in SECOND_POSITION else [])
 
 
 @pytest.fixture(scope="session")
@@ -48,23 +62,33 @@ def solved() -> Callable[[str], object]:
 
 
 @pytest.fixture(scope="session")
-def lecture_figures(solved) -> Callable[[str], tuple[object, float, dict[str, Figure]]]:
-    """``lecture_figures(name)``: (solution, position, figures of ``solve --plot`` by
-    file stem), drawn once per session in the lecture style at
-    :func:`picture_position`."""
-    cache: dict[str, tuple[object, float, dict[str, Figure]]] = {}
+def cli_pictures(solved) -> Callable[[str], tuple[object, list[float], dict[str, Figure]]]:
+    """``cli_pictures(name)``: (solution, positions, figures of ``solve --plot`` by file
+    stem), drawn once per session in the lecture style at :func:`picture_positions`
+    (the figures :func:`lecture_figures` gives)."""
+    cache: dict[str, tuple[object, list[float], dict[str, Figure]]] = {}
 
     def get(name: str):
         if name not in cache:
             sol = solved(name)
-            pos = picture_position(sol, name)
+            positions = picture_positions(sol, name)
             with kp.lecture_style():
-                figs = cli_figures(sol, [pos])
+                figs = cli_figures(sol, positions)
             for fig in figs.values():
                 # out of pyplot (a test's plt.close("all") would take the canvas away),
                 # on an off-screen canvas of its own
                 plt.close(fig)
                 FigureCanvasAgg(fig)
-            cache[name] = (sol, pos, figs)
+            cache[name] = (sol, positions, figs)
         return cache[name]
+    return get
+
+
+@pytest.fixture(scope="session")
+def lecture_figures(cli_pictures) -> Callable[[str], tuple[object, float, dict[str, Figure]]]:
+    """``lecture_figures(name)``: (solution, first position, figures of ``solve --plot``
+    by file stem), drawn once per session (:func:`cli_pictures`)."""
+    def get(name: str):
+        sol, positions, figs = cli_pictures(name)
+        return sol, positions[0], figs
     return get

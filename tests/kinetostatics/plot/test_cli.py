@@ -18,19 +18,45 @@ def _close():
     plt.close("all")
 
 
+def drawn_once(monkeypatch, sol, positions, figs) -> list:
+    """The command line draws its pictures with the figures :func:`cli_pictures` drew
+    once per session for the same scene, in the same style, at the same positions (the
+    same call, asserted here: the tests of the figures measure them, these the files
+    and the console); the positions asked for, as the command line passed them."""
+    asked = []
+
+    def drawn(s, positions_asked=None):
+        asked.append(positions_asked)
+        assert s.scene.title == sol.scene.title and list(positions_asked) == positions
+        assert plt.rcParams["figure.dpi"] == 150        # in the lecture style
+        return dict(figs)
+    monkeypatch.setattr(plot_cli, "cli_figures", drawn)
+    return asked
+
+
 @pytest.mark.slow
-def test_solve_plot_writes_the_pictures(tmp_path, capsys):
+@pytest.mark.parametrize("name", ["slider_crank"])
+def test_solve_plot_writes_the_pictures(name, cli_pictures, tmp_path, capsys, monkeypatch):
+    sol, positions, figs = cli_pictures(name)
+    assert len(positions) == 2
+    asked = drawn_once(monkeypatch, sol, positions, figs)
     out = tmp_path / "pics"
-    assert main(["solve", "slider_crank", "--plot", str(out), "--plot-at", "30", "200"]) == 0
+    at = [f"{p:g}" for p in positions]
+    assert main(["solve", name, "--plot", str(out), "--plot-at", *at]) == 0
+    assert asked == [positions]
     printed = capsys.readouterr().out
     names = {p.name for p in out.glob("*.png")}
     expect = {"overview.png", "driver.png", "polar_A.png", "polar_B.png", "polar_C.png"}
-    for t in ("30deg", "200deg"):
-        expect |= {f"mechanism_{t}.png", f"velocity_plan_{t}.png",
-                   f"acceleration_plan_{t}.png", f"instant_centres_{t}.png",
-                   f"free_body_{t}_driver.png", f"free_body_{t}_dyad1.png"}
+    for t in at:
+        expect |= {f"mechanism_{t}deg.png", f"velocity_plan_{t}deg.png",
+                   f"acceleration_plan_{t}deg.png", f"instant_centres_{t}deg.png",
+                   f"free_body_{t}deg_driver.png", f"free_body_{t}deg_dyad1.png"}
     assert expect <= names, expect - names
     assert all((out / n).stat().st_size > 10_000 for n in expect)
+    from PIL import Image
+    for n in names:                                    # at 150 dpi, the lecture size
+        with Image.open(out / n) as im:
+            assert round(im.info["dpi"][0]) == 150, n
     assert str(out / "overview.png") in printed
     assert "Me mean" in printed and "warnings: none" in printed    # the summary follows
 
@@ -57,27 +83,29 @@ def test_solve_plot_default_position_and_errors(tmp_path, capsys, monkeypatch):
 
 
 @pytest.mark.slow
-def test_demo_scene(tmp_path, capsys, monkeypatch):
-    assert main(["demo", "slotted_lever", "--out", str(tmp_path)]) == 0
+@pytest.mark.parametrize("name", ["slotted_lever"])
+def test_demo_scene(name, cli_pictures, tmp_path, capsys, monkeypatch):
+    sol, positions, figs = cli_pictures(name)
+    # every picture at one stated position (where |Me| is largest), the overview too
+    asked = drawn_once(monkeypatch, sol, positions, figs)
+    assert main(["demo", name, "--out", str(tmp_path)]) == 0
+    assert asked == [positions]
     out = capsys.readouterr().out
     assert out.startswith("Crank and slotted lever")
     assert " deg\n" in out and "max |F| =" in out and " N at " in out
     # the tables and summary beside the pictures (``demo`` alone, the four-bar, is
     # checked the same way in tests/kinetostatics/test_cli.py with its drawing recorded)
-    for name in ("reactions.csv", "driver.csv", "kinematics.csv", "bodies.csv",
+    for stem in ("reactions.csv", "driver.csv", "kinematics.csv", "bodies.csv",
                  "summary.json", "overview.png"):
-        assert (tmp_path / name).is_file(), name
+        assert (tmp_path / stem).is_file(), stem
     assert "Me mean" in out
     s = json.loads((tmp_path / "summary.json").read_text())
     assert {"Me_mean", "Me_max", "Me_min", "reaction_max", "transmission_angle_min",
             "singular_rows"} <= set(s)
-    # every picture at one stated position (where |Me| is largest), the overview too;
     # the driver's free-body diagram named "driver", the dyads numbered from 1
     import numpy as np
-
-    import kinetostatics as ks
-    sol = ks.solve(ks.example("slotted_lever"))
     at = float(sol.positions[int(np.argmax(np.abs(sol.Me)))])
+    assert positions == [at]
     assert f"pictures at φ = {at:g} deg, where |Me| is largest" in out
     names = {p.name for p in tmp_path.glob("*.png")}
     assert {f"free_body_{at:g}deg_driver.png", f"free_body_{at:g}deg_dyad1.png"} <= names

@@ -20,7 +20,7 @@ from kinetostatics.model.examples import cam_examples, example
 from kinetostatics.plot.cli import cli_figures
 from kinetostatics.plot.notation import reading
 
-from .conftest import PICTURE_SCENES
+from .conftest import PICTURE_SCENES, picture_positions
 
 NAMES = ks.examples()
 
@@ -76,20 +76,23 @@ def test_every_new_picture_is_drawn(name, lecture_figures):
     test_collisions measures the same figures (no overlap, no label on a line, no legend
     on data), the force polygons alone are checked in test_plot."""
     sol, pos, figs = lecture_figures(name)
-    tag = f"{pos:g}{'deg' if sol.scene.driver.kind == 'R' else 'm'}".replace(
-        "-", "m").replace(".", "p")
-    expect = {"overview", "driver", *(f"polar_{j}" for j in sol.scene.joints),
-              f"mechanism_{tag}", f"velocity_plan_{tag}", f"acceleration_plan_{tag}",
-              f"instant_centres_{tag}",
-              f"free_body_{tag}_driver",
-              *(f"free_body_{tag}_dyad{d}" for d in range(1, len(sol.kin.dyads) + 1))}
+    unit = "deg" if sol.scene.driver.kind == "R" else "m"
+    expect = {"overview", "driver", *(f"polar_{j}" for j in sol.scene.joints)}
+    tags = {}
+    for p in picture_positions(sol, name):        # (a scene of test_cli.py's at two)
+        tag = f"{p:g}{unit}".replace("-", "m").replace(".", "p")
+        tags[tag] = f"at φ = {p:g}°" if unit == "deg" else f"at s = {p:g} m"
+        expect |= {f"mechanism_{tag}", f"velocity_plan_{tag}", f"acceleration_plan_{tag}",
+                   f"instant_centres_{tag}", f"free_body_{tag}_driver",
+                   *(f"free_body_{tag}_dyad{d}" for d in range(1, len(sol.kin.dyads) + 1))}
     assert set(figs) == expect
-    where = (f"at φ = {pos:g}°" if sol.scene.driver.kind == "R" else f"at s = {pos:g} m")
     for stem, fig in figs.items():
         assert isinstance(fig, Figure), stem
         assert fig.axes and all(ax.lines or ax.patches for ax in fig.axes), stem
-        if tag in stem:         # a picture of one position says which
-            assert any(where in ax.get_title() for ax in fig.axes), stem
+        for tag, where in tags.items():     # a picture of one position says which
+            if f"_{tag}" in stem:
+                assert any(where in ax.get_title() for ax in fig.axes), stem
+    tag = next(iter(tags))
     # what they draw is the solution's: Me over the sweep, each joint's reaction (on the
     # body its polar diagram names), the mechanism through every point at the position
     # (measured: equal to the last bit)
