@@ -100,13 +100,16 @@ CLI_SMOKE = ("tests/kinetostatics/test_cli.py::test_solve_writes_contract_csv",
 #: Session fixtures whose state is made per scene: tests reading one scene's share a
 #: worker (xdist group ``<fixture>-<scene>``), and the tests that use each (the xdist
 #: controller sees only test ids; collection checks that the list is whole).
-SHARED_PER_SCENE = {"lecture_figures": (
+SHARED_PER_SCENE = {"cli_pictures": (
+    "tests/kinetostatics/plot/test_cli.py::test_solve_plot_writes_the_pictures",
+    "tests/kinetostatics/plot/test_cli.py::test_demo_scene",
     "tests/kinetostatics/plot/test_collisions.py::test_no_collisions_on_any_cli_picture",
     "tests/kinetostatics/plot/test_collisions.py::test_cli_pictures_lecture_size",
     "tests/kinetostatics/plot/test_pictures.py::test_every_new_picture_is_drawn",
     "tests/kinetostatics/plot/test_pictures.py::test_free_body_diagram_draws_the_forces",
     "tests/kinetostatics/plot/test_notation.py::test_every_cli_picture_meets_the_standard")}
 _SANDBOX = "tests/kinetostatics/teaching/test_sandbox.py::"
+_REPORT_PDF = "tests/balance/test_report_pdf.py::"
 #: Module fixtures made once for tests spread among a module's others: the tests that use
 #: each run on one worker (xdist group ``<fixture>``; collection checks the list is whole).
 SHARED_ONCE = {"hostile": tuple(_SANDBOX + name for name in (
@@ -116,7 +119,11 @@ SHARED_ONCE = {"hostile": tuple(_SANDBOX + name for name in (
     "test_a_limit_hit_is_a_flag_naming_it",
     "test_no_background_process_outlives_its_notebook")),
     "long_sweep_csv": ("tests/kinetostatics/test_tables.py::"
-                       "test_long_sweep_written_as_pandas_writes_it",)}
+                       "test_long_sweep_written_as_pandas_writes_it",),
+    "written": tuple(_REPORT_PDF + name for name in (
+        "test_pdf_is_an_a4_document_with_the_html_sections",
+        "test_residual_at_rounding_and_micrometres", "test_legends_carry_units",
+        "test_pictures_heading_kept_with_its_picture_and_panels_at_full_width"))}
 
 
 def _import_every_module() -> None:
