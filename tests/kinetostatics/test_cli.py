@@ -112,7 +112,6 @@ def test_structure_command():
     assert r.returncode == 0 and "RTR" in r.stdout
 
 
-@pytest.mark.slow
 def _bench(*args: str):
     """``python -m kinetostatics bench ARGS`` in this process (its start-up rows time
     fresh processes of their own; test_solve_writes_contract_csv keeps the ``python -m``
@@ -121,6 +120,7 @@ def _bench(*args: str):
         return run("bench", *args)
 
 
+@pytest.mark.slow
 def test_bench_quick():
     """``bench --quick`` prints its tables; one round of every timed row (``--repeat 1``:
     18 s of CPU against 33 s at the rows' own 3 to 25 rounds on a warm numba cache,
