@@ -25,7 +25,7 @@ from typing import Any
 from ..model.errors import WorkbenchError
 from ..simulation.batch import run_batch
 from .gradebook import ClassReport, grade_class
-from .handouts import handout_pdf, picture_uri
+from .handouts import handout_pdf, picture_figure, picture_uri
 from .library import exercise as library_exercise
 from .questions import TOLERANCE_RULE, normalize_id
 from .sheets import handout_html, key_values, leaked_values, student_notebook
@@ -185,11 +185,12 @@ def _student_files(task: tuple, ex: Exercise | None = None) -> tuple[dict, list[
     v = ex.variant(sid)
     nb_path, html_path = d / "students" / f"{sid}.ipynb", d / "handouts" / f"{sid}.html"
     nbformat.write(student_notebook(ex, sid, v), str(nb_path))
-    html_path.write_text(handout_html(ex, sid, v, picture_uri(ex, v)), encoding="utf-8")
+    fig = picture_figure(ex, v)              # one drawing (and solve) for both handouts
+    html_path.write_text(handout_html(ex, sid, v, picture_uri(ex, v, fig)), encoding="utf-8")
     _verify_sealed([nb_path, html_path], v, ex.seed)
     written = [str(nb_path), str(html_path)]
     if pdf:
-        handout_pdf(ex, sid, v, d / "handouts" / f"{sid}.pdf")
+        handout_pdf(ex, sid, v, d / "handouts" / f"{sid}.pdf", fig)
         written.append(str(d / "handouts" / f"{sid}.pdf"))
     return v, written
 

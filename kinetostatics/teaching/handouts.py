@@ -23,7 +23,11 @@ from typing import Any
 from ..common.angles import radian_column
 from .sheets import data_rows, format_value, key_values, leaked_values, question_rows
 
-__all__ = ["handout_pdf", "picture_figure", "picture_uri"]
+__all__ = ["DRAW", "handout_pdf", "picture_figure", "picture_uri"]
+
+#: The default ``figure`` of :func:`picture_uri` and :func:`handout_pdf`: draw the
+#: variant's picture there (a student's handout and its PDF draw it once between them).
+DRAW = "draw"
 
 
 def _figure(size=(6.4, 4.8)):
@@ -94,10 +98,13 @@ def _clean(blob: str, values: Mapping[str, float], angles: set, seed: int) -> bo
             and "expected" not in low and (len(str(seed)) < 6 or str(seed) not in blob))
 
 
-def picture_uri(exercise, variant: Mapping) -> str | None:
+def picture_uri(exercise, variant: Mapping, figure: Any = DRAW) -> str | None:
     """The picture as a ``data:image/png;base64,...`` URI (None: nothing to draw),
-    with no key value, no ``seed`` and no seed number readable in its text."""
-    fig = picture_figure(exercise, variant)
+    with no key value, no ``seed`` and no seed number readable in its text.
+
+    ``figure``: the variant's :func:`picture_figure` when it is drawn already (the
+    handout's PDF shows the same one), else it is drawn here."""
+    fig = picture_figure(exercise, variant) if figure is DRAW else figure
     if fig is None:
         return None
     values, angles = key_values(variant)
@@ -134,9 +141,11 @@ def _encodings(first: bytes):
             yield buf.getvalue()
 
 
-def handout_pdf(exercise, student: str, variant: Mapping, path: Any) -> None:
+def handout_pdf(exercise, student: str, variant: Mapping, path: Any,
+                figure: Any = DRAW) -> None:
     """Write the handout as a PDF: the statement, the data and the questions on page 1,
-    the picture on page 2 (matplotlib ``PdfPages``)."""
+    the picture on page 2 (matplotlib ``PdfPages``; ``figure`` as in
+    :func:`picture_uri`)."""
     from matplotlib.backends.backend_pdf import PdfPages
 
     from .questions import TOLERANCE_RULE
@@ -162,7 +171,7 @@ def handout_pdf(exercise, student: str, variant: Mapping, path: Any) -> None:
         put(f"{k}. {q['question']}: {q['asked']} [{q['unit'] or '-'}]; tolerance "
             f"{q['tolerance']}", width=110)
     put("How the answers are graded. " + TOLERANCE_RULE, 8, width=120)
-    pic = picture_figure(exercise, variant)
+    pic = picture_figure(exercise, variant) if figure is DRAW else figure
     meta = {"Title": f"{exercise.title} - {student}", "Creator": "kinetostatics",
             "Producer": None, "CreationDate": None}
     with PdfPages(str(path), metadata=meta) as pdf:

@@ -12,8 +12,7 @@ from tests.helpers import OWN_CASES, ROOT, run_main
 
 
 def run_process(*args, cwd=None):
-    """``python -m kinetostatics`` in a subprocess (the entry point's smoke test, and the
-    benchmarks, which time start-up)."""
+    """``python -m kinetostatics`` in a subprocess (the entry point's smoke test)."""
     env = dict(os.environ, MPLBACKEND="Agg")
     return subprocess.run([sys.executable, "-m", "kinetostatics", *args], capture_output=True,
                           text=True, cwd=cwd or ROOT, env=env, timeout=300)
@@ -113,12 +112,20 @@ def test_structure_command():
     assert r.returncode == 0 and "RTR" in r.stdout
 
 
+def _bench(*args: str):
+    """``python -m kinetostatics bench ARGS`` in this process (its start-up rows time
+    fresh processes of their own; test_solve_writes_contract_csv keeps the ``python -m``
+    entry), pandas' display options as they were (the tables widen them)."""
+    with pd.option_context("display.width", pd.get_option("display.width")):
+        return run("bench", *args)
+
+
 @pytest.mark.slow
 def test_bench_quick():
     """``bench --quick`` prints its tables; one round of every timed row (``--repeat 1``:
     18 s of CPU against 33 s at the rows' own 3 to 25 rounds on a warm numba cache,
     measured 2026-11-29; the ratios are not checked here, only that every row runs)."""
-    r = run_process("bench", "--quick", "--repeat", "1")
+    r = _bench("--quick", "--repeat", "1")
     assert r.returncode == 0, r.stderr
     assert "positions_per_s" in r.stdout and "max_rel_error" in r.stdout
     for row in ("speed-up: loop of solve / solve_many", "hand-written fourbar_dyad",
@@ -210,7 +217,7 @@ def test_parquet_without_pyarrow_is_one_error_line(tmp_path, monkeypatch, capsys
 @pytest.mark.slow
 def test_bench_tables_quick():
     """bench --tables reports solve, table and CSV times with peak memory (small sizes)."""
-    r = run_process("bench", "--tables", "--quick", "--repeat", "1")
+    r = _bench("--tables", "--quick", "--repeat", "1")
     assert r.returncode == 0, r.stderr
     for word in ("solve_s", "kinematics_s", "long_tables_over_solve", "csv_MB_per_s",
                  "peak_MB", "cli_out_s", "best", "median", "start-up", "over_numpy",
