@@ -75,7 +75,7 @@ settings.load_profile(PROFILE)
 #: Fixtures that make a test slow, and why (a test using one is marked ``slow``).
 SLOW_FIXTURES = {
     "lecture_figures": "every picture of `solve --plot` for a scene (10-20 s of CPU each)",
-    "classes": "a class of 30 generated for every exercise, sealed sheets and PDFs",
+    "classes": "a class of 11 generated for every exercise, sealed sheets and PDFs",
     "klass": "a class generated through the command line, with its PDFs",
     "lab": "a JupyterLab server",
     "browser": "headless Chromium",

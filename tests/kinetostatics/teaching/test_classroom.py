@@ -81,8 +81,9 @@ def _sig4(v: float) -> str:
 def test_student_files_are_sealed(kind, classes):
     d = classes[kind]
     key = _key(d)
-    seed = str(json.loads((d / "teacher.json").read_text())["seed"])
-    assert len(seed) >= 15                      # 63 random bits
+    seed = json.loads((d / "teacher.json").read_text())["seed"]
+    # 63 random bits: below 2**32 once in 2**31 draws (15 digits or more failed ~1e-5)
+    assert isinstance(seed, int) and 2**32 <= seed < 2**63
     assert sorted(p.stem for p in (d / "students").iterdir()) == sorted(IDS)
     assert sorted(p.stem for p in (d / "handouts").iterdir()) == sorted(IDS)
     for sid in IDS:
@@ -92,7 +93,7 @@ def test_student_files_are_sealed(kind, classes):
             shown = {_sig4(float(t)) for t in _NUMBER.findall(text)}
             assert not values & shown, (p.name, values & shown)
             assert not any(v in text for v in values), p.name
-            assert seed not in text
+            assert str(seed) not in text
             for word in ("BEGIN SOLUTION", "expected", "seed", "record("):
                 assert word not in text, (p.name, word)
         nb = nbformat.read(d / "students" / f"{sid}.ipynb", as_version=4)
