@@ -111,11 +111,13 @@ def least_closeness(close: list[np.ndarray], n: int) -> np.ndarray:
 # 49 ms, 8192 52, 16384 54, 65536 53; at 2e5 all 11.3-11.9 ms
 FUSED_ROWS = 4096
 # Rows per block of the RTR guide's two kernels (guided_blocks): each call passes some 30
-# arrays, ten of them in tuples that numba's dispatcher types in Python, about 20 us a
-# call of the shaper's second kernel. Measured 2026-11-30, guided_blocks, processor time,
-# best of 5-11 at a load of 10-13: the shaper 4096 rows 160-179 ns a row at 2e5 and 1e6
-# rows, 16384 156-178; the slotted lever 107 / 121 against 104 / 110; 32768 no better
-GUIDED_ROWS = 16384
+# arrays, ten of them in tuples that numba's dispatcher types in Python, some 20 us a
+# block (the shaper's two kernels, measured 2026-11-30: 4.9 ms of its solve at 1e6 rows
+# in blocks of 4096). Measured then, guided_blocks at 2e5 and 1e6 rows, processor time,
+# best of 5-11 at a load of 9-16: 4096, 8192 and 16384 rows alike within the load's noise
+# (the shaper 156-188 ns a row, the slotted lever 104-122); 8192 halves the calls and
+# keeps the block's seven scratch rows (448 kB) well within the 2 MB second-level cache
+GUIDED_ROWS = 8192
 
 
 def fused_blocks(kernels, scene: Scene, full: Scene, structure, geometry,
