@@ -199,14 +199,14 @@ class Solution:
             # a short sweep: columns of its own (copies cost less than the shared Series
             # pandas needs to know a column is shared, and nothing can see a write to them)
             return tables.own_frame(self._driver_columns(), n)
-        cols = self._driver_columns(shared_columns=True)
-        cols["position"] = self._tiled.column(1)        # shared with the long tables
-        value = self.drive.value
+        cols, value, keep = self._driver_columns(True), self.drive.value, self.__dict__.setdefault
+        # the solver's own arrays, held once (pandas copies a column before a write), its
+        # positions too (the long tables' column filled for it: 2.9 ms at 1e6 rows, 2026-11-30)
+        cols["position"] = keep("_position_column", shared(self.positions)) \
+            if self.positions.dtype == np.float64 else self._tiled.column(1)
         if isinstance(value, np.ndarray) and value.shape == self.positions.shape \
                 and value.dtype == np.float64:
-            # the solver's own array, held once (pandas copies it before a write)
-            cols[self.driver_quantity] = self.__dict__.setdefault("_drive_column",
-                                                                  shared(value))
+            cols[self.driver_quantity] = keep("_drive_column", shared(value))
         else:
             cols[self.driver_quantity] = tables.table_column(self.Me, n)
         return tables.columns_frame({c: cols[c] for c in self.driver_names()}, copy=False)

@@ -257,7 +257,7 @@ def test_tables_share_columns_but_never_see_each_others_writes():
 def test_driver_table_either_way_is_the_same_and_keeps_writes_to_itself(monkeypatch, case,
                                                                         share_rows):
     """The driver table of a short sweep holds columns of its own (built from the block
-    API), of a long one columns shared with the solve and the long tables: the same
+    API), of a long one columns shared with the solve (its positions, Me/Fe): the same
     table either way (values, dtypes, labels, index, one block per column), and a write
     to it changes neither the solution, nor the long tables, nor a second look at it."""
     from kinetostatics.results import longtable
@@ -271,7 +271,7 @@ def test_driver_table_either_way_is_the_same_and_keeps_writes_to_itself(monkeypa
     assert isinstance(d.index, pd.RangeIndex) and d.index.equals(pd.RangeIndex(len(d)))
     assert [b.dtype for b in d._mgr.blocks] == list(d.dtypes)      # one block per column
     k = sol.kinematics
-    shares = [np.shares_memory(d.position.to_numpy(), k.position.to_numpy()),
+    shares = [np.shares_memory(d.position.to_numpy(), sol.positions),
               np.shares_memory(d[sol.driver_quantity].to_numpy(), sol.drive.value)]
     assert shares == ([False, False] if share_rows > len(d) else [True, True])
     me0, pos0, kpos0 = np.array(sol.Me), sol.positions.copy(), k.position.to_numpy().copy()

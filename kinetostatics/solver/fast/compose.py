@@ -303,7 +303,8 @@ def kept_sweep(structure, kind: str, drive: np.ndarray, undefined: np.ndarray,
     """What a lean sweep keeps (:class:`~kinetostatics.solver.blocks.Kept`): the driver's
     Me/Fe (``kind``: the driver's), the undefined rows, each dyad's closeness to a dead
     centre and its singular rows (closeness within ``SINGULAR_WARN``)."""
-    singular = [~(c > SINGULAR_WARN**2) for c in close]
+    # (~(c > SINGULAR_WARN**2) negated in place: one fresh array a dyad, not two)
+    singular = [np.logical_not(f, out=f) for f in (c > SINGULAR_WARN**2 for c in close)]
     return Kept(structure, DriverReaction(kind, drive), undefined, close, singular)
 
 

@@ -94,30 +94,48 @@ def swept_row(j, r, e, u, g, nload, m, acc, undefined, stats):
     c, s = m[C, j], m[S, j]
     om = m[OM, j]
     for q in range(nload):
-        b = 7 * q
-        lx, ly = g[b, r], g[b + 1, r]
-        rx, ry = c * lx - s * ly, s * lx + c * ly
-        vx, vy = m[VX, j] - om * ry, m[VY, j] + om * rx
-        thr = g[b + 6, r]
-        if g[b + 2, r] == 1.0:
-            x = math.hypot(vx, vy)
-            still = x <= thr
-            fx = 0.0 if still else -g[b + 3, r] * vx / x
-            fy = 0.0 if still else -g[b + 3, r] * vy / x
-        else:
-            fx, fy = g[b + 4, r], g[b + 5, r]
-            power = fx * vx + fy * vy
-            x = abs(power)
-            still = x <= thr
-            if still or not power < 0.0:
-                fx = fy = 0.0
-        if x > stats[q, e, 0] or not x == x:
-            stats[q, e, 0] = x
-        if not still and x < stats[q, e, 1]:
-            stats[q, e, 1] = x
+        rx, ry, fx, fy, x, still = swept_force(g, 7 * q, r, c, s, om, m[VX, j], m[VY, j])
+        stats[q, e, 0], stats[q, e, 1] = swept_stats(stats[q, e, 0], stats[q, e, 1], x, still)
         if still:
             undefined[u] = True
         acc[0, j] += fx
         acc[1, j] += fy
         acc[2, j] += rx * fy - ry * fx
     return nonfinite((acc[0, j], acc[1, j], acc[2, j]))
+
+
+@body
+def swept_force(g, b, r, c, s, om, vx0, vy0):
+    """A swept load's ``(rx, ry, fx, fy, x, still)`` at a row (its geometry from row
+    ``b`` of column ``r`` of ``g``; the body's cos and sin ``c``, ``s``, its angular
+    velocity ``om`` and its origin's velocity ``vx0``, ``vy0``): the arm of its point,
+    the force, the speed (the power's magnitude) ``x`` and whether the row stands still
+    (:func:`swept_loads`)."""
+    lx, ly = g[b, r], g[b + 1, r]
+    rx, ry = c * lx - s * ly, s * lx + c * ly
+    vx, vy = vx0 - om * ry, vy0 + om * rx
+    thr = g[b + 6, r]
+    if g[b + 2, r] == 1.0:
+        x = math.hypot(vx, vy)
+        still = x <= thr
+        fx = 0.0 if still else -g[b + 3, r] * vx / x
+        fy = 0.0 if still else -g[b + 3, r] * vy / x
+    else:
+        fx, fy = g[b + 4, r], g[b + 5, r]
+        power = fx * vx + fy * vy
+        x = abs(power)
+        still = x <= thr
+        if still or not power < 0.0:
+            fx = fy = 0.0
+    return rx, ry, fx, fy, x, still
+
+
+@body
+def swept_stats(top, least, x, still):
+    """A swept load's statistics ``(top, least)`` after a row of speed ``x``: the largest
+    speed (a NaN kept) and the smallest of a moving row (:func:`swept_loads`)."""
+    if x > top or not x == x:
+        top = x
+    if not still and x < least:
+        least = x
+    return top, least

@@ -77,7 +77,7 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
                 return solve_full(Plan(kernels, full, structure, structure.assembly,
                                        geometry=geometry), positions)
             dead = dead_points_of_sweep(full, structure, positions,
-                                        measure2(sweep.closeness2, n))
+                                        least_closeness(sweep.closeness2, n))
             sol = LeanSolved(full, sweep, positions, dead, again)
         else:
             plan = Plan(kernels, full, structure, structure.assembly, geometry=geometry)
@@ -93,12 +93,31 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
     return sol
 
 
+def least_closeness(close: list[np.ndarray], n: int) -> np.ndarray:
+    """:func:`~kinetostatics.solver.deadpoints.measure2` of the dyads' closeness to a dead
+    centre over ``n`` rows: of two dyads' arrays (the six-bars'), their ``np.minimum`` in
+    one pass, the same bits as its ``min(min(inf, a), b)`` (``min(inf, a)`` is ``a``, NaN
+    and -0.0 too: measured 2026-11-30, the shaper at 1e6 rows, 1.0 ms against 2.1)."""
+    if len(close) == 2 and all(type(c) is np.ndarray and c.shape == (n,)
+                               and c.dtype == np.float64 for c in close):
+        return np.minimum(close[0], close[1])
+    return measure2(close, n)
+
+
 # Rows per call of the fused kernels over a long sweep given numpy's cos and sin (worked
 # out per block into one scratch pair, which stays in the caches: guided_blocks, and
 # fused_blocks where kernel_trig does not hold). Measured 2026-11-29, the
 # four-bar's solve at 1e6 rows, processor time, best of 7 (machine loaded): 4096 rows
 # 49 ms, 8192 52, 16384 54, 65536 53; at 2e5 all 11.3-11.9 ms
 FUSED_ROWS = 4096
+# Rows per block of the RTR guide's two kernels (guided_blocks): each call passes some 30
+# arrays, ten of them in tuples that numba's dispatcher types in Python, some 20 us a
+# block (the shaper's two kernels, measured 2026-11-30: 4.9 ms of its solve at 1e6 rows
+# in blocks of 4096). Measured then, guided_blocks at 2e5 and 1e6 rows, processor time,
+# best of 5-11 at a load of 9-16: 4096, 8192 and 16384 rows alike within the load's noise
+# (the shaper 156-188 ns a row, the slotted lever 104-122); 8192 halves the calls and
+# keeps the block's seven scratch rows (448 kB) well within the 2 MB second-level cache
+GUIDED_ROWS = 8192
 
 
 def fused_blocks(kernels, scene: Scene, full: Scene, structure, geometry,
@@ -234,7 +253,7 @@ def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarr
     """The :class:`~kinetostatics.solver.blocks.Kept` of a long sweep of a crank and one
     RTR dyad (the slotted lever's structure), or of a crank, one RTR dyad and a second
     dyad of another kind (the shaper's), from the kernels of
-    :mod:`~kinetostatics.solver.fast.guide_kernels`, per block of :data:`FUSED_ROWS`
+    :mod:`~kinetostatics.solver.fast.guide_kernels`, per block of :data:`GUIDED_ROWS`
     rows: the crank's cos and sin, the guide's angle, its cos and sin (numpy's, or the C
     library's where they are the same: :func:`_guide_blocks`), then the rest in one
     kernel, the numbers of the composed kernels bit for bit; or None for another
@@ -246,7 +265,7 @@ def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarr
         return None
     kernel, first, rest = found
     n = positions.size
-    th, reach, gap, cs, sn, ct, sg = np.empty((7, min(FUSED_ROWS, n)))
+    th, reach, gap, cs, sn, ct, sg = np.empty((7, min(GUIDED_ROWS, n)))
     drive, undefined = np.empty(n), np.zeros(n, dtype=bool)
     close = [np.empty(n) for _ in plan.dyads]
     bad = 0
@@ -261,7 +280,7 @@ def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarr
 
 def _guide_blocks(angles: np.ndarray, first: tuple, th, reach, gap, cs, sn, ct, sg
                   ) -> Iterator[tuple[int, int]]:
-    """The blocks of :data:`FUSED_ROWS` rows of a crank's sweep at ``angles`` through the
+    """The blocks of :data:`GUIDED_ROWS` rows of a crank's sweep at ``angles`` through the
     RTR guide's first pass (``first``: its arguments but the rows'): per block its first
     row and its rows m, with the crank's cos and sin, the guide's, ``reach`` and ``gap``
     in the first m rows of the scratch arrays. The cos and sin are worked out in the pass
@@ -272,7 +291,7 @@ def _guide_blocks(angles: np.ndarray, first: tuple, th, reach, gap, cs, sn, ct, 
     numpy's in passes of their own around it (``rtr_guide``): the same doubles."""
     from .guide_kernels import rtr_guide, rtr_guide_turned  # (numba loaded: kernels given)
     n = angles.size
-    w, turned = min(FUSED_ROWS, n), kernel_trig()
+    w, turned = min(GUIDED_ROWS, n), kernel_trig()
     for lo in range(0, n, w):
         m = min(w, n - lo)
         if turned:

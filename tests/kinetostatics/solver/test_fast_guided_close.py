@@ -1,0 +1,43 @@
+"""Two dyads' closeness to a dead centre (the six-bars' guided sweeps) taken in one
+``np.minimum`` (:func:`~kinetostatics.solver.fast.solve.least_closeness`): the bits of
+``measure2``'s ``min(min(inf, a), b)``, NaN, signed zeros and infinities too (no kernel
+compiled here: numpy's alone)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from kinetostatics.solver.deadpoints import measure2
+from kinetostatics.solver.fast.solve import least_closeness
+
+SPECIAL = np.array([0.0, -0.0, 5e-324, 1.0, np.inf, -np.inf, np.nan, -np.nan, 1e300])
+
+
+def pairs(n: int = 5_000) -> tuple[np.ndarray, np.ndarray]:
+    """Every pair of the special values, then random magnitudes with signs."""
+    rng = np.random.default_rng(7)
+    a = np.concatenate([np.repeat(SPECIAL, SPECIAL.size), rng.standard_normal(n) * 1e3])
+    b = np.concatenate([np.tile(SPECIAL, SPECIAL.size), rng.standard_normal(n) * 1e3])
+    return a, b
+
+
+def test_two_dyads_give_measure2s_bits() -> None:
+    a, b = pairs()
+    n = a.size
+    got = least_closeness([a, b], n)
+    assert got.tobytes() == measure2([a, b], n).tobytes()
+    assert got is not a and got is not b                 # (a new array: the inputs kept)
+
+
+@pytest.mark.parametrize("count", [1, 3])
+def test_other_counts_are_measure2s(count: int) -> None:
+    a, b = pairs()
+    close = [a, b, -a][:count]
+    assert least_closeness(close, a.size).tobytes() == measure2(close, a.size).tobytes()
+
+
+def test_a_scalar_closeness_is_broadcast_as_measure2_does() -> None:
+    a, _ = pairs()
+    close = [a, np.float64(0.5)]
+    assert least_closeness(close, a.size).tobytes() == measure2(close, a.size).tobytes()
