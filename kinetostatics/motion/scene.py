@@ -171,12 +171,16 @@ class ReducedMechanism:
                               strict=True):
             self._cache[self._key(p)] = (a, b, m)
 
+    def cached(self, phi: float) -> tuple[float, float, float] | None:
+        """(I_r, dI_r/dphi, M_r) at one angle where it was evaluated before, else None."""
+        return self._cache.get(self._key(phi))
+
     def values(self, phi: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Cached where the angle (modulo a revolution) was evaluated before."""
         if isinstance(phi, float):
             # one angle (an integrator's stage): the cached numbers as they are, without
             # the arrays (the array road cost half of a motion run)
-            hit = self._cache.get(self._key(phi))
+            hit = self.cached(phi)
             if hit is not None:
                 return np.float64(hit[0]), np.float64(hit[1]), np.float64(hit[2])
         arr = np.asarray(phi, dtype=float)
@@ -196,7 +200,12 @@ def _motor(spec: MotionSpec):
     (absolute driver angle, linear between points, periodic)."""
     if spec.table is None:
         ms, w0 = spec.stall_moment, spec.no_load_speed
-        return lambda phi, w: ms * (1.0 - np.asarray(w) / w0)
+
+        def linear(phi, w):
+            if type(w) is float:        # an integrator's stage: numpy's scalar, not an array
+                return ms * (1.0 - np.float64(w) / w0)
+            return ms * (1.0 - np.asarray(w) / w0)
+        return linear
     ang, val = spec.table[:, 0], spec.table[:, 1]
     xp = np.concatenate((ang, [ang[0] + TWO_PI]))
     fp = np.concatenate((val, [val[0]]))
@@ -281,6 +290,9 @@ def simulate_motion(scene: Any, rtol: float = 1e-12) -> MotionResult:
         return inertia
 
     def moment(phi, w, t):
+        hit = red.cached(phi) if isinstance(phi, float) else None
+        if hit is not None:             # an integrator's stage: no arrays
+            return motor(phi, w) + np.float64(hit[2])
         return motor(phi, w) + red.values(phi)[2]
 
     sol = simulate(inertia_with(spec.flywheel), moment, phi0, spec.omega0, spec.cycles,
