@@ -343,4 +343,6 @@ def with_flywheel(inertia: Inertia, extra: float) -> Inertia:
     def inertia_j(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         i_r, di_r = inertia(phi)
         return np.asarray(i_r, dtype=float) + extra, di_r
+    if hasattr(inertia, "prefetch"):    # a cache filled ahead (motion.scene's), kept
+        inertia_j.prefetch = inertia.prefetch
     return inertia_j

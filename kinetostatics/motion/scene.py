@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ..model.errors import SceneError
+from ..model.errors import SceneError, WorkbenchError
 from ..model.fields import MECHANISM, read_number, section
 from ..model.memory import check_memory
 from ..model.scene import Scene, load_scene
@@ -129,6 +129,7 @@ class ReducedMechanism:
         self.structure = analyse(scene)
         self.phi0 = phi0
         self._cache: dict[int, tuple[float, float, float]] = {}
+        self._ahead: dict[float, tuple[float, float, float]] = {}
 
     def evaluate(self, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(I_r, dI_r/dphi, M_r) at the driver angles ``phi`` (rad), one kinematic solve."""
@@ -171,6 +172,23 @@ class ReducedMechanism:
                               strict=True):
             self._cache[self._key(p)] = (a, b, m)
 
+    def prefetch(self, phis: list[float]) -> None:
+        """Evaluate in one kinematic solve the angles a search may ask next (a solve of
+        one angle costs about as much as of thirty). They are kept by exact angle apart
+        from the cache, which takes each only when it is asked, so the cache holds what it
+        held without (keys of 1e-9 rad: an angle never asked must not answer for one
+        asked later); each angle's numbers are those of its own solve (the solve is
+        elementwise)."""
+        new = [p for p in dict.fromkeys(phis)
+               if p not in self._ahead and self._key(p) not in self._cache]
+        if new:
+            try:
+                vals = self.evaluate(np.array(new))
+            except WorkbenchError:      # an angle the search never asks may not assemble:
+                return                  # the asked ones are solved, and refused, as before
+            for p, a, b, m in zip(new, *(v.tolist() for v in vals), strict=True):
+                self._ahead[p] = (a, b, m)
+
     def cached(self, phi: float) -> tuple[float, float, float] | None:
         """(I_r, dI_r/dphi, M_r) at one angle where it was evaluated before, else None."""
         return self._cache.get(self._key(phi))
@@ -188,9 +206,12 @@ class ReducedMechanism:
         keys = [self._key(p) for p in flat]
         missing = [p for p, k in zip(flat, keys, strict=True) if k not in self._cache]
         if missing:
-            vals = self.evaluate(np.array(missing))
-            for p, a, b, m in zip(missing, *(v.tolist() for v in vals), strict=True):
-                self._cache[self._key(p)] = (a, b, m)
+            known = [self._ahead.get(p) for p in missing]
+            todo = [p for p, k in zip(missing, known, strict=True) if k is None]
+            fresh = iter(zip(*(v.tolist() for v in self.evaluate(np.array(todo))),
+                             strict=True) if todo else ())
+            for p, k in zip(missing, known, strict=True):
+                self._cache[self._key(p)] = k if k is not None else next(fresh)
         out = np.array([self._cache[k] for k in keys]).reshape(arr.shape + (3,))
         return out[..., 0], out[..., 1], out[..., 2]
 
@@ -287,6 +308,7 @@ def simulate_motion(scene: Any, rtol: float = 1e-12) -> MotionResult:
         def inertia(phi):
             i_r, di_r, _ = red.values(phi)
             return i_r + j, di_r
+        inertia.prefetch = red.prefetch     # golden_max's searches (cycle_stats) ask ahead
         return inertia
 
     def moment(phi, w, t):
