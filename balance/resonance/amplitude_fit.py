@@ -105,7 +105,9 @@ class _Data:
         return out
 
     def chi2(self, lr: np.ndarray, th: np.ndarray, with_a: bool = False):
-        """chi2 minimised over a, at (log rho, theta) of shape (P, ...)."""
+        """chi2 minimised over a, at (log rho, theta) of shape (P, ...), or of shapes that
+        broadcast to it, with the same axes (each number computed once where an axis is
+        of length 1: the same numbers, fewer of them)."""
         extra = (1,) * (lr.ndim - 1)
         A = self.A.reshape(self.A.shape[0], *extra, -1)
         w = self.w.reshape(A.shape)
@@ -139,8 +141,8 @@ def _grid_starts(d: _Data) -> tuple[np.ndarray, np.ndarray]:
     u = np.linspace(0.0, 1.0, _GRID_R)
     lr = lo[:, None, None] + (hi - lo)[:, None, None] * u[None, :, None]
     th = np.arange(_GRID_T) * (_TWO_PI / _GRID_T)
-    lr = np.broadcast_to(lr, (len(lo), _GRID_R, _GRID_T))
-    f = d.chi2(lr, np.broadcast_to(th, lr.shape))
+    f = d.chi2(lr, th[None, None, :])       # the axes as they are: chi2 broadcasts them
+    lr = np.broadcast_to(lr, f.shape)
     pad = np.pad(f, ((0, 0), (1, 1), (0, 0)), constant_values=np.inf)
     pad = np.concatenate([pad[:, :, -1:], pad, pad[:, :, :1]], axis=2)     # theta periodic
     is_min = np.ones(f.shape, dtype=bool)
@@ -341,7 +343,7 @@ class _Profile:
         self.h = 1e-4 * (inner_hi - inner_lo)
 
     def chi2(self, outer: np.ndarray, inner: np.ndarray) -> np.ndarray:
-        outer = np.broadcast_to(outer, inner.shape)
+        # (outer has inner's axes, of length 1 where it is constant: chi2 broadcasts them)
         return self.d.chi2(outer, inner) if self.rho_outer else self.d.chi2(inner, outer)
 
     def at(self, outer: np.ndarray, inner: np.ndarray, f: np.ndarray, steps: int):
@@ -415,9 +417,7 @@ def _intervals(d: _Data, lr0, th0, thr, threshold):
         dd = d.take(todo)
         lr_ax = np.clip(lr0[todo, None] + wr[todo, None] * u, *LR_RANGE)
         th_ax = th0[todo, None] + wt[todo, None] * u
-        shape = (todo.size, _LOCAL, _LOCAL)
-        f = dd.chi2(np.broadcast_to(lr_ax[:, :, None], shape),
-                    np.broadcast_to(th_ax[:, None, :], shape))
+        f = dd.chi2(lr_ax[:, :, None], th_ax[:, None, :])      # (P, _LOCAL, _LOCAL)
         t = thr[todo]
         pr = _Profile(dd, True, th_ax[:, 0], th_ax[:, -1])      # over theta, per log rho
         pt = _Profile(dd, False, lr_ax[:, 0], lr_ax[:, -1])     # over log rho, per theta

@@ -30,11 +30,35 @@ class MotionError(WorkbenchError):
 _GOLD = 0.5 * (3.0 - math.sqrt(5.0))
 
 
+_AHEAD = 3
+"""Iterations of :func:`golden_max` whose points are announced at once (``ahead``)."""
+
+
+def _branches(a: float, b: float, x1: float, x2: float, depth: int) -> list[float]:
+    """Every point the next ``depth`` iterations of :func:`golden_max` may evaluate from
+    the bracket (a, x1, x2, b), whichever way each comparison goes (the same expressions
+    as the search's, so the same numbers): 2 + 4 + ... + 2^depth points."""
+    out, states = [], [(a, b, x1, x2)]
+    for _ in range(depth):
+        nxt = []
+        for a_, b_, x1_, x2_ in states:
+            lo = a_ + _GOLD * (x2_ - a_)        # f1 >= f2: b <- x2, x2 <- x1, a new x1
+            hi = b_ - _GOLD * (b_ - x1_)        # else: a <- x1, x1 <- x2, a new x2
+            out += [lo, hi]
+            nxt += [(a_, x2_, lo, x1_), (x1_, b_, x2_, hi)]
+        states = nxt
+    return out
+
+
 def golden_max(f: Callable[[float], float], a: float, b: float, *, xtol: float = 1e-12,
-               maxiter: int = 200) -> tuple[float, float]:
+               maxiter: int = 200,
+               ahead: Callable[[list[float]], None] | None = None) -> tuple[float, float]:
     """Maximum of a unimodal function on [a, b] by golden-section search.
 
     The ends are compared too, so a maximum at an end (or at a corner) is found.
+    ``ahead``, when given, is told every :data:`_AHEAD` iterations the points those
+    iterations may evaluate (:func:`_branches`), e.g. to compute them in one batch
+    where one point costs as much as many; it changes no result.
 
     Returns
     -------
@@ -42,12 +66,16 @@ def golden_max(f: Callable[[float], float], a: float, b: float, *, xtol: float =
     """
     if b < a:
         a, b = b, a
-    fa, fb = f(a), f(b)
     x1, x2 = a + _GOLD * (b - a), b - _GOLD * (b - a)
+    if ahead is not None:
+        ahead([a, b, x1, x2, *_branches(a, b, x1, x2, _AHEAD)])
+    fa, fb = f(a), f(b)
     f1, f2 = f(x1), f(x2)
-    for _ in range(maxiter):
+    for i in range(maxiter):
         if b - a <= xtol * max(1.0, abs(a), abs(b)):
             break
+        if ahead is not None and i and i % _AHEAD == 0:
+            ahead(_branches(a, b, x1, x2, _AHEAD))
         if f1 >= f2:
             b, x2, f2 = x2, x1, f1
             x1 = a + _GOLD * (b - a)

@@ -129,50 +129,55 @@ def simulate(inertia: Inertia, moment: Moment, phi0: float, omega0: float, cycle
                 max_steps)
 
 
-# The Dormand-Prince 5(4) tableau (eq. 4.9's integrator) row by row: which earlier stages
-# each new stage weighs, with what coefficients, at which fraction c of the step (the
-# sixth and seventh stages both sit at p + h: the last one is the solution's own, FSAL).
-_STAGES = (((0,), (A21,), 0),
-           ((0, 1), (A31, A32), 1),
-           ((0, 1, 2), (A41, A42, A43), 2),
-           ((0, 1, 2, 3), (A51, A52, A53, A54), 3),
-           ((0, 1, 2, 3, 4), (A61, A62, A63, A64, A65), 4),
-           ((0, 2, 3, 4, 5), (B1, B3, B4, B5, B6), 4))
-_ERROR = ((0, 2, 3, 4, 5, 6), (E1, E3, E4, E5, E6, E7))
-
-
-def _weighted(idx: tuple, coefs: tuple, k: list) -> float:
-    """sum_j a_j k_j over the stages ``idx``, summed left to right."""
-    s = coefs[0] * k[idx[0]]
-    for a, j in zip(coefs[1:], idx[1:], strict=True):
-        s = s + a * k[j]
-    return s
-
-
-def _advance(base: float, h: float, idx: tuple, coefs: tuple, k: list) -> float:
-    """base + h sum_j a_j k_j (a single-term row as (h a) k)."""
-    if len(idx) == 1:
-        return base + h * coefs[0] * k[idx[0]]
-    return base + h * _weighted(idx, coefs, k)
+def _slope(moment: Moment, at: float, u: float, t: float, inertia: float) -> tuple:
+    """The stage's slopes of (u, t) at driver angle ``at``: du/dphi = 2 M(phi, omega, t),
+    dt/dphi = 1 / omega, omega = sqrt(u / I_r) (eq. 4.9)."""
+    w = math.sqrt(u / inertia)
+    return 2.0 * scalar_moment(moment, at, w, t), 1.0 / w
 
 
 def _step(moment: Moment, p: float, h: float, u: float, t: float, ku1: float, kt1: float,
           stage_i: Sequence[float]) -> tuple | None:
     """One Dormand-Prince 5(4) step of (u, t) from p to p + h; ``stage_i`` holds I_r at
-    p + c h for c = 1/5, 3/10, 4/5, 8/9, 1. None where a stage would have u <= 0."""
-    ku, kt = [ku1], [kt1]
-    for idx, coefs, c in _STAGES:
-        un = _advance(u, h, idx, coefs, ku)
-        if not un > 0.0:
-            return None
-        tn = _advance(t, h, idx, coefs, kt)
-        w = math.sqrt(un / stage_i[c])
-        at = p + h if c == 4 else p + DP5_C[c] * h
-        ku.append(2.0 * scalar_moment(moment, at, w, tn))
-        kt.append(1.0 / w)
-    eu = h * _weighted(*_ERROR, ku)
-    et = h * _weighted(*_ERROR, kt)
-    return un, tn, tuple(zip(ku, kt, strict=True)), eu, et
+    p + c h for c = 1/5, 3/10, 4/5, 8/9, 1. None where a stage would have u <= 0.
+
+    The tableau's rows written out (eq. 4.9's integrator; the sixth and seventh stages
+    both sit at p + h, the last one the solution's own, FSAL): each sum left to right, a
+    single-term row as (h a) k. Written out, not looped over the tableau, for the cost of
+    the calls: the motion's integration is most of a motion run."""
+    i1, i2, i3, i4, i5 = stage_i
+    un = u + h * A21 * ku1
+    if not un > 0.0:
+        return None
+    ku2, kt2 = _slope(moment, p + DP5_C[0] * h, un, t + h * A21 * kt1, i1)
+    un = u + h * (A31 * ku1 + A32 * ku2)
+    if not un > 0.0:
+        return None
+    ku3, kt3 = _slope(moment, p + DP5_C[1] * h, un, t + h * (A31 * kt1 + A32 * kt2), i2)
+    un = u + h * (A41 * ku1 + A42 * ku2 + A43 * ku3)
+    if not un > 0.0:
+        return None
+    tn = t + h * (A41 * kt1 + A42 * kt2 + A43 * kt3)
+    ku4, kt4 = _slope(moment, p + DP5_C[2] * h, un, tn, i3)
+    un = u + h * (A51 * ku1 + A52 * ku2 + A53 * ku3 + A54 * ku4)
+    if not un > 0.0:
+        return None
+    tn = t + h * (A51 * kt1 + A52 * kt2 + A53 * kt3 + A54 * kt4)
+    ku5, kt5 = _slope(moment, p + DP5_C[3] * h, un, tn, i4)
+    un = u + h * (A61 * ku1 + A62 * ku2 + A63 * ku3 + A64 * ku4 + A65 * ku5)
+    if not un > 0.0:
+        return None
+    tn = t + h * (A61 * kt1 + A62 * kt2 + A63 * kt3 + A64 * kt4 + A65 * kt5)
+    ku6, kt6 = _slope(moment, p + h, un, tn, i5)
+    un = u + h * (B1 * ku1 + B3 * ku3 + B4 * ku4 + B5 * ku5 + B6 * ku6)
+    if not un > 0.0:
+        return None
+    tn = t + h * (B1 * kt1 + B3 * kt3 + B4 * kt4 + B5 * kt5 + B6 * kt6)
+    ku7, kt7 = _slope(moment, p + h, un, tn, i5)
+    eu = h * (E1 * ku1 + E3 * ku3 + E4 * ku4 + E5 * ku5 + E6 * ku6 + E7 * ku7)
+    et = h * (E1 * kt1 + E3 * kt3 + E4 * kt4 + E5 * kt5 + E6 * kt6 + E7 * kt7)
+    ks = ((ku1, kt1), (ku2, kt2), (ku3, kt3), (ku4, kt4), (ku5, kt5), (ku6, kt6), (ku7, kt7))
+    return un, tn, ks, eu, et
 
 
 class _Track:
@@ -338,4 +343,6 @@ def with_flywheel(inertia: Inertia, extra: float) -> Inertia:
     def inertia_j(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         i_r, di_r = inertia(phi)
         return np.asarray(i_r, dtype=float) + extra, di_r
+    if hasattr(inertia, "prefetch"):    # a cache filled ahead (motion.scene's), kept
+        inertia_j.prefetch = inertia.prefetch
     return inertia_j

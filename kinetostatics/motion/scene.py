@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ..model.errors import SceneError
+from ..model.errors import SceneError, WorkbenchError
 from ..model.fields import MECHANISM, read_number, section
 from ..model.memory import check_memory
 from ..model.scene import Scene, load_scene
@@ -129,6 +129,7 @@ class ReducedMechanism:
         self.structure = analyse(scene)
         self.phi0 = phi0
         self._cache: dict[int, tuple[float, float, float]] = {}
+        self._ahead: dict[float, tuple[float, float, float]] = {}
 
     def evaluate(self, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(I_r, dI_r/dphi, M_r) at the driver angles ``phi`` (rad), one kinematic solve."""
@@ -171,12 +172,33 @@ class ReducedMechanism:
                               strict=True):
             self._cache[self._key(p)] = (a, b, m)
 
+    def prefetch(self, phis: list[float]) -> None:
+        """Evaluate in one kinematic solve the angles a search may ask next (a solve of
+        one angle costs about as much as of thirty). They are kept by exact angle apart
+        from the cache, which takes each only when it is asked, so the cache holds what it
+        held without (keys of 1e-9 rad: an angle never asked must not answer for one
+        asked later); each angle's numbers are those of its own solve (the solve is
+        elementwise)."""
+        new = [p for p in dict.fromkeys(phis)
+               if p not in self._ahead and self._key(p) not in self._cache]
+        if new:
+            try:
+                vals = self.evaluate(np.array(new))
+            except WorkbenchError:      # an angle the search never asks may not assemble:
+                return                  # the asked ones are solved, and refused, as before
+            for p, a, b, m in zip(new, *(v.tolist() for v in vals), strict=True):
+                self._ahead[p] = (a, b, m)
+
+    def cached(self, phi: float) -> tuple[float, float, float] | None:
+        """(I_r, dI_r/dphi, M_r) at one angle where it was evaluated before, else None."""
+        return self._cache.get(self._key(phi))
+
     def values(self, phi: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Cached where the angle (modulo a revolution) was evaluated before."""
         if isinstance(phi, float):
             # one angle (an integrator's stage): the cached numbers as they are, without
             # the arrays (the array road cost half of a motion run)
-            hit = self._cache.get(self._key(phi))
+            hit = self.cached(phi)
             if hit is not None:
                 return np.float64(hit[0]), np.float64(hit[1]), np.float64(hit[2])
         arr = np.asarray(phi, dtype=float)
@@ -184,9 +206,12 @@ class ReducedMechanism:
         keys = [self._key(p) for p in flat]
         missing = [p for p, k in zip(flat, keys, strict=True) if k not in self._cache]
         if missing:
-            vals = self.evaluate(np.array(missing))
-            for p, a, b, m in zip(missing, *(v.tolist() for v in vals), strict=True):
-                self._cache[self._key(p)] = (a, b, m)
+            known = [self._ahead.get(p) for p in missing]
+            todo = [p for p, k in zip(missing, known, strict=True) if k is None]
+            fresh = iter(zip(*(v.tolist() for v in self.evaluate(np.array(todo))),
+                             strict=True) if todo else ())
+            for p, k in zip(missing, known, strict=True):
+                self._cache[self._key(p)] = k if k is not None else next(fresh)
         out = np.array([self._cache[k] for k in keys]).reshape(arr.shape + (3,))
         return out[..., 0], out[..., 1], out[..., 2]
 
@@ -196,7 +221,12 @@ def _motor(spec: MotionSpec):
     (absolute driver angle, linear between points, periodic)."""
     if spec.table is None:
         ms, w0 = spec.stall_moment, spec.no_load_speed
-        return lambda phi, w: ms * (1.0 - np.asarray(w) / w0)
+
+        def linear(phi, w):
+            if type(w) is float:        # an integrator's stage: numpy's scalar, not an array
+                return ms * (1.0 - np.float64(w) / w0)
+            return ms * (1.0 - np.asarray(w) / w0)
+        return linear
     ang, val = spec.table[:, 0], spec.table[:, 1]
     xp = np.concatenate((ang, [ang[0] + TWO_PI]))
     fp = np.concatenate((val, [val[0]]))
@@ -278,9 +308,13 @@ def simulate_motion(scene: Any, rtol: float = 1e-12) -> MotionResult:
         def inertia(phi):
             i_r, di_r, _ = red.values(phi)
             return i_r + j, di_r
+        inertia.prefetch = red.prefetch     # golden_max's searches (cycle_stats) ask ahead
         return inertia
 
     def moment(phi, w, t):
+        hit = red.cached(phi) if isinstance(phi, float) else None
+        if hit is not None:             # an integrator's stage: no arrays
+            return motor(phi, w) + np.float64(hit[2])
         return motor(phi, w) + red.values(phi)[2]
 
     sol = simulate(inertia_with(spec.flywheel), moment, phi0, spec.omega0, spec.cycles,

@@ -188,7 +188,7 @@ class MotionSolution:
             best_x, best_v = x[int(np.argmax(vals))], float(np.max(vals))
             for j in _top_peaks(vals, 3):
                 xm, vm = golden_max(fun, x[max(j - 1, 0)], x[min(j + 1, x.size - 1)],
-                                    xtol=1e-13)
+                                    xtol=1e-13, ahead=getattr(self.inertia, "prefetch", None))
                 if vm > best_v:
                     best_x, best_v = xm, vm
             out[name] = -best_v if name == "omega_min" else best_v

@@ -267,6 +267,22 @@ def test_errors_are_workbench_errors():
         sol.at_time([sol.t[-1] + 1.0])
 
 
+def test_golden_max_asks_only_what_it_announced_ahead():
+    """Every point the search evaluates was announced to ``ahead`` first (the motion's
+    reduced values are solved ahead in batches), and the answer is the same without."""
+    announced, asked = set(), []
+
+    def f(x: float) -> float:
+        asked.append(x)
+        return -math.cos(3.0 * x) * (x - 0.2) ** 2 - abs(x - 0.71)
+
+    plain = mo.golden_max(f, 0.0, 1.3, xtol=1e-13)
+    n = len(asked)
+    asked.clear()
+    assert mo.golden_max(f, 0.0, 1.3, xtol=1e-13, ahead=announced.update) == plain
+    assert len(asked) == n > 20 and set(asked) <= announced
+
+
 def test_golden_max_finds_a_corner_and_an_end():
     x, fx = mo.golden_max(lambda x: -abs(x - 0.3), 0.0, 1.0)
     assert x == pytest.approx(0.3, abs=1e-11) and fx == pytest.approx(0.0, abs=1e-11)
