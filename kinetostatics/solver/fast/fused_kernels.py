@@ -17,7 +17,16 @@ import math
 import numpy as np
 
 from .jitbase import FUSED_TILE as TILE
-from .jitbase import body, jit, jit_as, nonfinite, scratch_for, tile_geometry, tile_rows_for
+from .jitbase import (
+    body,
+    jit,
+    jit_as,
+    nonfinite,
+    not_literal,
+    scratch_for,
+    tile_geometry,
+    tile_rows_for,
+)
 from .kernels import tile_motion_for
 from .layout import DRIVER_GEOMETRY, INNER_R, KINDS, P_GROUND, PARAM, ROT1, ROT2, C, S
 from .layout import MOTION as BODY_ROWS
@@ -173,7 +182,8 @@ def _kept_for(kind: str):
     @jit_as(f"{kind.lower()}_kept")
     def kept(lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt,
              gw, gws, nw, st, drive, close, undefined):
-        return _crank_dyad_kept(code, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys,
+        value = not_literal(code)       # (the helpers typed once for every kind)
+        return _crank_dyad_kept(value, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys,
                                 k1d, k2d, gl, gls, npt, gw, gws, nw, st, drive, close,
                                 undefined)
     return kept

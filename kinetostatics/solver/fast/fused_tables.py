@@ -28,6 +28,7 @@ from .jitbase import (
     body,
     jit_as,
     nonfinite,
+    not_literal,
     scratch,
     tile_geometry,
     tile_rows,
@@ -243,7 +244,8 @@ def _tables_of(kind: str):
     @jit_as(f"{kind.lower()}_tables")
     def tables(lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt,
                slots, local, n, at, kout, src, sign, rout, mine):
-        return _crank_dyad_tables(code, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys,
+        value = not_literal(code)       # (the helpers typed once for every kind)
+        return _crank_dyad_tables(value, lo, hi, own, cs, sn, ts, gd, gds, w, eps, gy, gys,
                                   k1d, k2d, gl, gls, npt, slots, local, n, at, kout, src, sign,
                                   rout, mine)
     return tables

@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 
 from .closure_kernels import rtr_guide_angle
-from .jitbase import TILE, body, jit, jit_as, scratch, tile_geometry
+from .jitbase import TILE, body, jit, jit_as, not_literal, scratch, tile_geometry
 from .kernels import crank_row, dyad_row, outer_param
 from .layout import (
     ASSEMBLY,
@@ -144,7 +144,7 @@ def _rtr_tile(lo, t0, nt, own, cs, sn, ct, sg, reach, gap, wgd, w, eps, k1d, k2d
         copy_rows(wk2, wdrv)
     for t in range(TILE):
         _pin(wg, t)
-        f = dyad_row(RTR, rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
+        f = dyad_row(not_literal(RTR), rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
         bad += f if t < nt else 0
     bad += tile_loads(wdrv, wa[0], wl[0], npt[0], nt)
     bad += tile_loads(wm1, wa[1], wl[1], npt[1], nt)
@@ -328,7 +328,8 @@ def _after_rtr_for(kind: str):
     @jit_as(f"rtr_{kind.lower()}_kept")
     def kept(lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl, npt, gw, nw, st, ct,
              sg, reach, gap, drive, close1, close2, undefined):
-        return _rtr_dyad_kept(code, lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4,
+        value = not_literal(code)       # (the helpers typed once for every kind)
+        return _rtr_dyad_kept(value, lo, hi, own, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4,
                               gl, npt, gw, nw, st, ct, sg, reach, gap, drive, close1, close2,
                               undefined)
     return kept

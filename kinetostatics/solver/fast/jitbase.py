@@ -41,6 +41,18 @@ def jit_as(name: str):
 
 
 @body
+def not_literal(code: int) -> int:
+    """A kind's ``code`` (a constant of a factory's entry) as a plain integer to the
+    helpers it is passed to: numba types a constant passed to a compiled helper as a
+    literal and compiles the helper, and every helper it calls, once per value (each
+    kind's entry compiled again every shared helper: dyad_row, the closures, the fused
+    kernels' bodies). Passed as an integer, each helper is typed and lowered once a
+    process for every kind; the constant is still the entry's, and LLVM, inlining the
+    helpers into it, folds the other kinds' branches away as before."""
+    return code | 0
+
+
+@body
 def nonfinite(values) -> int:
     """1 when a value of the tuple ``values`` is not finite (v * 0 is 0 for a finite v,
     NaN otherwise). Inlined, and without branches: a loop that calls it still vectorises."""

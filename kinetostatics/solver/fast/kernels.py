@@ -29,6 +29,7 @@ from .jitbase import (
     jit,
     jit_as,
     nonfinite,
+    not_literal,
     scratch,
     tile_in,
     tile_next,
@@ -257,6 +258,7 @@ def _motion_kernel(kind: int, name: str):
         the rest."""
         rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
         rtr = rot1 and rot2 and not inner_r
+        code = not_literal(kind)       # (each helper typed once for every kind)
         if stage == 0:
             return rtr_stage(rtr, lo, hi, off, g, gs, own, k1, k2, d)
         # in tiles (jitbase.TILE): the known bodies' motions (and RTR's guide angle) in,
@@ -278,7 +280,7 @@ def _motion_kernel(kind: int, name: str):
                 tile_in(wd[C1X:C1Y + 1], d[C1X:C1Y + 1], j0, nt)
                 tile_in(wd[CL2:CL2 + 1], d[CL2:CL2 + 1], j0, nt)
             for t in range(TILE):
-                b = dyad_row(kind, rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
+                b = dyad_row(code, rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
                 bad += b if t < nt else 0
             tile_out(m1, wm1, j0, nt)
             tile_out(m2, wm2, j0, nt)

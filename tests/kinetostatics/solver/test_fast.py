@@ -230,6 +230,16 @@ def test_a_stack_of_every_kind_is_each_scenes_solve(path, name: str) -> None:
     # once (a read-only owner array once compiled each fused kernel twice, 7-17 s of
     # processor time each on an empty cache, measured 2026-11-30)
     assert {k: s for k, s in compiled_signatures().items() if len(s) > 1} == {}
+    # the helpers that take a kind's code typed for an integer, once for every kind (a
+    # literal code, each kind's entry's constant, compiled each helper once per kind:
+    # measured 2026-11-30, the compiled tests' compiles 216 s of processor time on an
+    # empty cache against 151; on a warm cache nothing is compiled and this holds as is)
+    from numba.core.types import Literal
+
+    from kinetostatics.solver.fast import closure_kernels, kernels
+    for helper in (kernels.dyad_row, closure_kernels.close_revolute,
+                   closure_kernels.close_prismatic):
+        assert not [s for s in helper.signatures if isinstance(s[0], Literal)], helper
 
 
 def compiled_signatures() -> dict[str, list]:
