@@ -10,6 +10,8 @@ folder settled first).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .jitbase import body, jit
@@ -108,68 +110,129 @@ def rrr_span(ci, si, g, e, on_crank):
     return p1x, p1y, p2x, p2y, a1x, a1y, r1s, r2s, p2x - p1x, p2y - p1y
 
 
+@body
+def rrr_close(ci, si, g, e, ke, on_crank):
+    """The closeness to a dead centre (m^2) of scene ``e`` (row ``e`` of ``g``) in
+    assembly ``ke`` (+-1.0) at the crank's cos ``ci`` and sin ``si``, and 1 where h^2 is
+    negative or not finite (else 0): the operations of
+    :func:`~kinetostatics.solver.probes.probe_closeness` in their order (IEEE doubles, no
+    fastmath; numpy's minimum: a NaN kept)."""
+    # circle-circle (seed 000 eq. 5.1): Q = P1 + x e + k h J e
+    p1x, p1y, p2x, p2y, a1x, a1y, r1s, r2s, ex, ey = rrr_span(ci, si, g, e, on_crank)
+    d2 = ex * ex + ey * ey
+    reach = np.sqrt(d2)
+    inv = 1.0 / reach
+    x = (d2 + (r1s - r2s)) * (0.5 * inv)
+    h2 = r1s - x * x
+    bad = 1 if (h2 < 0.0 or not np.isfinite(h2)) else 0
+    root = np.sqrt(h2 if not h2 < 0.0 else 0.0)     # (numpy's maximum(h2, 0))
+    xi = x * inv
+    kh = (ke * inv) * root
+    tx = xi * ex - kh * ey                      # X - P1
+    ty = xi * ey + kh * ex
+    u, v = a1x / r1s, a1y / r1s               # the first body's cos, sin
+    c1, s1 = tx * u + ty * v, ty * u - tx * v
+    # (the second body's angle: not read by the closeness)
+    # the first body's origin, then the closing point X on it
+    lx, ly = g[e, LOCAL[0]], g[e, LOCAL[0] + 1]
+    o1x = p1x - (c1 * lx - s1 * ly)
+    o1y = p1y - (s1 * lx + c1 * ly)
+    qx, qy = g[e, INNER], g[e, INNER + 1]
+    xx = o1x + (c1 * qx - s1 * qy)
+    xy = o1y + (s1 * qx + c1 * qy)
+    # the velocity system's columns c_i = J (X - P_i) and determinant; sin^2 tau
+    # = det^2 / (|c1|^2 |c2|^2) (seed 002 eqs 2.60-2.61)
+    c1x, c1y = p1y - xy, xx - p1x
+    c2x, c2y = p2y - xy, xx - p2x
+    det = c2x * c1y - c1x * c2y
+    norm2 = (c1x * c1x + c1y * c1y) * (c2x * c2x + c2y * c2y)
+    sin2 = det * det / norm2
+    rr = reach / g[e, SIZE]
+    rr = rr * rr
+    return (sin2 if (sin2 <= rr or np.isnan(sin2)) else rr), bad     # (numpy's minimum)
+
+
+@body
+def rrr_open(ci, si, g, e, on_crank):
+    """Whether the dyad of scene ``e`` cannot close at the crank's cos ``ci`` and sin
+    ``si``: its gap max(d - (r1 + r2), |r1 - r2| - d) (numpy's maximum: a NaN kept) is
+    not within 1e-9 of the mechanism's size."""
+    _, _, _, _, _, _, r1s, r2s, ex, ey = rrr_span(ci, si, g, e, on_crank)
+    d = np.sqrt(ex * ex + ey * ey)
+    r1, r2 = np.sqrt(r1s), np.sqrt(r2s)
+    gap = d - (r1 + r2)
+    far = abs(r1 - r2) - d
+    gap = gap if (gap >= far or np.isnan(gap)) else far
+    return not gap <= 1e-9 * g[e, SIZE]
+
+
 @jit
 def probe_rrr(c, s, own, k, g, on_crank, m2):
     """The closeness to a dead centre of a crank and one RRR dyad at the rows' crank
     angles (cos ``c``, sin ``s``: numpy's), row i of scene ``own[i]`` in assembly
     ``k[own[i]]`` (+-1.0), its numbers row ``own[i]`` of ``g`` (the columns above;
-    ``on_crank[j]``: outer pivot j on the crank, else on the ground): the operations of
-    :func:`~kinetostatics.solver.probes.probe_closeness` in their order (IEEE doubles, no
-    fastmath; numpy's minimum: a NaN kept), m^2 written to ``m2``. Returns 1 when some
-    row's h^2 is negative or not finite (then the rows' gaps count, :func:`rrr_gaps`, as
-    numpy's probe measures them only then), else 0."""
+    ``on_crank[j]``: outer pivot j on the crank, else on the ground): :func:`rrr_close`
+    per row, m^2 written to ``m2``. Returns 1 when some row's h^2 is negative or not
+    finite (then the rows' gaps count, :func:`rrr_gaps`, as numpy's probe measures them
+    only then), else 0."""
     bad = 0
     for i in range(c.size):
         e = own[i]
-        # circle-circle (seed 000 eq. 5.1): Q = P1 + x e + k h J e
-        p1x, p1y, p2x, p2y, a1x, a1y, r1s, r2s, ex, ey = rrr_span(c[i], s[i], g, e,
-                                                                  on_crank)
-        d2 = ex * ex + ey * ey
-        reach = np.sqrt(d2)
-        inv = 1.0 / reach
-        x = (d2 + (r1s - r2s)) * (0.5 * inv)
-        h2 = r1s - x * x
-        if h2 < 0.0 or not np.isfinite(h2):
-            bad = 1
-        root = np.sqrt(h2 if not h2 < 0.0 else 0.0)     # (numpy's maximum(h2, 0))
-        xi = x * inv
-        kh = (k[e] * inv) * root
-        tx = xi * ex - kh * ey                      # X - P1
-        ty = xi * ey + kh * ex
-        u, v = a1x / r1s, a1y / r1s               # the first body's cos, sin
-        c1, s1 = tx * u + ty * v, ty * u - tx * v
-        # (the second body's angle: not read by the closeness)
-        # the first body's origin, then the closing point X on it
-        lx, ly = g[e, LOCAL[0]], g[e, LOCAL[0] + 1]
-        o1x = p1x - (c1 * lx - s1 * ly)
-        o1y = p1y - (s1 * lx + c1 * ly)
-        qx, qy = g[e, INNER], g[e, INNER + 1]
-        xx = o1x + (c1 * qx - s1 * qy)
-        xy = o1y + (s1 * qx + c1 * qy)
-        # the velocity system's columns c_i = J (X - P_i) and determinant; sin^2 tau
-        # = det^2 / (|c1|^2 |c2|^2) (seed 002 eqs 2.60-2.61)
-        c1x, c1y = p1y - xy, xx - p1x
-        c2x, c2y = p2y - xy, xx - p2x
-        det = c2x * c1y - c1x * c2y
-        norm2 = (c1x * c1x + c1y * c1y) * (c2x * c2x + c2y * c2y)
-        sin2 = det * det / norm2
-        rr = reach / g[e, SIZE]
-        rr = rr * rr
-        m2[i] = sin2 if (sin2 <= rr or np.isnan(sin2)) else rr     # (numpy's minimum)
+        v, b = rrr_close(c[i], s[i], g, e, k[e], on_crank)
+        m2[i] = v
+        bad |= b
     return bad
 
 
 @jit
 def rrr_gaps(c, s, own, g, on_crank, opened):
-    """Per row of :func:`probe_rrr`, whether the dyad cannot close: its gap
-    max(d - (r1 + r2), |r1 - r2| - d) (numpy's maximum: a NaN kept) is not within 1e-9 of
-    the mechanism's size, written to ``opened``."""
+    """Per row of :func:`probe_rrr`, whether the dyad cannot close (:func:`rrr_open`),
+    written to ``opened``."""
     for i in range(c.size):
-        e = own[i]
-        _, _, _, _, _, _, r1s, r2s, ex, ey = rrr_span(c[i], s[i], g, e, on_crank)
-        d = np.sqrt(ex * ex + ey * ey)
-        r1, r2 = np.sqrt(r1s), np.sqrt(r2s)
-        gap = d - (r1 + r2)
-        far = abs(r1 - r2) - d
-        gap = gap if (gap >= far or np.isnan(gap)) else far
-        opened[i] = not gap <= 1e-9 * g[e, SIZE]
+        opened[i] = rrr_open(c[i], s[i], g, own[i], on_crank)
+
+
+@jit
+def probe_rounds(lo, hi, owner, t, deg, k, g, on_crank, rounds, best, opened, m2, gone):
+    """The dead-point screen's probes of a crank and one RRR dyad, every round in one
+    call (:func:`~kinetostatics.solver.deadpoints._probe`'s zoom, as numpy works it
+    out): each interval ``(lo[i], hi[i])`` of scene ``owner[i]`` probed at its interior
+    points ``lo + (hi - lo) t[1:-1]`` (deg; their angles ``x deg``, their cos and sin
+    the C library's, which :func:`~kinetostatics.solver.fast.solve.kernel_trig` finds
+    numpy's), :func:`rrr_close` at each, and where some probe of the round has h^2
+    negative or not finite, :func:`rrr_open` at each (as the numpy probe measures the
+    gaps only then); a probe that is NaN or open counts +inf; the interval shrinks to the
+    two steps about its first smallest probe (numpy's argmin), ``rounds`` times. The
+    smallest m^2 found per interval goes to ``best``, whether some probe was open to
+    ``opened``; ``lo`` and ``hi`` are written over; ``m2`` and ``gone``: scratch of
+    ``lo.size * (t.size - 2)`` values."""
+    n = lo.size
+    p = t.size - 2
+    inf = np.inf
+    for i in range(n):
+        best[i] = inf
+        opened[i] = False
+    for _ in range(rounds):
+        bad = 0
+        for i in range(n):
+            a, d, e = lo[i], hi[i] - lo[i], owner[i]
+            for j in range(p):
+                x = (a + d * t[j + 1]) * deg
+                v, b = rrr_close(math.cos(x), math.sin(x), g, e, k[e], on_crank)
+                m2[i * p + j] = v
+                bad |= b
+        for i in range(n):
+            a, d, e = lo[i], hi[i] - lo[i], owner[i]
+            low, at = inf, 0
+            for j in range(p):
+                v = m2[i * p + j]
+                if bad:
+                    x = (a + d * t[j + 1]) * deg
+                    gone[i * p + j] = rrr_open(math.cos(x), math.sin(x), g, e, on_crank)
+                if np.isnan(v) or (bad and gone[i * p + j]):
+                    opened[i] = True
+                    v = inf
+                if v < low:
+                    low, at = v, j
+            best[i] = best[i] if best[i] <= low else low
+            lo[i], hi[i] = a + d * t[at], a + d * t[at + 2]
