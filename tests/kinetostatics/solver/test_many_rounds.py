@@ -10,24 +10,13 @@ import numpy as np
 import pytest
 
 from kinetostatics.solver.deadpoints import _probe
-from kinetostatics.solver.fast import loader, use
+from kinetostatics.solver.fast import loader
 from kinetostatics.solver.fast.screen import rrr_probe
 from kinetostatics.solver.fast.solve import kernel_trig
 
 from .test_screen_probe import long_cranks, stack
 
 pytestmark = pytest.mark.skipif(not loader.installed(), reason="numba not installed")
-
-
-@pytest.fixture
-def compiled():
-    """The compiled path, its kernels loaded; the path put back after."""
-    use("fast")
-    if loader.kernels() is None:
-        use(None)
-        pytest.skip("no writable cache folder")
-    yield
-    use(None)
 
 
 class RoundByRound:
@@ -41,7 +30,7 @@ class RoundByRound:
 
 
 @pytest.mark.parametrize("seed", [1, 2])
-def test_rounds_in_one_call_are_the_rounds_one_by_one(compiled, seed) -> None:
+def test_rounds_in_one_call_are_the_rounds_one_by_one(fast, seed) -> None:
     stacker, structure, k = stack(long_cranks(120, seed))
     at = rrr_probe(stacker, structure, k)
     if not kernel_trig():

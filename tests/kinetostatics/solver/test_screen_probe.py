@@ -21,17 +21,6 @@ from kinetostatics.solver.structure import analyse
 pytestmark = pytest.mark.skipif(not loader.installed(), reason="numba not installed")
 
 
-@pytest.fixture
-def compiled():
-    """The compiled path, its kernels loaded; the path put back after."""
-    use("fast")
-    if loader.kernels() is None:
-        use(None)
-        pytest.skip("no writable cache folder")
-    yield
-    use(None)
-
-
 def stack(scenes: list) -> tuple:
     """The stacker, structure and assemblies of the scenes that assemble at their first
     row (as solve_many stacks them)."""
@@ -56,7 +45,7 @@ def long_cranks(count: int, seed: int) -> list:
 
 
 @pytest.mark.parametrize("seed", [1, 2])
-def test_compiled_probe_is_numpys_bit_for_bit(compiled, seed) -> None:
+def test_compiled_probe_is_numpys_bit_for_bit(fast, seed) -> None:
     stacker, structure, k = stack(long_cranks(120, seed))
     at = rrr_probe(stacker, structure, k)
     assert at is not None
@@ -77,7 +66,7 @@ def test_compiled_probe_is_numpys_bit_for_bit(compiled, seed) -> None:
     assert not got_open.any()
 
 
-def test_compiled_probe_only_for_a_crank_and_one_rrr_dyad(compiled) -> None:
+def test_compiled_probe_only_for_a_crank_and_one_rrr_dyad(fast) -> None:
     # (the variants made on the numpy path: each is checked by a solve, which on the
     # compiled path compiled the slider-crank's six kernels for nothing here, 11-15 s of
     # processor time on an empty cache, measured 2026-11-30)
@@ -91,7 +80,7 @@ def test_compiled_probe_only_for_a_crank_and_one_rrr_dyad(compiled) -> None:
     assert rrr_probe(*stack(fours)) is None
 
 
-def test_solve_many_screens_as_solve_with_the_compiled_probe(compiled) -> None:
+def test_solve_many_screens_as_solve_with_the_compiled_probe(fast) -> None:
     """Four-bars near their change point (a dead point between rows, found by the probes)
     of several sizes and sweeps: solve_many's dead points are each scene's solve's."""
     from .test_deadpoints import change_point_four_bar
