@@ -308,12 +308,8 @@ def kept_assemblies(stacker: Stacker, structure, firsts: np.ndarray
     against 0.50-0.53 choosing them (each scene's choice kept as one int: as a tuple, its
     arrays made of 1000 tuples, 0.73-0.77 ms)."""
     scenes = stacker.scenes
-    key = tuple(d.bodies for d in structure.dyads)
-    dyads = _DYADS.get(key)
-    if dyads is None:
-        if len(_DYADS) >= 64:
-            _DYADS.clear()      # (a scene kept under a key cleared: chosen again)
-        dyads = _DYADS[key] = key
+    # (a scene kept under a key cleared from _DYADS: chosen again)
+    dyads = memo.interned(_DYADS, tuple(d.bodies for d in structure.dyads))
     get = _ASSEMBLIES.entries.get
     found = []
     add = found.append

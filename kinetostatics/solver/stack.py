@@ -31,7 +31,7 @@ from .blocks import keep_heap
 from .closure import DyadSolver, body_origin, dyad_param
 from .driver import driver_motion, ground_motion
 from .kinematics import SINGULAR_FAIL
-from .memo import Kept
+from .memo import Kept, interned
 from .probes import probe_dyad
 from .structure import Structure
 from .trap import tame, tame_values
@@ -170,7 +170,7 @@ def stack_record(scene: Scene) -> tuple[int | None, bytes, bool, int, tuple | No
                 _LABELS.clear()     # (a new label for a signature met again: no harm)
             label = _LABELS[sig] = next(_LABEL)
     rec = (label, struct.pack(f"{len(nums)}d", *nums), _increases(drv), drv.positions.size,
-           _shared(drv.sweep))
+           None if drv.sweep is None else interned(_SWEEPS, drv.sweep))
     _RECORDS.put(scene, rec)
     return rec
 
@@ -205,23 +205,7 @@ def _increases(driver) -> bool:
 _UP: dict[tuple, bool] = {}
 
 
-def _shared(key: tuple | None) -> tuple | None:
-    """One sweep key object for every equal key (the first met, of the last few): the
-    records of scenes of one sweep hold the same tuple, which solve_many tells alike by
-    identity (measured 2026-11-30, 1000 four-bars x 361: counting the first scene's key
-    among 1000 equal ones, each its own tuple of two hex strings and a count, 0.3-1.2 ms a
-    call; the same object: 3 us)."""
-    if key is None:
-        return None
-    got = _SWEEPS.get(key)
-    if got is None:
-        if len(_SWEEPS) >= 64:
-            _SWEEPS.clear()
-        got = _SWEEPS[key] = key
-    return got
-
-
-_SWEEPS: dict[tuple, tuple] = {}
+_SWEEPS: dict[tuple, tuple] = {}    # (one sweep key object for equal ones: interned)
 _LABEL = count(1)       # (a label is never given twice, the table cleared or not)
 
 
