@@ -53,23 +53,36 @@ def test_chi2_quantile_refuses_a_confidence_outside_0_1():
 
 # --------------------------------------------------- against an independent fit
 def independent_fit(A, marks, sigma):
-    """Multi-start least squares (scipy, trust region) of the same likelihood in
-    (u_x, u_y, log a): a different parametrisation and a different optimiser."""
+    """Multi-start least squares (scipy: MINPACK's Levenberg-Marquardt with the exact
+    Jacobian) of the same likelihood in (u_x, u_y, log a): a different parametrisation
+    and a different optimiser. (The same 24 starts by the trust-region method with a
+    finite-difference Jacobian found the same minima, chi2 within 1e-13 and U/T within
+    7e-9 on the 53 draws below, at 3.3 times the CPU: 21.6 s against 6.4 s.)"""
     from scipy.optimize import least_squares  # the [test] extra: missing is a failure
 
-    e = np.exp(1j * np.radians(marks))
+    e = np.concatenate([[0.0], np.exp(1j * np.radians(marks))])     # e_0 = 0: the A1 run
+
+    def model(p):
+        a = np.exp(p[2])
+        z = p[0] + 1j * p[1] + a * e                     # u + a e_k
+        return z, np.abs(z), a
 
     def res(p):
-        u = p[0] + 1j * p[1]
-        model = np.concatenate([[abs(u)], np.abs(u + np.exp(p[2]) * e)])
-        return (A - model) / sigma
+        return (A - model(p)[1]) / sigma
+
+    def jac(p):
+        # d|z_k| / d(u_x, u_y, log a) = (Re, Im, Re(conj(z) a e_k)) / |z_k|
+        z, m, a = model(p)
+        zh = np.where(m > 0, z / np.where(m > 0, m, 1.0), 0.0)
+        return -np.column_stack([zh.real, zh.imag, np.real(np.conj(zh) * a * e)]) \
+            / sigma[:, None]
 
     best = None
     for th in np.linspace(0.0, 2.0 * np.pi, 8, endpoint=False):
         for scale in (0.3, 1.0, 3.0):
             a0 = scale * np.mean(np.abs(A[1:] - A[0])) + 1e-9
             r = least_squares(res, [A[0] * np.cos(th), A[0] * np.sin(th), np.log(a0)],
-                              xtol=1e-14, ftol=1e-14, gtol=1e-14)
+                              jac=jac, method="lm", xtol=1e-14, ftol=1e-14, gtol=1e-14)
             if best is None or 2.0 * r.cost < best[0]:
                 best = (2.0 * r.cost, r.x)
     return best
