@@ -88,8 +88,9 @@ def independent_fit(A, marks, sigma):
     return best
 
 
-# (the quick tier checks the three runs on 8 draws, 0.7 s of CPU; each case of four or
-# five, 15 multi-start fits by scipy, costs 2.5-5 s of CPU: slow)
+# (the three runs on 8 draws cost 0.5-0.7 s of CPU; each case of four or five runs, 15
+# multi-start fits by scipy, 1.2-2.3 s: slow. Measured 2026-11-30, load 7-9; by the
+# trust region with finite differences 1.5 s and 5.5-10.7 s)
 @pytest.mark.parametrize(("ratio", "noise", "marks", "n"), [
     pytest.param(10.0, 0.005, (0.0, 90.0, 180.0, 270.0), 15,  # a small trial mass
                  marks=pytest.mark.slow),
@@ -104,9 +105,9 @@ def test_the_estimate_is_the_maximum_likelihood(ratio, noise, marks, n):
     for i in range(len(A)):
         chi2, x = independent_fit(A[i], np.array(marks), noise * A[i])
         # never a worse minimum than scipy's: measured on these 53 draws at most 2.1e-8 of
-        # chi^2 above it (draw 1 of the runs at 0/120/240, where the finite-difference
-        # Levenberg-Marquardt stops), 3.7e-14 elsewhere; often the same point, its ratio
-        # U/T within 5.2e-7 (same draw; 1.1e-8 elsewhere)
+        # chi^2 above it (draw 1 of the runs at 0/120/240, where the estimate's descent
+        # stops; the same against either scipy method), 4.1e-14 elsewhere; often the same
+        # point, its ratio U/T within 5.2e-7 (same draw; 2.1e-8 elsewhere)
         assert fit.chi2[i, 0] <= chi2 + 1e-7 * max(1.0, chi2)
         if fit.chi2[i, 0] >= chi2 - 1e-9:
             rho = math.hypot(x[0], x[1]) / math.exp(x[2])
