@@ -68,4 +68,9 @@ def test_the_guide_pass_turning_its_own_angles_keeps_the_numbers(monkeypatch, na
     measured 2026-11-30) gives what the two passes given numpy's give, bit for bit."""
     scene = SCENES[name](ROWS)
     assert kept_bytes(monkeypatch, scene, None) == kept_bytes(monkeypatch, scene, False)
+    # the two roads give the kernel arrays of one type (the angles read-only, the rows
+    # writable either way): each entry point compiled once
+    from kinetostatics.solver.fast import guide_kernels
+    kernels = [guide_kernels.rtr_kept, *guide_kernels.AFTER_RTR.values()]
+    assert [len(k.signatures) for k in kernels if len(k.signatures) > 1] == []
 
