@@ -242,54 +242,62 @@ def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarr
     """The :class:`~kinetostatics.solver.blocks.Kept` of a long sweep of a crank and one
     RTR dyad (the slotted lever's structure), or of a crank, one RTR dyad and a second
     dyad of another kind (the shaper's), from the kernels of
-    :mod:`~kinetostatics.solver.fast.guide_kernels`, per block of :data:`GUIDED_ROWS`
-    rows: the crank's cos and sin, the guide's angle, its cos and sin (numpy's, or the C
-    library's where they are the same: :func:`_guide_blocks`), then the rest in one
-    kernel, the numbers of the composed kernels bit for bit; or None for another
-    structure. Raises :class:`~kinetostatics.solver.fast.compose.Refused` as the
-    composed kernels do."""
+    :mod:`~kinetostatics.solver.fast.guide_kernels`, the numbers of the composed kernels
+    bit for bit; or None for another structure. Where :func:`kernel_trig` finds the C
+    library's cos and sin numpy's, one kernel call over the sweep works out, tile by
+    tile, the crank's cos and sin, the guide's angle, its cos and sin, then the rest
+    (:func:`_guide_blocks` otherwise). Raises
+    :class:`~kinetostatics.solver.fast.compose.Refused` as the composed kernels do."""
     plan = Plan(kernels, full, structure, structure.assembly, geometry=geometry)
     found = _guided(plan)
     if found is None:
         return None
     kernel, first, rest = found
     n = positions.size
-    th, reach, gap, cs, sn, ct, sg = np.empty((7, min(GUIDED_ROWS, n)))
     drive, undefined = np.empty(n), np.zeros(n, dtype=bool)
     close = [np.empty(n) for _ in plan.dyads]
-    bad = 0
-    for lo, m in _guide_blocks(full.driver.angles, first, th, reach, gap, cs, sn, ct, sg):
-        bad += kernel(0, m, OWNERS, cs, sn, *rest, ct, sg, reach, gap, drive[lo:lo + m],
-                      *[c[lo:lo + m] for c in close], undefined[lo:lo + m])
+    if kernel_trig():
+        # (one call, no scratch rows: measured 2026-11-30, guided_blocks alone, ns a row,
+        # processor time, best of 7, three alternating pairs of processes at a load of 6-7:
+        # shaper 144-155 at 2e5 rows, 151-158 at 1e6 against 160-191 and 171-183 in two
+        # kernels per block; slotted lever 93-96, 99-107 against 107-114, 109-120)
+        bad = kernel(0, n, OWNERS, full.driver.angles, *NO_ROWS[:2], *rest, *NO_ROWS[2:],
+                     drive, *close, undefined)
+    else:
+        bad = 0
+        for lo, m, rows in _guide_blocks(full.driver.angles, first):
+            bad += kernel(0, m, OWNERS, NO_ANGLES, *rows[:2], *rest, *rows[2:],
+                          drive[lo:lo + m], *[c[lo:lo + m] for c in close],
+                          undefined[lo:lo + m])
     if bad:
         raise Refused(bad)
     plan.check_swept()
     return kept_sweep(structure, "R", drive, undefined, close)
 
 
-def _guide_blocks(angles: np.ndarray, first: tuple, th, reach, gap, cs, sn, ct, sg
-                  ) -> Iterator[tuple[int, int]]:
+# (no rows: the guide's kernel given the crank's angles reads none of its cos, sin, the
+# guide's cos, sin, reach and gap; writable, as the blocks' scratch rows: one signature)
+NO_ROWS = tuple(np.empty((6, 0)))
+
+
+def _guide_blocks(angles: np.ndarray, first: tuple
+                  ) -> Iterator[tuple[int, int, tuple[np.ndarray, ...]]]:
     """The blocks of :data:`GUIDED_ROWS` rows of a crank's sweep at ``angles`` through the
-    RTR guide's first pass (``first``: its arguments but the rows'): per block its first
-    row and its rows m, with the crank's cos and sin, the guide's, ``reach`` and ``gap``
-    in the first m rows of the scratch arrays. The cos and sin are worked out in the pass
-    where :func:`kernel_trig` finds the C library's numpy's
-    (:func:`~kinetostatics.solver.fast.guide_kernels.rtr_guide_turned`: measured
-    2026-11-30, :func:`guided_blocks` at 1e6 rows, processor time, best of 9 at a load of
-    15: the shaper 159 ns a row against 181, the slotted lever 111 against 127), else
-    numpy's in passes of their own around it (``rtr_guide``): the same doubles."""
-    from .guide_kernels import rtr_guide, rtr_guide_turned  # (numba loaded: kernels given)
+    RTR guide's first pass (``first``: its arguments but the rows'), numpy's cos and sin
+    in passes of their own around it (:func:`~kinetostatics.solver.fast.guide_kernels.rtr_guide`):
+    per block its first row, its rows m and scratch rows (reused by every block) holding
+    in their first m values the crank's cos and sin, the guide's, ``reach`` and ``gap``
+    (the road where :func:`kernel_trig` does not hold)."""
+    from .guide_kernels import rtr_guide  # (numba loaded: kernels given)
     n = angles.size
-    w, turned = min(GUIDED_ROWS, n), kernel_trig()
+    w = min(GUIDED_ROWS, n)
+    th, cs, sn, ct, sg, reach, gap = np.empty((7, w))
     for lo in range(0, n, w):
         m = min(w, n - lo)
-        if turned:
-            rtr_guide_turned(lo, m, angles, cs, sn, *first, th, ct, sg, reach, gap)
-        else:
-            numpy_turn(angles[lo:lo + m], cs[:m], sn[:m])
-            rtr_guide(0, m, cs, sn, *first, th, reach, gap)
-            numpy_turn(th[:m], ct[:m], sg[:m])
-        yield lo, m
+        numpy_turn(angles[lo:lo + m], cs[:m], sn[:m])
+        rtr_guide(0, m, cs, sn, *first, th, reach, gap)
+        numpy_turn(th[:m], ct[:m], sg[:m])
+        yield lo, m, (cs, sn, ct, sg, reach, gap)
 
 
 def _guided(plan: Plan) -> tuple | None:

@@ -1,6 +1,6 @@
-"""The guide's kernels' first pass with the cos and sin worked out in it
-(``guide_kernels.rtr_guide_turned``: the crank's and the RTR guide's, the C library's,
-used where ``solve.kernel_trig`` finds them numpy's) against the pass given numpy's
+"""The guide's kernel working out the cos and sin in each tile (``guide_kernels``,
+given the crank's angles: the crank's and the RTR guide's, the C library's, used where
+``solve.kernel_trig`` finds them numpy's) against the two passes given numpy's
 (``rtr_guide``, numpy's cos and sin around it): what a long sweep keeps (Me, each dyad's
 closeness to a dead centre, the undefined rows) the same, bit for bit, for the shaper,
 the slotted lever and a slotted lever whose slot is off the pivot (asin taken)."""
@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import copy
 
-import numpy as np
 import pytest
 
 import kinetostatics as ks
@@ -64,32 +63,14 @@ def kept_bytes(monkeypatch, scene: dict, trig: bool | None) -> list[bytes]:
 
 @pytest.mark.parametrize("name", list(SCENES))
 def test_the_guide_pass_turning_its_own_angles_keeps_the_numbers(monkeypatch, name):
-    """The guide's pass as the solve chooses it (working out the cos and sin where the C
-    library's are numpy's here, ``kernel_trig``: this machine's case, measured
-    2026-11-30) gives what the pass given numpy's gives, bit for bit."""
+    """The guide's kernel as the solve chooses it (working out the cos and sin in each
+    tile where the C library's are numpy's here, ``kernel_trig``: this machine's case,
+    measured 2026-11-30) gives what the two passes given numpy's give, bit for bit."""
     scene = SCENES[name](ROWS)
     assert kept_bytes(monkeypatch, scene, None) == kept_bytes(monkeypatch, scene, False)
+    # the two roads give the kernel arrays of one type (the angles read-only, the rows
+    # writable either way): each entry point compiled once
+    from kinetostatics.solver.fast import guide_kernels
+    kernels = [guide_kernels.rtr_kept, *guide_kernels.AFTER_RTR.values()]
+    assert [len(k.signatures) for k in kernels if len(k.signatures) > 1] == []
 
-
-def test_the_turned_pass_writes_numpy_cos_and_sin_of_the_crank():
-    """``rtr_guide_turned``'s cos and sin of the crank's angles (a block from row ``a0``)
-    are numpy's where ``kernel_trig`` holds, and its guide's angles' cos and sin are
-    numpy's of the angles it writes."""
-    from kinetostatics.solver.fast.compose import Plan
-    from kinetostatics.solver.fast.solve import _assembled, _guided, kernel_trig
-    loader.kernels()
-    from kinetostatics.solver.fast.guide_kernels import rtr_guide_turned
-    sw = Sweep(example_sweep("slotted_lever", 1001))
-    sc = sw.scene
-    structure, geometry = _assembled(sc, sw.structure)
-    plan = Plan(loader.kernels(), sc, structure, structure.assembly, geometry=geometry)
-    _, first, _ = _guided(plan)
-    angles = sc.driver.angles
-    a0, m = 300, 500
-    th, ct, sg, cs, sn, reach, gap = np.full((7, m), np.nan)
-    rtr_guide_turned(a0, m, angles, cs, sn, *first, th, ct, sg, reach, gap)
-    turned = [cs, sn, ct, sg]
-    numpys = [np.cos(angles[a0:a0 + m]), np.sin(angles[a0:a0 + m]), np.cos(th), np.sin(th)]
-    assert np.isfinite(th).all() and np.isfinite(reach).all()
-    same = [a.tobytes() == b.tobytes() for a, b in zip(turned, numpys, strict=True)]
-    assert same == [kernel_trig()] * 4
