@@ -122,7 +122,11 @@ def lab(tmp_path_factory):
          "--ip=127.0.0.1", f"--IdentityProvider.token={token}", f"--ServerApp.root_dir={home}",
          "--LabApp.news_url=", "--LabApp.check_for_updates_class="
          "jupyterlab.NeverCheckForUpdate", "--LabApp.extension_manager=readonly",
-         "--LabApp.expose_app_in_browser=True"],
+         "--LabApp.expose_app_in_browser=True",
+         # (the language servers' and the terminals' server extensions: the sheets use
+         # neither; 0.6 s of the server's start, measured 2026-11-30)
+         '--ServerApp.jpserver_extensions={"jupyter_lsp": False}',
+         "--ServerApp.terminals_enabled=False"],
         cwd=home, env=env, stdout=log, stderr=subprocess.STDOUT)
     base = f"http://127.0.0.1:{port}"
     try:
