@@ -68,7 +68,7 @@ def solve_group_kept(stacker, structure, ks: np.ndarray, counts: np.ndarray,
     ``positions``, each dyad in its scene's assembly ``ks``), in one fused kernel call
     over all their rows (:func:`fused_kept`), or None: not a crank and one dyad the fused
     kernels cover (solved run by run, :func:`solve_run_stacked`). Each row is the one a
-    run of its scenes gives (a tile never spans two scenes; every number the scene's
+    run of its scenes gives (each row with its scene's geometry; every number the scene's
     own): the geometry and the plan are worked out once, not per run (measured
     2026-11-29, 1000 four-bars x 361 in 8 runs: 1.2 ms of plans and 1.7 ms of tables a
     call). Raises :class:`~kinetostatics.solver.fast.compose.Refused` as the run's kernel
