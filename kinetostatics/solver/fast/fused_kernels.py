@@ -40,7 +40,7 @@ tile_motion = tile_motion_for(TILE)
 
 
 # -- a crank and one dyad, fused: what solve_many keeps of a run ---------------------------
-# A tile holds TILE rows of the run whatever their scenes (the last tile of a scene no
+# A tile holds TILE rows (24) of the run whatever their scenes (the last tile of a scene no
 # longer partly worked out for nothing: measured 2026-11-30, 1000 four-bars x 361, the
 # kernel alone 13.3-13.6 ms a call against 14.5-14.8 with a tile per scene's rest), each column
 # its row's scene's geometry (the row helpers read column t of a tile for row t). A

@@ -141,7 +141,7 @@ def fused_kept(plan: Plan, n: int, trig: tuple, close: np.ndarray | None = None
     rows (``trig``: the crank's cos and sin and where each scene's rows begin in them,
     :meth:`~kinetostatics.solver.stack.Stacker.sweeps`;
     :data:`~kinetostatics.solver.fast.fused_kernels.KEPT`: every kernel of a block in turn on
-    each tile of 32 rows, ``jitbase.FUSED_TILE``, its values in one scratch array; the
+    each tile of 24 rows, ``jitbase.FUSED_TILE``, its values in one scratch array; the
     numbers of the kernels composed over blocks, bit for bit), or None for another structure (solved
     by :func:`~kinetostatics.solver.fast.compose.solve_lean`). ``close``: the array the
     closeness is written to (a new one if None). Raises

@@ -30,7 +30,7 @@ def unequal(name: str, count: int, seed: int) -> list:
 
 
 def test_scenes_shorter_than_a_tile_share_it(alone_calls, fast) -> None:
-    """Four-bars of 2 to 97 rows stacked: a tile of the fused kernel (32 rows) holds the
+    """Four-bars of 2 to 97 rows stacked: a tile of the fused kernel (24 rows) holds the
     rows of several scenes, each column its scene's geometry and cos and sin (a scene's
     geometry filled where the columns held another's); every table, flag and dead point
     is each scene's solve's on this path."""
