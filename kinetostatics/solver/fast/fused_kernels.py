@@ -24,7 +24,6 @@ from .jitbase import (
     nonfinite,
     not_literal,
     scratch_for,
-    tile_geometry,
     tile_rows_for,
 )
 from .kernels import tile_motion_for
@@ -41,37 +40,82 @@ tile_motion = tile_motion_for(TILE)
 
 
 # -- a crank and one dyad, fused: what solve_many keeps of a run ---------------------------
-# A whole tile is copied in and out where the arrays hold one (a loop of a constant count:
-# vectorised; of nt rows it is not): the rows after the tile's scene's are worked out and
-# not counted, and written over by the next tile's (measured 2026-11-29, 1000 four-bars x
-# 361: 0.35 ms of 11.7 a call).
+# A tile holds TILE rows (24) of the run whatever their scenes (the last tile of a scene no
+# longer partly worked out for nothing: measured 2026-11-30, 1000 four-bars x 361, the
+# kernel alone 13.3-13.6 ms a call against 14.5-14.8 with a tile per scene's rest), each column
+# its row's scene's geometry (the row helpers read column t of a tile for row t). A
+# whole tile of one scene's cos and sin is copied in a loop of a constant count
+# (vectorised; of nt rows it is not).
 @body
-def _tile_in(cs, sn, c0, nt, wdrv):
-    """The crank's cos and sin of a tile's rows (from row ``c0`` of ``cs``, ``sn``)."""
-    if c0 + TILE <= cs.shape[0]:
+def _fill(wg, g, c, a, b):
+    """Columns ``a`` to ``b`` of a tile's geometry ``wg`` with column ``c`` of ``g`` (a
+    slice per row: vectorised)."""
+    for f in range(wg.shape[0]):
+        wg[f, a:b] = g[f, c]
+
+
+@body
+def _fill_shared(wgd, gd, gds, wg, gy, gys, wl0, wl1, wl2, gl, gls):
+    """Every column of each tile geometry whose table has one column (``gs`` 0: shared
+    by the run's scenes) with it, once a call."""
+    if gds == 0:
+        _fill(wgd, gd, 0, 0, TILE)
+    if gys == 0:
+        _fill(wg, gy, 0, 0, TILE)
+    if gls[0] == 0:
+        _fill(wl0, gl[0], 0, 0, TILE)
+    if gls[1] == 0:
+        _fill(wl1, gl[1], 0, 0, TILE)
+    if gls[2] == 0:
+        _fill(wl2, gl[2], 0, 0, TILE)
+
+
+@body
+def _fill_scene(held, e, a, b, wgd, gd, gds, wg, gy, gys, wl0, wl1, wl2, gl, gls):
+    """Columns ``a`` to ``b`` of each tile geometry whose table has a column per scene
+    with scene ``e``'s, marked in ``held`` (each column's scene)."""
+    if gds != 0:
+        _fill(wgd, gd, e, a, b)
+    if gys != 0:
+        _fill(wg, gy, e, a, b)
+    if gls[0] != 0:
+        _fill(wl0, gl[0], e, a, b)
+    if gls[1] != 0:
+        _fill(wl1, gl[1], e, a, b)
+    if gls[2] != 0:
+        _fill(wl2, gl[2], e, a, b)
+    held[a:b] = e
+
+
+@body
+def _tile_in(cs, sn, c0, a, nt, whole, wdrv):
+    """The crank's cos and sin of ``nt`` rows of a tile (from row ``c0`` of ``cs``,
+    ``sn``) into its columns ``a`` on; a whole tile (``whole``: ``a`` 0, ``nt`` TILE) in a
+    loop of a constant count (vectorised)."""
+    if whole:
         for t in range(TILE):
             wdrv[C, t] = cs[c0 + t]
             wdrv[S, t] = sn[c0 + t]
     else:
         for t in range(nt):
-            wdrv[C, t] = cs[c0 + t]
-            wdrv[S, t] = sn[c0 + t]
+            wdrv[C, a + t] = cs[c0 + t]
+            wdrv[S, a + t] = sn[c0 + t]
 
 
 @body
-def _tile_turn(angles, cs, sn, c0, nt, wdrv):
-    """The crank's cos and sin of a tile's rows worked out from their angles (row ``c0``
-    on of ``angles``) into the tile and into rows ``c0`` on of ``cs``, ``sn`` (kept for
-    the tables' pass). The C library's cos and sin of one angle, which LLVM fuses into
-    one ``sincos`` call (glibc's: the same doubles as its ``cos`` and ``sin``, which
+def _tile_turn(angles, cs, sn, c0, a, nt, wdrv):
+    """The crank's cos and sin of ``nt`` rows of a tile worked out from their angles (row
+    ``c0`` on of ``angles``) into its columns ``a`` on and into rows ``c0`` on of ``cs``,
+    ``sn`` (kept for the tables' pass). The C library's cos and sin of one angle, which
+    LLVM fuses into one ``sincos`` call (glibc's: the same doubles as its ``cos`` and ``sin``, which
     numpy calls; :func:`~kinetostatics.solver.fast.solve.kernel_trig` checks it once a
     process). Measured 2026-11-29, 1e6 angles, processor time: 15 ns a row against
     numpy's two passes 21-24."""
     for t in range(nt):
-        a = angles[c0 + t]
-        c, s = math.cos(a), math.sin(a)
-        wdrv[C, t] = c
-        wdrv[S, t] = s
+        x = angles[c0 + t]
+        c, s = math.cos(x), math.sin(x)
+        wdrv[C, a + t] = c
+        wdrv[S, a + t] = s
         cs[c0 + t] = c
         sn[c0 + t] = s
 
@@ -110,23 +154,30 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy,
     e0 = 1 if st[0].shape[1] > 1 else 0
     e1 = 1 if st[1].shape[1] > 1 else 0
     e2 = 1 if st[2].shape[1] > 1 else 0
-    ld = ly = l0 = l1 = l2 = -1           # (the scene whose geometry each tile holds)
+    # (each column's scene: its geometry's; a one-column table, shared, filled once)
+    held = np.full(TILE, -1, dtype=np.int64)
+    _fill_shared(wgd, gd, gds, wg, gy, gys, wl0, wl1, wl2, gl, gls)
     bad = 0
     turn = angles.shape[0] > 0
     t0 = lo
     while t0 < hi:
-        nt = tile_rows(1, own, t0, hi)          # (a tile never spans two scenes)
-        ld = tile_geometry(wgd, gd, gds, own, t0, ld)
-        ly = tile_geometry(wg, gy, gys, own, t0, ly)
-        l0 = tile_geometry(wl0, gl[0], gls[0], own, t0, l0)
-        l1 = tile_geometry(wl1, gl[1], gls[1], own, t0, l1)
-        l2 = tile_geometry(wl2, gl[2], gls[2], own, t0, l2)
+        # a tile of TILE rows (the last one's fewer) whose columns may hold several
+        # scenes' rows, each column its row's scene's geometry and its cos and sin
+        nt = min(TILE, hi - t0)
+        a = 0
+        while a < nt:
+            e = own[t0 + a]
+            n = tile_rows(1, own, t0 + a, t0 + nt)      # (scene e's rows from column a)
+            if held[a] != e or held[a + n - 1] != e:     # (held: a scene per run of columns)
+                _fill_scene(held, e, a, a + n, wgd, gd, gds, wg, gy, gys, wl0, wl1, wl2, gl,
+                            gls)
+            c0 = t0 + a - ts[e]         # (the scene's row in its cos and sin)
+            if turn:
+                _tile_turn(angles, cs, sn, c0, a, n, wdrv)
+            else:
+                _tile_in(cs, sn, c0, a, n, n == TILE, wdrv)
+            a += n
         known1, known2 = wg[P_GROUND, 0] == 0.0, wg[PARAM + P_GROUND, 0] == 0.0
-        c0 = t0 - ts[own[t0]]       # (the scene's row in its cos and sin)
-        if turn:
-            _tile_turn(angles, cs, sn, c0, nt, wdrv)
-        else:
-            _tile_in(cs, sn, c0, nt, wdrv)
         bad += tile_motion(kind, rot1, rot2, inner_r, nt, wgd, w, eps, wdrv, wg, wk1, wk2,
                            wm1, wm2, wd)
         bad += tile_loads(wdrv, wad, wl0, npt[0], nt)
@@ -197,7 +248,7 @@ KEPT = {kind: _kept_for(kind) for kind in KINDS if kind != "RTR"}
 def turn_rows(angles, cs, sn):
     """The cos and sin of ``angles`` into ``cs``, ``sn`` as :func:`_tile_turn` works them
     out (what :func:`~kinetostatics.solver.fast.solve.kernel_trig` holds against numpy's)."""
-    _tile_turn(angles, cs, sn, 0, angles.shape[0], np.empty((BODY_ROWS, angles.shape[0])))
+    _tile_turn(angles, cs, sn, 0, 0, angles.shape[0], np.empty((BODY_ROWS, angles.shape[0])))
 
 
 __all__ = ["KEPT", "turn_rows"]

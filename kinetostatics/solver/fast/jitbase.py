@@ -82,13 +82,17 @@ def fmin(a, b):
 TILE = 64
 
 
-# The fused kernels of solve_many (fused_kernels): tiles of 32 rows. Their scratch array
+# The fused kernels of solve_many (fused_kernels): tiles of 24 rows. Their scratch array
 # (some 160 rows of a tile: every body's motion, the dyad's data, the loads, the
-# reactions and the geometry) is then about 40 KB, nearly within the processor's 32 KB
-# first-level cache, against 80 KB at 64 rows (measured 2026-11-29, 1000 four-bars x 361
-# in one call, processor time: 10.0-10.2 ms against 11.1-11.7 at 64 rows, 11.9-12.1 at
-# 16, 10.3-10.9 at 24; the same numbers, bit for bit)
-FUSED_TILE = 32
+# reactions and the geometry) is then about 30 KB, within the processor's 32 KB
+# first-level cache, against 40 KB at 32 rows and 80 KB at 64 (measured 2026-11-29, a
+# tile per scene's rows, 1000 four-bars x 361 in one call, processor time: 10.0-10.2 ms
+# at 32 rows against 11.1-11.7 at 64, 11.9-12.1 at 16, 10.3-10.9 at 24; measured again
+# 2026-11-30 once a tile may hold several scenes' rows (no partly worked-out last tile
+# of each scene), the kernel alone, alternating runs at a load of 8-9: 13.4-13.9 ms at
+# 24 rows against 14.3-14.8 at 32, 14.3-15.4 at 28, 15.5-15.6 at 48; the same numbers,
+# bit for bit)
+FUSED_TILE = 24
 
 
 def scratch_for(width: int):

@@ -68,7 +68,7 @@ def solve_group_kept(stacker, structure, ks: np.ndarray, counts: np.ndarray,
     ``positions``, each dyad in its scene's assembly ``ks``), in one fused kernel call
     over all their rows (:func:`fused_kept`), or None: not a crank and one dyad the fused
     kernels cover (solved run by run, :func:`solve_run_stacked`). Each row is the one a
-    run of its scenes gives (a tile never spans two scenes; every number the scene's
+    run of its scenes gives (each row with its scene's geometry; every number the scene's
     own): the geometry and the plan are worked out once, not per run (measured
     2026-11-29, 1000 four-bars x 361 in 8 runs: 1.2 ms of plans and 1.7 ms of tables a
     call). Raises :class:`~kinetostatics.solver.fast.compose.Refused` as the run's kernel
@@ -141,7 +141,7 @@ def fused_kept(plan: Plan, n: int, trig: tuple, close: np.ndarray | None = None
     rows (``trig``: the crank's cos and sin and where each scene's rows begin in them,
     :meth:`~kinetostatics.solver.stack.Stacker.sweeps`;
     :data:`~kinetostatics.solver.fast.fused_kernels.KEPT`: every kernel of a block in turn on
-    each tile of 32 rows, ``jitbase.FUSED_TILE``, its values in one scratch array; the
+    each tile of 24 rows, ``jitbase.FUSED_TILE``, its values in one scratch array; the
     numbers of the kernels composed over blocks, bit for bit), or None for another structure (solved
     by :func:`~kinetostatics.solver.fast.compose.solve_lean`). ``close``: the array the
     closeness is written to (a new one if None). Raises

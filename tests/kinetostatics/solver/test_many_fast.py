@@ -20,12 +20,31 @@ pytestmark = pytest.mark.slow
 
 def unequal(name: str, count: int, seed: int) -> list:
     """``count`` read variants of a bundled example, each a few rows shorter than the
-    one before (a tile never spans two scenes: cut at each scene's end)."""
+    one before (a tile of the fused kernels holds rows of two scenes, each with its
+    geometry)."""
     out = []
     for i, d in enumerate(variants(name, count, 0.05, seed=seed)):
         d["driver"]["count"] = int(d["driver"]["count"]) - 5 * i
         out.append(load_scene(d))
     return out
+
+
+def test_scenes_shorter_than_a_tile_share_it(alone_calls, fast) -> None:
+    """Four-bars of 2 to 97 rows stacked: a tile of the fused kernel (24 rows) holds the
+    rows of several scenes, each column its scene's geometry and cos and sin (a scene's
+    geometry filled where the columns held another's); every table, flag and dead point
+    is each scene's solve's on this path."""
+    scenes = []
+    for i, d in enumerate(variants("four_bar", 12, 0.05, seed=7)):
+        count = (2, 5, 17, 31, 33, 3, 40, 97, 32, 9, 64, 7)[i]
+        d["driver"].update(start=3.0 * i, stop=3.0 * i + 12.0 * count, count=count)
+        scenes.append(load_scene(d))
+    sols = ks.solve_many(scenes)
+    assert alone_calls == []                # all twelve in one stacked pass
+    for s, sc in zip(sols, scenes, strict=True):
+        alone = ks.solve(sc)
+        assert s.path == alone.path == "fast"
+        assert_same(s, alone)
 
 
 @pytest.mark.parametrize("name", ["slider_crank", "shaper"])
