@@ -21,7 +21,7 @@ from .freebody import dyad_free_body
 from .mechanism import draw_mechanism
 from .place import settle, settled_later
 from .plans import acceleration_plan, velocity_plan
-from .style import lecture_style
+from .style import lecture_style, save_laid_out
 
 __all__ = ["cli_figures", "position_unit", "run_demo", "write_pictures"]
 
@@ -125,7 +125,7 @@ def _save_pictures(sol: Solution, folder: Path, positions: list[float] | None,
     stems = []
     with lecture_style(dpi):
         for stem, fig in cli_figures(sol, positions).items():
-            fig.savefig(folder / f"{stem}.png", dpi=dpi)
+            save_laid_out(fig, folder / f"{stem}.png", dpi=dpi)
             plt.close(fig)
             stems.append(stem)
     return stems

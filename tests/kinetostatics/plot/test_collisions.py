@@ -102,6 +102,33 @@ def test_a_finished_figure_is_drawn_once_for_all_its_measures(monkeypatch):
         assert kp.collisions(fig) == [] and len(drawn) == 1
 
 
+def test_a_settled_figure_is_saved_with_one_drawing(monkeypatch, tmp_path):
+    """A settled figure (its layout frozen) is saved by the command line with the painting
+    drawing only, pixel for pixel what savefig writes after its own layout drawing
+    (measured: the four-bar's twelve pictures saved in 2.23 s of CPU, 2.82 s by savefig)."""
+    from matplotlib.figure import Figure
+
+    from kinetostatics.plot.style import save_laid_out
+    with kp.lecture_style():
+        fig, ax = plt.subplots(layout="constrained")
+        ax.plot([0, 1], [0, 1], lw=3)
+        ax.legend(["a line"], loc="best")
+        texts = [ax.annotate(f"label {k}", (0.5, 0.5), xytext=(0, 0),
+                             textcoords="offset points") for k in range(3)]
+        kp.declutter(ax, texts)
+        kp.settle(fig)
+        drawn = []
+        real = Figure.draw
+        monkeypatch.setattr(Figure, "draw", lambda self, r: drawn.append(r) or real(self, r))
+        save_laid_out(fig, tmp_path / "one.png", dpi=150)
+        assert len(drawn) == 1
+        fig.savefig(tmp_path / "two.png", dpi=150)
+        assert len(drawn) == 3
+        save_laid_out(fig, tmp_path / "three.png", dpi=150)
+    png = [(tmp_path / f"{n}.png").read_bytes() for n in ("one", "two", "three")]
+    assert png[0] == png[1] == png[2]
+
+
 def _smallest_font(fig) -> float:
     shown = set(figure_texts(fig))          # (the texts a reader sees, on the drawn figure)
     sizes = [t.get_fontsize() for t in fig.findobj(Text)
