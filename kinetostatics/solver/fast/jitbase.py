@@ -34,7 +34,10 @@ class PlainArgs(CPUDispatcher):
     once per value, and each of those again every helper it calls (``outer_param``: six
     signatures in the compiled-path tests). Typed on ``int64``, each helper compiles once
     for every constant; LLVM, inlining it (``forceinline``), folds the constant in its
-    caller as before: the same machine code, the numbers bit for bit."""
+    caller as before (measured 2026-11-30: the driver tables of the four-bar, the
+    slider-crank and the shaper at 2e5 and 1e6 rows bit for bit, as fast). Entry points
+    (:data:`jit`) have no C wrapper (``no_cfunc_wrapper``): they are called from Python
+    or from compiled code, never through a C pointer."""
 
     def get_call_template(self, args, kws):
         return super().get_call_template(
