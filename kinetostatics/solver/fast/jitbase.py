@@ -8,8 +8,10 @@ from __future__ import annotations
 
 import numpy as np
 from numba import njit
+from numba.core import types
+from numba.core.registry import CPUDispatcher
 
-jit = njit(cache=True, error_model="numpy", nogil=True)
+jit = njit(cache=True, error_model="numpy", nogil=True, no_cfunc_wrapper=True)
 # the helpers and a dyad's kernel body, inlined where they are called (a call that
 # passes arrays costs atomic reference counts per row; inlined, they are pruned), a
 # dyad's body into each kind's entry point with its kind a constant. Inlined by LLVM
@@ -22,8 +24,32 @@ jit = njit(cache=True, error_model="numpy", nogil=True)
 # compiled to machine code for nothing: measured 2026-11-29, the composed kernels of the
 # four-bar, slider-crank and shaper 20.5-21.0 s of processor time on an empty cache
 # against 24.0-25.0 s with the wrappers; the same numbers, bit for bit)
-body = njit(error_model="numpy", nogil=True, forceinline=True, no_cpython_wrapper=True,
-            no_cfunc_wrapper=True)
+_inlined = njit(error_model="numpy", nogil=True, forceinline=True, no_cpython_wrapper=True,
+                no_cfunc_wrapper=True)
+
+
+class PlainArgs(CPUDispatcher):
+    """A helper's dispatcher typed on its arguments' plain types: numba types a constant
+    passed from compiled code as a literal (``Literal[int](0)``) and compiles the callee
+    once per value, and each of those again every helper it calls (``outer_param``: six
+    signatures in the compiled-path tests). Typed on ``int64``, each helper compiles once
+    for every constant; LLVM, inlining it (``forceinline``), folds the constant in its
+    caller as before (measured 2026-11-30: the driver tables of the four-bar, the
+    slider-crank and the shaper at 2e5 and 1e6 rows bit for bit, as fast). Entry points
+    (:data:`jit`) have no C wrapper (``no_cfunc_wrapper``): they are called from Python
+    or from compiled code, never through a C pointer."""
+
+    def get_call_template(self, args, kws):
+        return super().get_call_template(
+            tuple(types.unliteral(a) for a in args),
+            {k: types.unliteral(v) for k, v in kws.items()})
+
+
+def body(func):
+    """A helper of the kernels, compiled as :class:`PlainArgs` (see the comment above)."""
+    dispatcher = _inlined(func)
+    dispatcher.__class__ = PlainArgs
+    return dispatcher
 
 
 def jit_as(name: str):

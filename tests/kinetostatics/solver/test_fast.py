@@ -230,30 +230,33 @@ def test_a_stack_of_every_kind_is_each_scenes_solve(path, name: str) -> None:
     # once (a read-only owner array once compiled each fused kernel twice, 7-17 s of
     # processor time each on an empty cache, measured 2026-11-30)
     assert {k: s for k, s in compiled_signatures().items() if len(s) > 1} == {}
-    # the helpers that take a kind's code typed for an integer, once for every kind (a
+    # every helper typed on plain arguments, once for every constant a caller passes (a
     # literal code, each kind's entry's constant, compiled each helper once per kind:
     # measured 2026-11-30, the compiled tests' compiles 216 s of processor time on an
-    # empty cache against 151; on a warm cache nothing is compiled and this holds as is)
+    # empty cache against 151; a literal row or column, outer_param six times, _outer,
+    # swept_force, tile_geometry twice: jitbase.PlainArgs). On a warm cache nothing is
+    # compiled and this holds as is
     from numba.core.types import Literal
-
-    from kinetostatics.solver.fast import closure_kernels, kernels
-    for helper in (kernels.dyad_row, closure_kernels.close_revolute,
-                   closure_kernels.close_prismatic):
-        assert not [s for s in helper.signatures if isinstance(s[0], Literal)], helper
+    literal = {k: s for k, s in compiled_signatures(helpers=True).items()
+               if any(isinstance(a, Literal) for sig in s for a in sig)}
+    assert literal == {}
 
 
-def compiled_signatures() -> dict[str, list]:
+def compiled_signatures(helpers: bool = False) -> dict[str, list]:
     """The signatures each compiled kernel of the compiled path (a cached entry point,
-    not an inlined helper) has in this process, by name."""
+    not an inlined helper; the module-level inlined helpers instead when ``helpers``)
+    has in this process, by name."""
     import importlib
 
     from numba.core.registry import CPUDispatcher
     out = {}
     for name in ("kernels", "reaction_kernels", "load_kernels", "fused_kernels",
-                 "fused_tables", "guide_kernels", "table_kernels", "screen_kernels"):
+                 "fused_tables", "guide_kernels", "table_kernels", "screen_kernels",
+                 "closure_kernels", "tail_kernels", "scratch_views", "streams", "jitbase"):
         for v in vars(importlib.import_module(f"kinetostatics.solver.fast.{name}")).values():
             for d in (v.values() if isinstance(v, dict) else [v]):
-                if isinstance(d, CPUDispatcher) and not d.targetoptions.get("forceinline"):
+                if (isinstance(d, CPUDispatcher)
+                        and bool(d.targetoptions.get("forceinline")) == helpers):
                     out[f"{name}.{d.py_func.__name__}"] = list(d.signatures)
     return out
 
