@@ -12,6 +12,16 @@ from kinetostatics.solver import many
 
 from .test_many import assert_same, variants
 
+
+def each_its_solve(sols: list, scenes: list) -> list[tuple]:
+    """Each stacked Solution of ``sols`` with its scene's own solve, both on the compiled
+    path and equal in every table and flag (:func:`assert_same`)."""
+    pairs = [(s, ks.solve(sc)) for s, sc in zip(sols, scenes, strict=True)]
+    for s, alone in pairs:
+        assert s.path == alone.path == "fast"
+        assert_same(s, alone)
+    return pairs
+
 numba = pytest.importorskip("numba")
 
 # the compiled kernels: a fresh machine compiles them first (slow tier, as test_fast.py)
@@ -41,10 +51,7 @@ def test_scenes_shorter_than_a_tile_share_it(alone_calls, fast) -> None:
         scenes.append(load_scene(d))
     sols = ks.solve_many(scenes)
     assert alone_calls == []                # all twelve in one stacked pass
-    for s, sc in zip(sols, scenes, strict=True):
-        alone = ks.solve(sc)
-        assert s.path == alone.path == "fast"
-        assert_same(s, alone)
+    each_its_solve(sols, scenes)
 
 
 @pytest.mark.parametrize("name", ["slider_crank", "shaper"])
@@ -56,10 +63,7 @@ def test_resist_and_resisting_loads_stack(name, alone_calls, fast) -> None:
     scenes = unequal(name, 8, seed=4)
     sols = ks.solve_many(scenes)
     assert alone_calls == []                # all eight in one stacked pass
-    for s, sc in zip(sols, scenes, strict=True):
-        alone = ks.solve(sc)
-        assert s.path == alone.path == "fast"
-        assert_same(s, alone)
+    for s, alone in each_its_solve(sols, scenes):
         np.testing.assert_array_equal(s.undefined_load, alone.undefined_load)
 
 
@@ -108,8 +112,5 @@ def test_what_one_call_keeps_never_reaches_the_next(alone_calls, fast) -> None:
     for scenes in (same, other, dead, apart, same):
         sols = ks.solve_many(scenes)
         assert alone_calls == []
-        for s, sc in zip(sols, scenes, strict=True):
-            alone = ks.solve(sc)
-            assert s.path == alone.path == "fast"
-            assert_same(s, alone)
+        for s, alone in each_its_solve(sols, scenes):
             np.testing.assert_array_equal(s.kin.between, alone.kin.between)
