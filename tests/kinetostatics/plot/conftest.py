@@ -7,7 +7,9 @@ overlap check of every picture, and the command line's own tests (``solve --plot
 --plot-at`` and ``demo`` write these figures: :func:`cli_pictures`).
 :func:`lecture_figures` draws each scene once, in the lecture style the command line
 draws with, at :func:`picture_positions`. The figures are only read by the tests
-(measured, saved), never changed, and held outside pyplot.
+(measured, saved), never changed, and held outside pyplot; each is measured once against
+the picture standard (:func:`audited`), and the tests of its collisions, its sizes and
+its notation read that one measure.
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ from matplotlib.figure import Figure
 
 import kinetostatics as ks
 from kinetostatics import plot as kp
+from kinetostatics.plot.audit import PictureAudit, audit
 from kinetostatics.plot.cli import cli_figures
 
 #: The scenes whose every picture is measured, each at another place of its cycle.
@@ -91,4 +94,22 @@ def lecture_figures(cli_pictures) -> Callable[[str], tuple[object, float, dict[s
     def get(name: str):
         sol, positions, figs = cli_pictures(name)
         return sol, positions[0], figs
+    return get
+
+
+@pytest.fixture(scope="session")
+def audited(lecture_figures) -> Callable[[str], dict[str, PictureAudit]]:
+    """``audited(name)``: every figure of :func:`lecture_figures` measured once against
+    the picture standard (:func:`~kinetostatics.plot.audit.audit`, in the lecture style),
+    by file stem. The collision test, the lecture-size test and the standard's test read
+    this one measure (each measuring again found the collisions two or three times: 0.4-0.6
+    s of CPU a scene each time, measured 2026-11-30)."""
+    cache: dict[str, dict[str, PictureAudit]] = {}
+
+    def get(name: str):
+        if name not in cache:
+            _sol, _pos, figs = lecture_figures(name)
+            with kp.lecture_style():
+                cache[name] = {stem: audit(fig) for stem, fig in figs.items()}
+        return cache[name]
     return get

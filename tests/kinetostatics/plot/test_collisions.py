@@ -6,7 +6,8 @@ over another label, a link, a curve, a marker or an arrow, no legend over data (
 on the drawn figure); 150 dpi and no font under 10 pt.
 
 The figures are drawn once per session (``lecture_figures`` in conftest.py) and shared
-with the other picture tests.
+with the other picture tests, and measured once (``audited``: the collisions, the sizes
+and the notation of each figure in one measure).
 
 Before the work of issue 22 the same measure found 1730 collisions in 132 of the 150
 figures (docs/pictures-collisions.md).
@@ -17,11 +18,9 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
-from matplotlib.text import Text
 
 from kinetostatics import plot as kp
 from kinetostatics.plot import cli as plot_cli
-from kinetostatics.plot.audit import figure_texts
 from kinetostatics.plot.cli import write_pictures
 from kinetostatics.plot.style import SMALLEST_FONT, lay_out
 
@@ -35,14 +34,8 @@ def _close():
 
 
 @pytest.mark.parametrize("name", PICTURE_SCENES)
-def test_no_collisions_on_any_cli_picture(name, lecture_figures):
-    _sol, _pos, figs = lecture_figures(name)
-    bad = {}
-    with kp.lecture_style():
-        for stem, fig in figs.items():
-            hits = kp.collisions(fig)
-            if hits:
-                bad[stem] = hits
+def test_no_collisions_on_any_cli_picture(name, audited):
+    bad = {stem: a.collisions for stem, a in audited(name).items() if a.collisions}
     assert not bad, bad
 
 
@@ -129,24 +122,19 @@ def test_a_settled_figure_is_saved_with_one_drawing(monkeypatch, tmp_path):
     assert png[0] == png[1] == png[2]
 
 
-def _smallest_font(fig) -> float:
-    shown = set(figure_texts(fig))          # (the texts a reader sees, on the drawn figure)
-    sizes = [t.get_fontsize() for t in fig.findobj(Text)
-             if t.get_visible() and t.get_text().strip() and t.get_text() in shown]
-    return min(sizes)
-
-
 # one scene: the size rule is the style's, the same for every scene
 @pytest.mark.parametrize("name", ["scotch_yoke"])
-def test_cli_pictures_lecture_size(name, lecture_figures, tmp_path, monkeypatch):
+def test_cli_pictures_lecture_size(name, lecture_figures, audited, tmp_path, monkeypatch):
     """Every figure of ``solve --plot`` is drawn at 150 dpi and no text of it is under
-    10 pt; ``--dpi`` writes more (every file of ``solve --plot`` at 150 dpi:
-    test_cli.py's test_solve_plot_writes_the_pictures reads them)."""
+    10 pt (the smallest of the texts a reader sees, on the drawn figure: ``audited``);
+    ``--dpi`` writes more (every file of ``solve --plot`` at 150 dpi: test_cli.py's
+    test_solve_plot_writes_the_pictures reads them)."""
     sol, pos, figs = lecture_figures(name)
-    with kp.lecture_style():
-        for stem, fig in figs.items():
-            assert fig.dpi == 150, stem
-            assert _smallest_font(fig) >= SMALLEST_FONT, stem
+    measured = audited(name)
+    assert set(measured) == set(figs)
+    for stem, fig in figs.items():
+        assert fig.dpi == measured[stem].dpi == 150, stem
+        assert measured[stem].smallest_font >= SMALLEST_FONT, stem
     # --dpi: one figure is enough (each file costs a full drawing); write_pictures saves
     # the figures it is given (the same drawing as above)
     monkeypatch.setattr(plot_cli, "cli_figures", lambda s, p=None: {"driver": figs["driver"]})

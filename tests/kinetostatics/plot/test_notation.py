@@ -60,17 +60,12 @@ def test_readings_and_round_scales():
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", PICTURE_SCENES)
-def test_every_cli_picture_meets_the_standard(name, lecture_figures):
+def test_every_cli_picture_meets_the_standard(name, audited):
     """Every picture ``solve --plot`` and ``demo`` write (measured before issue 33 on
     the 88 figures: 24 labels not placed in 13 figures, 7 figures with more than one,
-    117 texts against the notation; after: at most one per figure, 0)."""
-    _sol, _pos, figs = lecture_figures(name)
-    bad = {}
-    with kp.lecture_style():
-        for stem, fig in figs.items():
-            problems = audit(fig).problems
-            if problems:
-                bad[stem] = problems
+    117 texts against the notation; after: at most one per figure, 0), measured once
+    (``audited``, conftest.py)."""
+    bad = {stem: a.problems for stem, a in audited(name).items() if a.problems}
     assert not bad, bad
 
 
