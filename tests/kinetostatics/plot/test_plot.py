@@ -2,8 +2,12 @@
 
 from __future__ import annotations
 
+import tomllib
+from pathlib import Path
+
 import matplotlib.pyplot as plt
 import numpy as np
+import pandas as pd
 import pytest
 from matplotlib.animation import FuncAnimation
 from matplotlib.axes import Axes
@@ -17,6 +21,33 @@ from kinetostatics.plot.notation import reading
 from tests.helpers import SCENES
 
 SCENE_PATHS = [ks.example(n) for n in ks.examples()] + sorted(SCENES.glob("*.toml"))
+
+
+def _mechanism(path: Path) -> dict:
+    """A scene file's mechanism: the scene without its ``[design]`` table (the search's
+    settings, which no picture reads)."""
+    scene = tomllib.loads(path.read_text(encoding="utf-8"))
+    scene.pop("design", None)
+    return scene
+
+
+def _repeats(paths: list[Path]) -> dict[str, str]:
+    """Each scene whose mechanism is an earlier scene's (only a ``[design]`` table
+    added), to that scene's name."""
+    first: dict[str, str] = {}
+    out = {}
+    for p in paths:
+        key = repr(sorted(_mechanism(p).items()))
+        if key in first:
+            out[p.stem] = first[key]
+        first.setdefault(key, p.stem)
+    return out
+
+
+#: the scenes that repeat another's mechanism (four_bar_design: the four-bar with a design
+#: search): their pictures are that scene's, drawn once (checked to be the same solution)
+REPEATS = _repeats(SCENE_PATHS)
+DRAWN = [p.stem for p in SCENE_PATHS if p.stem not in REPEATS]
 
 
 @pytest.fixture(scope="module")
@@ -52,9 +83,10 @@ def test_force_polygons_close(name, sols):
             assert np.hypot(*total) <= 1e-9 * scale, (name, d, i, total)
 
 
-# (the quick tier draws the four-bar's; every other scene's in the full suite)
-@pytest.mark.parametrize("name", [pytest.param(p.stem, marks=() if p.stem == "four_bar" else
-                                               pytest.mark.slow) for p in SCENE_PATHS])
+# (the quick tier draws the four-bar's; every other scene's in the full suite, a scene
+# repeating another's mechanism once: test_a_repeated_mechanism_draws_as_its_first)
+@pytest.mark.parametrize("name", [pytest.param(n, marks=() if n == "four_bar" else
+                                               pytest.mark.slow) for n in DRAWN])
 def test_every_picture_of_every_scene(name, sols):
     sol = sols[name]
     pos = _mid(sol)
@@ -75,6 +107,20 @@ def test_every_picture_of_every_scene(name, sols):
     ax = kp.draw_mechanism(sol, pos, forces=True, loads=True)
     _labelled(ax)
     assert ax.get_aspect() == 1.0
+
+
+@pytest.mark.parametrize("name", sorted(REPEATS))
+def test_a_repeated_mechanism_draws_as_its_first(name, sols):
+    """A scene repeating another's mechanism (a ``[design]`` table added) is solved to
+    the same bit, under the same title: every picture, drawn from the solution, is the
+    other scene's (drawn by test_every_picture_of_every_scene)."""
+    sol, first = sols[name], sols[REPEATS[name]]
+    assert name in {p.stem for p in SCENE_PATHS} - set(DRAWN)
+    assert sol.scene.title == first.scene.title
+    assert np.array_equal(sol.positions, first.positions) and np.array_equal(sol.Me, first.Me)
+    for table in ("kinematics", "reactions"):
+        pd.testing.assert_frame_equal(getattr(sol, table), getattr(first, table),
+                                      check_exact=True)
 
 
 def test_plans_show_the_computed_vectors(sols):
