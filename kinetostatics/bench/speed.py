@@ -243,8 +243,9 @@ def bench_many(count: int = 1000, repeat: int = MANY_ROUNDS, others: tuple = OTH
     costs is the row of new objects each round). ``repeat`` rounds, 7 by default: the
     median of 3 was the middle of a slow first round and two others, and each job's
     rounds spread by 20-50 % on the shared 2-core machine (the loop 465-726 ms over 14
-    rounds, solve_many 21-37 ms, neither in step with the other), so a median of 3 moved
-    by a quarter from run to run (16.0x to 23.3x); of 7 it holds within a few percent."""
+    rounds, solve_many 21-37 ms, neither in step with the other): over four runs of 10
+    alternating rounds, the ratio of the medians of any 3 rounds in a row took
+    18.0-25.4x, of any 7 19.6-23.3x."""
     from ..model.scene import load_scene
     from ..results import solve, solve_many
 
