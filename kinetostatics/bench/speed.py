@@ -220,7 +220,10 @@ def example_variants(name: str, count: int = 1000, spread: float = 0.10, seed: i
 OTHER_MANY = ("slider_crank", "shaper", "slotted_lever")   # (bench_many's other mechanisms)
 
 
-def bench_many(count: int = 1000, repeat: int = 3, others: tuple = OTHER_MANY
+MANY_ROUNDS = 7     # (bench_many's rounds: see there)
+
+
+def bench_many(count: int = 1000, repeat: int = MANY_ROUNDS, others: tuple = OTHER_MANY
                ) -> list[dict]:
     """solve_many against a loop of solve on the four-bar variants: given Scene objects
     (the same every round, and new ones each round: :func:`_fresh_row`), given dicts,
@@ -229,7 +232,20 @@ def bench_many(count: int = 1000, repeat: int = 3, others: tuple = OTHER_MANY
     counted too); and given Scene objects, on the variants of each of
     ``others`` (a ``resist`` load, a six-bar with a force ``when = "resisting"``, a
     slotted lever). ``error``: the largest difference of any table of solve_many against
-    solve alone, over the first 50 scenes (0: the same numbers)."""
+    solve alone, over the first 50 scenes (0: the same numbers).
+
+    Both jobs of a row given the same Scene objects every round run once on all of them
+    before the clock starts: solve_many tells what it stacks of a scene once per scene
+    object (``solver.stack.stack_record``, ``solver.many.kept_assemblies``), so a first
+    round after a warm-up on a few of them was a first sight of the others (measured
+    2026-11-30, 1000 four-bars x 361, the compiled path, process time at a load of 7-8:
+    40-70 ms against 20-25 ms, about 18 ms of it those records; what a first sight
+    costs is the row of new objects each round). ``repeat`` rounds, 7 by default: the
+    median of 3 was the middle of a slow first round and two others, and each job's
+    rounds spread by 20-50 % on the shared 2-core machine (the loop 465-726 ms over 14
+    rounds, solve_many 21-37 ms, neither in step with the other): over four runs of 10
+    alternating rounds, the ratio of the medians of any 3 rounds in a row took
+    18.0-25.4x, of any 7 19.6-23.3x."""
     from ..model.scene import load_scene
     from ..results import solve, solve_many
 
@@ -249,9 +265,9 @@ def bench_many(count: int = 1000, repeat: int = 3, others: tuple = OTHER_MANY
     rows = []
     for p in solve_paths():
         for label, items in (("Scene objects", scenes), ("dicts", dicts)):
-            on_path(p, lambda it=items: (solve_many(it[:60]), solve(it[0])))()  # (loaded)
             jobs = {"loop": on_path(p, lambda it=items: [solve(s) for s in it]),
                     "many": on_path(p, lambda it=items: solve_many(it))}
+            warm_up(jobs)
             if p != "numpy":        # (the compiled solve_many against the numpy loop too)
                 jobs["numpy loop"] = on_path("numpy", lambda it=items: [solve(s) for s in it])
             times = side_by_side(jobs, repeat)
@@ -271,15 +287,23 @@ def bench_many(count: int = 1000, repeat: int = 3, others: tuple = OTHER_MANY
     for name in others:
         items = [load_scene(d) for d in example_variants(name, count)]
         for p in solve_paths():
-            on_path(p, lambda it=items: (solve_many(it[:60]), solve(it[0])))()  # (loaded)
-            times = side_by_side({"loop": on_path(p, lambda it=items: [solve(s) for s in it]),
-                                  "many": on_path(p, lambda it=items: solve_many(it))},
-                                 repeat)
+            jobs = {"loop": on_path(p, lambda it=items: [solve(s) for s in it]),
+                    "many": on_path(p, lambda it=items: solve_many(it))}
+            warm_up(jobs)
+            times = side_by_side(jobs, repeat)
             err = on_path(p, lambda it=items: largest_difference(solve_many(it[:50]),
                                                                  it[:50]))()
             rows.append(_row(f"speed-up: loop of solve / solve_many ({name}, Scene objects)",
                              f"{count} x 361", times, "loop", "many", path=p, error=err))
     return rows
+
+
+def warm_up(jobs: dict[str, Callable[[], object]]) -> None:
+    """Each job run once, untimed: the kernels loaded and compiled, and what solve_many
+    keeps per scene object told for every scene the rounds will give it
+    (:func:`bench_many`)."""
+    for job in jobs.values():
+        job()
 
 
 def _fresh_row(path: str, scenes: list, repeat: int) -> dict:
@@ -393,7 +417,8 @@ def run_speed(quick: bool = False, reference: str | None = None,
     # 5 s, measured 2026-11-30)
     rows = (bench_reference(ref, (2_001, 20_001), repeat=repeat or 3) if quick
             else bench_reference(ref, repeat=repeat))
-    rows += bench_many(20 if quick else 1000, repeat=repeat or 3)
+    rows += (bench_many(20, repeat=repeat or 3) if quick
+             else bench_many(repeat=repeat or MANY_ROUNDS))
     rows += bench_start(repeat or (3 if quick else 7))
     rows += (bench_design(50, 2, repeat=1) if quick else
              bench_design(repeat=repeat or 2))

@@ -75,3 +75,36 @@ def test_compiled_scan_on_a_long_sweep(on_path) -> None:
     on_path("fast")
     np.testing.assert_array_equal(deadpoints._candidates(m2), expected)
     assert expected.size == 1 + 2 * 12
+
+
+def test_a_stack_with_many_rows_below_the_screen_is_scanned_compiled(on_path, monkeypatch
+                                                                    ) -> None:
+    """A stack's segments (solve_many's scenes) with more than one row in
+    ``deadpoints.MANY_BELOW`` under the screen (the six-bars', some 45 %) are scanned
+    compiled on the compiled path, fewer on numpy (a four-bar's): the same intervals
+    as the numpy scan either way."""
+    counts = np.array([361] * 30 + [7, 0, 361])
+    starts = np.cumsum(counts) - counts
+    n = int(counts.sum())
+    dense = 0.6 * np.sin(np.linspace(0.0, 40.0, n)) ** 2
+    sparse = np.where(dense < 0.004, dense, 0.6)        # (about 5 % below the screen)
+    calls = []
+    on_path("fast")
+    scan = deadpoints.compiled_scan()
+
+    def counted(*args):
+        calls.append(args[0].size)
+        return scan(*args)
+    for m2, compiled in ((dense, True), (sparse, False)):
+        rows = np.flatnonzero(m2 < deadpoints.SCREEN**2)
+        assert (rows.size > n // deadpoints.MANY_BELOW) is compiled
+        on_path("numpy")
+        expected = deadpoints._candidates(m2, starts, counts, rows=rows)
+        on_path("fast")
+        monkeypatch.setattr(deadpoints, "SCANS", [lambda: counted])
+        calls.clear()
+        got = deadpoints._candidates(m2, starts, counts, rows=rows)
+        assert calls == ([n, n] if compiled else [])     # (counted, then written)
+        assert got.dtype == expected.dtype == np.int64
+        np.testing.assert_array_equal(got, expected)
+        np.testing.assert_array_equal(got, _candidates_reference(m2, starts, counts))
