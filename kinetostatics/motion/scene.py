@@ -166,8 +166,9 @@ class ReducedMechanism:
         """:meth:`_key` of every angle of ``phi`` (1-D) in one pass: numpy's remainder,
         product and rint are Python's %, * and round, bit for bit (half to even), so
         the keys are the same (angles not all finite: one by one, as Python refuses
-        them)."""
-        if not np.isfinite(phi).all():
+        them; below 16 angles one by one too, numpy's calls costing more than the
+        loop: 1 angle 3.4 us against 34, 16 about even, 32 108 against 48)."""
+        if phi.size < 16 or not np.isfinite(phi).all():
             return [self._key(p) for p in phi.tolist()]
         return np.rint(np.mod(phi - self.phi0, TWO_PI) * KEY).astype(np.int64).tolist()
 

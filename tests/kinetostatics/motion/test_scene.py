@@ -289,5 +289,6 @@ def test_keys_of_an_array_are_those_of_each_angle():
     alone = [int(round(((p - phi0) % (2.0 * math.pi)) * KEY)) for p in phi.tolist()]
     assert all(((p - phi0) % (2.0 * math.pi)) * KEY % 1.0 == 0.5 for p in half.tolist())
     assert rm.keys(phi) == alone
+    assert rm.keys(phi[:15]) == alone[:15] and rm.keys(half[:3]) == alone[20_000:20_003]
     with pytest.raises(ValueError):
-        rm.keys(np.array([1.0, math.nan]))
+        rm.keys(np.append(np.zeros(19), math.nan))
