@@ -49,7 +49,12 @@ import numpy as np
 import pandas as pd
 
 from ..common.angles import radian_column
-from .accuracy import find_reference, fourbar_scene, slider_crank_reference_scene
+from .accuracy import (
+    find_reference,
+    fourbar_scene,
+    frozen_heap,
+    slider_crank_reference_scene,
+)
 
 
 def side_by_side(jobs: dict[str, Callable[[], object]], repeat: int,
@@ -67,20 +72,21 @@ def side_by_side(jobs: dict[str, Callable[[], object]], repeat: int,
     job that waits on another process (a start-up in a fresh one) is timed by the
     wall clock, ``time.perf_counter``."""
     times: dict[str, list] = {k: [] for k in jobs}
-    for _ in range(repeat):
-        for k, f in jobs.items():
-            gc.collect()
-            was = gc.isenabled()
-            if batch > 1:
-                gc.disable()
-            try:
-                t = clock()
-                for _ in range(batch):
-                    f()
-                times[k].append((clock() - t) / batch)
-            finally:
-                if was:
-                    gc.enable()
+    with frozen_heap():
+        for _ in range(repeat):
+            for k, f in jobs.items():
+                gc.collect()
+                was = gc.isenabled()
+                if batch > 1:
+                    gc.disable()
+                try:
+                    t = clock()
+                    for _ in range(batch):
+                        f()
+                    times[k].append((clock() - t) / batch)
+                finally:
+                    if was:
+                        gc.enable()
     return times
 
 
@@ -223,8 +229,8 @@ OTHER_MANY = ("slider_crank", "shaper", "slotted_lever")   # (bench_many's other
 MANY_ROUNDS = 7     # (bench_many's rounds: see there)
 
 
-def bench_many(count: int = 1000, repeat: int = MANY_ROUNDS, others: tuple = OTHER_MANY
-               ) -> list[dict]:
+def bench_many(count: int = 1000, repeat: int = MANY_ROUNDS, others: tuple = OTHER_MANY,
+               checked: int = 50) -> list[dict]:
     """solve_many against a loop of solve on the four-bar variants: given Scene objects
     (the same every round, and new ones each round: :func:`_fresh_row`), given dicts,
     and given dicts with each Solution's ``driver`` table built (the per-scene arrays of
@@ -232,7 +238,7 @@ def bench_many(count: int = 1000, repeat: int = MANY_ROUNDS, others: tuple = OTH
     counted too); and given Scene objects, on the variants of each of
     ``others`` (a ``resist`` load, a six-bar with a force ``when = "resisting"``, a
     slotted lever). ``error``: the largest difference of any table of solve_many against
-    solve alone, over the first 50 scenes (0: the same numbers).
+    solve alone, over the first ``checked`` scenes (0: the same numbers).
 
     Both jobs of a row given the same Scene objects every round run once on all of them
     before the clock starts: solve_many tells what it stacks of a scene once per scene
@@ -271,8 +277,8 @@ def bench_many(count: int = 1000, repeat: int = MANY_ROUNDS, others: tuple = OTH
             if p != "numpy":        # (the compiled solve_many against the numpy loop too)
                 jobs["numpy loop"] = on_path("numpy", lambda it=items: [solve(s) for s in it])
             times = side_by_side(jobs, repeat)
-            err = on_path(p, lambda it=items: largest_difference(solve_many(it[:50]),
-                                                                 it[:50]))()
+            err = on_path(p, lambda it=items: largest_difference(
+                solve_many(it[:checked]), it[:checked]))()
             rows.append(_row(f"speed-up: loop of solve / solve_many ({label})",
                              f"{count} x 361", times, "loop", "many", path=p, error=err))
             if p != "numpy":
@@ -291,8 +297,8 @@ def bench_many(count: int = 1000, repeat: int = MANY_ROUNDS, others: tuple = OTH
                     "many": on_path(p, lambda it=items: solve_many(it))}
             warm_up(jobs)
             times = side_by_side(jobs, repeat)
-            err = on_path(p, lambda it=items: largest_difference(solve_many(it[:50]),
-                                                                 it[:50]))()
+            err = on_path(p, lambda it=items: largest_difference(
+                solve_many(it[:checked]), it[:checked]))()
             rows.append(_row(f"speed-up: loop of solve / solve_many ({name}, Scene objects)",
                              f"{count} x 361", times, "loop", "many", path=p, error=err))
     return rows
@@ -414,17 +420,20 @@ def run_speed(quick: bool = False, reference: str | None = None,
     # quick: every row once more than a smoke run, 3 rounds each (25 and 7, and 15 warm
     # rounds, took 68 s of the command's 120 s at a load of 12); solve_many of 20 scenes
     # (100: bench_many took 21 s of the 28 s of CPU of `bench --quick --repeat 1`, 20:
-    # 5 s, measured 2026-11-30)
-    rows = (bench_reference(ref, (2_001, 20_001), repeat=repeat or 3) if quick
-            else bench_reference(ref, repeat=repeat))
-    rows += (bench_many(20, repeat=repeat or 3) if quick
-             else bench_many(repeat=repeat or MANY_ROUNDS))
-    rows += bench_start(repeat or (3 if quick else 7))
-    rows += (bench_design(50, 2, repeat=1) if quick else
-             bench_design(repeat=repeat or 2))
-    if not quick:
-        rows += bench_tables()
-        rows += bench_crosscheck(repeat or 3)
+    # 5 s, measured 2026-11-30), its tables checked against solve on 5 of them (all 20,
+    # the 6 tables of 2 x 20 solves on each of 10 rows: bench_many 6.0-6.3 s of CPU; 5:
+    # 1.9-2.2 s, measured 2026-11-30; the suite checks every table bit for bit)
+    with frozen_heap():             # (one walk of the heap, not one a timing loop)
+        rows = (bench_reference(ref, (2_001, 20_001), repeat=repeat or 3) if quick
+                else bench_reference(ref, repeat=repeat))
+        rows += (bench_many(20, repeat=repeat or 3, checked=5) if quick
+                 else bench_many(repeat=repeat or MANY_ROUNDS))
+        rows += bench_start(repeat or (3 if quick else 7))
+        rows += (bench_design(50, 2, repeat=1) if quick else
+                 bench_design(repeat=repeat or 2))
+        if not quick:
+            rows += bench_tables()
+            rows += bench_crosscheck(repeat or 3)
     df = pd.DataFrame(rows)
     pd.set_option("display.width", 160)
     print(f"\n== speed: ratios to baselines timed side by side ({os.cpu_count()} cores) ==")

@@ -162,15 +162,25 @@ class ReducedMechanism:
     def _key(self, phi: float) -> int:
         return int(round(((phi - self.phi0) % TWO_PI) * KEY))
 
+    def keys(self, phi: np.ndarray) -> list[int]:
+        """:meth:`_key` of every angle of ``phi`` (1-D) in one pass: numpy's remainder,
+        product and rint are Python's %, * and round, bit for bit (half to even), so
+        the keys are the same (angles not all finite: one by one, as Python refuses
+        them; below 16 angles one by one too, numpy's calls costing more than the
+        loop: 1 angle 3.4 us against 34, 16 about even, 32 108 against 48)."""
+        if phi.size < 16 or not np.isfinite(phi).all():
+            return [self._key(p) for p in phi.tolist()]
+        return np.rint(np.mod(phi - self.phi0, TWO_PI) * KEY).astype(np.int64).tolist()
+
     def prewarm(self, levels=(64, 128, 256, 512, 1024, 2048, 4096)) -> None:
         """Evaluate at every stage angle of the grids the integrator uses."""
         c = np.array((0.0, *DP5_C))
         pts = np.concatenate([(self.phi0 + (np.arange(n)[:, None] + c) * (TWO_PI / n)).ravel()
                               for n in levels])
         i_r, di_r, m_r = self.evaluate(pts)
-        for p, a, b, m in zip(pts.tolist(), i_r.tolist(), di_r.tolist(), m_r.tolist(),
+        for k, a, b, m in zip(self.keys(pts), i_r.tolist(), di_r.tolist(), m_r.tolist(),
                               strict=True):
-            self._cache[self._key(p)] = (a, b, m)
+            self._cache[k] = (a, b, m)
 
     def prefetch(self, phis: list[float]) -> None:
         """Evaluate in one kinematic solve the angles a search may ask next (a solve of
@@ -203,15 +213,15 @@ class ReducedMechanism:
                 return np.float64(hit[0]), np.float64(hit[1]), np.float64(hit[2])
         arr = np.asarray(phi, dtype=float)
         flat = arr.ravel().tolist()
-        keys = [self._key(p) for p in flat]
-        missing = [p for p, k in zip(flat, keys, strict=True) if k not in self._cache]
+        keys = self.keys(arr.ravel())
+        missing = [(p, k) for p, k in zip(flat, keys, strict=True) if k not in self._cache]
         if missing:
-            known = [self._ahead.get(p) for p in missing]
-            todo = [p for p, k in zip(missing, known, strict=True) if k is None]
+            known = [self._ahead.get(p) for p, _ in missing]
+            todo = [p for (p, _), v in zip(missing, known, strict=True) if v is None]
             fresh = iter(zip(*(v.tolist() for v in self.evaluate(np.array(todo))),
                              strict=True) if todo else ())
-            for p, k in zip(missing, known, strict=True):
-                self._cache[self._key(p)] = k if k is not None else next(fresh)
+            for (_, k), v in zip(missing, known, strict=True):
+                self._cache[k] = v if v is not None else next(fresh)
         out = np.array([self._cache[k] for k in keys]).reshape(arr.shape + (3,))
         return out[..., 0], out[..., 1], out[..., 2]
 

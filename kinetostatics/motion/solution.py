@@ -178,13 +178,15 @@ class MotionSolution:
         edges = np.concatenate(([a], nodes, [b]))
         th = np.arange(per_step) / per_step
         x = np.concatenate(((edges[:-1, None] + np.diff(edges)[:, None] * th).ravel(), [b]))
-        w, _, acc = self.state(x)
+        # (omega alone: state's omega, bit for bit, without the moment at every sample)
+        w, _, acc = self.state(x) if alpha else (self.omega(x), None, None)
         out: dict[str, float] = {}
-        searches = (("omega_max", w, lambda p: float(self.omega(np.array([p]))[0])),
-                    ("omega_min", -w, lambda p: -float(self.omega(np.array([p]))[0])),
-                    ("alpha_abs_max", np.abs(acc),
-                     lambda p: abs(float(self.state(np.array([p]))[2][0]))))
-        for name, vals, fun in searches[:3 if alpha else 2]:
+        searches = [("omega_max", w, lambda p: float(self.omega(np.array([p]))[0])),
+                    ("omega_min", -w, lambda p: -float(self.omega(np.array([p]))[0]))]
+        if alpha:
+            searches.append(("alpha_abs_max", np.abs(acc),
+                             lambda p: abs(float(self.state(np.array([p]))[2][0]))))
+        for name, vals, fun in searches:
             best_x, best_v = x[int(np.argmax(vals))], float(np.max(vals))
             for j in _top_peaks(vals, 3):
                 xm, vm = golden_max(fun, x[max(j - 1, 0)], x[min(j + 1, x.size - 1)],

@@ -272,3 +272,23 @@ def test_solving_ahead_changes_no_bit(monkeypatch):
     ahead = ks.simulate_motion(d).summary
     monkeypatch.setattr(ks.motion.ReducedMechanism, "prefetch", lambda self, phis: None)
     assert ks.simulate_motion(d).summary == ahead
+
+
+def test_keys_of_an_array_are_those_of_each_angle():
+    """ReducedMechanism.keys (numpy's remainder, product and rint over an array) gives
+    each angle the key of the angle alone, round(((phi - phi0) mod 2 pi) 1e9) as Python
+    computes it: half-way products (to even), angles below phi0 and turns away, -0.0;
+    angles not all finite one by one, as before (Python refuses them)."""
+    from kinetostatics.motion.scene import KEY, ReducedMechanism
+    phi0 = 0.25
+    rm = ReducedMechanism(ks.load_scene(four_bar_motion()), phi0)
+    rng = np.random.default_rng(5)
+    half = phi0 + np.arange(1, 6400, 2) / 1024.0    # 1e9 / 1024 = 976562.5: odd multiples
+    phi = np.concatenate([rng.uniform(-40.0, 40.0, 20_000), half, [phi0, -0.0, 0.0],
+                          phi0 + 2.0 * math.pi * np.arange(-3, 4)])
+    alone = [int(round(((p - phi0) % (2.0 * math.pi)) * KEY)) for p in phi.tolist()]
+    assert all(((p - phi0) % (2.0 * math.pi)) * KEY % 1.0 == 0.5 for p in half.tolist())
+    assert rm.keys(phi) == alone
+    assert rm.keys(phi[:15]) == alone[:15] and rm.keys(half[:3]) == alone[20_000:20_003]
+    with pytest.raises(ValueError):
+        rm.keys(np.append(np.zeros(19), math.nan))
