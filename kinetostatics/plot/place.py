@@ -16,6 +16,7 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.layout_engine import PlaceHolderLayoutEngine
+from matplotlib.legend import Legend
 from matplotlib.lines import Line2D
 from matplotlib.patches import FancyArrowPatch
 from matplotlib.path import Path
@@ -23,8 +24,8 @@ from matplotlib.text import Annotation, Text
 from matplotlib.transforms import Bbox
 
 from ..common.angles import radian_column
-from .collide import drawn_paths, extent_rows, meets, overlapping_rows
-from .style import figure_boxes, lay_out, text_extent
+from .collide import drawn_paths, extent_rows, meets
+from .style import drawn_extent, figure_boxes, lay_out, text_extent
 
 __all__ = ["UNPLACED_TITLE", "declutter", "settle", "settled_later"]
 
@@ -32,6 +33,9 @@ _DIRECTIONS = radian_column(np.array([45, 135, 315, 225, 90, 270, 0, 180,
                                    22.5, 67.5, 112.5, 157.5, 202.5, 247.5, 292.5, 337.5]))
 _UNITS = [np.array([np.cos(ang), np.sin(ang)]) for ang in _DIRECTIONS]
 _DISTANCES = (3.0, 6.0, 10.0, 15.0, 21.0, 28.0, 36.0, 46.0, 58.0, 72.0)      # points
+# the 160 tries in their order of preference: distance by distance, each direction
+_TRY_UNITS = np.tile(np.array(_UNITS), (len(_DISTANCES), 1))
+_TRY_DISTANCES = np.repeat(np.array(_DISTANCES), len(_UNITS))
 _LEADER = 12.0          # points: a label farther than this from its anchor gets a leader
 _PAD = 2.0              # pixels of free room around a placed label
 # a leader: matplotlib's plain annotation arrow ("simple", a head of nothing), a 0.7 pt line
@@ -53,37 +57,80 @@ def _anchor(t: Annotation) -> np.ndarray | None:
     return None
 
 
-def _box(anchor, off, w: float, h: float) -> Bbox:
-    """The box of a w x h label whose alignment follows the direction of ``off``."""
-    c, s = off / (np.hypot(*off) or 1.0)
-    fx = 0.0 if c > 0.3 else 1.0 if c < -0.3 else 0.5
-    fy = 0.0 if s > 0.3 else 1.0 if s < -0.3 else 0.5
-    x0, y0 = anchor + off - np.array([fx * w, fy * h])
-    return Bbox([[x0, y0], [x0 + w, y0 + h]])
+def _tries(anchor: np.ndarray, scale: float, w: float, h: float) -> tuple[np.ndarray,
+                                                                         np.ndarray]:
+    """The offsets (pixels) of all the tries of a w x h label at ``anchor`` and their
+    boxes, padded by ``_PAD``, as (x0, y0, x1, y1) rows, in order of preference.
+
+    A box's alignment follows its offset's direction (left, right or centred, bottom, top
+    or centred, as :func:`_place_one` sets the label's); the arithmetic is that of a
+    ``Bbox`` built at the offset and then ``padded``, in the same order (the same floats
+    as when each try was built alone)."""
+    off = (_TRY_DISTANCES * scale)[:, None] * _TRY_UNITS          # dist * scale * unit
+    cs = off / np.hypot(off[:, 0], off[:, 1])[:, None]
+    f = np.where(cs > 0.3, 0.0, np.where(cs < -0.3, 1.0, 0.5))   # alignment fractions
+    x0 = anchor[0] + off[:, 0] - f[:, 0] * w
+    y0 = anchor[1] + off[:, 1] - f[:, 1] * h
+    return off, np.column_stack([x0 + -_PAD, y0 + -_PAD, (x0 + w) + _PAD, (y0 + h) + _PAD])
+
+
+def _overlaps(rows: np.ndarray, boxes: np.ndarray) -> np.ndarray:
+    """(boxes x rows) which rows of :func:`extent_rows` overlap which boxes:
+    :func:`overlapping_rows` for many boxes at once."""
+    return ((rows[:, 0] <= boxes[:, 2:3]) & (boxes[:, 0:1] <= rows[:, 2]) &
+            (rows[:, 1] <= boxes[:, 3:4]) & (boxes[:, 1:2] <= rows[:, 3]))
+
+
+class _Shown:
+    """The boxes of a figure's texts on one drawing (:func:`figure_boxes`), shared by the
+    rooms of its Axes: measured once per drawing, and again only for the labels an Axes
+    placed (measuring every text of the figure for each Axes was a third of the
+    placing's time, 2026-11-30)."""
+
+    def __init__(self, fig, renderer) -> None:
+        self.pairs = figure_boxes(fig, renderer)
+
+    def others(self, ids: set[int]) -> list:
+        """The boxes of the texts whose ids are not in ``ids``."""
+        return [bb for t, bb in self.pairs if id(t) not in ids]
+
+    def moved(self, texts: list[Annotation], renderer) -> None:
+        """Measure ``texts`` again (placed since: the boxes the next Axes keeps clear of),
+        and every legend at "best" (matplotlib places it clear of the texts as they are
+        now)."""
+        ids = {id(t) for t in texts}
+        pairs = [(t, t.get_window_extent(renderer) if _at_best(t) else
+                  drawn_extent(t, renderer) if id(t) in ids else bb) for t, bb in self.pairs]
+        self.pairs = [(t, bb) for t, bb in pairs if bb is not None]
 
 
 class _Room:
     """What a label must keep clear of on one Axes: boxes and drawn paths (pixels), with
     their extents as arrays (a label tries up to 160 places against every one)."""
 
-    def __init__(self, ax: Axes, movable: list[Annotation], renderer) -> None:
+    def __init__(self, ax: Axes, movable: list[Annotation], renderer, shown: _Shown) -> None:
         ids = {id(t) for t in movable}
         self.frame = ax.get_window_extent(renderer).padded(-_PAD)
-        self.boxes = [bb for t, bb in figure_boxes(ax.figure, renderer) if id(t) not in ids]
+        self.boxes = shown.others(ids)
         self.boxes += [child.get_window_extent(renderer) for child in ax.child_axes]
         own = {id(t.arrow_patch) for t in movable if t.arrow_patch is not None}
         self.paths = [p for _name, p, _src in drawn_paths(ax, skip=own)]
         self.box_rows = extent_rows(self.boxes)
         self.path_rows = extent_rows([p.get_extents() for p in self.paths])
 
-    def clear(self, box: Bbox) -> bool:
+    def open_rows(self, boxes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Of candidate boxes (rows x0, y0, x1, y1, low to high): which lie inside the
+        frame and meet no box, and for each which paths' extents they overlap (the paths
+        to test exactly, :meth:`clear_of_paths`); all candidates at once."""
         f = self.frame
-        if not (f.x0 <= box.x0 and box.x1 <= f.x1 and f.y0 <= box.y0 and box.y1 <= f.y1):
-            return False
-        if overlapping_rows(self.box_rows, box).any():
-            return False
-        return not any(meets(self.paths[k], box)
-                       for k in np.flatnonzero(overlapping_rows(self.path_rows, box)))
+        inside = ((f.x0 <= boxes[:, 0]) & (boxes[:, 2] <= f.x1) &
+                  (f.y0 <= boxes[:, 1]) & (boxes[:, 3] <= f.y1))
+        return (inside & ~_overlaps(self.box_rows, boxes).any(axis=1),
+                _overlaps(self.path_rows, boxes))
+
+    def clear_of_paths(self, box: Bbox, near: np.ndarray) -> bool:
+        """The box meets none of the paths ``near`` (a mask of :attr:`paths`)."""
+        return not any(meets(self.paths[k], box) for k in np.flatnonzero(near))
 
     def leader_clear(self, a: np.ndarray, box: Bbox, skip: Bbox) -> bool:
         """A leader from the anchor to the box's nearest point crosses no other label."""
@@ -120,23 +167,26 @@ def _place_one(t: Annotation, room: _Room, renderer, scale: float) -> bool:
         return True
     bb = text_extent(t, renderer)
     w, h = bb.width, bb.height
-    for dist in _DISTANCES:
-        for unit in _UNITS:
-            off = dist * scale * unit
-            box = _box(a, off, w, h).padded(_PAD)
-            if not room.clear(box):
-                continue
-            far = dist > _LEADER
-            if far and not room.leader_clear(a, box, box):
-                continue
-            c, s = off / np.hypot(*off)
-            t.xyann = tuple(off / scale)
-            t.set_ha("left" if c > 0.3 else "right" if c < -0.3 else "center")
-            t.set_va("bottom" if s > 0.3 else "top" if s < -0.3 else "center")
-            _set_leader(t, far)
-            tip = np.clip(a, [box.x0, box.y0], [box.x1, box.y1])
-            room.take(box.padded(-_PAD + 0.5), Path([a, tip]) if far else None)
-            return True
+    # every try screened at once against the frame, the boxes and the paths' extents;
+    # the open ones tested exactly in order of preference (the first free one wins)
+    offs, rows = _tries(a, scale, w, h)
+    open_, near = room.open_rows(rows)
+    for k in np.flatnonzero(open_):
+        off = offs[k]
+        box = Bbox(rows[k].reshape(2, 2))
+        if not room.clear_of_paths(box, near[k]):
+            continue
+        far = bool(_TRY_DISTANCES[k] > _LEADER)
+        if far and not room.leader_clear(a, box, box):
+            continue
+        c, s = off / np.hypot(*off)
+        t.xyann = tuple(off / scale)
+        t.set_ha("left" if c > 0.3 else "right" if c < -0.3 else "center")
+        t.set_va("bottom" if s > 0.3 else "top" if s < -0.3 else "center")
+        _set_leader(t, far)
+        tip = np.clip(a, [box.x0, box.y0], [box.x1, box.y1])
+        room.take(box.padded(-_PAD + 0.5), Path([a, tip]) if far else None)
+        return True
     return False
 
 
@@ -179,11 +229,17 @@ def _legend_off_data(ax: Axes, renderer) -> bool:
     return False
 
 
+def _at_best(artist) -> bool:
+    """A legend that matplotlib places at its "best" place (clear of the data and the
+    texts as they are at each drawing or measure)."""
+    return isinstance(artist, Legend) and artist._loc in (0, "best")
+
+
 def _fix_best(ax: Axes, renderer) -> None:
     """A legend at loc="best" stays where it was drawn (its place no longer moves with
     the labels placed after it)."""
     lg = ax.get_legend()
-    if lg is not None and lg._loc in (0, "best"):
+    if lg is not None and _at_best(lg):
         x0, y0 = ax.transAxes.inverted().transform(lg.get_window_extent(renderer).p0)
         lg.set_loc((float(x0), float(y0)))
         lg.borderaxespad = 0.0
@@ -225,9 +281,11 @@ def settle(fig) -> None:
         # only when a legend of labels not placed came, which changes the layout. A
         # drawing per Axes moved the Axes by a thousandth of a pixel and cost a fifth of
         # the overview's time, 2026-11-29)
+        shown = _Shown(fig, r)
         for ax in axes:
-            if _place_again(ax, r):
+            if _place_again(ax, r, shown):
                 r = lay_out(fig)
+                shown = _Shown(fig, r)
     else:
         _place_kept(fig, axes, r)
     lay_out(fig)
@@ -246,11 +304,11 @@ def settle(fig) -> None:
     _place_kept(fig, axes, r)
 
 
-def _place_again(ax: Axes, renderer) -> bool:
+def _place_again(ax: Axes, renderer, shown: _Shown) -> bool:
     """Place the labels :func:`declutter` kept on ``ax`` on the figure as drawn last
-    (``renderer``), those with no free place named in the legend of labels not placed
-    (True: the legend came, the layout changed)."""
-    missing = _place(ax, _movable(_KEPT[ax]), renderer, hide=False)
+    (``renderer``, its texts' boxes ``shown``), those with no free place named in the
+    legend of labels not placed (True: the legend came, the layout changed)."""
+    missing = _place(ax, _movable(_KEPT[ax]), renderer, hide=False, shown=shown)
     if missing:
         _not_placed(ax.figure, missing)
     return bool(missing)
@@ -265,10 +323,13 @@ def _frozen(fig) -> bool:
 
 def _place_kept(fig, axes: list[Axes], r):
     """Place the labels :func:`declutter` kept on each of ``axes`` on the figure as drawn
-    last, drawn again after each Axes whose labels moved."""
+    last, drawn again after each Axes with labels not placed (the legend of them changes
+    the layout)."""
+    shown = _Shown(fig, r)
     for ax in axes:
-        if _place(ax, _movable(_KEPT[ax]), r):
+        if _place(ax, _movable(_KEPT[ax]), r, shown=shown):
             r = lay_out(fig)
+            shown = _Shown(fig, r)
     return r
 
 
@@ -334,12 +395,17 @@ def _movable(texts: Sequence[Text]) -> list[Annotation]:
     return movable
 
 
-def _place(ax: Axes, movable: list[Annotation], renderer, hide: bool = True) -> list[Text]:
-    """Place the labels on the figure as drawn last (``renderer``); those with no free
-    place are returned, and with ``hide`` taken off the drawing (:func:`_not_placed`)."""
-    room = _Room(ax, movable, renderer)
+def _place(ax: Axes, movable: list[Annotation], renderer, hide: bool = True,
+           shown: _Shown | None = None) -> list[Text]:
+    """Place the labels on the figure as drawn last (``renderer``; ``shown``: the boxes
+    of its texts on that drawing, measured here if not given, brought up to date for the
+    labels placed); those with no free place are returned, and with ``hide`` taken off
+    the drawing (:func:`_not_placed`)."""
+    shown = _Shown(ax.figure, renderer) if shown is None else shown
+    room = _Room(ax, movable, renderer, shown)
     scale = ax.figure.dpi / 72.0
     missing = [t for t in movable if not _place_one(t, room, renderer, scale)]
+    shown.moved(movable, renderer)
     if missing and hide:
         _not_placed(ax.figure, missing)
     return missing

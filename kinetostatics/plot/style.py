@@ -9,6 +9,7 @@ import functools
 
 import matplotlib as mpl
 from matplotlib.axes import Axes
+from matplotlib.axis import Axis
 from matplotlib.backend_bases import RendererBase
 from matplotlib.backends.backend_agg import FigureCanvasAgg, RendererAgg
 from matplotlib.figure import Figure
@@ -18,9 +19,9 @@ from matplotlib.legend import Legend
 from matplotlib.mathtext import MathTextParser
 from matplotlib.text import Annotation, Text
 
-__all__ = ["LECTURE", "PROJECTOR", "SMALLEST_FONT", "drawn_extent", "figure_boxes", "lay_out",
-           "laid_out", "lecture_style", "overlapping_texts", "projector", "save_laid_out",
-           "text_extent", "undrawn_ticks"]
+__all__ = ["LECTURE", "PROJECTOR", "SMALLEST_FONT", "FigureWalk", "drawn_extent", "figure_boxes",
+           "lay_out", "laid_out", "lecture_style", "overlapping_texts", "projector",
+           "save_laid_out", "text_extent", "undrawn_ticks"]
 
 #: The smallest font of a picture, in points at the figure's printed size.
 SMALLEST_FONT = 10.0
@@ -218,17 +219,50 @@ def save_laid_out(fig: Figure, fname, **kwargs) -> None:
         fig.set_layout_engine(engine)
 
 
-def undrawn_ticks(fig: Figure) -> set[int]:
-    """Tick labels matplotlib keeps but does not draw (ticks outside the view)."""
+def undrawn_ticks(fig: Figure, walk: FigureWalk | None = None) -> set[int]:
+    """Tick labels matplotlib keeps but does not draw (ticks outside the view); ``walk``:
+    the figure's artists as :class:`FigureWalk` found them (else walked here)."""
+    walk = FigureWalk(fig) if walk is None else walk
     out = set()
-    for ax in fig.findobj(Axes):       # insets included
+    for ax in walk.of_type(Axes):       # insets included
         for axis in (ax.xaxis, ax.yaxis):
             lo, hi = sorted(axis.get_view_interval())
             tol = 1e-9 * (hi - lo)
-            for tick in axis.get_major_ticks() + axis.get_minor_ticks():
+            for tick in walk.ticks(axis):
                 if not lo - tol <= tick.get_loc() <= hi + tol:
                     out.update((id(tick.label1), id(tick.label2)))
     return out
+
+
+class FigureWalk:
+    """Every artist of a figure in ``fig.findobj()``'s order, found in one walk, with each
+    axis' ticks as the walk met them (what ``get_major_ticks() + get_minor_ticks()``
+    give: an axis' children; each call asks the tick locators again, and three searches
+    of the figure and the ticks' own asked them four times per axis, two fifths of a
+    label placing's time, 2026-11-30)."""
+
+    def __init__(self, fig: Figure) -> None:
+        self.artists: list = []
+        self._ticks: dict[int, list] = {}
+        self._visit(fig)
+
+    def _visit(self, artist) -> None:
+        children = artist.get_children()
+        if isinstance(artist, Axis):            # [label, offsetText, *major, *minor]
+            self._ticks[id(artist)] = children[2:]
+        for child in children:
+            self._visit(child)
+        self.artists.append(artist)             # (after its children, as findobj)
+
+    def of_type(self, kind: type) -> list:
+        """The artists of a type, as ``fig.findobj(kind)`` lists them."""
+        return [a for a in self.artists if isinstance(a, kind)]
+
+    def ticks(self, axis: Axis) -> list:
+        """The major and minor ticks of an axis (asked afresh if the walk did not meet
+        it)."""
+        found = self._ticks.get(id(axis))
+        return found if found is not None else axis.get_major_ticks() + axis.get_minor_ticks()
 
 
 def text_extent(t: Text, renderer):
@@ -261,12 +295,13 @@ def figure_boxes(fig: Figure, renderer) -> list[tuple[Text | Legend, object]]:
     """(text, window extent) of every drawn, non-empty text of the figure; a legend
     counts as one box (its entries are laid out by matplotlib and never collide)."""
     out = []
-    legends = fig.findobj(Legend)
-    inside = {id(t) for lg in legends for t in lg.findobj(Text)} | undrawn_ticks(fig)
+    walk = FigureWalk(fig)
+    legends = walk.of_type(Legend)
+    inside = {id(t) for lg in legends for t in lg.findobj(Text)} | undrawn_ticks(fig, walk)
     for lg in legends:
         if lg.get_visible():
             out.append((lg, lg.get_window_extent(renderer)))
-    for t in fig.findobj(Text):
+    for t in walk.of_type(Text):
         if id(t) in inside or (t.axes is not None and not t.axes.get_visible()):
             continue
         bb = drawn_extent(t, renderer)
