@@ -99,7 +99,7 @@ class FusedTables:
         slots = np.array([self.slot[b] for b, _ in points], dtype=np.int64)
         local = np.array([loc for _, loc in points], dtype=float).reshape(-1, 2)
         own = own_hypot()
-        # read-only, as kernel_trig's probes: turn_rows compiled for one type of array
+        # read-only, as a driver's angles: turn_rows compiled for one type of array
         # (a writable sweep here was a second compile of it, found by test_fast's
         # one-signature check, 2026-11-30)
         angles = driver_input(self.scene).view()
