@@ -142,6 +142,10 @@ def _read(scene: Scene) -> tuple[tuple | None, list]:
 # solve_many over the same scenes again (a study that changes its loads, a benchmark)
 # tells their structure and gathers their numbers once
 RECORDS = 1 << 16
+# the compiled path's cos and sin of a crank's angles, ``turn(angles) -> (cos, sin)``,
+# which its kernels read from :meth:`Stacker.sweeps`: put here by that path's loader
+# when the kernels load (this module cannot import them)
+SWEEP_TURN: list = []
 _RECORDS = Kept(RECORDS)
 _LABELS: dict[Any, int] = {}        # signature -> a label of its own (an int, quick to hash)
 
@@ -363,18 +367,20 @@ class Stacker:
     def sweeps(self, lo: int, hi: int, counts: np.ndarray, positions: np.ndarray
                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """A crank's cos and sin for the run of scenes ``lo`` to ``hi - 1`` (at
-        ``positions``, ``counts`` rows each), and where each scene's rows begin in them:
-        the first scene's sweep once, each scene's rows from 0, when every scene sweeps
-        as the first, bit for bit (the usual case: no copy per row); else over the run's
-        rows (:meth:`trig_rows`), each scene from its first row in the run. Row ``i`` of
-        scene ``e`` (starting at run row ``s``) has cos ``c[i - start[e]]`` with
+        ``positions``, ``counts`` rows each), the compiled path's (:data:`SWEEP_TURN`:
+        its kernels read them), and where each scene's rows begin in them: the first
+        scene's sweep once, each scene's rows from 0, when every scene sweeps as the
+        first, bit for bit (the usual case: no copy per row); else over the run's rows
+        (the angles of :meth:`trig_rows`), each scene from its first row in the run. Row
+        ``i`` of scene ``e`` (starting at run row ``s``) has cos ``c[i - start[e]]`` with
         ``start[e]`` = ``s`` or 0."""
         p0 = self.base.driver.positions
         if p0.size and positions.size == p0.size * (hi - lo):
             if self._same_sweep(lo, hi) or (positions.view(np.int64).reshape(hi - lo, p0.size)
                                             == p0.view(np.int64)).all():
-                return (*self._trig0[1:], np.cumsum(counts) - counts)
-        return (*self.trig_rows(lo, hi, positions)[1:], np.zeros(hi - lo, dtype=np.int64))
+                return (*self._turned0, np.cumsum(counts) - counts)
+        turn = SWEEP_TURN[0]
+        return (*turn(self.trig_rows(lo, hi, positions)[0]), np.zeros(hi - lo, dtype=np.int64))
 
     def _same_sweep(self, lo: int, hi: int) -> bool:
         """Whether scenes ``lo`` to ``hi - 1`` sweep as the first, read from the same
@@ -426,6 +432,12 @@ class Stacker:
                 x.flags.writeable = False
             self._tiles[m] = got
         return got
+
+    @cached_property
+    def _turned0(self) -> tuple[np.ndarray, np.ndarray]:
+        """The first scene's crank angles' cos and sin, the compiled path's
+        (:meth:`sweeps`)."""
+        return SWEEP_TURN[0](self.base.driver.angles)
 
     @cached_property
     def _trig0(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -67,6 +67,17 @@ class Geometry:
                       if (sw := swept_loads_geometry(scene, b))[2]}
 
 
+def turn(k, angles: np.ndarray, cs: np.ndarray, sn: np.ndarray) -> None:
+    """The compiled path's cos and sin of a crank's ``angles`` into ``cs``, ``sn`` (``k``:
+    the kernels, :func:`~kinetostatics.solver.fast.trig_kernels.turn_rows`; the same
+    doubles as the kernels that turn the angles themselves), the angles read-only (as a
+    driver's: one compiled signature)."""
+    if angles.flags.writeable:
+        angles = angles.view()
+        angles.flags.writeable = False
+    k.turn_rows(angles, cs, sn)
+
+
 class Plan:
     """The kernels and their geometry for one scene (or a stack) and structure, each
     dyad with its assembly ``ks`` (numbers, or arrays over a stack's scenes).
@@ -137,29 +148,17 @@ class Plan:
         k, m, a, own = self.k, buf["m"], buf["a"], self.own
         dname = self.scene.driver.body
         g, gs = self.driver
-        if self.crank:      # (cos and sin in a pass of their own: numpy's, vectorised)
-            trig = self.scene.__dict__.get("driver_trig")   # (a stack's: per sweep)
-            if trig is None and self.scene.driver.sweep is not None:
-                # a sweep read from start, stop and count: its cos and sin shared with the
-                # same sweep's earlier scenes (Driver.trig; x is the driver's angles)
-                trig = (None, *self.scene.driver.trig())
-            if trig is None:
-                np.cos(x[lo:hi], out=m[dname][L.C, lo - off:hi - off])
-                np.sin(x[lo:hi], out=m[dname][L.S, lo - off:hi - off])
-            else:
-                m[dname][L.C, lo - off:hi - off] = trig[1][lo:hi]
-                m[dname][L.S, lo - off:hi - off] = trig[2][lo:hi]
+        if self.crank:      # (cos and sin in a pass of their own: the compiled path's)
+            rows = slice(lo - off, hi - off)
+            turn(k, x[lo:hi], m[dname][L.C, rows], m[dname][L.S, rows])
         motion = k.crank_motion if self.crank else k.slider_motion
         bad = motion(x, lo, hi, off, g, gs, own, self.speed, self.accel, m[dname])
         for (g, gs, dyad), d in zip(self.dyads, buf["d"], strict=True):
             (b1, b2), (j1, j2) = dyad.bodies, dyad.outer
             args = (lo, hi, off, g, gs, own, m[j1.other(b1)], m[j2.other(b2)], m[b1], m[b2], d)
             kernel = k.MOTION[dyad.kind]
-            if dyad.kind == "RTR":      # the guide's angle, then its cos and sin
+            if dyad.kind == "RTR":      # the guide's cos and sin, then the rest
                 kernel(0, *args)
-                th = d[L.D_TH, lo - off:hi - off]
-                np.cos(th, out=d[L.C1X, lo - off:hi - off])
-                np.sin(th, out=d[L.C1Y, lo - off:hi - off])
             bad += kernel(1, *args)
         for b, (g, gs, npoint) in self.loads.items():
             bad += k.body_loads(lo, hi, off, g, gs, own, npoint, m[b], a[b])

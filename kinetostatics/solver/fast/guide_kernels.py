@@ -1,16 +1,13 @@
 """A crank and one RTR dyad (the slotted lever's structure), or a crank, one RTR dyad and
 a second dyad of another kind (the shaper's), fused: what a long sweep keeps (Me, each
 dyad's closeness to a dead centre, the undefined rows) in one kernel call over the
-sweep, each tile working out the crank's cos and sin, the guide's angle and its cos and
-sin (the C library's, where ``solve.kernel_trig`` finds them numpy's), then the rest;
-else per block of rows in two kernels with numpy's cos and sin of the guide's angle
-between them, as the composed kernels work them out
-(:mod:`~kinetostatics.solver.fast.kernels`: the RTR guide's angle in a pass of its own,
-its cos and sin numpy's, then the rest)."""
+sweep, each tile working out the crank's cos and sin (the compiled path's,
+``trig_kernels.sincos_rows``), the guide's angle's cos and sin, then the rest, as the
+composed kernels work them out (:mod:`~kinetostatics.solver.fast.kernels`: the crank's
+cos and sin in a pass of their own, then the RTR guide's angle's cos and sin in a pass
+of their own, ``closure_kernels.rtr_guide_angle``, then the rest)."""
 
 from __future__ import annotations
-
-import math
 
 from .closure_kernels import rtr_guide_angle
 from .jitbase import TILE, body, jit, jit_as, not_literal, scratch, tile_geometry
@@ -44,14 +41,15 @@ from .tail_kernels import (
     tile_reactions,
     tile_swept,
 )
+from .trig_kernels import sincos_rows
 
 RTR = KINDS["RTR"]      # outer joints revolute, inner prismatic
 
 
 @body
 def _guide_row(wk1, wk2, t, gy, k):
-    """The RTR guide's angle, the pivots' distance and the gap at row ``t`` of a tile
-    (:func:`rtr_guide_angle`, seed 000 ch. 6-7: the composed RTR kernel's stage 0) from
+    """The RTR guide's angle's cos and sin, the pivots' distance and the gap at row ``t``
+    of a tile (:func:`rtr_guide_angle`, seed 000 ch. 6-7: the composed RTR kernel's stage 0) from
     the outer joints' known bodies' motions ``wk1``, ``wk2`` (``gy``: the dyad's
     geometry, its column 0; ``k``: its assembly)."""
     p1 = outer_param(True, wk1, t, gy, 0, 0)
@@ -59,67 +57,24 @@ def _guide_row(wk1, wk2, t, gy, k):
     return rtr_guide_angle(p1, p2, gy, 0, k)
 
 
-@jit
-def rtr_guide(lo, hi, cs, sn, gd, w, eps, gy, k1d, k2d, th, reach, gap):
-    """RTR's first pass over rows ``lo`` to ``hi`` of a block given the crank's cos and
-    sin ``cs``, ``sn`` (numpy's): the crank's motion (:func:`crank_row`), then each
-    row's guide angle ``th`` (whose cos and sin the caller works out, numpy's), the
-    pivots' distance ``reach`` and the ``gap`` (:func:`_guide_row`). ``k1d``, ``k2d``:
-    whether each outer joint's known body is the crank (else the ground). The road where
-    :func:`~kinetostatics.solver.fast.solve.kernel_trig` does not hold; else the second
-    pass works these out itself (:func:`_rtr_tile`)."""
-    R = BODY_ROWS
-    w_ = scratch(2 * R)
-    wdrv = w_[R:]
-    for t in range(TILE):
-        w_[C, t] = 1.0                          # the ground: at rest
-    wk1 = wdrv if k1d else w_[:R]
-    wk2 = wdrv if k2d else w_[:R]
-    k = gy[ASSEMBLY, 0]
-    for t0 in range(lo, hi, TILE):
-        nt = min(TILE, hi - t0)
-        for t in range(nt):
-            wdrv[C, t] = cs[t0 + t]
-            wdrv[S, t] = sn[t0 + t]
-        for t in range(TILE):
-            crank_row(t, 0, gd, w, eps, wdrv)   # (counted by the second pass)
-        for t in range(nt):
-            th[t0 + t], reach[t0 + t], gap[t0 + t] = _guide_row(wk1, wk2, t, gy, k)
-    return 0
-
-
 @body
-def _rtr_tile(lo, t0, nt, own, angles, cs, sn, ct, sg, reach, gap, wgd, w, eps, gy, k1d, k2d,
-              wg, wdrv, wk1, wk2, wm1, wm2, wd, wa, wl, npt, gw, nw, undefined, st):
-    """RTR's second pass over the tile that starts at row ``t0`` (``nt`` rows) of rows
-    from ``lo``: the crank's cos and sin, the guide's (``ct``, ``sg``) and
-    :func:`rtr_guide`'s ``reach`` and ``gap`` in, the crank's motion (:func:`crank_row`),
-    copied to the outer joints' known bodies where they are the crank (``k1d``, ``k2d``),
-    the dyad's (:func:`dyad_row`, RTR), then the loads of the crank and the dyad's
+def _rtr_tile(lo, t0, nt, own, angles, wgd, w, eps, gy, k1d, k2d, wg, wdrv, wk1, wk2, wm1, wm2,
+              wd, wa, wl, npt, gw, nw, undefined, st):
+    """RTR over the tile that starts at row ``t0`` (``nt`` rows) of rows from ``lo``: the
+    crank's cos and sin of its ``angles`` (row ``i``'s at ``i``; the compiled path's,
+    :func:`~kinetostatics.solver.fast.trig_kernels.sincos_rows`), the crank's motion
+    (:func:`crank_row`), copied to the outer joints' known bodies where they are the
+    crank (``k1d``, ``k2d``), the guide's angle's cos and sin, the pivots' distance and
+    the gap (:func:`_guide_row`), the dyad's motion (:func:`dyad_row`, RTR), then the
+    loads of the crank and the dyad's
     bodies (:func:`tile_loads`, then :func:`tile_swept`: ``wa`` their resultants, ``wl``
     their geometry, the first three of ``npt``, ``gw``, ``nw``, ``st``); the count of
     the tile's rows that are not finite or that the numpy path refuses (the slider's
-    flag pinned, :func:`_pin`). Given the crank's ``angles`` (row ``i``'s at ``i``; an
-    empty array: read from ``cs``, ``sn``...), the tile works out the crank's cos and
-    sin, then the guide's angle, ``reach``, ``gap`` (:func:`_guide_row`) and the guide's
-    cos and sin itself (the C library's, one ``sincos`` each: numpy's where
-    :func:`~kinetostatics.solver.fast.solve.kernel_trig` holds), the operations of
-    :func:`rtr_guide` and numpy's passes on the same numbers."""
+    flag pinned, :func:`_pin`): the operations of the composed kernels' passes on the
+    same numbers."""
     rot1, rot2, inner_r = (RTR & ROT1) != 0, (RTR & ROT2) != 0, (RTR & INNER_R) != 0
     rtr = rot1 and rot2 and not inner_r
-    turn = angles.shape[0] > 0
-    if turn:
-        for t in range(nt):
-            a = angles[t0 + t]
-            wdrv[C, t], wdrv[S, t] = math.cos(a), math.sin(a)
-    else:
-        for t in range(nt):
-            wdrv[C, t] = cs[t0 + t]
-            wdrv[S, t] = sn[t0 + t]
-            wd[C1X, t] = ct[t0 + t]
-            wd[C1Y, t] = sg[t0 + t]
-            wd[CL2, t] = reach[t0 + t]
-            wd[XX, t] = gap[t0 + t]
+    sincos_rows(angles[t0:t0 + nt], wdrv[C, :nt], wdrv[S, :nt])
     bad = 0
     for t in range(TILE):
         f = crank_row(t, t, wgd, w, eps, wdrv)
@@ -128,11 +83,9 @@ def _rtr_tile(lo, t0, nt, own, angles, cs, sn, ct, sg, reach, gap, wgd, w, eps, 
         copy_rows(wk1, wdrv)
     if k2d:
         copy_rows(wk2, wdrv)
-    if turn:
-        k = gy[ASSEMBLY, 0]
-        for t in range(nt):
-            g, wd[CL2, t], wd[XX, t] = _guide_row(wk1, wk2, t, gy, k)
-            wd[C1X, t], wd[C1Y, t] = math.cos(g), math.sin(g)
+    k = gy[ASSEMBLY, 0]
+    for t in range(nt):
+        wd[C1X, t], wd[C1Y, t], wd[CL2, t], wd[XX, t] = _guide_row(wk1, wk2, t, gy, k)
     for t in range(TILE):
         _pin(wg, t)
         f = dyad_row(not_literal(RTR), rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
@@ -192,11 +145,10 @@ def _rtr_last(nt, wg, wgd, wdrv, wm1, wm2, wk1, wk2, wd, wad, wa1, wa2, wak1, wa
 
 
 @jit
-def rtr_kept(lo, hi, own, angles, cs, sn, gd, w, eps, gy, k1d, k2d, gl, npt, gw, nw, st, ct, sg,
-             reach, gap, drive, close, undefined):
-    """RTR's second pass (rows ``lo`` to ``hi`` of a block; ``ct``, ``sg``: the guide's
-    cos and sin, numpy's, of :func:`rtr_guide`'s angles; or, given the crank's
-    ``angles``, rows ``lo`` to ``hi`` of the sweep, every tile working out those itself,
+def rtr_kept(lo, hi, own, angles, gd, w, eps, gy, k1d, k2d, gl, npt, gw, nw, st, drive, close,
+             undefined):
+    """A crank and one RTR dyad over rows ``lo`` to ``hi`` of the sweep (the crank's
+    ``angles``; every tile working out the crank's and the guide's cos and sin,
     :func:`_rtr_tile`): the crank's motion, the
     dyad's (:func:`dyad_row`, RTR), each body's loads (bodies in the order crank, the
     dyad's first, its second: ``gl``, ``npt``, their swept loads ``gw``, ``nw`` with
@@ -227,9 +179,8 @@ def rtr_kept(lo, hi, own, angles, cs, sn, gd, w, eps, gy, k1d, k2d, gl, npt, gw,
     bad = 0
     for t0 in range(lo, hi, TILE):
         nt = min(TILE, hi - t0)
-        bad += _rtr_tile(lo, t0, nt, own, angles, cs, sn, ct, sg, reach, gap, wgd, w, eps, gy,
-                         k1d, k2d, wg, wdrv, wk1, wk2, wm1, wm2, wd, wa, wl, npt, gw, nw,
-                         undefined, st)
+        bad += _rtr_tile(lo, t0, nt, own, angles, wgd, w, eps, gy, k1d, k2d, wg, wdrv, wk1,
+                         wk2, wm1, wm2, wd, wa, wl, npt, gw, nw, undefined, st)
         bad += _rtr_last(nt, wg, wgd, wdrv, wm1, wm2, wk1, wk2, wd, wad, wa1, wa2, wak1, wak2,
                          wr)
         tile_kept(t0 - lo, nt, nt == TILE, wr, wd, drive, close)
@@ -244,13 +195,12 @@ def _known(which, crank, first, second):
 
 
 @body
-def _rtr_dyad_kept(kind, lo, hi, own, angles, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl,
-                   npt, gw, nw, st, ct, sg, reach, gap, drive, close1, close2, undefined):
+def _rtr_dyad_kept(kind, lo, hi, own, angles, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl, npt, gw,
+                   nw, st, drive, close1, close2, undefined):
     """A crank, one RTR dyad and a second dyad of kind ``kind`` (not RTR) whose outer
     joints' known bodies are the ground, the crank or the RTR dyad's bodies (``k3``,
     ``k4``: 0 the ground, 1 the crank, 2 the RTR dyad's first body, 3 its second): the
-    shaper's structure. RTR's second pass as :func:`rtr_kept` (``ct``, ``sg``, ``reach``,
-    ``gap`` from :func:`rtr_guide`, or worked out per tile given ``angles``), then the
+    shaper's structure. The crank and the RTR dyad as :func:`rtr_kept`, then the
     second dyad's motion (:func:`dyad_row`, ``gz`` its geometry), each body's loads
     (bodies in the order crank, the RTR dyad's first, its second, the second dyad's
     first, its second; seed 002 s. 2.1-2.2), the
@@ -284,9 +234,8 @@ def _rtr_dyad_kept(kind, lo, hi, own, angles, cs, sn, gd, w, eps, gy, k1d, k2d, 
     bad = 0
     for t0 in range(lo, hi, TILE):
         nt = min(TILE, hi - t0)
-        bad += _rtr_tile(lo, t0, nt, own, angles, cs, sn, ct, sg, reach, gap, wgd, w, eps, gy,
-                         k1d, k2d, wg, wdrv, wk1, wk2, wm1, wm2, wd, wa, wl, npt, gw, nw,
-                         undefined, st)
+        bad += _rtr_tile(lo, t0, nt, own, angles, wgd, w, eps, gy, k1d, k2d, wg, wdrv, wk1,
+                         wk2, wm1, wm2, wd, wa, wl, npt, gw, nw, undefined, st)
         if k3:                  # (the ground's rows: set once and left)
             copy_rows(wk3, _known(k3, wdrv, wm1, wm2))
         if k4:
@@ -322,12 +271,11 @@ def _after_rtr_for(kind: str):
     code = KINDS[kind]
 
     @jit_as(f"rtr_{kind.lower()}_kept")
-    def kept(lo, hi, own, angles, cs, sn, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl, npt, gw, nw,
-             st, ct, sg, reach, gap, drive, close1, close2, undefined):
+    def kept(lo, hi, own, angles, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl, npt, gw, nw, st,
+             drive, close1, close2, undefined):
         value = not_literal(code)       # (the helpers typed once for every kind)
-        return _rtr_dyad_kept(value, lo, hi, own, angles, cs, sn, gd, w, eps, gy, k1d, k2d, gz,
-                              k3, k4, gl, npt, gw, nw, st, ct, sg, reach, gap, drive, close1,
-                              close2, undefined)
+        return _rtr_dyad_kept(value, lo, hi, own, angles, gd, w, eps, gy, k1d, k2d, gz, k3, k4,
+                              gl, npt, gw, nw, st, drive, close1, close2, undefined)
     return kept
 
 
@@ -335,4 +283,4 @@ def _after_rtr_for(kind: str):
 # its first call: the shaper's RRT alone, unless a scene asks for another)
 AFTER_RTR = {kind: _after_rtr_for(kind) for kind in KINDS if kind != "RTR"}
 
-__all__ = ["AFTER_RTR", "rtr_guide", "rtr_kept"]
+__all__ = ["AFTER_RTR", "rtr_kept"]

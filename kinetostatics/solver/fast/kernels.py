@@ -49,7 +49,6 @@ from .layout import (
     D_LY,
     D_PX,
     D_PY,
-    D_TH,
     DET,
     DYAD_GEOMETRY,
     DYAD_OUT,
@@ -99,6 +98,7 @@ from .layout import MOTION as BODY_ROWS
 from .load_kernels import body_loads, swept_loads
 from .reaction_kernels import REACTIONS, crank_reaction, slider_reaction
 from .table_kernels import point_rows
+from .trig_kernels import turn_rows
 
 SINGULAR_WARN2 = 1e-6       # (1e-3)^2: kinematics.SINGULAR_WARN squared
 SINGULAR_FAIL2 = 1e-24      # (1e-12)^2
@@ -261,7 +261,7 @@ def _motion_kernel(kind: int, name: str):
         code = not_literal(kind)       # (each helper typed once for every kind)
         if stage == 0:
             return rtr_stage(rtr, lo, hi, off, g, gs, own, k1, k2, d)
-        # in tiles (jitbase.TILE): the known bodies' motions (and RTR's guide angle) in,
+        # in tiles (jitbase.TILE): the known bodies' motions (and RTR's guide) in,
         # the tile worked out in the scratch array alone, the bodies' motions and the
         # data out
         w = scratch(4 * BODY_ROWS + DYAD_OUT + DYAD_GEOMETRY)
@@ -294,15 +294,16 @@ def _motion_kernel(kind: int, name: str):
 
 @body
 def rtr_stage(rtr, lo, hi, off, g, gs, own, k1, k2, d):
-    """A dyad's stage 0: RTR's guide angle (row D_TH), its cos and sin then worked out by
-    the caller in a pass of their own (rows C1X, C1Y) before stage 1; nothing for the
-    other kinds."""
+    """A dyad's stage 0: RTR's guide angle's cos and sin (rows C1X, C1Y), the pivots'
+    distance and the gap (rows CL2, XX: :func:`rtr_guide_angle`), read by stage 1; nothing
+    for the other kinds."""
     if rtr:
         for i in range(lo, hi):
             j, r = i - off, own[i * gs]
             p1 = outer_param(True, k1, j, g, r, 0)
             p2 = outer_param(True, k2, j, g, r, PARAM)
-            d[D_TH, j], d[CL2, j], d[XX, j] = rtr_guide_angle(p1, p2, g, r, g[ASSEMBLY, r])
+            d[C1X, j], d[C1Y, j], d[CL2, j], d[XX, j] = rtr_guide_angle(p1, p2, g, r,
+                                                                        g[ASSEMBLY, r])
     return 0
 
 
@@ -462,4 +463,4 @@ def tile_motion_for(width: int):
 
 
 __all__ = ["MOTION", "REACTIONS", "tile_motion_for", "body_loads", "swept_loads", "crank_motion",
-           "crank_reaction", "slider_motion", "slider_reaction", "point_rows"]
+           "crank_reaction", "slider_motion", "slider_reaction", "point_rows", "turn_rows"]

@@ -48,7 +48,6 @@ DYAD_GEOMETRY = 38
 XX, XY, C1X, C1Y, C2X, C2Y, DET, NX, NY, CL2 = range(10)
 D_PA, D_PB, D_PC, D_PD = range(4)       # + 10 + 4 i
 DYAD_OUT = 18
-D_TH = 11   # RTR: the guide's angle, held before its row is written (parameter 1's P_y)
 
 # a dyad's reactions: the inner joint's (on body 2, or on the slider: Fx, Fy, N, M) and
 # per outer prismatic joint (rows 4 + 6 i ...) Fx, Fy, N, M and the slider point

@@ -115,6 +115,9 @@ def kernels() -> ModuleType | None:
     os.environ["NUMBA_CACHE_DIR"] = str(folder)
     if "numba" in sys.modules:          # (loaded by someone else: its config read already)
         sys.modules["numba"].config.CACHE_DIR = str(folder)
+    from ..stack import SWEEP_TURN
     from . import kernels as module
+    from .trig_kernels import turned
+    SWEEP_TURN[:] = [turned]            # (solve_many's runs: the kernels' cos and sin)
     _STATE["kernels"] = module
     return module

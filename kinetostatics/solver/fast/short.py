@@ -21,7 +21,7 @@ import numpy as np
 from ...model.scene import GROUND, Scene
 from ..blocks import BLOCK_ROWS, Kept
 from ..memo import record_of
-from .compose import Plan, Refused, kept_sweep
+from .compose import Plan, Refused, kept_sweep, turn
 from .geometry import NO_SWEPT_LOADS
 
 START = np.zeros(1, dtype=np.int64)     # where the one scene's rows begin in its cos, sin
@@ -48,7 +48,7 @@ def fused_sweep(kernels, scene: Scene, full: Scene, structure, geometry,
     if call is None:
         return None
     kernel, fixed = call
-    cs, sn = scene_trig(record, scene) if full is scene else _trig(full)
+    cs, sn = scene_trig(kernels, record, scene) if full is scene else _trig(kernels, full)
     n = positions.size
     drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
     bad = kernel(0, n, OWNERS, cs, sn, START, NO_ANGLES, *fixed, drive, close, undefined)
@@ -106,17 +106,20 @@ def fused_kernel(plan: Plan) -> tuple | None:
     return kernel, order, known
 
 
-def scene_trig(record: dict, scene: Scene) -> tuple[np.ndarray, np.ndarray]:
-    """The cos and sin of the scene's own sweep, kept in its record: writable copies of
-    :meth:`~kinetostatics.model.scene_types.Driver.trig`'s (shared by the scenes of
-    one sweep), the arrays ``solve_many`` hands the kernel (one compiled signature)."""
+def scene_trig(kernels, record: dict, scene: Scene) -> tuple[np.ndarray, np.ndarray]:
+    """The cos and sin of the scene's own sweep (the compiled path's: :func:`_trig`), kept
+    in its record."""
     trig = record.get("trig")
     if trig is None:
-        trig = record["trig"] = (_trig(scene) if scene.driver.sweep is None
-                                 else tuple(np.array(x) for x in scene.driver.trig()))
+        trig = record["trig"] = _trig(kernels, scene)
     return trig
 
 
-def _trig(scene: Scene) -> tuple[np.ndarray, np.ndarray]:
+def _trig(kernels, scene: Scene) -> tuple[np.ndarray, np.ndarray]:
+    """The compiled path's cos and sin of the scene's crank angles
+    (:func:`~kinetostatics.solver.fast.compose.turn`), writable: the arrays ``solve_many``
+    hands the kernel (one compiled signature)."""
     angles = scene.driver.angles
-    return np.cos(angles), np.sin(angles)
+    cs, sn = np.empty(angles.size), np.empty(angles.size)
+    turn(kernels, angles, cs, sn)
+    return cs, sn

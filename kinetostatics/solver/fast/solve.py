@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
 from dataclasses import replace
 from types import SimpleNamespace
 
@@ -33,7 +32,6 @@ from .geometry import NO_SWEPT_LOADS, not_covered
 from .layout import CL2, I_SFIRST
 from .loader import kernels as loaded_kernels
 from .short import (
-    NO_ANGLES,
     NO_STATS,
     OWNERS,
     START,
@@ -93,22 +91,6 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
     return sol
 
 
-# Rows per call of the fused kernels over a long sweep given numpy's cos and sin (worked
-# out per block into one scratch pair, which stays in the caches: guided_blocks, and
-# fused_blocks where kernel_trig does not hold). Measured 2026-11-29, the
-# four-bar's solve at 1e6 rows, processor time, best of 7 (machine loaded): 4096 rows
-# 49 ms, 8192 52, 16384 54, 65536 53; at 2e5 all 11.3-11.9 ms
-FUSED_ROWS = 4096
-# Rows per block of the RTR guide's two kernels (guided_blocks): each call passes some 30
-# arrays, ten of them in tuples that numba's dispatcher types in Python, some 20 us a
-# block (the shaper's two kernels, measured 2026-11-30: 4.9 ms of its solve at 1e6 rows
-# in blocks of 4096). Measured then, guided_blocks at 2e5 and 1e6 rows, processor time,
-# best of 5-11 at a load of 9-16: 4096, 8192 and 16384 rows alike within the load's noise
-# (the shaper 156-188 ns a row, the slotted lever 104-122); 8192 halves the calls and
-# keeps the block's seven scratch rows (448 kB) well within the 2 MB second-level cache
-GUIDED_ROWS = 8192
-
-
 def fused_blocks(kernels, scene: Scene, full: Scene, structure, geometry,
                  positions: np.ndarray) -> Kept | None:
     """The :class:`~kinetostatics.solver.blocks.Kept` of a long sweep of a crank and one
@@ -116,11 +98,11 @@ def fused_blocks(kernels, scene: Scene, full: Scene, structure, geometry,
     (:func:`~kinetostatics.solver.fast.short.fused_call`): Me, the undefined rows and
     the dyad's closeness to a dead centre, the numbers of the composed kernels bit for
     bit (the same row helpers in the same order). The crank's cos and sin are worked out
-    in the kernel, tile by tile, where :func:`kernel_trig` finds them numpy's (called
-    per ``OWNERS`` rows: measured 2026-11-29, the slider-crank at 1e6 rows, 15 ns a row
-    against 21-24 for numpy's two passes, and 31 calls instead of 245 of the kernel and
-    490 of numpy's); else numpy's, per block of :data:`FUSED_ROWS` rows in a pass of
-    their own (:func:`crank_blocks`). None for another structure or ``resist`` loads
+    in the kernel, tile by tile, the compiled path's
+    (:func:`~kinetostatics.solver.fast.trig_kernels.sincos_rows`; called per ``OWNERS``
+    rows: measured 2026-11-29, the slider-crank at 1e6 rows, 31 calls instead of 245 of
+    the kernel per block of 4096 rows and 490 of numpy's cos and sin). None for another
+    structure or ``resist`` loads
     (:func:`~kinetostatics.solver.fast.compose.solve_lean` solves those). Raises
     :class:`~kinetostatics.solver.fast.compose.Refused` as the composed kernels do."""
     found = _fused(kernels, scene, structure, geometry)
@@ -133,16 +115,12 @@ def fused_blocks(kernels, scene: Scene, full: Scene, structure, geometry,
     cs, sn = np.empty(n), np.empty(n)
     drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
     angles = full.driver.angles     # (read-only, as the driver makes them and NO_ANGLES:
-    if kernel_trig():               # one compiled signature)
-        w = OWNERS.size
-        blocks = ((lo, min(w, n - lo), angles[lo:lo + w]) for lo in range(0, n, w))
-    else:
-        blocks = ((lo, m, NO_ANGLES) for lo, m, _, _ in crank_blocks(angles, (cs, sn)))
+    w = OWNERS.size                 # one compiled signature)
     bad = 0
-    for lo, m, a in blocks:
-        at = slice(lo, lo + m)
-        bad += kernel(0, m, OWNERS, cs[at], sn[at], START, a, *fixed, drive[at], close[at],
-                      undefined[at])
+    for lo in range(0, n, w):
+        at = slice(lo, min(lo + w, n))
+        bad += kernel(0, at.stop - lo, OWNERS, cs[at], sn[at], START, angles[at], *fixed,
+                      drive[at], close[at], undefined[at])
     if bad:
         raise Refused(bad)
     if plan is not None:
@@ -156,17 +134,18 @@ _TRIG: dict[str, bool] = {}
 
 
 def kernel_trig() -> bool:
-    """Whether the fused kernel's cos and sin of an angle
-    (:func:`~kinetostatics.solver.fast.fused_kernels.turn_rows`: the C library's, fused
-    by LLVM into one ``sincos``) are numpy's bit for bit here: checked once a process on
-    the angles of :func:`trig_probes`. Where numpy works them out otherwise (its own
-    vectorised cos and sin on some processors, another C library) the fused kernel
-    reads numpy's (:func:`crank_blocks`)."""
+    """Whether the C library's cos and sin of an angle in a compiled loop
+    (:func:`~kinetostatics.solver.fast.trig_kernels.libm_rows`, fused by LLVM into one
+    ``sincos``) are numpy's bit for bit here: checked once a process on the angles of
+    :func:`trig_probes`. The dead-point screen's probes take numpy's cos and sin, and
+    in one compiled call the C library's where they are numpy's
+    (:func:`~kinetostatics.solver.fast.screen.rrr_probe`); the sweeps' kernels take the
+    compiled path's own (:mod:`~kinetostatics.solver.fast.trig_kernels`)."""
     if "same" not in _TRIG:
-        from .fused_kernels import turn_rows  # (numba loaded: kernels given)
+        from .trig_kernels import libm_rows  # (numba loaded: kernels given)
         x = trig_probes()
         cs, sn = np.empty_like(x), np.empty_like(x)
-        turn_rows(x, cs, sn)
+        libm_rows(x, cs, sn)
         with np.errstate(invalid="ignore"):     # (infinities among the probes)
             want = np.cos(x).tobytes(), np.sin(x).tobytes()
         _TRIG["same"] = (cs.tobytes(), sn.tobytes()) == want
@@ -177,8 +156,7 @@ def trig_probes(n: int = 20_000) -> np.ndarray:
     """Angles (rad) whose cos and sin :func:`kernel_trig` checks: a turn (``n + 1``
     rows), ``n`` each within +-8, +-1e3 and +-1e9, multiples of
     pi / 4, and zeros, subnormals, the largest doubles, infinities and NaN. Read-only,
-    as the tables' pass gives its angles to the same kernel (``table_pass.block_turn``):
-    one type of array, one compile of it."""
+    as a driver's angles."""
     rng = np.random.default_rng(31)
     special = np.array([0.0, -0.0, 5e-324, 2.2e-308, 1e-8, 1.7976931348623157e308,
                         -1.7976931348623157e308, np.inf, -np.inf, np.nan])
@@ -187,30 +165,6 @@ def trig_probes(n: int = 20_000) -> np.ndarray:
                         np.pi / 4 * np.arange(-64, 65), special])
     x.flags.writeable = False
     return x
-
-
-def numpy_turn(angles: np.ndarray, cs: np.ndarray, sn: np.ndarray) -> None:
-    """numpy's cos and sin of ``angles`` into ``cs`` and ``sn``, each in a pass of its
-    own (the road wherever :func:`kernel_trig` does not hold)."""
-    np.cos(angles, out=cs)
-    np.sin(angles, out=sn)
-
-
-def crank_blocks(angles: np.ndarray, whole: tuple[np.ndarray, np.ndarray] | None = None
-                 ) -> Iterator[tuple[int, int, np.ndarray, np.ndarray]]:
-    """The blocks of :data:`FUSED_ROWS` rows of a crank's sweep at ``angles``: per block
-    its first row, its rows m, and their cos and sin (numpy's, in a pass of their own,
-    in the first m values of a scratch pair shared by the blocks: the same doubles per
-    angle as over the whole sweep; or, given ``whole``, a pair of arrays over the sweep,
-    in their rows of the block, so that they hold every row's at the end)."""
-    n = angles.size
-    width = min(FUSED_ROWS, n)
-    cs, sn = (np.empty(width), np.empty(width)) if whole is None else whole
-    for lo in range(0, n, width):
-        m = min(lo + width, n) - lo
-        at = slice(0, m) if whole is None else slice(lo, lo + m)
-        numpy_turn(angles[lo:lo + m], cs[at], sn[at])
-        yield lo, m, cs[at], sn[at]
 
 
 def _fused(kernels, scene: Scene, structure, geometry) -> tuple | None:
@@ -243,67 +197,35 @@ def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarr
     RTR dyad (the slotted lever's structure), or of a crank, one RTR dyad and a second
     dyad of another kind (the shaper's), from the kernels of
     :mod:`~kinetostatics.solver.fast.guide_kernels`, the numbers of the composed kernels
-    bit for bit; or None for another structure. Where :func:`kernel_trig` finds the C
-    library's cos and sin numpy's, one kernel call over the sweep works out, tile by
-    tile, the crank's cos and sin, the guide's angle, its cos and sin, then the rest
-    (:func:`_guide_blocks` otherwise). Raises
+    bit for bit; or None for another structure. One kernel call over the sweep works
+    out, tile by tile, the crank's cos and sin (the compiled path's,
+    :func:`~kinetostatics.solver.fast.trig_kernels.sincos_rows`), the guide's angle's
+    cos and sin, then the rest. Raises
     :class:`~kinetostatics.solver.fast.compose.Refused` as the composed kernels do."""
     plan = Plan(kernels, full, structure, structure.assembly, geometry=geometry)
     found = _guided(plan)
     if found is None:
         return None
-    kernel, first, rest = found
+    kernel, rest = found
     n = positions.size
     drive, undefined = np.empty(n), np.zeros(n, dtype=bool)
     close = [np.empty(n) for _ in plan.dyads]
-    if kernel_trig():
-        # (one call, no scratch rows: measured 2026-11-30, guided_blocks alone, ns a row,
-        # processor time, best of 7, three alternating pairs of processes at a load of 6-7:
-        # shaper 144-155 at 2e5 rows, 151-158 at 1e6 against 160-191 and 171-183 in two
-        # kernels per block; slotted lever 93-96, 99-107 against 107-114, 109-120)
-        bad = kernel(0, n, OWNERS, full.driver.angles, *NO_ROWS[:2], *rest, *NO_ROWS[2:],
-                     drive, *close, undefined)
-    else:
-        bad = 0
-        for lo, m, rows in _guide_blocks(full.driver.angles, first):
-            bad += kernel(0, m, OWNERS, NO_ANGLES, *rows[:2], *rest, *rows[2:],
-                          drive[lo:lo + m], *[c[lo:lo + m] for c in close],
-                          undefined[lo:lo + m])
+    # (one call, no scratch rows: measured 2026-11-30, guided_blocks alone, ns a row,
+    # processor time, best of 7, three alternating pairs of processes at a load of 6-7:
+    # shaper 144-155 at 2e5 rows, 151-158 at 1e6 against 160-191 and 171-183 in two
+    # kernels per block, numpy's cos and sin between them; slotted lever 93-96, 99-107
+    # against 107-114, 109-120)
+    bad = kernel(0, n, OWNERS, full.driver.angles, *rest, drive, *close, undefined)
     if bad:
         raise Refused(bad)
     plan.check_swept()
     return kept_sweep(structure, "R", drive, undefined, close)
 
 
-# (no rows: the guide's kernel given the crank's angles reads none of its cos, sin, the
-# guide's cos, sin, reach and gap; writable, as the blocks' scratch rows: one signature)
-NO_ROWS = tuple(np.empty((6, 0)))
-
-
-def _guide_blocks(angles: np.ndarray, first: tuple
-                  ) -> Iterator[tuple[int, int, tuple[np.ndarray, ...]]]:
-    """The blocks of :data:`GUIDED_ROWS` rows of a crank's sweep at ``angles`` through the
-    RTR guide's first pass (``first``: its arguments but the rows'), numpy's cos and sin
-    in passes of their own around it (:func:`~kinetostatics.solver.fast.guide_kernels.rtr_guide`):
-    per block its first row, its rows m and scratch rows (reused by every block) holding
-    in their first m values the crank's cos and sin, the guide's, ``reach`` and ``gap``
-    (the road where :func:`kernel_trig` does not hold)."""
-    from .guide_kernels import rtr_guide  # (numba loaded: kernels given)
-    n = angles.size
-    w = min(GUIDED_ROWS, n)
-    th, cs, sn, ct, sg, reach, gap = np.empty((7, w))
-    for lo in range(0, n, w):
-        m = min(w, n - lo)
-        numpy_turn(angles[lo:lo + m], cs[:m], sn[:m])
-        rtr_guide(0, m, cs, sn, *first, th, reach, gap)
-        numpy_turn(th[:m], ct[:m], sg[:m])
-        yield lo, m, (cs, sn, ct, sg, reach, gap)
-
-
 def _guided(plan: Plan) -> tuple | None:
-    """The kernel that follows :func:`~kinetostatics.solver.fast.guide_kernels.rtr_guide`
-    (``rtr_kept``, or for a second dyad one of ``AFTER_RTR``), ``rtr_guide``'s arguments
-    and the kernel's (but the rows' and the outputs) for a crank and one RTR dyad whose
+    """The guide's kernel (:func:`~kinetostatics.solver.fast.guide_kernels.rtr_kept`, or
+    for a second dyad one of ``AFTER_RTR``) and its arguments (but the crank's angles
+    and the outputs) for a crank and one RTR dyad whose
     outer joints are on the ground or the crank, and maybe a second dyad (not RTR) whose
     outer joints are on the ground, the crank or the RTR dyad's bodies; else None."""
     if not plan.crank or len(plan.dyads) not in (1, 2) or plan.dyads[0][2].kind != "RTR":
@@ -333,10 +255,10 @@ def _guided(plan: Plan) -> tuple | None:
     swept = [plan.swept.get(b, NO_SWEPT_LOADS) for b in order]
     if any(gs for _, gs, _ in loads) or any(sw[1] for sw in swept):
         return None
-    return kernel, first, (*first, *second, tuple(g for g, _, _ in loads),
-                           tuple(p for _, _, p in loads), tuple(sw[0] for sw in swept),
-                           tuple(len(sw[2]) for sw in swept),
-                           tuple(plan.stats.get(b, NO_STATS) for b in order))
+    return kernel, (*first, *second, tuple(g for g, _, _ in loads),
+                    tuple(p for _, _, p in loads), tuple(sw[0] for sw in swept),
+                    tuple(len(sw[2]) for sw in swept),
+                    tuple(plan.stats.get(b, NO_STATS) for b in order))
 
 
 class SolvedAgain:

@@ -21,7 +21,7 @@ from .layout import REACTIONS as REACTION_ROWS
 from .short import OWNERS, START, fused_arguments, fused_kernel
 
 # Rows per call of a fused table kernel (the crank's cos and sin worked out per block
-# into one scratch pair, numpy's, in a pass of their own), as the lean solve's
+# into one scratch pair, in a pass of their own, where the solve kept none)
 BLOCK = 4096
 
 
@@ -88,7 +88,7 @@ class FusedTables:
         table's float columns into ``kout`` (``points``: each point's body and local
         coordinates, in the table's order) and, with ``joints`` (in the table's order),
         of the ``reactions`` table's ``Fx, Fy, F, N, M`` into ``rout``. ``crank``: the
-        crank angle's cos and sin over the sweep as the solve kept them (numpy's), else
+        crank angle's cos and sin over the sweep as the solve kept them, else
         worked out per block (:func:`block_turn`: the same numbers). Raises
         :class:`~kinetostatics.solver.fast.compose.Refused` where a kernel met a row
         that is not finite (never expected: the sweep was solved by the same kernels)."""
@@ -99,7 +99,7 @@ class FusedTables:
         slots = np.array([self.slot[b] for b, _ in points], dtype=np.int64)
         local = np.array([loc for _, loc in points], dtype=float).reshape(-1, 2)
         own = own_hypot()
-        # read-only, as kernel_trig's probes: turn_rows compiled for one type of array
+        # read-only, as a driver's angles: turn_rows compiled for one type of array
         # (a writable sweep here was a second compile of it, found by test_fast's
         # one-signature check, 2026-11-30)
         angles = driver_input(self.scene).view()
@@ -126,18 +126,14 @@ class FusedTables:
 
 def block_turn():
     """``turn(angles, cs, sn)``: the cos and sin of a block's crank angles into ``cs``,
-    ``sn``, numpy's: the C library's in one compiled pass
-    (:func:`~kinetostatics.solver.fast.fused_kernels.turn_rows`, a ``sincos`` a row)
-    where :func:`~kinetostatics.solver.fast.solve.kernel_trig` finds them numpy's bit for
-    bit, else numpy's ``cos`` and ``sin`` in two passes. (Measured 2026-11-30, the
-    four-bar's ``kinematics`` and ``reactions`` at 1e6 rows, processor time, best of 5 at
-    a load of 17: 246 ms without the solve's kept cos and sin, 261 with numpy's passes,
-    233 reading the kept pair.)"""
-    from .solve import kernel_trig, numpy_turn
-    if kernel_trig():
-        from .fused_kernels import turn_rows  # (numba loaded: the kernels given)
-        return turn_rows
-    return numpy_turn
+    ``sn``, the compiled path's
+    (:func:`~kinetostatics.solver.fast.trig_kernels.turn_rows`: the doubles the solve's
+    kernels work out). (Measured 2026-11-30, the four-bar's ``kinematics`` and
+    ``reactions`` at 1e6 rows, processor time, best of 5 at a load of 17: 246 ms
+    without the solve's kept cos and sin, the C library's then, 233 reading the kept
+    pair.)"""
+    from .trig_kernels import turn_rows  # (numba loaded: the kernels given)
+    return turn_rows
 
 
 _HYPOT: dict[str, bool] = {}

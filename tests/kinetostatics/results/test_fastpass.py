@@ -105,16 +105,17 @@ def test_the_fused_road_gives_the_full_re_solves_tables(fast, text, monkeypatch)
 
 
 def test_the_pass_reads_the_solves_cos_and_sin(fast):
-    """The lean solve keeps the crank angle's cos and sin (numpy's over the whole sweep)
-    and the fused pass reads them instead of working them out again (other numbers
-    there give other tables); a solution without them (worked out per block) gives the
-    same tables."""
+    """The lean solve keeps the crank angle's cos and sin (the compiled path's over the
+    whole sweep, ``trig_kernels.turned``'s) and the fused pass reads them instead of
+    working them out again (other numbers there give other tables); a solution without
+    them (worked out per block) gives the same tables."""
+    from kinetostatics.solver.fast.trig_kernels import turned
     text = scene_text("four_bar")
     sol = ks.solve(text)
     lean = sol.__dict__["_deferred"]
     cs, sn = lean.crank
-    angles = lean.known["scene"].driver.angles
-    assert cs.tobytes() == np.cos(angles).tobytes() and sn.tobytes() == np.sin(angles).tobytes()
+    want = turned(lean.known["scene"].driver.angles)
+    assert cs.tobytes() == want[0].tobytes() and sn.tobytes() == want[1].tobytes()
     tables = bits(sol.reactions), bits(sol.kinematics)
     again = ks.solve(text)
     again.__dict__["_deferred"].crank = None

@@ -18,7 +18,7 @@ from kinetostatics.solver.blocks import BLOCK_ROWS
 from kinetostatics.solver.fast import loader, use
 from kinetostatics.solver.fast import solve as fast_solve
 from kinetostatics.solver.fast.compose import Plan, Refused, solve_lean
-from kinetostatics.solver.fast.solve import FUSED_ROWS, _assembled, fused_blocks, guided_blocks
+from kinetostatics.solver.fast.solve import _assembled, fused_blocks, guided_blocks
 from kinetostatics.solver.pipeline import structure_of
 
 from .test_fast_short import DATA, FUSED, full_solve
@@ -68,8 +68,9 @@ GUIDED.update(SIX_BARS)
 pytestmark = [pytest.mark.slow,
               pytest.mark.skipif(not loader.installed(), reason="numba not installed")]
 
-# more rows than the short sweep's limit, not a whole number of the fused calls' blocks
-COUNT = 2 * BLOCK_ROWS + 2 * FUSED_ROWS + 1001
+# more rows than the short sweep's limit (and than one fused call's, OWNERS rows), not a
+# whole number of tiles
+COUNT = 2 * BLOCK_ROWS + 2 * 4096 + 1001
 assert COUNT >= 2 * BLOCK_ROWS
 
 

@@ -1,8 +1,7 @@
 """The fused kernel's crank pass over a long sweep: the crank's cos and sin worked out in the
-kernel, tile by tile (:func:`kinetostatics.solver.fast.fused_kernels.turn_rows`, the C
-library's ``sincos``), where :func:`kinetostatics.solver.fast.solve.kernel_trig` finds them
-numpy's: the same numbers, bit for bit, as the kernel given numpy's cos and sin per block
-(:func:`kinetostatics.solver.fast.solve.crank_blocks`)."""
+kernel, tile by tile (``fused_kernels._tile_turn``): the compiled path's
+(:func:`kinetostatics.solver.fast.trig_kernels.turn_rows`), bit for bit, and the same
+numbers as the kernel given them (the road of a short sweep and ``solve_many``)."""
 
 from __future__ import annotations
 
@@ -14,8 +13,8 @@ import pytest
 from kinetostatics.model.scene import load_scene
 from kinetostatics.solver.fast import loader
 from kinetostatics.solver.fast import solve as fast_solve
-from kinetostatics.solver.fast.short import OWNERS
-from kinetostatics.solver.fast.solve import _assembled, fused_blocks, kernel_trig, trig_probes
+from kinetostatics.solver.fast.short import NO_ANGLES, OWNERS, START
+from kinetostatics.solver.fast.solve import _assembled, fused_blocks
 from kinetostatics.solver.kinematics import with_positions
 from kinetostatics.solver.pipeline import structure_of
 
@@ -33,20 +32,6 @@ def kernels():
     if k is None:
         pytest.skip("no writable cache folder")
     return k
-
-
-def test_the_kernels_cos_and_sin_are_numpys_where_they_are_used(kernels) -> None:
-    from kinetostatics.solver.fast.fused_kernels import turn_rows
-    x = trig_probes()
-    cs, sn = np.empty_like(x), np.empty_like(x)
-    turn_rows(x, cs, sn)
-    with np.errstate(invalid="ignore"):
-        same = (cs.tobytes() == np.cos(x).tobytes() and sn.tobytes() == np.sin(x).tobytes())
-    assert kernel_trig() == same
-    # (glibc's sincos against its cos and sin, which numpy calls: the same doubles on
-    # every probe here, measured 2026-11-29, and on 1e7 angles within +-1e15)
-    if not same:
-        pytest.skip("numpy's cos and sin are not the C library's here: numpy's are used")
 
 
 def _long(kind: str, given: bool):
@@ -70,17 +55,23 @@ def _long(kind: str, given: bool):
 @pytest.mark.parametrize("kind,given", [
     pytest.param(k, False, marks=() if k == "RRR" else pytest.mark.slow) for k in FUSED]
     + [("RRR", True)])
-def test_the_kernels_crank_pass_is_numpys_bit_for_bit(kernels, monkeypatch, kind: str,
-                                                      given: bool) -> None:
-    if not kernel_trig():
-        pytest.skip("numpy's cos and sin are not the C library's here: numpy's are used")
+def test_the_kernels_crank_pass_is_the_compiled_paths_bit_for_bit(kernels, kind: str,
+                                                                   given: bool) -> None:
+    from kinetostatics.solver.fast.trig_kernels import turned
     sc, structure, geometry, pos = _long(kind, given)
     ours = fused_blocks(kernels, sc, sc, structure, geometry, pos)
-    monkeypatch.setitem(fast_solve._TRIG, "same", False)        # numpy's, per block
-    ref = fused_blocks(kernels, sc, sc, structure, geometry, pos)
     angles = sc.driver.angles
-    assert ours.crank[0].tobytes() == np.cos(angles).tobytes()
-    assert ours.crank[1].tobytes() == np.sin(angles).tobytes()
-    assert ours.drive.value.tobytes() == ref.drive.value.tobytes()
-    assert np.array_equal(ours.undefined, ref.undefined)
-    assert ours.closeness2[0].tobytes() == ref.closeness2[0].tobytes()
+    cs, sn = turned(angles)
+    assert ours.crank[0].tobytes() == cs.tobytes()
+    assert ours.crank[1].tobytes() == sn.tobytes()
+    # the kernel given the cos and sin, per call of OWNERS rows
+    kernel, fixed, _ = fast_solve._fused(kernels, sc, structure, geometry)
+    n = pos.size
+    drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
+    for lo in range(0, n, OWNERS.size):
+        at = slice(lo, min(lo + OWNERS.size, n))
+        assert kernel(0, at.stop - lo, OWNERS, cs[at], sn[at], START, NO_ANGLES, *fixed,
+                      drive[at], close[at], undefined[at]) == 0
+    assert ours.drive.value.tobytes() == drive.tobytes()
+    assert np.array_equal(ours.undefined, undefined)
+    assert ours.closeness2[0].tobytes() == close.tobytes()
