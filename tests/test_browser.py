@@ -77,6 +77,34 @@ INSTALL = ("the browser test needs Chromium and Playwright: apt-get install chro
            "(/usr/bin/chromium) and pip install playwright (never `playwright install`)")
 
 
+# JupyterLab's server, started as ``python -m jupyterlab`` would, with the import of
+# rfc3987_syntax declined (as tests/conftest.py declines it in the suite's processes):
+# jsonschema, under jupyter_events, builds its 38 lark grammars on import, 1.7 s of the
+# server's 3.0 s of CPU to its first answer (1.25 s without; best of three, 2026-11-30)
+SERVER = ("import sys; sys.modules['rfc3987_syntax'] = None; "
+          "from jupyterlab.labapp import main; sys.exit(main())")
+# the page's configuration (the server's labconfig/page_config.json): no build check (the
+# page's load had the server run node, `node-version-check.js` and `yarn config`: the
+# node processes of a run 1.0-1.1 s of CPU with it, 0.4-0.5 s without: the server's own
+# start runs `yarn config` once), and the front end's extensions that no check here uses
+# left out (the table of contents, the debugger, the log console, the cell toolbar...,
+# with the plugins of the kept ones that need one of them: else those fail to start, an
+# error on the page); the notebook, its menus, the completer, the widgets and MathJax
+# stay. JupyterLab's load took 4.0-4.5 s of Chromium's CPU with them, 3.2-3.4 s without
+# (two alternating pairs; one sheet's run unchanged within the noise; load 8-10,
+# 2026-11-30).
+PAGE_CONFIG = {"buildCheck": False, "buildAvailable": False, "disabledExtensions": {
+    name: True for name in [
+        *(f"@jupyterlab/{name}-extension" for name in (
+            "toc", "debugger", "lsp", "logconsole", "cell-toolbar", "celltags",
+            "metadataform", "extensionmanager", "inspector", "terminal", "running",
+            "csvviewer", "htmlviewer", "imageviewer", "markdownviewer", "hub", "launcher",
+            "help", "settingeditor", "workspaces")),
+        "@jupyterlab/notebook-extension:toc", "@jupyterlab/notebook-extension:language-server",
+        "@jupyterlab/notebook-extension:update-raw-mimetype",
+        "@jupyterlab/fileeditor-extension:language-server"]}}
+
+
 def _requirements():
     """Playwright's sync API, or a skip (a failure in CI) naming what to install."""
     missing = not CHROMIUM.exists()
@@ -116,9 +144,12 @@ def lab(tmp_path_factory):
                      ("JUPYTERLAB_SETTINGS_DIR", "settings"),
                      ("JUPYTERLAB_WORKSPACES_DIR", "workspaces"), ("IPYTHONDIR", "ipython")):
         env[var] = str(home / ".jupyter" / sub)
+    labconfig = home / ".jupyter" / "config" / "labconfig"
+    labconfig.mkdir(parents=True)
+    (labconfig / "page_config.json").write_text(json.dumps(PAGE_CONFIG))
     log = open(home / "server.log", "w")  # noqa: SIM115 (closed below)
     server = subprocess.Popen(
-        [sys.executable, "-m", "jupyterlab", "--no-browser", "--allow-root", f"--port={port}",
+        [sys.executable, "-c", SERVER, "--no-browser", "--allow-root", f"--port={port}",
          "--ip=127.0.0.1", f"--IdentityProvider.token={token}", f"--ServerApp.root_dir={home}",
          "--LabApp.news_url=", "--LabApp.check_for_updates_class="
          "jupyterlab.NeverCheckForUpdate", "--LabApp.extension_manager=readonly",
