@@ -453,6 +453,7 @@ SHARED_PER_MODULE = ("tests/kinetostatics/teaching/test_classroom.py",
 #: compiles a kernel and writes numba's cache, every later call (and command) loads it.
 COMPILED = ("tests/kinetostatics/solver/test_fast.py::",
             "tests/kinetostatics/solver/test_many_fast.py::",
+            "tests/kinetostatics/solver/test_many_guided.py::",
             "tests/kinetostatics/solver/test_many_rounds.py::",
             "tests/kinetostatics/solver/test_fast_short.py::",
             "tests/kinetostatics/solver/test_fast_long.py::",

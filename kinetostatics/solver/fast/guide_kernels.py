@@ -9,8 +9,10 @@ of their own, ``closure_kernels.rtr_guide_angle``, then the rest)."""
 
 from __future__ import annotations
 
+import numpy as np
+
 from .closure_kernels import rtr_guide_angle
-from .jitbase import TILE, body, jit, jit_as, not_literal, scratch, tile_geometry
+from .jitbase import TILE, body, jit, jit_as, not_literal, scratch, tile_geometry, tile_rows
 from .kernels import crank_row, dyad_row, outer_param
 from .layout import (
     ASSEMBLY,
@@ -58,11 +60,10 @@ def _guide_row(wk1, wk2, t, gy, k):
 
 
 @body
-def _rtr_tile(lo, t0, nt, own, angles, wgd, w, eps, gy, k1d, k2d, wg, wdrv, wk1, wk2, wm1, wm2,
-              wd, wa, wl, npt, gw, nw, undefined, st):
-    """RTR over the tile that starts at row ``t0`` (``nt`` rows) of rows from ``lo``: the
-    crank's cos and sin of its ``angles`` (row ``i``'s at ``i``; the compiled path's,
-    :func:`~kinetostatics.solver.fast.trig_kernels.sincos_rows`), the crank's motion
+def _rtr_tile(lo, t0, nt, own, trig, wgd, w, eps, k1d, k2d, wg, wdrv, wk1, wk2, wm1, wm2,
+              wd, wa, wl, npt, gw, gws, nw, undefined, st):
+    """RTR over the tile that starts at row ``t0`` (``nt`` rows, one scene's) of rows from
+    ``lo``: the crank's cos and sin (:func:`_crank_in`, ``trig``), the crank's motion
     (:func:`crank_row`), copied to the outer joints' known bodies where they are the
     crank (``k1d``, ``k2d``), the guide's angle's cos and sin, the pivots' distance and
     the gap (:func:`_guide_row`), the dyad's motion (:func:`dyad_row`, RTR), then the
@@ -74,7 +75,7 @@ def _rtr_tile(lo, t0, nt, own, angles, wgd, w, eps, gy, k1d, k2d, wg, wdrv, wk1,
     same numbers."""
     rot1, rot2, inner_r = (RTR & ROT1) != 0, (RTR & ROT2) != 0, (RTR & INNER_R) != 0
     rtr = rot1 and rot2 and not inner_r
-    sincos_rows(angles[t0:t0 + nt], wdrv[C, :nt], wdrv[S, :nt])
+    _crank_in(t0, nt, own, trig, wdrv)
     bad = 0
     for t in range(TILE):
         f = crank_row(t, t, wgd, w, eps, wdrv)
@@ -83,9 +84,9 @@ def _rtr_tile(lo, t0, nt, own, angles, wgd, w, eps, gy, k1d, k2d, wg, wdrv, wk1,
         copy_rows(wk1, wdrv)
     if k2d:
         copy_rows(wk2, wdrv)
-    k = gy[ASSEMBLY, 0]
+    k = wg[ASSEMBLY, 0]                 # (the tile's scene's)
     for t in range(nt):
-        wd[C1X, t], wd[C1Y, t], wd[CL2, t], wd[XX, t] = _guide_row(wk1, wk2, t, gy, k)
+        wd[C1X, t], wd[C1Y, t], wd[CL2, t], wd[XX, t] = _guide_row(wk1, wk2, t, wg, k)
     for t in range(TILE):
         _pin(wg, t)
         f = dyad_row(not_literal(RTR), rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
@@ -94,21 +95,71 @@ def _rtr_tile(lo, t0, nt, own, angles, wgd, w, eps, gy, k1d, k2d, wg, wdrv, wk1,
     bad += tile_loads(wm1, wa[1], wl[1], npt[1], nt)
     bad += tile_loads(wm2, wa[2], wl[2], npt[2], nt)
     if nw[0]:
-        bad += tile_swept(lo, t0, nt, own, 0, 0, gw[0], nw[0], wdrv, wa[0], undefined, st[0])
+        bad += tile_swept(lo, t0, nt, own, gws[0], _each(st[0]), gw[0], nw[0], wdrv,
+                          wa[0], undefined, st[0])
     if nw[1]:
-        bad += tile_swept(lo, t0, nt, own, 0, 0, gw[1], nw[1], wm1, wa[1], undefined, st[1])
+        bad += tile_swept(lo, t0, nt, own, gws[1], _each(st[1]), gw[1], nw[1], wm1,
+                          wa[1], undefined, st[1])
     if nw[2]:
-        bad += tile_swept(lo, t0, nt, own, 0, 0, gw[2], nw[2], wm2, wa[2], undefined, st[2])
+        bad += tile_swept(lo, t0, nt, own, gws[2], _each(st[2]), gw[2], nw[2], wm2,
+                          wa[2], undefined, st[2])
     return bad
 
 
 @body
-def _loads_in(g, own):
-    """A body's load geometry (one scene's: ``g``'s column) in every column of a tile's
-    scratch array of its own."""
-    wl = scratch(g.shape[0])
-    tile_geometry(wl, g, 0, own, 0, -1)
-    return wl
+def _loads_in(g):
+    """A tile's scratch array of its own for a body's load geometry ``g`` (filled per
+    tile: :func:`_scene_tile`)."""
+    return scratch(g.shape[0])
+
+
+@body
+def _each(st):
+    """1 when the statistics ``st`` of a body's swept loads have a column per scene
+    (each row's at its scene's), else 0 (one scene's)."""
+    return 1 if st.shape[1] > 1 else 0
+
+
+@body
+def _crank_in(t0, nt, own, trig, wdrv):
+    """The crank's cos and sin of the ``nt`` rows of the tile that starts at row ``t0``
+    (one scene's) into its columns: ``trig`` is ``(cs, sn, ts, angles)``; the compiled
+    path's (:func:`~kinetostatics.solver.fast.trig_kernels.sincos_rows`) of the rows'
+    ``angles`` (one scene, row ``i``'s at ``i``), or none given (an empty array) copied
+    from ``cs``, ``sn`` (worked out by the same function before: row ``i`` of scene
+    ``e`` at ``i - ts[e]``, a stack's, ``stacker.sweeps``)."""
+    cs, sn, ts, angles = trig
+    if angles.shape[0] > 0:
+        sincos_rows(angles[t0:t0 + nt], wdrv[C, :nt], wdrv[S, :nt])
+    else:
+        c0 = t0 - ts[own[t0 * _stride(ts)]]
+        for t in range(nt):
+            wdrv[C, t] = cs[c0 + t]
+            wdrv[S, t] = sn[c0 + t]
+
+
+@body
+def _stride(ts):
+    """Each row's scene's stride in ``own``: 1 for a stack of scenes (``ts``, where each
+    scene's rows begin in the crank's cos and sin, has more than one), 0 for one scene
+    (its rows all scene 0: ``own`` may be shorter than the sweep, ``short.OWNERS``)."""
+    return 1 if ts.shape[0] > 1 else 0
+
+
+@body
+def _scene_tile(t0, hi, own, ts, held, wgd, gd, gds, wg, gy, gys, wl, gl, gls):
+    """The rows of the tile that starts at row ``t0`` (at most ``TILE``, all of one scene:
+    :func:`~kinetostatics.solver.fast.jitbase.tile_rows`), the tile's geometry of the
+    crank ``wgd``, the RTR dyad ``wg`` and each body's loads ``wl`` (the crank's, the
+    dyad's first, its second) refilled with the scene's column where it changes
+    (:func:`~kinetostatics.solver.fast.jitbase.tile_geometry`: ``held``, each table's
+    scene filled last; a table of one column, ``gs`` 0, filled once)."""
+    held[0] = tile_geometry(wgd, gd, gds, own, t0, held[0])
+    held[1] = tile_geometry(wg, gy, gys, own, t0, held[1])
+    held[2] = tile_geometry(wl[0], gl[0], gls[0], own, t0, held[2])
+    held[3] = tile_geometry(wl[1], gl[1], gls[1], own, t0, held[3])
+    held[4] = tile_geometry(wl[2], gl[2], gls[2], own, t0, held[4])
+    return tile_rows(_stride(ts), own, t0, hi)
 
 
 @body
@@ -145,8 +196,8 @@ def _rtr_last(nt, wg, wgd, wdrv, wm1, wm2, wk1, wk2, wd, wad, wa1, wa2, wak1, wa
 
 
 @jit
-def rtr_kept(lo, hi, own, angles, gd, w, eps, gy, k1d, k2d, gl, npt, gw, nw, st, drive, close,
-             undefined):
+def rtr_kept(lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt,
+             gw, gws, nw, st, drive, close, undefined):
     """A crank and one RTR dyad over rows ``lo`` to ``hi`` of the sweep (the crank's
     ``angles``; every tile working out the crank's and the guide's cos and sin,
     :func:`_rtr_tile`): the crank's motion, the
@@ -155,9 +206,12 @@ def rtr_kept(lo, hi, own, angles, gd, w, eps, gy, k1d, k2d, gl, npt, gw, nw, st,
     their statistics ``st``; seed 002 s. 2.1-2.2), the dyad's reactions (s. 2.3) and Me
     (eqs 2.47-2.48), tile by tile in one scratch
     array, as the composed kernels compute them; only Me, the closeness to a dead centre
-    and the undefined rows written (``own``: zeros, the one scene's column of the loads'
-    geometry). Returns the count of rows the numpy path must
-    judge."""
+    and the undefined rows written. One scene (``own``: zeros; ``ts``: one start; the
+    crank's ``angles``) or a stack of scenes (``own``: each row's scene; each table with
+    its ``gs``, 1 for a column per scene; the rows' cos and sin ``cs``, ``sn`` from
+    ``ts``, ``angles`` empty): each tile one scene's rows, its geometry refilled where
+    the scene changes (:func:`_scene_tile`). Returns the count of rows the numpy path
+    must judge."""
     R = BODY_ROWS
     w_ = scratch(5 * R + LOAD_ROWS + DYAD_ROWS + DRIVER_GEOMETRY)
     # the known bodies' motions in rows of their own, copied per tile (views of one
@@ -172,18 +226,20 @@ def rtr_kept(lo, hi, own, angles, gd, w, eps, gy, k1d, k2d, gl, npt, gw, nw, st,
     wgd = w_[b:]
     for t in range(TILE):
         wk1[C, t] = wk2[C, t] = 1.0             # the ground: at rest (unless the crank)
-    tile_geometry(wg, gy, 0, own, 0, -1)
-    tile_geometry(wgd, gd, 0, own, 0, -1)
     wa = (wad, wa1, wa2)
-    wl = (_loads_in(gl[0], own), _loads_in(gl[1], own), _loads_in(gl[2], own))
+    wl = (_loads_in(gl[0]), _loads_in(gl[1]), _loads_in(gl[2]))
+    held = np.full(5, -1, dtype=np.int64)
+    trig = (cs, sn, ts, angles)
     bad = 0
-    for t0 in range(lo, hi, TILE):
-        nt = min(TILE, hi - t0)
-        bad += _rtr_tile(lo, t0, nt, own, angles, wgd, w, eps, gy, k1d, k2d, wg, wdrv, wk1,
-                         wk2, wm1, wm2, wd, wa, wl, npt, gw, nw, undefined, st)
+    t0 = lo
+    while t0 < hi:
+        nt = _scene_tile(t0, hi, own, ts, held, wgd, gd, gds, wg, gy, gys, wl, gl, gls)
+        bad += _rtr_tile(lo, t0, nt, own, trig, wgd, w, eps, k1d, k2d, wg, wdrv, wk1, wk2,
+                         wm1, wm2, wd, wa, wl, npt, gw, gws, nw, undefined, st)
         bad += _rtr_last(nt, wg, wgd, wdrv, wm1, wm2, wk1, wk2, wd, wad, wa1, wa2, wak1, wak2,
                          wr)
         tile_kept(t0 - lo, nt, nt == TILE, wr, wd, drive, close)
+        t0 += nt
     return bad
 
 
@@ -195,8 +251,8 @@ def _known(which, crank, first, second):
 
 
 @body
-def _rtr_dyad_kept(kind, lo, hi, own, angles, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl, npt, gw,
-                   nw, st, drive, close1, close2, undefined):
+def _rtr_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d, k2d, gz,
+                   gzs, k3, k4, gl, gls, npt, gw, gws, nw, st, drive, close1, close2, undefined):
     """A crank, one RTR dyad and a second dyad of kind ``kind`` (not RTR) whose outer
     joints' known bodies are the ground, the crank or the RTR dyad's bodies (``k3``,
     ``k4``: 0 the ground, 1 the crank, 2 the RTR dyad's first body, 3 its second): the
@@ -207,8 +263,9 @@ def _rtr_dyad_kept(kind, lo, hi, own, angles, gd, w, eps, gy, k1d, k2d, gz, k3, 
     second dyad's reactions, then the RTR dyad's (s. 2.3: the dyads last to first, what
     each outer joint loads its known body with added in order) and Me (eqs 2.47-2.48),
     tile by tile in one scratch array, as the composed kernels compute them; only Me,
-    each dyad's closeness to a dead centre and the undefined rows written. Returns the
-    count of rows the numpy path must judge."""
+    each dyad's closeness to a dead centre and the undefined rows written; one scene or a
+    stack, each tile one scene's rows, as :func:`rtr_kept` (``gzs``: the second dyad's
+    table's). Returns the count of rows the numpy path must judge."""
     rot3, rot4, inner_z = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
     R = BODY_ROWS
     w_ = scratch(9 * R + LOAD_ROWS + 12 + 2 * DYAD_ROWS + DRIVER_GEOMETRY)
@@ -225,17 +282,20 @@ def _rtr_dyad_kept(kind, lo, hi, own, angles, gd, w, eps, gy, k1d, k2d, gz, k3, 
     wgd = w_[b:]
     for t in range(TILE):                       # the ground: at rest (unless a body's)
         wk1[C, t] = wk2[C, t] = wk3[C, t] = wk4[C, t] = 1.0
-    tile_geometry(wg, gy, 0, own, 0, -1)
-    tile_geometry(wgz, gz, 0, own, 0, -1)
-    tile_geometry(wgd, gd, 0, own, 0, -1)
     wa = (wad, wa1, wa2)
-    wl = (_loads_in(gl[0], own), _loads_in(gl[1], own), _loads_in(gl[2], own))
-    wl3, wl4 = _loads_in(gl[3], own), _loads_in(gl[4], own)
+    wl = (_loads_in(gl[0]), _loads_in(gl[1]), _loads_in(gl[2]))
+    wl3, wl4 = _loads_in(gl[3]), _loads_in(gl[4])
+    held = np.full(8, -1, dtype=np.int64)
+    trig = (cs, sn, ts, angles)
     bad = 0
-    for t0 in range(lo, hi, TILE):
-        nt = min(TILE, hi - t0)
-        bad += _rtr_tile(lo, t0, nt, own, angles, wgd, w, eps, gy, k1d, k2d, wg, wdrv, wk1,
-                         wk2, wm1, wm2, wd, wa, wl, npt, gw, nw, undefined, st)
+    t0 = lo
+    while t0 < hi:
+        nt = _scene_tile(t0, hi, own, ts, held, wgd, gd, gds, wg, gy, gys, wl, gl, gls)
+        held[5] = tile_geometry(wgz, gz, gzs, own, t0, held[5])
+        held[6] = tile_geometry(wl3, gl[3], gls[3], own, t0, held[6])
+        held[7] = tile_geometry(wl4, gl[4], gls[4], own, t0, held[7])
+        bad += _rtr_tile(lo, t0, nt, own, trig, wgd, w, eps, k1d, k2d, wg, wdrv, wk1, wk2,
+                         wm1, wm2, wd, wa, wl, npt, gw, gws, nw, undefined, st)
         if k3:                  # (the ground's rows: set once and left)
             copy_rows(wk3, _known(k3, wdrv, wm1, wm2))
         if k4:
@@ -246,9 +306,11 @@ def _rtr_dyad_kept(kind, lo, hi, own, angles, gd, w, eps, gy, k1d, k2d, gz, k3, 
         bad += tile_loads(wm3, wa3, wl3, npt[3], nt)
         bad += tile_loads(wm4, wa4, wl4, npt[4], nt)
         if nw[3]:
-            bad += tile_swept(lo, t0, nt, own, 0, 0, gw[3], nw[3], wm3, wa3, undefined, st[3])
+            bad += tile_swept(lo, t0, nt, own, gws[3], _each(st[3]), gw[3], nw[3], wm3, wa3,
+                              undefined, st[3])
         if nw[4]:
-            bad += tile_swept(lo, t0, nt, own, 0, 0, gw[4], nw[4], wm4, wa4, undefined, st[4])
+            bad += tile_swept(lo, t0, nt, own, gws[4], _each(st[4]), gw[4], nw[4], wm4, wa4,
+                              undefined, st[4])
         # the reactions, the dyads last to first (seed 002 s. 2.3)
         bad += tile_reactions(rot3, rot4, inner_z, nt, wgz, wm3, wm4, wk3, wk4, wdz, wa3, wa4,
                               wak3, wak4, wrz)
@@ -261,6 +323,7 @@ def _rtr_dyad_kept(kind, lo, hi, own, angles, gd, w, eps, gy, k1d, k2d, gz, k3, 
         tile_kept(t0 - lo, nt, nt == TILE, wr, wd, drive, close1)
         for t in range(nt):
             close2[t0 + t - lo] = wdz[CL2, t]
+        t0 += nt
     return bad
 
 
@@ -271,11 +334,12 @@ def _after_rtr_for(kind: str):
     code = KINDS[kind]
 
     @jit_as(f"rtr_{kind.lower()}_kept")
-    def kept(lo, hi, own, angles, gd, w, eps, gy, k1d, k2d, gz, k3, k4, gl, npt, gw, nw, st,
-             drive, close1, close2, undefined):
+    def kept(lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d, k2d, gz, gzs, k3, k4,
+             gl, gls, npt, gw, gws, nw, st, drive, close1, close2, undefined):
         value = not_literal(code)       # (the helpers typed once for every kind)
-        return _rtr_dyad_kept(value, lo, hi, own, angles, gd, w, eps, gy, k1d, k2d, gz, k3, k4,
-                              gl, npt, gw, nw, st, drive, close1, close2, undefined)
+        return _rtr_dyad_kept(value, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys,
+                              k1d, k2d, gz, gzs, k3, k4, gl, gls, npt, gw, gws, nw, st, drive,
+                              close1, close2, undefined)
     return kept
 
 

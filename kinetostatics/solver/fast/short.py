@@ -28,6 +28,8 @@ START = np.zeros(1, dtype=np.int64)     # where the one scene's rows begin in it
 NO_ANGLES = np.zeros(0)     # (the fused kernel reads the rows' cos and sin: none worked out)
 NO_ANGLES.flags.writeable = False       # (read-only as a driver's angles: one signature)
 OWNERS = np.zeros(2 * BLOCK_ROWS, dtype=np.int64)  # each row's scene: 0 (a short sweep)
+NO_TRIG = np.zeros(0)     # (the guide's kernels given the angles: no cos, sin; writable,
+#  as a stack's: one signature)
 NO_STATS = np.zeros((1, 1, 2))          # (a body without swept loads: never written)
 
 

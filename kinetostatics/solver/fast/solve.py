@@ -33,6 +33,7 @@ from .layout import CL2, I_SFIRST
 from .loader import kernels as loaded_kernels
 from .short import (
     NO_STATS,
+    NO_TRIG,
     OWNERS,
     START,
     fused_arguments,
@@ -203,7 +204,7 @@ def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarr
     cos and sin, then the rest. Raises
     :class:`~kinetostatics.solver.fast.compose.Refused` as the composed kernels do."""
     plan = Plan(kernels, full, structure, structure.assembly, geometry=geometry)
-    found = _guided(plan)
+    found = guided_call(plan)
     if found is None:
         return None
     kernel, rest = found
@@ -215,19 +216,22 @@ def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarr
     # shaper 144-155 at 2e5 rows, 151-158 at 1e6 against 160-191 and 171-183 in two
     # kernels per block, numpy's cos and sin between them; slotted lever 93-96, 99-107
     # against 107-114, 109-120)
-    bad = kernel(0, n, OWNERS, full.driver.angles, *rest, drive, *close, undefined)
+    bad = kernel(0, n, OWNERS, NO_TRIG, NO_TRIG, START, full.driver.angles, *rest, drive, *close,
+                 undefined)
     if bad:
         raise Refused(bad)
     plan.check_swept()
     return kept_sweep(structure, "R", drive, undefined, close)
 
 
-def _guided(plan: Plan) -> tuple | None:
+def guided_call(plan: Plan) -> tuple | None:
     """The guide's kernel (:func:`~kinetostatics.solver.fast.guide_kernels.rtr_kept`, or
-    for a second dyad one of ``AFTER_RTR``) and its arguments (but the crank's angles
-    and the outputs) for a crank and one RTR dyad whose
-    outer joints are on the ground or the crank, and maybe a second dyad (not RTR) whose
-    outer joints are on the ground, the crank or the RTR dyad's bodies; else None."""
+    for a second dyad one of ``AFTER_RTR``) and its arguments (but the rows' cos and sin,
+    where each scene's begin, the crank's angles and the outputs) for a crank and one RTR
+    dyad whose outer joints are on the ground or the crank, and maybe a second dyad (not
+    RTR) whose outer joints are on the ground, the crank or the RTR dyad's bodies; else
+    None. One scene's plan, or a stack's (each table with its ``gs``: 1, a column per
+    scene; the kernels refill a tile's geometry where its scene changes)."""
     if not plan.crank or len(plan.dyads) not in (1, 2) or plan.dyads[0][2].kind != "RTR":
         return None
     from .guide_kernels import AFTER_RTR, rtr_kept  # (numba loaded: plan.k given)
@@ -236,27 +240,26 @@ def _guided(plan: Plan) -> tuple | None:
     order = (dname, *dyad.bodies)
     known = [j.other(b) for j, b in zip(dyad.outer, dyad.bodies, strict=True)]
     gd, gds = plan.driver
-    if gys or gds or not set(known) <= {GROUND, dname} or gy[I_SFIRST, 0] != 0.0:
+    if not set(known) <= {GROUND, dname} or (gy[I_SFIRST] != 0.0).any():
         return None         # (the kernels pin the guide first: guide_kernels._pin)
-    first = (gd, plan.speed, plan.accel, gy, known[0] == dname, known[1] == dname)
+    first = (gd, gds, plan.speed, plan.accel, gy, gys, known[0] == dname, known[1] == dname)
     kernel, second = rtr_kept, ()
     if len(plan.dyads) == 2:
         gz, gzs, dyad = plan.dyads[1]
         kernel = AFTER_RTR.get(dyad.kind)
         which = (GROUND, *order)        # (the kernel's codes: 0 the ground, 1 the crank...)
         known = [j.other(b) for j, b in zip(dyad.outer, dyad.bodies, strict=True)]
-        if kernel is None or gzs or not set(known) <= set(which):
+        if kernel is None or not set(known) <= set(which):
             return None
-        second = (gz, which.index(known[0]), which.index(known[1]))
+        second = (gz, gzs, which.index(known[0]), which.index(known[1]))
         order = (*order, *dyad.bodies)
     if len(plan.bodies) != len(order) or set(plan.bodies) != set(order):
         return None
     loads = [plan.loads[b] for b in order]
     swept = [plan.swept.get(b, NO_SWEPT_LOADS) for b in order]
-    if any(gs for _, gs, _ in loads) or any(sw[1] for sw in swept):
-        return None
     return kernel, (*first, *second, tuple(g for g, _, _ in loads),
-                    tuple(p for _, _, p in loads), tuple(sw[0] for sw in swept),
+                    tuple(gs for _, gs, _ in loads), tuple(p for _, _, p in loads),
+                    tuple(sw[0] for sw in swept), tuple(sw[1] for sw in swept),
                     tuple(len(sw[2]) for sw in swept),
                     tuple(plan.stats.get(b, NO_STATS) for b in order))
 

@@ -13,7 +13,7 @@ from .choice import wanted
 from .compose import Plan, Refused, kept_sweep, solve_full, solve_lean
 from .geometry import not_covered
 from .short import NO_ANGLES, fused_arguments, fused_kernel
-from .solve import KeptRun
+from .solve import KeptRun, guided_call
 
 
 def solve_run_stacked(stacker, structure, ks: np.ndarray, lo: int, hi: int,
@@ -137,7 +137,8 @@ _SCRATCH: list[np.ndarray] = []      # (list.pop and append: each thread its own
 def fused_kept(plan: Plan, n: int, trig: tuple, close: np.ndarray | None = None
                ) -> Kept | None:
     """What a run's scenes keep (Me, the undefined rows, the closeness to a dead
-    centre) of a crank and one dyad (not RTR), in one fused kernel over the run's ``n``
+    centre) of a crank and one dyad (not RTR; a crank and an RTR dyad first,
+    :func:`guided_kept`), in one fused kernel over the run's ``n``
     rows (``trig``: the crank's cos and sin and where each scene's rows begin in them,
     :meth:`~kinetostatics.solver.stack.Stacker.sweeps`;
     :data:`~kinetostatics.solver.fast.fused_kernels.KEPT`: every kernel of a block in turn on
@@ -148,7 +149,7 @@ def fused_kept(plan: Plan, n: int, trig: tuple, close: np.ndarray | None = None
     :class:`~kinetostatics.solver.fast.compose.Refused` as the composed kernels do."""
     fused = fused_kernel(plan)
     if fused is None:
-        return None
+        return guided_kept(plan, n, trig, close)
     kernel, order, known = fused
     drive, undefined = np.empty(n), np.zeros(n, dtype=bool)
     close = np.empty(n) if close is None else close
@@ -158,3 +159,24 @@ def fused_kept(plan: Plan, n: int, trig: tuple, close: np.ndarray | None = None
         raise Refused(bad)
     plan.check_swept()
     return kept_sweep(plan.structure, "R", drive, undefined, [close])
+
+
+def guided_kept(plan: Plan, n: int, trig: tuple, close: np.ndarray | None = None
+                ) -> Kept | None:
+    """:func:`fused_kept` of a crank and one RTR dyad, maybe a second dyad (the slotted
+    lever's and the shaper's structures) in the guide's kernel
+    (:func:`~kinetostatics.solver.fast.solve.guided_call`: each tile one scene's rows,
+    its geometry refilled where its scene changes; each row the numbers of its scene's
+    own solve, bit for bit), or None for another structure. ``close``: the first dyad's
+    closeness (a new array if None; the second's always a new one)."""
+    found = guided_call(plan)
+    if found is None:
+        return None
+    kernel, rest = found
+    drive, undefined = np.empty(n), np.zeros(n, dtype=bool)
+    closes = [np.empty(n) if close is None else close, *(np.empty(n) for _ in plan.dyads[1:])]
+    bad = kernel(0, n, plan.own, *trig, NO_ANGLES, *rest, drive, *closes, undefined)
+    if bad:
+        raise Refused(bad)
+    plan.check_swept()
+    return kept_sweep(plan.structure, "R", drive, undefined, closes)
