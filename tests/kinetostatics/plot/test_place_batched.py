@@ -41,6 +41,19 @@ def _crowded():
     return fig, texts
 
 
+def _tries_one_by_one(a, scale: float, w: float, h: float):
+    """The 160 tries of a w x h label at ``a`` as the search before issue 32 built them,
+    one at a time, in order: (distance, offset, padded box)."""
+    for dist in P._DISTANCES:
+        for unit in P._UNITS:
+            off = dist * scale * unit
+            c, s = off / np.hypot(*off)
+            fx = 0.0 if c > 0.3 else 1.0 if c < -0.3 else 0.5
+            fy = 0.0 if s > 0.3 else 1.0 if s < -0.3 else 0.5
+            x0, y0 = a + off - np.array([fx * w, fy * h])
+            yield dist, off, Bbox([[x0, y0], [x0 + w, y0 + h]]).padded(P._PAD)
+
+
 def _one_by_one(t, room, renderer, scale):
     """The reference: each of the 160 places built and tested alone, in order (the
     search before issue 32)."""
@@ -50,30 +63,24 @@ def _one_by_one(t, room, renderer, scale):
     bb = P.text_extent(t, renderer)
     w, h = bb.width, bb.height
     f = room.frame
-    for dist in P._DISTANCES:
-        for unit in P._UNITS:
-            off = dist * scale * unit
-            c, s = off / np.hypot(*off)
-            fx = 0.0 if c > 0.3 else 1.0 if c < -0.3 else 0.5
-            fy = 0.0 if s > 0.3 else 1.0 if s < -0.3 else 0.5
-            x0, y0 = a + off - np.array([fx * w, fy * h])
-            box = Bbox([[x0, y0], [x0 + w, y0 + h]]).padded(P._PAD)
-            if not (f.x0 <= box.x0 and box.x1 <= f.x1 and f.y0 <= box.y0 and
-                    box.y1 <= f.y1) or overlapping_rows(room.box_rows, box).any():
-                continue
-            if any(meets(room.paths[k], box)
-                   for k in np.flatnonzero(overlapping_rows(room.path_rows, box))):
-                continue
-            far = dist > P._LEADER
-            if far and not room.leader_clear(a, box, box):
-                continue
-            t.xyann = tuple(off / scale)
-            t.set_ha("left" if c > 0.3 else "right" if c < -0.3 else "center")
-            t.set_va("bottom" if s > 0.3 else "top" if s < -0.3 else "center")
-            P._set_leader(t, far)
-            tip = np.clip(a, [box.x0, box.y0], [box.x1, box.y1])
-            room.take(box.padded(-P._PAD + 0.5), Path([a, tip]) if far else None)
-            return True
+    for dist, off, box in _tries_one_by_one(a, scale, w, h):
+        c, s = off / np.hypot(*off)
+        if not (f.x0 <= box.x0 and box.x1 <= f.x1 and f.y0 <= box.y0 and
+                box.y1 <= f.y1) or overlapping_rows(room.box_rows, box).any():
+            continue
+        if any(meets(room.paths[k], box)
+               for k in np.flatnonzero(overlapping_rows(room.path_rows, box))):
+            continue
+        far = dist > P._LEADER
+        if far and not room.leader_clear(a, box, box):
+            continue
+        t.xyann = tuple(off / scale)
+        t.set_ha("left" if c > 0.3 else "right" if c < -0.3 else "center")
+        t.set_va("bottom" if s > 0.3 else "top" if s < -0.3 else "center")
+        P._set_leader(t, far)
+        tip = np.clip(a, [box.x0, box.y0], [box.x1, box.y1])
+        room.take(box.padded(-P._PAD + 0.5), Path([a, tip]) if far else None)
+        return True
     return False
 
 
@@ -105,17 +112,10 @@ def test_the_tries_are_the_boxes_built_one_by_one():
         scale = dpi / 72.0
         offs, rows = P._tries(anchor, scale, w, h)
         k = 0
-        for dist in P._DISTANCES:
-            for unit in P._UNITS:
-                off = dist * scale * unit
-                c, s = off / np.hypot(*off)
-                fx = 0.0 if c > 0.3 else 1.0 if c < -0.3 else 0.5
-                fy = 0.0 if s > 0.3 else 1.0 if s < -0.3 else 0.5
-                x0, y0 = anchor + off - np.array([fx * w, fy * h])
-                box = Bbox([[x0, y0], [x0 + w, y0 + h]]).padded(P._PAD)
-                assert np.array_equal(offs[k], off)
-                assert np.array_equal(rows[k], box.extents)
-                k += 1
+        for _dist, off, box in _tries_one_by_one(anchor, scale, w, h):
+            assert np.array_equal(offs[k], off)
+            assert np.array_equal(rows[k], box.extents)
+            k += 1
         assert k == len(rows) == 160
 
 
