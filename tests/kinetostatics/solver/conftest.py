@@ -5,6 +5,7 @@ from __future__ import annotations
 import pytest
 
 from kinetostatics.solver import many
+from kinetostatics.solver.fast import loader
 
 
 @pytest.fixture
@@ -18,3 +19,13 @@ def alone_calls(monkeypatch):
         return solo(sc)
     monkeypatch.setattr(many, "_alone", spy)
     return calls
+
+
+@pytest.fixture
+def kernels():
+    """The compiled path's kernels, loaded (skips where they cannot load: no writable
+    cache folder; the modules using it skip without numba)."""
+    k = loader.kernels()
+    if k is None:
+        pytest.skip("no writable cache folder")
+    return k

@@ -26,14 +26,6 @@ pytestmark = pytest.mark.skipif(not loader.installed(), reason="numba not instal
 COUNT = 2 * OWNERS.size + 7
 
 
-@pytest.fixture
-def kernels():
-    k = loader.kernels()
-    if k is None:
-        pytest.skip("no writable cache folder")
-    return k
-
-
 def _long(kind: str, given: bool):
     d = copy.deepcopy(load_scene(FUSED[kind]).raw)
     d["driver"] = {**d["driver"], "count": COUNT}

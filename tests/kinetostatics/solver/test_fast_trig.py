@@ -15,9 +15,8 @@ pytestmark = pytest.mark.skipif(not loader.installed(), reason="numba not instal
 
 
 @pytest.fixture
-def trig():
-    if loader.kernels() is None:
-        pytest.skip("no writable cache folder")
+def trig(kernels):
+    """The trigonometry kernels' module, the kernels loaded (conftest's ``kernels``)."""
     from kinetostatics.solver.fast import trig_kernels
     return trig_kernels
 
