@@ -43,7 +43,16 @@ _DATA_URI = re.compile(r"data:[\w/+.-]+;base64,[A-Za-z0-9+/=\s]*")
 # run first in the kernel: every figure a cell shows is measured against the picture
 # standard (kinetostatics.plot.audit) before the inline backend shows and closes it
 # (post_execute callbacks run in the order registered: this one before the backend's)
+# (first of all, as tests/conftest.py does in the suite's processes: jsonschema, which
+# nbformat imports, is declined rfc3987_syntax, whose 38 grammars cost 1.5 s of CPU in a
+# kernel that imports nbformat (sheet 12), measured 2026-11-30; nothing in a sheet
+# validates an "iri")
 AUDIT_HOOK = """
+import sys as _sys
+_sys.modules.setdefault("rfc3987_syntax", None)
+del _sys
+
+
 def _install_audit():
     import matplotlib.pyplot as plt
     from kinetostatics.plot.audit import audit
@@ -117,9 +126,14 @@ for _c in _special:
 
 # run after the sheet in the same kernel: move every slider of every Explorer (from the
 # sliders' starting values: a browser may have moved them before)
+# (an Explorer is there only where the sheet imported kinetostatics.notebook: the check
+# does not import it into a sheet without one, 0.1-0.17 s of its kernel's CPU, measured
+# 2026-11-30)
 EXPLORER_CHECK = """
-from kinetostatics.notebook import Explorer as _Explorer
-_explorers = [v for v in list(globals().values()) if isinstance(v, _Explorer)]
+import sys as _sys
+_module = _sys.modules.get("kinetostatics.notebook")
+_explorers = [v for v in list(globals().values())
+              if _module is not None and isinstance(v, _module.Explorer)]
 assert _explorers or not {topic}, "this topic sheet has no interactive cell (Explorer)"
 for _e in _explorers:
     _e.close()                          # no frontend: the API alone (no widget redraws)

@@ -22,6 +22,7 @@ import pytest
 from kinetostatics import teaching as T
 from kinetostatics.cli import main
 from kinetostatics.model.errors import WorkbenchError
+from kinetostatics.teaching import classroom
 
 KINDS = list(T.EXERCISES)
 # a class of 11 (a class of 30 took 73-83 s of the full suite's time to generate, one
@@ -31,18 +32,32 @@ IDS = [f"2026-{k:03d}" for k in range(1, 12)]
 _NUMBER = re.compile(r"\d+(?:\.\d*)?(?:[eE][-+]?\d+)?")
 
 
+# the handouts' pictures: drawn for the first students of each class only, the others'
+# handouts written without one. A picture is 0.25-0.55 s of CPU a student (the drawing,
+# the PNG, encoded again where its text spells a key value): the 44 were 10-15 s of the
+# module's 26 s, 12 are a quarter of it (measured 2026-11-30). The sealed-file test
+# reads every page (a pictured one with its picture's text); test_handouts.py checks the
+# leak check itself on a real picture, whatever the seed draws.
+PICTURED = IDS[:3]
+
+
 @pytest.fixture(scope="module")
 def classes(tmp_path_factory):
-    """One class folder per exercise, written with a random secret seed."""
+    """One class folder per exercise, written with a random secret seed (the handouts of
+    :data:`PICTURED` with their picture)."""
     root = tmp_path_factory.mktemp("classes")
     ids = root / "ids.txt"
     ids.write_text("\n".join(IDS) + "\n", encoding="utf-8")
     out = {}
-    for kind in KINDS:
-        d = root / kind
-        res = T.generate_class(kind, ids, d)
-        assert res["seed_source"] == "random (secret)"
-        out[kind] = d
+    draw = classroom.picture_figure
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(classroom, "picture_figure", lambda exercise, variant: (
+            draw(exercise, variant) if variant["student"] in PICTURED else None))
+        for kind in KINDS:
+            d = root / kind
+            res = T.generate_class(kind, ids, d)
+            assert res["seed_source"] == "random (secret)"
+            out[kind] = d
     return out
 
 
@@ -86,6 +101,9 @@ def test_student_files_are_sealed(kind, classes):
     assert isinstance(seed, int) and 2**32 <= seed < 2**63
     assert sorted(p.stem for p in (d / "students").iterdir()) == sorted(IDS)
     assert sorted(p.stem for p in (d / "handouts").iterdir()) == sorted(IDS)
+    pictured = [sid for sid in IDS if "data:image/png;base64," in
+                (d / "handouts" / f"{sid}.html").read_text(encoding="utf-8")]
+    assert pictured == ([] if kind == "resonance_three_run" else PICTURED), pictured
     for sid in IDS:
         values = {_sig4(v) for v in _key_of(key, sid).values()}
         for p in (d / "students" / f"{sid}.ipynb", d / "handouts" / f"{sid}.html"):

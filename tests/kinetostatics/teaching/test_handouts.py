@@ -70,3 +70,22 @@ def test_the_picture_adds_no_number_to_the_page() -> None:
     extra = with_picture.replace("data:image/png;base64,AAAA", "")
     assert set(_NUM.findall(extra)) <= set(_NUM.findall(bare))
     assert "img{max-width:100%}" in bare
+
+
+def test_a_key_value_the_picture_spells_is_not_in_its_text(monkeypatch) -> None:
+    """The leak check itself (not a stand-in), on a real picture: a key value that the
+    first encoding's base64 text spells (a three-digit run of that text, whatever the
+    drawing's bytes are here) is not readable in the picture the page gets, neither as a
+    number nor inside one; the pixels are the first encoding's."""
+    import re
+
+    ex = exercise("rotor_two_plane", 5)
+    v = ex.variant("2026-001")
+    fig = H.picture_figure(ex, v)
+    monkeypatch.setattr(H, "key_values", lambda variant: ({}, set()))
+    first = H.picture_uri(ex, v, fig).split(",", 1)[1]
+    spelled = re.search(r"(?<![0-9])[1-9][0-9]{2}(?![0-9])", first).group(0)
+    monkeypatch.setattr(H, "key_values", lambda variant: ({"q": float(spelled)}, set()))
+    blob = H.picture_uri(ex, v, fig).split(",", 1)[1]
+    assert blob != first and spelled not in blob
+    assert np.array_equal(_pixels(base64.b64decode(blob)), _pixels(base64.b64decode(first)))
