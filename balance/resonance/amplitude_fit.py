@@ -111,17 +111,34 @@ class _Data:
         extra = (1,) * (lr.ndim - 1)
         A = self.A.reshape(self.A.shape[0], *extra, -1)
         w = self.w.reshape(A.shape)
-        rho = np.exp(lr)[..., None]
-        cos_d = np.cos(th)[..., None] * self.c + np.sin(th)[..., None] * self.s
-        g = np.sqrt(np.maximum(rho * rho + 2.0 * rho * cos_d + 1.0, 0.0))   # |u/a + e^(i t_k)|
-        rho = rho[..., 0]
-        w0, A0, wk, Ak = w[..., 0], A[..., 0], w[..., 1:], A[..., 1:]
-        wg = wk * g
-        a = (w0 * rho * A0 + (wg * Ak).sum(axis=-1)) / (w0 * rho * rho + (wg * g).sum(axis=-1))
+        rho = np.exp(lr)
+        ct, st = np.cos(th), np.sin(th)
+        rr, r2 = rho * rho, 2.0 * rho
+        g, wg = [], []                              # per trial run k, each (P, ...)
+        for k in range(1, A.shape[-1]):
+            cos_d = ct * self.c[k - 1] + st * self.s[k - 1]      # cos(theta - theta_k)
+            g.append(np.sqrt(np.maximum(rr + r2 * cos_d + 1.0, 0.0)))  # |u/a + e^(i t_k)|
+            wg.append(w[..., k] * g[-1])
+        w0, A0 = w[..., 0], A[..., 0]
+        a = (w0 * rho * A0 + _sum([x * A[..., k + 1] for k, x in enumerate(wg)])) \
+            / (w0 * rho * rho + _sum([x * y for x, y in zip(wg, g, strict=True)]))
         r0 = A0 - a * rho
-        rk = Ak - a[..., None] * g
-        chi2 = w0 * r0 * r0 + (wk * rk * rk).sum(axis=-1)    # no cancellation in sharp valleys
-        return (chi2, a) if with_a else chi2
+        rk = [A[..., k + 1] - a * x for k, x in enumerate(g)]
+        chi2 = w0 * r0 * r0 + _sum([w[..., k + 1] * x * x for k, x in enumerate(rk)])
+        return (chi2, a) if with_a else chi2     # (no cancellation in sharp valleys)
+
+
+def _sum(terms: list[np.ndarray]) -> np.ndarray:
+    """The terms (of one shape) summed as numpy's ``sum(axis=-1)`` of them stacked on a
+    last axis, bit for bit: fewer than 8 it adds one after the other from 0.0 (its
+    pairwise sum starts at 8), here without the stacked array and the reduction over so
+    short an axis (a seventh of its time)."""
+    if not 0 < len(terms) < 8:
+        return np.stack(terms, axis=-1).sum(axis=-1)
+    s = terms[0] + 0.0                                   # (-0.0 + 0.0 is 0.0, as numpy's)
+    for x in terms[1:]:
+        s += x
+    return s
 
 
 def _wrap(t: np.ndarray) -> np.ndarray:
@@ -200,7 +217,7 @@ def _residuals(d: _Data, c: np.ndarray, p: np.ndarray, jac: bool = False):
 def _lm(d: _Data, c: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Levenberg-Marquardt descent from p (P, S, 3) about the centres c; (p, chi2)."""
     r = _residuals(d, c, p)
-    f = (r * r).sum(axis=-1)
+    f = _sum(list(np.moveaxis(r * r, -1, 0)))
     lam = np.full(f.shape, 1e-3)
     eye = np.eye(3)
     for _ in range(_NEWTON_STEPS):
@@ -213,7 +230,7 @@ def _lm(d: _Data, c: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]
         step = np.linalg.solve(JTJ + lam[..., None, None] * diag, -g[..., None])[..., 0]
         trial = p + np.clip(step, -3.0, 3.0)
         rt = _residuals(d, c, trial)
-        ft = (rt * rt).sum(axis=-1)
+        ft = _sum(list(np.moveaxis(rt * rt, -1, 0)))
         with np.errstate(invalid="ignore"):
             better = ft < f
             settled = (better & (f - ft <= 1e-13 * f) & (lam < 1e-2)) | (lam > 1e12)
