@@ -111,21 +111,22 @@ class _Data:
         extra = (1,) * (lr.ndim - 1)
         A = self.A.reshape(self.A.shape[0], *extra, -1)
         w = self.w.reshape(A.shape)
-        rho = np.exp(lr)
-        ct, st = np.cos(th), np.sin(th)
-        rr, r2 = rho * rho, 2.0 * rho
-        g, wg = [], []                              # per trial run k, each (P, ...)
-        for k in range(1, A.shape[-1]):
-            cos_d = ct * self.c[k - 1] + st * self.s[k - 1]      # cos(theta - theta_k)
-            g.append(np.sqrt(np.maximum(rr + r2 * cos_d + 1.0, 0.0)))  # |u/a + e^(i t_k)|
-            wg.append(w[..., k] * g[-1])
-        w0, A0 = w[..., 0], A[..., 0]
-        a = (w0 * rho * A0 + _sum([x * A[..., k + 1] for k, x in enumerate(wg)])) \
-            / (w0 * rho * rho + _sum([x * y for x, y in zip(wg, g, strict=True)]))
+        rho = np.exp(lr)[..., None]
+        cos_d = np.cos(th)[..., None] * self.c + np.sin(th)[..., None] * self.s
+        g = np.sqrt(np.maximum(rho * rho + 2.0 * rho * cos_d + 1.0, 0.0))   # |u/a + e^(i t_k)|
+        rho = rho[..., 0]
+        w0, A0, wk, Ak = w[..., 0], A[..., 0], w[..., 1:], A[..., 1:]
+        wg = wk * g
+        a = (w0 * rho * A0 + _last_sum(wg * Ak)) / (w0 * rho * rho + _last_sum(wg * g))
         r0 = A0 - a * rho
-        rk = [A[..., k + 1] - a * x for k, x in enumerate(g)]
-        chi2 = w0 * r0 * r0 + _sum([w[..., k + 1] * x * x for k, x in enumerate(rk)])
-        return (chi2, a) if with_a else chi2     # (no cancellation in sharp valleys)
+        rk = Ak - a[..., None] * g
+        chi2 = w0 * r0 * r0 + _last_sum(wk * rk * rk)    # no cancellation in sharp valleys
+        return (chi2, a) if with_a else chi2
+
+
+def _last_sum(x: np.ndarray) -> np.ndarray:
+    """``x.sum(axis=-1)`` bit for bit (:func:`_sum` of its slices)."""
+    return _sum([x[..., k] for k in range(x.shape[-1])])
 
 
 def _sum(terms: list[np.ndarray]) -> np.ndarray:
@@ -218,7 +219,7 @@ def _lm(d: _Data, c: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     ce = c[..., None] + np.concatenate([np.zeros(1), d.c + 1j * d.s])
     sw = np.sqrt(d.w)[:, None, :]
     r, J = _residuals(d, ce, sw, p)
-    f = _sum([r[..., k] * r[..., k] for k in range(r.shape[-1])])
+    f = _last_sum(r * r)
     lam = np.full(f.shape, 1e-3)
     eye = np.eye(3)
     for _ in range(_NEWTON_STEPS):
@@ -230,7 +231,7 @@ def _lm(d: _Data, c: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]
         step = np.linalg.solve(JTJ + lam[..., None, None] * diag, -g[..., None])[..., 0]
         trial = p + np.clip(step, -3.0, 3.0)
         rt, Jt = _residuals(d, ce, sw, trial)
-        ft = _sum([rt[..., k] * rt[..., k] for k in range(rt.shape[-1])])
+        ft = _last_sum(rt * rt)
         with np.errstate(invalid="ignore"):
             better = ft < f
             settled = (better & (f - ft <= 1e-13 * f) & (lam < 1e-2)) | (lam > 1e12)
