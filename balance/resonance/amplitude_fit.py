@@ -117,11 +117,29 @@ class _Data:
         rho = rho[..., 0]
         w0, A0, wk, Ak = w[..., 0], A[..., 0], w[..., 1:], A[..., 1:]
         wg = wk * g
-        a = (w0 * rho * A0 + (wg * Ak).sum(axis=-1)) / (w0 * rho * rho + (wg * g).sum(axis=-1))
+        a = (w0 * rho * A0 + _last_sum(wg * Ak)) / (w0 * rho * rho + _last_sum(wg * g))
         r0 = A0 - a * rho
         rk = Ak - a[..., None] * g
-        chi2 = w0 * r0 * r0 + (wk * rk * rk).sum(axis=-1)    # no cancellation in sharp valleys
+        chi2 = w0 * r0 * r0 + _last_sum(wk * rk * rk)    # no cancellation in sharp valleys
         return (chi2, a) if with_a else chi2
+
+
+def _last_sum(x: np.ndarray) -> np.ndarray:
+    """``x.sum(axis=-1)`` bit for bit (:func:`_sum` of its slices)."""
+    return _sum([x[..., k] for k in range(x.shape[-1])])
+
+
+def _sum(terms: list[np.ndarray]) -> np.ndarray:
+    """The terms (of one shape) summed as numpy's ``sum(axis=-1)`` of them stacked on a
+    last axis, bit for bit: fewer than 8 it adds one after the other from 0.0 (its
+    pairwise sum starts at 8), here without the stacked array and the reduction over so
+    short an axis (a seventh of its time)."""
+    if not 0 < len(terms) < 8:
+        return np.stack(terms, axis=-1).sum(axis=-1)
+    s = terms[0] + 0.0                                   # (-0.0 + 0.0 is 0.0, as numpy's)
+    for x in terms[1:]:
+        s += x
+    return s
 
 
 def _wrap(t: np.ndarray) -> np.ndarray:
@@ -178,33 +196,33 @@ def _derivatives(d: _Data, lr: np.ndarray, th: np.ndarray, h: float = 1e-5):
     return f0, g, H
 
 
-def _residuals(d: _Data, c: np.ndarray, p: np.ndarray, jac: bool = False):
+def _residuals(d: _Data, ce: np.ndarray, sw: np.ndarray, p: np.ndarray):
     """Weighted residuals (A_k - model_k) / sigma_k, (P, S, n+1), and their Jacobian
-    (P, S, n+1, 3) when asked, in polar coordinates about a centre c (complex, (P, S)):
-    p = (log t, phi, log a) with u / a = c + t e^(i phi)."""
-    sw = np.sqrt(d.w)[:, None, :]
+    (P, S, n+1, 3), in polar coordinates about a centre c: p = (log t, phi, log a) with
+    u / a = c + t e^(i phi); ce = c + e_k (P, S, n+1: e_0 = 0, the A1 run) and sw =
+    1 / sigma (P, 1, n+1) as :func:`_lm` makes them once."""
     a = np.exp(p[..., 2])[..., None]
     arm = np.exp(p[..., 0] + 1j * p[..., 1])[..., None]             # t e^(i phi)
-    ek = np.concatenate([np.zeros(1), d.c + 1j * d.s])              # e_0 = 0: the A1 run
-    z = c[..., None] + ek + arm
-    m = a * np.abs(z)
+    z = ce + arm
+    az = np.abs(z)
+    m = a * az
     r = (d.A[:, None, :] - m) * sw
-    if not jac:
-        return r
-    zh = np.where(np.abs(z) > 0, z / np.where(np.abs(z) > 0, np.abs(z), 1.0), 1.0)
+    zh = np.where(az > 0, z / np.where(az > 0, az, 1.0), 1.0)
     J = -np.stack([a * np.real(np.conj(zh) * arm), a * np.real(np.conj(zh) * 1j * arm), m],
                   axis=-1) * sw[..., None]
     return r, J
 
 
 def _lm(d: _Data, c: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Levenberg-Marquardt descent from p (P, S, 3) about the centres c; (p, chi2)."""
-    r = _residuals(d, c, p)
-    f = (r * r).sum(axis=-1)
+    """Levenberg-Marquardt descent from p (P, S, 3) about the centres c; (p, chi2). The
+    residuals and Jacobian at p are those of the step that moved there (p's own)."""
+    ce = c[..., None] + np.concatenate([np.zeros(1), d.c + 1j * d.s])
+    sw = np.sqrt(d.w)[:, None, :]
+    r, J = _residuals(d, ce, sw, p)
+    f = _last_sum(r * r)
     lam = np.full(f.shape, 1e-3)
     eye = np.eye(3)
     for _ in range(_NEWTON_STEPS):
-        r, J = _residuals(d, c, p, jac=True)
         JTJ = np.einsum("...ki,...kj->...ij", J, J)
         g = np.einsum("...ki,...k->...i", J, r)
         dg = np.einsum("...ii->...i", JTJ)
@@ -212,12 +230,14 @@ def _lm(d: _Data, c: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]
         diag = dg[..., None, :] * eye
         step = np.linalg.solve(JTJ + lam[..., None, None] * diag, -g[..., None])[..., 0]
         trial = p + np.clip(step, -3.0, 3.0)
-        rt = _residuals(d, c, trial)
-        ft = (rt * rt).sum(axis=-1)
+        rt, Jt = _residuals(d, ce, sw, trial)
+        ft = _last_sum(rt * rt)
         with np.errstate(invalid="ignore"):
             better = ft < f
             settled = (better & (f - ft <= 1e-13 * f) & (lam < 1e-2)) | (lam > 1e12)
         p = np.where(better[..., None], trial, p)
+        r = np.where(better[..., None], rt, r)
+        J = np.where(better[..., None, None], Jt, J)
         f = np.where(better, ft, f)
         lam = np.where(better, np.maximum(lam / 3.0, 1e-12), lam * 4.0)
         if np.all(settled):

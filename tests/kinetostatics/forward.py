@@ -47,15 +47,16 @@ class ForwardMechanism:
         # (the arms and body indices looked up once: the same numbers, a third of the
         # CPU of a run of many steps spent finding them again)
         self.index = {b: i for i, b in enumerate(self.names)}
-        self.arms: dict[tuple[str, str], np.ndarray] = {}
+        self.arms: dict[tuple[str, str], tuple[float, float]] = {}
 
     # -- geometry ---------------------------------------------------------------------
-    def _arm(self, body: str, point: str) -> np.ndarray:
+    def _arm(self, body: str, point: str) -> tuple[float, float]:
         """A point relative to the body's cog, in body axes."""
         arm = self.arms.get((body, point))
         if arm is None:
             b = self.sc.bodies[body]
-            arm = self.arms[body, point] = np.array(b.local(point)) - np.array(b.local("cog"))
+            arm = self.arms[body, point] = tuple(
+                float(v) for v in np.array(b.local(point)) - np.array(b.local("cog")))
         return arm
 
     def _state(self, q, body):
@@ -64,14 +65,23 @@ class ForwardMechanism:
         i = self.index[body]
         return q[3 * i:3 * i + 2], q[3 * i + 2], i
 
+    def _scalars(self, q, qd, body, point):
+        """(x, y, vx, vy, R s x, R s y, body index) of a point, as floats."""
+        if body == "ground":
+            x, y = self.sc.ground[point]
+            return float(x), float(y), 0.0, 0.0, 0.0, 0.0, None
+        i = self.index[body]
+        c, s = math.cos(q[3 * i + 2]), math.sin(q[3 * i + 2])
+        ax, ay = self._arm(body, point)
+        rx, ry = c * ax - s * ay, s * ax + c * ay              # R s, the arm turned
+        w = qd[3 * i + 2]                                       # v = v_cog + w J R s
+        return q[3 * i] + rx, q[3 * i + 1] + ry, qd[3 * i] - w * ry, qd[3 * i + 1] + w * rx, \
+            rx, ry, i
+
     def _point(self, q, qd, body, point):
         """Global position, velocity, the arm R s, and the body index of a point."""
-        if body == "ground":
-            return np.array(self.sc.ground[point], dtype=float), np.zeros(2), np.zeros(2), None
-        r, th, i = self._state(q, body)
-        rs = _rot(th) @ self._arm(body, point)
-        v = qd[3 * i:3 * i + 2] + qd[3 * i + 2] * (_J @ rs)
-        return r + rs, v, rs, i
+        x, y, vx, vy, rx, ry, i = self._scalars(q, qd, body, point)
+        return np.array([x, y]), np.array([vx, vy]), np.array([rx, ry]), i
 
     def constraints(self, q, qd):
         """Residual, Jacobian and gamma (J qdd = gamma) of every joint."""
@@ -79,17 +89,22 @@ class ForwardMechanism:
         for j in self.sc.joints.values():
             if j.kind == "R":
                 Jr = np.zeros((2, self.nq))
-                r = np.zeros(2)
-                g = np.zeros(2)
+                r = [0.0, 0.0]
+                g = [0.0, 0.0]
                 for sign, body, pt in ((1.0, j.bodies[0], j.points[0]),
                                        (-1.0, j.bodies[1], j.points[1])):
-                    p, _, rs, i = self._point(q, qd, body, pt)
-                    r += sign * p
+                    x, y, _, _, rx, ry, i = self._scalars(q, qd, body, pt)
+                    r[0] += sign * x
+                    r[1] += sign * y
                     if i is None:
                         continue
-                    Jr[:, 3 * i:3 * i + 2] += sign * _EYE
-                    Jr[:, 3 * i + 2] += sign * (_J @ rs)
-                    g += sign * rs * qd[3 * i + 2] ** 2
+                    Jr[0, 3 * i] += sign
+                    Jr[1, 3 * i + 1] += sign
+                    Jr[0, 3 * i + 2] -= sign * ry                 # sign J R s
+                    Jr[1, 3 * i + 2] += sign * rx
+                    w2 = qd[3 * i + 2] ** 2
+                    g[0] += sign * rx * w2
+                    g[1] += sign * ry * w2
                 res.append(r)
                 rows.append(Jr)
                 gam.append(g)
@@ -117,10 +132,10 @@ class ForwardMechanism:
             # c2'' = n''.d + 2 n'.d' + n.d'' ; the qdd-free part, moved to the right
             free = (-wg**2 * (n @ d) + 2.0 * wg * ((_J @ n) @ dd)
                     + n @ (-ws**2 * rss + wg**2 * rsl))
-            res.append(np.array([c0, n @ d]))
+            res.append([c0, n @ d])
             rows.append(Jt)
-            gam.append(np.array([0.0, -free]))
-        return np.concatenate(res), np.vstack(rows), np.concatenate(gam)
+            gam.append([0.0, -free])
+        return np.array(res).ravel(), np.vstack(rows), np.array(gam).ravel()
 
     def assemble(self, phi: float) -> np.ndarray:
         """Positions at the crank angle phi (rad), Newton from the last positions."""
