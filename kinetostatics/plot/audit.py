@@ -19,7 +19,7 @@ from matplotlib.text import Text
 from .collide import collisions
 from .notation import notation_problems
 from .place import UNPLACED_TITLE
-from .style import SMALLEST_FONT, laid_out, undrawn_ticks
+from .style import SMALLEST_FONT, laid_out, measured_once, undrawn_ticks
 
 __all__ = ["LOWEST_DPI", "PictureAudit", "audit", "figure_texts", "not_placed"]
 
@@ -93,10 +93,12 @@ def audit(fig: Figure, dpi: float | None = None) -> PictureAudit:
     if not hasattr(fig.canvas, "get_renderer"):     # a bare Figure(): an off-screen canvas
         from matplotlib.backends.backend_agg import FigureCanvasAgg
         FigureCanvasAgg(fig)
-    texts = figure_texts(fig)
+    with measured_once(fig):            # (the texts and the collisions: one drawing)
+        texts = figure_texts(fig)
+        hits = collisions(fig)
     sizes = [t.get_fontsize() for t in fig.findobj(Text)
              if t.get_visible() and t.get_text().strip() and t.get_text() in texts]
     return PictureAudit(dpi=float(dpi if dpi is not None else fig.dpi),
                         smallest_font=min(sizes, default=SMALLEST_FONT),
-                        collisions=collisions(fig), not_placed=not_placed(fig),
+                        collisions=hits, not_placed=not_placed(fig),
                         notation=notation_problems(texts))

@@ -5,7 +5,10 @@ away) and the check that no two labels of a figure overlap.
 
 from __future__ import annotations
 
+import contextlib
 import functools
+import weakref
+from collections.abc import Iterator
 
 import matplotlib as mpl
 from matplotlib.axes import Axes
@@ -20,8 +23,8 @@ from matplotlib.mathtext import MathTextParser
 from matplotlib.text import Annotation, Text
 
 __all__ = ["LECTURE", "PROJECTOR", "SMALLEST_FONT", "FigureWalk", "drawn_extent", "figure_boxes",
-           "lay_out", "laid_out", "lecture_style", "overlapping_texts", "projector",
-           "save_laid_out", "text_extent", "undrawn_ticks"]
+           "lay_out", "laid_out", "lecture_style", "measured_once", "overlapping_texts",
+           "projector", "save_laid_out", "text_extent", "undrawn_ticks"]
 
 #: The smallest font of a picture, in points at the figure's printed size.
 SMALLEST_FONT = 10.0
@@ -190,9 +193,37 @@ def laid_out(fig: Figure) -> RendererBase:
     figure: laid out once, not once per measure (an audit measured it twice)."""
     engine = fig.get_layout_engine()
     frozen = engine is None or isinstance(engine, PlaceHolderLayoutEngine)
-    if fig.stale or not frozen:
+    if fig.stale or not (frozen or fig in _MEASURED):
         return lay_out(fig)
     return fig.canvas.get_renderer()
+
+
+# the figures being measured (:func:`measured_once`)
+_MEASURED: weakref.WeakSet = weakref.WeakSet()
+
+
+@contextlib.contextmanager
+def measured_once(fig: Figure) -> Iterator[None]:
+    """Several measures of one figure on one drawing: inside, :func:`laid_out` draws the
+    figure again only where an artist changed since (``stale``), also where a layout
+    engine (constrained) would move its Axes at each drawing.
+
+    An audit of a figure the constrained layout still lays out (a sheet's picture before
+    the inline backend shows it) drew it twice, for its texts and for its collisions, at
+    the same places (the audits of 8 sheets' 37 pictures the same; the sheets' runs 0.2-1.7 s
+    of CPU less in 7 of 8, one run each, 2026-11-30).
+
+    Parameters
+    ----------
+    fig : Figure
+        The figure, laid out here if it is not yet (:func:`laid_out`).
+    """
+    laid_out(fig)
+    _MEASURED.add(fig)
+    try:
+        yield
+    finally:
+        _MEASURED.discard(fig)
 
 
 def save_laid_out(fig: Figure, fname, **kwargs) -> None:

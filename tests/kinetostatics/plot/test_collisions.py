@@ -95,6 +95,28 @@ def test_a_finished_figure_is_drawn_once_for_all_its_measures(monkeypatch):
         assert kp.collisions(fig) == [] and len(drawn) == 1
 
 
+def test_an_audit_draws_a_figure_under_constrained_layout_once(monkeypatch):
+    """An audit of a figure the constrained layout still lays out (a sheet's picture
+    before the inline backend shows it) reads its texts and collisions on one drawing,
+    with what two drawings measured (measured: the audit hook's drawings a fifth of its
+    time in a sheet's run, 2026-11-30)."""
+    from matplotlib.figure import Figure
+
+    from kinetostatics.plot.audit import audit
+    with kp.lecture_style():
+        fig, ax = plt.subplots(layout="constrained")
+        ax.plot([0, 1], [0, 1], lw=3, label="a line")
+        ax.set(title="a title", xlabel="x [m]")
+        ax.legend(loc="best")
+        twice = audit(fig)
+        drawn = []
+        real = Figure.draw_without_rendering
+        monkeypatch.setattr(Figure, "draw_without_rendering",
+                            lambda self: drawn.append(self) or real(self))
+        assert audit(fig) == twice and len(drawn) == 1
+        assert audit(fig) == twice and len(drawn) == 2      # (a layout engine: drawn again)
+
+
 def test_a_settled_figure_is_saved_with_one_drawing(monkeypatch, tmp_path):
     """A settled figure (its layout frozen) is saved by the command line with the painting
     drawing only, pixel for pixel what savefig writes after its own layout drawing
