@@ -97,8 +97,7 @@ def _fused_frame(sol: Solution, fused, lean: LeanSolved, name: str) -> pd.DataFr
     """Table ``name`` written by the fused table kernel
     (:class:`~kinetostatics.solver.fast.table_pass.FusedTables`): the ``kinematics``
     table alone, or the ``reactions`` table and, if it is not made yet, the
-    ``kinematics`` table's columns in the same pass (kept for it, :class:`PointRows`);
-    the crank's cos and sin as the solve kept them, where it did."""
+    ``kinematics`` table's columns in the same pass (kept for it, :class:`PointRows`)."""
     d, positions = sol.__dict__, lean.positions
     points = None
     if name == "kinematics" or "kinematics" not in d:
@@ -106,13 +105,13 @@ def _fused_frame(sol: Solution, fused, lean: LeanSolved, name: str) -> pd.DataFr
     located = [] if points is None else list(zip(points.bodies, points.local, strict=True))
     kout = np.empty((6, 0)) if points is None else points.out
     if name == "kinematics":
-        fused.write(located, kout, crank=lean.crank)
+        fused.write(located, kout)
         return points.frame()
     joints = list(sol.scene.joints)
     table = LongTable(positions, reaction_labels(joints, fused.reactions), REACTIONS_FLOATS,
                       _no_chunks, sol._tiled)
     fill, prismatic = _reaction_columns(table, joints, fused.reactions)
-    fused.write(located, kout, joints, fill.reserve(), lean.crank)
+    fused.write(located, kout, joints, fill.reserve())
     fill_offsets(fill, prismatic, table.n)
     if points is not None:
         d[KEPT] = points

@@ -305,15 +305,12 @@ class _Flags:
 class Kept:
     """What a lean solve in blocks keeps of a long sweep: the structure it solved with,
     ``Me``/``Fe`` and the undefined-load rows (the driver table), and each dyad's
-    closeness to a dead centre and singular rows (its dead points and flags); ``crank``,
-    the crank angle's cos and sin over the sweep (numpy's) where the solve kept them for
-    the tables' pass, else None."""
+    closeness to a dead centre and singular rows (its dead points and flags)."""
 
     def __init__(self, structure, drive: DriverReaction, undefined, closeness2: list,
                  singular: list):
         self.structure, self.drive, self.undefined = structure, drive, undefined
         self.closeness2, self.singular = closeness2, singular
-        self.crank: tuple[np.ndarray, np.ndarray] | None = None
 
 
 class LeanSolved:
@@ -331,7 +328,6 @@ class LeanSolved:
                       "drive": sweep.drive, "undefined_load": sweep.undefined}
         self.positions = positions
         self.flags, self.dead, self.again = sweep.singular, dead, again
-        self.crank = sweep.crank        # (cos, sin of the crank angle, or None)
         self.lock = threading.Lock()
         self.full: dict | None = None
 

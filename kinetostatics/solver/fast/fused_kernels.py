@@ -101,17 +101,17 @@ def _tile_in(cs, sn, c0, a, nt, whole, wdrv):
 
 
 @body
-def _tile_turn(angles, cs, sn, c0, a, nt, wdrv):
+def _tile_turn(angles, c0, a, nt, wdrv):
     """The crank's cos and sin of ``nt`` rows of a tile worked out from their angles (row
-    ``c0`` on of ``angles``) into rows ``c0`` on of ``cs``, ``sn`` (kept for the tables'
-    pass) and into its columns ``a`` on: the compiled path's
+    ``c0`` on of ``angles``) straight into its columns ``a`` on: the compiled path's
     (:func:`~kinetostatics.solver.fast.trig_kernels.sincos_rows`, vectorised).
     Measured 2026-11-30, 1e6 angles, processor time: 7 ns a row against 27 for the C
-    library's cos and sin (one ``sincos``) and 37-46 for numpy's two passes."""
-    sincos_rows(angles[c0:c0 + nt], cs[c0:c0 + nt], sn[c0:c0 + nt])
-    for t in range(nt):
-        wdrv[C, a + t] = cs[c0 + t]
-        wdrv[S, a + t] = sn[c0 + t]
+    library's cos and sin (one ``sincos``) and 37-46 for numpy's two passes. Not kept
+    over the sweep: the tables' pass works them out again when a table asks
+    (``table_pass``, the same doubles; measured 2026-11-30, the slider-crank at 2e5
+    rows, the kernel alone 42-43 ns a row against 43-44 with the sweep's cos and sin
+    written and copied, and two arrays of the sweep fewer to fault in)."""
+    sincos_rows(angles[c0:c0 + nt], wdrv[C, a:a + nt], wdrv[S, a:a + nt])
 
 
 @body
@@ -131,8 +131,8 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy,
     driver (else the ground). The crank's cos and sin (``cs``, ``sn``) are worked out
     before, in a pass of their own: row ``i`` of scene ``e`` at ``i - ts[e]`` (one
     sweep shared by the scenes, or the run's rows), or here from the crank's ``angles``
-    (one scene, ``ts`` 0; none: an empty array) into ``cs``, ``sn``
-    (:func:`_tile_turn`). Returns the count of rows the numpy path must judge."""
+    (one scene, ``ts`` 0; none: an empty array) into the tile alone (:func:`_tile_turn`;
+    ``cs``, ``sn`` then unread). Returns the count of rows the numpy path must judge."""
     rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
     R = BODY_ROWS
     w_ = scratch(4 * R + LOAD_ROWS + DYAD_ROWS + DRIVER_GEOMETRY)
@@ -167,7 +167,7 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy,
                             gls)
             c0 = t0 + a - ts[e]         # (the scene's row in its cos and sin)
             if turn:
-                _tile_turn(angles, cs, sn, c0, a, n, wdrv)
+                _tile_turn(angles, c0, a, n, wdrv)
             else:
                 _tile_in(cs, sn, c0, a, n, n == TILE, wdrv)
             a += n

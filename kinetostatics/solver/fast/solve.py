@@ -111,24 +111,21 @@ def fused_blocks(kernels, scene: Scene, full: Scene, structure, geometry,
         return None
     kernel, fixed, plan = found
     n = positions.size
-    # (the cos and sin kept whole: the tables' pass reads them instead of working them out
-    # again, fastpass)
-    cs, sn = np.empty(n), np.empty(n)
+    # (the crank's cos and sin worked out per tile into the kernel's scratch, not kept:
+    # the tables' pass works them out again, the same doubles, if a table asks)
     drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
     angles = full.driver.angles     # (read-only, as the driver makes them and NO_ANGLES:
     w = OWNERS.size                 # one compiled signature)
     bad = 0
     for lo in range(0, n, w):
         at = slice(lo, min(lo + w, n))
-        bad += kernel(0, at.stop - lo, OWNERS, cs[at], sn[at], START, angles[at], *fixed,
+        bad += kernel(0, at.stop - lo, OWNERS, NO_TRIG, NO_TRIG, START, angles[at], *fixed,
                       drive[at], close[at], undefined[at])
     if bad:
         raise Refused(bad)
     if plan is not None:
         plan.check_swept()
-    kept = kept_sweep(structure, "R", drive, undefined, [close])
-    kept.crank = (cs, sn)
-    return kept
+    return kept_sweep(structure, "R", drive, undefined, [close])
 
 
 _TRIG: dict[str, bool] = {}

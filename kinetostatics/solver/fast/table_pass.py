@@ -82,14 +82,13 @@ class FusedTables:
         return src, sign
 
     def write(self, points: list[tuple[str, tuple[float, float]]], kout: np.ndarray,
-              joints: list[str] | None = None, rout: np.ndarray | None = None,
-              crank: tuple[np.ndarray, np.ndarray] | None = None) -> None:
+              joints: list[str] | None = None, rout: np.ndarray | None = None) -> None:
         """Solve the sweep again block by block and write every row of the ``kinematics``
         table's float columns into ``kout`` (``points``: each point's body and local
         coordinates, in the table's order) and, with ``joints`` (in the table's order),
-        of the ``reactions`` table's ``Fx, Fy, F, N, M`` into ``rout``. ``crank``: the
-        crank angle's cos and sin over the sweep as the solve kept them, else
-        worked out per block (:func:`block_turn`: the same numbers). Raises
+        of the ``reactions`` table's ``Fx, Fy, F, N, M`` into ``rout``, the crank angle's
+        cos and sin worked out per block (:func:`block_turn`: the solve's numbers; the
+        solve keeps none over the sweep, ``fused_kernels._tile_turn``). Raises
         :class:`~kinetostatics.solver.fast.compose.Refused` where a kernel met a row
         that is not finite (never expected: the sweep was solved by the same kernels)."""
         if joints is None:
@@ -106,18 +105,12 @@ class FusedTables:
         angles.flags.writeable = False
         n = angles.size
         width = min(BLOCK, n)
-        if crank is not None and crank[0].shape != (n,):
-            crank = None
-        if crank is None:
-            cs, sn = np.empty(width), np.empty(width)
-            turn = block_turn()
+        cs, sn = np.empty(width), np.empty(width)
+        turn = block_turn()
         bad = 0
         for lo in range(0, n, width):
             m = min(lo + width, n) - lo
-            if crank is None:
-                turn(angles[lo:lo + m], cs[:m], sn[:m])
-            else:
-                cs, sn = crank[0][lo:lo + m], crank[1][lo:lo + m]
+            turn(angles[lo:lo + m], cs[:m], sn[:m])
             bad += self.kernel(0, m, OWNERS, cs, sn, START, *self.fixed, slots, local, n, lo,
                                kout, src, sign, rout, own)
         if bad:
@@ -131,7 +124,10 @@ def block_turn():
     kernels work out). (Measured 2026-11-30, the four-bar's ``kinematics`` and
     ``reactions`` at 1e6 rows, processor time, best of 5 at a load of 17: 246 ms
     without the solve's kept cos and sin, the C library's then, 233 reading the kept
-    pair.)"""
+    pair. Since 2026-11-30 the solve keeps none, issue #31: its kernel works them out
+    into each tile's scratch, two arrays of the sweep fewer written and faulted in
+    when the driver table alone is asked for; they are the compiled path's here, some
+    7 ns a row.)"""
     from .trig_kernels import turn_rows  # (numba loaded: the kernels given)
     return turn_rows
 
