@@ -49,7 +49,7 @@ ROUNDS = 3         # zooms on the smallest value
 SCREEN = 0.5       # local minima of m below this are probed
 # a stack's rows are scanned on numpy below one in MANY_BELOW of them under the screen
 # (a four-bar's few and sparse rows: its gathers over them cost less than the compiled
-# scan's two passes over every row), compiled above (:func:`_candidates`)
+# scan's pass over every row), compiled above (:func:`_candidates`)
 MANY_BELOW = 16
 _min = np.fmin.reduce   # the smallest value, NaN left out (a NaN row is never probed)
 
@@ -145,23 +145,34 @@ SCANS: list[Callable[[], Callable | None]] = []
 def scanned(scan: Callable, m2: np.ndarray, starts: np.ndarray, counts: np.ndarray
             ) -> np.ndarray:
     """The intervals of :func:`_candidates` by the compiled ``scan``
-    (:func:`~kinetostatics.solver.fast.screen_kernels.scan_candidates`): counted, then
-    written (two passes over the rows, no array as long as them)."""
+    (:func:`~kinetostatics.solver.fast.screen_kernels.scan_candidates`): written to an
+    array of :data:`SCAN_FIRST` in one pass over the rows; more of them, counted there,
+    written in a second pass to an array of their count (no array as long as the rows).
+    (Measured 2026-11-30, the shaper's single sweep at 2e5 and 1e6 rows, 45 % of them
+    below the screen, no interval: its screen 0.67-0.69 -> 0.42-0.46 ms and 3.8-4.1 ->
+    2.5-2.7 ms of processor time, best of 30, three alternating pairs of processes at a
+    load of 8-12, against a pass to count them and one to write them.)"""
     starts = np.asarray(starts, dtype=np.int64)
     counts = np.asarray(counts, dtype=np.int64)
-    out = np.empty(scan(m2, starts, counts, SCREEN**2, _NONE), dtype=np.int64)
-    scan(m2, starts, counts, SCREEN**2, out)
-    return out
+    out = np.empty(SCAN_FIRST, dtype=np.int64)
+    k = scan(m2, starts, counts, SCREEN**2, out)
+    if k > out.size:
+        out = np.empty(k, dtype=np.int64)
+        scan(m2, starts, counts, SCREEN**2, out)
+    return out[:k]
 
 
-_NONE = np.zeros(0, dtype=np.int64)
+# the intervals a compiled scan writes in its first pass (scanned): a sweep's few, a
+# stack's too (1000 shapers x 361: 2263, measured 2026-11-30; 32 KB)
+SCAN_FIRST = 4096
 
 
 def compiled_scan() -> Callable | None:
     """The compiled scan of :func:`_candidates` from :data:`SCANS`
     (:func:`~kinetostatics.solver.fast.screen_kernels.scan_candidates`: the same intervals
-    in two passes over the rows; measured 2026-11-29, the shaper's solve at 1e6 rows, 45 %
-    of them below the screen: one pass 1.5 ms against 13.8 ms, processor time, load 8-9;
+    in a pass over the rows, :func:`scanned`; measured 2026-11-29, the shaper's solve at
+    1e6 rows, 45 % of them below the screen: one pass 1.5 ms against 13.8 ms, processor
+    time, load 8-9;
     taken for a single sweep, :func:`_candidates`) when the
     compiled kernels are loaded in this process and the numpy path is not asked for;
     else None."""
@@ -285,7 +296,7 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     # (a single sweep's compiled scan, compiled_scan, reads the rows itself: no such
     # pass; nothing below the screen then leaves nothing to probe, below; a stack's
     # scenes are scanned on numpy: its rows below the screen are few and sparse, the
-    # numpy scan's gathers over them cost less than two compiled passes over every row)
+    # numpy scan's gathers over them cost less than a compiled pass over every row)
     one = m == 1
     below = (None if one and compiled_scan() is not None
              else np.flatnonzero(m2u < SCREEN**2))

@@ -30,10 +30,12 @@ def scan_candidates(m2, starts, counts, screen2, out):
     (m_r < m_left (1 - 1e-9) and m_r <= m_right) or (m_r <= m_left and
     m_r < m_right (1 - 1e-9)), a segment's end having no neighbour beyond it (+inf); the
     intervals (r - 1, r) unless r starts its segment and (r, r + 1) unless it ends it,
-    each once. An empty ``out``: counted only (then an ``out`` of that size is filled:
-    no array as long as the rows is taken, whose fresh pages, mapped and given back,
-    cost the next solve's arrays their pages again: measured 2026-11-29, solve_many's
-    fused kernel 1.5-2 ms slower a call after a scan with an ``out`` of the rows' length)."""
+    each once. Only the first ``out.size`` intervals are written (an empty ``out``:
+    counted only); the count is of them all, so that an ``out`` too short is filled by a
+    second call with one of that size (``deadpoints.scanned``: no array as long as the
+    rows is taken, whose fresh pages, mapped and given back, cost the next solve's
+    arrays their pages again: measured 2026-11-29, solve_many's fused kernel 1.5-2 ms
+    slower a call after a scan with an ``out`` of the rows' length)."""
     inf = np.inf
     k = 0
     prev = -1           # (the last interval written: the intervals never decrease)
@@ -50,12 +52,12 @@ def scan_candidates(m2, starts, counts, screen2, out):
                     or ((v <= left) and (v < right * SHRINK))):
                 continue
             if r > a and r - 1 != prev:
-                if out.size:
+                if k < out.size:
                     out[k] = r - 1
                 k += 1
                 prev = r - 1
             if r + 1 < b and r != prev:
-                if out.size:
+                if k < out.size:
                     out[k] = r
                 k += 1
                 prev = r

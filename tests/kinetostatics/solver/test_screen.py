@@ -104,7 +104,32 @@ def test_a_stack_with_many_rows_below_the_screen_is_scanned_compiled(on_path, mo
         monkeypatch.setattr(deadpoints, "SCANS", [lambda: counted])
         calls.clear()
         got = deadpoints._candidates(m2, starts, counts, rows=rows)
-        assert calls == ([n, n] if compiled else [])     # (counted, then written)
+        assert calls == ([n] if compiled else [])       # (written in one pass)
         assert got.dtype == expected.dtype == np.int64
         np.testing.assert_array_equal(got, expected)
         np.testing.assert_array_equal(got, _candidates_reference(m2, starts, counts))
+
+
+def test_a_scan_with_more_intervals_than_its_first_array_writes_them_all(on_path, monkeypatch
+                                                                        ) -> None:
+    """More intervals than ``deadpoints.SCAN_FIRST``: counted in the first pass, all
+    written in a second (the same intervals as the numpy scan); as many or fewer: one
+    pass."""
+    m2 = 0.6 * np.sin(np.linspace(0.0, 40.0, 20_001)) ** 2     # (25 intervals)
+    starts, counts = np.zeros(1, dtype=int), np.array([m2.size])
+    on_path("numpy")
+    expected = deadpoints._candidates(m2)
+    on_path("fast")
+    scan = deadpoints.compiled_scan()
+    calls = []
+
+    def counted(*args):
+        calls.append(args[-1].size)
+        return scan(*args)
+    for first, passes in ((4, [4, 25]), (24, [24, 25]), (25, [25]), (4096, [4096])):
+        monkeypatch.setattr(deadpoints, "SCAN_FIRST", first)
+        calls.clear()
+        got = deadpoints.scanned(counted, m2, starts, counts)
+        assert calls == passes
+        assert got.dtype == np.int64
+        np.testing.assert_array_equal(got, expected)
