@@ -104,25 +104,24 @@ def test_the_fused_road_gives_the_full_re_solves_tables(fast, text, monkeypatch)
     assert bits(alone) == bits(full.kinematics)
 
 
-def test_the_pass_reads_the_solves_cos_and_sin(fast):
-    """The lean solve keeps the crank angle's cos and sin (the compiled path's over the
-    whole sweep, ``trig_kernels.turned``'s) and the fused pass reads them instead of
-    working them out again (other numbers there give other tables); a solution without
-    them (worked out per block) gives the same tables."""
-    from kinetostatics.solver.fast.trig_kernels import turned
+def test_the_pass_reads_the_cos_and_sin_it_works_out(fast, monkeypatch):
+    """The lean solve keeps no cos and sin of the crank angle: the fused pass works them
+    out per block (``table_pass.block_turn``) and its tables read them (other numbers
+    there give other tables; the same numbers, the composed kernels' tables:
+    test_fast_tables_turn.py)."""
+    from kinetostatics.solver.fast import table_pass
     text = scene_text("four_bar")
-    sol = ks.solve(text)
-    lean = sol.__dict__["_deferred"]
-    cs, sn = lean.crank
-    want = turned(lean.known["scene"].driver.angles)
-    assert cs.tobytes() == want[0].tobytes() and sn.tobytes() == want[1].tobytes()
-    tables = bits(sol.reactions), bits(sol.kinematics)
-    again = ks.solve(text)
-    again.__dict__["_deferred"].crank = None
-    assert (bits(again.reactions), bits(again.kinematics)) == tables
+    tables = bits(ks.solve(text).kinematics)
+    turn = table_pass.block_turn()
+
+    def reversed_turn():
+        def run(angles, cs, sn):
+            turn(angles[::-1].copy(), cs, sn)
+        return run
+    monkeypatch.setattr(table_pass, "block_turn", reversed_turn)
     other = ks.solve(text)
-    other.__dict__["_deferred"].crank = (cs[::-1].copy(), sn[::-1].copy())
-    assert bits(other.kinematics)["x"] != tables[1]["x"]
+    assert not hasattr(other.__dict__["_deferred"], "crank")
+    assert bits(other.kinematics)["x"] != tables["x"]
 
 
 def test_a_refused_block_takes_the_full_re_solve(fast, monkeypatch):
