@@ -32,13 +32,14 @@ IDS = [f"2026-{k:03d}" for k in range(1, 12)]
 _NUMBER = re.compile(r"\d+(?:\.\d*)?(?:[eE][-+]?\d+)?")
 
 
-# the handouts' pictures: drawn for the first students of each class only, the others'
+# the handouts' pictures: drawn for the first student of each class only, the others'
 # handouts written without one. A picture is 0.25-0.55 s of CPU a student (the drawing,
 # the PNG, encoded again where its text spells a key value): the 44 were 10-15 s of the
-# module's 26 s, 12 are a quarter of it (measured 2026-11-30). The sealed-file test
-# reads every page (a pictured one with its picture's text); test_handouts.py checks the
-# leak check itself on a real picture, whatever the seed draws.
-PICTURED = IDS[:3]
+# module's 26 s, 12 were 5.4 s of the class fixture's CPU, 4 are 3.6 s (measured
+# 2026-11-30). The sealed-file test reads every page (each exercise's pictured one with
+# its picture's text); test_handouts.py checks the leak check itself on a real picture,
+# whatever the seed draws, and test_class_record.py every page of a pictured class.
+PICTURED = IDS[:1]
 
 
 @pytest.fixture(scope="module")
