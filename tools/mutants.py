@@ -142,9 +142,6 @@ def mutate(text: str, m: Mutant) -> str:
 WARM = ("numpy", "scipy.optimize", "scipy.integrate", "scipy.linalg", "scipy.stats",
         "pandas", "matplotlib.pyplot", "hypothesis", "pytest", "xdist", "nbformat",
         "nbclient", "jupyter_client", "pyarrow", "numba", "pint")
-#: The top-level names of the checkout's own modules: a run imports them from the tree it
-#: tests (a run forked from a test run of the checkout drops that run's first).
-PROJECT = ("kinetostatics", "balance", "tests", "tools", "conftest")
 #: Those the killers' runs import (tests/conftest.py's and the project's): scipy's
 #: solvers and pint are left out (1.6 s of CPU, measured 2026-11-30).
 WARM_KILLERS = tuple(n for n in WARM if not n.startswith("scipy.") and n != "pint")
@@ -190,11 +187,6 @@ def _run_forked(tree: Path, targets: list[str]) -> int:
         code = 3
         try:
             os.dup2(1, 2)
-            # (forked from a test run: its output streams are its capture's, and its
-            # project and tests are the checkout's; the run imports them from the tree)
-            sys.stdout = sys.stderr = open(1, "w", closefd=False)
-            for name in [n for n in sys.modules if n.split(".")[0] in PROJECT]:
-                del sys.modules[name]
             os.chdir(tree)
             os.environ.update(_environment(tree))
             sys.path.insert(0, str(tree))
@@ -243,12 +235,9 @@ def targets_of(m: Mutant, how: str) -> list[str]:
     return ["tests"] if how == "everywhere" else list(m.tests)
 
 
-def check(mutants: list[Mutant], how: str, baseline: bool = True, warmed: bool = False) -> int:
-    """Run the baseline and every mutant; print one line each; the exit code.
-
-    ``warmed``: this process has imported the libraries already (a test run calling this
-    in its own process: tests/test_mutants.py), the runs are forked from it as it is."""
-    if hasattr(os, "fork") and not warmed:
+def check(mutants: list[Mutant], how: str, baseline: bool = True) -> int:
+    """Run the baseline and every mutant; print one line each; the exit code."""
+    if hasattr(os, "fork"):
         warm(WARM_KILLERS if how == "killers" else WARM)
     with tempfile.TemporaryDirectory(prefix="mutants-") as tmp:
         tree = copy_tree(Path(tmp))
