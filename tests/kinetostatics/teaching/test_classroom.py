@@ -50,16 +50,33 @@ def classes(tmp_path_factory):
     ids = root / "ids.txt"
     ids.write_text("\n".join(IDS) + "\n", encoding="utf-8")
     out = {}
-    draw = classroom.picture_figure
+    draw, uri = classroom.picture_figure, classroom.picture_uri
+    current = [""]          # the exercise being generated
+
+    def refused_or_uri(exercise, variant, figure):
+        # a picture none of whose 40 encodings is clean of the key (a short key value
+        # can be read in every one: once in some 25 random seeds, seen 2026-11-30) goes
+        # out without one, by design: noted, so the test can tell it from a lost picture
+        got = uri(exercise, variant, figure)
+        if got is None and figure is not None:
+            REFUSED.add((current[0], variant["student"]))
+        return got
+
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(classroom, "picture_figure", lambda exercise, variant: (
             draw(exercise, variant) if variant["student"] in PICTURED else None))
+        mp.setattr(classroom, "picture_uri", refused_or_uri)
         for kind in KINDS:
+            current[:] = [kind]
             d = root / kind
             res = T.generate_class(kind, ids, d)
             assert res["seed_source"] == "random (secret)"
             out[kind] = d
     return out
+
+
+#: (exercise kind, student) whose drawn picture the leak check refused in :func:`classes`
+REFUSED: set[tuple[str, str]] = set()
 
 
 def _key(d) -> pd.DataFrame:
@@ -104,7 +121,8 @@ def test_student_files_are_sealed(kind, classes):
     assert sorted(p.stem for p in (d / "handouts").iterdir()) == sorted(IDS)
     pictured = [sid for sid in IDS if "data:image/png;base64," in
                 (d / "handouts" / f"{sid}.html").read_text(encoding="utf-8")]
-    assert pictured == ([] if kind == "resonance_three_run" else PICTURED), pictured
+    drawn = [] if kind == "resonance_three_run" else PICTURED
+    assert pictured == [sid for sid in drawn if (kind, sid) not in REFUSED], pictured
     for sid in IDS:
         values = {_sig4(v) for v in _key_of(key, sid).values()}
         for p in (d / "students" / f"{sid}.ipynb", d / "handouts" / f"{sid}.html"):
