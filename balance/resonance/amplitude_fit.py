@@ -365,9 +365,8 @@ def _keep(lr, th, chi2, a, threshold: float, K: int):
 
 
 def _pieces(n: int) -> list[slice]:
-    """Slices of :data:`_PIECE` of n problems (the last one short; none when n is 0): a
-    grid of chi2 over 128 problems took 1.4-1.7 times the CPU of four over 32 (48 x 72
-    and 41 x 41 points, 3 marks; measured 2026-11-30)."""
+    """Slices of :data:`_PIECE` of n problems (a grid of chi2 over 128 took 1.4-1.7 times
+    the CPU of four over 32: 48 x 72 and 41 x 41 points, 3 marks; measured 2026-11-30)."""
     return [slice(i, min(n, i + _PIECE)) for i in range(0, n, _PIECE)]
 
 
