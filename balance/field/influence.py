@@ -50,6 +50,7 @@ from .influence_stats import (
     bootstrap_intervals,
     conditioning,
     conditioning_warnings,
+    pinv_with_singular_values,
 )
 from .weights import Split, split_correction
 
@@ -250,8 +251,8 @@ def _solve_batch(amps: np.ndarray, phases: np.ndarray, d: _Data
             miss = dV[:, i, :] - alpha @ C               # (k, points)
             alpha = alpha + miss[:, :, None] * C.conj()[None, None, :] / np.vdot(C, C).real
     Vc = V[:, d.current, :]
-    W = -(np.linalg.pinv(alpha) @ Vc[..., None])[..., 0]   # min |V + alpha W|
-    s = np.linalg.svd(alpha, compute_uv=False)
+    alpha_pinv, s = pinv_with_singular_values(alpha)
+    W = -(alpha_pinv @ Vc[..., None])[..., 0]            # min |V + alpha W|
     bad = (s[:, 0] == 0.0) | (s[:, -1] <= _COND_LIMIT * s[:, 0])
     W[bad] = np.nan
     return alpha, W

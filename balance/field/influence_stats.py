@@ -43,6 +43,7 @@ __all__ = [
     "conditioning",
     "conditioning_warnings",
     "parse_noise",
+    "pinv_with_singular_values",
 ]
 
 DRAWS = 4000
@@ -57,6 +58,35 @@ RUN_NOISE_LIMIT = 0.25
 
 SEED = 20240514
 """Fixed seed of the bootstrap: repeated runs give the same interval."""
+
+
+def pinv_with_singular_values(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``numpy.linalg.pinv(a)`` bit for bit and the singular values of a, from one SVD.
+
+    pinv's own steps (numpy 2): the thin SVD of conj(a), singular values up to 1e-15 of
+    the largest dropped, pinv = V S^+ U^H. A second ``svd(a, compute_uv=False)`` for the
+    singular values cost half a pinv again (4000 2 x 2 matrices: 8 ms against 18 ms);
+    these are the same numbers by another LAPACK road (dqds without the vectors, QR
+    sweeps with them): they may differ in the last bit (measured: 4.4e-16 relative).
+
+    Parameters
+    ----------
+    a : numpy.ndarray
+        A stack of matrices (..., m, n).
+
+    Returns
+    -------
+    pinv : numpy.ndarray
+        (..., n, m), as ``numpy.linalg.pinv(a)``.
+    s : numpy.ndarray
+        The singular values (..., min(m, n)), descending.
+    """
+    u, s, vt = np.linalg.svd(a.conjugate(), full_matrices=False)
+    cutoff = np.asarray(1e-15)[..., None] * np.amax(s, axis=-1, keepdims=True)
+    large = s > cutoff
+    inv = np.divide(1, s, where=large, out=s.copy())
+    inv[~large] = 0
+    return np.matmul(np.swapaxes(vt, -1, -2), inv[..., None] * np.swapaxes(u, -1, -2)), s
 
 
 Solver = Callable[[np.ndarray, np.ndarray], np.ndarray]
