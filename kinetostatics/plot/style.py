@@ -218,7 +218,8 @@ def laid_out(fig: Figure) -> RendererBase:
     """:func:`lay_out`, skipped where drawing again would change nothing: the figure was
     drawn and no artist changed since (matplotlib's ``stale``), and no layout engine moves
     its Axes at each drawing (none, or frozen by ``settle``). The measures read a finished
-    figure: laid out once, not once per measure (an audit measured it twice)."""
+    figure: laid out once, not once per measure (an audit measured it twice); a figure
+    just settled or saved (:func:`save_laid_out`) counts as drawn."""
     engine = fig.get_layout_engine()
     frozen = engine is None or isinstance(engine, PlaceHolderLayoutEngine)
     if fig.stale or not (frozen or fig in _MEASURED):
@@ -276,6 +277,9 @@ def save_laid_out(fig: Figure, fname, **kwargs) -> None:
         fig.savefig(fname, **kwargs)
     finally:
         fig.set_layout_engine(engine)
+    # as saved: the drawing just made is the figure's (savefig's colours put back mark it
+    # stale); a measure after the save reads it without drawing it again
+    fig.stale = False
 
 
 def undrawn_ticks(fig: Figure, walk: FigureWalk | None = None) -> set[int]:
