@@ -224,6 +224,7 @@ def laid_out(fig: Figure) -> RendererBase:
     frozen = engine is None or isinstance(engine, PlaceHolderLayoutEngine)
     if fig.stale or not (frozen or fig in _MEASURED):
         return lay_out(fig)
+    shared_caches(fig)      # (a figure put on Agg's own canvas since: the shared measures)
     return fig.canvas.get_renderer()
 
 
