@@ -14,7 +14,7 @@ import matplotlib as mpl
 from matplotlib.axes import Axes
 from matplotlib.axis import Axis
 from matplotlib.backend_bases import RendererBase
-from matplotlib.backends.backend_agg import FigureCanvasAgg, RendererAgg
+from matplotlib.backends.backend_agg import FigureCanvasAgg, RendererAgg, get_hinting_flag
 from matplotlib.figure import Figure
 from matplotlib.font_manager import fontManager, get_font
 from matplotlib.layout_engine import PlaceHolderLayoutEngine
@@ -140,6 +140,17 @@ class _Renderer(RendererAgg):
     def _get_font_height_metrics(self, prop):
         return _font_heights(prop.copy(), self.dpi)
 
+    def get_text_width_height_descent(self, s, prop, ismath):
+        """Agg's measure of a text; a plain text's looked up once per session
+        (:func:`_plain_text_size`), mathtext and TeX as Agg measures them."""
+        if ismath:
+            return super().get_text_width_height_descent(s, prop, ismath)
+        rc = mpl.rcParams
+        fonts = tuple(fontManager._find_fonts_by_props(prop))
+        return _plain_text_size(s, fonts, prop.get_size_in_points(), self.dpi,
+                                rc["text.hinting"], rc["text.kerning_factor"],
+                                rc["font.enable_last_resort"])
+
 
 class _Canvas(FigureCanvasAgg):
     """Agg's off-screen canvas, drawing with :class:`_Renderer` (kept while the size
@@ -186,15 +197,34 @@ def _font_heights(prop, dpi: float) -> tuple:
     return None, None, None
 
 
+@functools.lru_cache(4096)
+def _plain_text_size(s: str, fonts: tuple, size: float, dpi: float, *_rc) -> tuple:
+    """(width, height, descent) in pixels of a plain text in ``fonts`` at ``size`` points
+    and ``dpi``: what Agg measures at each figure's first layout of it (each figure's
+    renderer keeps its own measures: a picture's tick labels, axis labels and titles
+    were measured again by every figure), measured once. The same calls as Agg's
+    ``get_text_width_height_descent`` (matplotlib 3.11); ``_rc``: the settings they read
+    (hinting, kerning factor, last-resort font), part of the key."""
+    font = get_font(list(fonts))
+    font.clear()
+    font.set_size(size, dpi)
+    font.set_text(s, 0.0, flags=get_hinting_flag())
+    w, h = font.get_width_height()      # width and height of the unrotated string
+    d = font.get_descent()
+    return w / 64.0, h / 64.0, d / 64.0
+
+
 def laid_out(fig: Figure) -> RendererBase:
     """:func:`lay_out`, skipped where drawing again would change nothing: the figure was
     drawn and no artist changed since (matplotlib's ``stale``), and no layout engine moves
     its Axes at each drawing (none, or frozen by ``settle``). The measures read a finished
-    figure: laid out once, not once per measure (an audit measured it twice)."""
+    figure: laid out once, not once per measure (an audit measured it twice); a figure
+    just settled or saved (:func:`save_laid_out`) counts as drawn."""
     engine = fig.get_layout_engine()
     frozen = engine is None or isinstance(engine, PlaceHolderLayoutEngine)
     if fig.stale or not (frozen or fig in _MEASURED):
         return lay_out(fig)
+    shared_caches(fig)      # (a figure put on Agg's own canvas since: the shared measures)
     return fig.canvas.get_renderer()
 
 
@@ -248,6 +278,9 @@ def save_laid_out(fig: Figure, fname, **kwargs) -> None:
         fig.savefig(fname, **kwargs)
     finally:
         fig.set_layout_engine(engine)
+    # as saved: the drawing just made is the figure's (savefig's colours put back mark it
+    # stale); a measure after the save reads it without drawing it again
+    fig.stale = False
 
 
 def undrawn_ticks(fig: Figure, walk: FigureWalk | None = None) -> set[int]:

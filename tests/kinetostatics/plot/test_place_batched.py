@@ -143,3 +143,34 @@ def test_one_walk_finds_what_findobj_finds():
     assert len(got) == len(want) > 10
     assert all(a == b and np.array_equal(u, v) for (a, u), (b, v) in zip(got, want,
                                                                           strict=True))
+
+
+def test_a_plain_text_is_measured_as_agg_measures_it():
+    """The measure every figure shares (measured once per session) is Agg's own, to the
+    last bit: plain texts of several faces, sizes and resolutions, hinting switched; the
+    second figure's measure of a text is looked up, not measured."""
+    import matplotlib as mpl
+    from matplotlib.backends.backend_agg import RendererAgg
+    from matplotlib.font_manager import FontProperties
+
+    from kinetostatics.plot import style
+    texts = ["0", "crank angle φ [deg]", "arrows: 0.05 m ≙ 200 N", "F12 = 3.2e+04 N", "lp"]
+    props = [FontProperties(size=s, weight=w, style=f) for s, w, f in
+             [(10, "normal", "normal"), (11, "bold", "normal"), (13, "normal", "italic")]]
+    for hinting in ("force_autohint", "no_hinting"):
+        with mpl.rc_context({"text.hinting": hinting}):
+            for dpi in (72, 150, 200):
+                shared, agg = style._Renderer(10, 10, dpi), RendererAgg(10, 10, dpi)
+                for s in texts:
+                    for p in props:
+                        want = agg.get_text_width_height_descent(s, p, False)
+                        assert shared.get_text_width_height_descent(s, p, False) == want
+                        hits = style._plain_text_size.cache_info().hits
+                        again = style._Renderer(20, 20, dpi)
+                        assert again.get_text_width_height_descent(s, p, False) == want
+                        assert style._plain_text_size.cache_info().hits == hits + 1
+    # mathtext is measured by Agg's parser (shared otherwise)
+    r = style._Renderer(10, 10, 150)
+    p = props[0]
+    assert r.get_text_width_height_descent(r"$F_{\mathrm{B}}$", p, True) == \
+        RendererAgg(10, 10, 150).get_text_width_height_descent(r"$F_{\mathrm{B}}$", p, True)
