@@ -48,6 +48,7 @@ from .solution import (
     E6,
     E7,
     MotionSolution,
+    moment_float,
     scalar_moment,
 )
 
@@ -133,7 +134,10 @@ def _slope(moment: Moment, at: float, u: float, t: float, inertia: float) -> tup
     """The stage's slopes of (u, t) at driver angle ``at``: du/dphi = 2 M(phi, omega, t),
     dt/dphi = 1 / omega, omega = sqrt(u / I_r) (eq. 4.9)."""
     w = math.sqrt(u / inertia)
-    return 2.0 * scalar_moment(moment, at, w, t), 1.0 / w
+    m = moment(at, w, t)
+    if type(m) is not float or m - m != 0.0:       # numpy's, an array, inf or nan
+        m = moment_float(m, at, w)
+    return 2.0 * m, 1.0 / w
 
 
 def _step(moment: Moment, p: float, h: float, u: float, t: float, ku1: float, kt1: float,

@@ -203,6 +203,11 @@ class ReducedMechanism:
         """(I_r, dI_r/dphi, M_r) at one angle where it was evaluated before, else None."""
         return self._cache.get(self._key(phi))
 
+    def lookup(self) -> Any:
+        """The cache's ``get`` by key (:meth:`_key`), for a caller that computes the keys
+        inline (an integrator's stages: a call less per stage)."""
+        return self._cache.get
+
     def values(self, phi: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Cached where the angle (modulo a revolution) was evaluated before."""
         if isinstance(phi, float):
@@ -233,8 +238,8 @@ def _motor(spec: MotionSpec):
         ms, w0 = spec.stall_moment, spec.no_load_speed
 
         def linear(phi, w):
-            if type(w) is float:        # an integrator's stage: numpy's scalar, not an array
-                return ms * (1.0 - np.float64(w) / w0)
+            if type(w) is float:        # an integrator's stage: Python's floats, not numpy's
+                return ms * (1.0 - w / w0)      # (the same IEEE operations, the same bits)
             return ms * (1.0 - np.asarray(w) / w0)
         return linear
     ang, val = spec.table[:, 0], spec.table[:, 1]
@@ -321,10 +326,13 @@ def simulate_motion(scene: Any, rtol: float = 1e-12) -> MotionResult:
         inertia.prefetch = red.prefetch     # golden_max's searches (cycle_stats) ask ahead
         return inertia
 
+    lookup, origin = red.lookup(), red.phi0
+
     def moment(phi, w, t):
-        hit = red.cached(phi) if isinstance(phi, float) else None
-        if hit is not None:             # an integrator's stage: no arrays
-            return motor(phi, w) + np.float64(hit[2])
+        if type(phi) is float:          # an integrator's stage: no arrays, no numpy scalars
+            hit = lookup(round(((phi - origin) % TWO_PI) * KEY))    # ReducedMechanism._key
+            if hit is not None:
+                return motor(phi, w) + hit[2]
         return motor(phi, w) + red.values(phi)[2]
 
     sol = simulate(inertia_with(spec.flywheel), moment, phi0, spec.omega0, spec.cycles,

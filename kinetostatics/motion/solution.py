@@ -50,8 +50,13 @@ DP5_P = np.array([
 
 
 def scalar_moment(moment: Moment, p: float, w: float, t: float) -> float:
-    r = moment(p, w, t)
-    x = r if isinstance(r, float) else float(np.asarray(r, dtype=float).item())
+    return moment_float(moment(p, w, t), p, w)
+
+
+def moment_float(r: Any, p: float, w: float) -> float:
+    """The moment ``r`` returned at driver angle ``p`` and speed ``w`` as a Python float
+    (the same number), checked finite."""
+    x = float(r) if isinstance(r, float) else float(np.asarray(r, dtype=float).item())
     if not math.isfinite(x):
         raise MotionError(f"the reduced moment is not finite at driver angle "
                           f"{degrees_text(p)} deg (omega = {w:.6g} rad/s)")
