@@ -340,8 +340,8 @@ def simulate_motion(scene: Any, rtol: float = 1e-12) -> MotionResult:
     positions = sc.driver.positions
     summary = sol.summary(positions)
     if spec.target_delta is not None:
-        st = sol.cycle_stats()
+        # the summary's omega_mean is cycle_stats()'s (the last whole cycle's), taken as is
         summary["flywheel_for_target"] = flywheel_for_delta(
-            inertia_with(0.0), moment, spec.target_delta, phi0, st["omega_mean"], rtol=rtol,
+            inertia_with(0.0), moment, spec.target_delta, phi0, summary["omega_mean"], rtol=rtol,
             periodic_inertia=True)
     return MotionResult(sol.table(positions), summary, sol, sc.units, sc.warnings)
