@@ -107,6 +107,20 @@ def inertia_values(inertia: Inertia, phi: np.ndarray) -> tuple[np.ndarray, np.nd
     return i_r, di_r
 
 
+def inertia_at(inertia: Inertia, phi: np.ndarray) -> float:
+    """I_r at one driver angle (``phi``: an array of one): ``inertia_values(inertia,
+    phi)[0]``'s number, without its arrays; where it is not positive and finite (or not
+    one number), :func:`inertia_values` is asked again and says why."""
+    out = inertia(phi)
+    if type(out) is tuple and len(out) == 2:
+        i_r, di_r = np.asarray(out[0], dtype=float), np.asarray(out[1], dtype=float)
+        if i_r.size == 1 and di_r.size == 1:
+            x, d = float(i_r.item()), float(di_r.item())
+            if x > 0.0 and math.isfinite(x) and math.isfinite(d):
+                return x
+    return float(inertia_values(inertia, phi)[0].ravel()[0])
+
+
 def moment_values(moment: Moment, phi: Any, omega: Any, t: Any) -> np.ndarray:
     m = np.asarray(moment(phi, omega, t), dtype=float)
     m = np.broadcast_to(m, np.broadcast(np.asarray(phi), np.asarray(omega)).shape)
