@@ -189,8 +189,9 @@ class ReducedMechanism:
         held without (keys of 1e-9 rad: an angle never asked must not answer for one
         asked later); each angle's numbers are those of its own solve (the solve is
         elementwise)."""
-        new = [p for p in dict.fromkeys(phis)
-               if p not in self._ahead and self._key(p) not in self._cache]
+        cand = [p for p in dict.fromkeys(phis) if p not in self._ahead]
+        new = [p for p, k in zip(cand, self.keys(np.array(cand, dtype=float)), strict=True)
+               if k not in self._cache]
         if new:
             try:
                 vals = self.evaluate(np.array(new))
@@ -216,6 +217,11 @@ class ReducedMechanism:
             hit = self.cached(phi)
             if hit is not None:
                 return np.float64(hit[0]), np.float64(hit[1]), np.float64(hit[2])
+        elif type(phi) is np.ndarray and phi.shape == (1,):
+            # one angle in an array (a search's point): the same, in arrays of one
+            hit = self.cached(float(phi[0]))
+            if hit is not None:
+                return np.array(hit[:1]), np.array(hit[1:2]), np.array(hit[2:])
         arr = np.asarray(phi, dtype=float)
         flat = arr.ravel().tolist()
         keys = self.keys(arr.ravel())
