@@ -303,18 +303,18 @@ def dp5_grid(grid: CycleGrid, extra: float, inertia: Inertia, moment: Moment, u0
     w = math.sqrt(u / (grid.stages(n)[0][0] + extra))
     k1 = (2.0 * scalar_moment(moment, p, w, t), 1.0 / w)
     track = _Track(p, u, t)
+    with_extra: dict[int, list[list[float]]] = {}     # the stages' I_r + extra, once per n
     for c in range(cycles):
         start = phi0 + c * cycle
         while True:
-            rows, h = grid.stages(n), cycle / n
+            if n not in with_extra:
+                with_extra[n] = [[x + extra for x in row[1:]] for row in grid.stages(n)]
+            rows, h = with_extra[n], cycle / n
             nodes, worst = [], 0.0
             uu, tt, (ku1, kt1) = u, t, k1
             for j in range(n):
-                row = rows[j]
                 pj = start + j * h
-                out = _step(moment, pj, h, uu, tt, ku1, kt1,
-                            [row[1] + extra, row[2] + extra, row[3] + extra, row[4] + extra,
-                             row[5] + extra])
+                out = _step(moment, pj, h, uu, tt, ku1, kt1, rows[j])
                 if out is None:
                     worst = math.inf
                     break
