@@ -30,8 +30,10 @@ class MotionError(WorkbenchError):
 _GOLD = 0.5 * (3.0 - math.sqrt(5.0))
 
 
-_AHEAD = 3
-"""Iterations of :func:`golden_max` whose points are announced at once (``ahead``)."""
+_AHEAD = 5
+"""Iterations of :func:`golden_max` whose points are announced at once (``ahead``): 62
+points a batch. A kinematic solve of 1 to 126 angles costs about the same (0.7 ms), so on
+four_bar_motion 5 makes 210 solves where 3 made 331 (0.36 s -> 0.16 s of CPU), 6 178."""
 
 
 def _branches(a: float, b: float, x1: float, x2: float, depth: int) -> list[float]:
@@ -103,6 +105,20 @@ def inertia_values(inertia: Inertia, phi: np.ndarray) -> tuple[np.ndarray, np.nd
                           f"{i_r.ravel()[j]!r} at driver angle "
                           f"{degrees_text(float(np.ravel(phi)[j]))} deg")
     return i_r, di_r
+
+
+def inertia_at(inertia: Inertia, phi: np.ndarray) -> float:
+    """I_r at one driver angle (``phi``: an array of one): ``inertia_values(inertia,
+    phi)[0]``'s number, without its arrays; where it is not positive and finite (or not
+    one number), :func:`inertia_values` is asked again and says why."""
+    out = inertia(phi)
+    if type(out) is tuple and len(out) == 2:
+        i_r, di_r = np.asarray(out[0], dtype=float), np.asarray(out[1], dtype=float)
+        if i_r.size == 1 and di_r.size == 1:
+            x, d = float(i_r.item()), float(di_r.item())
+            if x > 0.0 and math.isfinite(x) and math.isfinite(d):
+                return x
+    return float(inertia_values(inertia, phi)[0].ravel()[0])
 
 
 def moment_values(moment: Moment, phi: Any, omega: Any, t: Any) -> np.ndarray:

@@ -48,6 +48,7 @@ from .solution import (
     E6,
     E7,
     MotionSolution,
+    moment_float,
     scalar_moment,
 )
 
@@ -133,7 +134,10 @@ def _slope(moment: Moment, at: float, u: float, t: float, inertia: float) -> tup
     """The stage's slopes of (u, t) at driver angle ``at``: du/dphi = 2 M(phi, omega, t),
     dt/dphi = 1 / omega, omega = sqrt(u / I_r) (eq. 4.9)."""
     w = math.sqrt(u / inertia)
-    return 2.0 * scalar_moment(moment, at, w, t), 1.0 / w
+    m = moment(at, w, t)
+    if type(m) is not float or m - m != 0.0:       # numpy's, an array, inf or nan
+        m = moment_float(m, at, w)
+    return 2.0 * m, 1.0 / w
 
 
 def _step(moment: Moment, p: float, h: float, u: float, t: float, ku1: float, kt1: float,
@@ -299,18 +303,18 @@ def dp5_grid(grid: CycleGrid, extra: float, inertia: Inertia, moment: Moment, u0
     w = math.sqrt(u / (grid.stages(n)[0][0] + extra))
     k1 = (2.0 * scalar_moment(moment, p, w, t), 1.0 / w)
     track = _Track(p, u, t)
+    with_extra: dict[int, list[list[float]]] = {}     # the stages' I_r + extra, once per n
     for c in range(cycles):
         start = phi0 + c * cycle
         while True:
-            rows, h = grid.stages(n), cycle / n
+            if n not in with_extra:
+                with_extra[n] = [[x + extra for x in row[1:]] for row in grid.stages(n)]
+            rows, h = with_extra[n], cycle / n
             nodes, worst = [], 0.0
             uu, tt, (ku1, kt1) = u, t, k1
             for j in range(n):
-                row = rows[j]
                 pj = start + j * h
-                out = _step(moment, pj, h, uu, tt, ku1, kt1,
-                            [row[1] + extra, row[2] + extra, row[3] + extra, row[4] + extra,
-                             row[5] + extra])
+                out = _step(moment, pj, h, uu, tt, ku1, kt1, rows[j])
                 if out is None:
                     worst = math.inf
                     break

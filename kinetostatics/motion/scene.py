@@ -189,8 +189,9 @@ class ReducedMechanism:
         held without (keys of 1e-9 rad: an angle never asked must not answer for one
         asked later); each angle's numbers are those of its own solve (the solve is
         elementwise)."""
-        new = [p for p in dict.fromkeys(phis)
-               if p not in self._ahead and self._key(p) not in self._cache]
+        cand = [p for p in dict.fromkeys(phis) if p not in self._ahead]
+        new = [p for p, k in zip(cand, self.keys(np.array(cand, dtype=float)), strict=True)
+               if k not in self._cache]
         if new:
             try:
                 vals = self.evaluate(np.array(new))
@@ -203,6 +204,11 @@ class ReducedMechanism:
         """(I_r, dI_r/dphi, M_r) at one angle where it was evaluated before, else None."""
         return self._cache.get(self._key(phi))
 
+    def lookup(self) -> Any:
+        """The cache's ``get`` by key (:meth:`_key`), for a caller that computes the keys
+        inline (an integrator's stages: a call less per stage)."""
+        return self._cache.get
+
     def values(self, phi: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Cached where the angle (modulo a revolution) was evaluated before."""
         if isinstance(phi, float):
@@ -211,6 +217,11 @@ class ReducedMechanism:
             hit = self.cached(phi)
             if hit is not None:
                 return np.float64(hit[0]), np.float64(hit[1]), np.float64(hit[2])
+        elif type(phi) is np.ndarray and phi.shape == (1,):
+            # one angle in an array (a search's point): the same, in arrays of one
+            hit = self.cached(float(phi[0]))
+            if hit is not None:
+                return np.array(hit[:1]), np.array(hit[1:2]), np.array(hit[2:])
         arr = np.asarray(phi, dtype=float)
         flat = arr.ravel().tolist()
         keys = self.keys(arr.ravel())
@@ -233,8 +244,8 @@ def _motor(spec: MotionSpec):
         ms, w0 = spec.stall_moment, spec.no_load_speed
 
         def linear(phi, w):
-            if type(w) is float:        # an integrator's stage: numpy's scalar, not an array
-                return ms * (1.0 - np.float64(w) / w0)
+            if type(w) is float:        # an integrator's stage: Python's floats, not numpy's
+                return ms * (1.0 - w / w0)      # (the same IEEE operations, the same bits)
             return ms * (1.0 - np.asarray(w) / w0)
         return linear
     ang, val = spec.table[:, 0], spec.table[:, 1]
@@ -321,10 +332,13 @@ def simulate_motion(scene: Any, rtol: float = 1e-12) -> MotionResult:
         inertia.prefetch = red.prefetch     # golden_max's searches (cycle_stats) ask ahead
         return inertia
 
+    lookup, origin = red.lookup(), red.phi0
+
     def moment(phi, w, t):
-        hit = red.cached(phi) if isinstance(phi, float) else None
-        if hit is not None:             # an integrator's stage: no arrays
-            return motor(phi, w) + np.float64(hit[2])
+        if type(phi) is float:          # an integrator's stage: no arrays, no numpy scalars
+            hit = lookup(round(((phi - origin) % TWO_PI) * KEY))    # ReducedMechanism._key
+            if hit is not None:
+                return motor(phi, w) + hit[2]
         return motor(phi, w) + red.values(phi)[2]
 
     sol = simulate(inertia_with(spec.flywheel), moment, phi0, spec.omega0, spec.cycles,
@@ -332,8 +346,8 @@ def simulate_motion(scene: Any, rtol: float = 1e-12) -> MotionResult:
     positions = sc.driver.positions
     summary = sol.summary(positions)
     if spec.target_delta is not None:
-        st = sol.cycle_stats()
+        # the summary's omega_mean is cycle_stats()'s (the last whole cycle's), taken as is
         summary["flywheel_for_target"] = flywheel_for_delta(
-            inertia_with(0.0), moment, spec.target_delta, phi0, st["omega_mean"], rtol=rtol,
+            inertia_with(0.0), moment, spec.target_delta, phi0, summary["omega_mean"], rtol=rtol,
             periodic_inertia=True)
     return MotionResult(sol.table(positions), summary, sol, sc.units, sc.warnings)

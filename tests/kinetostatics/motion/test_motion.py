@@ -311,3 +311,20 @@ def test_periodic_inertia_grid_matches_the_adaptive_integrator():
     with pytest.raises(MotionError, match="in cycle 2 at driver angle 117"):
         mo.simulate(const_inertia(0.5), lambda p, w, t: -3.0, 0.0, 10.0, 3,
                     periodic_inertia=True)
+
+
+def test_omega_at_one_angle_is_the_arrays_omega():
+    """MotionSolution.omega_at (the golden-section searches' omega at one angle, without
+    the arrays) gives omega(np.array([p]))'s number to the bit: at random angles, at every
+    node, at the ends; an angle outside the span is refused as by omega, and so is a
+    reduced inertia that is not positive."""
+    base, moment = loaded_machine()
+    sol = mo.simulate(base, moment, 0.0, 5.0, 3)
+    rng = np.random.default_rng(7)
+    pts = np.concatenate([rng.uniform(sol.phi[0], sol.phi[-1], 500), sol.phi])
+    assert [sol.omega_at(p) for p in pts] == [float(sol.omega(np.array([p]))[0]) for p in pts]
+    with pytest.raises(MotionError, match="outside"):
+        sol.omega_at(sol.phi[-1] + 1.0)
+    sol.inertia = lambda phi: (np.full(np.shape(phi), -1.0), np.zeros(np.shape(phi)))
+    with pytest.raises(MotionError, match="positive"):
+        sol.omega_at(1.0)
