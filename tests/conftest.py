@@ -242,7 +242,9 @@ def pytest_xdist_auto_num_workers(config: pytest.Config) -> int | None:
     the CLIs, process pools): with two workers on the 2-core machine a fifth of its
     processor time went unused (1016 s of CPU in 645 s), and a third worker took up the
     slack: 535 s of pytest against 589 s on a fresh clone with an empty cache (measured
-    2026-11-30, f190c15). The quick tier's tests seldom wait, and each worker's start
+    2026-11-30, f190c15); a fourth took 550 s against the three's 529 s (727a8be, the same
+    day, quiet: the waits are filled, a worker more only adds its start and its share of
+    the compiles and fixtures). The quick tier's tests seldom wait, and each worker's start
     costs some 8 s of CPU (every module imported): there a worker more only adds load."""
     if os.environ.get("PYTEST_XDIST_AUTO_NUM_WORKERS"):
         return None
