@@ -204,11 +204,6 @@ class ReducedMechanism:
         """(I_r, dI_r/dphi, M_r) at one angle where it was evaluated before, else None."""
         return self._cache.get(self._key(phi))
 
-    def lookup(self) -> Any:
-        """The cache's ``get`` by key (:meth:`_key`), for a caller that computes the keys
-        inline (an integrator's stages: a call less per stage)."""
-        return self._cache.get
-
     def values(self, phi: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Cached where the angle (modulo a revolution) was evaluated before."""
         if isinstance(phi, float):
@@ -332,11 +327,9 @@ def simulate_motion(scene: Any, rtol: float = 1e-12) -> MotionResult:
         inertia.prefetch = red.prefetch     # golden_max's searches (cycle_stats) ask ahead
         return inertia
 
-    lookup, origin = red.lookup(), red.phi0
-
     def moment(phi, w, t):
         if type(phi) is float:          # an integrator's stage: no arrays, no numpy scalars
-            hit = lookup(round(((phi - origin) % TWO_PI) * KEY))    # ReducedMechanism._key
+            hit = red.cached(phi)
             if hit is not None:
                 return motor(phi, w) + hit[2]
         return motor(phi, w) + red.values(phi)[2]
