@@ -168,7 +168,9 @@ def driver_at_first_row(scene: Scene) -> BodyMotion:
         return _sliding(scene, float(drv.positions[0]), float(drv.speed),
                         float(drv.acceleration))
     joint = scene.joints[drv.joint]
-    th = drv.angles[:1]             # (cos and sin of one row, as of a one-row sweep)
+    # (cos and sin of one row, as of a one-row sweep; the row's angle alone worked out:
+    # a long sweep the compiled path solves never makes its driver's angles)
+    th = drv.angles_into(slice(0, 1), np.empty(1))
     c, s = float(np.cos(th)[0]), float(np.sin(th)[0])
     px, py = scene.ground[joint.point_on(GROUND)]
     rax, ray = A.rotate(c, s, *scene.bodies[drv.body].local(joint.point_on(drv.body)))

@@ -114,18 +114,30 @@ def fused_blocks(kernels, scene: Scene, full: Scene, structure, geometry,
     # (the crank's cos and sin worked out per tile into the kernel's scratch, not kept:
     # the tables' pass works them out again, the same doubles, if a table asks)
     drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
-    angles = full.driver.angles     # (read-only, as the driver makes them and NO_ANGLES:
-    w = OWNERS.size                 # one compiled signature)
-    bad = 0
-    for lo in range(0, n, w):
-        at = slice(lo, min(lo + w, n))
-        bad += kernel(0, at.stop - lo, OWNERS, NO_TRIG, NO_TRIG, START, angles[at], *fixed,
-                      drive[at], close[at], undefined[at])
+    bad = by_tiles(kernel, full.driver, OWNERS.size, fixed, (drive, close, undefined))
     if bad:
         raise Refused(bad)
     if plan is not None:
         plan.check_swept()
     return kept_sweep(structure, "R", drive, undefined, [close])
+
+
+def by_tiles(kernel, driver, w: int, fixed: tuple, outs: tuple) -> int:
+    """``kernel`` (a one-scene kernel of the crank's angles, ``fused_call``'s) over the
+    driver's rows, ``w`` rows a call, each call given its
+    rows' slices of ``outs``; returns the count of rows refused. Each tile's angles
+    read-only, as the driver makes them and NO_ANGLES (one compiled signature): the
+    driver's own once made, else worked out per tile into one scratch array
+    (:meth:`~kinetostatics.model.scene.Driver.angles_into`, the same doubles), no array
+    of all the rows' radians made."""
+    n = driver.positions.size
+    scratch = np.empty(min(w, n))
+    bad = 0
+    for lo in range(0, n, w):
+        at = slice(lo, min(lo + w, n))
+        bad += kernel(0, at.stop - lo, OWNERS, NO_TRIG, NO_TRIG, START,
+                      driver.angles_into(at, scratch), *fixed, *(o[at] for o in outs))
+    return bad
 
 
 _TRIG: dict[str, bool] = {}
@@ -213,6 +225,9 @@ def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarr
     # shaper 144-155 at 2e5 rows, 151-158 at 1e6 against 160-191 and 171-183 in two
     # kernels per block, numpy's cos and sin between them; slotted lever 93-96, 99-107
     # against 107-114, 109-120)
+    # (the driver's angles, all the rows': measured 2026-11-30, the shaper at 1e6 rows,
+    # processor time, 16 alternating pairs, calls of 2**16 or 2**18 rows given each
+    # tile's radians, by_tiles, cost 6 % more than the one call)
     bad = kernel(0, n, OWNERS, NO_TRIG, NO_TRIG, START, full.driver.angles, *rest, drive, *close,
                  undefined)
     if bad:

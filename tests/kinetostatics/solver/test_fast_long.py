@@ -148,3 +148,23 @@ def test_a_long_sweep_that_cannot_close_is_refused_as_on_numpy(fast, monkeypatch
         ks.solve(d)
     assert str(fast_error.value) == str(numpy_error.value)
     assert "cannot be assembled at driver position(s) 154.8" in str(fast_error.value)
+
+
+@pytest.mark.parametrize("kind", [*FUSED])
+def test_a_long_fused_sweep_never_makes_the_driver_angles(fast, kind: str) -> None:
+    # the fused kernel takes each tile's radians (Driver.angles_into, one scratch array):
+    # the driver's array of every row's angles is made only when read, the same doubles
+    d = long_scene(kind)
+    d["driver"]["count"] = COUNT + 2    # (a scene of its own: not one read and kept before)
+    sc = load_scene(d)
+    me = ks.solve(sc).driver.iloc[:, 1].to_numpy()
+    assert "angles" not in sc.driver.__dict__
+    scratch = np.empty(5000)
+    tile = sc.driver.angles_into(slice(COUNT + 2 - 4097, None), scratch)
+    assert "angles" not in sc.driver.__dict__ and not tile.flags.writeable
+    assert np.shares_memory(tile, scratch)
+    assert tile.tobytes() == np.radians(sc.driver.positions[-4097:]).tobytes()
+    assert sc.driver.angles[-4097:].tobytes() == tile.tobytes()     # (made now)
+    assert np.shares_memory(sc.driver.angles_into(slice(0, 9), scratch), sc.driver.angles)
+    # the solve with the driver's angles made: the same Me
+    assert ks.solve(sc).driver.iloc[:, 1].to_numpy().tobytes() == me.tobytes()
