@@ -369,7 +369,8 @@ def _solved(solved: Solved) -> Solved:
 def singular_rows(n: int, flags: list, dead: tuple) -> np.ndarray:
     """:attr:`Kinematics.singular <kinetostatics.solver.kinematics.Kinematics.singular>`
     from each dyad's singular rows (``flags``) and the dead points between and beyond
-    the rows (``dead``: between, ends, unassembled), without the kinematics."""
+    the rows (``dead``: between, ends, unassembled), without the kinematics: an array of
+    its own each call (a table takes it as its column, no copy)."""
     between, ends, _ = dead
     first = flags[0] if len(flags) == 1 else None
     if type(first) is np.ndarray and first.shape == (n,) and first.dtype == np.bool_:

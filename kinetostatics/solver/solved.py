@@ -82,8 +82,9 @@ class Deferred(Protocol):
     """A solve that holds some of its arrays and gives the others when asked.
 
     ``known``: the fields of a Solution it holds from the start (``scene``,
-    ``structure``, ``self_locking``, ...); ``positions`` and ``singular()`` answer without
-    solving again; ``give(name, have)`` returns the fields to add once ``name`` (one of
+    ``structure``, ``self_locking``, ...); ``positions`` and ``singular()`` (an array of
+    its own each call, which the caller may keep) answer without solving again;
+    ``give(name, have)`` returns the fields to add once ``name`` (one of
     :data:`DEFERRED`) is asked for, ``have`` being the names the Solution holds already;
     ``solved()`` gives everything, as a :class:`Solved` (to pickle).
     """

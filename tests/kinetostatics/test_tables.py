@@ -352,3 +352,27 @@ def test_rows_text_keeps_a_label_with_a_nul():
     fields = [csvtext.format_column(np.array(["a\x00b", "c", "d"], dtype=object), ","),
               csvtext.format_floats(values, "\n")]
     assert csvtext.rows_text(fields) == b"a\x00b,1.5\nc,-0\nd,\n"
+
+
+@pytest.mark.parametrize("share_rows", [0, 10**9], ids=["shared", "own"])
+def test_a_deferred_solves_driver_table_keeps_writes_to_itself(monkeypatch, share_rows):
+    """A deferred solve's driver table (a scene of solve_many): its ``singular`` the array
+    ``singular()`` made for it, its ``undefined_load`` shared with the solve when long; a
+    write to either changes neither the solution nor a second table."""
+    from kinetostatics.results import longtable
+    monkeypatch.setattr(longtable, "SHARE_ROWS", share_rows)
+    scenes = [OWN_CASES / "four_bar.toml", OWN_CASES / "slider_crank.toml"] * 2
+    sol = ks.solve_many(scenes)[2]
+    assert "_deferred" in sol.__dict__ and "kin" not in sol.__dict__
+    d = sol.driver
+    sing0, undef0 = sol.singular.copy(), np.array(sol.undefined_load)
+    assert not np.shares_memory(d.singular.to_numpy(), sol.singular)
+    assert np.shares_memory(d.undefined_load.to_numpy(), sol.undefined_load) == \
+        (share_rows == 0)
+    d.loc[2, "singular"] = not sing0[2]
+    d.loc[3, "undefined_load"] = not undef0[3]
+    assert d.loc[2, "singular"] != sing0[2] and d.loc[3, "undefined_load"] != undef0[3]
+    assert (sol.singular == sing0).all() and (np.asarray(sol.undefined_load) == undef0).all()
+    del sol.__dict__["driver"]                  # (a second table of the same solution)
+    again = sol.driver
+    assert again.singular[2] == sing0[2] and again.undefined_load[3] == undef0[3]
