@@ -426,7 +426,24 @@ def _driver(table: Any, bodies: dict, joints: dict, units: Units) -> Driver:
         # a linspace as read: its cos and sin shared with the same sweep's (Driver.trig)
         key = (driver.positions[0].hex(), driver.positions[-1].hex(), driver.positions.size)
         object.__setattr__(driver, "sweep", key)
+    if "positions" not in t and widely_spaced(driver.positions):
+        object.__setattr__(driver, "increasing", True)
     return driver
+
+
+def widely_spaced(grid: np.ndarray) -> bool:
+    """Whether ``grid``, known to be ``np.linspace(start, stop, count)`` (two rows or more),
+    strictly increases, told from its ends and size alone: its step ``s`` (as linspace
+    works it out) is more than ``4 E``, ``E = spacing(4 M)``, ``M = max(|start|, |stop|)``
+    (each row ``fl(fl(i s) + start)`` is within ``E`` of ``start + i s``, and the last,
+    ``stop``, within ``E`` of ``start + (count - 1) s``: each row then exceeds the one
+    before by more than ``s - 2 E``). False where that is not shown (a sweep that
+    decreases, or steps of a few ulps: checked row by row then, as positions typed)."""
+    if grid.size < 2:
+        return False
+    start, stop = float(grid[0]), float(grid[-1])
+    step = (stop - start) / (grid.size - 1)
+    return bool(step > 4.0 * np.spacing(4.0 * max(abs(start), abs(stop))))
 
 
 def _positions(t: dict, units: Units) -> np.ndarray:

@@ -155,6 +155,10 @@ class Driver:
     # the sweep's start, stop and count (their bits) when ``positions`` is that linspace
     # as read (set by the reader; None for positions given otherwise or replaced)
     sweep: tuple | None = field(init=False, default=None, repr=False, compare=False)
+    # True when ``positions`` strictly increase, known from how the reader made them (a
+    # linspace whose step is wide enough, :func:`~kinetostatics.model.scene.widely_spaced`:
+    # no pass over them); False when not known (positions given otherwise or replaced)
+    increasing: bool = field(init=False, default=False, repr=False, compare=False)
 
     @cached_property
     def angles(self) -> np.ndarray:

@@ -77,7 +77,8 @@ class Sweep:
         if not allow_repeats:
             own = positions is None
             record = record_of(sc) if own else {}
-            if not record.get("distinct"):         # (the scene's own sweep: checked once)
+            # (the scene's own sweep: checked once, or known to increase as it was read)
+            if not record.get("distinct") and not (own and sc.driver.increasing):
                 q = "angle" if sc.driver.kind == "R" else "length"
                 check_distinct(sc.driver.positions if own else positions,
                                sc.units.unit(q), sc.units.file_factor(q))
