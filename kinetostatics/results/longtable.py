@@ -398,12 +398,22 @@ def table_column(value: object, n: int, dtype: type = float) -> np.ndarray:
     return np.array(np.broadcast_to(value, (n,)), dtype=dtype)
 
 
+def whole_column(value: object, n: int, dtype: type = np.float64) -> bool:
+    """Whether ``value`` is an array of ``n`` values of ``dtype``: a column as it is."""
+    return type(value) is np.ndarray and value.shape == (n,) and value.dtype == dtype
+
+
 def own_column(value: object, n: int, dtype: type = np.float64) -> np.ndarray:
     """:func:`table_column` by the shortest road: an array of ``n`` values of ``dtype``
     already is copied as it is (the same values, bit for bit)."""
-    if type(value) is np.ndarray and value.shape == (n,) and value.dtype == dtype:
-        return value.copy()
-    return table_column(value, n, dtype)
+    return value.copy() if whole_column(value, n, dtype) else table_column(value, n, dtype)
+
+
+def made_column(value: object, n: int, dtype: type = np.bool_) -> np.ndarray:
+    """:func:`own_column` of an array made for this table alone (nothing else holds it, a
+    deferred solve's ``singular()``): taken as it is, no copy (measured 2026-11-30, the
+    slider-crank at 1e6 rows: 1 MB a driver table)."""
+    return value if whole_column(value, n, dtype) else table_column(value, n, dtype)
 
 
 def text_column(value: str, n: int) -> Labels:

@@ -200,17 +200,15 @@ class Solution:
             # pandas needs to know a column is shared, and nothing can see a write to them)
             return tables.own_frame(self._driver_columns(), n)
         cols, value, keep = self._driver_columns(True), self.drive.value, self.__dict__.setdefault
+        whole, own = tables.whole_column, tables.own_column  # (undefined_load too: 1 MB at 1e6)
         # the solver's own arrays, held once (pandas copies a column before a write), its
         # positions too (the long tables' column filled for it: 2.9 ms at 1e6 rows, 2026-11-30)
         cols["position"] = keep("_position_column", shared(self.positions)) \
             if self.positions.dtype == np.float64 else self._tiled.column(1)
-        if isinstance(value, np.ndarray) and value.shape == self.positions.shape \
-                and value.dtype == np.float64:
-            cols[self.driver_quantity] = keep("_drive_column", shared(value))
-        else:
-            cols[self.driver_quantity] = tables.table_column(self.Me, n)
-        if "undefined_load" not in cols:    # (the solver's too: 1 MB at 1e6 rows)
-            cols["undefined_load"] = keep("_undefined_column", shared(self.undefined_load))
+        cols[self.driver_quantity] = keep("_drive_column", shared(value)) \
+            if whole(value, n) else tables.table_column(self.Me, n)
+        cols["undefined_load"] = keep("_undefined_column", shared(self.undefined_load)) \
+            if whole(self.undefined_load, n, np.bool_) else own(self.undefined_load, n, np.bool_)
         return tables.columns_frame({c: cols[c] for c in self.driver_names()}, copy=False)
 
     def columns(self, table: str) -> dict:
@@ -224,35 +222,19 @@ class Solution:
         return names if self.self_locking is None else [*names, "self_locking"]
 
     def _driver_columns(self, shared_columns: bool = False) -> dict:
-        """The ``driver`` table's columns, each an array of its own (a copy: writing to it
-        never changes the solution). ``shared_columns``: without ``position`` and the
-        driving effort, which the caller takes shared (no copy made only to be
-        replaced), and ``undefined_load`` when the solver's is an array of every row."""
-        n = self.positions.size
-        own = tables.own_column
+        """The ``driver`` table's columns, each an array of its own (a copy, or made for
+        it). ``shared_columns``: without ``position``, the driving effort and
+        ``undefined_load``, which the caller takes shared (no copy made only to be replaced)."""
+        n, own = self.positions.size, tables.own_column
         cols = {} if shared_columns else {"position": own(self.positions, n),
                                           self.driver_quantity: own(self.drive.value, n)}
-        cols["singular"] = self._singular_column(n)
-        undefined = self.undefined_load
-        if not shared_columns or type(undefined) is not np.ndarray \
-                or undefined.shape != (n,) or undefined.dtype != np.bool_:
-            cols["undefined_load"] = own(undefined, n, np.bool_)
+        fresh = "kin" not in self.__dict__ and self.__dict__.get("_deferred") is not None
+        cols["singular"] = (tables.made_column if fresh else own)(self.singular, n, np.bool_)
+        if not shared_columns:
+            cols["undefined_load"] = own(self.undefined_load, n, np.bool_)
         if self.self_locking is not None:
             cols["self_locking"] = own(self.self_locking, n, np.bool_)
         return cols
-
-    def _singular_column(self, n: int) -> np.ndarray:
-        """The ``singular`` column, an array of its own: a deferred solve's as its
-        ``singular()`` makes it for each call (no copy of that copy: measured 2026-11-30,
-        the slider-crank at 1e6 rows, 1 MB a table), else a copy of :attr:`singular`."""
-        d = self.__dict__
-        source = d.get("_deferred")
-        if "kin" not in d and source is not None:
-            fresh = source.singular()
-            if type(fresh) is np.ndarray and fresh.shape == (n,) and fresh.dtype == np.bool_:
-                return fresh
-            return tables.own_column(fresh, n, np.bool_)
-        return tables.own_column(self.singular, n, np.bool_)
 
     @cached_property
     def reactions(self) -> pd.DataFrame:
