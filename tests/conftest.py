@@ -40,6 +40,8 @@ import matplotlib
 import pytest
 from hypothesis import settings
 
+from tests.prewarm import warm_bytecode
+
 matplotlib.use("Agg")
 
 # The suite's processes (the xdist workers, the CLIs it starts) keep their bytecode even
@@ -203,13 +205,16 @@ def pytest_runtest_teardown(item: pytest.Item) -> None:
 
 def pytest_sessionstart(session: pytest.Session) -> None:
     """Every module imported where tests run (not in an xdist controller, which only
-    hands them out), the compiled kernels' cache folder settled first."""
+    hands them out, and writes the bytecode the workers read first:
+    :func:`~tests.prewarm.warm_bytecode`), the compiled kernels' cache folder settled
+    first."""
     config = session.config
     controller = (config.pluginmanager.has_plugin("xdist") and
                   not hasattr(config, "workerinput") and
                   bool(config.getoption("numprocesses")) and
                   config.getoption("dist") != "no")
     if controller:
+        warm_bytecode(config)
         return
     _settle_numba_cache()
     if PROFILE in ("repeatable", "quick"):
