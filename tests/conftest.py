@@ -441,15 +441,22 @@ def _in_order_of_cost(items: list[pytest.Item], by_module: bool) -> list[pytest.
     return [item for unit in ranked for item in sorted(unit, key=_cost_rank)]
 
 
-#: Test modules whose tests share a costly module fixture (a class generated; the browser
-#: test's JupyterLab server, Chromium and page with JupyterLab loaded): each runs on one
-#: xdist worker, so the fixture is made once. (Spread over two workers, the browser's
-#: eleven tests started a second server, Chromium and JupyterLab page: 10 s of CPU,
-#: measured 2026-11-29; on one worker they take some 250 s of CPU while the other worker
-#: runs the compiled group, handed out first.)
+#: Test modules whose tests share a costly module fixture or cache (a class generated; the
+#: browser test's JupyterLab server, Chromium and page with JupyterLab loaded; the layout
+#: rules' syntax trees of every module; a design run; the exercises' generated classes):
+#: each runs on one xdist worker, so the fixture is made once. (Spread over two workers,
+#: the browser's eleven tests started a second server, Chromium and JupyterLab page: 10 s
+#: of CPU, measured 2026-11-29; on one worker they take some 250 s of CPU while the other
+#: worker runs the compiled group, handed out first. Spread over three, test_layout parsed
+#: and walked every module three times, 10.0 s of CPU in the full suite against 4.1 s on
+#: one worker; test_design ran its design twice, 2.1-2.3 s each; test_exercises generated
+#: its classes on each worker, 0.7-1.0 s each, measured 2026-11-30, ci16a.)
 SHARED_PER_MODULE = ("tests/kinetostatics/teaching/test_classroom.py",
                      "tests/kinetostatics/teaching/test_class_record.py",
-                     "tests/test_browser.py")
+                     "tests/test_browser.py",
+                     "tests/test_layout.py",
+                     "tests/kinetostatics/design/test_design.py",
+                     "tests/kinetostatics/teaching/test_exercises.py")
 
 
 #: Tests that run the compiled kernels (numba), in the test's process or in a command it
