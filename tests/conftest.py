@@ -447,10 +447,11 @@ def _in_order_of_cost(items: list[pytest.Item], by_module: bool) -> list[pytest.
 #: each runs on one xdist worker, so the fixture is made once. (Spread over two workers,
 #: the browser's eleven tests started a second server, Chromium and JupyterLab page: 10 s
 #: of CPU, measured 2026-11-29; on one worker they take some 250 s of CPU while the other
-#: worker runs the compiled group, handed out first. Spread over three, test_layout parsed
-#: and walked every module three times, 10.0 s of CPU in the full suite against 4.1 s on
-#: one worker; test_design ran its design twice, 2.1-2.3 s each; test_exercises generated
-#: its classes on each worker, 0.7-1.0 s each, measured 2026-11-30, ci16a.)
+#: worker runs the compiled group, handed out first. Spread over three workers,
+#: test_layout parsed and walked every module on each, test_design ran its design on two,
+#: test_exercises generated its classes on each: the three modules under ``-n 3``, 27.2 and
+#: 28.1 s of CPU spread, 15.1 and 17.0 s so; test_layout 8.3 -> 3.3 s, test_design 11.8
+#: -> 6.5 s, test_exercises 7.2 -> 5.4 s, measured 2026-11-30.)
 SHARED_PER_MODULE = ("tests/kinetostatics/teaching/test_classroom.py",
                      "tests/kinetostatics/teaching/test_class_record.py",
                      "tests/test_browser.py",

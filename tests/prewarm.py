@@ -38,7 +38,10 @@ def rewritten(config: pytest.Config, files: list[Path]) -> int:
             continue
         pyc = cache / (fn.name[:-3] + rewrite.PYC_TAIL)
         if rewrite._read_pyc(fn, pyc, state.trace) is None:
-            source_hash, co = rewrite._rewrite_test(fn, config)
+            try:
+                source_hash, co = rewrite._rewrite_test(fn, config)
+            except (SyntaxError, ValueError, OSError):
+                continue        # the worker that collects it reports it, as before
             done += rewrite._write_pyc(state, co, source_hash, pyc)
     return done
 
