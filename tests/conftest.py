@@ -41,6 +41,7 @@ import pytest
 from hypothesis import settings
 
 from tests.prewarm import warm_bytecode
+from tests.worker_exit import end_without_teardown
 
 matplotlib.use("Agg")
 
@@ -219,6 +220,14 @@ def pytest_sessionstart(session: pytest.Session) -> None:
     _settle_numba_cache()
     if PROFILE in ("repeatable", "quick"):
         _import_every_module()
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_unconfigure(config: pytest.Config) -> None:
+    """An xdist worker ends without the interpreter's teardown once its exit handlers
+    have run (:mod:`tests.worker_exit`): the controller waited seconds for each."""
+    if hasattr(config, "workerinput"):
+        end_without_teardown()
 
 
 def pytest_addoption(parser: pytest.Parser, pluginmanager: pytest.PytestPluginManager) -> None:
