@@ -40,6 +40,9 @@ import matplotlib
 import pytest
 from hypothesis import settings
 
+from tests.prewarm import warm_bytecode
+from tests.worker_exit import end_without_teardown
+
 matplotlib.use("Agg")
 
 # The suite's processes (the xdist workers, the CLIs it starts) keep their bytecode even
@@ -203,17 +206,28 @@ def pytest_runtest_teardown(item: pytest.Item) -> None:
 
 def pytest_sessionstart(session: pytest.Session) -> None:
     """Every module imported where tests run (not in an xdist controller, which only
-    hands them out), the compiled kernels' cache folder settled first."""
+    hands them out, and writes the bytecode the workers read first:
+    :func:`~tests.prewarm.warm_bytecode`), the compiled kernels' cache folder settled
+    first."""
     config = session.config
     controller = (config.pluginmanager.has_plugin("xdist") and
                   not hasattr(config, "workerinput") and
                   bool(config.getoption("numprocesses")) and
                   config.getoption("dist") != "no")
     if controller:
+        warm_bytecode(config)
         return
     _settle_numba_cache()
     if PROFILE in ("repeatable", "quick"):
         _import_every_module()
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_unconfigure(config: pytest.Config) -> None:
+    """An xdist worker ends without the interpreter's teardown once its exit handlers
+    have run (:mod:`tests.worker_exit`): the controller waited seconds for each."""
+    if hasattr(config, "workerinput"):
+        end_without_teardown()
 
 
 def pytest_addoption(parser: pytest.Parser, pluginmanager: pytest.PytestPluginManager) -> None:
@@ -436,15 +450,23 @@ def _in_order_of_cost(items: list[pytest.Item], by_module: bool) -> list[pytest.
     return [item for unit in ranked for item in sorted(unit, key=_cost_rank)]
 
 
-#: Test modules whose tests share a costly module fixture (a class generated; the browser
-#: test's JupyterLab server, Chromium and page with JupyterLab loaded): each runs on one
-#: xdist worker, so the fixture is made once. (Spread over two workers, the browser's
-#: eleven tests started a second server, Chromium and JupyterLab page: 10 s of CPU,
-#: measured 2026-11-29; on one worker they take some 250 s of CPU while the other worker
-#: runs the compiled group, handed out first.)
+#: Test modules whose tests share a costly module fixture or cache (a class generated; the
+#: browser test's JupyterLab server, Chromium and page with JupyterLab loaded; the layout
+#: rules' syntax trees of every module; a design run; the exercises' generated classes):
+#: each runs on one xdist worker, so the fixture is made once. (Spread over two workers,
+#: the browser's eleven tests started a second server, Chromium and JupyterLab page: 10 s
+#: of CPU, measured 2026-11-29; on one worker they take some 250 s of CPU while the other
+#: worker runs the compiled group, handed out first. Spread over three workers,
+#: test_layout parsed and walked every module on each, test_design ran its design on two,
+#: test_exercises generated its classes on each: the three modules under ``-n 3``, 27.2 and
+#: 28.1 s of CPU spread, 15.1 and 17.0 s so; test_layout 8.3 -> 3.3 s, test_design 11.8
+#: -> 6.5 s, test_exercises 7.2 -> 5.4 s, measured 2026-11-30.)
 SHARED_PER_MODULE = ("tests/kinetostatics/teaching/test_classroom.py",
                      "tests/kinetostatics/teaching/test_class_record.py",
-                     "tests/test_browser.py")
+                     "tests/test_browser.py",
+                     "tests/test_layout.py",
+                     "tests/kinetostatics/design/test_design.py",
+                     "tests/kinetostatics/teaching/test_exercises.py")
 
 
 #: Tests that run the compiled kernels (numba), in the test's process or in a command it
