@@ -24,7 +24,7 @@ from .jitbase import (
     tile_rows_for,
 )
 from .kernels import tile_motion_for
-from .layout import DRIVER_GEOMETRY, INNER_R, KINDS, P_GROUND, PARAM, ROT1, ROT2, C, S
+from .layout import DRIVER_GEOMETRY, G1, G2, INNER_R, KINDS, P_GROUND, PARAM, ROT1, ROT2, C, S
 from .layout import MOTION as BODY_ROWS
 from .reaction_kernels import crank_moment, reaction_row, tile_loads_for
 from .scratch_views import DYAD_ROWS, LOAD_ROWS, dyad_views, load_views, resultant_views
@@ -132,7 +132,10 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy,
     before, in a pass of their own: row ``i`` of scene ``e`` at ``i - ts[e]`` (one
     sweep shared by the scenes, or the run's rows), or here from the crank's ``angles``
     (one scene, ``ts`` 0; none: an empty array) into the tile alone (:func:`_tile_turn`;
-    ``cs``, ``sn`` then unread). Returns the count of rows the numpy path must judge."""
+    ``cs``, ``sn`` then unread). ``kind``'s ground bits (``layout.G1``, ``G2``: a
+    prismatic outer joint whose known body is the ground) take the ground's motion as
+    the constants it is (:func:`~kinetostatics.solver.fast.kernels.dyad_row`). Returns
+    the count of rows the numpy path must judge."""
     rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
     R = BODY_ROWS
     w_ = scratch(4 * R + LOAD_ROWS + DYAD_ROWS + DRIVER_GEOMETRY)
@@ -214,17 +217,19 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy,
     return bad
 
 
-def _kept_for(kind: str):
+def _kept_for(kind: str, ground: int):
     """The compiled entry of dyad kind ``kind``: :func:`_crank_dyad_kept` with the kind's
-    code (:data:`~kinetostatics.solver.fast.layout.KINDS`) a constant (numba freezes the
-    closure's ``code``: each kind compiled on its first call as if written out), named by
-    its kind (:func:`~kinetostatics.solver.fast.jitbase.jit_as`: a cache index of its
-    own). Measured 2026-11-29 against the kind passed at run time (one compile for every
+    code (:data:`~kinetostatics.solver.fast.layout.KINDS`) and ``ground`` (``G1``, ``G2``:
+    which prismatic outer joints' known body is the ground) a constant (numba freezes the
+    closure's ``code``: each compiled on its first call as if written out), named by its
+    kind (:func:`~kinetostatics.solver.fast.jitbase.jit_as`: a cache index of its own).
+    Measured 2026-11-29 against the kind passed at run time (one compile for every
     kind): the four-bar at 2e5 rows 23 ms a solve against 11, its dyad's row no longer
     vectorised."""
-    code = KINDS[kind]
+    code = KINDS[kind] | ground
+    suffix = "".join(f"_g{i + 1}" for i, bit in enumerate((G1, G2)) if ground & bit)
 
-    @jit_as(f"{kind.lower()}_kept")
+    @jit_as(f"{kind.lower()}_kept{suffix}")
     def kept(lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt,
              gw, gws, nw, st, drive, close, undefined):
         value = not_literal(code)       # (the helpers typed once for every kind)
@@ -234,8 +239,46 @@ def _kept_for(kind: str):
     return kept
 
 
-# a crank and one dyad, fused, per dyad kind (RTR: its composed kernels)
-KEPT = {kind: _kept_for(kind) for kind in KINDS if kind != "RTR"}
+def _grounds(kind: str) -> tuple:
+    """The ``ground`` bits a kind's entries take (:func:`_kept_for`): one per prismatic
+    outer joint, each on or off (a revolute one's none: one entry for RRR)."""
+    code, found = KINDS[kind], [0]
+    for rot, bit in ((ROT1, G1), (ROT2, G2)):
+        if not code & rot:
+            found += [g | bit for g in found]
+    return tuple(found)
 
 
-__all__ = ["KEPT"]
+# a crank and one dyad, fused, per dyad kind (RTR: its composed kernels) and which of its
+# prismatic outer joints lie on the ground (each compiled on its first call). Measured
+# 2026-11-30, the slider-crank (its guide on the ground) at 1e6 rows, the kernel alone,
+# processor time: see docs/solve-paths.md
+KEPT_ON = {(kind, g): _kept_for(kind, g) for kind in KINDS if kind != "RTR"
+           for g in _grounds(kind)}
+
+
+class Kept:
+    """A kind's fused kernel as its callers call it (the arguments of
+    :func:`_crank_dyad_kept` after ``kind``): the entry of :data:`KEPT_ON` whose ground
+    bits the call's ``k1d``, ``k2d`` (each outer joint's known body the driver, else the
+    ground) name."""
+
+    def __init__(self, kind: str) -> None:
+        self.kind = kind
+        self.prismatic = [not KINDS[kind] & ROT1, not KINDS[kind] & ROT2]
+
+    def entry(self, k1d: bool, k2d: bool):
+        """The compiled entry of a call whose outer joints' known bodies are the driver
+        (``k1d``, ``k2d``) or else the ground."""
+        ground = ((G1 if self.prismatic[0] and not k1d else 0)
+                  | (G2 if self.prismatic[1] and not k2d else 0))
+        return KEPT_ON[self.kind, ground]
+
+    def __call__(self, *args):
+        return self.entry(args[13], args[14])(*args)
+
+
+KEPT = {kind: Kept(kind) for kind in KINDS if kind != "RTR"}
+
+
+__all__ = ["KEPT", "KEPT_ON", "Kept"]

@@ -52,6 +52,8 @@ from .layout import (
     DET,
     DYAD_GEOMETRY,
     DYAD_OUT,
+    G1,
+    G2,
     I_CB,
     I_SB,
     I_SFIRST,
@@ -187,10 +189,46 @@ def outer_param(rot, k, j, g, r, base):
 
 
 @body
+def ground_param(rot, ground, k, j, g, r, base):
+    """:func:`outer_param`, of a prismatic outer joint whose known body is the ground
+    (``ground``; ``rot`` False) from its geometry alone: the ground's cos 1 and sin 0,
+    origin 0 (0 + (1 lx - 0 ly) is 0 + lx for a finite lx, and so on: the same doubles)."""
+    if rot or not ground:
+        return outer_param(rot, k, j, g, r, base)
+    lx, ly = g[base + P_KX, r], g[base + P_KY, r]
+    cb, sb = g[base + P_CB, r], g[base + P_SB, r]
+    c, s = cb - 0.0 * sb, 0.0 * cb + sb
+    bx, by = g[base + P_BX, r], g[base + P_BY, r]
+    if g[base + P_GK, r] != 0.0:
+        ux, uy = c, s
+    else:
+        ux, uy = 1.0, 0.0
+    px, py = 0.0 + lx, 0.0 + ly
+    return c, s, ux, uy, px - (c * bx - s * by), py - (s * bx + c * by)
+
+
+@body
 def _vel_at(k, j, x, y):
     """Velocity of the known body's point at the global (x, y)."""
     om = k[OM, j]
     return k[VX, j] - om * (y - k[OY, j]), k[VY, j] + om * (x - k[OX, j])
+
+
+@body
+def _vel_known(ground, k, j, x, y):
+    """:func:`_vel_at`, 0 on the ground (``ground``: 0 - 0 (y - 0) is +0 for a finite y;
+    a row that is not finite is counted)."""
+    if ground:
+        return 0.0, 0.0
+    return _vel_at(k, j, x, y)
+
+
+@body
+def _acc_known(ground, k, j, x, y):
+    """:func:`_acc_at`, 0 on the ground (as :func:`_vel_known`)."""
+    if ground:
+        return 0.0, 0.0
+    return _acc_at(k, j, x, y)
 
 
 @body
@@ -211,17 +249,17 @@ def _origin(rot, p, c, s, lx, ly, q):
 
 
 @body
-def _column(rot, p, k1, j, xx, xy):
+def _column(rot, ground, p, k1, j, xx, xy):
     """The column c_i of the velocity system, the known part k_i of the velocity of the
     body's point at X and the angular weight w_i."""
     if rot:
         return p[1] - xy, xx - p[0], p[2], p[3], 1.0
-    kx, ky = _vel_at(k1, j, xx, xy)
+    kx, ky = _vel_known(ground, k1, j, xx, xy)
     return p[2], p[3], kx, ky, 0.0
 
 
 @body
-def _body(rot, p, kb, j, c, s, lx, ly, ox, oy, qd, qdd, m, jo):
+def _body(rot, ground, p, kb, j, c, s, lx, ly, ox, oy, qd, qdd, m, jo):
     """A dyad body's motion from its unknown's rate and acceleration (``_body_motion``)."""
     m[C, jo], m[S, jo], m[OX, jo], m[OY, jo] = c, s, ox, oy
     if rot:
@@ -234,8 +272,8 @@ def _body(rot, p, kb, j, c, s, lx, ly, ox, oy, qd, qdd, m, jo):
         m[AY, jo] = (p[5] + qdd * rax) - w2 * ray
         return
     om = kb[OM, j]
-    vkx, vky = _vel_at(kb, j, ox, oy)
-    akx, aky = _acc_at(kb, j, ox, oy)
+    vkx, vky = _vel_known(ground, kb, j, ox, oy)
+    akx, aky = _acc_known(ground, kb, j, ox, oy)
     f = 2.0 * om * qd
     m[OM, jo], m[AL, jo] = om, kb[AL, j]
     m[VX, jo], m[VY, jo] = vkx + qd * p[2], vky + qd * p[3]
@@ -333,14 +371,14 @@ def _closeness(inner_r, rtr, rot1, det, p1, p2, ux, uy, norm2, reach, gap, size)
 
 
 @body
-def _known_acc(rot, p, k, j, xx, xy, qd, cx, cy):
+def _known_acc(rot, ground, p, k, j, xx, xy, qd, cx, cy):
     """The known part of the closing point's acceleration on one side of the dyad (the
     acceleration system's right-hand side, seed 000 ch. 5-12): centripetal about a
     rotation's pivot, or the guide's motion plus Coriolis (seed 001 eq. 8)."""
     if rot:
         ww = qd * qd
         return p[4] - ww * cy, p[5] + ww * cx
-    kax, kay = _acc_at(k, j, xx, xy)
+    kax, kay = _acc_known(ground, k, j, xx, xy)
     f = 2.0 * k[OM, j] * qd
     return kax - f * p[3], kay + f * p[2]
 
@@ -360,8 +398,11 @@ def _store_param(d, j, b, p, rot):
 def dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d):
     size = g[SIZE, r]
     kk = g[ASSEMBLY, r]
-    p1 = outer_param(rot1, k1, j, g, r, 0)
-    p2 = outer_param(rot2, k2, j, g, r, PARAM)
+    # (a fused kernel's ground bits: a prismatic outer joint's known body the ground, its
+    # motion the constants it is, layout.G1, G2)
+    ground1, ground2 = (kind & G1) != 0, (kind & G2) != 0
+    p1 = ground_param(rot1, ground1, k1, j, g, r, 0)
+    p2 = ground_param(rot2, ground2, k2, j, g, r, PARAM)
     reach = -1.0
     gap = -1.0
     if inner_r:
@@ -381,8 +422,8 @@ def dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d):
     else:
         lx, ly = g[I_SX, r], g[I_SY, r]
         xx, xy = o2x + (c2 * lx - s2 * ly), o2y + (s2 * lx + c2 * ly)
-    c1x, c1y, k1x, k1y, w1 = _column(rot1, p1, k1, j, xx, xy)
-    c2x, c2y, k2x, k2y, w2 = _column(rot2, p2, k2, j, xx, xy)
+    c1x, c1y, k1x, k1y, w1 = _column(rot1, ground1, p1, k1, j, xx, xy)
+    c2x, c2y, k2x, k2y, w2 = _column(rot2, ground2, p2, k2, j, xx, xy)
     nx = ny = ux = uy = 0.0
     if inner_r:
         a11, b12, a21, b22 = c1x, c2x, c1y, c2y
@@ -404,8 +445,8 @@ def dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d):
     qd1 = (b12 * r2 - r1 * b22) / det
     qd2 = (a11 * r2 - r1 * a21) / det
     # the acceleration system's right-hand side (centripetal and Coriolis terms)
-    ka1x, ka1y = _known_acc(rot1, p1, k1, j, xx, xy, qd1, c1x, c1y)
-    ka2x, ka2y = _known_acc(rot2, p2, k2, j, xx, xy, qd2, c2x, c2y)
+    ka1x, ka1y = _known_acc(rot1, ground1, p1, k1, j, xx, xy, qd1, c1x, c1y)
+    ka2x, ka2y = _known_acc(rot2, ground2, p2, k2, j, xx, xy, qd2, c2x, c2y)
     if inner_r:
         ra1, ra2 = ka2x - ka1x, ka2y - ka1y
     else:
@@ -424,8 +465,8 @@ def dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d):
         ra2 = 2.0 * sgn * (om_g * rdot) - (nx * (ka1x - ka2x) + ny * (ka1y - ka2y))
     qdd1 = (b12 * ra2 - ra1 * b22) / det
     qdd2 = (a11 * ra2 - ra1 * a21) / det
-    _body(rot1, p1, k1, j, c1, s1, g[P_BX, r], g[P_BY, r], o1x, o1y, qd1, qdd1, m1, j)
-    _body(rot2, p2, k2, j, c2, s2, g[PARAM + P_BX, r], g[PARAM + P_BY, r], o2x, o2y,
+    _body(rot1, ground1, p1, k1, j, c1, s1, g[P_BX, r], g[P_BY, r], o1x, o1y, qd1, qdd1, m1, j)
+    _body(rot2, ground2, p2, k2, j, c2, s2, g[PARAM + P_BX, r], g[PARAM + P_BY, r], o2x, o2y,
           qd2, qdd2, m2, j)
     d[XX, j], d[XY, j] = xx, xy
     d[C1X, j], d[C1Y, j], d[C2X, j], d[C2Y, j], d[DET, j] = c1x, c1y, c2x, c2y, det

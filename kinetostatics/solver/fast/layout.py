@@ -21,6 +21,10 @@ MOTION = 10
 ROT1, ROT2, INNER_R = 1, 2, 4
 KINDS = {"RRR": ROT1 | ROT2 | INNER_R, "RRT": ROT1 | INNER_R, "TRR": ROT2 | INNER_R,
          "TRT": INNER_R, "RTR": ROT1 | ROT2, "RTT": ROT1, "TTR": ROT2}
+# bits a fused kernel adds to its kind's code: outer joint 1 (2) prismatic and its known
+# body the ground (at rest: its guide's motion constants, the rows' arithmetic on them
+# skipped where it gives +0 exactly for finite rows, kernels.dyad_row)
+G1, G2 = 8, 16
 
 # a dyad's geometry, per outer joint i (rows 8 i ...): the known body's point of the joint
 # (rot) or of the guide's line (trans), the dyad body's point, and for trans the line
