@@ -12,7 +12,17 @@ from __future__ import annotations
 import numpy as np
 
 from .closure_kernels import rtr_guide_angle
-from .jitbase import TILE, body, jit, jit_as, not_literal, scratch, tile_geometry, tile_rows
+from .jitbase import (
+    TILE,
+    body,
+    jit,
+    jit_as,
+    nonfinite,
+    not_literal,
+    scratch,
+    tile_geometry,
+    tile_rows,
+)
 from .kernels import crank_row, dyad_row, outer_param
 from .layout import (
     ASSEMBLY,
@@ -23,22 +33,25 @@ from .layout import (
     I_SFIRST,
     INNER_R,
     KINDS,
+    OM,
     P_GROUND,
     PARAM,
     ROT1,
     ROT2,
+    VX,
+    VY,
     XX,
     C,
     S,
 )
 from .layout import MOTION as BODY_ROWS
+from .load_kernels import swept_force, swept_stats
 from .reaction_kernels import reaction_row, tile_loads
 from .scratch_views import DYAD_ROWS, LOAD_ROWS, dyad_views, resultant_views
 from .tail_kernels import (
     add_rows,
     copy_rows,
     known_loads,
-    tile_kept,
     tile_moment,
     tile_reactions,
     tile_swept,
@@ -85,7 +98,10 @@ def _rtr_tile(lo, t0, nt, own, trig, wgd, w, eps, k1d, k2d, wg, wdrv, wk1, wk2, 
     if k2d:
         copy_rows(wk2, wdrv)
     k = wg[ASSEMBLY, 0]                 # (the tile's scene's)
-    for t in range(nt):
+    # (every row of the tile, as the loops below: a loop of the tile's nt rows was
+    # preceded by some 400 instructions of checks that its arrays do not overlap,
+    # measured 2026-11-30, 1.5 % of the shaper's kernel's samples)
+    for t in range(TILE):
         wd[C1X, t], wd[C1Y, t], wd[CL2, t], wd[XX, t] = _guide_row(wk1, wk2, t, wg, k)
     for t in range(TILE):
         _pin(wg, t)
@@ -104,6 +120,78 @@ def _rtr_tile(lo, t0, nt, own, trig, wgd, w, eps, k1d, k2d, wg, wdrv, wk1, wk2, 
         bad += tile_swept(lo, t0, nt, own, gws[2], _each(st[2]), gw[2], nw[2], wm2,
                           wa[2], undefined, st[2])
     return bad
+
+
+@body
+def _swept(lo, t0, nt, own, gs, gw, nw, wm, wa, undefined, st, wq):
+    """A body's swept loads over a tile (:func:`tile_swept`; none where ``nw`` is 0). One
+    scene's (``gs`` 0, statistics in one column: a solve's) forces acting ``when =
+    "resisting"`` (no ``resist`` load) each load's forces first, in a loop of their own
+    (:func:`_swept_forces`), then its statistics row after row (:func:`_stats`) and its
+    rows that stand still marked undefined: the tail's operations in its order, the same
+    numbers."""
+    es = _each(st)
+    if nw == 0:
+        return 0
+    resist = False
+    for q in range(nw):
+        resist = resist or gw[7 * q + 2, 0] == 1.0
+    if gs != 0 or es != 0 or resist:
+        return tile_swept(lo, t0, nt, own, gs, es, gw, nw, wm, wa, undefined, st)
+    xs, held = wq[7], undefined[t0 - lo:t0 - lo + nt]
+    for q in range(nw):
+        _swept_forces(gw, 7 * q, nt, wm, wa, wq)
+        thr = gw[7 * q + 6, 0]
+        st[q, 0, 0], st[q, 0, 1] = _stats(st[q, 0, 0], st[q, 0, 1], xs, thr, nt)
+        for t in range(nt):
+            held[t] = held[t] | (xs[t] <= thr)
+    bad = 0
+    for t in range(nt):
+        bad += nonfinite((wa[0, t], wa[1, t], wa[2, t]))
+    return bad
+
+
+@body
+def _stats(top, least, xs, thr, nt):
+    """A swept load's statistics ``(top, least)`` after the speeds ``xs`` of a tile's
+    first ``nt`` rows, row after row (:func:`swept_stats`, a row still where its speed
+    is at most ``thr``)."""
+    for t in range(nt):
+        top, least = swept_stats(top, least, xs[t], xs[t] <= thr)
+    return top, least
+
+
+@body
+def _swept_forces(gw, b, nt, wm, wa, wq):
+    """A force acting ``when = "resisting"`` (:func:`swept_force`, its numbers rows ``b``
+    to ``b + 7`` of ``gw``'s column 0) over the tile's first ``nt`` rows added to the
+    resultants ``wa``, its speeds into row 7 of ``wq``. Its numbers in ``wq``, a column a
+    row, its kind stored there just before each row reads it (as :func:`_pin`): LLVM
+    folds ``resist``'s branch (``hypot``) away and the loop vectorises (measured
+    2026-11-30: the shaper's ram, scalar, 5.5 % of its kernel's samples; vectorised
+    1.6 %, its statistics 1.2)."""
+    for f in range(7):
+        wq[f, :] = gw[b + f, 0]
+    for t in range(nt):
+        _kind_in(wq, t, 2.0)
+        _force_row(wq, t, wm, wa)
+
+
+@body
+def _kind_in(wq, t, kind):
+    """A swept load's kind, a constant, into column ``t`` of its numbers ``wq`` (row 2)."""
+    wq[2, t] = kind
+
+
+@body
+def _force_row(wq, t, wm, wa):
+    """A swept load's force at row ``t`` (:func:`swept_force` of column ``t`` of ``wq``)
+    added to the resultants ``wa``, its speed into ``wq[7, t]``."""
+    rx, ry, fx, fy, wq[7, t], _ = swept_force(wq, 0, t, wm[C, t], wm[S, t], wm[OM, t],
+                                              wm[VX, t], wm[VY, t])
+    wa[0, t] += fx
+    wa[1, t] += fy
+    wa[2, t] += rx * fy - ry * fx
 
 
 @body
@@ -238,9 +326,25 @@ def rtr_kept(lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d, k2d
                          wm1, wm2, wd, wa, wl, npt, gw, gws, nw, undefined, st)
         bad += _rtr_last(nt, wg, wgd, wdrv, wm1, wm2, wk1, wk2, wd, wad, wa1, wa2, wak1, wak2,
                          wr)
-        tile_kept(t0 - lo, nt, nt == TILE, wr, wd, drive, close)
+        _row_out(drive, t0 - lo, nt, wr[0])
+        _row_out(close, t0 - lo, nt, wd[CL2])
         t0 += nt
     return bad
+
+
+@body
+def _copy_known(which, wk, crank, first, second):
+    """A known body's motion over a tile, by its code ``which`` (1 the crank's, 2 the RTR
+    dyad's first body's, 3 its second's; 0, the ground's, left as set once), copied into
+    its rows ``wk``: each copy from a view at a fixed offset (one chosen at run time
+    kept the copy a scalar loop, 10 scalar moves a row: measured 2026-11-30, 3.8 % of
+    the shaper's kernel's samples)."""
+    if which == 1:
+        copy_rows(wk, crank)
+    elif which == 2:
+        copy_rows(wk, first)
+    elif which == 3:
+        copy_rows(wk, second)
 
 
 @body
@@ -248,6 +352,17 @@ def _known(which, crank, first, second):
     """A known body's rows of a tile by its code ``which`` (1 the crank's, 2 the RTR
     dyad's first body's, 3 its second's; 0, the ground's, is never asked for)."""
     return crank if which == 1 else first if which == 2 else second
+
+
+@body
+def _row_out(out, j0, nt, row):
+    """A tile's ``row`` (its first ``nt`` values) into ``out`` at ``j0`` on, through a
+    view (indices from 0: no check of a negative index a row, the loop vectorised; the
+    tail's ``tile_kept`` indexed ``out[j0 + t]`` and ran scalar: measured 2026-11-30,
+    the shaper's three writes 2.7 % of its kernel's samples)."""
+    part = out[j0:j0 + nt]
+    for t in range(nt):
+        part[t] = row[t]
 
 
 @body
@@ -286,6 +401,7 @@ def _rtr_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, g
     wl = (_loads_in(gl[0]), _loads_in(gl[1]), _loads_in(gl[2]))
     wl3, wl4 = _loads_in(gl[3]), _loads_in(gl[4])
     held = np.full(8, -1, dtype=np.int64)
+    wq = scratch(8)                     # (a swept load's numbers and speeds: _swept)
     trig = (cs, sn, ts, angles)
     bad = 0
     t0 = lo
@@ -296,21 +412,15 @@ def _rtr_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, g
         held[7] = tile_geometry(wl4, gl[4], gls[4], own, t0, held[7])
         bad += _rtr_tile(lo, t0, nt, own, trig, wgd, w, eps, k1d, k2d, wg, wdrv, wk1, wk2,
                          wm1, wm2, wd, wa, wl, npt, gw, gws, nw, undefined, st)
-        if k3:                  # (the ground's rows: set once and left)
-            copy_rows(wk3, _known(k3, wdrv, wm1, wm2))
-        if k4:
-            copy_rows(wk4, _known(k4, wdrv, wm1, wm2))
+        _copy_known(k3, wk3, wdrv, wm1, wm2)
+        _copy_known(k4, wk4, wdrv, wm1, wm2)
         for t in range(TILE):
             f = dyad_row(kind, rot3, rot4, inner_z, False, t, t, wgz, wk3, wk4, wm3, wm4, wdz)
             bad += f if t < nt else 0
         bad += tile_loads(wm3, wa3, wl3, npt[3], nt)
         bad += tile_loads(wm4, wa4, wl4, npt[4], nt)
-        if nw[3]:
-            bad += tile_swept(lo, t0, nt, own, gws[3], _each(st[3]), gw[3], nw[3], wm3, wa3,
-                              undefined, st[3])
-        if nw[4]:
-            bad += tile_swept(lo, t0, nt, own, gws[4], _each(st[4]), gw[4], nw[4], wm4, wa4,
-                              undefined, st[4])
+        bad += _swept(lo, t0, nt, own, gws[3], gw[3], nw[3], wm3, wa3, undefined, st[3], wq)
+        bad += _swept(lo, t0, nt, own, gws[4], gw[4], nw[4], wm4, wa4, undefined, st[4], wq)
         # the reactions, the dyads last to first (seed 002 s. 2.3)
         bad += tile_reactions(rot3, rot4, inner_z, nt, wgz, wm3, wm4, wk3, wk4, wdz, wa3, wa4,
                               wak3, wak4, wrz)
@@ -320,9 +430,9 @@ def _rtr_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, g
             add_rows(_known(k4, wad, wa1, wa2), wak4)
         bad += _rtr_last(nt, wg, wgd, wdrv, wm1, wm2, wk1, wk2, wd, wad, wa1, wa2, wak1, wak2,
                          wr)
-        tile_kept(t0 - lo, nt, nt == TILE, wr, wd, drive, close1)
-        for t in range(nt):
-            close2[t0 + t - lo] = wdz[CL2, t]
+        _row_out(drive, t0 - lo, nt, wr[0])
+        _row_out(close1, t0 - lo, nt, wd[CL2])
+        _row_out(close2, t0 - lo, nt, wdz[CL2])
         t0 += nt
     return bad
 
