@@ -167,7 +167,10 @@ class PointRows:
         them, :mod:`~kinetostatics.solver.fast.layout`)."""
         n, out, point_rows = self.table.n, self.out, self.point_rows
         for i, (b, (lx, ly)) in enumerate(zip(self.bodies, self.local, strict=True)):
-            point_rows(motions[b], hi - lo, lx, ly, out, i * n + lo)
+            # (one layout, C, whatever the block: a stack's block is a strided view of its
+            # motion, and point_rows was compiled again for it, 'A', after a stacked solve)
+            m = motions[b] if motions[b].flags.c_contiguous else np.ascontiguousarray(motions[b])
+            point_rows(m, hi - lo, lx, ly, out, i * n + lo)
 
     def frame(self) -> pd.DataFrame:
         """The ``kinematics`` table (every row written)."""
