@@ -163,3 +163,32 @@ def test_two_dyads_flags_measure_and_screen_in_one_pass(on_path) -> None:
         assert k == intervals.size
         np.testing.assert_array_equal(out[:k], intervals[:out.size])
         assert below == bool((expected < screen2).any())
+
+
+def test_a_shapers_lean_sweep_tells_the_screen_its_intervals(on_path, monkeypatch) -> None:
+    """The bundled shaper solved lean (the guide's kernel, two dyads): the screen is given
+    the intervals of the pass that made m^2 (``Kept.screened``), the numpy scan's of that
+    m^2 (the sweep's many dips: not an empty answer), and m^2 the minimum of the two
+    dyads' closeness to a dead centre the sweep solved in full gives (the compiled
+    path's own: its cos and sin differ from numpy's by an ulp at some rows)."""
+    import kinetostatics as ks
+    from kinetostatics.model.scene import load_scene
+    d = load_scene(ks.example("shaper")).raw
+    d = {**d, "driver": {**d["driver"], "count": 4001}}
+    seen = []
+    stacked = deadpoints.dead_points_stacked
+
+    def spy(m2u, positions, starts, counts, at, **kw):
+        seen.append((m2u, kw))
+        return stacked(m2u, positions, starts, counts, at, **kw)
+    monkeypatch.setattr(deadpoints, "dead_points_stacked", spy)
+    on_path("fast")
+    sol = ks.solve(d)
+    assert sol.path == "fast"
+    (m2, kw), = seen
+    assert kw["increasing"]
+    intervals = _candidates_reference(m2, np.zeros(1, dtype=int), np.array([m2.size]))
+    assert intervals.size > 0
+    np.testing.assert_array_equal(kw["candidates"], intervals)
+    dyads = sol.kin.dyads           # (solved again in full, the same kernels)
+    np.testing.assert_array_equal(m2, np.minimum(*(dm.closeness2 for dm in dyads)))
