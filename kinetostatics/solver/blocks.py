@@ -305,12 +305,17 @@ class _Flags:
 class Kept:
     """What a lean solve in blocks keeps of a long sweep: the structure it solved with,
     ``Me``/``Fe`` and the undefined-load rows (the driver table), and each dyad's
-    closeness to a dead centre and singular rows (its dead points and flags)."""
+    closeness to a dead centre and singular rows (its dead points and flags); maybe their
+    m^2 (``measure2``: :func:`~kinetostatics.solver.deadpoints.measure2` of them, made
+    with the flags; else None) and its screen (``screened``, as
+    :func:`~kinetostatics.solver.deadpoints.dead_points_of_sweep` takes it; else None)."""
 
     def __init__(self, structure, drive: DriverReaction, undefined, closeness2: list,
-                 singular: list):
+                 singular: list, measure2: np.ndarray | None = None,
+                 screened: tuple | None = None):
         self.structure, self.drive, self.undefined = structure, drive, undefined
-        self.closeness2, self.singular = closeness2, singular
+        self.closeness2, self.singular, self.measure2 = closeness2, singular, measure2
+        self.screened = screened
 
 
 class LeanSolved:

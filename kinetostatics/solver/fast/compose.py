@@ -21,6 +21,7 @@ import numpy as np
 from ...model.scene import GROUND, Scene
 from ..blocks import Kept, singular_rows
 from ..closure import Param
+from ..deadpoints import SCAN_FIRST, SCREEN
 from ..driver import BodyMotion, ground_motion
 from ..kinematics import SINGULAR_WARN, DyadMotion, Kinematics
 from ..loads import RESIST_STILL
@@ -298,10 +299,24 @@ def solve_lean(plan: Plan, positions: np.ndarray, block: int = ROWS,
 
 
 def kept_sweep(structure, kind: str, drive: np.ndarray, undefined: np.ndarray,
-               close: list[np.ndarray]) -> Kept:
+               close: list[np.ndarray], measure: bool = False) -> Kept:
     """What a lean sweep keeps (:class:`~kinetostatics.solver.blocks.Kept`): the driver's
     Me/Fe (``kind``: the driver's), the undefined rows, each dyad's closeness to a dead
-    centre and its singular rows (closeness within ``SINGULAR_WARN``)."""
+    centre and its singular rows (closeness within ``SINGULAR_WARN``); with ``measure``
+    and two dyads (the six-bars'), their m^2 and its screen too (``Kept.measure2``,
+    ``Kept.screened``), with the flags in one compiled pass
+    (:func:`~kinetostatics.solver.fast.screen_kernels.flags_and_measure`)."""
+    if measure and len(close) == 2:
+        # (numba loaded: a lean sweep)
+        from .screen_kernels import flags_and_measure
+        n = close[0].size
+        singular = [np.empty(n, dtype=bool), np.empty(n, dtype=bool)]
+        m2, out = np.empty(n), np.empty(SCAN_FIRST, dtype=np.int64)
+        k, below = flags_and_measure(*close, SINGULAR_WARN**2, SCREEN**2, *singular, m2, out)
+        # (more intervals than out holds: none told, the screen scans m2 again)
+        screened = (out[:k] if k <= out.size else None, bool(below))
+        return Kept(structure, DriverReaction(kind, drive), undefined, close, singular, m2,
+                    screened)
     # (~(c > SINGULAR_WARN**2) negated in place: one fresh array a dyad, not two)
     singular = [np.logical_not(f, out=f) for f in (c > SINGULAR_WARN**2 for c in close)]
     return Kept(structure, DriverReaction(kind, drive), undefined, close, singular)

@@ -20,6 +20,38 @@ from .jitbase import body, jit
 SHRINK = 1.0 - 1e-9
 
 
+@body
+def dip(m2, r, a, b):
+    """Whether row ``r`` of the segment of rows ``a`` to ``b`` (excluded) is a dip of m:
+    (m_r < m_left (1 - 1e-9) and m_r <= m_right) or (m_r <= m_left and
+    m_r < m_right (1 - 1e-9)), a segment's end having no neighbour beyond it (+inf)."""
+    inf = np.inf
+    v = m2[r]
+    left = m2[r - 1] if r > a else inf
+    right = m2[r + 1] if r + 1 < b else inf
+    return (((v < left * SHRINK) and (v <= right))
+            or ((v <= left) and (v < right * SHRINK)))
+
+
+@body
+def put_dip(out, k, prev, r, a, b):
+    """The intervals (r - 1, r) unless ``r`` starts its segment (rows ``a`` to ``b``)
+    and (r, r + 1) unless it ends it, each once (``prev``: the last interval written; the
+    intervals never decrease), written to ``out`` while it has room; returns the count of
+    intervals ``k`` and ``prev`` after them."""
+    if r > a and r - 1 != prev:
+        if k < out.size:
+            out[k] = r - 1
+        k += 1
+        prev = r - 1
+    if r + 1 < b and r != prev:
+        if k < out.size:
+            out[k] = r
+        k += 1
+        prev = r
+    return k, prev
+
+
 @jit
 def scan_candidates(m2, starts, counts, screen2, out):
     """The intervals i (rows i, i + 1) next to a local minimum of m over each segment of
@@ -36,32 +68,41 @@ def scan_candidates(m2, starts, counts, screen2, out):
     rows is taken, whose fresh pages, mapped and given back, cost the next solve's
     arrays their pages again: measured 2026-11-29, solve_many's fused kernel 1.5-2 ms
     slower a call after a scan with an ``out`` of the rows' length)."""
-    inf = np.inf
     k = 0
     prev = -1           # (the last interval written: the intervals never decrease)
     for s in range(starts.size):
         a = starts[s]
         b = a + counts[s]
         for r in range(a, b):
-            v = m2[r]
-            if not v < screen2:
-                continue
-            left = m2[r - 1] if r > a else inf
-            right = m2[r + 1] if r + 1 < b else inf
-            if not (((v < left * SHRINK) and (v <= right))
-                    or ((v <= left) and (v < right * SHRINK))):
-                continue
-            if r > a and r - 1 != prev:
-                if k < out.size:
-                    out[k] = r - 1
-                k += 1
-                prev = r - 1
-            if r + 1 < b and r != prev:
-                if k < out.size:
-                    out[k] = r
-                k += 1
-                prev = r
+            if m2[r] < screen2 and dip(m2, r, a, b):
+                k, prev = put_dip(out, k, prev, r, a, b)
     return k
+
+
+@jit
+def flags_and_measure(c0, c1, warn2, screen2, s0, s1, m2, out):
+    """Two dyads' singular rows, their m^2 and its screen's intervals in one pass over
+    their closeness to a dead centre ``c0``, ``c1``: ``s0``, ``s1`` the rows not above
+    ``warn2`` (numpy's ``~(c > warn2)``: NaN flagged), ``m2`` the smaller of the two per
+    row (numpy's ``minimum``: a NaN kept; -0.0 or 0.0 as may be, read by comparisons
+    only; ``deadpoints.measure2``), and the intervals :func:`scan_candidates` finds over
+    the rows as one segment (row r judged once row r + 1 is made), the same, written to
+    ``out`` as far as it has room. Returns their count and whether some row's m^2 is
+    below ``screen2`` (NaN never is)."""
+    n = c0.size
+    k, prev, below = 0, -1, False
+    for i in range(n + 1):
+        if i < n:
+            a, b = c0[i], c1[i]
+            s0[i] = not a > warn2
+            s1[i] = not b > warn2
+            m2[i] = a if (a <= b or np.isnan(a)) else b
+        r = i - 1
+        if r >= 0 and m2[r] < screen2:
+            below = True
+            if dip(m2, r, 0, n):
+                k, prev = put_dip(out, k, prev, r, 0, n)
+    return k, below
 
 
 # the columns of probe_rrr's table, one row per scene: the driver joint's ground point

@@ -75,8 +75,10 @@ def solve_compiled(scene: Scene, structure, positions: np.ndarray, given: bool
             def again() -> Solved:
                 return solve_full(Plan(kernels, full, structure, structure.assembly,
                                        geometry=geometry), positions)
+            m2 = sweep.measure2
             dead = dead_points_of_sweep(full, structure, positions,
-                                        measure2(sweep.closeness2, n))
+                                        measure2(sweep.closeness2, n) if m2 is None else m2,
+                                        sweep.screened)
             sol = LeanSolved(full, sweep, positions, dead, again)
         else:
             plan = Plan(kernels, full, structure, structure.assembly, geometry=geometry)
@@ -233,7 +235,7 @@ def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarr
     if bad:
         raise Refused(bad)
     plan.check_swept()
-    return kept_sweep(structure, "R", drive, undefined, close)
+    return kept_sweep(structure, "R", drive, undefined, close, measure=True)
 
 
 def guided_call(plan: Plan) -> tuple | None:

@@ -133,3 +133,62 @@ def test_a_scan_with_more_intervals_than_its_first_array_writes_them_all(on_path
         assert calls == passes
         assert got.dtype == np.int64
         np.testing.assert_array_equal(got, expected)
+
+
+def test_two_dyads_flags_measure_and_screen_in_one_pass(on_path) -> None:
+    """A six-bar's lean sweep (``compose.kept_sweep`` with ``measure``): each dyad's
+    singular rows, m^2 and the screen's intervals from one compiled pass, the numbers of
+    numpy's ``~(c > SINGULAR_WARN**2)``, ``np.minimum`` and the scan: ties, values within
+    rounding of each other, NaN (in either dyad), infinities, -0.0; an ``out`` too short
+    for the intervals (their count still told)."""
+    from kinetostatics.solver.fast.screen_kernels import flags_and_measure
+    from kinetostatics.solver.kinematics import SINGULAR_WARN
+    on_path("fast")
+    rng = np.random.default_rng(12)
+    pool = np.array([0.0, -0.0, 1e-7, 1e-6, 1e-6 * (1 - 1e-10), 0.1, 0.1 * (1 - 2e-9),
+                     0.25, 0.3, 0.6, np.nan, np.inf])
+    warn2, screen2 = SINGULAR_WARN**2, deadpoints.SCREEN**2
+    for _ in range(2000):
+        n = int(rng.integers(0, 12))
+        c0, c1 = (rng.choice(pool, n) if rng.random() < 0.7 else rng.random(n) * 0.6
+                  for _ in range(2))
+        s0, s1, m2 = np.empty(n, dtype=bool), np.empty(n, dtype=bool), np.empty(n)
+        out = np.empty(int(rng.integers(0, 5)), dtype=np.int64)
+        k, below = flags_and_measure(c0, c1, warn2, screen2, s0, s1, m2, out)
+        np.testing.assert_array_equal(s0, ~(c0 > warn2))
+        np.testing.assert_array_equal(s1, ~(c1 > warn2))
+        expected = np.minimum(c0, c1)
+        np.testing.assert_array_equal(m2, expected)        # (NaN where numpy's is)
+        intervals = _candidates_reference(expected, np.zeros(1, dtype=int), np.array([n]))
+        assert k == intervals.size
+        np.testing.assert_array_equal(out[:k], intervals[:out.size])
+        assert below == bool((expected < screen2).any())
+
+
+def test_a_shapers_lean_sweep_tells_the_screen_its_intervals(on_path, monkeypatch) -> None:
+    """The bundled shaper solved lean (the guide's kernel, two dyads): the screen is given
+    the intervals of the pass that made m^2 (``Kept.screened``), the numpy scan's of that
+    m^2 (the sweep's many dips: not an empty answer), and m^2 the minimum of the two
+    dyads' closeness to a dead centre the sweep solved in full gives (the compiled
+    path's own: its cos and sin differ from numpy's by an ulp at some rows)."""
+    import kinetostatics as ks
+    from kinetostatics.model.scene import load_scene
+    d = load_scene(ks.example("shaper")).raw
+    d = {**d, "driver": {**d["driver"], "count": 4001}}
+    seen = []
+    stacked = deadpoints.dead_points_stacked
+
+    def spy(m2u, positions, starts, counts, at, **kw):
+        seen.append((m2u, kw))
+        return stacked(m2u, positions, starts, counts, at, **kw)
+    monkeypatch.setattr(deadpoints, "dead_points_stacked", spy)
+    on_path("fast")
+    sol = ks.solve(d)
+    assert sol.path == "fast"
+    (m2, kw), = seen
+    assert kw["increasing"]
+    intervals = _candidates_reference(m2, np.zeros(1, dtype=int), np.array([m2.size]))
+    assert intervals.size > 0
+    np.testing.assert_array_equal(kw["candidates"], intervals)
+    dyads = sol.kin.dyads           # (solved again in full, the same kernels)
+    np.testing.assert_array_equal(m2, np.minimum(*(dm.closeness2 for dm in dyads)))
