@@ -251,8 +251,8 @@ def dead_points_of_sweep(scene: Scene, structure: Structure, positions: np.ndarr
     the rows in their order (None: not told) and whether some row is below the screen
     (:func:`~kinetostatics.solver.fast.screen_kernels.flags_and_measure`; the intervals
     read only where the rows are the scene's own, known to increase)."""
-    low = bool(_min(m2) < SCREEN**2) if screened is None else screened[1]
-    if not m2.size or not low:      # nothing to probe (the usual case)
+    low = m2.size and (bool(_min(m2) < SCREEN**2) if screened is None else screened[1])
+    if not low:                     # nothing to probe (the usual case; no rows: none)
         pairs = np.zeros((0, 2), dtype=int)
         return pairs, np.zeros(0, dtype=int), pairs
 
