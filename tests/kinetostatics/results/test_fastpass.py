@@ -167,7 +167,10 @@ def test_point_rows_is_the_numpy_paths_arithmetic(fast, lx, ly):
     at a local point on each road of the arithmetic, on motions with signed zeros."""
     rng = np.random.default_rng(7)
     w = 301
-    m = rng.standard_normal((10, w + 8))[:, :w]     # (rows padded, as the solve's buffer)
+    # (the values of rows padded, made C-contiguous as every caller hands it: a strided
+    # view compiled point_rows a second time, 'A', and test_fast's one-signature check
+    # failed when it ran after this test on the compiled group's worker)
+    m = np.ascontiguousarray(rng.standard_normal((10, w + 8))[:, :w])
     theta = rng.uniform(-4, 4, w)
     m[0], m[1] = np.cos(theta), np.sin(theta)
     m[4:, :5] = -0.0                    # an origin, velocity and acceleration of -0.0
