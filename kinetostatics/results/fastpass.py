@@ -26,6 +26,10 @@ tile in one kernel and each tile's rows of both tables written there by non-temp
 stores, ``F`` by numpy's ``hypot`` bit for bit at a fifteenth of its cost, the crank's
 cos and sin those the lean solve kept (docs/solve-paths.md, "The fused table kernels").
 
+The ``bodies`` table, over increasing driver positions, is a composed pass of its own
+(:func:`bodies_frame`): each body's ``omega`` and ``alpha`` written, its continuous angle
+carried from block to block (:class:`~kinetostatics.results.sweepangles.SweepAngles`).
+
 No array over the whole sweep is made but the tables' own, and no temporary per column
 (the full re-solve gathered some 26 arrays, 200 MB at 1e6 positions, and the tables were
 computed from them chunk by chunk: docs/solve-paths.md, "Tables at scale"). The numbers
