@@ -10,8 +10,9 @@ process (so that its peak memory is its own):
   its blocks again once for both, on the numpy path
   :mod:`kinetostatics.results.onepass`, on the compiled path, the default at 1e6
   positions where numba is installed, :mod:`kinetostatics.results.fastpass`, whose
-  ``reactions`` pass writes the ``kinematics`` table too; ``bodies`` solves it again in
-  full), and
+  ``reactions`` pass writes the ``kinematics`` table too; ``bodies`` a pass of its own
+  on the compiled path, :func:`kinetostatics.results.fastpass.bodies_frame`, on the
+  numpy path the full re-solve), and
   ``long_tables_s`` the three long ones together
   (``long_tables_over_solve`` their ratio to the solve);
 * ``tables_MB``: the bytes the ``driver``, ``reactions`` and ``kinematics`` tables hold

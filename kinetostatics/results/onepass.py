@@ -64,9 +64,14 @@ def lean_frame(sol: Solution, name: str) -> pd.DataFrame | None:
     own): the caller builds it from them."""
     d = sol.__dict__
     lean = d.get("_deferred")
-    if (name not in PASSED or type(lean) is not LeanSolved or "kin" in d
-            or sol.path not in ("numpy", "fast") or lean.full is not None):
+    if (type(lean) is not LeanSolved or "kin" in d or sol.path not in ("numpy", "fast")
+            or lean.full is not None):
         d.pop(KEPT, None)               # (the arrays are whole: what a pass kept is moot)
+        return None
+    if name == "bodies":                # (a pass of its own, on the compiled path)
+        from .fastpass import bodies_frame
+        return bodies_frame(sol, lean) if sol.path == "fast" else None
+    if name not in PASSED:
         return None
     if sol.path == "fast":              # solved again by the kernels, table by table
         from .fastpass import compiled_frame

@@ -31,7 +31,7 @@ from ..solver.solved import DEFERRED, Deferred, Solved, drive_values
 from ..solver.structure import Structure
 from . import longtable as tables
 from .longtable import LongTable, TiledPositions, offsets, shared
-from .sweepangles import degree_angles
+from .sweepangles import degree_angles, laid_out
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -267,7 +267,7 @@ class Solution:
     def bodies(self) -> pd.DataFrame:
         """``position, body, angle`` (deg, continuous), ``omega, alpha`` (rad/s, rad/s^2);
         ``body`` categorical, one block of rows per body."""
-        return self.long_table("bodies").frame()
+        return self._long_frame("bodies")
 
     LONG_TABLES = ("reactions", "kinematics", "bodies")
 
@@ -382,14 +382,8 @@ class Solution:
 
         The arrays are views of one array laid out as the ``bodies`` table's ``angle``
         column (body after body, in the scene's order), which that table shares."""
-        found = degree_angles(self.kin)
-        n = self.positions.size
-        whole = np.empty(n * len(self.scene.bodies))
-        out = {}
-        for i, b in enumerate(self.scene.bodies):
-            whole[i * n:(i + 1) * n] = found.pop(b)
-            out[b] = whole[i * n:(i + 1) * n]
-        self.__dict__["_angle_whole"] = whole
+        out, self.__dict__["_angle_whole"] = laid_out(degree_angles(self.kin), self.scene,
+                                                      self.positions.size)
         return out
 
     @cached_property

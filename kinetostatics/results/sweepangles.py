@@ -53,6 +53,19 @@ def degree_angles(kin) -> dict[str, np.ndarray]:
     return out
 
 
+def laid_out(found: dict[str, np.ndarray], scene, n: int
+             ) -> tuple[dict[str, np.ndarray], np.ndarray]:
+    """Every body's ``n`` angles (``found``, as :func:`degree_angles` gives them) laid out
+    body after body, in the scene's order, in one array (the ``bodies`` table's
+    ``angle`` column): body name -> its view, and the array."""
+    whole = np.empty(n * len(scene.bodies))
+    out = {}
+    for i, b in enumerate(scene.bodies):
+        whole[i * n:(i + 1) * n] = found.pop(b)
+        out[b] = whole[i * n:(i + 1) * n]
+    return out, whole
+
+
 class SweepAngles:
     """Every body's angle (deg) over a sweep of strictly increasing driver positions, fed
     one block of rows at a time (:meth:`add`, in row order) and finished with

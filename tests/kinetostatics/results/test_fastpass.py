@@ -76,6 +76,38 @@ def test_tables_equal_those_of_the_full_re_solve_bit_for_bit(fast, case, order, 
         assert bits(table) == bits(getattr(full, name)), name
 
 
+@pytest.mark.parametrize("case", CASES)
+def test_the_bodies_table_in_one_pass_is_the_full_re_solves(fast, case, monkeypatch):
+    """``bodies`` of a lean sweep: one composed pass (each body's omega and alpha
+    written, its angle carried block to block by SweepAngles), no full re-solve; the
+    table and ``angles`` the full re-solve's, bit for bit; the ``angle`` column the
+    array ``angles`` views (held once)."""
+    text = scene_text(case)
+    sol = ks.solve(text)
+    passes = count_passes(monkeypatch)
+    table = sol.bodies
+    assert passes == ["composed"]
+    assert "kin" not in sol.__dict__ and sol.__dict__["_deferred"].full is None
+    full = ks.solve(text)
+    assert full.kin is not None and full.path == "fast"
+    assert bits(table) == bits(full.bodies)
+    assert sol.angles.keys() == full.angles.keys()
+    for b, a in full.angles.items():
+        assert sol.angles[b].tobytes() == a.tobytes(), b
+    assert np.shares_memory(table.angle.to_numpy(), sol.angles[next(iter(sol.angles))])
+
+
+def test_bodies_between_the_tables_keeps_what_the_reactions_pass_wrote(fast, monkeypatch):
+    """``reactions``, ``bodies``, ``kinematics``: the kinematics table's columns the
+    reactions pass wrote are kept past the bodies pass (no third pass)."""
+    sol = ks.solve(scene_text("four_bar"))
+    passes = count_passes(monkeypatch)
+    assert len(sol.reactions) and len(sol.bodies)
+    assert type(sol.__dict__.get(fastpass.KEPT)) is fastpass.PointRows
+    assert len(sol.kinematics)
+    assert passes == ["fused", "composed"]
+
+
 def slider_crank_pushed() -> str:
     """The bundled slider-crank with its ``resist`` load made a constant force (an RRT
     dyad the fused table kernel takes; ``resist`` loads go the composed road)."""
@@ -130,7 +162,9 @@ def test_a_refused_block_takes_the_full_re_solve(fast, monkeypatch):
     """Where the kernels refuse a block of the pass (never expected), the table comes
     from the full re-solve: the same table."""
     text = scene_text("scotch_yoke")
-    expected = bits(ks.solve(text).reactions)
+    whole = ks.solve(text)
+    assert whole.kin is not None                    # (the full re-solve)
+    expected, bodies = bits(whole.reactions), bits(whole.bodies)
 
     def refused(self, block=0):
         raise Refused("a block")
@@ -140,6 +174,8 @@ def test_a_refused_block_takes_the_full_re_solve(fast, monkeypatch):
     sol = ks.solve(text)
     assert bits(sol.reactions) == expected
     assert "joint_reactions" in sol.__dict__       # (given by the full re-solve)
+    sol = ks.solve(text)
+    assert bits(sol.bodies) == bodies and "kin" in sol.__dict__
 
 
 def test_the_table_holds_one_block_of_columns(fast):

@@ -35,3 +35,18 @@ def test_own_frame_without_pandas_private_names(monkeypatch: pytest.MonkeyPatch)
     got = own_frame(_columns(7), 7)
     pd.testing.assert_frame_equal(got, want)
     assert got.index.equals(pd.RangeIndex(7))
+
+
+@pytest.mark.parametrize("shape", [7, (6, 300_001), (3, 0)])
+def test_a_table_block_starts_a_cache_line(shape, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A table's float block (``table_block``, either page setting) begins a cache line,
+    with its shape, C order and writable (glibc gives an array this large the 16th byte
+    of its page: the non-temporal stores of the table kernels then wrote part lines)."""
+    for huge in (True, False):
+        monkeypatch.setattr(longtable, "HUGE_PAGES", huge)
+        a = longtable.table_block(shape)
+        assert a.size == 0 or a.ctypes.data % longtable.LINE == 0
+        assert a.shape == ((shape,) if isinstance(shape, int) else shape)
+        assert a.dtype == np.float64 and a.flags.c_contiguous and a.flags.writeable
+        a[...] = 2.5
+        assert (a == 2.5).all()
