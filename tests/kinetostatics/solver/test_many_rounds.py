@@ -1,6 +1,6 @@
 """The dead-point screen's probes of a stack in one compiled call (``fast/screen.py``'s
 ``at.rounds``, ``screen_kernels.probe_rounds``, a crank and one RRR dyad; the other
-structures' ``probe_kernels.chain_rounds``: test_screen_chain) against the same probes
+structures' ``probe_kernels.rounds_of``: test_screen_chain) against the same probes
 round by round (``deadpoints._probe`` with the rounds' ``at``: numpy's cos and sin, the
 compiled probe per round): the same smallest closeness per interval bit for bit, the same
 intervals where the dyad cannot close."""
