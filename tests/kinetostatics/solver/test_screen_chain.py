@@ -221,7 +221,7 @@ def test_one_sweeps_end_probes_are_the_stacks() -> None:
     of the same rows as a segment of a stack (the arrays' way)."""
     rng = np.random.default_rng(7)
     for n in (1, 2, 3, 5, 40):
-        for _ in range(200):
+        for _ in range(50):
             m2 = rng.choice([0.0, 0.1, 0.2, 0.25, 0.3, np.nan, np.inf], n)
             pos = np.cumsum(rng.uniform(0.5, 2.0, n))
             one = _end_probes(m2, pos, np.array([0]), np.array([n]))
