@@ -21,13 +21,14 @@ from kinetostatics.model.scene import load_scene
 from kinetostatics.solver import deadpoints
 from kinetostatics.solver.deadpoints import _end_probes, _probe, measure2
 from kinetostatics.solver.fast import loader, use
+from kinetostatics.solver.fast.geometry import driver_geometry, dyad_geometry
 from kinetostatics.solver.fast.screen import chain_probe, stack_probe, sweep_probe
 from kinetostatics.solver.fast.solve import kernel_trig
 from kinetostatics.solver.memo import record_of
 from kinetostatics.solver.probes import probe_closeness
 
 from .test_many_rounds import RoundByRound
-from .test_screen_probe import stack
+from .test_screen_probe import long_cranks, stack
 
 pytestmark = pytest.mark.skipif(not loader.installed(), reason="numba not installed")
 
@@ -118,6 +119,25 @@ def test_chain_probe_is_numpys(fast, name, kw, seed) -> None:
     if "crank" in kw:
         assert expected[closed].min() < 1e-2
         assert name == "slotted_lever" or expected_open.any()
+
+
+def test_a_crank_and_one_rrr_dyad_chained_is_numpys(fast) -> None:
+    """The chain's probe of a four-bar (a sweep's: a stack's takes the RRR kernel,
+    ``crank_rrr_probe``), numpy's bit for bit, long cranks that cannot close too."""
+    stacker, structure, k = stack(long_cranks(60, 4))
+    m = len(stacker.scenes)
+    table = stacker.table(0, m, np.ones(m, dtype=np.int64), stacker.base.driver.positions,
+                          trig=False)
+    at = chain_probe(stacker.base.driver, driver_geometry(table),
+                     [dyad_geometry(table, structure.dyads[0], k[0])], structure.dyads)
+    who, where = probes_of(stacker, 4, 6000)
+    probe = replace(structure, assembly=tuple(x[who] for x in k))
+    (expected,), expected_open = probe_closeness(stacker.scene(who, where), probe,
+                                                 measured=True)
+    (got,), got_open = at(where, who)
+    np.testing.assert_array_equal(got.view(np.int64), expected.view(np.int64))
+    np.testing.assert_array_equal(got_open, expected_open)
+    assert 0 < expected_open.sum() < who.size
 
 
 @pytest.mark.parametrize(("name", "kw"), [CASES[i] for i in (1, 3, 5, 6)])
