@@ -118,15 +118,15 @@ class Solution:
     @classmethod
     def all_of(cls, outcomes: list) -> list:
         """:meth:`of` of each outcome (an exception as it is), a stacked scene's (a CutSolved)
-        given its dict at once (1000 four-bars: 0.44 ms, 0.59 field by field; 2026-11-30)."""
+        given its dict at once (1000 four-bars: 0.38 ms, 0.44 with ``s.path``; 2026-11-30)."""
         make, of, out = object.__new__, cls.of, []
         for s in outcomes:
             if type(s) is CutSolved:
                 out.append(new := make(cls))
-                new.__dict__ = {"scene": s[0], "structure": s[1], "self_locking": None,
-                                "_deferred": s}
-                if s.path is not None:
-                    new.__dict__["path"] = s.path
+                new.__dict__ = d = {"scene": s[0], "structure": s[1], "self_locking": None,
+                                    "_deferred": s}
+                if s[5] is not None:    # (its path; None: the numpy path's, the class's)
+                    d["path"] = s[5]
             else:
                 out.append(s if isinstance(s, Exception) else of(s))
         return out

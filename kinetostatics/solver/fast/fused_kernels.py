@@ -24,7 +24,7 @@ from .jitbase import (
     tile_rows_for,
 )
 from .kernels import tile_motion_for
-from .layout import DRIVER_GEOMETRY, G1, G2, INNER_R, KINDS, P_GROUND, PARAM, ROT1, ROT2, C, S
+from .layout import DRIVER_GEOMETRY, G1, G2, INNER_R, KINDS, ROT1, ROT2, C, S
 from .layout import MOTION as BODY_ROWS
 from .reaction_kernels import crank_moment, reaction_row, tile_loads_for
 from .scratch_views import DYAD_ROWS, LOAD_ROWS, dyad_views, load_views, resultant_views
@@ -174,7 +174,6 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy,
             else:
                 _tile_in(cs, sn, c0, a, n, n == TILE, wdrv)
             a += n
-        known1, known2 = wg[P_GROUND, 0] == 0.0, wg[PARAM + P_GROUND, 0] == 0.0
         bad += tile_motion(kind, rot1, rot2, inner_r, nt, wgd, w, eps, wdrv, wg, wk1, wk2,
                            wm1, wm2, wd)
         bad += tile_loads(wdrv, wad, wl0, npt[0], nt)
@@ -198,14 +197,18 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy,
         # resultants in order unless their known body is the ground (as the composed
         # reactions add them, tile_add) and Me, in one loop (measured 2026-11-29, 1000
         # four-bars x 361: 9.1 ms a call against 9.9 in three loops; the dyad's motion
-        # in the crank's loop stops it vectorising: 24.5 ms)
+        # in the crank's loop stops it vectorising: 24.5 ms). k1d, k2d are constants of
+        # the entry (_kept_for): each add is there or not, not a masked store per row
+        # (vmaskmovpd, slow on this AMD machine: measured 2026-11-30, 1000 four-bars x
+        # 361, the kernel alone 11.7-12.1 ms a call against 12.8-13.0 with the known
+        # bodies read from the geometry per tile)
         for t in range(TILE):
             f = reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1, wa2,
                              wak1, wak2, wr)
-            if known1:
+            if k1d:
                 for q in range(3):
                     wad[q, t] += wak1[q, t]
-            if known2:
+            if k2d:
                 for q in range(3):
                     wad[q, t] += wak2[q, t]
             me = crank_moment(t, t, wgd, wdrv, wad)
@@ -217,21 +220,24 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy,
     return bad
 
 
-def _kept_for(kind: str, ground: int):
-    """The compiled entry of dyad kind ``kind``: :func:`_crank_dyad_kept` with the kind's
-    code (:data:`~kinetostatics.solver.fast.layout.KINDS`) and ``ground`` (``G1``, ``G2``:
-    which prismatic outer joints' known body is the ground) a constant (numba freezes the
-    closure's ``code``: each compiled on its first call as if written out), named by its
-    kind (:func:`~kinetostatics.solver.fast.jitbase.jit_as`: a cache index of its own).
-    Measured 2026-11-29 against the kind passed at run time (one compile for every
-    kind): the four-bar at 2e5 rows 23 ms a solve against 11, its dyad's row no longer
-    vectorised."""
+def _kept_for(kind: str, k1d: bool, k2d: bool):
+    """The compiled entry of dyad kind ``kind`` whose outer joints' known bodies are the
+    driver (``k1d``, ``k2d``) or else the ground: :func:`_crank_dyad_kept` with the kind's
+    code (:data:`~kinetostatics.solver.fast.layout.KINDS`), its ground bits (``G1``,
+    ``G2``: which prismatic outer joints' known body is the ground) and ``k1d``, ``k2d``
+    constants (numba freezes the closure's values: each compiled on its first call as if
+    written out), named by them (:func:`~kinetostatics.solver.fast.jitbase.jit_as`: a
+    cache index of its own). Measured 2026-11-29 against the kind passed at run time (one
+    compile for every kind): the four-bar at 2e5 rows 23 ms a solve against 11, its
+    dyad's row no longer vectorised."""
+    ground = _ground(kind, k1d, k2d)
     code = KINDS[kind] | ground
     suffix = "".join(f"_g{i + 1}" for i, bit in enumerate((G1, G2)) if ground & bit)
+    suffix += "".join(f"_d{i + 1}" for i, d in enumerate((k1d, k2d)) if d)
 
     @jit_as(f"{kind.lower()}_kept{suffix}")
-    def kept(lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d, k2d, gl, gls, npt,
-             gw, gws, nw, st, drive, close, undefined):
+    def kept(lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d_, k2d_, gl, gls,
+             npt, gw, gws, nw, st, drive, close, undefined):
         value = not_literal(code)       # (the helpers typed once for every kind)
         return _crank_dyad_kept(value, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys,
                                 k1d, k2d, gl, gls, npt, gw, gws, nw, st, drive, close,
@@ -239,40 +245,35 @@ def _kept_for(kind: str, ground: int):
     return kept
 
 
-def _grounds(kind: str) -> tuple:
-    """The ``ground`` bits a kind's entries take (:func:`_kept_for`): one per prismatic
-    outer joint, each on or off (a revolute one's none: one entry for RRR)."""
-    code, found = KINDS[kind], [0]
-    for rot, bit in ((ROT1, G1), (ROT2, G2)):
-        if not code & rot:
-            found += [g | bit for g in found]
-    return tuple(found)
+def _ground(kind: str, k1d: bool, k2d: bool) -> int:
+    """The ground bits (``layout.G1``, ``G2``) of a kind's outer joints whose known bodies
+    are the driver (``k1d``, ``k2d``) or else the ground: a prismatic joint's whose known
+    body is the ground (a revolute one's none)."""
+    code = KINDS[kind]
+    return (G1 if not code & ROT1 and not k1d else 0) | (G2 if not code & ROT2 and not k2d else 0)
 
 
-# a crank and one dyad, fused, per dyad kind (RTR: its composed kernels) and which of its
-# prismatic outer joints lie on the ground (each compiled on its first call). Measured
-# 2026-11-30, the slider-crank (its guide on the ground) at 1e6 rows, the kernel alone,
-# processor time: see docs/solve-paths.md
-KEPT_ON = {(kind, g): _kept_for(kind, g) for kind in KINDS if kind != "RTR"
-           for g in _grounds(kind)}
+# a crank and one dyad, fused, per dyad kind (RTR: its composed kernels) and whether each
+# outer joint's known body is the driver (else the ground; each compiled on its first
+# call). Measured 2026-11-30, the slider-crank (its guide on the ground) at 1e6 rows, the
+# kernel alone, processor time: see docs/solve-paths.md
+KEPT_ON = {(kind, k1d, k2d): _kept_for(kind, k1d, k2d) for kind in KINDS if kind != "RTR"
+           for k1d in (False, True) for k2d in (False, True)}
 
 
 class Kept:
     """A kind's fused kernel as its callers call it (the arguments of
-    :func:`_crank_dyad_kept` after ``kind``): the entry of :data:`KEPT_ON` whose ground
-    bits the call's ``k1d``, ``k2d`` (each outer joint's known body the driver, else the
+    :func:`_crank_dyad_kept` after ``kind``): the entry of :data:`KEPT_ON` whose known
+    bodies the call's ``k1d``, ``k2d`` (each outer joint's known body the driver, else the
     ground) name."""
 
     def __init__(self, kind: str) -> None:
         self.kind = kind
-        self.prismatic = [not KINDS[kind] & ROT1, not KINDS[kind] & ROT2]
 
     def entry(self, k1d: bool, k2d: bool):
         """The compiled entry of a call whose outer joints' known bodies are the driver
         (``k1d``, ``k2d``) or else the ground."""
-        ground = ((G1 if self.prismatic[0] and not k1d else 0)
-                  | (G2 if self.prismatic[1] and not k2d else 0))
-        return KEPT_ON[self.kind, ground]
+        return KEPT_ON[self.kind, bool(k1d), bool(k2d)]
 
     def __call__(self, *args):
         return self.entry(args[13], args[14])(*args)
