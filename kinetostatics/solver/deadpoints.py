@@ -51,6 +51,9 @@ SCREEN = 0.5       # local minima of m below this are probed
 # (a four-bar's few and sparse rows: its gathers over them cost less than the compiled
 # scan's pass over every row), compiled above (:func:`_candidates`)
 MANY_BELOW = 16
+# an interval's probes at lo + (hi - lo) t for t in STEPS[1:-1] (made once: its
+# linspace cost 4-8 us of each probe's call; read only, as every caller reads it)
+STEPS = np.linspace(0.0, 1.0, PROBES + 2)
 _min = np.fmin.reduce   # the smallest value, NaN left out (a NaN row is never probed)
 
 
@@ -183,6 +186,24 @@ def compiled_scan() -> Callable | None:
     return None
 
 
+# Where a sweep's compiled probe comes from: each a function of the scene and its
+# structure giving the probe ``at(positions, owner)`` (as for :func:`_probe`), or None.
+# As for SCANS, the compiled path's package adds its own here
+# (fast.screen.sweep_probe: a sweep that the compiled path solved, probed in one
+# compiled call; measured 2026-11-30, see there); none gives one: numpy's probe.
+SWEEP_PROBES: list[Callable[[Scene, Structure], Callable | None]] = []
+
+
+def sweep_probe(scene: Scene, structure: Structure) -> Callable | None:
+    """The compiled probe of a sweep of ``scene`` solved with ``structure``, from
+    :data:`SWEEP_PROBES`, or None (numpy's :func:`~.probes.probe_closeness`)."""
+    for source in SWEEP_PROBES:
+        at = source(scene, structure)
+        if at is not None:
+            return at
+    return None
+
+
 def _probe(at: Callable[[np.ndarray, np.ndarray], Probed], lo: np.ndarray,
            hi: np.ndarray, owner: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The smallest m^2 found inside each interval (lo, hi), zooming ROUNDS times, and
@@ -191,7 +212,7 @@ def _probe(at: Callable[[np.ndarray, np.ndarray], Probed], lo: np.ndarray,
     mechanism (segment) ``owner[i]``: the closeness of each dyad and the rows where one
     cannot close (:func:`~.probes.probe_closeness`), or the kinematics solved with
     ``strict = False``; interval j belongs to ``owner[j]``."""
-    t = np.linspace(0.0, 1.0, PROBES + 2)
+    t = STEPS
     rounds = getattr(at, "rounds", None)
     if rounds is not None:      # (every round in one call: the same numbers)
         return rounds(lo, hi, owner, t, ROUNDS)
@@ -256,8 +277,10 @@ def dead_points_of_sweep(scene: Scene, structure: Structure, positions: np.ndarr
         pairs = np.zeros((0, 2), dtype=int)
         return pairs, np.zeros(0, dtype=int), pairs
 
-    def at(positions: np.ndarray, owner: np.ndarray) -> Probed:
-        return probe_closeness(scene, structure, positions)
+    at = sweep_probe(scene, structure)
+    if at is None:
+        def at(positions: np.ndarray, owner: np.ndarray) -> Probed:
+            return probe_closeness(scene, structure, positions)
     # (the scene's own positions known to increase, Driver.increasing: not told again,
     # measured 2026-11-30, the shaper at 1e6 rows: _segment_order's pass 1.3 ms)
     drv = scene.driver
@@ -313,8 +336,11 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     # pass; nothing below the screen then leaves nothing to probe, below; a stack's
     # scenes are scanned on numpy: its rows below the screen are few and sparse, the
     # numpy scan's gathers over them cost less than a compiled pass over every row)
+    # (the intervals told, in a sweep known to increase: no pass over the rows here,
+    # nor a look for the compiled scan)
+    told = candidates is not None and increasing
     one = m == 1
-    below = (None if one and compiled_scan() is not None
+    below = (None if told or one and compiled_scan() is not None
              else np.flatnonzero(m2u < SCREEN**2))
     if below is not None and below.size == 0:
         return [(pairs, none, pairs)] * m
@@ -325,38 +351,28 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     pos = positions if order is None else positions[order]
     if order is not None:
         below = None            # (the same rows, told in their order)
-    if candidates is not None and order is None:
+    if told:
         cand = candidates
     else:
         cand = (_candidates(m2, rows=below) if one
                 else _candidates(m2, starts, counts, rows=below))
     # beyond the ends: an end row that is a dip of m, probed over one spacing outside
-    two = counts >= 2
-    first, last = starts[two], (starts + counts - 1)[two]
-    lo_f, hi_f = 2.0 * pos[first] - pos[first + 1], pos[first]
-    lo_l, hi_l = pos[last], 2.0 * pos[last] - pos[last - 1]
-    use_f = (m2[first] < SCREEN**2) & (m2[first] <= m2[first + 1])
-    use_l = (m2[last] < SCREEN**2) & (m2[last] <= m2[last - 1])
-    segs = np.flatnonzero(two)
+    lo_e, hi_e, seg_e, row_e = _end_probes(m2, pos, starts, counts)
     k = cand.size
-    lo = np.concatenate([pos[cand], lo_f[use_f], lo_l[use_l]])
-    hi = np.concatenate([pos[cand + 1], hi_f[use_f], hi_l[use_l]])
-    owner = np.concatenate([_segment_of(cand, starts), segs[use_f], segs[use_l]])
+    lo = np.concatenate([pos[cand], lo_e])
+    hi = np.concatenate([pos[cand + 1], hi_e])
+    owner = np.concatenate([_segment_of(cand, starts), seg_e])
     if lo.size == 0:
         return [(pairs, none, pairs)] * m
     best, open_ = _probe(at, lo, hi, owner)
     ends_m2 = np.minimum(m2[cand], m2[cand + 1])
     dead = (best[:k] <= SINGULAR_WARN**2) & (best[:k] < ends_m2) & ~open_[:k]
-    kf = int(use_f.sum())
-    bf, bl = best[k:k + kf], best[k + kf:]
-    rf, rl = first[use_f], last[use_l]
-    hit_f = (bf <= SINGULAR_WARN**2) & (bf < m2[rf])
-    hit_l = (bl <= SINGULAR_WARN**2) & (bl < m2[rl])
-    # per segment, its end rows near a dead point outside, in its own row numbers
+    be = best[k:]
+    hit = (be <= SINGULAR_WARN**2) & (be < m2[row_e])
+    # per segment, its end rows near a dead point outside, in its own row numbers (its
+    # first row before its last)
     edges: dict[int, list[int]] = {}
-    for s, r in zip(segs[use_f][hit_f].tolist(), rf[hit_f].tolist(), strict=True):
-        edges.setdefault(s, []).append(r)
-    for s, r in zip(segs[use_l][hit_l].tolist(), rl[hit_l].tolist(), strict=True):
+    for s, r in zip(seg_e[hit].tolist(), row_e[hit].tolist(), strict=True):
         edges.setdefault(s, []).append(r)
     between = _per_segment(cand[dead], order, starts)
     gaps = _per_segment(cand[open_[:k]], order, starts)
@@ -371,9 +387,45 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     return out
 
 
+def _end_probes(m2: np.ndarray, pos: np.ndarray, starts: np.ndarray, counts: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The end rows of the segments (of two rows or more) probed beyond them: those whose
+    m is below the screen and not above their neighbour's, each over one row's spacing
+    outside its segment; the probes' intervals (lo, hi), segments and rows, every
+    segment's first row, then every segment's last. One segment's (a sweep's) two ends
+    are told in numbers (the same comparisons and doubles: a dozen passes over
+    one-value arrays spared, some 40 us a call, measured 2026-11-30)."""
+    if starts.size == 1:
+        a, n = int(starts[0]), int(counts[0])
+        lo, hi, rows = [], [], []
+        if n >= 2:
+            b = a + n - 1
+            if m2[a] < SCREEN**2 and m2[a] <= m2[a + 1]:
+                lo.append(2.0 * pos[a] - pos[a + 1])
+                hi.append(pos[a])
+                rows.append(a)
+            if m2[b] < SCREEN**2 and m2[b] <= m2[b - 1]:
+                lo.append(pos[b])
+                hi.append(2.0 * pos[b] - pos[b - 1])
+                rows.append(b)
+        return (np.array(lo, dtype=float), np.array(hi, dtype=float),
+                np.zeros(len(rows), dtype=int), np.array(rows, dtype=int))
+    two = counts >= 2
+    first, last = starts[two], (starts + counts - 1)[two]
+    use_f = (m2[first] < SCREEN**2) & (m2[first] <= m2[first + 1])
+    use_l = (m2[last] < SCREEN**2) & (m2[last] <= m2[last - 1])
+    first, last = first[use_f], last[use_l]
+    segs = np.flatnonzero(two)
+    return (np.concatenate([2.0 * pos[first] - pos[first + 1], pos[last]]),
+            np.concatenate([pos[first], 2.0 * pos[last] - pos[last - 1]]),
+            np.concatenate([segs[use_f], segs[use_l]]), np.concatenate([first, last]))
+
+
 def _segment_of(rows: np.ndarray, starts: np.ndarray) -> np.ndarray:
     """The segment holding each row (segments one after another from ``starts``; an
-    empty segment holds none)."""
+    empty segment holds none): of one segment, 0."""
+    if starts.size == 1:
+        return np.zeros(rows.size, dtype=np.intp)
     return np.searchsorted(starts, rows, side="right") - 1
 
 

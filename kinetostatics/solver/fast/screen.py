@@ -1,7 +1,10 @@
 """The compiled path's part of the dead-point screen
 (:mod:`~kinetostatics.solver.deadpoints`), without numba at import: its kernels
-(:mod:`~kinetostatics.solver.fast.screen_kernels`) are imported once the compiled
-kernels are loaded in the process."""
+(:mod:`~kinetostatics.solver.fast.screen_kernels`,
+:mod:`~kinetostatics.solver.fast.probe_kernels`) are imported once the compiled
+kernels are loaded in the process. The scan of the rows, and the probes between rows
+of a sweep (:func:`sweep_probe`) and of a stack (:func:`stack_probe`), each in one
+compiled call."""
 
 from __future__ import annotations
 
@@ -11,10 +14,14 @@ from functools import partial
 
 import numpy as np
 
-from ...model.scene import GROUND
+from ...model.scene import GROUND, Scene
 from ...model.units import DEG
+from ..deadpoints import SWEEP_PROBES
+from ..memo import record_of
 from . import loader
 from .choice import path_setting
+from .geometry import driver_geometry, dyad_geometry
+from .layout import DYAD_GEOMETRY, KINDS
 from .solve import kernel_trig
 
 
@@ -28,14 +35,112 @@ def compiled_scan() -> Callable | None:
     return scan_candidates
 
 
-def rrr_probe(stacker, structure, ks: np.ndarray) -> Callable | None:
+def stack_probe(stacker, structure, ks: np.ndarray) -> Callable | None:
+    """The probe ``at(positions, owner)`` of a stack's dead-point screen
+    (:func:`~kinetostatics.solver.deadpoints.dead_points_stacked`) in one compiled call
+    when the compiled kernels are loaded (and the numpy path is not asked for): a crank
+    and one RRR dyad by :func:`crank_rrr_probe`, any other driver and chain of dyads by
+    :func:`chain_probe` (each scene's geometry a column of the kernels' tables,
+    :meth:`~kinetostatics.solver.stack.Stacker.table`); else None (numpy's
+    :func:`~kinetostatics.solver.probes.probe_closeness`). ``ks``: each scene's assembly
+    (dyads, scenes)."""
+    if compiled_scan() is None:
+        return None
+    at = crank_rrr_probe(stacker, structure, ks)
+    if at is not None:
+        return at
+    m = len(stacker.scenes)
+    table = stacker.table(0, m, np.ones(m, dtype=np.int64), stacker.base.driver.positions,
+                          trig=False)
+    return chain_probe(stacker.base.driver, driver_geometry(table),
+                       [dyad_geometry(table, d, k) for d, k in zip(structure.dyads, ks,
+                                                                   strict=True)],
+                       structure.dyads)
+
+
+def sweep_probe(scene: Scene, structure) -> Callable | None:
+    """The probe ``at(positions, owner)`` of a sweep's dead-point screen
+    (:func:`~kinetostatics.solver.deadpoints.dead_points_of_sweep`, one of its
+    ``SWEEP_PROBES``) in one compiled call (:func:`chain_probe`) when ``scene`` was solved on
+    the compiled path with ``structure`` (the kernels' geometry kept for it,
+    ``solve._assembled``: the same tables, kept only once the compiled kernels were
+    loaded); else None (numpy's probe: the numpy path, or a scene at positions given
+    apart, whose record holds none)."""
+    kept = record_of(scene).get("fast")
+    if kept is None or kept[1] is not structure:
+        return None
+    geometry = kept[2]
+    return chain_probe(scene.driver, geometry.driver, [g[:2] for g in geometry.dyads],
+                       structure.dyads)
+
+
+# (deadpoints cannot import the compiled path's package, which imports it: the sweep's
+# compiled probe is told to it here, read whenever the kernels are loaded)
+SWEEP_PROBES.append(sweep_probe)
+
+
+def chain_probe(drv, driver: tuple, dyads: list, chain) -> Callable | None:
+    """The probe ``at(positions, owner)`` of a driver ``drv`` and the dyads ``chain`` (each
+    dyad's outer joints on the ground, the driver or an earlier dyad's bodies; else
+    None) in one compiled call
+    (:func:`~kinetostatics.solver.fast.probe_kernels.probe_chain`; ``driver``: the
+    driver's geometry table and stride, ``dyads``: each dyad's, in the kernels' layout, a
+    column per scene of a stack or one), with ``at.rounds`` (every round in one call,
+    the chain's kernel of :func:`~kinetostatics.solver.fast.probe_kernels.rounds_of`;
+    measured 2026-11-30, the shaper at 2001 rows: its screen about 900 -> 86 us, 1000
+    shapers' probes 49 -> 23 ms, processor time at a load of 6) unless a crank's
+    cos and sin in a compiled loop are not numpy's here. A crank's cos and sin are
+    numpy's, the dyads closed by the compiled path's closures: m^2 the numpy probe's
+    (:func:`~kinetostatics.solver.probes.probe_closeness`) but for the RTR guide's angle,
+    the compiled path's (a few ulps apart)."""
+    names = {GROUND: 0, drv.body: 1}
+    known = []
+    for i, d in enumerate(chain):
+        pair = [names.get(j.other(b)) for j, b in zip(d.outer, d.bodies, strict=True)]
+        if None in pair:
+            return None
+        known.append(pair)
+        names.update({d.bodies[0]: 2 + 2 * i, d.bodies[1]: 3 + 2 * i})
+    cols = max(g.shape[1] for g, _ in dyads)
+    gy = np.empty((len(dyads), DYAD_GEOMETRY, cols))
+    for i, (g, _) in enumerate(dyads):
+        gy[i] = g
+    gd, gds = driver
+    crank = drv.kind == "R"
+    kinds = tuple(d.kind for d in chain)
+    args = (crank, np.ascontiguousarray(gd, dtype=float), gds, np.array(known, dtype=np.int64),
+            gy, int(cols > 1))
+    from .probe_kernels import probe_chain, rounds_of
+    codes = np.array([KINDS[k] for k in kinds], dtype=np.int64)
+
+    def at(positions: np.ndarray, owner: np.ndarray) -> tuple[list, np.ndarray]:
+        x = np.ascontiguousarray(positions, dtype=float)
+        c = s = x
+        if crank:   # (the crank's angles as the probe's Driver makes them, numpy's cos, sin)
+            angles = replace(drv, positions=x).angles
+            c, s = np.cos(angles), np.sin(angles)
+        m2, gone = np.empty(x.size), np.empty(x.size, dtype=bool)
+        probe_chain(c, s, x, np.asarray(owner, dtype=np.int64), codes, *args, m2, gone)
+        return [m2], gone
+    if not crank or kernel_trig():      # (the C library's cos and sin: numpy's here)
+        at.rounds = partial(_rounds, kernel=rounds_of(kinds), args=args)
+    return at
+
+
+# (solve_many's screen, many._probe_at, asks for the stack's probe by this name, from
+# when a crank and one RRR dyad alone had one)
+rrr_probe = stack_probe
+
+
+def crank_rrr_probe(stacker, structure, ks: np.ndarray) -> Callable | None:
     """The probe ``at(positions, owner)`` of a stack's dead-point screen
     (:func:`~kinetostatics.solver.deadpoints.dead_points_stacked`) in one compiled pass
     (:func:`~kinetostatics.solver.fast.screen_kernels.probe_rrr`) when the stack is a crank
     and one RRR dyad whose outer pivots are on the ground or the crank and the compiled
-    kernels are loaded; else None (numpy's :func:`~kinetostatics.solver.probes.probe_closeness`).
-    The same numbers: the crank's cos and sin are numpy's, the rest the probe's
-    operations in their order. ``ks``: each scene's assembly (dyads, scenes)."""
+    kernels are loaded; else None (:func:`stack_probe` tells the other structures).
+    The same numbers as numpy's :func:`~kinetostatics.solver.probes.probe_closeness`:
+    the crank's cos and sin are numpy's, the rest the probe's operations in their
+    order. ``ks``: each scene's assembly (dyads, scenes)."""
     scene = stacker.base
     drv = scene.driver
     if compiled_scan() is None or drv.kind != "R" or len(structure.dyads) != 1:
@@ -74,26 +179,27 @@ def rrr_probe(stacker, structure, ks: np.ndarray) -> Callable | None:
             rrr_gaps(c, s, owner, geo, on_crank, opened)    # (else none: numpy's probe)
         return [m2], opened
     if kernel_trig():       # (the C library's cos and sin are numpy's here)
-        at.rounds = partial(_rounds, k=k, geo=geo, on_crank=on_crank)
+        from .screen_kernels import probe_rounds
+        at.rounds = partial(_rounds, kernel=probe_rounds, args=(k, geo, on_crank))
     return at
 
 
 def _rounds(lo: np.ndarray, hi: np.ndarray, owner: np.ndarray, t: np.ndarray,
-            rounds: int, *, k: np.ndarray, geo: np.ndarray, on_crank: np.ndarray
-            ) -> tuple[np.ndarray, np.ndarray]:
-    """Every round of the screen's probes of a crank and one RRR dyad in one compiled
-    call (:func:`~kinetostatics.solver.fast.screen_kernels.probe_rounds`; ``at.rounds``
-    of :func:`rrr_probe`, read by :func:`~kinetostatics.solver.deadpoints._probe`): the
-    smallest m^2 inside each interval (``lo``, ``hi``: driver positions, deg) and whether
-    some probe could not close, the numbers of the rounds probed one by one (measured
-    2026-11-30, 1000 four-bars x 361, their 190 intervals: 0.95 ms a call against 1.50
-    round by round, processor time, best of 30 at a load of 11; most of it the 17 670
-    probes' cos and sin)."""
-    from .screen_kernels import probe_rounds
+            rounds: int, *, kernel: Callable, args: tuple) -> tuple[np.ndarray, np.ndarray]:
+    """Every round of the screen's probes in one compiled call (``at.rounds`` of
+    :func:`crank_rrr_probe` and :func:`chain_probe`, read by
+    :func:`~kinetostatics.solver.deadpoints._probe`; ``kernel``:
+    :func:`~kinetostatics.solver.fast.screen_kernels.probe_rounds` or
+    a chain's of :func:`~kinetostatics.solver.fast.probe_kernels.rounds_of`, ``args`` its tables):
+    the smallest m^2 inside each interval (``lo``, ``hi``: driver positions, deg for a
+    crank) and whether some probe could not close, the numbers of the rounds probed one
+    by one (measured 2026-11-30, 1000 four-bars x 361, their 190 intervals: 0.95 ms a
+    call against 1.50 round by round, processor time, best of 30 at a load of 11; most
+    of it the 17 670 probes' cos and sin)."""
     n = lo.size
     best, opened = np.empty(n), np.empty(n, dtype=bool)
     scratch = n * (t.size - 2)
-    probe_rounds(np.array(lo, dtype=float), np.array(hi, dtype=float),
-                 np.asarray(owner, dtype=np.int64), t, DEG, k, geo, on_crank, rounds, best,
-                 opened, np.empty(scratch), np.empty(scratch, dtype=bool))
+    kernel(np.array(lo, dtype=float), np.array(hi, dtype=float),
+           np.asarray(owner, dtype=np.int64), t, DEG, *args, rounds, best, opened,
+           np.empty(scratch), np.empty(scratch, dtype=bool))
     return best, opened

@@ -15,6 +15,7 @@ import math
 import numpy as np
 
 from .jitbase import body, jit
+from .probe_kernels import narrow, start_rounds
 
 # a real dip is below a neighbour by more than rounding jitter (deadpoints._candidates)
 SHRINK = 1.0 - 1e-9
@@ -244,17 +245,15 @@ def probe_rounds(lo, hi, owner, t, deg, k, g, on_crank, rounds, best, opened, m2
     the C library's, which :func:`~kinetostatics.solver.fast.solve.kernel_trig` finds
     numpy's), :func:`rrr_close` at each, and where some probe of the round has h^2
     negative or not finite, :func:`rrr_open` at each (as the numpy probe measures the
-    gaps only then); a probe that is NaN or open counts +inf; the interval shrinks to the
-    two steps about its first smallest probe (numpy's argmin), ``rounds`` times. The
+    gaps only then); then :func:`~.probe_kernels.narrow` (a probe that is NaN or open
+    counts +inf; the interval shrinks to the two steps about its first smallest probe,
+    numpy's argmin), ``rounds`` times. The
     smallest m^2 found per interval goes to ``best``, whether some probe was open to
     ``opened``; ``lo`` and ``hi`` are written over; ``m2`` and ``gone``: scratch of
     ``lo.size * (t.size - 2)`` values."""
     n = lo.size
     p = t.size - 2
-    inf = np.inf
-    for i in range(n):
-        best[i] = inf
-        opened[i] = False
+    start_rounds(best, opened)
     for _ in range(rounds):
         bad = 0
         for i in range(n):
@@ -266,16 +265,9 @@ def probe_rounds(lo, hi, owner, t, deg, k, g, on_crank, rounds, best, opened, m2
                 bad |= b
         for i in range(n):
             a, d, e = lo[i], hi[i] - lo[i], owner[i]
-            low, at = inf, 0
             for j in range(p):
-                v = m2[i * p + j]
+                gone[i * p + j] = False
                 if bad:
                     x = (a + d * t[j + 1]) * deg
                     gone[i * p + j] = rrr_open(math.cos(x), math.sin(x), g, e, on_crank)
-                if np.isnan(v) or (bad and gone[i * p + j]):
-                    opened[i] = True
-                    v = inf
-                if v < low:
-                    low, at = v, j
-            best[i] = best[i] if best[i] <= low else low
-            lo[i], hi[i] = a + d * t[at], a + d * t[at + 2]
+        narrow(n, p, t, m2, gone, lo, hi, best, opened)

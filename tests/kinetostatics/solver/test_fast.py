@@ -271,7 +271,8 @@ def compiled_signatures(helpers: bool = False) -> dict[str, list]:
     out = {}
     for name in ("kernels", "reaction_kernels", "load_kernels", "fused_kernels",
                  "fused_tables", "guide_kernels", "table_kernels", "screen_kernels",
-                 "closure_kernels", "tail_kernels", "scratch_views", "streams", "jitbase"):
+                 "probe_kernels", "closure_kernels", "tail_kernels", "scratch_views", "streams",
+                 "jitbase"):
         for v in vars(importlib.import_module(f"kinetostatics.solver.fast.{name}")).values():
             for d in (v.values() if isinstance(v, dict) else [v]):
                 if (isinstance(d, CPUDispatcher)

@@ -1,8 +1,9 @@
 """The dead-point screen's probes of a stack in one compiled call (``fast/screen.py``'s
-``at.rounds``, ``screen_kernels.probe_rounds``) against the same probes round by round
-(``deadpoints._probe`` with the rounds' ``at``: numpy's cos and sin, the compiled probe
-per round): the same smallest closeness per interval bit for bit, the same intervals
-where the dyad cannot close."""
+``at.rounds``, ``screen_kernels.probe_rounds``, a crank and one RRR dyad; the other
+structures' ``probe_kernels.rounds_of``: test_screen_chain) against the same probes
+round by round (``deadpoints._probe`` with the rounds' ``at``: numpy's cos and sin, the
+compiled probe per round): the same smallest closeness per interval bit for bit, the same
+intervals where the dyad cannot close."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ import pytest
 
 from kinetostatics.solver.deadpoints import _probe
 from kinetostatics.solver.fast import loader
-from kinetostatics.solver.fast.screen import rrr_probe
+from kinetostatics.solver.fast.screen import crank_rrr_probe
 from kinetostatics.solver.fast.solve import kernel_trig
 
 from .test_screen_probe import long_cranks, stack
@@ -32,7 +33,7 @@ class RoundByRound:
 @pytest.mark.parametrize("seed", [1, 2])
 def test_rounds_in_one_call_are_the_rounds_one_by_one(fast, seed) -> None:
     stacker, structure, k = stack(long_cranks(120, seed))
-    at = rrr_probe(stacker, structure, k)
+    at = crank_rrr_probe(stacker, structure, k)
     if not kernel_trig():
         assert not hasattr(at, "rounds")
         pytest.skip("the C library's cos and sin are not numpy's here")
