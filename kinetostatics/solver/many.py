@@ -61,7 +61,7 @@ from .cut import CutSolved, RunAgain, cut_scenes, run_values, splitter
 from .deadpoints import SCANS, dead_points_stacked, kin_measure2, measure2
 from .fast import solve_run_stacked, wanted
 from .fast.geometry import not_covered
-from .fast.screen import compiled_scan, rrr_probe
+from .fast.screen import compiled_scan, stack_probe
 from .fast.solve import KeptRun
 from .fast.stacked import release, solve_group_kept
 from .footprint import columns, solve_bytes
@@ -406,11 +406,11 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
 def _probe_at(stacker: Stacker, structure, ks: np.ndarray, compiled: bool):
     """The dead-point screen's probe ``at(positions, owner)`` of a stack
     (:func:`dead_points_stacked`): on the compiled path, a crank and one RRR dyad in one
-    compiled pass (:func:`~kinetostatics.solver.fast.screen.rrr_probe`: the same numbers;
+    compiled pass (:func:`~kinetostatics.solver.fast.screen.stack_probe`: the same numbers;
     measured 2026-11-29, 1000 four-bars x 361: the screen 2.0 ms a call against 3.9,
     its probes 1.2 against 3.2, best of 15 at a load of 10-11), else numpy's
     :func:`probe_closeness` of the stacked scene at the probes' rows."""
-    at = rrr_probe(stacker, structure, ks) if compiled else None
+    at = stack_probe(stacker, structure, ks) if compiled else None
     if at is not None:
         return at
     probes: dict = {}           # (the probes' structure per owner: the same each round)

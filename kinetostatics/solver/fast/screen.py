@@ -127,11 +127,6 @@ def chain_probe(drv, driver: tuple, dyads: list, chain) -> Callable | None:
     return at
 
 
-# (solve_many's screen, many._probe_at, asks for the stack's probe by this name, from
-# when a crank and one RRR dyad alone had one)
-rrr_probe = stack_probe
-
-
 def crank_rrr_probe(stacker, structure, ks: np.ndarray) -> Callable | None:
     """The probe ``at(positions, owner)`` of a stack's dead-point screen
     (:func:`~kinetostatics.solver.deadpoints.dead_points_stacked`) in one compiled pass

@@ -151,7 +151,7 @@ def kernel_trig() -> bool:
     ``sincos``) are numpy's bit for bit here: checked once a process on the angles of
     :func:`trig_probes`. The dead-point screen's probes take numpy's cos and sin, and
     in one compiled call the C library's where they are numpy's
-    (:func:`~kinetostatics.solver.fast.screen.rrr_probe`); the sweeps' kernels take the
+    (:func:`~kinetostatics.solver.fast.screen.stack_probe`); the sweeps' kernels take the
     compiled path's own (:mod:`~kinetostatics.solver.fast.trig_kernels`)."""
     if "same" not in _TRIG:
         from .trig_kernels import libm_rows  # (numba loaded: kernels given)
