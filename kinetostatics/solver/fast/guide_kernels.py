@@ -220,7 +220,7 @@ def _padded(rows):
 def _loads_in(g):
     """A tile's scratch array of its own for a body's load geometry ``g`` (filled per
     tile: :func:`_scene_tile`)."""
-    return _padded(g.shape[0])
+    return scratch(g.shape[0])
 
 
 @body
@@ -323,7 +323,7 @@ def rtr_kept(lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d, k2d
     the scene changes (:func:`_scene_tile`). Returns the count of rows the numpy path
     must judge."""
     R = BODY_ROWS
-    w_ = _padded(5 * R + LOAD_ROWS + DYAD_ROWS + DRIVER_GEOMETRY)
+    w_ = scratch(5 * R + LOAD_ROWS + DYAD_ROWS + DRIVER_GEOMETRY)
     # the known bodies' motions in rows of their own, copied per tile (views of one
     # scratch array at fixed offsets: LLVM proves them apart from the dyad's and
     # vectorises the rows' loops; a view chosen at run time between the ground's and the
