@@ -23,7 +23,7 @@ from .jitbase import (
     tile_geometry,
     tile_rows,
 )
-from .kernels import crank_row, dyad_row, ground_param
+from .kernels import crank_row, dyad_row, outer_param
 from .layout import (
     ASSEMBLY,
     C1X,
@@ -65,14 +65,16 @@ RTR = KINDS["RTR"]      # outer joints revolute, inner prismatic
 
 
 @body
-def _guide_row(rcode, wk1, wk2, t, gy, k):
+def _guide_row(wk1, wk2, t, gy, k):
     """The RTR guide's angle's cos and sin, the pivots' distance and the gap at row ``t``
     of a tile (:func:`rtr_guide_angle`, seed 000 ch. 6-7: the composed RTR kernel's stage 0) from
     the outer joints' known bodies' motions ``wk1``, ``wk2`` (``gy``: the dyad's
-    geometry, its column 0; ``k``: its assembly; ``rcode``: RTR's code, its ground bits
-    naming a pivot on the ground, :func:`ground_param`)."""
-    p1 = ground_param(True, (rcode & G1) != 0, wk1, t, gy, 0, 0)
-    p2 = ground_param(True, (rcode & G2) != 0, wk2, t, gy, 0, PARAM)
+    geometry, its column 0; ``k``: its assembly). (A pivot on the ground from its
+    geometry alone, ``kernels.ground_param`` as the dyad's row takes it, changed the
+    slotted lever's machine code: its kernel 55-61 ns a row against 46-59, measured
+    2026-11-30 in alternating pairs; not kept.)"""
+    p1 = outer_param(True, wk1, t, gy, 0, 0)
+    p2 = outer_param(True, wk2, t, gy, 0, PARAM)
     return rtr_guide_angle(p1, p2, gy, 0, k)
 
 
@@ -107,7 +109,7 @@ def _rtr_tile(rcode, lo, t0, nt, own, trig, wgd, w, eps, k1d, k2d, wg, wdrv, wk1
     # preceded by some 400 instructions of checks that its arrays do not overlap,
     # measured 2026-11-30, 1.5 % of the shaper's kernel's samples)
     for t in range(TILE):
-        wd[C1X, t], wd[C1Y, t], wd[CL2, t], wd[XX, t] = _guide_row(rcode, wk1, wk2, t, wg, k)
+        wd[C1X, t], wd[C1Y, t], wd[CL2, t], wd[XX, t] = _guide_row(wk1, wk2, t, wg, k)
     for t in range(TILE):
         _pin(wg, t)
         f = dyad_row(rcode, rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
