@@ -30,6 +30,8 @@ from .layout import (
     C1Y,
     CL2,
     DRIVER_GEOMETRY,
+    G1,
+    G2,
     I_SFIRST,
     INNER_R,
     KINDS,
@@ -43,6 +45,7 @@ from .layout import (
     XX,
     C,
     S,
+    padded_width,
 )
 from .layout import MOTION as BODY_ROWS
 from .load_kernels import swept_force, swept_stats
@@ -66,19 +69,23 @@ def _guide_row(wk1, wk2, t, gy, k):
     """The RTR guide's angle's cos and sin, the pivots' distance and the gap at row ``t``
     of a tile (:func:`rtr_guide_angle`, seed 000 ch. 6-7: the composed RTR kernel's stage 0) from
     the outer joints' known bodies' motions ``wk1``, ``wk2`` (``gy``: the dyad's
-    geometry, its column 0; ``k``: its assembly)."""
+    geometry, its column 0; ``k``: its assembly). (A pivot on the ground from its
+    geometry alone, ``kernels.ground_param`` as the dyad's row takes it, changed the
+    slotted lever's machine code: its kernel 55-61 ns a row against 46-59, measured
+    2026-11-30 in alternating pairs; not kept.)"""
     p1 = outer_param(True, wk1, t, gy, 0, 0)
     p2 = outer_param(True, wk2, t, gy, 0, PARAM)
     return rtr_guide_angle(p1, p2, gy, 0, k)
 
 
 @body
-def _rtr_tile(lo, t0, nt, own, trig, wgd, w, eps, k1d, k2d, wg, wdrv, wk1, wk2, wm1, wm2,
-              wd, wa, wl, npt, gw, gws, nw, undefined, st):
+def _rtr_tile(rcode, lo, t0, nt, own, trig, wgd, w, eps, k1d, k2d, wg, wdrv, wk1, wk2, wm1,
+              wm2, wd, wa, wl, npt, gw, gws, nw, undefined, st):
     """RTR over the tile that starts at row ``t0`` (``nt`` rows, one scene's) of rows from
     ``lo``: the crank's cos and sin (:func:`_crank_in`, ``trig``), the crank's motion
     (:func:`crank_row`), copied to the outer joints' known bodies where they are the
-    crank (``k1d``, ``k2d``), the guide's angle's cos and sin, the pivots' distance and
+    crank (``k1d``, ``k2d``; ``rcode``: RTR's code and its ground bits, a constant of the
+    entry), the guide's angle's cos and sin, the pivots' distance and
     the gap (:func:`_guide_row`), the dyad's motion (:func:`dyad_row`, RTR), then the
     loads of the crank and the dyad's
     bodies (:func:`tile_loads`, then :func:`tile_swept`: ``wa`` their resultants, ``wl``
@@ -105,7 +112,7 @@ def _rtr_tile(lo, t0, nt, own, trig, wgd, w, eps, k1d, k2d, wg, wdrv, wk1, wk2, 
         wd[C1X, t], wd[C1Y, t], wd[CL2, t], wd[XX, t] = _guide_row(wk1, wk2, t, wg, k)
     for t in range(TILE):
         _pin(wg, t)
-        f = dyad_row(not_literal(RTR), rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
+        f = dyad_row(rcode, rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
         bad += f if t < nt else 0
     bad += tile_loads(wdrv, wa[0], wl[0], npt[0], nt)
     bad += tile_loads(wm1, wa[1], wl[1], npt[1], nt)
@@ -192,6 +199,23 @@ def _force_row(wq, t, wm, wa):
     wa[0, t] += fx
     wa[1, t] += fy
     wa[2, t] += rx * fy - ry * fx
+
+
+# a row of the kernels' scratch arrays: TILE values and some more, the rows an odd number
+# of cache lines apart (layout.padded_width: 72 values, 9 lines). Rows of 64 values lie
+# 512 bytes apart, and a loop reading some 90 rows at one column (a dyad's row: its known
+# bodies, its geometry, its data, its bodies) fell in 8 of the first-level cache's 64
+# sets, more lines than their 8 ways hold (measured 2026-11-30, the shaper's kernel alone
+# at 2e5 rows, processor time, best of 61, alternating processes at a load of 6-7: 83.9-92
+# ns a row against 80.6-81.5 padded; the loops read and write columns 0 to TILE - 1 only)
+PAD = padded_width(TILE)
+
+
+@body
+def _padded(rows):
+    """A tile's scratch array of ``rows`` rows of :data:`PAD` values (zeros; the tile's
+    rows in columns 0 to ``TILE - 1``)."""
+    return np.zeros((rows, PAD))
 
 
 @body
@@ -322,8 +346,8 @@ def rtr_kept(lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d, k2d
     t0 = lo
     while t0 < hi:
         nt = _scene_tile(t0, hi, own, ts, held, wgd, gd, gds, wg, gy, gys, wl, gl, gls)
-        bad += _rtr_tile(lo, t0, nt, own, trig, wgd, w, eps, k1d, k2d, wg, wdrv, wk1, wk2,
-                         wm1, wm2, wd, wa, wl, npt, gw, gws, nw, undefined, st)
+        bad += _rtr_tile(not_literal(RTR), lo, t0, nt, own, trig, wgd, w, eps, k1d, k2d, wg,
+                         wdrv, wk1, wk2, wm1, wm2, wd, wa, wl, npt, gw, gws, nw, undefined, st)
         bad += _rtr_last(nt, wg, wgd, wdrv, wm1, wm2, wk1, wk2, wd, wad, wa1, wa2, wak1, wak2,
                          wr)
         _row_out(drive, t0 - lo, nt, wr[0])
@@ -333,25 +357,20 @@ def rtr_kept(lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d, k2d
 
 
 @body
-def _copy_known(which, wk, crank, first, second):
-    """A known body's motion over a tile, by its code ``which`` (1 the crank's, 2 the RTR
-    dyad's first body's, 3 its second's; 0, the ground's, left as set once), copied into
-    its rows ``wk``: each copy from a view at a fixed offset (one chosen at run time
-    kept the copy a scalar loop, 10 scalar moves a row: measured 2026-11-30, 3.8 % of
-    the shaper's kernel's samples)."""
-    if which == 1:
-        copy_rows(wk, crank)
-    elif which == 2:
-        copy_rows(wk, first)
-    elif which == 3:
-        copy_rows(wk, second)
-
-
-@body
 def _known(which, crank, first, second):
     """A known body's rows of a tile by its code ``which`` (1 the crank's, 2 the RTR
     dyad's first body's, 3 its second's; 0, the ground's, is never asked for)."""
     return crank if which == 1 else first if which == 2 else second
+
+
+@body
+def _known_rows(which, ground, crank, first, second):
+    """A known body's motion over a tile by its code ``which`` (:func:`_known`; 0 the
+    ground's rows ``ground``, set once): a constant of the entry, so that the view is one
+    at a fixed offset of the scratch array (no copy per tile: the copies were 5.3 % of
+    the shaper's kernel's samples, measured 2026-11-30; a view chosen at run time keeps
+    LLVM from vectorising the rows, :func:`rtr_kept`)."""
+    return ground if which == 0 else _known(which, crank, first, second)
 
 
 @body
@@ -366,8 +385,9 @@ def _row_out(out, j0, nt, row):
 
 
 @body
-def _rtr_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d, k2d, gz,
-                   gzs, k3, k4, gl, gls, npt, gw, gws, nw, st, drive, close1, close2, undefined):
+def _rtr_dyad_kept(kind, rcode, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d,
+                   k2d, gz, gzs, k3, k4, gl, gls, npt, gw, gws, nw, st, drive, close1, close2,
+                   undefined):
     """A crank, one RTR dyad and a second dyad of kind ``kind`` (not RTR) whose outer
     joints' known bodies are the ground, the crank or the RTR dyad's bodies (``k3``,
     ``k4``: 0 the ground, 1 the crank, 2 the RTR dyad's first body, 3 its second): the
@@ -380,23 +400,30 @@ def _rtr_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, g
     tile by tile in one scratch array, as the composed kernels compute them; only Me,
     each dyad's closeness to a dead centre and the undefined rows written; one scene or a
     stack, each tile one scene's rows, as :func:`rtr_kept` (``gzs``: the second dyad's
-    table's). Returns the count of rows the numpy path must judge."""
+    table's). The known bodies (``k1d``, ``k2d``: the RTR dyad's, 1 the crank, 0 the
+    ground; ``k3``, ``k4``) are constants of the entry: each dyad reads its known bodies'
+    rows where they are worked out (:func:`_known_rows`), and ``kind``, ``rcode`` (RTR's
+    code) carry the ground bits of the outer joints on the ground (``layout.G1``,
+    ``G2``: :func:`~kinetostatics.solver.fast.kernels.ground_param`). Returns the count
+    of rows the numpy path must judge."""
     rot3, rot4, inner_z = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
     R = BODY_ROWS
-    w_ = scratch(9 * R + LOAD_ROWS + 12 + 2 * DYAD_ROWS + DRIVER_GEOMETRY)
-    # every body's motion and every known body's copy at fixed offsets of one scratch
-    # array (views chosen at run time keep LLVM from vectorising the rows: rtr_kept)
+    w_ = _padded(7 * R + LOAD_ROWS + 12 + 2 * DYAD_ROWS + DRIVER_GEOMETRY)
+    # every body's motion and the ground's at fixed offsets of one scratch array (views
+    # chosen at run time keep LLVM from vectorising the rows: rtr_kept)
     wdrv, wm1, wm2 = w_[:R], w_[R:2 * R], w_[2 * R:3 * R]
     wm3, wm4 = w_[3 * R:4 * R], w_[4 * R:5 * R]
-    wk1, wk2, wk3, wk4 = w_[5 * R:6 * R], w_[6 * R:7 * R], w_[7 * R:8 * R], w_[8 * R:9 * R]
-    wad, wa1, wa2, wak1, wak2 = resultant_views(w_, 9 * R)
-    b = 9 * R + LOAD_ROWS       # (the second dyad's: its bodies' resultants, its loads)
+    w0 = w_[5 * R:6 * R]
+    for t in range(TILE):                       # the ground: at rest
+        w0[C, t] = 1.0
+    wk1, wk2 = _known_rows(k1d, w0, wdrv, wm1, wm2), _known_rows(k2d, w0, wdrv, wm1, wm2)
+    wk3, wk4 = _known_rows(k3, w0, wdrv, wm1, wm2), _known_rows(k4, w0, wdrv, wm1, wm2)
+    wad, wa1, wa2, wak1, wak2 = resultant_views(w_, 7 * R)
+    b = 7 * R + LOAD_ROWS       # (the second dyad's: its bodies' resultants, its loads)
     wa3, wa4, wak3, wak4 = w_[b:b + 3], w_[b + 3:b + 6], w_[b + 6:b + 9], w_[b + 9:b + 12]
     wd, wr, wg, b = dyad_views(w_, b + 12)
     wdz, wrz, wgz, b = dyad_views(w_, b)
     wgd = w_[b:]
-    for t in range(TILE):                       # the ground: at rest (unless a body's)
-        wk1[C, t] = wk2[C, t] = wk3[C, t] = wk4[C, t] = 1.0
     wa = (wad, wa1, wa2)
     wl = (_loads_in(gl[0]), _loads_in(gl[1]), _loads_in(gl[2]))
     wl3, wl4 = _loads_in(gl[3]), _loads_in(gl[4])
@@ -410,10 +437,8 @@ def _rtr_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, g
         held[5] = tile_geometry(wgz, gz, gzs, own, t0, held[5])
         held[6] = tile_geometry(wl3, gl[3], gls[3], own, t0, held[6])
         held[7] = tile_geometry(wl4, gl[4], gls[4], own, t0, held[7])
-        bad += _rtr_tile(lo, t0, nt, own, trig, wgd, w, eps, k1d, k2d, wg, wdrv, wk1, wk2,
-                         wm1, wm2, wd, wa, wl, npt, gw, gws, nw, undefined, st)
-        _copy_known(k3, wk3, wdrv, wm1, wm2)
-        _copy_known(k4, wk4, wdrv, wm1, wm2)
+        bad += _rtr_tile(rcode, lo, t0, nt, own, trig, wgd, w, eps, False, False, wg, wdrv, wk1,
+                         wk2, wm1, wm2, wd, wa, wl, npt, gw, gws, nw, undefined, st)
         for t in range(TILE):
             f = dyad_row(kind, rot3, rot4, inner_z, False, t, t, wgz, wk3, wk4, wm3, wm4, wdz)
             bad += f if t < nt else 0
@@ -437,24 +462,63 @@ def _rtr_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, g
     return bad
 
 
-def _after_rtr_for(kind: str):
-    """The compiled entry of :func:`_rtr_dyad_kept` for a second dyad of kind ``kind``,
-    its code (:data:`~kinetostatics.solver.fast.layout.KINDS`) a constant, named by its
-    kind (as :mod:`~kinetostatics.solver.fast.fused_kernels`' ``KEPT``)."""
-    code = KINDS[kind]
+def _grounded(code: int, first: bool, second: bool) -> int:
+    """A dyad's ``code`` with the ground bits (``layout.G1``, ``G2``) of the outer joints
+    whose known body is the ground (``first``, ``second``)."""
+    return code | (G1 if first else 0) | (G2 if second else 0)
 
-    @jit_as(f"rtr_{kind.lower()}_kept")
-    def kept(lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d, k2d, gz, gzs, k3, k4,
-             gl, gls, npt, gw, gws, nw, st, drive, close1, close2, undefined):
+
+def _after_rtr_for(kind: str, known: tuple):
+    """The compiled entry of :func:`_rtr_dyad_kept` for a second dyad of kind ``kind``
+    and the known bodies ``known`` (``k1d``, ``k2d``, ``k3``, ``k4`` as integers), its
+    codes (:data:`~kinetostatics.solver.fast.layout.KINDS`, the ground bits) and
+    ``known`` constants (numba freezes the closure's cells: each cached apart), named by
+    both (as :mod:`~kinetostatics.solver.fast.fused_kernels`' ``KEPT_ON``). Measured
+    2026-11-30, the shaper's kernel alone (1e6 rows): see docs/solve-paths.md."""
+    k1d, k2d, k3, k4 = known
+    code = _grounded(KINDS[kind], k3 == 0, k4 == 0)
+    rcode = _grounded(RTR, k1d == 0, k2d == 0)
+
+    @jit_as(f"rtr_{kind.lower()}_kept_{k1d}{k2d}{k3}{k4}")
+    def kept(lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, _k1d, _k2d, gz, gzs,
+             _k3, _k4, gl, gls, npt, gw, gws, nw, st, drive, close1, close2, undefined):
         value = not_literal(code)       # (the helpers typed once for every kind)
-        return _rtr_dyad_kept(value, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys,
-                              k1d, k2d, gz, gzs, k3, k4, gl, gls, npt, gw, gws, nw, st, drive,
-                              close1, close2, undefined)
+        return _rtr_dyad_kept(value, not_literal(rcode), lo, hi, own, cs, sn, ts, angles, gd,
+                              gds, w, eps, gy, gys, not_literal(k1d), not_literal(k2d), gz, gzs,
+                              not_literal(k3), not_literal(k4), gl, gls, npt, gw, gws, nw, st,
+                              drive, close1, close2, undefined)
     return kept
 
 
-# a crank, one RTR dyad and a second dyad, fused, per the second dyad's kind (compiled on
-# its first call: the shaper's RRT alone, unless a scene asks for another)
-AFTER_RTR = {kind: _after_rtr_for(kind) for kind in KINDS if kind != "RTR"}
+# a crank, one RTR dyad and a second dyad, fused, per the second dyad's kind and the known
+# bodies of both dyads' outer joints: (kind, (k1d, k2d, k3, k4)) -> its entry, made on a
+# call's first need (AfterRtr) and compiled then (the shaper's alone, unless a scene asks
+# for another)
+AFTER_RTR_ON: dict = {}
 
-__all__ = ["AFTER_RTR", "rtr_kept"]
+
+class AfterRtr:
+    """A second dyad's kind's kernel as its callers call it (the arguments of
+    :func:`_rtr_dyad_kept` after ``kind`` and ``rcode``): the entry of
+    :data:`AFTER_RTR_ON` for the call's known bodies (``k1d``, ``k2d``, ``k3``, ``k4``)."""
+
+    def __init__(self, kind: str) -> None:
+        self.kind = kind
+
+    def entry(self, k1d: bool, k2d: bool, k3: int, k4: int):
+        """The compiled entry of a call whose outer joints' known bodies are ``k1d``,
+        ``k2d`` (the RTR dyad's: the driver, else the ground), ``k3``, ``k4`` (the
+        second dyad's codes)."""
+        key = (self.kind, (int(k1d), int(k2d), int(k3), int(k4)))
+        found = AFTER_RTR_ON.get(key)
+        if found is None:
+            found = AFTER_RTR_ON[key] = _after_rtr_for(*key)
+        return found
+
+    def __call__(self, *args):
+        return self.entry(args[13], args[14], args[17], args[18])(*args)
+
+
+AFTER_RTR = {kind: AfterRtr(kind) for kind in KINDS if kind != "RTR"}
+
+__all__ = ["AFTER_RTR", "AFTER_RTR_ON", "AfterRtr", "rtr_kept"]

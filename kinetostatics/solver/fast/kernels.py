@@ -190,12 +190,15 @@ def outer_param(rot, k, j, g, r, base):
 
 @body
 def ground_param(rot, ground, k, j, g, r, base):
-    """:func:`outer_param`, of a prismatic outer joint whose known body is the ground
-    (``ground``; ``rot`` False) from its geometry alone: the ground's cos 1 and sin 0,
-    origin 0 (0 + (1 lx - 0 ly) is 0 + lx for a finite lx, and so on: the same doubles)."""
-    if rot or not ground:
+    """:func:`outer_param`, of an outer joint whose known body is the ground (``ground``)
+    from its geometry alone: the ground's cos 1 and sin 0, origin 0 (0 + (1 lx - 0 ly) is
+    0 + lx for a finite lx, and so on: the same doubles); a revolute one's pivot at rest
+    (its velocity 0 - 0 ry and acceleration (0 - 0 ry) - 0 rx are +0 for finite rows)."""
+    if not ground:
         return outer_param(rot, k, j, g, r, base)
     lx, ly = g[base + P_KX, r], g[base + P_KY, r]
+    if rot:
+        return 0.0 + lx, 0.0 + ly, 0.0, 0.0, 0.0, 0.0
     cb, sb = g[base + P_CB, r], g[base + P_SB, r]
     c, s = cb - 0.0 * sb, 0.0 * cb + sb
     bx, by = g[base + P_BX, r], g[base + P_BY, r]
@@ -398,8 +401,9 @@ def _store_param(d, j, b, p, rot):
 def dyad_row(kind, rot1, rot2, inner_r, rtr, j, r, g, k1, k2, m1, m2, d):
     size = g[SIZE, r]
     kk = g[ASSEMBLY, r]
-    # (a fused kernel's ground bits: a prismatic outer joint's known body the ground, its
-    # motion the constants it is, layout.G1, G2)
+    # (a fused kernel's ground bits: an outer joint's known body the ground, its motion
+    # the constants it is, layout.G1, G2: a prismatic one's in the fused kernels, either
+    # kind's in the guide's, guide_kernels.AFTER_RTR_ON)
     ground1, ground2 = (kind & G1) != 0, (kind & G2) != 0
     p1 = ground_param(rot1, ground1, k1, j, g, r, 0)
     p2 = ground_param(rot2, ground2, k2, j, g, r, PARAM)

@@ -69,5 +69,5 @@ def test_the_guide_pass_keeps_the_composed_kernels_numbers(name):
     assert kept_bytes(scene, True) == kept_bytes(scene, False)
     # each entry point compiled once
     from kinetostatics.solver.fast import guide_kernels
-    kernels = [guide_kernels.rtr_kept, *guide_kernels.AFTER_RTR.values()]
+    kernels = [guide_kernels.rtr_kept, *guide_kernels.AFTER_RTR_ON.values()]
     assert [len(k.signatures) for k in kernels if len(k.signatures) > 1] == []
