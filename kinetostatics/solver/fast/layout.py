@@ -21,9 +21,11 @@ MOTION = 10
 ROT1, ROT2, INNER_R = 1, 2, 4
 KINDS = {"RRR": ROT1 | ROT2 | INNER_R, "RRT": ROT1 | INNER_R, "TRR": ROT2 | INNER_R,
          "TRT": INNER_R, "RTR": ROT1 | ROT2, "RTT": ROT1, "TTR": ROT2}
-# bits a fused kernel adds to its kind's code: outer joint 1 (2) prismatic and its known
-# body the ground (at rest: its guide's motion constants, the rows' arithmetic on them
-# skipped where it gives +0 exactly for finite rows, kernels.dyad_row)
+# bits a fused kernel adds to its kind's code: outer joint 1 (2)'s known body the ground
+# (at rest: its guide's or pivot's motion constants, the rows' arithmetic on them skipped
+# where it gives +0 exactly for finite rows, kernels.dyad_row, kernels.ground_param); the
+# crank-and-dyad kernels (fused_kernels) set them on prismatic joints only, the six-bars'
+# (guide_kernels) on revolute ones too
 G1, G2 = 8, 16
 
 # a dyad's geometry, per outer joint i (rows 8 i ...): the known body's point of the joint
