@@ -103,19 +103,14 @@ class Plan:
             geometry.driver, geometry.dyads, geometry.loads, geometry.swept)
         self.bodies = list(scene.bodies)
         # per load and scene (a stack's: each its own sweep's top), the top and least
-        scenes = 1 if owner is None else int(owner[-1]) + 1
-        self.stats = {b: np.tile([0.0, np.inf], (len(f), scenes, 1)) for b, (_, _, f)
-                      in self.swept.items()}
+        self.stats = fresh_stats(self.swept, 1 if owner is None else int(owner[-1]) + 1)
 
     def check_swept(self) -> None:
         """Refuse (:class:`Refused`) a sweep whose top speed (power) of a ``resist``
         (``when = "resisting"``) load lifts its still threshold over a row the kernel took
-        as moving (the numpy path tells those rows from the whole sweep)."""
-        for b, (_, _, floors) in self.swept.items():
-            for stats, floor in zip(self.stats[b], floors, strict=True):
-                top, least = stats[:, 0], stats[:, 1]
-                if not (least > RESIST_STILL * np.maximum(top, floor)).all():
-                    raise Refused("swept load")
+        as moving (:func:`check_stats`)."""
+        check_stats(self.swept, self.stats)
+
 
     def buffers(self, width: int) -> dict:
         """Arrays for ``width`` rows: each body's motion and load resultants, each dyad's
@@ -179,6 +174,36 @@ class Plan:
         if bad:
             raise Refused(bad)
 
+
+def fresh_stats(swept: dict, scenes: int) -> dict:
+    """Per body of ``swept`` loads, per load and scene the top (0 at first) and least
+    (infinite at first) the kernels keep: a ``(loads, scenes, 2)`` array."""
+    stats = {}
+    for b, (_, _, floors) in swept.items():
+        s = stats[b] = np.empty((len(floors), scenes, 2))
+        s[..., 0] = 0.0
+        s[..., 1] = np.inf
+    return stats
+
+
+def check_stats(swept: dict, stats: dict) -> None:
+    """Refuse (:class:`Refused`) a sweep whose top speed (power) of a ``resist`` load
+    (``stats``: :func:`fresh_stats`, as the kernels left them) lifts its still threshold
+    over a row the kernel took as moving (the numpy path tells those rows from the whole
+    sweep)."""
+    for b, (_, _, floors) in swept.items():
+        for st, floor in zip(stats[b], floors, strict=True):
+            if type(floor) is float and st.shape[0] == 1:
+                # (one scene's: as Python floats, no numpy calls; the peak as
+                # np.maximum's, a NaN kept)
+                top, least = st[0].tolist()
+                peak = top if top >= floor or top != top else floor
+                if not least > RESIST_STILL * peak:
+                    raise Refused("swept load")
+                continue
+            top, least = st[:, 0], st[:, 1]
+            if not (least > RESIST_STILL * np.maximum(top, floor)).all():
+                raise Refused("swept load")
 
 def driver_input(scene: Scene) -> np.ndarray:
     """What the driver kernel reads per row: a crank's angles (rad), a slider's positions."""
@@ -307,8 +332,7 @@ def kept_sweep(structure, kind: str, drive: np.ndarray, undefined: np.ndarray,
     ``Kept.screened``), with the flags in one compiled pass
     (:func:`~kinetostatics.solver.fast.screen_kernels.flags_and_measure`)."""
     if measure and len(close) == 2:
-        # (numba loaded: a lean sweep)
-        from .screen_kernels import flags_and_measure
+        flags_and_measure = _screen_kernel()
         n = close[0].size
         singular = [np.empty(n, dtype=bool), np.empty(n, dtype=bool)]
         m2, out = np.empty(n), np.empty(SCAN_FIRST, dtype=np.int64)
@@ -320,6 +344,19 @@ def kept_sweep(structure, kind: str, drive: np.ndarray, undefined: np.ndarray,
     # (~(c > SINGULAR_WARN**2) negated in place: one fresh array a dyad, not two)
     singular = [np.logical_not(f, out=f) for f in (c > SINGULAR_WARN**2 for c in close)]
     return Kept(structure, DriverReaction(kind, drive), undefined, close, singular)
+
+
+_SCREEN: list = []
+
+
+def _screen_kernel():
+    """:func:`~kinetostatics.solver.fast.screen_kernels.flags_and_measure`, imported at
+    its first use (numba loaded: a lean sweep), then kept: an import statement per call
+    cost some 10 us."""
+    if not _SCREEN:
+        from .screen_kernels import flags_and_measure
+        _SCREEN.append(flags_and_measure)
+    return _SCREEN[0]
 
 
 def _param(scene: Scene, dyad, i: int, known: BodyMotion, m: np.ndarray, d: np.ndarray

@@ -21,8 +21,10 @@ from .compose import (
     Refused,
     Unwrapped,
     block_reactions,
+    check_stats,
     cut_rows,
     driver_input,
+    fresh_stats,
     kept_sweep,
     solve_arrays,
     solve_full,
@@ -214,14 +216,14 @@ def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarr
     :func:`~kinetostatics.solver.fast.trig_kernels.sincos_rows`), the guide's angle's
     cos and sin, then the rest. Raises
     :class:`~kinetostatics.solver.fast.compose.Refused` as the composed kernels do."""
-    plan = Plan(kernels, full, structure, structure.assembly, geometry=geometry)
-    found = guided_call(plan)
+    found = _guided(kernels, full, structure, geometry)
     if found is None:
         return None
-    kernel, rest = found
+    kernel, rest, order = found
+    stats = fresh_stats(geometry.swept, 1)
     n = positions.size
     drive, undefined = np.empty(n), np.zeros(n, dtype=bool)
-    close = [np.empty(n) for _ in plan.dyads]
+    close = [np.empty(n) for _ in geometry.dyads]
     # (one call, no scratch rows: measured 2026-11-30, guided_blocks alone, ns a row,
     # processor time, best of 7, three alternating pairs of processes at a load of 6-7:
     # shaper 144-155 at 2e5 rows, 151-158 at 1e6 against 160-191 and 171-183 in two
@@ -230,12 +232,38 @@ def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarr
     # (the driver's angles, all the rows': measured 2026-11-30, the shaper at 1e6 rows,
     # processor time, 16 alternating pairs, calls of 2**16 or 2**18 rows given each
     # tile's radians, by_tiles, cost 6 % more than the one call)
-    bad = kernel(0, n, OWNERS, NO_TRIG, NO_TRIG, START, full.driver.angles, *rest, drive, *close,
-                 undefined)
+    bad = kernel(0, n, OWNERS, NO_TRIG, NO_TRIG, START, full.driver.angles, *rest,
+                 tuple(stats.get(b, NO_STATS) for b in order), drive, *close, undefined)
     if bad:
         raise Refused(bad)
-    plan.check_swept()
+    check_stats(geometry.swept, stats)
     return kept_sweep(structure, "R", drive, undefined, close, measure=True)
+
+
+def _guided(kernels, full: Scene, structure, geometry) -> tuple | None:
+    """:func:`guided_call`'s kernel and its arguments but the last (the swept loads'
+    statistics, each sweep's own: :func:`~kinetostatics.solver.fast.compose.fresh_stats`),
+    with the bodies in the kernel's order; or None for another structure: worked out
+    once per scene object, structure and geometry (:func:`~kinetostatics.solver.memo.record_of`;
+    the same arguments, each a function of these alone)."""
+    record = record_of(full)
+    kept = record.get("guided")
+    if kept is None or kept[0] is not structure or kept[1] is not kernels or (
+            kept[2] is not geometry):
+        plan = Plan(kernels, full, structure, structure.assembly, geometry=geometry)
+        found = guided_call(plan)
+        if found is not None:
+            kernel, rest = found
+            order = guided_order(plan)
+            found = kernel, rest[:-1], order
+        kept = record["guided"] = (structure, kernels, geometry, found)
+    return kept[3]
+
+
+def guided_order(plan: Plan) -> tuple:
+    """The bodies in the guide kernel's order (:func:`guided_call`'s): the crank, the RTR
+    dyad's bodies, then the second dyad's."""
+    return (plan.scene.driver.body, *(b for _, _, d in plan.dyads for b in d.bodies))
 
 
 def guided_call(plan: Plan) -> tuple | None:
