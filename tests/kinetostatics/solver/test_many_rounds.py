@@ -30,6 +30,19 @@ class RoundByRound:
         return self.at(positions, owner)
 
 
+def assert_rounds_as_one_by_one(at, lo, hi, owner) -> tuple:
+    """Check ``at.rounds`` (every round in one call) against the rounds probed one by one
+    bit for bit, over the intervals (``lo``, ``hi``; the first five made empty); returns
+    the latter."""
+    lo[:5] = hi[:5]                 # (empty intervals too)
+    expected = _probe(RoundByRound(at), lo, hi, owner)
+    got = _probe(at, lo.copy(), hi.copy(), owner)
+    for g, e in zip(got, expected, strict=True):
+        assert g.dtype == e.dtype and g.shape == e.shape
+        np.testing.assert_array_equal(g.view(np.uint8), e.view(np.uint8))
+    return expected
+
+
 @pytest.mark.parametrize("seed", [1, 2])
 def test_rounds_in_one_call_are_the_rounds_one_by_one(fast, seed) -> None:
     stacker, structure, k = stack(long_cranks(120, seed))
@@ -41,12 +54,7 @@ def test_rounds_in_one_call_are_the_rounds_one_by_one(fast, seed) -> None:
     owner = rng.integers(0, len(stacker.scenes), 3000)
     lo = rng.uniform(-360.0, 720.0, 3000)
     hi = lo + rng.uniform(0.01, 30.0, 3000)
-    lo[:5] = hi[:5]                 # (empty intervals too)
-    expected = _probe(RoundByRound(at), lo, hi, owner)
-    got = _probe(at, lo.copy(), hi.copy(), owner)
-    for g, e in zip(got, expected, strict=True):
-        assert g.dtype == e.dtype and g.shape == e.shape
-        np.testing.assert_array_equal(g.view(np.uint8), e.view(np.uint8))
+    expected = assert_rounds_as_one_by_one(at, lo, hi, owner)
     # (measured: 419 and 365 of 3000 intervals with a probe that cannot close, 321 and
     # 279 with no probe that closes; one below 1e-6 in each)
     assert 0 < expected[1].sum() < lo.size

@@ -19,7 +19,7 @@ from kinetostatics.model.errors import WorkbenchError
 from kinetostatics.model.examples import example
 from kinetostatics.model.scene import load_scene
 from kinetostatics.solver import deadpoints
-from kinetostatics.solver.deadpoints import _end_probes, _probe, measure2
+from kinetostatics.solver.deadpoints import _end_probes, measure2
 from kinetostatics.solver.fast import loader, use
 from kinetostatics.solver.fast.geometry import driver_geometry, dyad_geometry
 from kinetostatics.solver.fast.screen import chain_probe, stack_probe, sweep_probe
@@ -27,8 +27,8 @@ from kinetostatics.solver.fast.solve import kernel_trig
 from kinetostatics.solver.memo import record_of
 from kinetostatics.solver.probes import probe_closeness
 
-from .test_many_rounds import RoundByRound
-from .test_screen_probe import long_cranks, stack
+from .test_many_rounds import assert_rounds_as_one_by_one
+from .test_screen_probe import assert_numpys_closeness, long_cranks, stack
 
 pytestmark = pytest.mark.skipif(not loader.installed(), reason="numba not installed")
 
@@ -131,12 +131,7 @@ def test_a_crank_and_one_rrr_dyad_chained_is_numpys(fast) -> None:
     at = chain_probe(stacker.base.driver, driver_geometry(table),
                      [dyad_geometry(table, structure.dyads[0], k[0])], structure.dyads)
     who, where = probes_of(stacker, 4, 6000)
-    probe = replace(structure, assembly=tuple(x[who] for x in k))
-    (expected,), expected_open = probe_closeness(stacker.scene(who, where), probe,
-                                                 measured=True)
-    (got,), got_open = at(where, who)
-    np.testing.assert_array_equal(got.view(np.int64), expected.view(np.int64))
-    np.testing.assert_array_equal(got_open, expected_open)
+    expected_open = assert_numpys_closeness(at, stacker, structure, k, who, where)
     assert 0 < expected_open.sum() < who.size
 
 
@@ -149,12 +144,7 @@ def test_chain_rounds_in_one_call_are_the_rounds_one_by_one(fast, name, kw) -> N
         pytest.skip("the C library's cos and sin are not numpy's here")
     owner, lo = probes_of(stacker, 3, 600)
     hi = lo + np.random.default_rng(3).uniform(0.0, 0.05, lo.size) * np.ptp(lo)
-    lo[:5] = hi[:5]                 # (empty intervals too)
-    expected = _probe(RoundByRound(at), lo, hi, owner)
-    got = _probe(at, lo.copy(), hi.copy(), owner)
-    for g, e in zip(got, expected, strict=True):
-        assert g.dtype == e.dtype and g.shape == e.shape
-        np.testing.assert_array_equal(g.view(np.uint8), e.view(np.uint8))
+    expected = assert_rounds_as_one_by_one(at, lo, hi, owner)
     assert np.isfinite(expected[0]).any()
 
 
