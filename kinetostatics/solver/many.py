@@ -366,8 +366,10 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     # the structure has one (each run then a view of them), else run by run
     whole = _whole_group(trusty, stacker, structure, ks, counts, positions) if (
         compiled and lean) else None
+    # (the group's closeness: its singular rows made of it, read by nothing after the
+    # screen, its m^2 written over it)
     m2 = (np.empty(positions.size) if whole is None
-          else measure2(whole.closeness2, positions.size))
+          else measure2(whole.closeness2, positions.size, spent=True))
     runs: list = []             # (per run: again, its values and path; None if refused)
     for lo, hi in zip(bounds[:-1].tolist(), bounds[1:].tolist(), strict=True):
         a = int(starts[lo])

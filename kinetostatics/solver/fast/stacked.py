@@ -116,22 +116,24 @@ def _scratch(n: int) -> np.ndarray:
     2026-11-29, 1000 four-bars x 361: 708 page faults a call, about 0.9 ms, faulting in
     a fresh one)."""
     try:
-        buf = _SCRATCH.pop()
+        buf = SCRATCH.pop()
     except IndexError:          # (none free: first call, or another thread has it)
         buf = None
     return buf[:n] if buf is not None and buf.size >= n else np.empty(n)
 
 
 def release(kept: Kept) -> None:
-    """Give back the closeness array of :func:`solve_group_kept`'s ``kept`` once its dead
-    points are screened (nothing reads it after)."""
-    buf = kept.closeness2[0]
-    buf = buf if buf.base is None else buf.base
-    if len(_SCRATCH) < 2:
-        _SCRATCH.append(buf)
+    """Give back the closeness arrays of :func:`solve_group_kept`'s ``kept`` once its dead
+    points are screened (nothing reads them after)."""
+    for buf in kept.closeness2:
+        buf = buf if buf.base is None else buf.base
+        if len(SCRATCH) < SCRATCH_KEPT:
+            SCRATCH.append(buf)
 
 
-_SCRATCH: list[np.ndarray] = []      # (list.pop and append: each thread its own array)
+SCRATCH: list[np.ndarray] = []      # (list.pop and append: each thread its own array)
+# the closeness arrays kept for the next group: a six-bar's two and a spare
+SCRATCH_KEPT = 3
 
 
 def fused_kept(plan: Plan, n: int, trig: tuple, close: np.ndarray | None = None
@@ -168,13 +170,17 @@ def guided_kept(plan: Plan, n: int, trig: tuple, close: np.ndarray | None = None
     (:func:`~kinetostatics.solver.fast.solve.guided_call`: each tile one scene's rows,
     its geometry refilled where its scene changes; each row the numbers of its scene's
     own solve, bit for bit), or None for another structure. ``close``: the first dyad's
-    closeness (a new array if None; the second's always a new one)."""
+    closeness (a new array if None, and so the second's; else the second's one of
+    :func:`_scratch` too, given back by :func:`release`: measured 2026-11-30, 1000
+    shapers x 361, 706 page faults, about 2 ms a call, faulting in a fresh one)."""
     found = guided_call(plan)
     if found is None:
         return None
     kernel, rest = found
     drive, undefined = np.empty(n), np.zeros(n, dtype=bool)
-    closes = [np.empty(n) if close is None else close, *(np.empty(n) for _ in plan.dyads[1:])]
+    fresh = close is None
+    closes = [np.empty(n) if fresh else close,
+              *(np.empty(n) if fresh else _scratch(n) for _ in plan.dyads[1:])]
     bad = kernel(0, n, plan.own, *trig, NO_ANGLES, *rest, drive, *closes, undefined)
     if bad:
         raise Refused(bad)

@@ -49,3 +49,15 @@ def test_a_scalar_closeness_is_broadcast_as_measure2_does() -> None:
     a, _ = pairs()
     close = [a, np.float64(0.5)]
     assert measure2(close, a.size).tobytes() == running_min(close, a.size).tobytes()
+
+
+def test_spent_arrays_take_the_measure_over_the_second() -> None:
+    """``spent``: the same bits, written over the second dyad's array (the first kept)."""
+    a, b = pairs()
+    n = a.size
+    expected = running_min([a, b], n)
+    first = a.copy()
+    got = measure2([a, b], n, spent=True)
+    assert got is b
+    assert got.tobytes() == expected.tobytes()
+    assert a.tobytes() == first.tobytes()

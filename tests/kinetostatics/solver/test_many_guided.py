@@ -65,3 +65,21 @@ def test_a_stack_of_guided_scenes_is_each_scenes_solve(name, own_sweeps, alone_c
     assert guided_calls and all(k is not None for k in guided_calls)
     for s, alone in each_its_solve(sols, scenes):
         assert s.kin.between.tolist() == alone.kin.between.tolist()
+
+
+def test_the_closeness_arrays_given_back_serve_the_next_stack(fast) -> None:
+    """The two dyads' closeness arrays of a stack of shapers go back to the pool after its
+    screen (``stacked.release``) and are taken by the next stack, m^2 written over the
+    second (``deadpoints.measure2``, ``spent``): that stack's tables and dead points are
+    still each scene's solve's, and both arrays come back again."""
+    from kinetostatics.solver.fast import stacked
+
+    first = _stack("shaper", 4, True)
+    ks.solve_many(first)
+    pooled = {id(b) for b in stacked.SCRATCH}
+    assert len(pooled) >= 2
+    scenes = _stack("shaper", 5, True)
+    sols = ks.solve_many(scenes)
+    assert {id(b) for b in stacked.SCRATCH} >= pooled
+    for s, alone in each_its_solve(sols, scenes):
+        assert s.kin.between.tolist() == alone.kin.between.tolist()
