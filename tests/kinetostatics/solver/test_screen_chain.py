@@ -173,6 +173,23 @@ def test_a_sweep_solved_compiled_is_probed_compiled(fast, monkeypatch) -> None:
     assert calls
 
 
+def test_a_sweeps_probe_is_made_once_per_kept_geometry(fast) -> None:
+    """A scene solved again is probed by the probe made at its first solve (kept in its
+    record beside the kernels' geometry), with the same numbers; a new kept geometry
+    (the record's compiled entry made anew) gets a new probe."""
+    scene = load_scene(example("shaper"))
+    first = ks.solve(scene).driver
+    kept = record_of(scene)["fast"]
+    at = sweep_probe(scene, kept[1])
+    assert at is not None and sweep_probe(scene, kept[1]) is at
+    again = ks.solve(scene).driver
+    assert sweep_probe(scene, kept[1]) is at
+    for name in first.columns:
+        np.testing.assert_array_equal(np.asarray(again[name]), np.asarray(first[name]))
+    record_of(scene)["fast"] = (*kept[:2], copy.copy(kept[2]), *kept[3:])
+    assert sweep_probe(scene, kept[1]) is not at
+
+
 def test_a_chain_on_bodies_not_yet_solved_has_no_probe(fast) -> None:
     scene = load_scene(example("shaper"))
     ks.solve(scene)
