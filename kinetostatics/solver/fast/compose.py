@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import threading
 from dataclasses import replace
+from functools import cache
 
 import numpy as np
 
@@ -111,7 +112,6 @@ class Plan:
         as moving (:func:`check_stats`)."""
         check_stats(self.swept, self.stats)
 
-
     def buffers(self, width: int) -> dict:
         """Arrays for ``width`` rows: each body's motion and load resultants, each dyad's
         data and reactions, the driver's reaction (the ground's motion: constant): rows
@@ -204,6 +204,7 @@ def check_stats(swept: dict, stats: dict) -> None:
             top, least = st[:, 0], st[:, 1]
             if not (least > RESIST_STILL * np.maximum(top, floor)).all():
                 raise Refused("swept load")
+
 
 def driver_input(scene: Scene) -> np.ndarray:
     """What the driver kernel reads per row: a crank's angles (rad), a slider's positions."""
@@ -346,17 +347,13 @@ def kept_sweep(structure, kind: str, drive: np.ndarray, undefined: np.ndarray,
     return Kept(structure, DriverReaction(kind, drive), undefined, close, singular)
 
 
-_SCREEN: list = []
-
-
+@cache
 def _screen_kernel():
     """:func:`~kinetostatics.solver.fast.screen_kernels.flags_and_measure`, imported at
     its first use (numba loaded: a lean sweep), then kept: an import statement per call
     cost some 10 us."""
-    if not _SCREEN:
-        from .screen_kernels import flags_and_measure
-        _SCREEN.append(flags_and_measure)
-    return _SCREEN[0]
+    from .screen_kernels import flags_and_measure
+    return flags_and_measure
 
 
 def _param(scene: Scene, dyad, i: int, known: BodyMotion, m: np.ndarray, d: np.ndarray

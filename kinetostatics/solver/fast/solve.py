@@ -233,7 +233,7 @@ def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarr
     # processor time, 16 alternating pairs, calls of 2**16 or 2**18 rows given each
     # tile's radians, by_tiles, cost 6 % more than the one call)
     bad = kernel(0, n, OWNERS, NO_TRIG, NO_TRIG, START, full.driver.angles, *rest,
-                 tuple(stats.get(b, NO_STATS) for b in order), drive, *close, undefined)
+                 stats_in(stats, order), drive, *close, undefined)
     if bad:
         raise Refused(bad)
     check_stats(geometry.swept, stats)
@@ -241,9 +241,9 @@ def guided_blocks(kernels, full: Scene, structure, geometry, positions: np.ndarr
 
 
 def _guided(kernels, full: Scene, structure, geometry) -> tuple | None:
-    """:func:`guided_call`'s kernel and its arguments but the last (the swept loads'
-    statistics, each sweep's own: :func:`~kinetostatics.solver.fast.compose.fresh_stats`),
-    with the bodies in the kernel's order; or None for another structure: worked out
+    """:func:`guided_call`'s kernel, its arguments and the bodies in its order (the swept
+    loads' statistics, each sweep's own, :func:`~kinetostatics.solver.fast.compose.fresh_stats`,
+    given per call: :func:`stats_in`); or None for another structure: worked out
     once per scene object, structure and geometry (:func:`~kinetostatics.solver.memo.record_of`;
     the same arguments, each a function of these alone)."""
     record = record_of(full)
@@ -251,25 +251,22 @@ def _guided(kernels, full: Scene, structure, geometry) -> tuple | None:
     if kept is None or kept[0] is not structure or kept[1] is not kernels or (
             kept[2] is not geometry):
         plan = Plan(kernels, full, structure, structure.assembly, geometry=geometry)
-        found = guided_call(plan)
-        if found is not None:
-            kernel, rest = found
-            order = guided_order(plan)
-            found = kernel, rest[:-1], order
-        kept = record["guided"] = (structure, kernels, geometry, found)
+        kept = record["guided"] = (structure, kernels, geometry, guided_call(plan))
     return kept[3]
 
 
-def guided_order(plan: Plan) -> tuple:
-    """The bodies in the guide kernel's order (:func:`guided_call`'s): the crank, the RTR
-    dyad's bodies, then the second dyad's."""
-    return (plan.scene.driver.body, *(b for _, _, d in plan.dyads for b in d.bodies))
+def stats_in(stats: dict, order: tuple) -> tuple:
+    """The swept loads' statistics (:func:`~kinetostatics.solver.fast.compose.fresh_stats`)
+    of the bodies in the guide kernel's ``order`` (:func:`guided_call`'s), the guide
+    kernel's last argument before its outputs."""
+    return tuple(stats.get(b, NO_STATS) for b in order)
 
 
 def guided_call(plan: Plan) -> tuple | None:
     """The guide's kernel (:func:`~kinetostatics.solver.fast.guide_kernels.rtr_kept`, or
-    for a second dyad one of ``AFTER_RTR``) and its arguments (but the rows' cos and sin,
-    where each scene's begin, the crank's angles and the outputs) for a crank and one RTR
+    for a second dyad one of ``AFTER_RTR``), its arguments (but the rows' cos and sin,
+    where each scene's begin, the crank's angles, the swept loads' statistics,
+    :func:`stats_in`, and the outputs) and the bodies in its order, for a crank and one RTR
     dyad whose outer joints are on the ground or the crank, and maybe a second dyad (not
     RTR) whose outer joints are on the ground, the crank or the RTR dyad's bodies; else
     None. One scene's plan, or a stack's (each table with its ``gs``: 1, a column per
@@ -302,8 +299,7 @@ def guided_call(plan: Plan) -> tuple | None:
     return kernel, (*first, *second, tuple(g for g, _, _ in loads),
                     tuple(gs for _, gs, _ in loads), tuple(p for _, _, p in loads),
                     tuple(sw[0] for sw in swept), tuple(sw[1] for sw in swept),
-                    tuple(len(sw[2]) for sw in swept),
-                    tuple(plan.stats.get(b, NO_STATS) for b in order))
+                    tuple(len(sw[2]) for sw in swept)), order
 
 
 class SolvedAgain:

@@ -13,7 +13,7 @@ from .choice import wanted
 from .compose import Plan, Refused, kept_sweep, solve_full, solve_lean
 from .geometry import not_covered
 from .short import NO_ANGLES, fused_arguments, fused_kernel
-from .solve import KeptRun, guided_call
+from .solve import KeptRun, guided_call, stats_in
 
 
 def solve_run_stacked(stacker, structure, ks: np.ndarray, lo: int, hi: int,
@@ -176,12 +176,13 @@ def guided_kept(plan: Plan, n: int, trig: tuple, close: np.ndarray | None = None
     found = guided_call(plan)
     if found is None:
         return None
-    kernel, rest = found
+    kernel, rest, order = found
     drive, undefined = np.empty(n), np.zeros(n, dtype=bool)
     fresh = close is None
     closes = [np.empty(n) if fresh else close,
               *(np.empty(n) if fresh else _scratch(n) for _ in plan.dyads[1:])]
-    bad = kernel(0, n, plan.own, *trig, NO_ANGLES, *rest, drive, *closes, undefined)
+    bad = kernel(0, n, plan.own, *trig, NO_ANGLES, *rest, stats_in(plan.stats, order), drive,
+                 *closes, undefined)
     if bad:
         raise Refused(bad)
     plan.check_swept()
