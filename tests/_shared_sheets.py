@@ -28,6 +28,14 @@ NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
 WIDGET_SHEETS = sorted(p.name for p in NOTEBOOKS
                        if "Explorer(" in p.read_text(encoding="utf-8"))
 CHROMIUM = Path(os.environ.get("KINETOSTATICS_CHROMIUM", "/usr/bin/chromium"))
+# Debian's old headless shell (the package chromium-headless-shell, the same Blink and V8
+# as its Chromium 150): driven instead of Chromium where it is installed (and
+# KINETOSTATICS_CHROMIUM names no browser), for Chromium's ``--headless`` runs the whole
+# browser with its window not shown. With the smaller page (tests/test_browser.py,
+# VIEWPORT): the browser test's 11 sheets 182.3 -> 166.9 s of CPU (setup and call, every
+# sheet lower; Chromium's processes 71 -> 52 s), two whole runs side by side at load
+# 11-14, 2026-11-30 (tools/cpu_per_test.py)
+HEADLESS_SHELL = Path("/usr/lib/chromium/chromium-headless-shell")
 # s per cell: only stops a hung kernel, never a budget (a test asserts no wall time; the
 # slowest cell took 15 s at load 13 on 2 cores)
 CELL_TIMEOUT = 600
@@ -250,6 +258,14 @@ def check_run(name: str, outputs: list, audits: list[dict]) -> None:
     assert audits, f"{name}: no figure measured"
     problems = {a["where"]: a["problems"] for a in audits if a["problems"]}
     assert not problems, f"{name}: pictures below the standard: {problems}"
+
+
+def browser_binary() -> Path:
+    """The browser tests/test_browser.py drives: :data:`HEADLESS_SHELL` where it is
+    installed and ``KINETOSTATICS_CHROMIUM`` is not set, else :data:`CHROMIUM`."""
+    if "KINETOSTATICS_CHROMIUM" not in os.environ and HEADLESS_SHELL.exists():
+        return HEADLESS_SHELL
+    return CHROMIUM
 
 
 def browser_ready() -> bool:

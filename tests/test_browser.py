@@ -1,7 +1,7 @@
 """The sheets' interactive cells in a real browser: JupyterLab serves every sheet with a
-widget (an Explorer), a headless Chromium (the Debian package, driven by Playwright's
-Python package; no browser download) runs all their cells, and the tests check what a
-student sees:
+widget (an Explorer), a headless Chromium (the Debian package, or its old headless shell
+where that is installed: tests/_shared_sheets.py; driven by Playwright's Python package;
+no browser download) runs all their cells, and the tests check what a student sees:
 
 - on every widget sheet: every widget renders (no "Error displaying widget", no
   model-not-found message), every slider moved by keyboard changes the picture, and
@@ -29,6 +29,16 @@ The test waits for the page by checking it every POLL ms (Playwright's default, 
 animation frame, kept Chromium drawing frames through every wait).
 In CI (``CI=true``) the test must run: a missing Chromium or Playwright fails it;
 elsewhere it is skipped with one line saying what to install.
+
+Where the CPU goes (2026-11-30, serial, load 11-14, ``-p tools.cpu_per_test`` and the
+processes' own times): of ~170 s for the 11 sheets, the sheets' kernels ~85 s (the
+sheet's own pictures, 0.4-2 s each, at any dpi: a 72-dpi PNG costs what a 150-dpi one
+does), Chromium ~50-70 s (JupyterLab building each cell's editor and laying the page
+out), the server 7 s, this process and Playwright's driver 11 s. Each sheet's setup and
+call, before -> after the headless shell and the smaller page: 01 36.7 -> 34.0, 02 22.9
+-> 21.0, 03 19.6 -> 18.5, 04 15.7 -> 14.8, 05 12.3 -> 10.4, 06 17.3 -> 16.3, 07 13.3 ->
+11.7, 13 11.6 -> 11.2, 14 13.1 -> 10.9, 15 11.4 -> 10.5, 16 8.5 -> 7.6 s (two whole
+runs side by side).
 """
 
 from __future__ import annotations
@@ -66,6 +76,11 @@ UPDATE = 300_000       # ms: one slider update (1.5-15 s measured)
 POLL = 200             # ms between two checks of a condition the test waits for on the page
                        # (Playwright's default, every animation frame, kept Chromium drawing
                        # frames at 60 Hz through every wait)
+# the page's size: a laptop's, not a large screen's (1400 x 1000 before): fewer pixels
+# laid out and painted at each change of the page (with the headless shell,
+# tests/_shared_sheets.py: sheets 03 and 16 34.3 -> 31.8 and 30.8 -> 28.7 s of CPU, two
+# pairs side by side; the whole file 182 -> 167 s, 2026-11-30)
+VIEWPORT = {"width": 1000, "height": 700}
 CLICK = 60_000         # ms: one click on the page (instant when nothing is in the way)
 WIDGET_ERRORS = re.compile(r"Error displaying widget|model not found|Could not find model|"
                            r"Class \S+ not found|Failed to (create|render)|"
@@ -194,7 +209,8 @@ def lab(tmp_path_factory):
 def browser(lab):
     sync_playwright = _requirements()
     with sync_playwright() as p:
-        b = p.chromium.launch(executable_path=str(CHROMIUM), headless=True, args=FLAGS)
+        b = p.chromium.launch(executable_path=str(sheets.browser_binary()), headless=True,
+                              args=FLAGS)
         yield b
         b.close()
 
@@ -396,7 +412,7 @@ def _load_app(page, lab) -> None:
 def jupyterlab(lab, browser):
     """One page with JupyterLab loaded: (page, its console messages).
     Each test opens its sheet in it (``_open``); the fixture ``app`` closes it after."""
-    page = browser.new_page(viewport={"width": 1400, "height": 1000})
+    page = browser.new_page(viewport=VIEWPORT)
     console: list[str] = []
     page.on("console", lambda m: console.append(f"{m.type}: {m.text}"))
     page.on("pageerror", lambda e: console.append(f"pageerror: {e}"))

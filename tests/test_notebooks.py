@@ -12,6 +12,15 @@ checks: tests/_shared_sheets.py). A sheet with a widget is run once, in JupyterL
 tests/test_browser.py, which makes the same checks on that run; here only when the
 browser test is not in the session. The committed notebooks carry no outputs (they are
 run here, never stored stale), and the exercise sheets carry valid nbgrader metadata.
+
+Where the heaviest headless sheets' CPU goes (their kernels, per cell; 2026-11-30, load
+~12): 08_simulation_crosscheck 15.0 s (the shaper's cross-check at its default settings,
+whose iteration search runs the simulation several times, 4.3 s; the two comparison plots
+1.7 and 1.4 s; the convergence study 1.6 s), 12_teacher_exercises 11.3 s (generating the
+class of 12 students 7.3 s: each handout's picture drawn, decluttered and saved as PNG,
+kinetostatics/teaching/handouts.py); every kernel ~1.8 s to start and import matplotlib,
+pandas and kinetostatics before its sheet's first picture. Neither sheet offers a lighter
+setting for a test, and the test runs each sheet as a student does.
 """
 
 from __future__ import annotations
