@@ -22,6 +22,7 @@ from . import loader
 from .choice import path_setting
 from .geometry import driver_geometry, dyad_geometry
 from .layout import DYAD_GEOMETRY, KINDS
+from .screen_bound import cleared, lipschitz
 from .solve import kernel_trig
 
 
@@ -132,6 +133,9 @@ def chain_probe(drv, driver: tuple, dyads: list, chain) -> Callable | None:
         return [m2], gone
     if not crank or kernel_trig():      # (the C library's cos and sin: numpy's here)
         at.rounds = partial(_rounds, kernel=rounds_of(kinds), args=args)
+    bound = lipschitz(crank, gd, args[3], gy, kinds)
+    if bound is not None:   # (the intervals the rows prove clear: not probed)
+        at.clear = partial(cleared, bound, int(bound.size > 1))
     return at
 
 
