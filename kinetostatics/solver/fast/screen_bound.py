@@ -120,11 +120,12 @@ def _rtr(g: np.ndarray, known: np.ndarray, gd: np.ndarray) -> tuple:
     c = np.abs(g[I_RTR])
     size = g[SIZE]
     reach = np.sqrt(low * low - c * c)          # (NaN where the slot can reach |c|)
-    sin2 = np.where(c == 0.0, 0.0, 2.0 * c * c * q / (low * low * low))
-    sin2 = np.where(low > c, sin2, np.inf)
+    # (a slot through the guide's pivot, c = 0: sin^2 tau = 1 wherever it closes, |D| > 0)
+    sin2 = np.where(low > c, 2.0 * c * c * q / (low * low * low), np.inf)
+    sin2 = np.where(c == 0.0, 0.0, sin2)
     dist = 2.0 * high * q / (size * size)
-    w = q / low + np.where(c == 0.0, 0.0, c * q / (low * reach))
-    w = np.where(low > c, w, np.inf)
+    w = np.where(low > c, q / low + c * q / (low * reach), np.inf)
+    w = np.where(c == 0.0, q / low, w)
     return np.fmax(sin2, dist), w
 
 
