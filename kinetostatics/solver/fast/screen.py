@@ -22,7 +22,7 @@ from . import loader
 from .choice import path_setting
 from .geometry import driver_geometry, dyad_geometry
 from .layout import DYAD_GEOMETRY, KINDS
-from .screen_bound import cleared, lipschitz
+from .screen_bound import CLEAR, lipschitz
 from .solve import kernel_trig
 
 
@@ -137,6 +137,18 @@ def chain_probe(drv, driver: tuple, dyads: list, chain) -> Callable | None:
     if bound is not None:   # (the intervals the rows prove clear: not probed)
         at.clear = partial(cleared, bound, int(bound.size > 1))
     return at
+
+
+def cleared(bound: np.ndarray, stride: int, lo: np.ndarray, hi: np.ndarray,
+             owner: np.ndarray, m_lo: np.ndarray, m_hi: np.ndarray) -> np.ndarray:
+    """:func:`~kinetostatics.solver.fast.screen_bound.cleared` in one compiled call
+    (:func:`~kinetostatics.solver.fast.probe_kernels.clear_rows`: the same verdicts)."""
+    from .probe_kernels import clear_rows
+    out = np.empty(lo.size, dtype=bool)
+    clear_rows(bound, stride, np.asarray(lo, dtype=float), np.asarray(hi, dtype=float),
+               np.asarray(owner, dtype=np.int64), np.asarray(m_lo, dtype=float),
+               np.asarray(m_hi, dtype=float), DEG, CLEAR, out)
+    return out
 
 
 def crank_rrr_probe(stacker, structure, ks: np.ndarray) -> Callable | None:

@@ -1,6 +1,7 @@
 """A proven bound on how fast a mechanism's closeness to a dead centre can change: the
 dead-point screen's intervals that cannot hold a dead point, known from their rows alone
-(no probe; numpy, no numba).
+(no probe; numpy, no numba: the compiled path's ``screen.cleared`` makes the same
+verdicts in one compiled pass).
 
 m^2 (the smallest over the dyads of sin^2 tau and, for RRR and RTR, (pivots' distance /
 size)^2, ``deadpoints.measure2``) is, wherever the chain closes, a Lipschitz function of
@@ -135,9 +136,9 @@ def cleared(bound: np.ndarray, stride: int, lo: np.ndarray, hi: np.ndarray,
     a dead point nor a probe that does not close: the lower bound of m^2 over each from
     its rows' ``m_lo``, ``m_hi`` (-inf: no row there, an end's probe beyond the sweep)
     and L (``bound`` per column, ``stride`` 0 for one column) above :data:`CLEAR`."""
-    slope = bound[np.asarray(owner, dtype=np.intp) * stride] * ((hi - lo) * DEG)
     a, b = np.isfinite(m_lo), np.isfinite(m_hi)
     told = (a | (m_lo == -np.inf)) & (b | (m_hi == -np.inf))    # (a NaN or +inf row: not)
-    with np.errstate(invalid="ignore"):
+    with np.errstate(invalid="ignore"):     # (inf 0, inf - inf: NaN, not clear)
+        slope = bound[np.asarray(owner, dtype=np.intp) * stride] * ((hi - lo) * DEG)
         least = np.where(a & b, 0.5 * (m_lo + m_hi - slope), np.maximum(m_lo, m_hi) - slope)
     return told & (least > CLEAR)       # (a NaN bound: not clear)

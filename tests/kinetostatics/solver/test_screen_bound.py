@@ -110,3 +110,24 @@ def test_the_screen_gives_the_same_verdicts_without_the_bound(fast, name, monkey
     assert clear.any() and not clear.all()
     if name == "slotted_lever":
         assert sum(len(s["dead_points_between_rows"]) for s in got) >= 1
+
+
+def test_the_compiled_clear_is_numpys(fast) -> None:
+    """``screen.cleared`` (the compiled pass ``probe_kernels.clear_rows``) gives
+    ``screen_bound.cleared``'s verdicts: rows on both sides or one (-inf), NaN and +inf
+    rows, bounds of 0, +inf and NaN, values about the threshold."""
+    rng = np.random.default_rng(11)
+    n = 4000
+    bound = rng.choice([0.0, 0.5, 2.0, np.inf, np.nan], 50)
+    lo = rng.uniform(-10.0, 370.0, n)
+    hi = lo + rng.choice([0.0, 0.01, 1.0, 5.0], n)
+    owner = rng.integers(0, 50, n)
+    picks = [-np.inf, np.nan, np.inf, 0.0, 2e-6, 4e-6, 8e-6, 1e-3, 0.1]
+    m_lo, m_hi = rng.choice(picks, n), rng.choice(picks, n)
+    m_lo[::3] = rng.uniform(0.0, 0.05, m_lo[::3].size)
+    m_hi[1::3] = rng.uniform(0.0, 0.05, m_hi[1::3].size)
+    for stride in (1, 0):
+        expected = cleared(bound, stride, lo, hi, owner, m_lo, m_hi)
+        got = screen.cleared(bound, stride, lo, hi, owner, m_lo, m_hi)
+        np.testing.assert_array_equal(got, expected)
+        assert 0 < expected.sum() < n
