@@ -135,7 +135,9 @@ def cleared(bound: np.ndarray, stride: int, lo: np.ndarray, hi: np.ndarray,
     """Which intervals (``lo``, ``hi``: crank positions, deg; scene ``owner``) cannot hold
     a dead point nor a probe that does not close: the lower bound of m^2 over each from
     its rows' ``m_lo``, ``m_hi`` (-inf: no row there, an end's probe beyond the sweep)
-    and L (``bound`` per column, ``stride`` 0 for one column) above :data:`CLEAR`."""
+    and L (``bound`` per column, ``stride`` 0 for one column) above :data:`CLEAR`. The
+    reference of the compiled pass the probes use
+    (:func:`~kinetostatics.solver.fast.screen.cleared`, the same verdicts)."""
     a, b = np.isfinite(m_lo), np.isfinite(m_hi)
     told = (a | (m_lo == -np.inf)) & (b | (m_hi == -np.inf))    # (a NaN or +inf row: not)
     with np.errstate(invalid="ignore"):     # (inf 0, inf - inf: NaN, not clear)
