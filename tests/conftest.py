@@ -494,6 +494,7 @@ COMPILED = ("tests/kinetostatics/solver/test_fast.py::",
             "tests/kinetostatics/solver/test_screen.py::",
             "tests/kinetostatics/solver/test_screen_probe.py::",
             "tests/kinetostatics/solver/test_screen_chain.py::",
+            "tests/kinetostatics/solver/test_screen_bound.py::",
             "tests/kinetostatics/results/test_fastpass.py::",
             "tests/kinetostatics/design/test_stacked.py::"
             "test_auto_judges_on_the_stack_even_with_the_compiled_path_loaded",

@@ -240,6 +240,26 @@ def _probe(at: Callable[[np.ndarray, np.ndarray], Probed], lo: np.ndarray,
     return best, open_
 
 
+def _probe_unclear(at: Callable[[np.ndarray, np.ndarray], Probed], lo: np.ndarray,
+                   hi: np.ndarray, owner: np.ndarray, m_lo: np.ndarray, m_hi: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_probe` of the intervals that the probe's ``at.clear`` (when it has one,
+    :func:`~kinetostatics.solver.fast.screen_bound.cleared`) does not prove clear from
+    their rows' m^2 ``m_lo``, ``m_hi`` (-inf: no row, beyond a sweep's end); a clear one
+    gets +inf and not opened, the verdicts its probes would give (no dead point, none
+    that cannot close: proven there)."""
+    clear = getattr(at, "clear", None)
+    if clear is None:
+        return _probe(at, lo, hi, owner)
+    keep = ~clear(lo, hi, owner, m_lo, m_hi)
+    if keep.all():
+        return _probe(at, lo, hi, owner)
+    best, open_ = np.full(lo.size, np.inf), np.zeros(lo.size, dtype=bool)
+    if keep.any():
+        best[keep], open_[keep] = _probe(at, lo[keep], hi[keep], owner[keep])
+    return best, open_
+
+
 def dead_points_between_rows(scene: Scene, structure: Structure, kin: Kinematics
                              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Dead points between rows, and just beyond the sweep's ends; intervals the
@@ -367,7 +387,8 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     owner = np.concatenate([_segment_of(cand, starts), seg_e])
     if lo.size == 0:
         return [(pairs, none, pairs)] * m
-    best, open_ = _probe(at, lo, hi, owner)
+    best, open_ = _probe_unclear(at, lo, hi, owner, np.concatenate([m2[cand], m2[row_e]]),
+                                 np.concatenate([m2[cand + 1], np.full(row_e.size, -np.inf)]))
     ends_m2 = np.minimum(m2[cand], m2[cand + 1])
     dead = (best[:k] <= SINGULAR_WARN**2) & (best[:k] < ends_m2) & ~open_[:k]
     be = best[k:]
