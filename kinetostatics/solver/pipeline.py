@@ -30,7 +30,7 @@ from .fast import solve_compiled
 from .footprint import check_solve
 from .friction import has_friction, solve_with_friction
 from .kinematics import solve_kinematics
-from .loads import applied_loads, inertia_loads, resultants
+from .loads import SweepTops, applied_loads, inertia_loads, resultants
 from .memo import record_of
 from .reactions import solve_reactions
 from .solved import Solved
@@ -64,7 +64,10 @@ class Sweep:
     Attributes
     ----------
     blocked : bool
-        Solved in blocks of rows (:func:`~kinetostatics.solver.blocks.blockable`).
+        Solved in blocks of rows, and streamed so
+        (:func:`~kinetostatics.solver.blocks.blockable`).
+    parted : bool
+        Solved in blocks of rows (a load measured against the sweep's top as well).
     trusty : bool
         Checked by the floating-point trap first (tame numbers, no joint friction).
     """
@@ -91,6 +94,9 @@ class Sweep:
         if budget:      # (False: the caller checks its own estimate, e.g. a streamed write)
             check_solve(sc, self.positions.size)    # the peak memory known before it is spent
         self.blocked = blockable(sc, self.positions.size)
+        # (a load whose threshold is the sweep's top solved in blocks too, the tops met
+        # as they go, SweepTops; not streamed: a table's block alone does not know them)
+        self.parted = self.blocked or blockable(sc, self.positions.size, tops=True)
 
     @cached_property
     def trusty(self) -> bool:
@@ -136,7 +142,7 @@ class Sweep:
         sc, structure = self.scene, self.assembled
         trap = FloatTrap()
         try:
-            if self.blocked:
+            if self.parted:
                 with trapped(trap):
                     long = self.in_blocks(trapped_road=True)
                 return None if trap.hit else _lean(*long)
@@ -156,7 +162,7 @@ class Sweep:
         """The solve with every finite check made by looking at the numbers (a pass per
         kept array): one refusal names the first row that is not finite."""
         long = None
-        if self.blocked:
+        if self.parted:
             try:
                 long = self.in_blocks(trapped_road=False)
             except (Unblockable, WorkbenchError, OverflowError, ZeroDivisionError):
@@ -191,8 +197,17 @@ class Sweep:
         function that solves it again in full (the same blocks and assemblies: the same
         numbers), on the same road, when another table asks."""
         pos = self.positions
-        full, st, part = blocks_of_sweep(self.scene, self.structure, pos)
+        tops = None if self.blocked else SweepTops()
+        full, st, part = blocks_of_sweep(self.scene, self.structure, pos, tops)
         kept = solve_blocks(pos.size, part, solve_block, full, st, lean=True)
+        if tops is not None and not tops.settle():
+            # (a row's flag would differ: one pass decides, on either road)
+            self.parted = False
+            raise Unblockable("tops")
+        if tops is not None:
+            # (the sweep's tops, settled: whoever solves its blocks again finds them,
+            # blocks_of_sweep; the whole sweep's scene, made for these rows or their own)
+            full.__dict__["sweep_tops"] = tops
         solved = kept.structure     # (the closure holds this, not the kept arrays)
 
         def again() -> Solved:
@@ -303,6 +318,7 @@ def _trapped(sc, structure, pos: np.ndarray, positions) -> Solved | LeanSolved |
     sweep = Sweep.__new__(Sweep)
     sweep.scene, sweep.structure, sweep.given, sweep.positions = sc, structure, positions, pos
     sweep.blocked, sweep.trusty = blockable(sc, pos.size), True
+    sweep.parted = sweep.blocked or blockable(sc, pos.size, tops=True)
     return sweep.trapped()
 
 
