@@ -26,7 +26,7 @@ from ..model.scene import load_scene
 from .blocks import Kept, LeanSolved, Unblockable, blockable, blocks_of_sweep, solve_blocks
 from .continuity import check_distinct, given_positions
 from .deadpoints import dead_points_of_sweep, kin_measure2, measure2, sweep_probe
-from .fast import solve_compiled
+from .fast import path_setting, solve_compiled
 from .footprint import check_solve
 from .friction import has_friction, solve_with_friction
 from .kinematics import solve_kinematics
@@ -108,8 +108,10 @@ class Sweep:
         """The solve: trapped first where the numbers are tame, else (or if the trap was
         touched) checked. The compiled path (:mod:`~kinetostatics.solver.fast`) goes
         first when it is wanted for this many rows and covers the scene."""
-        sol = solve_compiled(self.scene, self.structure, self.positions,
-                             self.given is not None)
+        # (the numpy path asked for: not the compiled path's look at whether its kernels
+        # cover the scene, 25-30 us a call; measured 2026-11-30, slider-crank, 2001 rows)
+        sol = None if path_setting() == "numpy" else solve_compiled(
+            self.scene, self.structure, self.positions, self.given is not None)
         if sol is not None:
             return sol
         sol = self.trapped() if self.trusty else None
