@@ -60,15 +60,19 @@ class Unblockable(Exception):
     """The blocks did not give arrays of one layout: solve in one pass instead."""
 
 
-def blockable(scene: Scene, n: int) -> bool:
+def blockable(scene: Scene, n: int, tops: bool = False) -> bool:
     """Whether a sweep of ``n`` rows of ``scene`` is solved in blocks: long enough to gain
-    (at least two blocks), every load elementwise, no joint friction."""
+    (at least two blocks), every load elementwise, no joint friction. ``tops``: a load
+    whose threshold is the sweep's top (``resist``, ``when = "resisting"``) counted as
+    elementwise too (the solve's blocks measure it as they go,
+    :class:`~kinetostatics.solver.loads.SweepTops`; a table streamed block by block
+    does not)."""
     if n < 2 * BLOCK_ROWS:
         return False
     from .friction import has_friction
     if has_friction(scene):
         return False
-    return all(ld.resist is None and ld.when != "resisting" for ld in scene.loads)
+    return tops or all(ld.resist is None and ld.when != "resisting" for ld in scene.loads)
 
 
 def _per_row(v, n: int) -> bool:
@@ -269,17 +273,25 @@ def solve_blocks(total: int, part, solve_block, scene: Scene | None = None,
                   undefined.values["undefined"])
 
 
-def blocks_of_sweep(scene: Scene, structure, positions: np.ndarray):
+def blocks_of_sweep(scene: Scene, structure, positions: np.ndarray, tops=None):
     """The whole sweep's scene, its structure and the ``part`` of :func:`solve_blocks`
     for ``scene`` at ``positions`` (each dyad's assembly chosen at the scene's own
-    first row: in the first block when ``positions`` are the scene's)."""
+    first row: in the first block when ``positions`` are the scene's); ``tops``: the
+    sweep's :class:`~kinetostatics.solver.loads.SweepTops`, which every block's loads
+    measure their thresholds by (by default the ones its lean solve settled, kept by
+    the whole sweep's scene: a table solved again block by block)."""
     own = positions is scene.driver.positions
     full = scene if own else with_positions(scene, positions)
+    if tops is None and own:
+        tops = scene.__dict__.get("sweep_tops")
     if len(structure.assembly) != len(structure.dyads) and not own:
         structure = replace(structure, assembly=choose_assembly(scene, structure))
 
     def part(rows: slice, st):
-        return with_positions(scene, positions[rows]), st
+        sc = with_positions(scene, positions[rows])
+        if tops is not None:
+            sc.__dict__["tops"] = tops
+        return sc, st
     return full, structure, part
 
 

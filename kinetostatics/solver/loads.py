@@ -185,8 +185,7 @@ def applied_loads(scene: Scene, kin: Kinematics, arms: dict | None = None
             vx, vy = m.vel_arm(rx, ry)
             vx, vy = np.broadcast_to(vx, (n,)), np.broadcast_to(vy, (n,))
             speed = np.hypot(vx, vy)
-            top = _top(speed, scene, vscale)
-            still = speed <= RESIST_STILL * top
+            still = _still(speed, scene, vscale, i)
             undefined |= still
             # (divided by 1 where the point stands still, not by 0: no 0/0 to ignore,
             # the same numbers elsewhere)
@@ -199,8 +198,7 @@ def applied_loads(scene: Scene, kin: Kinematics, arms: dict | None = None
             fx, fy = float(load.force[0]), float(load.force[1])
             vx, vy = m.vel_arm(rx, ry)
             power = np.broadcast_to(fx * vx + fy * vy, (n,))
-            top = _top(np.abs(power), scene, math.hypot(fx, fy) * vscale)
-            still = np.abs(power) <= RESIST_STILL * top
+            still = _still(np.abs(power), scene, math.hypot(fx, fy) * vscale, i)
             undefined |= still
             on = (power < 0.0) & ~still
             fx, fy = np.where(on, fx, 0.0), np.where(on, fy, 0.0)
@@ -211,6 +209,49 @@ def applied_loads(scene: Scene, kin: Kinematics, arms: dict | None = None
         out.append(PointLoad(load.body, "applied", rx, ry, fx, fy, load.moment,
                              f"load {i} at {load.point}"))
     return out, undefined
+
+
+def _still(x: np.ndarray, scene: Scene, floor, key: int) -> np.ndarray:
+    """Rows where ``x`` (a point's speed, a force's |power|) is at most RESIST_STILL of
+    its top over the sweep (at least ``floor``): a block of a long sweep
+    (``scene.__dict__["tops"]``, :class:`SweepTops`) measures against the top so far."""
+    tops = scene.__dict__.get("tops")
+    if tops is not None:
+        return tops.still(key, x, floor)
+    return x <= RESIST_STILL * _top(x, scene, floor)
+
+
+class SweepTops:
+    """The tops of a long sweep's ``resist`` and ``when = "resisting"`` loads, met block
+    by block (:mod:`~kinetostatics.solver.blocks`): each block measures its rows
+    against the largest value so far, its own included (at least the floor), a top no
+    larger than the sweep's; once every block is solved, :meth:`settle` says whether any
+    row of an earlier block lies above its block's threshold and at or below the sweep's
+    (its flag would differ: the sweep is then solved in one pass), and from then on
+    every block measures against the sweep's top (a block solved again, the same
+    numbers as one pass: max is exact). (Measured 2026-11-30, the bundled shaper at 2e5
+    rows, numpy path: 150 -> 98 ms a solve in one pass -> in blocks.)"""
+
+    def __init__(self) -> None:
+        self.top: dict[int, float] = {}
+        self.seen: list[tuple[int, float]] = []    # (key, least x above its threshold)
+        self.settled = False
+
+    def still(self, key: int, x: np.ndarray, floor) -> np.ndarray:
+        # the order of one pass's max(x.max(), floor): the same double, for finite values
+        top = max(x.max() if x.size else 0.0, self.top.get(key, floor))
+        self.top[key] = top
+        still = x <= RESIST_STILL * top
+        if not self.settled:
+            self.seen.append((key, float(np.where(still, np.inf, x).min(initial=np.inf))))
+        return still
+
+    def settle(self) -> bool:
+        """True when every block's flags are the sweep's (none to solve again); from now
+        on the sweep's tops are used."""
+        self.settled = True
+        return all(math.isfinite(t) for t in self.top.values()) and all(
+            least > RESIST_STILL * self.top[key] for key, least in self.seen)
 
 
 def _top(x: np.ndarray, scene: Scene, floor):

@@ -25,12 +25,12 @@ from ..model.errors import AssemblyError, WorkbenchError
 from ..model.scene import load_scene
 from .blocks import Kept, LeanSolved, Unblockable, blockable, blocks_of_sweep, solve_blocks
 from .continuity import check_distinct, given_positions
-from .deadpoints import dead_points_between_rows, dead_points_of_sweep, measure2
-from .fast import solve_compiled
+from .deadpoints import dead_points_of_sweep, kin_measure2, measure2, sweep_probe
+from .fast import path_setting, solve_compiled
 from .footprint import check_solve
 from .friction import has_friction, solve_with_friction
 from .kinematics import solve_kinematics
-from .loads import applied_loads, inertia_loads, resultants
+from .loads import SweepTops, applied_loads, inertia_loads, resultants
 from .memo import record_of
 from .reactions import solve_reactions
 from .solved import Solved
@@ -64,7 +64,10 @@ class Sweep:
     Attributes
     ----------
     blocked : bool
-        Solved in blocks of rows (:func:`~kinetostatics.solver.blocks.blockable`).
+        Solved in blocks of rows, and streamed so
+        (:func:`~kinetostatics.solver.blocks.blockable`).
+    parted : bool
+        Solved in blocks of rows (a load measured against the sweep's top as well).
     trusty : bool
         Checked by the floating-point trap first (tame numbers, no joint friction).
     """
@@ -91,6 +94,9 @@ class Sweep:
         if budget:      # (False: the caller checks its own estimate, e.g. a streamed write)
             check_solve(sc, self.positions.size)    # the peak memory known before it is spent
         self.blocked = blockable(sc, self.positions.size)
+        # (a load whose threshold is the sweep's top solved in blocks too, the tops met
+        # as they go, SweepTops; not streamed: a table's block alone does not know them)
+        self.parted = self.blocked or blockable(sc, self.positions.size, tops=True)
 
     @cached_property
     def trusty(self) -> bool:
@@ -102,8 +108,10 @@ class Sweep:
         """The solve: trapped first where the numbers are tame, else (or if the trap was
         touched) checked. The compiled path (:mod:`~kinetostatics.solver.fast`) goes
         first when it is wanted for this many rows and covers the scene."""
-        sol = solve_compiled(self.scene, self.structure, self.positions,
-                             self.given is not None)
+        # (the numpy path asked for: not the compiled path's look at whether its kernels
+        # cover the scene, 25-30 us a call; measured 2026-11-30, slider-crank, 2001 rows)
+        sol = None if path_setting() == "numpy" else solve_compiled(
+            self.scene, self.structure, self.positions, self.given is not None)
         if sol is not None:
             return sol
         sol = self.trapped() if self.trusty else None
@@ -136,7 +144,7 @@ class Sweep:
         sc, structure = self.scene, self.assembled
         trap = FloatTrap()
         try:
-            if self.blocked:
+            if self.parted:
                 with trapped(trap):
                     long = self.in_blocks(trapped_road=True)
                 return None if trap.hit else _lean(*long)
@@ -144,8 +152,8 @@ class Sweep:
                 kin = solve_kinematics(sc, structure, self.given)
             if trap.hit:
                 return None
-            kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
-                kin.scene, kin.structure, kin)
+            kin.between, kin.ends, kin.unassembled = dead_points_kept(
+                kin.scene, kin.structure, kin.positions, lambda: kin_measure2(kin))
             with trapped(trap):
                 sol = _solve_loads(kin.scene, kin.structure, kin)
             return None if trap.hit else sol
@@ -156,7 +164,7 @@ class Sweep:
         """The solve with every finite check made by looking at the numbers (a pass per
         kept array): one refusal names the first row that is not finite."""
         long = None
-        if self.blocked:
+        if self.parted:
             try:
                 long = self.in_blocks(trapped_road=False)
             except (Unblockable, WorkbenchError, OverflowError, ZeroDivisionError):
@@ -164,8 +172,8 @@ class Sweep:
         try:
             if long is None:
                 kin = solve_kinematics(self.scene, self.assembled, self.given)
-                kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
-                    kin.scene, kin.structure, kin)
+                kin.between, kin.ends, kin.unassembled = dead_points_kept(
+                    kin.scene, kin.structure, kin.positions, lambda: kin_measure2(kin))
                 sol = _solve_loads(kin.scene, kin.structure, kin)
                 _check_finite(sol)
             else:
@@ -191,8 +199,17 @@ class Sweep:
         function that solves it again in full (the same blocks and assemblies: the same
         numbers), on the same road, when another table asks."""
         pos = self.positions
-        full, st, part = blocks_of_sweep(self.scene, self.structure, pos)
+        tops = None if self.blocked else SweepTops()
+        full, st, part = blocks_of_sweep(self.scene, self.structure, pos, tops)
         kept = solve_blocks(pos.size, part, solve_block, full, st, lean=True)
+        if tops is not None and not tops.settle():
+            # (a row's flag would differ: one pass decides, on either road)
+            self.parted = False
+            raise Unblockable("tops")
+        if tops is not None:
+            # (the sweep's tops, settled: whoever solves its blocks again finds them,
+            # blocks_of_sweep; the whole sweep's scene, made for these rows or their own)
+            full.__dict__["sweep_tops"] = tops
         solved = kept.structure     # (the closure holds this, not the kept arrays)
 
         def again() -> Solved:
@@ -216,9 +233,31 @@ def structure_of(scene) -> Structure:
 def _lean(full, kept: Kept, again) -> LeanSolved:
     """The long sweep's lean arrays, its dead points screened (as on its kinematics)."""
     positions = full.driver.positions
-    dead = dead_points_of_sweep(full, kept.structure, positions,
-                                measure2(kept.closeness2, positions.size))
+    dead = dead_points_kept(full, kept.structure, positions,
+                            lambda: measure2(kept.closeness2, positions.size))
     return LeanSolved(full, kept, positions, dead, again)
+
+
+def dead_points_kept(scene, structure: Structure, positions: np.ndarray, m2) -> tuple:
+    """:func:`~kinetostatics.solver.deadpoints.dead_points_of_sweep` of ``scene``'s own
+    sweep solved with ``structure`` (``m2()``: its m^2 per row), worked out at the first
+    solve of the scene object and kept in its record with the assemblies it was solved
+    with (read-only): a function of the scene alone, as they are (``assembled``). Not
+    kept where a compiled probe screens it (its m^2 a few ulps from numpy's for an RTR
+    guide). (Measured 2026-11-30, the bundled shaper at 2001 rows, numpy path: its
+    screen probes a dip below the screen each solve, 3 rounds of two dyads' closure,
+    about 45 % of a call under cProfile.)"""
+    own = positions is scene.driver.positions and sweep_probe(scene, structure) is None
+    record = record_of(scene) if own else {}
+    kept = record.get("dead")
+    if kept is not None and kept[0] == structure.assembly:
+        return kept[1]
+    dead = dead_points_of_sweep(scene, structure, positions, m2())
+    if own:
+        for a in dead:
+            a.flags.writeable = False       # (shared by every solve of the scene)
+        record["dead"] = (structure.assembly, dead)
+    return dead
 
 
 def solve_block(sc, structure, kin) -> Solved:
@@ -303,6 +342,7 @@ def _trapped(sc, structure, pos: np.ndarray, positions) -> Solved | LeanSolved |
     sweep = Sweep.__new__(Sweep)
     sweep.scene, sweep.structure, sweep.given, sweep.positions = sc, structure, positions, pos
     sweep.blocked, sweep.trusty = blockable(sc, pos.size), True
+    sweep.parted = sweep.blocked or blockable(sc, pos.size, tops=True)
     return sweep.trapped()
 
 

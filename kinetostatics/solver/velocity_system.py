@@ -125,21 +125,24 @@ def dead_centre_closeness2(vs, pr, reach, n: int, solver: DyadSolver | None = No
             norm2 = (c1[0] * c1[0] + c1[1] * c1[1]) * (c2[0] * c2[0] + c2[1] * c2[1])
         sin2 = A.full(vs.det * vs.det / norm2, n)
     else:
-        sin2 = A.full(inner_t_tau(pr, vs.ux, vs.uy)[0], n) ** 2
+        sin2 = A.full(inner_t_tau(pr, vs.ux, vs.uy, cos=False)[0], n) ** 2
     if reach is not None:
         sin2 = np.minimum(sin2, reach * reach)
     return sin2
 
 
-def inner_t_tau(pr, ux, uy):
+def inner_t_tau(pr, ux, uy, cos: bool = True):
     """sin and cos of the transmission angle of a dyad with a prismatic inner joint:
     between the line and P_s - P_g (RTR: the velocity system's columns are J(P2 - P1)
-    and u, so sin = u . D / |D|) or between the line and the other guide (RTT)."""
+    and u, so sin = u . D / |D|) or between the line and the other guide (RTT).
+    ``cos`` False: the sin alone, and None (the closeness to a dead centre reads no
+    more: four passes fewer of an RTR dyad, measured 2026-11-30)."""
     p1, p2 = pr
     if p1.kind == "rot" and p2.kind == "rot":
         dx, dy = A.sub(p1.px, p2.px), A.sub(p1.py, p2.py)
         dn = np.sqrt(dx * dx + dy * dy)
         return (A.mul_add(ux, dx, uy, dy, den=dn),
-                A.mul_sub(ux, dy, uy, dx, den=dn))
+                A.mul_sub(ux, dy, uy, dx, den=dn) if cos else None)
     pt = p2 if p1.kind == "rot" else p1
-    return A.mul_sub(ux, pt.uy, uy, pt.ux), A.mul_add(ux, pt.ux, uy, pt.uy)
+    return (A.mul_sub(ux, pt.uy, uy, pt.ux),
+            A.mul_add(ux, pt.ux, uy, pt.uy) if cos else None)

@@ -59,7 +59,7 @@ def assert_same(a: dict, b: dict) -> None:
 
 def one_pass(monkeypatch, scene, positions=None):
     with monkeypatch.context() as m:
-        m.setattr(pl, "blockable", lambda sc, n: False)
+        m.setattr(pl, "blockable", lambda sc, n, tops=False: False)
         return ks.solve(scene, positions)
 
 
@@ -93,7 +93,7 @@ def test_blocks_give_the_one_pass_tables_bit_for_bit(path, monkeypatch) -> None:
             continue
         with monkeypatch.context() as m:
             m.setattr(blocks, "BLOCK_ROWS", 7)
-            expect = blocks.blockable(sc, ref.positions.size)
+            expect = blocks.blockable(sc, ref.positions.size, tops=True)
         sol = in_blocks(monkeypatch, sc, positions, expect=expect)
         assert_same(tables(ref), tables(sol))
         np.testing.assert_array_equal(ref.kin.between, sol.kin.between)
@@ -102,10 +102,12 @@ def test_blocks_give_the_one_pass_tables_bit_for_bit(path, monkeypatch) -> None:
 
 def test_sweep_dependent_loads_and_friction_are_solved_in_one_pass() -> None:
     """A resist load's threshold is the whole sweep's top speed, joint friction iterates
-    over the sweep: neither is cut into blocks."""
+    over the sweep: neither is streamed in blocks; the solve cuts the first into blocks
+    (measuring the tops as it goes, loads.SweepTops), not the second."""
     for name in ("slider_crank", "shaper"):
         sc = load_scene(ks.example(name))
         assert not blocks.blockable(sc, 10 ** 6), name
+        assert blocks.blockable(sc, 10 ** 6, tops=True), name
     assert blocks.blockable(load_scene(ks.example("four_bar")), 2 * blocks.BLOCK_ROWS)
     assert not blocks.blockable(load_scene(ks.example("four_bar")),
                                 2 * blocks.BLOCK_ROWS - 1)
