@@ -25,7 +25,7 @@ from ..model.errors import AssemblyError, WorkbenchError
 from ..model.scene import load_scene
 from .blocks import Kept, LeanSolved, Unblockable, blockable, blocks_of_sweep, solve_blocks
 from .continuity import check_distinct, given_positions
-from .deadpoints import dead_points_of_sweep, kin_measure2, measure2, sweep_probe
+from .deadpoints import dead_points_between_rows, dead_points_of_sweep, measure2
 from .fast import path_setting, solve_compiled
 from .footprint import check_solve
 from .friction import has_friction, solve_with_friction
@@ -152,8 +152,8 @@ class Sweep:
                 kin = solve_kinematics(sc, structure, self.given)
             if trap.hit:
                 return None
-            kin.between, kin.ends, kin.unassembled = dead_points_kept(
-                kin.scene, kin.structure, kin.positions, lambda: kin_measure2(kin))
+            kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
+                kin.scene, kin.structure, kin)
             with trapped(trap):
                 sol = _solve_loads(kin.scene, kin.structure, kin)
             return None if trap.hit else sol
@@ -172,8 +172,8 @@ class Sweep:
         try:
             if long is None:
                 kin = solve_kinematics(self.scene, self.assembled, self.given)
-                kin.between, kin.ends, kin.unassembled = dead_points_kept(
-                    kin.scene, kin.structure, kin.positions, lambda: kin_measure2(kin))
+                kin.between, kin.ends, kin.unassembled = dead_points_between_rows(
+                    kin.scene, kin.structure, kin)
                 sol = _solve_loads(kin.scene, kin.structure, kin)
                 _check_finite(sol)
             else:
@@ -233,31 +233,9 @@ def structure_of(scene) -> Structure:
 def _lean(full, kept: Kept, again) -> LeanSolved:
     """The long sweep's lean arrays, its dead points screened (as on its kinematics)."""
     positions = full.driver.positions
-    dead = dead_points_kept(full, kept.structure, positions,
-                            lambda: measure2(kept.closeness2, positions.size))
+    dead = dead_points_of_sweep(full, kept.structure, positions,
+                                measure2(kept.closeness2, positions.size))
     return LeanSolved(full, kept, positions, dead, again)
-
-
-def dead_points_kept(scene, structure: Structure, positions: np.ndarray, m2) -> tuple:
-    """:func:`~kinetostatics.solver.deadpoints.dead_points_of_sweep` of ``scene``'s own
-    sweep solved with ``structure`` (``m2()``: its m^2 per row), worked out at the first
-    solve of the scene object and kept in its record with the assemblies it was solved
-    with (read-only): a function of the scene alone, as they are (``assembled``). Not
-    kept where a compiled probe screens it (its m^2 a few ulps from numpy's for an RTR
-    guide). (Measured 2026-11-30, the bundled shaper at 2001 rows, numpy path: its
-    screen probes a dip below the screen each solve, 3 rounds of two dyads' closure,
-    about 45 % of a call under cProfile.)"""
-    own = positions is scene.driver.positions and sweep_probe(scene, structure) is None
-    record = record_of(scene) if own else {}
-    kept = record.get("dead")
-    if kept is not None and kept[0] == structure.assembly:
-        return kept[1]
-    dead = dead_points_of_sweep(scene, structure, positions, m2())
-    if own:
-        for a in dead:
-            a.flags.writeable = False       # (shared by every solve of the scene)
-        record["dead"] = (structure.assembly, dead)
-    return dead
 
 
 def solve_block(sc, structure, kin) -> Solved:
