@@ -215,6 +215,12 @@ def test_held_bytes_count_shared_memory_once():
     two = pd.DataFrame({"a": base[:50], "c": pd.Categorical(["x", "y"] * 25)}, copy=False)
     assert np.shares_memory(one.a.to_numpy(), two.a.to_numpy())
     assert held_bytes([one, two]) == 800 + 8 + 50
+    # a categorical's codes where the table holds them (not a copy: pandas 3's
+    # ``Series.cat.codes`` is one), so codes two tables share count once
+    codes = np.zeros(100, dtype=np.int8)
+    cats = [pd.DataFrame({"c": pd.Categorical.from_codes(codes, categories=["x"])},
+                         copy=False) for _ in range(2)]
+    assert held_bytes(cats) == 100
     sol = ks.solve(OWN_CASES / "four_bar.toml")
     k, r = sol.kinematics, sol.reactions
     n = sol.positions.size

@@ -21,7 +21,18 @@ from .layout import REACTIONS as REACTION_ROWS
 from .short import OWNERS, START, fused_arguments, fused_kernel
 
 # Rows per call of a fused table kernel (the crank's cos and sin worked out per block
-# into one scratch pair, in a pass of their own, where the solve kept none)
+# into one scratch pair, in a pass of their own, where the solve kept none). The calls'
+# own cost is small: 245 calls of no rows 1.5-2 ms (2026-11-30, load 9-12).
+# Tried and left 2026-11-30 (Intel Xeon, 2 MB L2, load 9-12, the four-bar at 1e6, the
+# pass alone, processor time, best of 7-9; docs/solve-paths.md, "Where the warm round's
+# time goes"): the kernel keeping the block (each tile's motion of the three bodies and
+# each joint's Fx, Fy, F, N, M copied into 4096 rows, every column then written in runs
+# of 4096) 190-213 ms in pages already had against 138-166, 310-321 against 219-277 in
+# fresh pages (50 rows copied a row of the sweep; the copies then a vectorised loop a
+# row, alternated with this build twice: 163-173 against 114-129 ms, 246-259 against
+# 187-224, the same bytes); ordinary stores in place of the non-temporal ones
+# (streams.stream) 120-124 against 118-140 ms, 192-194 against 184-209 in fresh pages:
+# within the load's noise.
 BLOCK = 4096
 
 
