@@ -317,8 +317,8 @@ def dead_points_of_sweep(scene: Scene, structure: Structure, positions: np.ndarr
 def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarray,
                         counts: np.ndarray,
                         at: Callable[[np.ndarray, np.ndarray], Probed],
-                        increasing: bool = False, candidates: np.ndarray | None = None
-                        ) -> list[tuple]:
+                        increasing: bool = False, candidates: np.ndarray | None = None,
+                        below: np.ndarray | None = None) -> list[tuple]:
     """:func:`dead_points_between_rows` of many sweeps at once: segment s holds rows
     ``starts[s]`` to ``starts[s] + counts[s]`` (one scene of a stack,
     :func:`kinetostatics.solve_many`), searched alone, with the probes of all segments in
@@ -342,6 +342,10 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     candidates : numpy.ndarray, optional
         With ``increasing``, the intervals :func:`_candidates` finds (told by the pass
         that made ``m2u``): not scanned again.
+    below : numpy.ndarray, optional
+        The rows whose m^2 is below the screen, ``flatnonzero(m2u < SCREEN**2)``, when
+        known (told by the pass that made ``m2u``: solve_many's fused kernel); not
+        looked for again.
 
     Returns
     -------
@@ -363,8 +367,10 @@ def dead_points_stacked(m2u: np.ndarray, positions: np.ndarray, starts: np.ndarr
     # nor a look for the compiled scan)
     told = candidates is not None and increasing
     one = m == 1
-    below = (None if told or one and compiled_scan() is not None
-             else np.flatnonzero(m2u < SCREEN**2))
+    if told or one and compiled_scan() is not None:
+        below = None
+    elif below is None:
+        below = np.flatnonzero(m2u < SCREEN**2)
     if below is not None and below.size == 0:
         return [(pairs, none, pairs)] * m
     # the rows in increasing position (None: as they are, the usual case: then no

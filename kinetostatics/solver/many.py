@@ -364,10 +364,10 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
     bounds = run_bounds(starts, counts, FAST_RUN_ROWS if compiled else RUN_ROWS)
     # lean on the compiled path: every run's kept arrays in one fused kernel call where
     # the structure has one (each run then a view of them), else run by run
-    whole = _whole_group(trusty, stacker, structure, ks, counts, positions) if (
-        compiled and lean) else None
-    # (the group's closeness: its singular rows made of it, read by nothing after the
-    # screen, its m^2 written over it)
+    # (and the rows below the dead-point screen, told by the kernel: None if not)
+    whole, below = _whole_group(trusty, stacker, structure, ks, counts, positions) if (
+        compiled and lean) else (None, None)
+    # (the group's closeness: read by nothing after the screen, its m^2 written over it)
     m2 = (np.empty(positions.size) if whole is None
           else measure2(whole.closeness2, positions.size, spent=True))
     runs: list = []             # (per run: again, its values and path; None if refused)
@@ -396,7 +396,8 @@ def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bo
         del sol
 
     dead = dead_points_stacked(m2, positions, starts, counts,
-                               _probe_at(stacker, structure, ks, compiled), increasing)
+                               _probe_at(stacker, structure, ks, compiled), increasing,
+                               below=below)
     if whole is not None:
         release(whole)          # (its closeness: read by nothing after the screen)
     out = cut_scenes(scenes, structure, ks, starts, counts, bounds, runs, dead)
@@ -454,15 +455,18 @@ def stacked_positions(scenes: list, one: bool | None = None) -> tuple[np.ndarray
 _POSITIONS: dict[tuple, tuple[np.ndarray, bool]] = {}
 
 
-def _whole_group(trusty: bool, *args) -> Kept | None:
+def _whole_group(trusty: bool, *args) -> tuple[Kept | None, np.ndarray | None]:
     """:func:`~kinetostatics.solver.fast.stacked.solve_group_kept` (``args``) with the
     finite checks left to the floating-point trap where the stack's numbers are tame (as
-    :func:`_trapped_run`), or None: no fused kernel for it, or its kernel refused a row
+    :func:`_trapped_run`): what the runs keep and the rows below the dead-point screen (or
+    None: not told), or (None, None): no fused kernel for it, or its kernel refused a row
     (then each run is solved as before, the refused runs' scenes alone)."""
     try:
-        return first_trapped(solve_group_kept, *args) if trusty else solve_group_kept(*args)
+        got = (first_trapped(solve_group_kept, *args) if trusty
+               else solve_group_kept(*args))
     except Exception:
-        return None
+        return None, None
+    return (None, None) if got is None else got
 
 
 def _kept_part(whole: Kept, a: int, b: int, positions: np.ndarray) -> KeptRun:

@@ -2,7 +2,8 @@
 kernel per run, tile by tile (``jitbase.FUSED_TILE`` rows a tile): the driver's motion,
 the dyad's, each body's loads, the dyad's reactions and Me, every value of a tile in one
 scratch array, and only Me, the closeness to a dead centre and the undefined rows
-written out. The row helpers are the composed kernels'
+written out (with each row's singular flag and the rows below the dead-point screen, told
+in the same pass). The row helpers are the composed kernels'
 (:mod:`~kinetostatics.solver.fast.kernels`), in the same order: the same numbers, bit
 for bit.
 
@@ -23,22 +24,22 @@ from .jitbase import (
     scratch_for,
     tile_rows_for,
 )
-from .kernels import tile_motion_for
-from .layout import DRIVER_GEOMETRY, G1, G2, INNER_R, KINDS, ROT1, ROT2, C, S
+from .kernels import SINGULAR_WARN2, tile_motion_for
+from .layout import CL2, DRIVER_GEOMETRY, G1, G2, INNER_R, KINDS, ROT1, ROT2, C, S
 from .layout import MOTION as BODY_ROWS
 from .reaction_kernels import crank_moment, reaction_row, tile_loads_for
 from .scratch_views import DYAD_ROWS, LOAD_ROWS, dyad_views, load_views, resultant_views
-from .tail_kernels import tile_kept_for, tile_swept
+from .tail_kernels import tile_swept
 from .trig_kernels import sincos_rows
 
 # tiles of FUSED_TILE rows (jitbase): the helpers of that width
 scratch, tile_rows = scratch_for(TILE), tile_rows_for(TILE)
-tile_loads, tile_kept = tile_loads_for(TILE), tile_kept_for(TILE)
+tile_loads = tile_loads_for(TILE)
 tile_motion = tile_motion_for(TILE)
 
 
 # -- a crank and one dyad, fused: what solve_many keeps of a run ---------------------------
-# A tile holds TILE rows (24) of the run whatever their scenes (the last tile of a scene no
+# A tile holds TILE rows (16) of the run whatever their scenes (the last tile of a scene no
 # longer partly worked out for nothing: measured 2026-11-30, 1000 four-bars x 361, the
 # kernel alone 13.3-13.6 ms a call against 14.5-14.8 with a tile per scene's rest), each column
 # its row's scene's geometry (the row helpers read column t of a tile for row t). A
@@ -115,8 +116,48 @@ def _tile_turn(angles, c0, a, nt, wdrv):
 
 
 @body
+def _tile_kept(j0, nt, whole, wr, wd, drive, close, singular):
+    """What a sweep keeps of a tile at ``j0`` on: Me (row 0 of ``wr``), the dyad's
+    closeness to a dead centre (``wd``'s) and its singular flag, not above
+    ``SINGULAR_WARN2`` (numpy's ``~(c > SINGULAR_WARN**2)``, ``compose.kept_sweep``: a NaN
+    flagged); the whole tile where ``whole`` (the arrays reach past it: a loop of a
+    constant count, vectorised), else ``nt`` rows. (The flags here, not in a pass of
+    their own over the group's closeness: measured 2026-11-30, 1000 four-bars x 361,
+    that pass 0.16 ms of a call, best of 200.)"""
+    if whole:
+        for t in range(TILE):
+            c = wd[CL2, t]
+            drive[j0 + t] = wr[0, t]
+            close[j0 + t] = c
+            singular[j0 + t] = not c > SINGULAR_WARN2
+    else:
+        for t in range(nt):
+            c = wd[CL2, t]
+            drive[j0 + t] = wr[0, t]
+            close[j0 + t] = c
+            singular[j0 + t] = not c > SINGULAR_WARN2
+
+
+@body
+def _tile_below(j0, nt, wd, screen2, below, k):
+    """The tile's rows (from ``j0``) whose closeness is below ``screen2`` (the dead-point
+    screen's, ``deadpoints.SCREEN**2``: a NaN never is), in order, written to ``below``
+    from its ``k``-th place as far as it has room; returns the count ``k`` after them.
+    (Told here, not in a pass of numpy over the group's closeness: measured 2026-11-30,
+    1000 four-bars x 361 (3865 rows below), ``flatnonzero(m2 < SCREEN**2)`` 0.26 ms a
+    call, best of 200.)"""
+    for t in range(nt):
+        if wd[CL2, t] < screen2:
+            if k < below.size:
+                below[k] = j0 + t
+            k += 1
+    return k
+
+
+@body
 def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d, k2d,
-                     gl, gls, npt, gw, gws, nw, st, drive, close, undefined):
+                     gl, gls, npt, gw, gws, nw, st, drive, close, singular, undefined,
+                     screen2, below):
     """A crank and one dyad (not RTR: its guide's cos and sin are numpy's, in a pass of
     their own), rows ``lo`` to ``hi`` of a stack (``own``: each row's scene; a table per
     kernel, ``gd`` the driver's, ``gy`` the dyad's, ``gl`` each body's loads, ``gw`` its
@@ -126,8 +167,10 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy,
     :func:`crank_motion`, :func:`dyad_row`, :func:`tile_loads`, :func:`swept_row`,
     :func:`reaction_row` and :func:`crank_moment` compute them over blocks (the same
     operations in the same order: the same numbers); only Me, the dyad's closeness to a
-    dead centre and the undefined rows are written (``drive``, ``close``,
-    ``undefined``). ``k1d``, ``k2d``: whether each outer joint's known body is the
+    dead centre, its singular flags and the undefined rows are written (``drive``,
+    ``close``, ``singular``, ``undefined``), and the rows whose closeness is below
+    ``screen2`` (the dead-point screen's) to ``below`` as far as it has room
+    (:func:`_tile_below`). ``k1d``, ``k2d``: whether each outer joint's known body is the
     driver (else the ground). The crank's cos and sin (``cs``, ``sn``) are worked out
     before, in a pass of their own: row ``i`` of scene ``e`` at ``i - ts[e]`` (one
     sweep shared by the scenes, or the run's rows), or here from the crank's ``angles``
@@ -135,7 +178,8 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy,
     ``cs``, ``sn`` then unread). ``kind``'s ground bits (``layout.G1``, ``G2``: a
     prismatic outer joint whose known body is the ground) take the ground's motion as
     the constants it is (:func:`~kinetostatics.solver.fast.kernels.dyad_row`). Returns
-    the count of rows the numpy path must judge."""
+    the count of rows the numpy path must judge and the count of rows below
+    ``screen2``."""
     rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
     R = BODY_ROWS
     w_ = scratch(4 * R + LOAD_ROWS + DYAD_ROWS + DRIVER_GEOMETRY)
@@ -155,6 +199,7 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy,
     held = np.full(TILE, -1, dtype=np.int64)
     _fill_shared(wgd, gd, gds, wg, gy, gys, wl0, wl1, wl2, gl, gls)
     bad = 0
+    nbelow = 0
     turn = angles.shape[0] > 0
     t0 = lo
     while t0 < hi:
@@ -215,9 +260,10 @@ def _crank_dyad_kept(kind, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy,
             wr[0, t] = me
             f = nonfinite((me, wad[0, t], wad[1, t]))
             bad += f if t < nt else 0
-        tile_kept(t0 - lo, nt, t0 + TILE <= hi, wr, wd, drive, close)
+        _tile_kept(t0 - lo, nt, t0 + TILE <= hi, wr, wd, drive, close, singular)
+        nbelow = _tile_below(t0 - lo, nt, wd, screen2, below, nbelow)
         t0 += nt
-    return bad
+    return bad, nbelow
 
 
 def _kept_for(kind: str, k1d: bool, k2d: bool):
@@ -237,11 +283,11 @@ def _kept_for(kind: str, k1d: bool, k2d: bool):
 
     @jit_as(f"{kind.lower()}_kept{suffix}")
     def kept(lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys, k1d_, k2d_, gl, gls,
-             npt, gw, gws, nw, st, drive, close, undefined):
+             npt, gw, gws, nw, st, drive, close, singular, undefined, screen2, below):
         value = not_literal(code)       # (the helpers typed once for every kind)
         return _crank_dyad_kept(value, lo, hi, own, cs, sn, ts, angles, gd, gds, w, eps, gy, gys,
                                 k1d, k2d, gl, gls, npt, gw, gws, nw, st, drive, close,
-                                undefined)
+                                singular, undefined, screen2, below)
     return kept
 
 

@@ -117,8 +117,13 @@ TILE = 64
 # 2026-11-30 once a tile may hold several scenes' rows (no partly worked-out last tile
 # of each scene), the kernel alone, alternating runs at a load of 8-9: 13.4-13.9 ms at
 # 24 rows against 14.3-14.8 at 32, 14.3-15.4 at 28, 15.5-15.6 at 48; the same numbers,
-# bit for bit)
-FUSED_TILE = 24
+# bit for bit). Measured again 2026-11-30 on the machine the bench now runs on (an Intel
+# Xeon, 48 KB first-level cache a core, AVX-512), the kernel alone on solve_many's call
+# (1000 four-bars x 361), one process, alternating, best / median of 21 at a load of 8-10:
+# 14.5 / 15.5 ms at 16 rows against 15.9 / 16.5 at 24, 15.5 / 15.9 at 32, 21.3 / 22.5 at 8
+# (and 15.3 / 16.0 against 16.7 / 17.5 at 24 in another run; 12 rows, not a multiple of
+# the vectors' 4, 21.3); the same numbers, bit for bit
+FUSED_TILE = 16
 
 
 def scratch_for(width: int):

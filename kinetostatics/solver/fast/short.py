@@ -20,8 +20,10 @@ import numpy as np
 
 from ...model.scene import GROUND, Scene
 from ..blocks import BLOCK_ROWS, Kept
+from ..deadpoints import SCREEN
 from ..memo import record_of
-from .compose import Plan, Refused, kept_sweep, turn
+from ..reactions import DriverReaction
+from .compose import Plan, Refused, turn
 from .geometry import NO_SWEPT_LOADS
 
 START = np.zeros(1, dtype=np.int64)     # where the one scene's rows begin in its cos, sin
@@ -31,13 +33,17 @@ OWNERS = np.zeros(2 * BLOCK_ROWS, dtype=np.int64)  # each row's scene: 0 (a shor
 NO_TRIG = np.zeros(0)     # (the guide's kernels given the angles: no cos, sin; writable,
 #  as a stack's: one signature)
 NO_STATS = np.zeros((1, 1, 2))          # (a body without swept loads: never written)
+NO_ROWS = np.zeros(0, dtype=np.int64)   # (the rows below the screen: counted, not written;
+#  writable, as a stack's: one signature)
 
 
 def fused_sweep(kernels, scene: Scene, full: Scene, structure, geometry,
                 positions: np.ndarray) -> Kept | None:
     """The :class:`~kinetostatics.solver.blocks.Kept` of ``full`` (``scene`` at
     ``positions``: itself for its own sweep) of fewer than ``2 * BLOCK_ROWS`` rows: Me,
-    the undefined rows and the dyad's closeness to a dead centre from the fused kernel;
+    the undefined rows, the dyad's closeness to a dead centre and its singular flags
+    from the fused kernel, with whether some row is below the dead-point screen
+    (``Kept.screened``: no pass over the rows to tell it);
     or None: not a crank and one dyad the fused kernels cover, or a ``resist`` load
     (solved by the composed kernels). Raises
     :class:`~kinetostatics.solver.fast.compose.Refused` as they do."""
@@ -53,10 +59,13 @@ def fused_sweep(kernels, scene: Scene, full: Scene, structure, geometry,
     cs, sn = scene_trig(kernels, record, scene) if full is scene else _trig(kernels, full)
     n = positions.size
     drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
-    bad = kernel(0, n, OWNERS, cs, sn, START, NO_ANGLES, *fixed, drive, close, undefined)
+    singular = np.empty(n, dtype=bool)
+    bad, below = kernel(0, n, OWNERS, cs, sn, START, NO_ANGLES, *fixed, drive, close, singular,
+                        undefined, SCREEN**2, NO_ROWS)
     if bad:
         raise Refused(bad)
-    return kept_sweep(structure, "R", drive, undefined, [close])
+    return Kept(structure, DriverReaction("R", drive), undefined, [close], [singular],
+                screened=(None, below > 0))
 
 
 def fused_call(kernels, scene: Scene, structure, geometry) -> tuple | None:

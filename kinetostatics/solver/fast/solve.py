@@ -9,9 +9,10 @@ import numpy as np
 
 from ...model.scene import GROUND, Scene
 from ..blocks import BLOCK_ROWS, Kept, LeanSolved
-from ..deadpoints import dead_points_of_sweep, measure2
+from ..deadpoints import SCREEN, dead_points_of_sweep, measure2
 from ..kinematics import choose_assembly, with_positions
 from ..memo import record_of
+from ..reactions import DriverReaction
 from ..solved import Solved
 from .choice import wanted
 from .compose import (
@@ -34,6 +35,7 @@ from .geometry import NO_SWEPT_LOADS, not_covered
 from .layout import CL2, I_SFIRST
 from .loader import kernels as loaded_kernels
 from .short import (
+    NO_ROWS,
     NO_STATS,
     NO_TRIG,
     OWNERS,
@@ -118,30 +120,39 @@ def fused_blocks(kernels, scene: Scene, full: Scene, structure, geometry,
     # (the crank's cos and sin worked out per tile into the kernel's scratch, not kept:
     # the tables' pass works them out again, the same doubles, if a table asks)
     drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
-    bad = by_tiles(kernel, full.driver, OWNERS.size, fixed, (drive, close, undefined))
+    singular = np.empty(n, dtype=bool)
+    bad, below = by_tiles(kernel, full.driver, OWNERS.size, fixed,
+                          (drive, close, singular, undefined), (SCREEN**2, NO_ROWS))
     if bad:
         raise Refused(bad)
     if plan is not None:
         plan.check_swept()
-    return kept_sweep(structure, "R", drive, undefined, [close])
+    # (the singular flags and whether some row is below the dead-point screen told by the
+    # kernel: no pass over the rows for them)
+    return Kept(structure, DriverReaction("R", drive), undefined, [close], [singular],
+                screened=(None, below > 0))
 
 
-def by_tiles(kernel, driver, w: int, fixed: tuple, outs: tuple) -> int:
+def by_tiles(kernel, driver, w: int, fixed: tuple, outs: tuple, tail: tuple
+             ) -> tuple[int, int]:
     """``kernel`` (a one-scene kernel of the crank's angles, ``fused_call``'s) over the
     driver's rows, ``w`` rows a call, each call given its
-    rows' slices of ``outs``; returns the count of rows refused. Each tile's angles
+    rows' slices of ``outs`` and then ``tail``; returns the count of rows refused and the
+    count of rows below the dead-point screen. Each tile's angles
     read-only, as the driver makes them and NO_ANGLES (one compiled signature): the
     driver's own once made, else worked out per tile into one scratch array
     (:meth:`~kinetostatics.model.scene.Driver.angles_into`, the same doubles), no array
     of all the rows' radians made."""
     n = driver.positions.size
     scratch = np.empty(min(w, n))
-    bad = 0
+    bad = below = 0
     for lo in range(0, n, w):
         at = slice(lo, min(lo + w, n))
-        bad += kernel(0, at.stop - lo, OWNERS, NO_TRIG, NO_TRIG, START,
-                      driver.angles_into(at, scratch), *fixed, *(o[at] for o in outs))
-    return bad
+        b, k = kernel(0, at.stop - lo, OWNERS, NO_TRIG, NO_TRIG, START,
+                      driver.angles_into(at, scratch), *fixed, *(o[at] for o in outs), *tail)
+        bad += b
+        below += k
+    return bad, below
 
 
 _TRIG: dict[str, bool] = {}

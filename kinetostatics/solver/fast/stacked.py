@@ -8,6 +8,8 @@ from dataclasses import replace
 import numpy as np
 
 from ..blocks import Kept
+from ..deadpoints import MANY_BELOW, SCREEN
+from ..reactions import DriverReaction
 from ..solved import Solved
 from .choice import wanted
 from .compose import Plan, Refused, kept_sweep, solve_full, solve_lean
@@ -63,11 +65,12 @@ def solve_run_stacked(stacker, structure, ks: np.ndarray, lo: int, hi: int,
 
 
 def solve_group_kept(stacker, structure, ks: np.ndarray, counts: np.ndarray,
-                     positions: np.ndarray) -> Kept | None:
+                     positions: np.ndarray) -> tuple[Kept, np.ndarray | None] | None:
     """What the cut Solutions of every scene of ``stacker`` keep (``counts`` rows each at
     ``positions``, each dyad in its scene's assembly ``ks``), in one fused kernel call
-    over all their rows (:func:`fused_kept`), or None: not a crank and one dyad the fused
-    kernels cover (solved run by run, :func:`solve_run_stacked`). Each row is the one a
+    over all their rows, and the rows below the dead-point screen if the kernel told them
+    (:func:`fused_screened`), or None: not a crank and one dyad the fused kernels cover
+    (solved run by run, :func:`solve_run_stacked`). Each row is the one a
     run of its scenes gives (each row with its scene's geometry; every number the scene's
     own): the geometry and the plan are worked out once, not per run (measured
     2026-11-29, 1000 four-bars x 361 in 8 runs: 1.2 ms of plans and 1.7 ms of tables a
@@ -84,8 +87,8 @@ def solve_group_kept(stacker, structure, ks: np.ndarray, counts: np.ndarray,
     if not_covered(table) is not None:
         return None
     plan = Plan(kernels, table, structure, ks, owners(counts))
-    return fused_kept(plan, positions.size, stacker.sweeps(0, m, counts, positions),
-                      _scratch(positions.size))
+    return fused_screened(plan, positions.size, stacker.sweeps(0, m, counts, positions),
+                          _scratch(positions.size))
 
 
 def owners(counts: np.ndarray) -> np.ndarray:
@@ -138,29 +141,44 @@ SCRATCH_KEPT = 3
 
 def fused_kept(plan: Plan, n: int, trig: tuple, close: np.ndarray | None = None
                ) -> Kept | None:
+    """The :class:`~kinetostatics.solver.blocks.Kept` of :func:`fused_screened`."""
+    got = fused_screened(plan, n, trig, close)
+    return None if got is None else got[0]
+
+
+def fused_screened(plan: Plan, n: int, trig: tuple, close: np.ndarray | None = None
+                   ) -> tuple[Kept, np.ndarray | None] | None:
     """What a run's scenes keep (Me, the undefined rows, the closeness to a dead
-    centre) of a crank and one dyad (not RTR; a crank and an RTR dyad first,
-    :func:`guided_kept`), in one fused kernel over the run's ``n``
+    centre and the singular flags) of a crank and one dyad (not RTR; a crank and an RTR
+    dyad first, :func:`guided_kept`), in one fused kernel over the run's ``n``
     rows (``trig``: the crank's cos and sin and where each scene's rows begin in them,
     :meth:`~kinetostatics.solver.stack.Stacker.sweeps`;
     :data:`~kinetostatics.solver.fast.fused_kernels.KEPT`: every kernel of a block in turn on
-    each tile of 24 rows, ``jitbase.FUSED_TILE``, its values in one scratch array; the
-    numbers of the kernels composed over blocks, bit for bit), or None for another structure (solved
+    each tile of 16 rows, ``jitbase.FUSED_TILE``, its values in one scratch array; the
+    numbers of the kernels composed over blocks, bit for bit), with the rows whose
+    closeness is below the dead-point screen (``deadpoints.SCREEN``), told by the kernel
+    (numpy's ``flatnonzero(m2 < SCREEN**2)``, the same rows; None where more than one
+    in ``MANY_BELOW`` are: ``deadpoints._candidates`` then scans the rows compiled, and
+    for an RTR dyad); or None for another structure (solved
     by :func:`~kinetostatics.solver.fast.compose.solve_lean`). ``close``: the array the
     closeness is written to (a new one if None). Raises
     :class:`~kinetostatics.solver.fast.compose.Refused` as the composed kernels do."""
     fused = fused_kernel(plan)
     if fused is None:
-        return guided_kept(plan, n, trig, close)
+        kept = guided_kept(plan, n, trig, close)
+        return None if kept is None else (kept, None)
     kernel, order, known = fused
     drive, undefined = np.empty(n), np.zeros(n, dtype=bool)
+    singular = np.empty(n, dtype=bool)
     close = np.empty(n) if close is None else close
-    bad = kernel(0, n, plan.own, *trig, NO_ANGLES, *fused_arguments(plan, order, known), drive,
-                 close, undefined)
+    below = np.empty(n // MANY_BELOW + 1, dtype=np.int64)
+    bad, k = kernel(0, n, plan.own, *trig, NO_ANGLES, *fused_arguments(plan, order, known),
+                    drive, close, singular, undefined, SCREEN**2, below)
     if bad:
         raise Refused(bad)
     plan.check_swept()
-    return kept_sweep(plan.structure, "R", drive, undefined, [close])
+    return (Kept(plan.structure, DriverReaction("R", drive), undefined, [close], [singular]),
+            below[:k] if k <= below.size else None)
 
 
 def guided_kept(plan: Plan, n: int, trig: tuple, close: np.ndarray | None = None

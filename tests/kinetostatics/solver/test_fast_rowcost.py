@@ -12,9 +12,10 @@ import numpy as np
 import pytest
 
 from kinetostatics.model.scene import load_scene
+from kinetostatics.solver.deadpoints import SCREEN
 from kinetostatics.solver.fast import loader
 from kinetostatics.solver.fast import solve as fast_solve
-from kinetostatics.solver.fast.short import NO_ANGLES, OWNERS, START
+from kinetostatics.solver.fast.short import NO_ANGLES, NO_ROWS, OWNERS, START
 from kinetostatics.solver.fast.solve import _assembled, fused_blocks
 from kinetostatics.solver.kinematics import with_positions
 from kinetostatics.solver.pipeline import structure_of
@@ -59,10 +60,13 @@ def test_the_kernels_crank_pass_is_the_compiled_paths_bit_for_bit(kernels, kind:
     kernel, fixed, _ = fast_solve._fused(kernels, sc, structure, geometry)
     n = pos.size
     drive, close, undefined = np.empty(n), np.empty(n), np.zeros(n, dtype=bool)
+    singular = np.empty(n, dtype=bool)
     for lo in range(0, n, OWNERS.size):
         at = slice(lo, min(lo + OWNERS.size, n))
-        assert kernel(0, at.stop - lo, OWNERS, cs[at], sn[at], START, NO_ANGLES, *fixed,
-                      drive[at], close[at], undefined[at]) == 0
+        bad, _ = kernel(0, at.stop - lo, OWNERS, cs[at], sn[at], START, NO_ANGLES, *fixed,
+                        drive[at], close[at], singular[at], undefined[at], SCREEN**2, NO_ROWS)
+        assert bad == 0
     assert ours.drive.value.tobytes() == drive.tobytes()
     assert np.array_equal(ours.undefined, undefined)
     assert ours.closeness2[0].tobytes() == close.tobytes()
+    assert np.array_equal(ours.singular[0], singular)
