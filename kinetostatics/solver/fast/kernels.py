@@ -287,7 +287,16 @@ def _body(rot, ground, p, kb, j, c, s, lx, ly, ox, oy, qd, qdd, m, jo):
 def _motion_kernel(kind: int, name: str):
     """The compiled motion kernel of dyad kind ``kind`` (its code, layout.KINDS): the
     kind a constant of the kernel (a closure's cell, frozen by numba; each cached apart,
-    its cell's value in the key), its other kinds' branches folded away."""
+    its cell's value in the key), its other kinds' branches folded away. The kernel is
+    :func:`motion_tiles` with the kind's code: that helper is typed and lowered by numba
+    once for every kind, each kind's entry then costs little more than LLVM's work on it
+    (numba's own typing and lowering was about half of an entry's compile: measured
+    2026-11-30, an empty cache, the helpers compiled on the four-bar first, the six
+    other kinds' entries compiled, processor time at a load of 8-10: motion 2.0-2.5 s
+    an entry -> 0.65-0.92, reactions (:func:`reaction_tiles`, the same way) 3.3-4.4 s ->
+    1.3-2.0; in all 36.1 s -> 13.5. The machine code alike: the RRR, RRT, RTR entries'
+    vector multiplies as many, their instructions within 2 %; the solves' arrays bit
+    for bit)."""
 
     @jit_as(f"{name.lower()}_motion")
     def dyad_motion(stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
@@ -297,40 +306,47 @@ def _motion_kernel(kind: int, name: str):
         ``d``. Counts the rows that are not finite, cannot close, or are exactly
         singular. ``stage`` 0: RTR's guide angle only (nothing for the other kinds); 1:
         the rest."""
-        rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
-        rtr = rot1 and rot2 and not inner_r
-        code = not_literal(kind)       # (each helper typed once for every kind)
-        if stage == 0:
-            return rtr_stage(rtr, lo, hi, off, g, gs, own, k1, k2, d)
-        # in tiles (jitbase.TILE): the known bodies' motions (and RTR's guide) in,
-        # the tile worked out in the scratch array alone, the bodies' motions and the
-        # data out
-        w = scratch(4 * BODY_ROWS + DYAD_OUT + DYAD_GEOMETRY)
-        wk1, wk2 = w[:BODY_ROWS], w[BODY_ROWS:2 * BODY_ROWS]
-        wm1, wm2 = w[2 * BODY_ROWS:3 * BODY_ROWS], w[3 * BODY_ROWS:4 * BODY_ROWS]
-        wd = w[4 * BODY_ROWS:4 * BODY_ROWS + DYAD_OUT]
-        wg = w[4 * BODY_ROWS + DYAD_OUT:]
-        bad, last, t0 = 0, -1, lo       # (last: the scene whose geometry the tile holds)
-        while t0 < hi:
-            nt, last = tile_next(wg, g, gs, own, t0, hi, last)     # (one scene's rows)
-            j0, t0 = t0 - off, t0 + nt
-            tile_in(wk1, k1, j0, nt)
-            tile_in(wk2, k2, j0, nt)
-            if rtr:
-                tile_in(wd[XX:XX + 1], d[XX:XX + 1], j0, nt)
-                tile_in(wd[C1X:C1Y + 1], d[C1X:C1Y + 1], j0, nt)
-                tile_in(wd[CL2:CL2 + 1], d[CL2:CL2 + 1], j0, nt)
-            for t in range(TILE):
-                b = dyad_row(code, rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
-                bad += b if t < nt else 0
-            tile_out(m1, wm1, j0, nt)
-            tile_out(m2, wm2, j0, nt)
-            tile_out(d[:CL2 + 1], wd[:CL2 + 1], j0, nt)
-            # each side's parameter: P (rot), or the guide's u and the line's base point
-            tile_out(d[10:12 if rot1 else 14], wd[10:12 if rot1 else 14], j0, nt)
-            tile_out(d[14:16 if rot2 else 18], wd[14:16 if rot2 else 18], j0, nt)
-        return bad
+        return motion_tiles(not_literal(kind), stage, lo, hi, off, g, gs, own, k1, k2, m1, m2,
+                            d)
     return dyad_motion
+
+
+@body
+def motion_tiles(kind, stage, lo, hi, off, g, gs, own, k1, k2, m1, m2, d):
+    """A dyad kind's motion kernel (:func:`_motion_kernel`; ``kind`` its code, a constant
+    of each kind's entry that LLVM folds, inlining this)."""
+    rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
+    rtr = rot1 and rot2 and not inner_r
+    if stage == 0:
+        return rtr_stage(rtr, lo, hi, off, g, gs, own, k1, k2, d)
+    # in tiles (jitbase.TILE): the known bodies' motions (and RTR's guide) in,
+    # the tile worked out in the scratch array alone, the bodies' motions and the
+    # data out
+    w = scratch(4 * BODY_ROWS + DYAD_OUT + DYAD_GEOMETRY)
+    wk1, wk2 = w[:BODY_ROWS], w[BODY_ROWS:2 * BODY_ROWS]
+    wm1, wm2 = w[2 * BODY_ROWS:3 * BODY_ROWS], w[3 * BODY_ROWS:4 * BODY_ROWS]
+    wd = w[4 * BODY_ROWS:4 * BODY_ROWS + DYAD_OUT]
+    wg = w[4 * BODY_ROWS + DYAD_OUT:]
+    bad, last, t0 = 0, -1, lo       # (last: the scene whose geometry the tile holds)
+    while t0 < hi:
+        nt, last = tile_next(wg, g, gs, own, t0, hi, last)     # (one scene's rows)
+        j0, t0 = t0 - off, t0 + nt
+        tile_in(wk1, k1, j0, nt)
+        tile_in(wk2, k2, j0, nt)
+        if rtr:
+            tile_in(wd[XX:XX + 1], d[XX:XX + 1], j0, nt)
+            tile_in(wd[C1X:C1Y + 1], d[C1X:C1Y + 1], j0, nt)
+            tile_in(wd[CL2:CL2 + 1], d[CL2:CL2 + 1], j0, nt)
+        for t in range(TILE):
+            b = dyad_row(kind, rot1, rot2, inner_r, rtr, t, t, wg, wk1, wk2, wm1, wm2, wd)
+            bad += b if t < nt else 0
+        tile_out(m1, wm1, j0, nt)
+        tile_out(m2, wm2, j0, nt)
+        tile_out(d[:CL2 + 1], wd[:CL2 + 1], j0, nt)
+        # each side's parameter: P (rot), or the guide's u and the line's base point
+        tile_out(d[10:12 if rot1 else 14], wd[10:12 if rot1 else 14], j0, nt)
+        tile_out(d[14:16 if rot2 else 18], wd[14:16 if rot2 else 18], j0, nt)
+    return bad
 
 
 @body

@@ -13,6 +13,7 @@ from .jitbase import (
     jit,
     jit_as,
     nonfinite,
+    not_literal,
     scratch,
     tile_add,
     tile_in,
@@ -175,7 +176,8 @@ def reaction_row(rot1, rot2, inner_r, j, r, g, m1, m2, mk1, mk2, d, a1, a2, ak1,
 def _reactions_kernel(kind: int, name: str):
     """The compiled reactions kernel of dyad kind ``kind`` (its code, layout.KINDS), the
     kind a constant of the kernel as in the motion's
-    (:func:`~kinetostatics.solver.fast.kernels._motion_kernel`)."""
+    (:func:`~kinetostatics.solver.fast.kernels._motion_kernel`, its helper here
+    :func:`reaction_tiles`: numba types and lowers it once for every kind)."""
 
     @jit_as(f"{name.lower()}_reactions")
     def dyad_reactions(lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
@@ -184,57 +186,65 @@ def _reactions_kernel(kind: int, name: str):
         equations along their freedoms (a 2 x 2 system with the velocity system's
         columns), each outer joint's from its body's remaining equations; the outer
         reactions load the known bodies (``ak1``, ``ak2``) with opposite sign."""
-        rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
-        # in tiles (jitbase.TILE), as the dyad's motion: the motions (their angle and
-        # origin rows), the data and the dyad bodies' resultants in, the tile worked out
-        # in the scratch array alone, the reactions and resultants out; what the outer
-        # joints load the known bodies with is added to theirs after (in order: the same
-        # array twice when both outer joints are on one body)
-        w = scratch(4 * BODY_ROWS + DYAD_OUT + 12 + REACTION_ROWS + DYAD_GEOMETRY)
-        wm1, wm2 = w[:BODY_ROWS], w[BODY_ROWS:2 * BODY_ROWS]
-        wk1, wk2 = w[2 * BODY_ROWS:3 * BODY_ROWS], w[3 * BODY_ROWS:4 * BODY_ROWS]
-        b = 4 * BODY_ROWS
-        wd = w[b:b + DYAD_OUT]
-        b += DYAD_OUT
-        wa1, wa2, wak1, wak2 = w[b:b + 3], w[b + 3:b + 6], w[b + 6:b + 9], w[b + 9:b + 12]
-        b += 12
-        wr = w[b:b + REACTION_ROWS]
-        wg = w[b + REACTION_ROWS:]
-        bad, last, t0 = 0, -1, lo       # (last: the scene whose geometry the tile holds)
-        while t0 < hi:
-            nt, last = tile_next(wg, g, gs, own, t0, hi, last)     # (one scene's rows)
-            j0, t0 = t0 - off, t0 + nt
-            for wm, m in ((wm1, m1), (wm2, m2), (wk1, mk1), (wk2, mk2)):
-                tile_in(wm[C:S + 1], m[C:S + 1], j0, nt)
-                tile_in(wm[OX:OY + 1], m[OX:OY + 1], j0, nt)
-            # (only the rows a kind reads: the closing point, the velocity system, the
-            # normal; an outer prismatic joint's guide direction)
-            tile_in(wd[:NY + 1], d[:NY + 1], j0, nt)
-            if not rot1:
-                tile_in(wd[10:12], d[10:12], j0, nt)
-            if not rot2:
-                tile_in(wd[14:16], d[14:16], j0, nt)
-            tile_in(wa1, a1, j0, nt)
-            tile_in(wa2, a2, j0, nt)
-            wak1[:] = 0.0
-            wak2[:] = 0.0
-            for t in range(TILE):
-                f = reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1,
-                                 wa2, wak1, wak2, wr)
-                bad += f if t < nt else 0
-            tile_out(a1, wa1, j0, nt)
-            tile_out(a2, wa2, j0, nt)
-            if wg[P_GROUND, 0] == 0.0:
-                tile_add(ak1, wak1, j0, nt)
-            if wg[PARAM + P_GROUND, 0] == 0.0:
-                tile_add(ak2, wak2, j0, nt)
-            tile_out(rr[:4], wr[:4], j0, nt)
-            if not rot1:
-                tile_out(rr[4:10], wr[4:10], j0, nt)
-            if not rot2:
-                tile_out(rr[10:], wr[10:], j0, nt)
-        return bad
+        return reaction_tiles(not_literal(kind), lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d,
+                              a1, a2, ak1, ak2, rr)
     return dyad_reactions
+
+
+@body
+def reaction_tiles(kind, lo, hi, off, g, gs, own, m1, m2, mk1, mk2, d, a1, a2, ak1, ak2, rr):
+    """A dyad kind's reactions kernel (:func:`_reactions_kernel`; ``kind`` its code, a
+    constant of each kind's entry that LLVM folds, inlining this)."""
+    rot1, rot2, inner_r = (kind & ROT1) != 0, (kind & ROT2) != 0, (kind & INNER_R) != 0
+    # in tiles (jitbase.TILE), as the dyad's motion: the motions (their angle and
+    # origin rows), the data and the dyad bodies' resultants in, the tile worked out
+    # in the scratch array alone, the reactions and resultants out; what the outer
+    # joints load the known bodies with is added to theirs after (in order: the same
+    # array twice when both outer joints are on one body)
+    w = scratch(4 * BODY_ROWS + DYAD_OUT + 12 + REACTION_ROWS + DYAD_GEOMETRY)
+    wm1, wm2 = w[:BODY_ROWS], w[BODY_ROWS:2 * BODY_ROWS]
+    wk1, wk2 = w[2 * BODY_ROWS:3 * BODY_ROWS], w[3 * BODY_ROWS:4 * BODY_ROWS]
+    b = 4 * BODY_ROWS
+    wd = w[b:b + DYAD_OUT]
+    b += DYAD_OUT
+    wa1, wa2, wak1, wak2 = w[b:b + 3], w[b + 3:b + 6], w[b + 6:b + 9], w[b + 9:b + 12]
+    b += 12
+    wr = w[b:b + REACTION_ROWS]
+    wg = w[b + REACTION_ROWS:]
+    bad, last, t0 = 0, -1, lo       # (last: the scene whose geometry the tile holds)
+    while t0 < hi:
+        nt, last = tile_next(wg, g, gs, own, t0, hi, last)     # (one scene's rows)
+        j0, t0 = t0 - off, t0 + nt
+        for wm, m in ((wm1, m1), (wm2, m2), (wk1, mk1), (wk2, mk2)):
+            tile_in(wm[C:S + 1], m[C:S + 1], j0, nt)
+            tile_in(wm[OX:OY + 1], m[OX:OY + 1], j0, nt)
+        # (only the rows a kind reads: the closing point, the velocity system, the
+        # normal; an outer prismatic joint's guide direction)
+        tile_in(wd[:NY + 1], d[:NY + 1], j0, nt)
+        if not rot1:
+            tile_in(wd[10:12], d[10:12], j0, nt)
+        if not rot2:
+            tile_in(wd[14:16], d[14:16], j0, nt)
+        tile_in(wa1, a1, j0, nt)
+        tile_in(wa2, a2, j0, nt)
+        wak1[:] = 0.0
+        wak2[:] = 0.0
+        for t in range(TILE):
+            f = reaction_row(rot1, rot2, inner_r, t, t, wg, wm1, wm2, wk1, wk2, wd, wa1,
+                             wa2, wak1, wak2, wr)
+            bad += f if t < nt else 0
+        tile_out(a1, wa1, j0, nt)
+        tile_out(a2, wa2, j0, nt)
+        if wg[P_GROUND, 0] == 0.0:
+            tile_add(ak1, wak1, j0, nt)
+        if wg[PARAM + P_GROUND, 0] == 0.0:
+            tile_add(ak2, wak2, j0, nt)
+        tile_out(rr[:4], wr[:4], j0, nt)
+        if not rot1:
+            tile_out(rr[4:10], wr[4:10], j0, nt)
+        if not rot2:
+            tile_out(rr[10:], wr[10:], j0, nt)
+    return bad
 
 
 @jit
