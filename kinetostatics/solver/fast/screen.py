@@ -22,7 +22,7 @@ from . import loader
 from .choice import path_setting
 from .geometry import driver_geometry, dyad_geometry
 from .layout import DYAD_GEOMETRY, KINDS
-from .screen_bound import CLEAR, lipschitz
+from .screen_bound import CLEAR, known_bodies, lipschitz
 from .solve import kernel_trig
 
 
@@ -102,14 +102,9 @@ def chain_probe(drv, driver: tuple, dyads: list, chain) -> Callable | None:
     numpy's, the dyads closed by the compiled path's closures: m^2 the numpy probe's
     (:func:`~kinetostatics.solver.probes.probe_closeness`) but for the RTR guide's angle,
     the compiled path's (a few ulps apart)."""
-    names = {GROUND: 0, drv.body: 1}
-    known = []
-    for i, d in enumerate(chain):
-        pair = [names.get(j.other(b)) for j, b in zip(d.outer, d.bodies, strict=True)]
-        if None in pair:
-            return None
-        known.append(pair)
-        names.update({d.bodies[0]: 2 + 2 * i, d.bodies[1]: 3 + 2 * i})
+    known = known_bodies(drv, chain)
+    if known is None:
+        return None
     cols = max(g.shape[1] for g, _ in dyads)
     gy = np.empty((len(dyads), DYAD_GEOMETRY, cols))
     for i, (g, _) in enumerate(dyads):
