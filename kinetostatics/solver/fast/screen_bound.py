@@ -100,10 +100,11 @@ def lipschitz(crank: bool, gd: np.ndarray, known: np.ndarray, gy: np.ndarray,
     if not crank:
         return None
     cols = gy.shape[2]
-    if cols == 1:   # (one scene: its numbers as floats, numpy's scalars after them: the
-        # same doubles, the shaper's L in some 40 us, not 270 on arrays of one, measured
-        # 2026-11-30)
-        gd = np.asarray(gd, dtype=float).reshape(len(gd), -1)[:, 0].tolist()
+    if cols == 1 and gd.shape[-1] == 1:     # (one column of both: its numbers as floats,
+        # numpy's scalars after them, the same doubles: measured 2026-11-30, the
+        # shaper's L in some 100 us, not 270 on arrays of one; a stack whose driver
+        # alone differs keeps its arrays)
+        gd = gd[:, 0].tolist()
         gy = gy[:, :, 0].tolist()
     lx, ly = gd[D_LX], gd[D_LY]
     # each body's turning: its pivot's speed, its omega's bound, its pivot's local point

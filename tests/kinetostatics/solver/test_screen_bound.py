@@ -11,8 +11,15 @@ import kinetostatics as ks
 from kinetostatics.model.scene import load_scene
 from kinetostatics.solver import deadpoints
 from kinetostatics.solver.fast import loader, screen
+from kinetostatics.solver.fast.geometry import driver_geometry, dyad_geometry
+from kinetostatics.solver.fast.layout import D_LX, D_PX
 from kinetostatics.solver.fast.screen import stack_probe
-from kinetostatics.solver.fast.screen_bound import cleared, sweep_clear
+from kinetostatics.solver.fast.screen_bound import (
+    cleared,
+    known_bodies,
+    lipschitz,
+    sweep_clear,
+)
 from kinetostatics.solver.kinematics import choose_assembly
 from kinetostatics.solver.pipeline import structure_of
 from kinetostatics.solver.probes import probe_closeness
@@ -259,3 +266,36 @@ def test_the_numpy_screen_gives_the_same_verdicts_without_the_bound(numpy_path,
     assert again == got
     assert 0 < with_bound < len(probed)
     assert sum(len(s["dead_points_between_rows"]) for s in got if isinstance(s, dict)) >= 3
+
+
+
+@pytest.mark.filterwarnings("ignore::UserWarning")
+def test_a_stacks_bound_is_each_scenes_own(fast) -> None:
+    """The compiled stack's L of each scene (chain_probe's, a column per scene) is the
+    numpy path's of that scene alone (sweep_clear)."""
+    stacker, structure, k = stack(near_dead_centres("shaper")[:6])
+    bound = stack_probe(stacker, structure, k).clear.args[0]
+    assert bound.size == len(stacker.scenes) > 1
+    own = [float(sweep_clear(s, structure_of(s)).args[0][0]) for s in stacker.scenes]
+    np.testing.assert_array_equal(bound, own)
+    assert len(set(own)) == len(own)
+
+
+@pytest.mark.parametrize("name", ["shaper", "slotted_lever", "four_bar"])
+def test_a_driver_table_of_many_columns_beside_dyads_of_one(name) -> None:
+    """lipschitz with the driver's table a column per scene and the dyads' of one
+    column (a stack whose driver's numbers alone differ): each column's L is the one of
+    that column alone (one column of both: numpy's scalars)."""
+    scene = load_scene(ks.example(name))
+    structure = structure_of(scene)
+    gd = driver_geometry(scene)[0]
+    gy = np.stack([dyad_geometry(scene, d, 1.0)[0] for d in structure.dyads])
+    known = np.array(known_bodies(scene.driver, structure.dyads))
+    kinds = tuple(d.kind for d in structure.dyads)
+    many = np.repeat(gd, 3, axis=1)
+    many[D_PX] += [0.0, 0.05, -0.1]
+    many[D_LX] *= [1.0, 1.2, 0.9]
+    got = lipschitz(True, many, known, gy, kinds)
+    alone = [lipschitz(True, many[:, [j]].copy(), known, gy, kinds)[0] for j in range(3)]
+    np.testing.assert_array_equal(got, alone)
+    assert len(set(alone)) == 3
