@@ -50,13 +50,19 @@ def stack_probe(stacker, structure, ks: np.ndarray) -> Callable | None:
     at = crank_rrr_probe(stacker, structure, ks)
     if at is not None:
         return at
+    driver, dyads = stack_tables(stacker, structure, ks)
+    return chain_probe(stacker.base.driver, driver, dyads, structure.dyads)
+
+
+def stack_tables(stacker, structure, ks: np.ndarray) -> tuple:
+    """A stack's driver's and dyads' geometry tables (a column per scene where its
+    numbers differ, :meth:`~kinetostatics.solver.stack.Stacker.table`), each with its
+    stride."""
     m = len(stacker.scenes)
     table = stacker.table(0, m, np.ones(m, dtype=np.int64), stacker.base.driver.positions,
                           trig=False)
-    return chain_probe(stacker.base.driver, driver_geometry(table),
-                       [dyad_geometry(table, d, k) for d, k in zip(structure.dyads, ks,
-                                                                   strict=True)],
-                       structure.dyads)
+    return driver_geometry(table), [dyad_geometry(table, d, k)
+                                     for d, k in zip(structure.dyads, ks, strict=True)]
 
 
 def sweep_probe(scene: Scene, structure) -> Callable | None:
@@ -198,6 +204,13 @@ def crank_rrr_probe(stacker, structure, ks: np.ndarray) -> Callable | None:
     if kernel_trig():       # (the C library's cos and sin are numpy's here)
         from .screen_kernels import probe_rounds
         at.rounds = partial(_rounds, kernel=probe_rounds, args=(k, geo, on_crank))
+    # the intervals the rows prove clear (screen_bound, the RRR dyad's L): not probed
+    (gd, _), dyads = stack_tables(stacker, structure, ks)
+    gy = np.empty((1, DYAD_GEOMETRY, dyads[0][0].shape[1]))
+    gy[0] = dyads[0][0]
+    bound = lipschitz(True, np.asarray(gd, dtype=float),
+                      np.array([[0 if n == GROUND else 1 for n in knowns]]), gy, ("RRR",))
+    at.clear = partial(cleared, bound, int(bound.size > 1))
     return at
 
 

@@ -299,3 +299,41 @@ def test_a_driver_table_of_many_columns_beside_dyads_of_one(name) -> None:
     alone = [lipschitz(True, many[:, [j]].copy(), known, gy, kinds)[0] for j in range(3)]
     np.testing.assert_array_equal(got, alone)
     assert len(set(alone)) == 3
+
+
+
+def whole_turn(scene) -> bool:
+    """Whether ``scene`` solves over its sweep (solve_many raises for one that does not)."""
+    try:
+        ks.solve(scene)
+    except ks.WorkbenchError:
+        return False
+    return True
+
+
+@pytest.mark.filterwarnings("ignore::UserWarning")
+def test_a_stack_of_four_bars_gives_the_same_verdicts_without_the_bound(fast,
+                                                                        monkeypatch) -> None:
+    """solve_many of four-bars (crank_rrr_probe's ``clear``: the RRR dyad's L, each
+    scene's own) with the bound and without it: the same summaries, the change points
+    between rows found; some intervals cleared, some probed."""
+    near = [change_point_four_bar(0.1, 0.3, 0.2, start, 361)
+            for start in (0.5, 100.3, 0.0, 180.25)]
+    others = [s.raw for s in four_bars(40, 8)[1:] if whole_turn(s)]
+    stacker, structure, k = stack([load_scene(d) for d in others])
+    own = [float(sweep_clear(s, structure_of(s)).args[0][0]) for s in stacker.scenes]
+    np.testing.assert_array_equal(stack_probe(stacker, structure, k).clear.args[0], own)
+
+    def solved() -> list:
+        return [s.summary() for s in ks.solve_many([load_scene(d) for d in near + others])]
+    probed = probed_intervals(monkeypatch)
+    got = solved()
+    with_bound = len(probed)
+    monkeypatch.setattr(screen, "lipschitz", lambda *args: np.full(1, np.inf))
+    probed.clear()
+    assert solved() == got
+    # (measured 2026-11-30: 38 intervals probed without the bound, 12 with it; 18 of
+    # the 39 random four-bars close over the whole turn)
+    assert 0 < with_bound < len(probed), (with_bound, len(probed))
+    assert [s["dead_points_between_rows"] for s in got[:2]] == [[[359.5, 360.5]],
+                                                                 [[359.3, 360.3]]]
