@@ -1,6 +1,7 @@
 """The dead-point screen's proven bound (``solver/fast/screen_bound.py``): no slope of a
-six-bar's closeness to a dead centre above it, a dead point between rows of a stack
-still probed and found, and the same verdicts with the bound as without it."""
+six-bar's or a four-bar's closeness to a dead centre above it, a dead point between rows
+of a stack or of one sweep (the numpy path's screen too) still probed and found, and the
+same verdicts with the bound as without it."""
 
 from __future__ import annotations
 
