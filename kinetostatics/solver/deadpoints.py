@@ -207,6 +207,23 @@ def sweep_probe(scene: Scene, structure: Structure) -> Callable | None:
     return None
 
 
+# Where a sweep's numpy probe gets its ``clear`` (the proven bound,
+# fast.screen_bound.sweep_clear, told here as SWEEP_PROBES are): each a function of the
+# scene and its structure giving ``clear(lo, hi, owner, m_lo, m_hi)`` (as for
+# :func:`_probe_unclear`), or None (every interval probed).
+SWEEP_BOUNDS: list[Callable[[Scene, Structure], Callable | None]] = []
+
+
+def sweep_bound(scene: Scene, structure: Structure) -> Callable | None:
+    """The ``clear`` of a sweep of ``scene`` solved with ``structure`` from
+    :data:`SWEEP_BOUNDS`, or None."""
+    for source in SWEEP_BOUNDS:
+        clear = source(scene, structure)
+        if clear is not None:
+            return clear
+    return None
+
+
 def _probe(at: Callable[[np.ndarray, np.ndarray], Probed], lo: np.ndarray,
            hi: np.ndarray, owner: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The smallest m^2 found inside each interval (lo, hi), zooming ROUNDS times, and
@@ -304,6 +321,10 @@ def dead_points_of_sweep(scene: Scene, structure: Structure, positions: np.ndarr
     if at is None:
         def at(positions: np.ndarray, owner: np.ndarray) -> Probed:
             return probe_closeness(scene, structure, positions)
+        # the intervals the rows prove clear, not probed (screen_bound's L)
+        clear = sweep_bound(scene, structure)
+        if clear is not None:
+            at.clear = clear
     # (the scene's own positions known to increase, Driver.increasing: not told again,
     # measured 2026-11-30, the shaper at 1e6 rows: _segment_order's pass 1.3 ms)
     drv = scene.driver

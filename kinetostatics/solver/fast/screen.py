@@ -22,7 +22,7 @@ from . import loader
 from .choice import path_setting
 from .geometry import driver_geometry, dyad_geometry
 from .layout import DYAD_GEOMETRY, KINDS
-from .screen_bound import CLEAR, lipschitz
+from .screen_bound import CLEAR, known_bodies, lipschitz
 from .solve import kernel_trig
 
 
@@ -50,13 +50,19 @@ def stack_probe(stacker, structure, ks: np.ndarray) -> Callable | None:
     at = crank_rrr_probe(stacker, structure, ks)
     if at is not None:
         return at
+    driver, dyads = stack_tables(stacker, structure, ks)
+    return chain_probe(stacker.base.driver, driver, dyads, structure.dyads)
+
+
+def stack_tables(stacker, structure, ks: np.ndarray) -> tuple:
+    """A stack's driver's and dyads' geometry tables (a column per scene where its
+    numbers differ, :meth:`~kinetostatics.solver.stack.Stacker.table`), each with its
+    stride."""
     m = len(stacker.scenes)
     table = stacker.table(0, m, np.ones(m, dtype=np.int64), stacker.base.driver.positions,
                           trig=False)
-    return chain_probe(stacker.base.driver, driver_geometry(table),
-                       [dyad_geometry(table, d, k) for d, k in zip(structure.dyads, ks,
-                                                                   strict=True)],
-                       structure.dyads)
+    return driver_geometry(table), [dyad_geometry(table, d, k)
+                                     for d, k in zip(structure.dyads, ks, strict=True)]
 
 
 def sweep_probe(scene: Scene, structure) -> Callable | None:
@@ -102,14 +108,9 @@ def chain_probe(drv, driver: tuple, dyads: list, chain) -> Callable | None:
     numpy's, the dyads closed by the compiled path's closures: m^2 the numpy probe's
     (:func:`~kinetostatics.solver.probes.probe_closeness`) but for the RTR guide's angle,
     the compiled path's (a few ulps apart)."""
-    names = {GROUND: 0, drv.body: 1}
-    known = []
-    for i, d in enumerate(chain):
-        pair = [names.get(j.other(b)) for j, b in zip(d.outer, d.bodies, strict=True)]
-        if None in pair:
-            return None
-        known.append(pair)
-        names.update({d.bodies[0]: 2 + 2 * i, d.bodies[1]: 3 + 2 * i})
+    known = known_bodies(drv, chain)
+    if known is None:
+        return None
     cols = max(g.shape[1] for g, _ in dyads)
     gy = np.empty((len(dyads), DYAD_GEOMETRY, cols))
     for i, (g, _) in enumerate(dyads):
@@ -203,6 +204,13 @@ def crank_rrr_probe(stacker, structure, ks: np.ndarray) -> Callable | None:
     if kernel_trig():       # (the C library's cos and sin are numpy's here)
         from .screen_kernels import probe_rounds
         at.rounds = partial(_rounds, kernel=probe_rounds, args=(k, geo, on_crank))
+    # the intervals the rows prove clear (screen_bound, the RRR dyad's L): not probed
+    (gd, _), dyads = stack_tables(stacker, structure, ks)
+    gy = np.empty((1, DYAD_GEOMETRY, dyads[0][0].shape[1]))
+    gy[0] = dyads[0][0]
+    bound = lipschitz(True, np.asarray(gd, dtype=float),
+                      np.array([[0 if n == GROUND else 1 for n in knowns]]), gy, ("RRR",))
+    at.clear = partial(cleared, bound, int(bound.size > 1))
     return at
 
 
