@@ -23,6 +23,7 @@ from .choice import path_setting
 from .geometry import driver_geometry, dyad_geometry
 from .layout import DYAD_GEOMETRY, KINDS
 from .screen_bound import CLEAR, known_bodies, lipschitz
+from .screen_bound import cleared as bound_cleared
 from .solve import kernel_trig
 
 
@@ -63,6 +64,26 @@ def stack_tables(stacker, structure, ks: np.ndarray) -> tuple:
                           trig=False)
     return driver_geometry(table), [dyad_geometry(table, d, k)
                                      for d, k in zip(structure.dyads, ks, strict=True)]
+
+
+def stack_clear(stacker, structure, ks: np.ndarray) -> Callable | None:
+    """``clear(lo, hi, owner, m_lo, m_hi)`` of a stack's dead-point screen on the numpy
+    path (:func:`~kinetostatics.solver.fast.screen_bound.cleared` with each scene's L from
+    the stack's tables, :func:`stack_tables`: numpy, no numba), or None where no bound is
+    known (a sliding driver, a dyad on a body whose turning is not bounded). The compiled
+    probes attach theirs themselves (:func:`chain_probe`, :func:`crank_rrr_probe`)."""
+    drv = stacker.base.driver
+    known = known_bodies(drv, structure.dyads) if drv.kind == "R" else None
+    if known is None:
+        return None
+    (gd, _), dyads = stack_tables(stacker, structure, ks)
+    cols = max(g.shape[1] for g, _ in dyads)
+    gy = np.empty((len(dyads), DYAD_GEOMETRY, cols))
+    for i, (g, _) in enumerate(dyads):
+        gy[i] = g
+    bound = lipschitz(True, np.asarray(gd, dtype=float), np.array(known), gy,
+                      tuple(d.kind for d in structure.dyads))
+    return None if bound is None else partial(bound_cleared, bound, int(bound.size > 1))
 
 
 def sweep_probe(scene: Scene, structure) -> Callable | None:
