@@ -347,8 +347,8 @@ def test_a_numpy_stack_gives_the_same_verdicts_without_the_bound(numpy_path, nam
     """solve_many on the numpy path (its probe's ``clear``: screen.stack_clear, each
     scene's L from the stack's tables) with the bound and without it: the same
     summaries, dead points between rows found; fewer intervals probed with it."""
-    from kinetostatics.solver import many
     from kinetostatics.bench.speed import example_variants
+    from kinetostatics.solver import many
     if name == "four_bar":
         items = [load_scene(change_point_four_bar(0.1, 0.3, 0.2, start, 361))
                  for start in (0.5, 100.3, 0.0, 180.25)]
