@@ -268,8 +268,10 @@ class Explorer:
             self.figure.set_layout_engine("constrained")
             # the labels placed once, by settle, on the final layout (as the command
             # line does): placed first by each declutter of the picture, they cost a
-            # drawing of the figure more per update, undone by settle (the four-bar
-            # sheet's update 0.41 -> 0.28 s of CPU, best of 6, 2026-11-30)
+            # drawing of the figure more per update, undone by settle (the shaper
+            # sheet's update 3 -> 2 drawings; the four-bar sheet's 0.49 -> 0.34 s of
+            # CPU, best of 8, its 3 drawings kept: its legend goes out and settle draws
+            # it again until its layout stands; 2026-11-30)
             with settled_later():
                 self._draw(result, self.figure, **self.values)
             settle(self.figure)         # labels and legends clear of the drawing

@@ -75,8 +75,8 @@ def test_the_widgets_picture_is_saved_with_one_drawing(explorer, monkeypatch):
 def test_an_update_places_the_labels_once_on_the_final_layout(monkeypatch):
     """A picture with labels (the mechanism's, placed by ``declutter``) is drawn by
     ``settle`` alone, never before it by the ``declutter`` of the drawing itself
-    (measured: a drawing less an update; the four-bar sheet's slider move 0.41 -> 0.28 s
-    of CPU, 2026-11-30); its labels clear."""
+    (measured: the shaper sheet's update 3 -> 2 drawings, 2026-11-30); its labels
+    clear."""
     from matplotlib.figure import Figure
 
     from kinetostatics.notebook import widgets
