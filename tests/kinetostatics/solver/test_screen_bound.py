@@ -248,26 +248,22 @@ def test_the_numpy_screen_gives_the_same_verdicts_without_the_bound(numpy_path,
     probed): the same summaries (dead points between rows, flagged rows, intervals that
     cannot be crossed); some intervals cleared, some probed. (Measured 2026-11-30:
     486 intervals probed without the bound, 160 with it; 7 dead points between rows.)"""
+    def verdicts() -> list:
+        out = []
+        for scene in verdict_scenes():
+            try:
+                out.append(ks.solve(scene).summary())
+            except ks.WorkbenchError as e:
+                out.append(type(e).__name__)
+        return out
     probed = probed_intervals(monkeypatch)
-    got = []
-    for scene in verdict_scenes():
-        try:
-            got.append(ks.solve(scene).summary())
-        except ks.WorkbenchError as e:
-            got.append(type(e).__name__)
+    got = verdicts()
     with_bound = len(probed)
     monkeypatch.setattr(deadpoints, "SWEEP_BOUNDS", [])
     probed.clear()
-    again = []
-    for scene in verdict_scenes():
-        try:
-            again.append(ks.solve(scene).summary())
-        except ks.WorkbenchError as e:
-            again.append(type(e).__name__)
-    assert again == got
+    assert verdicts() == got
     assert 0 < with_bound < len(probed)
     assert sum(len(s["dead_points_between_rows"]) for s in got if isinstance(s, dict)) >= 3
-
 
 
 @pytest.mark.filterwarnings("ignore::UserWarning")
