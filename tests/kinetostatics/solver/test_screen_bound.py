@@ -11,7 +11,7 @@ import pytest
 import kinetostatics as ks
 from kinetostatics.model.scene import load_scene
 from kinetostatics.solver import deadpoints
-from kinetostatics.solver.fast import loader, screen
+from kinetostatics.solver.fast import screen
 from kinetostatics.solver.fast.geometry import driver_geometry, dyad_geometry
 from kinetostatics.solver.fast.layout import D_LX, D_PX
 from kinetostatics.solver.fast.screen import stack_probe
@@ -30,8 +30,6 @@ from tests.kinetostatics import scenes
 from .test_deadpoints import change_point_four_bar, slotted_lever
 from .test_screen_chain import CASES, variants
 from .test_screen_probe import stack
-
-pytestmark = pytest.mark.skipif(not loader.installed(), reason="numba not installed")
 
 SIX_BARS = [c for c in CASES if c[0] in ("shaper", "slotted_lever")]
 
