@@ -66,24 +66,38 @@ def stack_tables(stacker, structure, ks: np.ndarray) -> tuple:
                                      for d, k in zip(structure.dyads, ks, strict=True)]
 
 
-def stack_clear(stacker, structure, ks: np.ndarray) -> Callable | None:
-    """``clear(lo, hi, owner, m_lo, m_hi)`` of a stack's dead-point screen on the numpy
-    path (:func:`~kinetostatics.solver.fast.screen_bound.cleared` with each scene's L from
-    the stack's tables, :func:`stack_tables`: numpy, no numba), or None where no bound is
-    known (a sliding driver, a dyad on a body whose turning is not bounded). The compiled
-    probes attach theirs themselves (:func:`chain_probe`, :func:`crank_rrr_probe`)."""
+def stack_bound(stacker, structure, ks: np.ndarray) -> np.ndarray | None:
+    """Each scene's L of a stack (:func:`~kinetostatics.solver.fast.screen_bound.lipschitz`
+    over :func:`stack_tables`: numpy, no numba; one value where the scenes share it), or
+    None where no bound is known (a sliding driver, a dyad on a body whose turning is not
+    bounded)."""
     drv = stacker.base.driver
     known = known_bodies(drv, structure.dyads) if drv.kind == "R" else None
     if known is None:
         return None
     (gd, _), dyads = stack_tables(stacker, structure, ks)
+    return lipschitz(True, np.asarray(gd, dtype=float), np.array(known), dyad_stack(dyads),
+                     tuple(d.kind for d in structure.dyads))
+
+
+def stack_clear(stacker, structure, ks: np.ndarray) -> Callable | None:
+    """``clear(lo, hi, owner, m_lo, m_hi)`` of a stack's dead-point screen on the numpy
+    path (:func:`~kinetostatics.solver.fast.screen_bound.cleared` with
+    :func:`stack_bound`), or None where no bound is known. The compiled probes attach
+    theirs themselves (:func:`chain_probe`, :func:`crank_rrr_probe`)."""
+    bound = stack_bound(stacker, structure, ks)
+    return None if bound is None else partial(bound_cleared, bound, int(bound.size > 1))
+
+
+def dyad_stack(dyads: list) -> np.ndarray:
+    """The dyads' geometry tables (each ``(table, stride)``) in one array (dyads,
+    ``DYAD_GEOMETRY``, columns): the widest table's columns, a one-column table
+    broadcast over them."""
     cols = max(g.shape[1] for g, _ in dyads)
     gy = np.empty((len(dyads), DYAD_GEOMETRY, cols))
     for i, (g, _) in enumerate(dyads):
         gy[i] = g
-    bound = lipschitz(True, np.asarray(gd, dtype=float), np.array(known), gy,
-                      tuple(d.kind for d in structure.dyads))
-    return None if bound is None else partial(bound_cleared, bound, int(bound.size > 1))
+    return gy
 
 
 def sweep_probe(scene: Scene, structure) -> Callable | None:
@@ -132,15 +146,12 @@ def chain_probe(drv, driver: tuple, dyads: list, chain) -> Callable | None:
     known = known_bodies(drv, chain)
     if known is None:
         return None
-    cols = max(g.shape[1] for g, _ in dyads)
-    gy = np.empty((len(dyads), DYAD_GEOMETRY, cols))
-    for i, (g, _) in enumerate(dyads):
-        gy[i] = g
+    gy = dyad_stack(dyads)
     gd, gds = driver
     crank = drv.kind == "R"
     kinds = tuple(d.kind for d in chain)
     args = (crank, np.ascontiguousarray(gd, dtype=float), gds, np.array(known, dtype=np.int64),
-            gy, int(cols > 1))
+            gy, int(gy.shape[2] > 1))
     from .probe_kernels import probe_chain, rounds_of
     codes = np.array([KINDS[k] for k in kinds], dtype=np.int64)
 
@@ -226,11 +237,7 @@ def crank_rrr_probe(stacker, structure, ks: np.ndarray) -> Callable | None:
         from .screen_kernels import probe_rounds
         at.rounds = partial(_rounds, kernel=probe_rounds, args=(k, geo, on_crank))
     # the intervals the rows prove clear (screen_bound, the RRR dyad's L): not probed
-    (gd, _), dyads = stack_tables(stacker, structure, ks)
-    gy = np.empty((1, DYAD_GEOMETRY, dyads[0][0].shape[1]))
-    gy[0] = dyads[0][0]
-    bound = lipschitz(True, np.asarray(gd, dtype=float),
-                      np.array([[0 if n == GROUND else 1 for n in knowns]]), gy, ("RRR",))
+    bound = stack_bound(stacker, structure, ks)
     at.clear = partial(cleared, bound, int(bound.size > 1))
     return at
 
