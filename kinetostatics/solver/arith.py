@@ -231,6 +231,8 @@ def _joined(op, plain, p, q, a, b, c, d, den):
                 r = op(p, q)
         else:
             r = op(p, q)
+    elif type(q) is float and q == 0.0:
+        r = p       # (plain(p, 0.0) is p, whatever p: a product the arithmetic skipped)
     else:
         r = into(op, plain, p, q, fresh(p, a, b), fresh(q, c, d))
     return r if den is None else over(r, den, a, b, c, d)
@@ -324,7 +326,10 @@ def icross(acc, rx, ry, fx, fy, tmp, sign: float = 1.0) -> None:
 def scalar(x):
     """A Python float of a scalar; a per-row array (a stacked batch of scenes,
     :func:`kinetostatics.solve_many`) as it is."""
-    return x if isinstance(x, np.ndarray) else float(x)
+    t = type(x)
+    if t is float:
+        return x
+    return x if t is _ARRAY or isinstance(x, np.ndarray) else float(x)
 
 
 def full(x, n: int) -> np.ndarray:
