@@ -189,6 +189,7 @@ class DyadSolver:
         through its pivot). The other kinds divide by link lengths (constant) or by the
         velocity system's determinant (the transmission measure)."""
         self.reach = None
+        self.pivots = None
         with quiet():
             if self.dyad.inner.kind == "R":
                 return self._inner_r(pr, k, first)
@@ -306,6 +307,9 @@ class DyadSolver:
             # (the arrays made here take the next step's values: the same numbers)
             own = A.fresh(d2, dx, dy)
             dn = self.reach = np.sqrt(d2, out=d2) if own else np.sqrt(d2)
+            # (D = P_s - P_g and |D| kept for the transmission measure of this closing,
+            # velocity_system.dead_centre_closeness2: not worked out a second time)
+            self.pivots = (dx, dy, dn)
             y = -c / dn
             gap = None
             # (|y| > 1 somewhere, or a NaN or an infinity: the same test as on np.abs(y))

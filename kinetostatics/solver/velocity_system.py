@@ -125,7 +125,19 @@ def dead_centre_closeness2(vs, pr, reach, n: int, solver: DyadSolver | None = No
             norm2 = (c1[0] * c1[0] + c1[1] * c1[1]) * (c2[0] * c2[0] + c2[1] * c2[1])
         sin2 = A.full(vs.det * vs.det / norm2, n)
     else:
-        sin2 = A.full(inner_t_tau(pr, vs.ux, vs.uy, cos=False)[0], n) ** 2
+        piv = getattr(solver, "pivots", None)
+        if piv is not None:
+            # RTR (seed 000 ch. 6-7): u . D / |D| of inner_t_tau with the closing's own D
+            # and |D| (DyadSolver.pivots): D = P_s - P_g there, P_1 - P_2 in inner_t_tau,
+            # so this sin is the same number or exactly its negative (a - b = -(b - a),
+            # products and quotients keep the sign), and only its square is read. Five
+            # passes fewer a block (two differences, two squares, a root; measured
+            # 2026-12-01, the bundled shaper)
+            dx, dy, dn = piv
+            sin_t = A.mul_add(vs.ux, dx, vs.uy, dy, den=dn)
+        else:
+            sin_t = inner_t_tau(pr, vs.ux, vs.uy, cos=False)[0]
+        sin2 = A.full(sin_t, n) ** 2
     if reach is not None:
         sin2 = np.minimum(sin2, reach * reach)
     return sin2
