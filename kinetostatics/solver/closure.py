@@ -270,15 +270,17 @@ class DyadSolver:
         q0 = _trans_point(pt, self.q[it])
         wx, wy = A.sub(q0[0], prr.px), A.sub(q0[1], prr.py)
         b = A.mul_add(pt.ux, wx, pt.uy, wy)
-        disc = b * b - (wx * wx + wy * wy) + rs
+        disc, own = _discriminant(b, wx, wy, rs)
         gap = None
         least = _least(disc)
         if least < 0.0:
             gap = np.abs(A.mul_sub(pt.ux, wy, pt.uy, wx)) - np.sqrt(rs)
-        root = _root(disc) if type(disc) is float else _clipped_root(disc, least)
+        root = _root(disc) if type(disc) is float else _clipped_root(disc, least, own)
 
         def close(k, root, b, wx, wy, ux, uy, c, sn):
-            s = k * root - b
+            # (k = 1: 1 * root is root, every double: a pass fewer, measured 2026-12-01,
+            # the slider-crank's and the shaper's RRT dyads assemble with k = 1)
+            s = (root if type(k) is int and k == 1 else k * root) - b
             out = [None, None]
             out[ir] = _rot_angle(A.add_mul(wx, s, ux), A.add_mul(wy, s, uy), ar, rs)
             out[it] = (c, sn)
@@ -398,11 +400,35 @@ def _root(x):
     return np.sqrt(x)
 
 
-def _clipped_root(x: np.ndarray, least) -> np.ndarray:
+def _clipped_root(x: np.ndarray, least, own: bool = False) -> np.ndarray:
     """np.sqrt(np.maximum(x, 0.0)), ``least`` x's smallest value: where none is below 0
     (nor NaN) the maximum changes nothing (x is a difference or a sum that is never
-    -0.0: a - a is +0.0), and its pass is not made."""
-    return np.sqrt(x) if least >= 0.0 else np.sqrt(np.maximum(x, 0.0))
+    -0.0: a - a is +0.0), and its pass is not made. ``own``: x is a temporary of the
+    caller's, read no more: the root is written into it (the same values)."""
+    out = x if own else None
+    if least >= 0.0:
+        return np.sqrt(x, out=out)
+    return np.sqrt(np.maximum(x, 0.0, out=out), out=out)
+
+
+def _discriminant(b, wx, wy, rs):
+    """``b * b - (wx * wx + wy * wy) + rs`` (the circle-line closing's, seed 000 ch. 8-9)
+    and whether it is an array of its own: where b, wx and wy are float arrays of one
+    shape (and rs a number or such an array) the same operations in the same order, in
+    two arrays instead of five (2026-12-01: three fresh arrays fewer an RRT dyad; its
+    root is then written into the second, :func:`_clipped_root`)."""
+    arrays = type(b) is np.ndarray and type(wx) is np.ndarray and type(wy) is np.ndarray
+    if not (arrays and b.shape == wx.shape == wy.shape
+            and b.dtype == wx.dtype == wy.dtype == np.float64
+            and (type(rs) is float or type(rs) is np.ndarray and rs.shape == b.shape
+                 and rs.dtype == np.float64)):
+        return b * b - (wx * wx + wy * wy) + rs, False
+    t = wx * wx
+    q = wy * wy
+    np.add(t, q, out=t)
+    np.multiply(b, b, out=q)
+    np.subtract(q, t, out=q)
+    return np.add(q, rs, out=q), True
 
 
 def body_origin(pr: Param, cs, s):

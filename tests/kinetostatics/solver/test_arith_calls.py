@@ -16,6 +16,7 @@ import pytest
 from kinetostatics.model.examples import example
 from kinetostatics.model.scene import load_scene
 from kinetostatics.solver import arith as A
+from kinetostatics.solver import closure as C
 from kinetostatics.solver import kinematics as K
 from kinetostatics.solver import velocity_system as V
 from kinetostatics.solver.pipeline import structure_of
@@ -149,3 +150,24 @@ def test_rtr_closeness_is_inner_t_tau_s(name) -> None:
         assert np.array_equal(bits(now.closeness2), bits(was.closeness2))
         rtr += now.nx is not None and all(p.kind == "rot" for p in now.params)
     assert rtr == 1
+
+
+def test_circle_line_discriminant_and_root_keep_their_bits() -> None:
+    """closure's circle-line closing in fewer arrays (2026-12-01): its discriminant, its
+    root written into its own array, and k = 1 not multiplied, the plain bits."""
+    with np.errstate(all="ignore"):
+        for i in range(4):
+            b, wx, wy = rows(i), rows(i + 1)[::-1].copy(), rows(i + 2)
+            for rs in (0.0, 0.25, 1e300, rows(i + 3)):
+                got, own = C._discriminant(b, wx, wy, rs)
+                want = b * b - (wx * wx + wy * wy) + rs
+                assert own and np.array_equal(bits(got), bits(want))
+                least = got.min()
+                mine = C._clipped_root(got, least, own=True)
+                assert mine is got
+                assert np.array_equal(bits(mine), bits(C._clipped_root(want, least)))
+            assert np.array_equal(bits(1 * b - wx), bits(b - wx))
+        # (a number or arrays of two shapes: the plain expression, not its own array)
+        assert C._discriminant(0.5, 0.25, 2.0, 1.0) == (0.5 * 0.5 - (0.25 * 0.25 + 4.0) + 1.0,
+                                                       False)
+        assert not C._discriminant(rows(0), rows(1), rows(2)[:1], 1.0)[1]
