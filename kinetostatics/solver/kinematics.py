@@ -328,7 +328,11 @@ def _acceleration_rhs(vs: _VelocitySystem, pr, qd, w2):
             # (the same differences, computed once)
             cx, cy = vs.c1 if i == 0 else vs.c2
             w2_ = w2[i]
-            ka.append((A.sub(p.apx, w2_ * cy), A.add(p.apy, w2_ * cx)))
+            # (A.sub and A.add of the product, written into the product's own array,
+            # A.into: the same values, two fresh arrays fewer a turning body)
+            t, u = w2_ * cy, w2_ * cx
+            ka.append((A.into(np.subtract, A.sub, p.apx, t, False, A.fresh(t, w2_, cy)),
+                       A.into(np.add, A.add, p.apy, u, False, A.fresh(u, w2_, cx))))
         else:
             kax, kay = p.known.acc_at(xx, xy)
             f = A.mul(2.0 * p.known.omega, qd[i])          # Coriolis 2 omega_K x v_rel
