@@ -310,9 +310,10 @@ def kept_assemblies(stacker: Stacker, structure, firsts: np.ndarray,
     read with their records; a Scene is frozen and its record's label names its
     structure: the same choice, made at its own first row, in any stack), as solve keeps
     each scene's (:mod:`~kinetostatics.solver.memo`). Measured 2026-12-01, 1000
-    four-bars stacked again, processor time, best of 15 at a load of 5-7: 0.05 ms a
-    call read from the cells that came with the records (one pass over the scenes fewer:
-    0.32-0.40 ms looked up per scene object apart, 0.50-0.53 choosing them)."""
+    four-bars stacked again, processor time, best of 21 at a load of 7-8: 0.12 ms a
+    call read from the cells that came with the records (one look-up per scene object
+    fewer: 0.32-0.40 ms looked up apart by id and weak reference; choosing them
+    0.50-0.53)."""
     if cells is None:
         cells = [stack_record(sc)[5] for sc in stacker.scenes]
     nd = len(structure.dyads)

@@ -87,7 +87,9 @@ def solve_group_kept(stacker, structure, ks: np.ndarray, counts: np.ndarray,
     if not_covered(table) is not None:
         return None
     geometry = Geometry(table, structure, ks)
-    # (kept for the dead-point screen's bound, screen.stack_tables: the same tables)
+    # (kept for the dead-point screen's bound, screen.stack_tables: the same tables, one
+    # table and geometry fewer; measured 2026-12-01, 1000 four-bars x 361, stack_bound
+    # 0.43 -> 0.24 ms a call, best of 21 at a load of 7-8)
     stacker.kept["geometry"] = (structure, ks, geometry)
     plan = Plan(kernels, table, structure, ks, owners(counts), geometry)
     return fused_screened(plan, positions.size, stacker.sweeps(0, m, counts, positions),
