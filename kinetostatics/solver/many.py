@@ -47,6 +47,7 @@ from concurrent.futures import Executor
 from contextlib import contextmanager
 from dataclasses import replace
 from functools import partial
+from operator import itemgetter
 from typing import Any
 
 import numpy as np
@@ -55,7 +56,7 @@ from ..common.lazy import moved_names
 from ..model.errors import UnitWarning, WorkbenchError
 from ..model.memory import check_memory
 from ..model.scene import Scene, load_scene
-from . import blocks, memo
+from . import blocks
 from .blocks import Kept, LeanSolved
 from .cut import CutSolved, RunAgain, cut_scenes, run_values, splitter
 from .deadpoints import SCANS, dead_points_stacked, kin_measure2, measure2
@@ -70,7 +71,7 @@ from .pipeline import check_distinct, solve_arrays, solve_block
 from .probes import probe_closeness
 from .reactions import DriverReaction
 from .solved import Solved
-from .stack import RECORDS, Stacker, assemblies, stack_record, stack_records
+from .stack import Stacker, assemblies, stack_record, stack_records
 from .structure import analyse
 from .trap import first_trapped, positions_tame
 
@@ -174,8 +175,9 @@ def solved_outcomes(items: list[Any], *, lean: bool = True) -> list[Any]:
 
 
 def fields_of(members: list) -> tuple:
-    """The members of a group (index, scene, numbers, increasing, rows, sweep each) as
-    one list per field."""
+    """The members of a group (index, scene, numbers, increasing, rows, sweep and
+    assemblies' cell each, :func:`~kinetostatics.solver.stack.stack_record`) as one list
+    per field."""
     return tuple(list(f) for f in zip(*members, strict=True))
 
 
@@ -189,13 +191,14 @@ def _one_group(items: list) -> tuple[tuple, int] | None:
     if not items or set(map(type, items)) != {Scene}:
         return None
     try:
-        labels, numbers, ups, counts, sweeps = zip(*stack_records(items), strict=True)
+        labels, numbers, ups, counts, sweeps, cells = zip(*stack_records(items),
+                                                          strict=True)
     except Exception:           # (read one by one: each scene's error in its place)
         return None
     if labels[0] is None or labels.count(labels[0]) != len(labels) or not all(ups):
         return None
     return (list(range(len(items))), list(items), list(numbers), list(ups), list(counts),
-            list(sweeps)), sum(counts)
+            list(sweeps), cells), sum(counts)
 
 
 def _read_each(items: list, out: list, groups: dict, alone: list) -> int:
@@ -214,7 +217,7 @@ def _read_each(items: list, out: list, groups: dict, alone: list) -> int:
                 loaded += 1
                 # its signature's label, its numbers, whether its positions increase
                 # (then none repeats), its rows and its sweep, told once per scene object
-                label, nums, up, n, sweep = record(sc)
+                label, nums, up, n, sweep, cell = record(sc)
                 rows += n
                 if not up:
                     q = "angle" if sc.driver.kind == "R" else "length"
@@ -229,7 +232,7 @@ def _read_each(items: list, out: list, groups: dict, alone: list) -> int:
             members = groups.get(label)
             if members is None:
                 members = groups[label] = []
-            members.append((i, sc, nums, up, n, sweep))
+            members.append((i, sc, nums, up, n, sweep, cell))
     _check_memory(loaded, rows, [m[0][1] for m in groups.values()] + [sc for _, sc in alone])
     return rows
 
@@ -260,8 +263,9 @@ def _solve_group(columns: tuple, out: list, lean: bool) -> None:
     """Solve scenes of one signature stacked (``columns``: :func:`fields_of` their
     members); any scene the stacked pass cannot vouch for (or all of them, if it
     refuses) is solved alone."""
-    # (each field of the members: index, scene, numbers, increasing, rows, sweep)
-    index, scenes, numbers, ups, counts, sweeps = columns
+    # (each field of the members: index, scene, numbers, increasing, rows, sweep, the
+    # cell of its assemblies)
+    index, scenes, numbers, ups, counts, sweeps, cells = columns
     if len(index) == 1:
         out[index[0]] = _alone(scenes[0])
         return
@@ -272,7 +276,8 @@ def _solve_group(columns: tuple, out: list, lean: bool) -> None:
         stacker = Stacker(scenes, numbers, one)
         rows = np.array(counts)
         stacked = stacked_positions(scenes, one)
-        ks, ok = kept_assemblies(stacker, structure, stacked[0][np.cumsum(rows) - rows])
+        ks, ok = kept_assemblies(stacker, structure, stacked[0][np.cumsum(rows) - rows],
+                                 cells)
     except Exception:
         ok = np.zeros(len(index), dtype=bool)
     if not ok.all():        # (usually all kept: no pass over the flags, no copy)
@@ -286,7 +291,7 @@ def _solve_group(columns: tuple, out: list, lean: bool) -> None:
                 out[i] = _alone(sc)
             return
         ks = ks[:, ok]
-        index, scenes, numbers, ups, counts, _ = (list(f) for f in zip(*kept, strict=True))
+        index, scenes, numbers, ups, counts, _, _ = (list(f) for f in zip(*kept, strict=True))
         stacker, stacked, rows = Stacker(scenes, numbers), None, np.array(counts)
     try:
         sols = _stacked(scenes, structure, ks, stacker, lean, all(ups), rows, stacked)
@@ -296,42 +301,35 @@ def _solve_group(columns: tuple, out: list, lean: bool) -> None:
         out[i] = s
 
 
-def kept_assemblies(stacker: Stacker, structure, firsts: np.ndarray
-                    ) -> tuple[np.ndarray, np.ndarray]:
+def kept_assemblies(stacker: Stacker, structure, firsts: np.ndarray,
+                    cells: list | tuple | None = None) -> tuple[np.ndarray, np.ndarray]:
     """:func:`~kinetostatics.solver.stack.assemblies` of a stack of scene objects (each
     row of ``stacker`` one of ``stacker.scenes``: not variants of one base scene), each
-    scene's assemblies and whether they settle told once per scene object and kept while
-    it lives (:class:`~kinetostatics.solver.memo.Kept`; a Scene is frozen: the same
-    choice, made at its own first row, in any stack of its structure), as solve keeps each
-    scene's (:mod:`~kinetostatics.solver.memo`). Measured 2026-11-30, 1000 four-bars
-    stacked again, processor time, best of 40 at a load of 14: 0.21-0.31 ms a call
-    against 0.50-0.53 choosing them (each scene's choice kept as one int: as a tuple, its
-    arrays made of 1000 tuples, 0.73-0.77 ms)."""
-    scenes = stacker.scenes
-    # (a scene kept under a key cleared from _DYADS: chosen again)
-    dyads = memo.interned(_DYADS, tuple(d.bodies for d in structure.dyads))
-    get = _ASSEMBLIES.entries.get
-    found = []
-    add = found.append
-    for sc in scenes:
-        hit = get(id(sc))
-        if hit is None or hit[1][0] is not dyads or hit[0]() is not sc:
-            break
-        add(hit[1][1])
-    else:       # (each scene's choice an int: bit 0 whether it settles, bit d + 1 k = -1)
-        code = np.array(found, dtype=np.int64)
-        bits = np.arange(1, len(dyads) + 1, dtype=np.int64)[:, None]
+    scene's assemblies and whether they settle told once per scene object and kept in
+    its record's cell while it lives (``cells``: those of ``stacker.scenes``, when
+    read with their records; a Scene is frozen and its record's label names its
+    structure: the same choice, made at its own first row, in any stack), as solve keeps
+    each scene's (:mod:`~kinetostatics.solver.memo`). Measured 2026-12-01, 1000
+    four-bars stacked again, processor time, best of 21 at a load of 7-8: 0.12 ms a
+    call read from the cells that came with the records (one look-up per scene object
+    fewer: 0.32-0.40 ms looked up apart by id and weak reference; choosing them
+    0.50-0.53)."""
+    if cells is None:
+        cells = [stack_record(sc)[5] for sc in stacker.scenes]
+    nd = len(structure.dyads)
+    code = list(map(_HELD, cells))
+    if None not in code:    # (each scene's an int: bit 0 whether it settles, bit d + 1 k = -1)
+        code = np.array(code, dtype=np.int64)
+        bits = np.arange(1, nd + 1, dtype=np.int64)[:, None]
         return 1 - 2 * ((code >> bits) & 1), (code & 1) != 0
     ks, ok = assemblies(stacker, structure, firsts)
-    code = ((ks < 0) << np.arange(1, len(dyads) + 1)[:, None]).sum(axis=0) + ok
-    put = _ASSEMBLIES.put
-    for sc, c in zip(scenes, code.tolist(), strict=True):
-        put(sc, (dyads, c))
+    code = ((ks < 0) << np.arange(1, nd + 1)[:, None]).sum(axis=0) + ok
+    for cell, c in zip(cells, code.tolist(), strict=True):
+        cell[0] = c
     return ks, ok
 
 
-_ASSEMBLIES = memo.Kept(RECORDS)     # (per scene: its structure's dyads and its choice)
-_DYADS: dict[tuple, tuple] = {}     # (one key object per structure's dyads)
+_HELD = itemgetter(0)       # (what a record's cell holds)
 
 
 def _stacked(scenes: list, structure, ks: np.ndarray, stacker: Stacker, lean: bool,

@@ -150,15 +150,18 @@ _RECORDS = Kept(RECORDS)
 _LABELS: dict[Any, int] = {}        # signature -> a label of its own (an int, quick to hash)
 
 
-def stack_record(scene: Scene) -> tuple[int | None, bytes, bool, int, tuple | None]:
+def stack_record(scene: Scene) -> tuple[int | None, bytes, bool, int, tuple | None, list]:
     """What :func:`kinetostatics.solve_many` needs of a scene to stack it, worked out once
     per scene object (kept while it lives; a Scene is frozen): a label of its
     :func:`signature` (scenes of equal signatures get the same label; None for a scene
     solved alone, or without positions), its numbers (:func:`_numbers`) packed as
     float64 bytes, whether its driver positions strictly increase (then none
     repeats: :func:`~kinetostatics.solver.continuity.check_distinct` has nothing to
-    refuse), its number of positions and its sweep's key
-    (:attr:`~kinetostatics.model.scene_types.Driver.sweep`)."""
+    refuse), its number of positions, its sweep's key
+    (:attr:`~kinetostatics.model.scene_types.Driver.sweep`) and a cell (a list of one
+    item, None at first) where :func:`kinetostatics.solve_many` keeps the scene's
+    assemblies once chosen (``many.kept_assemblies``: read with its other fields, in the
+    same pass over the scenes)."""
     hit = _RECORDS.get(scene)
     if hit is not None:
         return hit
@@ -174,7 +177,7 @@ def stack_record(scene: Scene) -> tuple[int | None, bytes, bool, int, tuple | No
                 _LABELS.clear()     # (a new label for a signature met again: no harm)
             label = _LABELS[sig] = next(_LABEL)
     rec = (label, struct.pack(f"{len(nums)}d", *nums), _increases(drv), drv.positions.size,
-           None if drv.sweep is None else interned(_SWEEPS, drv.sweep))
+           None if drv.sweep is None else interned(_SWEEPS, drv.sweep), [None])
     _RECORDS.put(scene, rec)
     return rec
 
@@ -263,6 +266,9 @@ class Stacker:
         self.size = take()
         self._gathered: tuple | None = None       # (scene(): the last owner's numbers)
         self._tiles: dict[int, tuple] = {}       # (trig_rows: a shared sweep per count)
+        # what the solve of the stack works out once and reads twice (the compiled
+        # path's geometry: its fused kernel's and the dead-point screen's bound)
+        self.kept: dict[str, tuple] = {}
 
     @classmethod
     def of_columns(cls, base: Scene, m: int, ground: dict, bodies: dict, size) -> Stacker:
@@ -281,6 +287,7 @@ class Stacker:
         self.size = size
         self._gathered = None
         self._tiles = {}
+        self.kept = {}
         self._varying, self._row_of = None, {}
         self.one_sweep = True
         return self

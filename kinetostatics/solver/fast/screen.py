@@ -59,6 +59,10 @@ def stack_tables(stacker, structure, ks: np.ndarray) -> tuple:
     """A stack's driver's and dyads' geometry tables (a column per scene where its
     numbers differ, :meth:`~kinetostatics.solver.stack.Stacker.table`), each with its
     stride."""
+    kept = stacker.kept.get("geometry")
+    if kept is not None and kept[0] is structure and kept[1] is ks:
+        # (the fused kernel's, stacked.solve_group_kept: made of the same table)
+        return kept[2].driver, [g[:2] for g in kept[2].dyads]
     m = len(stacker.scenes)
     table = stacker.table(0, m, np.ones(m, dtype=np.int64), stacker.base.driver.positions,
                           trig=False)

@@ -12,7 +12,7 @@ from ..deadpoints import MANY_BELOW, SCREEN
 from ..reactions import DriverReaction
 from ..solved import Solved
 from .choice import wanted
-from .compose import Plan, Refused, kept_sweep, solve_full, solve_lean
+from .compose import Geometry, Plan, Refused, kept_sweep, solve_full, solve_lean
 from .geometry import not_covered
 from .short import NO_ANGLES, fused_arguments, fused_kernel
 from .solve import KeptRun, guided_call, stats_in
@@ -86,7 +86,12 @@ def solve_group_kept(stacker, structure, ks: np.ndarray, counts: np.ndarray,
     table = stacker.table(0, m, counts, stacker.base.driver.positions, trig=False)
     if not_covered(table) is not None:
         return None
-    plan = Plan(kernels, table, structure, ks, owners(counts))
+    geometry = Geometry(table, structure, ks)
+    # (kept for the dead-point screen's bound, screen.stack_tables: the same tables, one
+    # table and geometry fewer; measured 2026-12-01, 1000 four-bars x 361, stack_bound
+    # 0.43 -> 0.24 ms a call, best of 21 at a load of 7-8)
+    stacker.kept["geometry"] = (structure, ks, geometry)
+    plan = Plan(kernels, table, structure, ks, owners(counts), geometry)
     return fused_screened(plan, positions.size, stacker.sweeps(0, m, counts, positions),
                           _scratch(positions.size))
 

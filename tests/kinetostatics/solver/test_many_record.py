@@ -32,10 +32,11 @@ def test_labels_group_exactly_the_scenes_of_one_signature() -> None:
     # told once per scene object: the same record, not worked out again
     assert all(stack_record(s) is r for s, r in zip(scenes, recs, strict=True))
     # each scene's numbers, packed, bit for bit
-    for s, (_, nums, up, n, sweep) in zip(scenes, recs, strict=True):
+    for s, (_, nums, up, n, sweep, cell) in zip(scenes, recs, strict=True):
         np.testing.assert_array_equal(np.frombuffer(nums).view(np.int64), _bits(_numbers(s)))
         assert up
         assert n == s.driver.positions.size and sweep == s.driver.sweep
+        assert cell == [None]       # (its assemblies: none chosen yet, kept_assemblies)
 
 
 def test_a_scene_solved_alone_has_no_label() -> None:
