@@ -32,7 +32,9 @@ from .short import OWNERS, START, fused_arguments, fused_kernel
 # row, alternated with this build twice: 163-173 against 114-129 ms, 246-259 against
 # 187-224, the same bytes); ordinary stores in place of the non-temporal ones
 # (streams.stream) 120-124 against 118-140 ms, 192-194 against 184-209 in fresh pages:
-# within the load's noise.
+# within the load's noise. (On that Xeon streams.stream made ordinary stores of every
+# column but the negated ones until 2026-12-01: that comparison was of ordinary stores
+# with ordinary stores, mostly; streams.py.)
 BLOCK = 4096
 
 
