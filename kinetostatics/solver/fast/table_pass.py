@@ -32,7 +32,9 @@ from .short import OWNERS, START, fused_arguments, fused_kernel
 # row, alternated with this build twice: 163-173 against 114-129 ms, 246-259 against
 # 187-224, the same bytes); ordinary stores in place of the non-temporal ones
 # (streams.stream) 120-124 against 118-140 ms, 192-194 against 184-209 in fresh pages:
-# within the load's noise.
+# within the load's noise. (On that Xeon streams.stream made ordinary stores of every
+# column but the negated ones until 2026-12-01: that comparison was of ordinary stores
+# with ordinary stores, mostly; streams.py.)
 BLOCK = 4096
 
 
@@ -109,23 +111,36 @@ class FusedTables:
         slots = np.array([self.slot[b] for b, _ in points], dtype=np.int64)
         local = np.array([loc for _, loc in points], dtype=float).reshape(-1, 2)
         own = own_hypot()
-        # read-only, as a driver's angles: turn_rows compiled for one type of array
-        # (a writable sweep here was a second compile of it, found by test_fast's
-        # one-signature check, 2026-11-30)
-        angles = driver_input(self.scene).view()
-        angles.flags.writeable = False
-        n = angles.size
+        angles = block_angles(self.scene)
+        n = self.scene.driver.positions.size
         width = min(BLOCK, n)
-        cs, sn = np.empty(width), np.empty(width)
+        cs, sn, at = np.empty(width), np.empty(width), np.empty(width)
         turn = block_turn()
         bad = 0
         for lo in range(0, n, width):
             m = min(lo + width, n) - lo
-            turn(angles[lo:lo + m], cs[:m], sn[:m])
+            turn(angles(slice(lo, lo + m), at), cs[:m], sn[:m])
             bad += self.kernel(0, m, OWNERS, cs, sn, START, *self.fixed, slots, local, n, lo,
                                kout, src, sign, rout, own)
         if bad:
             raise Refused(bad)
+
+
+def block_angles(scene: Scene):
+    """``angles(rows, out)``: the crank's angles (rad) of the sweep's ``rows``, read-only
+    (as a driver's angles: :func:`block_turn`'s kernel is compiled for one type of array;
+    a writable sweep here was a second compile of it, found by test_fast's one-signature
+    check, 2026-11-30), the doubles the solve's kernels turn: a view of the driver's
+    ``angles`` where they are made, else worked out into ``out`` block by block
+    (:meth:`~kinetostatics.model.scene.Driver.angles_into`: the lean solve makes none, and
+    the whole sweep's 8 MB at 1e6 rows, fresh pages and a pass of their own, were made
+    here for one read; measured 2026-12-01, 2-5 ms of processor time a table pass)."""
+    drv = scene.driver
+    if drv.kind == "R":
+        return drv.angles_into
+    x = driver_input(scene).view()
+    x.flags.writeable = False
+    return lambda rows, out: x[rows]
 
 
 def block_turn():

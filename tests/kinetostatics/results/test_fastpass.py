@@ -294,3 +294,19 @@ def test_tables_with_the_c_librarys_hypot(fast, monkeypatch):
     expected = bits(ks.solve(text).reactions)
     monkeypatch.setitem(table_pass._HYPOT, "own", False)
     assert bits(ks.solve(text).reactions) == expected
+
+
+def test_the_pass_makes_no_angles_over_the_sweep(fast):
+    """The fused pass works out the crank's angles block by block
+    (``table_pass.block_angles``): the driver's ``angles`` over the sweep (8 MB at 1e6
+    rows, made for one read) stay unmade, and where they are made the pass reads them,
+    the same tables bit for bit."""
+    text = scene_text("four_bar")
+    sol = ks.solve(text)
+    driver = sol.__dict__["_deferred"].known["scene"].driver
+    tables = [bits(sol.reactions), bits(sol.kinematics)]
+    assert "angles" not in driver.__dict__
+    other = ks.solve(text)
+    made = other.__dict__["_deferred"].known["scene"].driver.angles
+    assert made.size * 4 * 8 == len(tables[0]["Fx"][1])     # (four joints, 8 bytes a row)
+    assert [bits(other.reactions), bits(other.kinematics)] == tables
