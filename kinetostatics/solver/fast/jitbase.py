@@ -9,58 +9,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 from numba.core import types
-from numba.core.codegen import JITCodeLibrary
-from numba.core.compiler import CompilerBase, DefaultPassBuilder
-from numba.core.compiler_machinery import FunctionPass, register_pass
 from numba.core.registry import CPUDispatcher
-from numba.core.typed_passes import NopythonTypeInference
-
-
-class InlinedLibrary(JITCodeLibrary):
-    """The machine code library of a helper compiled only to be inlined (:data:`_inlined`):
-    its module is not optimised alone (LLVM's module passes), only where it is inlined, in
-    the entry point that calls it, which optimises the whole inlined body anyway. numba
-    optimised each helper's module on its own first, with every helper it inlines: the
-    fused kernels' bodies (``fused_kernels._crank_dyad_kept``, ``guide_kernels.
-    _rtr_dyad_kept``) then went through LLVM's full passes once alone and again in each
-    entry, ``dyad_row`` once alone and again in every helper and entry above it (measured
-    2026-12-01, an empty cache, processor time at a load of 6-8: the slotted lever's and
-    the shaper's first solves 36.9 s of compiling -> 28.4, ``_rtr_dyad_kept`` alone
-    7.2 s -> 2.3; the whole compiled-path tests: docs/testing.md). The entry points' code
-    is LLVM's full passes over the same inlined body: the same numbers, bit for bit
-    (tests/kinetostatics/solver/test_fast*.py), as fast (docs/testing.md)."""
-
-    def _optimize_final_module(self):
-        """Nothing: optimised where it is inlined (function passes were run already)."""
-
-
-@register_pass(mutates_CFG=False, analysis_only=True)
-class InlinedLowering(FunctionPass):
-    """After numba's typing: the helper's library an :class:`InlinedLibrary` (numba's
-    lowering then fills it)."""
-
-    _name = "kinetostatics_inlined_library"
-
-    def __init__(self) -> None:
-        FunctionPass.__init__(self)
-
-    def run_pass(self, state) -> bool:
-        if state.library is None:
-            state.library = InlinedLibrary(state.targetctx.codegen(),
-                                           state.func_id.func_qualname)
-            state.library.enable_object_caching()
-        return False
-
-
-class InlinedCompiler(CompilerBase):
-    """numba's nopython pipeline with :class:`InlinedLowering` before the lowering."""
-
-    def define_pipelines(self):
-        pm = DefaultPassBuilder.define_nopython_pipeline(self.state)
-        pm.add_pass_after(InlinedLowering, NopythonTypeInference)
-        pm.finalize()
-        return [pm]
-
 
 jit = njit(cache=True, error_model="numpy", nogil=True, no_cfunc_wrapper=True)
 # the helpers and a dyad's kernel body, inlined where they are called (a call that
@@ -76,7 +25,7 @@ jit = njit(cache=True, error_model="numpy", nogil=True, no_cfunc_wrapper=True)
 # four-bar, slider-crank and shaper 20.5-21.0 s of processor time on an empty cache
 # against 24.0-25.0 s with the wrappers; the same numbers, bit for bit)
 _inlined = njit(error_model="numpy", nogil=True, forceinline=True, no_cpython_wrapper=True,
-                no_cfunc_wrapper=True, pipeline_class=InlinedCompiler)
+                no_cfunc_wrapper=True)
 
 
 class PlainArgs(CPUDispatcher):
