@@ -68,6 +68,9 @@ def test_beyond_its_range_the_c_librarys(trig) -> None:
     lim = trig.LIMIT
     x = np.array([np.nextafter(lim, np.inf), -1.5 * lim, 1e9, 1e300, np.inf, -np.inf,
                   np.nan, 3.0, -lim, lim])
+    # (read-only, as kernel_trig's angles: libm_rows compiled for one signature, not again
+    # for a writable array no solve passes it; 0.3 s of an empty cache's compiling)
+    x.flags.writeable = False
     c, s = trig.turned(x)
     ref = np.empty((2, x.size))
     trig.libm_rows(x, *ref)
