@@ -65,7 +65,8 @@ sys.modules.setdefault("rfc3987_syntax", None)
 # walked them all: on the picture tests (test_collisions.py and test_pictures.py, serially)
 # 2848 young and 12 full collections took 4.7-5.2 s of CPU, 209 and none 1.6-1.8 s, the
 # run's CPU 63.7 s -> 57.6 s, its peak memory the same, 1.78 GB (measured 2026-12-01 at a
-# load of 6; docs/testing.md). Only the moment garbage is collected changes.
+# load of 6; side by side on four more files 96.8 s -> 92.1 s; docs/testing.md). Only the
+# moment garbage is collected changes.
 GC_THRESHOLDS = (10_000, 50, 50)
 gc.set_threshold(*GC_THRESHOLDS)
 
