@@ -59,6 +59,7 @@ import nbformat
 import pytest
 
 from tests import _shared_sheets as sheets
+from tests._kernel_fork import Forker
 
 ROOT = sheets.ROOT
 CHROMIUM = sheets.CHROMIUM
@@ -162,6 +163,11 @@ def lab(tmp_path_factory):
     labconfig = home / ".jupyter" / "config" / "labconfig"
     labconfig.mkdir(parents=True)
     (labconfig / "page_config.json").write_text(json.dumps(PAGE_CONFIG))
+    # every sheet's kernel forked from one that imported the sheets' libraries once
+    # (tests/_kernel_fork.py): its kernel spec first on the server's JUPYTER_PATH
+    forker = Forker(home / ".jupyter" / "forker", env=env)
+    env["JUPYTER_PATH"] = os.pathsep.join(filter(None, [forker.jupyter_path,
+                                                        env.get("JUPYTER_PATH")]))
     log = open(home / "server.log", "w")  # noqa: SIM115 (closed below)
     server = subprocess.Popen(
         [sys.executable, "-c", SERVER, "--no-browser", "--allow-root", f"--port={port}",
@@ -199,6 +205,7 @@ def lab(tmp_path_factory):
         except subprocess.TimeoutExpired:
             server.kill()
         log.close()
+        forker.close()
 
 
 # Chromium and its page last as long as the module's tests that run one after another,
