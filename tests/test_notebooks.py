@@ -20,7 +20,10 @@ whose iteration search runs the simulation several times, 4.3 s; the two compari
 class of 12 students 7.3 s: each handout's picture drawn, decluttered and saved as PNG,
 kinetostatics/teaching/handouts.py); every kernel ~1.8 s to start and import matplotlib,
 pandas and kinetostatics before its sheet's first picture. Neither sheet offers a lighter
-setting for a test, and the test runs each sheet as a student does.
+setting for a test, and the test runs each sheet as a student does. The kernels are
+forked from one process that imported those once (tests/_kernel_fork.py: the module's
+``forker``): sheets 09-12 headless 18.7 -> 9.0 s of CPU, 08 13.2 -> 13.6 s with the
+forker's own start (one run each, load 5-10, 2026-12-01).
 """
 
 from __future__ import annotations
