@@ -472,10 +472,13 @@ def _in_order_of_cost(items: list[pytest.Item], by_module: bool) -> list[pytest.
 #: test_layout parsed and walked every module on each, test_design ran its design on two,
 #: test_exercises generated its classes on each: the three modules under ``-n 3``, 27.2 and
 #: 28.1 s of CPU spread, 15.1 and 17.0 s so; test_layout 8.3 -> 3.3 s, test_design 11.8
-#: -> 6.5 s, test_exercises 7.2 -> 5.4 s, measured 2026-11-30.)
+#: -> 6.5 s, test_exercises 7.2 -> 5.4 s, measured 2026-11-30. test_notebooks forks its
+#: sheets' kernels from one process that imports their libraries, ~2 s, once a worker:
+#: tests/_kernel_fork.py, 2026-12-01.)
 SHARED_PER_MODULE = ("tests/kinetostatics/teaching/test_classroom.py",
                      "tests/kinetostatics/teaching/test_class_record.py",
                      "tests/test_browser.py",
+                     "tests/test_notebooks.py",
                      "tests/test_layout.py",
                      "tests/kinetostatics/design/test_design.py",
                      "tests/kinetostatics/teaching/test_exercises.py")

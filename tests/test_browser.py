@@ -27,6 +27,10 @@ opens its sheet in that page, and closes it and shuts its kernel down after, so 
 server, Chromium and the page start once in the suite, not once a sheet or a worker.
 The test waits for the page by checking it every POLL ms (Playwright's default, every
 animation frame, kept Chromium drawing frames through every wait).
+Each sheet's kernel is forked from one process that imported ipykernel, matplotlib,
+pandas and kinetostatics once (tests/_kernel_fork.py, the server's kernel spec
+``python3``): the same kernel, started without 1.5-1.8 s of imports each (the browser's
+11 sheets, setup and call, 155 -> 140 s of CPU, two runs at load 5-10, 2026-12-01).
 In CI (``CI=true``) the test must run: a missing Chromium or Playwright fails it;
 elsewhere it is skipped with one line saying what to install.
 
@@ -59,6 +63,7 @@ import nbformat
 import pytest
 
 from tests import _shared_sheets as sheets
+from tests._kernel_fork import Forker
 
 ROOT = sheets.ROOT
 CHROMIUM = sheets.CHROMIUM
@@ -104,10 +109,13 @@ SERVER = ("import sys; sys.modules['rfc3987_syntax'] = None; "
 # start runs `yarn config` once), and the front end's extensions that no check here uses
 # left out (the table of contents, the debugger, the log console, the cell toolbar...,
 # with the plugins of the kept ones that need one of them: else those fail to start, an
-# error on the page); the notebook, its menus, the completer, the widgets and MathJax
-# stay. JupyterLab's load took 4.0-4.5 s of Chromium's CPU with them, 3.2-3.4 s without
+# error on the page); the notebook, its menus, the completer and the widgets stay.
+# JupyterLab's load took 4.0-4.5 s of Chromium's CPU with them, 3.2-3.4 s without
 # (two alternating pairs; one sheet's run unchanged within the noise; load 8-10,
-# 2026-11-30).
+# 2026-11-30). MathJax is left out too: no check reads the markdown's formulas (the
+# widgets' labels and outputs hold none), and typesetting them as each sheet opened was
+# about 1 s of Chromium's CPU per sheet with formulas (sheets 02 and 03: 6.2-6.4 -> 5.2-5.4
+# and 5.1-5.5 -> 4.3 s, runs side by side at load 8-10, 2026-12-01).
 PAGE_CONFIG = {"buildCheck": False, "buildAvailable": False, "disabledExtensions": {
     name: True for name in [
         *(f"@jupyterlab/{name}-extension" for name in (
@@ -115,6 +123,7 @@ PAGE_CONFIG = {"buildCheck": False, "buildAvailable": False, "disabledExtensions
             "metadataform", "extensionmanager", "inspector", "terminal", "running",
             "csvviewer", "htmlviewer", "imageviewer", "markdownviewer", "hub", "launcher",
             "help", "settingeditor", "workspaces")),
+        "@jupyterlab/mathjax-extension",
         "@jupyterlab/notebook-extension:toc", "@jupyterlab/notebook-extension:language-server",
         "@jupyterlab/notebook-extension:update-raw-mimetype",
         "@jupyterlab/fileeditor-extension:language-server"]}}
@@ -162,6 +171,11 @@ def lab(tmp_path_factory):
     labconfig = home / ".jupyter" / "config" / "labconfig"
     labconfig.mkdir(parents=True)
     (labconfig / "page_config.json").write_text(json.dumps(PAGE_CONFIG))
+    # every sheet's kernel forked from one that imported the sheets' libraries once
+    # (tests/_kernel_fork.py): its kernel spec first on the server's JUPYTER_PATH
+    forker = Forker(home / ".jupyter" / "forker", env=env)
+    env["JUPYTER_PATH"] = os.pathsep.join(filter(None, [forker.jupyter_path,
+                                                        env.get("JUPYTER_PATH")]))
     log = open(home / "server.log", "w")  # noqa: SIM115 (closed below)
     server = subprocess.Popen(
         [sys.executable, "-c", SERVER, "--no-browser", "--allow-root", f"--port={port}",
@@ -199,6 +213,7 @@ def lab(tmp_path_factory):
         except subprocess.TimeoutExpired:
             server.kill()
         log.close()
+        forker.close()
 
 
 # Chromium and its page last as long as the module's tests that run one after another,

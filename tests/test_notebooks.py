@@ -20,7 +20,10 @@ whose iteration search runs the simulation several times, 4.3 s; the two compari
 class of 12 students 7.3 s: each handout's picture drawn, decluttered and saved as PNG,
 kinetostatics/teaching/handouts.py); every kernel ~1.8 s to start and import matplotlib,
 pandas and kinetostatics before its sheet's first picture. Neither sheet offers a lighter
-setting for a test, and the test runs each sheet as a student does.
+setting for a test, and the test runs each sheet as a student does. The kernels are
+forked from one process that imported those once (tests/_kernel_fork.py: the module's
+``forker``): sheets 09-12 headless 18.7 -> 9.0 s of CPU, 08 13.2 -> 13.6 s with the
+forker's own start (one run each, load 5-10, 2026-12-01).
 """
 
 from __future__ import annotations
@@ -33,6 +36,7 @@ import pytest
 from nbclient import NotebookClient
 
 from tests import _shared_sheets as sheets
+from tests._kernel_fork import Forker
 
 NOTEBOOKS = sheets.NOTEBOOKS
 
@@ -51,15 +55,33 @@ def test_committed_without_outputs(path):
             assert cell.execution_count is None, f"{path.name}: cell {k} has an execution count"
 
 
-def run_sheet(path: Path) -> tuple[list, list[dict]]:
+def _kernel_env() -> dict[str, str]:
+    """What a sheet's kernel has in its environment, beyond this process's."""
+    return {"MPLBACKEND": "Agg", "PYTHONPATH": os.pathsep.join(
+        [str(sheets.ROOT), *filter(None, [os.environ.get("PYTHONPATH")])])}
+
+
+@pytest.fixture(scope="module")
+def forker(tmp_path_factory):
+    """The kernels' forker (tests/_kernel_fork.py) for this module's sheets: each kernel
+    forked from one process that imported the sheets' libraries once."""
+    f = Forker(tmp_path_factory.mktemp("forker"), env={**os.environ, **_kernel_env()})
+    yield f
+    f.close()
+
+
+def run_sheet(path: Path, forker: Forker | None = None) -> tuple[list, list[dict]]:
     """Run a sheet headless (every Explorer's sliders moved after it), every figure it
-    shows measured: (the outputs of its cells, one audit per figure)."""
+    shows measured: (the outputs of its cells, one audit per figure). ``forker``: its
+    kernel forked from there (tests/_kernel_fork.py), else started as Jupyter does."""
     nb = nbformat.read(path, as_version=4)
     nb.cells.insert(0, nbformat.v4.new_code_cell(sheets.AUDIT_HOOK))
     nb.cells += [nbformat.v4.new_code_cell(code) for code in sheets.checks_after(path.name)]
     nb.cells.append(nbformat.v4.new_code_cell(sheets.AUDIT_REPORT))
-    env = {"MPLBACKEND": "Agg", "PYTHONPATH": os.pathsep.join(
-        [str(sheets.ROOT), *filter(None, [os.environ.get("PYTHONPATH")])])}
+    env = _kernel_env()
+    if forker is not None:
+        env["JUPYTER_PATH"] = os.pathsep.join(filter(None, [forker.jupyter_path,
+                                                            os.environ.get("JUPYTER_PATH")]))
     old = {k: os.environ.get(k) for k in env}
     os.environ.update(env)
     try:
@@ -104,7 +126,7 @@ def test_notebook_runs(path, request):
     session; here otherwise."""
     if _in_the_browser(request.session, path.name):
         pytest.skip("run in JupyterLab by tests/test_browser.py, with these checks")
-    outputs, audits = run_sheet(path)
+    outputs, audits = run_sheet(path, request.getfixturevalue("forker"))
     sheets.check_run(path.name, outputs, audits)
 
 
