@@ -24,6 +24,11 @@ from nbclient import NotebookClient
 
 from .sandbox import Limits, Sandbox
 
+#: How long a kernel whose output connection dropped may take to be seen dead before the
+#: drop is blamed on a message larger than the output limit (:meth:`GradingClient.
+#: _still_alive`; a drop by an oversized message leaves the kernel running).
+DEATH_SECONDS = 3.0
+
 __all__ = ["GradingClient", "SandboxedKernelManager", "sandboxed_kernel"]
 
 
@@ -149,11 +154,25 @@ class GradingClient(NotebookClient):
         lost = False
         while self.watch.poll(0):
             lost |= recv_monitor_message(self.watch)["event"] == zmq.EVENT_DISCONNECTED
-        if lost and self.exit_code() is None:
+        if lost and self._still_alive():
             self.stopped = (f"printed a message larger than the output limit "
                             f"({self.limits.output_mb:g} MB): stopped")
             self.kill()
         return bool(self.stopped)
+
+    def _still_alive(self, wait: float = DEATH_SECONDS) -> bool:
+        """Whether the kernel still lives ``wait`` seconds after its output connection
+        dropped. A kernel that dies drops that connection too, a moment before its
+        process can be reaped: on a loaded 2-core machine a kernel that killed its own
+        sandbox was seen alive at the drop and its death blamed on the output limit
+        (2026-12-01, CI beside two busy loops). A dropped message leaves the kernel
+        running, so only a kernel that stays up that long is blamed."""
+        end = time.monotonic() + wait
+        while self.exit_code() is None:
+            if time.monotonic() >= end:
+                return True
+            time.sleep(0.05)
+        return False
 
     def _unwatch(self) -> None:
         """Close the monitor (before the client's ZeroMQ context ends: an open socket
