@@ -205,7 +205,7 @@ def _serve(path: str) -> None:
 
 class Forker:
     """The forker as a child of this process, and the kernel spec that asks it for
-    kernels (:meth:`kernel_dir`: a folder for ``JUPYTER_PATH``)."""
+    kernels (:meth:`first_on`: its folder first on a ``JUPYTER_PATH``)."""
 
     def __init__(self, folder: Path, env: dict[str, str] | None = None) -> None:
         self.folder = folder
@@ -228,6 +228,11 @@ class Forker:
     def jupyter_path(self) -> str:
         """The folder to put first on ``JUPYTER_PATH`` (its kernels/python3)."""
         return str(self.folder)
+
+    def first_on(self, path: str | None) -> str:
+        """A ``JUPYTER_PATH`` (``path``, None or empty: unset) with this forker's kernel
+        spec first."""
+        return os.pathsep.join(filter(None, [self.jupyter_path, path]))
 
     def close(self) -> None:
         """The forker ended, its kernels killed."""

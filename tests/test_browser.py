@@ -174,8 +174,7 @@ def lab(tmp_path_factory):
     # every sheet's kernel forked from one that imported the sheets' libraries once
     # (tests/_kernel_fork.py): its kernel spec first on the server's JUPYTER_PATH
     forker = Forker(home / ".jupyter" / "forker", env=env)
-    env["JUPYTER_PATH"] = os.pathsep.join(filter(None, [forker.jupyter_path,
-                                                        env.get("JUPYTER_PATH")]))
+    env["JUPYTER_PATH"] = forker.first_on(env.get("JUPYTER_PATH"))
     log = open(home / "server.log", "w")  # noqa: SIM115 (closed below)
     server = subprocess.Popen(
         [sys.executable, "-c", SERVER, "--no-browser", "--allow-root", f"--port={port}",

@@ -80,8 +80,7 @@ def run_sheet(path: Path, forker: Forker | None = None) -> tuple[list, list[dict
     nb.cells.append(nbformat.v4.new_code_cell(sheets.AUDIT_REPORT))
     env = _kernel_env()
     if forker is not None:
-        env["JUPYTER_PATH"] = os.pathsep.join(filter(None, [forker.jupyter_path,
-                                                            os.environ.get("JUPYTER_PATH")]))
+        env["JUPYTER_PATH"] = forker.first_on(os.environ.get("JUPYTER_PATH"))
     old = {k: os.environ.get(k) for k in env}
     os.environ.update(env)
     try:
